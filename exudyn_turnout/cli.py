@@ -7,16 +7,17 @@ from __future__ import annotations
 
 import argparse
 import csv
+import importlib
 import io
 import json
 import math
 import sys
-from typing import Callable, Sequence
+from typing import Sequence
 
 from .parameters import SOURCES, CoRunningParameters, co_running_parameters
 from .turnout import Turnout, TurnoutFileError, load_turnout
 
-__all__ = ["main", "UsageError", "unit_of"]
+__all__ = ["main", "UsageError", "unit_of", "add_turnout_options", "add_position_options", "number"]
 
 
 class UsageError(Exception):
@@ -43,23 +44,23 @@ def unit_of(name: str) -> str:
     return "-"
 
 
-def _number(text: str) -> float:
+def number(text: str) -> float:
     value = float(text)
     if not math.isfinite(value):
         raise argparse.ArgumentTypeError(f"must be a finite number, got {text!r}")
     return value
 
 
-def _add_turnout_options(p: argparse.ArgumentParser) -> None:
+def add_turnout_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--turnout", metavar="FILE", help="turnout file (default: packaged UIC60-760-1:15)")
     p.add_argument("--source", choices=SOURCES, default="derived",
                    help="derived: Eqs 1-19 on Table 1; published: the paper's Table 2 (default: derived)")
 
 
-def _add_position_options(p: argparse.ArgumentParser) -> None:
+def add_position_options(p: argparse.ArgumentParser) -> None:
     where = p.add_mutually_exclusive_group(required=True)
     where.add_argument("--zone", type=int, metavar="N", help="simulation zone (Table 3), 1-based")
-    where.add_argument("--x", type=_number, metavar="METRES", help="position from the switch toe (m)")
+    where.add_argument("--x", type=number, metavar="METRES", help="position from the switch toe (m)")
 
 
 def _parameter_set(args: argparse.Namespace, turnout: Turnout) -> CoRunningParameters:
@@ -125,23 +126,26 @@ def _build_params(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("params", help="equivalent co-running parameters (Eqs 1-19 / Table 2)",
                        description="Print the co-running parameter set of a zone (Table 2 form: "
                                    "coefficients with their Delta factor) or at a position x (numbers).")
-    _add_turnout_options(p)
-    _add_position_options(p)
+    add_turnout_options(p)
+    add_position_options(p)
     p.add_argument("--layers", type=int, choices=(2, 3), default=3, help="track model layers (default 3)")
     p.add_argument("--format", choices=("table", "csv", "json"), default="table")
     p.set_defaults(run=_cmd_params)
 
 
-#: Subcommand builders; later modules add theirs here.
-_BUILDERS: list[Callable[[argparse._SubParsersAction], None]] = [_build_params]
+#: Modules defining further subcommands, each with ``build(subparsers)``. A subcommand
+#: module must not import exudyn or matplotlib at import time (import inside its run
+#: function) so that every command starts fast.
+_COMMAND_MODULES: tuple[str, ...] = ()
 
 
 def _parser() -> _Parser:
     parser = _Parser(prog="exudyn-turnout",
                      description="Co-running turnout track models on Exudyn (Shih, Ambur & Dixon 2023).")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
-    for build in _BUILDERS:
-        build(sub)
+    _build_params(sub)
+    for name in _COMMAND_MODULES:
+        importlib.import_module(name).build(sub)
     return parser
 
 
