@@ -98,10 +98,11 @@ def _crossing_ramp(c: _Context):
         return None
     f = _plateau_factor(c)
     stock = c.name.replace("2_z", "1_z").replace("tg1", "tg2")
+    start = f * c.sets["derived"][stock]
     return (f"Table 2's range runs from the switch rail's plateau (stock x {f:.3f}, see zone 3) to the crossing-nose "
             f"value; derived gives the crossing-nose value (Eq 3 with the reciprocal of Eq 5) over the whole zone. "
-            f"Reading value: the range start.",
-            f * c.sets["derived"][stock])
+            f"Reading value: linear from that plateau to the derived crossing-nose value, at the zone middle.",
+            0.5 * (start + c.sets["derived"][c.name]))
 
 
 def _as_printed(c: _Context):
