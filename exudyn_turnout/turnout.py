@@ -245,16 +245,22 @@ def default_turnout_path() -> Path:
 class _Reader:
     """Reads fields of a parsed TOML file and raises one clear error per bad field."""
 
-    def __init__(self, filename: str, data: Mapping[str, Any]):
+    def __init__(self, filename: str, data: Mapping[str, Any], prefix: str = ""):
         self.filename = filename
         self.data = data
+        self.prefix = prefix  # fields under this dotted prefix are looked up in data itself
+
+    def sub(self, prefix: str, data: Any) -> "_Reader":
+        """A reader of ``data`` (e.g. one list item) whose fields are named ``prefix.field``."""
+        return _Reader(self.filename, data if isinstance(data, Mapping) else {}, prefix)
 
     def fail(self, field: str, problem: str) -> TurnoutFileError:
         return TurnoutFileError(f"{self.filename}: {field} {problem}")
 
     def get(self, field: str, default: Any = ...) -> Any:
         node: Any = self.data
-        for part in field.split("."):
+        path = field[len(self.prefix) + 1:] if self.prefix and field.startswith(self.prefix + ".") else field
+        for part in path.split("."):
             if not isinstance(node, Mapping) or part not in node:
                 if default is not ...:
                     return default
@@ -345,7 +351,7 @@ def _zones(r: _Reader, rail_types: Mapping[str, RailType]) -> tuple[Zone, ...]:
     zones = []
     for i, _ in enumerate(raw, start=1):
         p = f"zones[{i}]"
-        zr = _Reader(r.filename, {p: raw[i - 1]})
+        zr = r.sub(p, raw[i - 1])
         x0, x1 = zr.number(p + ".x_start", False), zr.number(p + ".x_end", False)
         if not x1 > x0:
             raise r.fail(p, f"has x_end = {x1:g} <= x_start = {x0:g}")
