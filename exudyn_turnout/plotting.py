@@ -14,7 +14,7 @@ import numpy as np
 
 from .receptance import Receptance
 
-__all__ = ["receptance_label", "plot_receptance"]
+__all__ = ["receptance_label", "plot_receptance", "passage_label", "plot_passage_forces"]
 
 
 def receptance_label(r: Receptance) -> str:
@@ -75,3 +75,50 @@ def _axes(ax, phase: bool) -> tuple:
     if len(axes) != (2 if phase else 1):
         raise ValueError(f"phase={phase} needs {2 if phase else 1} axes, got {len(axes)}")
     return axes
+
+
+def passage_label(result) -> str:
+    """Legend text of a passage: layers (or model), parameter source and speed."""
+    s = result.settings
+    model = result.summary.get("model", f"{s.layers}-layer")
+    return f"{model}, {s.source}, {s.speed_kmh:g} km/h"
+
+
+def plot_passage_forces(results, wheel: str = "right", labels=None, title: str | None = None):
+    """Contact forces of passages against x, at the switch and at the crossing (Figs 7, 8 layout).
+
+    Parameters
+    ----------
+    results : sequence of PassageResult
+        Runs to overlay (e.g. 2-layer, 3-layer, FE reference).
+    wheel : {"right", "left"}
+    labels : sequence of str, optional
+
+    Returns
+    -------
+    (figure, axes)
+        A 2 x 2 grid: rows vertical (Fz) and lateral (Fy) force on the rail, columns the
+        switch and crossing regions named in the results' summaries.
+    """
+    results = list(results)
+    fig, axes = plt.subplots(2, 2, figsize=(10.0, 6.4), sharex="col")
+    names = list(labels) if labels is not None else [passage_label(r) for r in results]
+    regions = (("switch", results[0].summary["switch_region_m"]), ("crossing", results[0].summary["crossing_region_m"]))
+    for row, (quantity, unit) in enumerate((("Fz", "vertical"), ("Fy", "lateral"))):
+        for col, (where, (x0, x1)) in enumerate(regions):
+            ax = axes[row, col]
+            for r, name in zip(results, names):
+                x, f = r.columns["x_m"], r.columns[f"{quantity}_{wheel}_N"]
+                sel = (x >= x0) & (x <= x1)
+                ax.plot(x[sel], f[sel] / 1e3, label=name, lw=1.0)
+            ax.grid(True, alpha=0.3)
+            ax.set_title(f"{unit} force, {wheel} wheel, {where}", fontsize="medium")
+            if col == 0:
+                ax.set_ylabel(f"{quantity} on rail (kN)")
+            if row == 1:
+                ax.set_xlabel("x from switch toe (m)")
+    axes[0, 0].legend(fontsize="small")
+    if title:
+        fig.suptitle(title)
+    fig.tight_layout()
+    return fig, axes

@@ -62,7 +62,18 @@ class Route:
     pairs: tuple[ContactPair, ...]
     rail_y: Mapping[str, float]  #: m, overrides of the zones' rail positions for this route
     continues: Mapping[int, Mapping[str, str]]  #: zone -> {new slot: slot it continues}
-    check_clearance: float  #: m
+    check_clearance: float  #: m, nominal check-rail clearance
+    check_flare: tuple[float, float] = (0.0, 0.0)  #: m, (length, opening) of the flared ends
+
+    def check_clearance_at(self, pair: ContactPair, x: float) -> float | None:
+        """Check-rail clearance (m) at x, opened at the flared ends; None outside the check rail."""
+        if not pair.check or not pair.check[0] <= x <= pair.check[1]:
+            return None
+        length, opening = self.check_flare
+        if length <= 0.0:
+            return self.check_clearance
+        into = min(x - pair.check[0], pair.check[1] - x) / length
+        return self.check_clearance + opening * max(0.0, 1.0 - into)
 
     def zone(self, zone: Zone) -> Zone:
         """The zone with this route's rail positions."""
@@ -71,8 +82,9 @@ class Route:
         return replace(zone, rail_y=rail_y)
 
     def pairs_in(self, zone: Zone) -> tuple[ContactPair, ...]:
-        """Pairs whose x range meets the zone."""
-        return tuple(p for p in self.pairs if p.x_range()[1] >= zone.x_start and p.x_range()[0] <= zone.x_end)
+        """Pairs whose x range overlaps the zone over a positive length (not just a boundary)."""
+        return tuple(p for p in self.pairs
+                     if min(p.x_range()[1], zone.x_end) - max(p.x_range()[0], zone.x_start) > 1e-9)
 
 
 def route_names(turnout: Turnout) -> tuple[str, ...]:
@@ -161,9 +173,12 @@ def load_route(turnout: Turnout, name: str) -> Route:
     curvature = r.get(p + ".curvature", 0.0)
     curvature = Table1D((0.0,), (float(curvature),)) if isinstance(curvature, (int, float)) else _curvature(r, p)
     rail_y = {s: r.number(f"{p}.rail_y.{s}", positive=False) for s in r.get(p + ".rail_y", {})}
-    clearance = r.number("check_rail.clearance") if any(q.check for q in pairs) else math.nan
+    has_check = any(q.check for q in pairs)
+    clearance = r.number("check_rail.clearance") if has_check else math.nan
+    flare = (r.number("check_rail.flare_length", False, 0.0), r.number("check_rail.flare_opening", False, 0.0)) \
+        if has_check else (0.0, 0.0)
     return Route(name, str(r.get(p + ".description", "")), curvature, tuple(pairs), rail_y,
-                 _continues(r, p + ".continues", turnout), clearance)
+                 _continues(r, p + ".continues", turnout), clearance, flare)
 
 
 def _curvature(r: _Reader, p: str) -> Table1D:

@@ -118,8 +118,7 @@ def add_vehicle(mbs, vehicle: Vehicle, ground_body: int, z_w0: float = 0.0, z_s0
     for side in (1.0, -1.0):
         m_box = mbs.AddMarker(ii.MarkerBodyPosition(bodyNumber=o_w, localPosition=[side * vehicle.d, 0.0, 0.0]))
         mbs.AddObject(ii.CartesianSpringDamper(markerNumbers=[m_box, m_s], stiffness=[vehicle.k_y, vehicle.k_z, 0.0],
-                                               damping=[vehicle.c_y, vehicle.c_z, 0.0],
-                                               visualization={"show": False}))
+                                               damping=[vehicle.c_y, vehicle.c_z, 0.0]))
     loads = tuple(mbs.AddLoad(ii.LoadMassProportional(markerNumber=mbs.AddMarker(ii.MarkerBodyMass(bodyNumber=o)),
                                                       loadVector=[0.0, -GRAVITY, 0.0]))
                   for o in (o_w, o_s))

@@ -84,35 +84,57 @@ class WheelRailElement:
         self.vehicle, self.route, self.pairs = vehicle, route, tuple(pairs)
         self.x0, self.v = float(x0), float(v)
         self.n = 6 + 2 * len({(p.i_y, p.i_z) for p in self.pairs})
+        self._cached_t = math.nan
+        self._geometry: tuple = ()
 
     def x_at(self, t: float) -> float:
         return self.x0 + self.v * t
 
+    def geometry(self, x: float) -> tuple:
+        """Per pair at x: (rail height or None off the tread, flange on, check clearance or None); curvature."""
+        rows = []
+        for bp in self.pairs:
+            p = bp.pair
+            h = _interp(p.x, p.z, x) if p.tread_active(x) else None
+            rows.append((h, bool(p.flange and p.flange[0] <= x <= p.flange[1]), self.route.check_clearance_at(p, x)))
+        c = self.route.curvature
+        return tuple(rows), _interp(c.x, c.value, x)
+
+    def _geometry_at(self, t: float) -> tuple:
+        if t != self._cached_t:  # Newton iterations of one step share t
+            self._cached_t, self._geometry = t, self.geometry(self.x_at(t))
+        return self._geometry
+
     def pair_forces(self, bp: BoundPair, x: float, q, q_t) -> PairForces:
         """Forces of one pair at position x for element coordinates q, q_t."""
-        veh, law, pair = self.vehicle, self.vehicle.contact, bp.pair
-        s, b, gamma = pair.side, veh.b, law.conicity
+        rows, kappa = self.geometry(x)
+        return PairForces(*self._forces(bp, rows[self.pairs.index(bp)], kappa, q, q_t))
+
+    def _forces(self, bp: BoundPair, row: tuple, kappa: float, q, q_t) -> tuple:
+        """(N, F_y on the rail, F_x on the wheel, delta, in contact) of one pair."""
+        veh, law = self.vehicle, self.vehicle.contact
+        s, b, gamma = bp.pair.side, veh.b, law.conicity
+        height, flange_on, check_clearance = row
         dy, dy_t = q[0] - q[bp.i_y], q_t[0] - q_t[bp.i_y]
         N = F_y = F_x = 0.0
         delta = -math.inf
-        if pair.tread_active(x):
-            delta = q[bp.i_z] + _interp(pair.x, pair.z, x) - (q[1] + s * b * q[2] - s * gamma * dy)
+        if height is not None:
+            delta = q[bp.i_z] + height - (q[1] + s * b * q[2] - s * gamma * dy)
             if delta > 0.0:
                 delta_t = q_t[bp.i_z] - (q_t[1] + s * b * q_t[2] - s * gamma * dy_t)
                 N = max(hertz_force(delta, law.C_H) + law.damping * delta_t, 0.0)
             if N > 0.0 and self.v > 0.0:
-                F_x, F_y = self._creep(s, N, dy, dy_t, q[3], q_t[3], x)
+                F_x, F_y = self._creep(s, N, dy, dy_t, q[3], q_t[3], kappa)
             F_y -= s * gamma * N  # the conical tread's normal leans towards the track centre
-        if pair.flange and pair.flange[0] <= x <= pair.flange[1]:
+        if flange_on:
             F_y -= s * flange_force(s * dy - law.flange_clearance, s * dy_t, law.flange_stiffness, law.flange_damping)
-        if pair.check and pair.check[0] <= x <= pair.check[1]:
-            F_y += s * flange_force(-s * dy - self.route.check_clearance, -s * dy_t, law.flange_stiffness,
-                                    law.flange_damping)
-        return PairForces(N, -F_y, F_x, delta, N > 0.0)
+        if check_clearance is not None:
+            F_y += s * flange_force(-s * dy - check_clearance, -s * dy_t, law.flange_stiffness, law.flange_damping)
+        return N, -F_y, F_x, delta, N > 0.0
 
-    def _creep(self, s: int, N: float, dy: float, dy_t: float, psi: float, psi_t: float, x: float):
+    def _creep(self, s: int, N: float, dy: float, dy_t: float, psi: float, psi_t: float, kappa: float):
         veh, law = self.vehicle, self.vehicle.contact
-        xi_x = longitudinal_creepage(s, dy, psi_t, self.v, veh.b, veh.r0, law.conicity, self.route.curvature(x))
+        xi_x = longitudinal_creepage(s, dy, psi_t, self.v, veh.b, veh.r0, law.conicity, kappa)
         xi_y = lateral_creepage(dy_t, psi, self.v)
         F_x = -creep_coefficient(law.f11_ref, N, law.N_ref) * xi_x
         F_y = -creep_coefficient(law.f22_ref, N, law.N_ref) * xi_y
@@ -121,20 +143,21 @@ class WheelRailElement:
 
     def __call__(self, mbs, t, item_number, q, q_t):
         """Exudyn ``forceUserFunction``: generalised forces on the element's coordinates."""
-        x = self.x_at(t)
+        rows, kappa = self._geometry_at(t)
         f = [0.0] * self.n
-        veh = self.vehicle
-        for bp in self.pairs:
-            pf = self.pair_forces(bp, x, q, q_t)
+        b, r0 = self.vehicle.b, self.vehicle.r0
+        for bp, row in zip(self.pairs, rows):
+            N, F_y, F_x = self._forces(bp, row, kappa, q, q_t)[:3]
             s = bp.pair.side
-            f[0] -= pf.F_y
-            f[1] += pf.N
-            f[2] += s * veh.b * pf.N - veh.r0 * pf.F_y
-            f[3] -= s * veh.b * pf.F_x
-            f[bp.i_y] += pf.F_y
-            f[bp.i_z] -= pf.N
+            f[0] -= F_y
+            f[1] += N
+            f[2] += s * b * N - r0 * F_y
+            f[3] -= s * b * F_x
+            f[bp.i_y] += F_y
+            f[bp.i_z] -= N
+        veh = self.vehicle
         if self.v > 0.0:
-            a_y = self.v**2 * self.route.curvature(x)
+            a_y = self.v**2 * kappa
             f[0] -= veh.m_w * a_y
             f[4] -= veh.m_s * a_y
         else:

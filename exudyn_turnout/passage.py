@@ -1,0 +1,536 @@
+"""A wheelset passing through the turnout on a co-running track (paper Section 4).
+
+The wheelset (:mod:`~exudyn_turnout.vehicle`) runs at constant speed along a route
+(:mod:`~exudyn_turnout.routes`) over a two- or three-layer co-running track
+(:mod:`~exudyn_turnout.track`) whose position-dependent stiffness and damping follow the
+wheelset's x, coupled by the penalty wheel/rail contact of :mod:`~exudyn_turnout.wheelrail`.
+
+The run starts from static equilibrium at ``x_start`` and is split at the zone boundaries
+(Table 3): in each zone a new Exudyn system is built with that zone's masses and active
+rails, and the state of everything that continues (vehicle, sleeper, rails present in
+both zones, or a rail slot that a route says continues another) is carried over.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Callable, Mapping
+
+import numpy as np
+
+from .parameters import co_running_parameters
+from .routes import Route, load_route
+from .turnout import Turnout, Zone
+from .vehicle import Vehicle, add_vehicle, load_vehicle
+from .wheelrail import BoundPair, WheelRailElement
+
+__all__ = ["PassageSettings", "PassageResult", "PassageError", "simulate_passage", "max_time_step",
+           "contact_resonance", "passage_summary", "write_passage"]
+
+
+class PassageError(RuntimeError):
+    """Bad passage settings, or a solver failure (the message says when and where)."""
+
+
+@dataclass(frozen=True)
+class PassageSettings:
+    route: str = "through"
+    speed_kmh: float = 100.0  #: km/h
+    layers: int = 3
+    source: str = "derived"
+    x_start: float | None = None  #: m, default: the turnout's start
+    x_end: float | None = None  #: m, default: the turnout's end
+    time_step: float = 1e-4  #: s, converged: halving it moves the crossing peak < 0.4 %
+    output_step: float | None = None  #: s, default: every time step
+    spectral_radius: float = 0.8  #: generalized-alpha rho_inf
+
+    @property
+    def v(self) -> float:
+        """Speed in m/s."""
+        return self.speed_kmh / 3.6
+
+
+@dataclass(frozen=True)
+class PassageResult:
+    """Time histories and peaks of a passage (SI units, see :func:`simulate_passage`)."""
+
+    settings: PassageSettings
+    columns: Mapping[str, np.ndarray]  #: "t_s", "x_m", forces (N), displacements (m, rad)
+    summary: Mapping[str, object]
+    zone_starts: tuple[float, ...] = field(default_factory=tuple)  #: m, x where each run segment began
+
+
+def contact_resonance(vehicle: Vehicle, m_contact: float) -> float:
+    """Wheel-on-rail resonance (Hz) of half the wheelset on the linearised Hertz spring over m_contact."""
+    W = vehicle.static_wheel_load
+    k_H = 1.5 * vehicle.contact.C_H ** (2.0 / 3.0) * W ** (1.0 / 3.0)  # dF/d delta at F = W
+    m_w = 0.5 * vehicle.m_w
+    return math.sqrt(k_H * (1.0 / m_w + 1.0 / m_contact)) / (2.0 * math.pi)
+
+
+def max_time_step(vehicle: Vehicle, m_rail: float) -> float:
+    """Largest time step (s) that resolves the wheel/rail contact: 10 steps per period."""
+    return 1.0 / (10.0 * contact_resonance(vehicle, m_rail))
+
+
+def _check(settings: PassageSettings, turnout: Turnout, vehicle: Vehicle) -> tuple[float, float]:
+    s = settings
+    if not (math.isfinite(s.speed_kmh) and 0 < s.speed_kmh <= 400):
+        raise PassageError(f"speed must be > 0 and <= 400 km/h, got {s.speed_kmh:g} km/h")
+    x_a = turnout.x_min if s.x_start is None else s.x_start
+    x_b = turnout.x_max if s.x_end is None else s.x_end
+    if not (turnout.x_min <= x_a < x_b <= turnout.x_max):
+        raise PassageError(f"x range {x_a:g}..{x_b:g} m must lie within the turnout "
+                           f"({turnout.x_min:g}..{turnout.x_max:g} m) with x_start < x_end")
+    h_max = max_time_step(vehicle, 111.0)
+    if not (math.isfinite(s.time_step) and 0 < s.time_step <= h_max):
+        raise PassageError(f"time step {s.time_step:g} s is too large to resolve the wheel/rail contact "
+                           f"(~{contact_resonance(vehicle, 111.0):.0f} Hz): use a step <= {h_max:.2g} s")
+    return x_a, x_b
+
+
+def _pair_key(wheel: str, rail: str) -> str:
+    return f"{wheel}_{rail}"
+
+
+def _segment_columns(element: WheelRailElement, t: np.ndarray, q: np.ndarray, q_t: np.ndarray,
+                     rails: Mapping[str, int]) -> dict[str, np.ndarray]:
+    """Forces and displacements of one zone's run from the element's stored coordinates.
+
+    ``q``, ``q_t``: (samples, element coordinates); ``rails``: slot -> index of its y.
+    """
+    x = element.x0 + element.v * t
+    cols: dict[str, np.ndarray] = {"t_s": t, "x_m": x}
+    for wheel in ("right", "left"):
+        for name in ("Fz", "Fy"):
+            cols[f"{name}_{wheel}_N"] = np.zeros_like(t)
+    for bp in element.pairs:
+        key = _pair_key(bp.pair.wheel, bp.pair.rail)
+        fz, fy = cols.setdefault(f"Fz_{key}_N", np.zeros_like(t)), cols.setdefault(f"Fy_{key}_N", np.zeros_like(t))
+        for k in range(len(t)):
+            pf = element.pair_forces(bp, x[k], q[k], q_t[k])
+            fz[k] += pf.N
+            fy[k] += pf.F_y
+    for key in [c for c in cols if c.count("_") == 3 and c.startswith(("Fz_", "Fy_"))]:
+        name, wheel = key.split("_")[:2]
+        cols[f"{name}_{wheel}_N"] += cols[key]
+    for i, name in enumerate(("y_wheelset_m", "z_wheelset_m", "roll_wheelset_rad", "yaw_wheelset_rad")):
+        cols[name] = q[:, i]
+    for slot, i in rails.items():
+        cols[f"y_rail_{slot}_m"], cols[f"z_rail_{slot}_m"] = q[:, i], q[:, i + 1]
+    return cols
+
+
+def _join(segments: list[dict[str, np.ndarray]]) -> dict[str, np.ndarray]:
+    """Concatenate zone segments; a column missing in a segment is NaN there (rail not present)."""
+    names: list[str] = []
+    for seg in segments:
+        names += [n for n in seg if n not in names]
+    out = {}
+    for n in names:
+        out[n] = np.concatenate([seg.get(n, np.full(len(seg["t_s"]), np.nan)) for seg in segments])
+    return out
+
+
+def _peak(cols: Mapping[str, np.ndarray], name: str, x_range: tuple[float, float], signed: bool = False) -> float:
+    x = cols["x_m"]
+    sel = (x >= x_range[0]) & (x <= x_range[1])
+    if not sel.any():
+        return math.nan
+    values = cols[name][sel]
+    return float(values[np.argmax(np.abs(values))] if signed else values.max())
+
+
+def _contact_losses(fz: np.ndarray) -> int:
+    """Number of times a wheel lost all contact (its total normal force fell to zero)."""
+    loaded = fz > 0.0
+    return int(np.count_nonzero(loaded[:-1] & ~loaded[1:]))
+
+
+@dataclass
+class _ZoneSystem:
+    """One zone's Exudyn system and what the passage needs of it."""
+
+    container: object
+    mbs: object
+    zone: Zone
+    element: WheelRailElement
+    names: dict  #: node name ("wheelset", "yaw", "sprung", "sleeper", "rail_r1", "m0_r1") -> node
+    rails: dict  #: rail slot touched by a wheel -> index of its y in the element
+    sensors: list  #: (node, sensor of coordinates, sensor of velocities) for the element's nodes
+    params: object  #: CoRunningParameters of the zone, with the route's cross-section
+
+    @property
+    def sleeper_y(self) -> float:
+        return self.params.zone.sleeper_y
+
+
+def _initial_guess(vehicle: Vehicle) -> tuple[float, float]:
+    """Wheelset and sprung-mass z (m) with the contacts closed, so Hertz springs have stiffness."""
+    W = vehicle.static_wheel_load
+    z_w = -3.0 * (W / vehicle.contact.C_H) ** (2.0 / 3.0)
+    return z_w, z_w - 0.5 * vehicle.m_s * 9.81 / vehicle.k_z
+
+
+def _build(turnout: Turnout, route: Route, vehicle: Vehicle, zone: Zone, settings: PassageSettings,
+           x0: float, v: float) -> _ZoneSystem:
+    import exudyn as exu
+    from exudyn.itemInterface import ObjectGenericODE2, SensorNode
+    from dataclasses import replace
+
+    from .track import add_co_running_track
+
+    container = exu.SystemContainer()
+    mbs = container.AddSystem()
+    params = co_running_parameters(turnout, zone=zone.index, layers=settings.layers, source=settings.source)
+    params = replace(params, zone=route.zone(params.zone))
+    track = add_co_running_track(mbs, params, x0, v)
+    veh = add_vehicle(mbs, vehicle, track.ground, *_initial_guess(vehicle))
+    pairs = [p for p in route.pairs_in(zone) if p.rail in zone.active_rails]
+    slots = [r for r in zone.active_rails if any(p.rail == r for p in pairs)]
+    rails = {r: 6 + 2 * i for i, r in enumerate(slots)}
+    element = WheelRailElement(vehicle, route, [BoundPair(p, rails[p.rail], rails[p.rail] + 1) for p in pairs], x0, v)
+    nodes = [veh.wheelset_node, veh.yaw_node, veh.sprung_node] + [track.wheel_nodes[r] for r in slots]
+    M, K = np.zeros((element.n, element.n)), np.zeros((element.n, element.n))
+    M[3, 3], K[3, 3] = vehicle.J_yaw, vehicle.k_yaw
+    mbs.AddObject(ObjectGenericODE2(nodeNumbers=nodes, massMatrix=M, stiffnessMatrix=K, forceUserFunction=element))
+    sensors = [(n, *(mbs.AddSensor(SensorNode(nodeNumber=n, storeInternal=True, writeToFile=False,
+                                               outputVariableType=o))
+                     for o in (exu.OutputVariableType.Coordinates, exu.OutputVariableType.Coordinates_t)))
+               for n in nodes]
+    names = {"wheelset": veh.wheelset_node, "yaw": veh.yaw_node, "sprung": veh.sprung_node,
+             "sleeper": track.sleeper_node}
+    names.update({f"rail_{r}": n for r, n in track.rail_nodes.items()})
+    names.update({f"m0_{r}": n for r, n in track.layer_nodes.items()})
+    mbs.Assemble()
+    return _ZoneSystem(container, mbs, zone, element, names, rails, sensors, params)
+
+
+def _node_state(system: _ZoneSystem) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    import exudyn as exu
+    data = system.mbs.systemData
+    q = np.asarray(data.GetODE2Coordinates(exu.ConfigurationType.Current))
+    q_t = np.asarray(data.GetODE2Coordinates_t(exu.ConfigurationType.Current))
+    out = {}
+    for name, node in system.names.items():
+        i = system.mbs.GetNodeODE2Index(node)
+        k = np.atleast_1d(system.mbs.GetNodeOutput(node, exu.OutputVariableType.Coordinates)).size
+        out[name] = (q[i:i + k].copy(), q_t[i:i + k].copy())
+    return out
+
+
+_NODE_DOF = {"sleeper": ("y_t", "z_t", "phi_t")}
+
+
+def _dof_of(name: str) -> tuple[str, ...]:
+    """Coordinate names (exudyn_turnout.modal) of a track node name ("rail_r1", "m0_r1", "sleeper")."""
+    if name in _NODE_DOF:
+        return _NODE_DOF[name]
+    kind, _, slot = name.partition("_")
+    return (f"y_{slot}", f"z_{slot}") if kind == "rail" else (f"y_m0_{slot}", f"z_m0_{slot}")
+
+
+def _track_vector(state: dict, system: _ZoneSystem, index: int) -> dict[str, float]:
+    """Track coordinates (index 0) or velocities (1) of ``state`` by coordinate name."""
+    out = {}
+    for name in system.names:
+        if name in ("wheelset", "yaw", "sprung"):
+            continue
+        out.update(zip(_dof_of(name), state[name][index]))
+    return out
+
+
+def _wheel_rail_loads(system: _ZoneSystem, state: dict, layers: int) -> dict[str, tuple[float, float]]:
+    """Total (vertical, lateral) force on each rail slot touched, from the element at ``state``."""
+    q = np.concatenate([state[n][0] for n in _element_nodes(system, layers)])
+    q_t = np.concatenate([state[n][1] for n in _element_nodes(system, layers)])
+    el, x = system.element, system.element.x_at(system.mbs.systemData.GetTime())
+    loads: dict[str, list[float]] = {}
+    for bp in el.pairs:
+        pf = el.pair_forces(bp, x, q, q_t)
+        acc = loads.setdefault(bp.pair.rail, [0.0, 0.0])
+        acc[0], acc[1] = acc[0] + pf.N, acc[1] + pf.F_y
+    return {r: (v[0], v[1]) for r, v in loads.items()}
+
+
+def _static_deflection(params, x: float, loads: Mapping[str, tuple[float, float]], layers: int) -> dict[str, float]:
+    """u = K^-1 f of the co-running track (by coordinate name) under the vertical wheel loads.
+
+    Lateral loads are left out on purpose: the two rails' lateral deflections change in
+    opposite directions at a zone boundary, which a rigid wheelset cannot follow, and on a
+    conical tread that would turn into a vertical load step; lateral states carry over.
+    """
+    from .modal import assemble_track_matrices, wheel_dof
+    m = assemble_track_matrices(params, x)
+    f = np.zeros(len(m.dof))
+    for rail, (N, _) in loads.items():
+        if rail in params.active_rails:
+            f[m.index(wheel_dof(rail, "vertical", layers))] -= N
+    return dict(zip(m.dof, np.linalg.solve(m.K, f)))
+
+
+def _carry_over(state: dict, old: _ZoneSystem, new: _ZoneSystem, continues: Mapping[str, str], layers: int,
+                x: float) -> None:
+    """Set the new zone's initial state from the old zone's final ``state``.
+
+    The static part of the track's deflection is re-based: the old zone's static deflection
+    under the current wheel loads is replaced by the new zone's (its parameters differ),
+    and the wheelset and sprung mass move with the rails they stand on, so that no wheel
+    load jumps; the dynamic deviation from static equilibrium and all velocities carry
+    over. A rail that appears starts with the sleeper's motion under it.
+    """
+    import exudyn as exu
+    loads_old = _wheel_rail_loads(old, state, layers)
+    source = {slot: continues.get(slot, slot) for slot in new.params.active_rails}
+    loads_new = {slot: loads_old[src] for slot, src in source.items() if src in loads_old}
+    u_old = _static_deflection(old.params, x, loads_old, layers)
+    u_new = _static_deflection(new.params, x, loads_new, layers)
+    q_old, v_old = _track_vector(state, old, 0), _track_vector(state, old, 1)
+    dyn = {n: q_old[n] - u_old[n] for n in q_old}
+    shift = new.sleeper_y - old.sleeper_y  # the sleeper's reference point moved with the zone
+    dyn["z_t"] += shift * dyn["phi_t"]
+    v_old["z_t"] += shift * v_old["phi_t"]
+    q_new, v_new = {}, {}
+    for name in u_new:
+        axis, _, rest = name.partition("_")
+        slot = rest.rsplit("_", 1)[-1]
+        src = name.replace(slot, source[slot]) if slot in source else name  # sleeper names have no slot
+        if src in dyn:
+            q_new[name], v_new[name] = u_new[name] + dyn[src], v_old[src]
+        else:  # a rail that appears: the sleeper's motion under it
+            arm = new.params.zone.rail_y[slot] - new.sleeper_y
+            k = 0 if axis == "y" else 1
+            q_new[name] = u_new[name] + (dyn["y_t"] if k == 0 else dyn["z_t"] + arm * dyn["phi_t"])
+            v_new[name] = v_old["y_t"] if k == 0 else v_old["z_t"] + arm * v_old["phi_t"]
+    vehicle_shift = _vehicle_shift(old, u_old, u_new, loads_old, source, layers)
+    mbs, data = new.mbs, new.mbs.systemData
+    q = np.asarray(data.GetODE2Coordinates(exu.ConfigurationType.Initial)).copy()
+    q_t = np.zeros_like(q)
+    for name, node in new.names.items():
+        i = mbs.GetNodeODE2Index(node)
+        if name in ("wheelset", "yaw", "sprung"):
+            values, rates = state[name][0] + vehicle_shift[name], state[name][1]
+        else:
+            dofs = _dof_of(name)
+            values, rates = np.array([q_new[d] for d in dofs]), np.array([v_new[d] for d in dofs])
+        q[i:i + len(values)], q_t[i:i + len(values)] = values, rates
+    data.SetODE2Coordinates(q, exu.ConfigurationType.Initial)
+    data.SetODE2Coordinates_t(q_t, exu.ConfigurationType.Initial)
+
+
+def _vehicle_shift(old: _ZoneSystem, u_old: dict, u_new: dict, loads: Mapping, source: Mapping[str, str],
+                   layers: int) -> dict[str, np.ndarray]:
+    """Move wheelset and sprung mass with the change of static rail deflection under each wheel."""
+    from .modal import wheel_dof
+    b = old.element.vehicle.b
+    dz, dy = {"left": [], "right": []}, {"left": [], "right": []}
+    new_slot = {src: slot for slot, src in source.items()}  # source holds the new zone's active slots only
+    for bp in old.element.pairs:
+        rail, N = bp.pair.rail, loads.get(bp.pair.rail, (0.0, 0.0))[0]
+        if N <= 0.0 or rail not in new_slot:
+            continue
+        for axis, acc in (("vertical", dz), ("lateral", dy)):
+            a, b_ = wheel_dof(rail, axis, layers), wheel_dof(new_slot[rail], axis, layers)
+            if a in u_old and b_ in u_new:
+                acc[bp.pair.wheel].append(u_new[b_] - u_old[a])
+    mean = {w: (float(np.mean(dz[w])) if dz[w] else 0.0, float(np.mean(dy[w])) if dy[w] else 0.0) for w in dz}
+    z, y = 0.5 * (mean["left"][0] + mean["right"][0]), 0.5 * (mean["left"][1] + mean["right"][1])
+    roll = (mean["left"][0] - mean["right"][0]) / (2.0 * b)
+    return {"wheelset": np.array([y, z, roll]), "yaw": np.zeros(1), "sprung": np.array([y, z])}
+
+
+def _element_nodes(system: _ZoneSystem, layers: int) -> list[str]:
+    body = "m0" if layers == 3 else "rail"
+    return ["wheelset", "yaw", "sprung"] + [f"{body}_{r}" for r in system.rails]
+
+
+def _wheel_loads(system: _ZoneSystem, state: dict, layers: int) -> dict[str, float]:
+    """Total normal force (N) on each wheel in ``state``."""
+    q = np.concatenate([state[n][0] for n in _element_nodes(system, layers)])
+    el, loads = system.element, {"left": 0.0, "right": 0.0}
+    for bp in el.pairs:
+        loads[bp.pair.wheel] += el.pair_forces(bp, el.x0, q, np.zeros_like(q)).N
+    return loads
+
+
+def _solve_static(system: _ZoneSystem) -> None:
+    import exudyn as exu
+    from .track import simulation_settings
+    sim = simulation_settings(1.0, 1.0)
+    sim.staticSolver.newton.absoluteTolerance = 1e-4
+    try:
+        system.mbs.SolveStatic(sim, updateInitialValues=True)
+    except (exu.SolverError, RuntimeError) as err:
+        raise PassageError(f"static equilibrium not found at x = {system.element.x0:g} m "
+                           f"(zone {system.zone.index}): {err}") from None
+
+
+def _progress_function(progress: Callable[[float, float], None], t_offset: float, total: float, x0: float,
+                       v: float) -> Callable:
+    due = [0.0]
+
+    def pre_step(mbs, t):
+        if t >= due[0]:
+            due[0] = t + 0.02 * total
+            progress(min((t_offset + t) / total, 1.0), x0 + v * t)
+        return True
+    return pre_step
+
+
+def _run(system: _ZoneSystem, duration: float, settings: PassageSettings, t_offset: float, total: float,
+         progress: Callable | None) -> dict[str, np.ndarray]:
+    """Integrate one zone for ``duration`` s; return its columns (time shifted by t_offset)."""
+    import exudyn as exu
+    from .track import simulation_settings
+    h = settings.time_step
+    sim = simulation_settings(duration, h, 0.999 * (settings.output_step or h))  # every step: no rounding skips
+    sim.timeIntegration.numberOfSteps = max(1, int(math.ceil(duration / h - 1e-9)))
+    sim.timeIntegration.generalizedAlpha.spectralRadius = settings.spectral_radius
+    el = system.element
+    if progress is not None:
+        system.mbs.SetPreStepUserFunction(_progress_function(progress, t_offset, total, el.x0, el.v))
+    try:
+        system.mbs.SolveDynamic(sim)
+    except (exu.SolverError, RuntimeError) as err:
+        t = system.mbs.systemData.GetTime()
+        raise PassageError(f"solver failed at t = {t_offset + t:.5f} s, x = {el.x_at(t):.3f} m "
+                           f"(zone {system.zone.index}, {system.zone.name}): {str(err).strip()}") from None
+    stored = [(system.mbs.GetSensorStoredData(sq), system.mbs.GetSensorStoredData(st)) for _, sq, st in system.sensors]
+    t = stored[0][0][:, 0]
+    q = np.hstack([a[:, 1:] for a, _ in stored])
+    q_t = np.hstack([b[:, 1:] for _, b in stored])
+    if not (np.all(np.isfinite(q)) and np.all(np.isfinite(q_t))):
+        bad = t[~np.all(np.isfinite(q), axis=1)][0]
+        raise PassageError(f"solution diverged at t = {t_offset + bad:.5f} s, x = {el.x_at(bad):.3f} m "
+                           f"(zone {system.zone.index}): reduce the time step")
+    cols = _segment_columns(el, t, q, q_t, system.rails)
+    cols["t_s"] = t + t_offset
+    return cols
+
+
+def _zones_of_run(turnout: Turnout, x_a: float, x_b: float) -> list[Zone]:
+    return [z for z in turnout.zones if min(z.x_end, x_b) - max(z.x_start, x_a) > 1e-9]
+
+
+def simulate_passage(turnout: Turnout, settings: PassageSettings = PassageSettings(), vehicle: Vehicle | None = None,
+                     progress: Callable[[float, float], None] | None = None) -> PassageResult:
+    """Run one wheelset through the turnout on a co-running track.
+
+    Parameters
+    ----------
+    turnout : Turnout
+    settings : PassageSettings
+        Route, speed, layers, parameter source, x range, time step.
+    vehicle : Vehicle, optional
+        Default: the packaged Manchester benchmark wheelset.
+    progress : callable(fraction, x), optional
+        Called about every 2 % of the run.
+
+    Returns
+    -------
+    PassageResult
+        ``columns``: ``t_s``, ``x_m``; per wheel and rail ``Fz_<wheel>_<rail>_N`` (normal force
+        pressing the rail down) and ``Fy_<wheel>_<rail>_N`` (lateral force on the rail, positive
+        left); per wheel ``Fz_<wheel>_N``, ``Fy_<wheel>_N``; wheelset ``y``, ``z``, ``roll``,
+        ``yaw``; per rail touched, the contact body's ``y_rail_<rail>_m``, ``z_rail_<rail>_m``
+        (NaN where that rail is not part of the zone). ``summary``: peaks (see
+        :func:`passage_summary`).
+
+    Raises
+    ------
+    PassageError
+        Bad settings (one line naming the problem) or a solver failure (time and position).
+    """
+    vehicle = vehicle or load_vehicle()
+    x_a, x_b = _check(settings, turnout, vehicle)
+    route = load_route(turnout, settings.route)
+    zones = _zones_of_run(turnout, x_a, x_b)
+    wall = time.perf_counter()
+    with _QuietExudyn():
+        return _simulate(turnout, settings, vehicle, route, zones, x_a, x_b, progress, wall)
+
+
+def _simulate(turnout: Turnout, settings: PassageSettings, vehicle: Vehicle, route: Route, zones: list[Zone],
+              x_a: float, x_b: float, progress: Callable | None, wall: float) -> PassageResult:
+    v = settings.v
+    static = _build(turnout, route, vehicle, zones[0], settings, x_a, 0.0)
+    _solve_static(static)
+    state = _node_state(static)
+    static_loads = _wheel_loads(static, state, settings.layers)
+    segments, x, t_offset, previous, total = [], x_a, 0.0, static, (x_b - x_a) / v
+    for k, zone in enumerate(zones):
+        system = _build(turnout, route, vehicle, zone, settings, x, v)
+        _carry_over(state, previous, system, route.continues.get(zone.index, {}) if k else {}, settings.layers, x)
+        duration = (min(zone.x_end, x_b) - x) / v
+        cols = _run(system, duration, settings, t_offset, total, progress)
+        segments.append(cols if k == 0 else {n: c[1:] for n, c in cols.items()})
+        state, previous = _node_state(system), system
+        x, t_offset = min(zone.x_end, x_b), t_offset + duration
+    columns = _join(segments)
+    summary = passage_summary(columns, turnout, settings, static_loads, time.perf_counter() - wall)
+    return PassageResult(settings, columns, summary, tuple(max(z.x_start, x_a) for z in zones))
+
+
+def _regions(turnout: Turnout) -> dict[str, tuple[float, float]]:
+    regions = turnout.raw.get("regions", {})
+    return {name: tuple(regions.get(name, default)) for name, default in
+            (("switch", (0.0, 10.0)), ("crossing", (turnout.zones[-1].x_start, turnout.x_max)))}
+
+
+def passage_summary(columns: Mapping[str, np.ndarray], turnout: Turnout, settings: PassageSettings,
+                    static_loads: Mapping[str, float], wall_time: float) -> dict[str, object]:
+    """Peaks at the switch and crossing (right wheel, as the paper's Figs 7, 8; ``_left`` keys too)."""
+    regions = _regions(turnout)
+    out: dict[str, object] = {"route": settings.route, "layers": settings.layers, "source": settings.source,
+                              "speed_kmh": settings.speed_kmh,
+                              "static_wheel_load_N": float(static_loads["right"]),
+                              "static_wheel_load_left_N": float(static_loads["left"])}
+    for wheel, suffix in (("right", ""), ("left", "_left")):
+        for where, rng in regions.items():
+            out[f"peak_Fz_{where}{suffix}_N"] = _peak(columns, f"Fz_{wheel}_N", rng)
+            out[f"peak_Fy_{where}{suffix}_N"] = _peak(columns, f"Fy_{wheel}_N", rng, signed=True)
+    out["contact_losses"] = sum(_contact_losses(columns[f"Fz_{w}_N"]) for w in ("right", "left"))
+    out["time_step_s"] = settings.time_step
+    out["simulated_time_s"] = float(columns["t_s"][-1] - columns["t_s"][0])
+    out["wall_time_s"] = wall_time
+    out["switch_region_m"], out["crossing_region_m"] = list(regions["switch"]), list(regions["crossing"])
+    return out
+
+
+class _QuietExudyn:
+    """Silence Exudyn's console warnings (e.g. on user-function memory use) during a solve."""
+
+    def __enter__(self):
+        import exudyn as exu
+        self._saved = exu.config.suppressWarnings, exu.config.printToConsole
+        exu.config.suppressWarnings, exu.config.printToConsole = True, False
+
+    def __exit__(self, *exc):
+        import exudyn as exu
+        exu.config.suppressWarnings, exu.config.printToConsole = self._saved
+        return False
+
+
+def write_passage(result: PassageResult, out_dir) -> dict[str, str]:
+    """Write ``timeseries.csv`` and ``summary.json`` into out_dir; return their paths.
+
+    Columns of a rail that is not part of a zone are left empty there (no NaN in the file).
+    """
+    import csv
+    import json
+    from pathlib import Path
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    names = list(result.columns)
+    data = np.column_stack([result.columns[n] for n in names])
+    paths = {"timeseries": str(out / "timeseries.csv"), "summary": str(out / "summary.json")}
+    with open(paths["timeseries"], "w", newline="", encoding="utf-8") as fh:
+        w = csv.writer(fh)
+        w.writerow(names)
+        for row in data:
+            w.writerow(["" if not math.isfinite(v) else f"{v:.9g}" for v in row])
+    summary = {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in result.summary.items()}
+    Path(paths["summary"]).write_text(json.dumps(summary, indent=1, default=float), encoding="utf-8")
+    return paths

@@ -1,0 +1,144 @@
+"""Wheelset passage on the co-running track (issue 5 checks).
+
+Reference values and their sources:
+- static wheel load (m_w + m_s) g / 2 with the Manchester benchmark's masses
+  (Iwnicki 1998): (1813 + 32000/4 + 2615/2) * 9.81 / 2 = 54546 N;
+- static rail deflection u = K^-1 f, K the co-running model's stiffness matrix assembled
+  by hand from the parameter set (exudyn_turnout.modal), f the two wheel loads;
+- steady curving: the lateral forces on the rails balance (m_w + m_s) v^2 / R (R = 760 m,
+  no cant; paper Section 4, SPEC.md);
+- P2-type crossing impact forces grow with speed (Jenkins et al. 1974, Railway Engineering
+  Journal 3(1)); time-step convergence is checked against the run with half the step.
+"""
+import math
+
+import numpy as np
+import pytest
+
+from exudyn_turnout.cli import main
+from exudyn_turnout.modal import assemble_track_matrices, wheel_dof
+from exudyn_turnout.parameters import co_running_parameters
+from exudyn_turnout.passage import PassageError, PassageSettings, simulate_passage, write_passage
+from exudyn_turnout.vehicle import load_vehicle
+
+W = (1813 + 32000 / 4 + 2615 / 2) * 9.81 / 2
+
+
+@pytest.fixture(scope="module")
+def plain(turnout):
+    """Zone 3 is plain track (stock rails only, Table 3): 51 m to 60 m at 100 km/h."""
+    return simulate_passage(turnout, PassageSettings(layers=3, x_start=51.0, x_end=60.0))
+
+
+def test_static_wheel_loads(plain):
+    assert load_vehicle().static_wheel_load == pytest.approx(W, rel=1e-12)
+    assert plain.summary["static_wheel_load_N"] == pytest.approx(W, rel=0.005)
+    assert plain.summary["static_wheel_load_left_N"] == pytest.approx(W, rel=0.005)
+
+
+@pytest.mark.parametrize("layers", [2, 3])
+def test_static_rail_deflection_is_load_over_track_stiffness(turnout, layers):
+    x = 55.0
+    res = simulate_passage(turnout, PassageSettings(layers=layers, x_start=x, x_end=x + 0.05))
+    params = co_running_parameters(turnout, x=x, layers=layers)
+    m = assemble_track_matrices(params, x)
+    f = np.zeros(len(m.dof))
+    for rail, wheel in (("r1", "right"), ("r4", "left")):
+        f[m.index(wheel_dof(rail, "vertical", layers))] = -res.summary[f"static_wheel_load{'' if wheel == 'right' else '_left'}_N"]
+    u = np.linalg.solve(m.K, f)
+    for rail in ("r1", "r4"):
+        expected = u[m.index(wheel_dof(rail, "vertical", layers))]
+        assert res.columns[f"z_rail_{rail}_m"][0] == pytest.approx(expected, rel=1e-4)
+
+
+def test_plain_track_force_is_constant_after_0_1_s(plain):
+    c = plain.columns
+    late = c["t_s"] >= c["t_s"][0] + 0.1
+    for wheel in ("right", "left"):
+        fz = c[f"Fz_{wheel}_N"][late]
+        assert np.max(np.abs(fz / W - 1)) < 0.01
+
+
+@pytest.fixture(scope="module")
+def diverging(turnout):
+    return simulate_passage(turnout, PassageSettings(route="diverging", layers=2, x_start=-5.0, x_end=40.0))
+
+
+def test_steady_curving_lateral_force(diverging):
+    c = diverging.columns
+    sel = (c["x_m"] > 25.0) & (c["x_m"] < 40.0)
+    total = (c["Fy_right_N"] + c["Fy_left_N"])[sel].mean()
+    veh = load_vehicle()
+    assert total == pytest.approx((veh.m_w + veh.m_s) * (100 / 3.6) ** 2 / 760, rel=0.05)
+
+
+def test_crossing_peak_grows_with_speed(turnout):
+    peaks = [simulate_passage(turnout, PassageSettings(layers=2, speed_kmh=v, x_start=44.5, x_end=47.0))
+             .summary["peak_Fz_crossing_N"] for v in (50.0, 100.0, 150.0)]
+    assert peaks[0] < peaks[1] < peaks[2]
+    assert peaks[0] > 1.2 * W  # a dip of 9 mrad gives a real impact already at 50 km/h
+
+
+def test_halving_the_time_step_changes_the_crossing_peak_by_less_than_2_percent(turnout):
+    peaks = [simulate_passage(turnout, PassageSettings(layers=3, time_step=h, x_start=45.0, x_end=46.6))
+             .summary["peak_Fz_crossing_N"] for h in (1e-4, 5e-5)]
+    assert abs(peaks[0] / peaks[1] - 1) < 0.02
+
+
+@pytest.mark.parametrize("x_from,x_to,boundary", [(43.3, 44.9, 44.29), (50.0, 52.0, 51.0)])
+def test_no_force_jump_at_zone_boundary_on_plain_geometry(turnout, x_from, x_to, boundary):
+    """Both boundaries lie where the route's profiles are flat (wing before 45.3 m, nose after 46 m)."""
+    res = simulate_passage(turnout, PassageSettings(layers=3, x_start=x_from, x_end=x_to))
+    c = res.columns
+    i = int(np.searchsorted(c["x_m"], boundary))
+    for wheel in ("right", "left"):
+        jump = np.max(np.abs(np.diff(c[f"Fz_{wheel}_N"][i - 2:i + 3])))
+        assert jump < 0.02 * W, (wheel, jump)
+
+
+def test_outputs(tmp_path, plain):
+    paths = write_passage(plain, tmp_path)
+    header = open(paths["timeseries"]).readline().strip().split(",")
+    for name in ("t_s", "x_m", "Fz_right_r1_N", "Fy_left_r4_N", "Fz_right_N", "Fy_right_N", "Fz_left_N",
+                 "Fy_left_N", "z_wheelset_m", "z_rail_r1_m"):
+        assert name in header
+    import json
+    summary = json.loads(open(paths["summary"]).read())
+    for key in ("static_wheel_load_N", "peak_Fz_switch_N", "peak_Fz_crossing_N", "peak_Fy_switch_N",
+                "peak_Fy_crossing_N", "contact_losses", "time_step_s", "simulated_time_s", "wall_time_s"):
+        assert key in summary
+    assert "NaN" not in open(paths["timeseries"]).read() and "NaN" not in open(paths["summary"]).read()
+
+
+@pytest.mark.parametrize("argv,fragment", [
+    (["--speed", "0"], "speed must be > 0"),
+    (["--speed", "-10"], "speed must be > 0"),
+    (["--route", "sideways"], "invalid choice: 'sideways'"),
+    (["--x-start", "-20"], "must lie within the turnout"),
+    (["--x-start", "30", "--x-end", "20"], "x_start < x_end"),
+    (["--time-step", "0.01"], "too large to resolve the wheel/rail contact"),
+])
+def test_cli_bad_input(tmp_path, capsys, argv, fragment):
+    assert main(["simulate", "--out", str(tmp_path / "o")] + argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and fragment in err
+    assert not (tmp_path / "o").exists()
+
+
+def test_solver_failure_names_time_and_position(turnout, monkeypatch):
+    from exudyn_turnout import wheelrail
+    original = wheelrail.WheelRailElement.__call__
+
+    def failing(self, mbs, t, i, q, q_t):
+        f = original(self, mbs, t, i, q, q_t)
+        return [math.nan] * len(f) if self.v > 0 and t > 0.01 else f
+    monkeypatch.setattr(wheelrail.WheelRailElement, "__call__", failing)
+    with pytest.raises(PassageError, match=r"at t = 0\.01\d* s, x = 5[0-9.]* m \(zone 3"):
+        simulate_passage(turnout, PassageSettings(layers=2, x_start=52.0, x_end=53.0))
+
+
+def test_cli_simulate_writes_files(tmp_path, capsys):
+    out = tmp_path / "run"
+    assert main(["simulate", "--layers", "2", "--x-start", "45", "--x-end", "46.5", "--out", str(out)]) == 0
+    assert {p.name for p in out.iterdir()} == {"timeseries.csv", "summary.json", "forces.png"}
+    assert "peak Fz" in capsys.readouterr().out
