@@ -29,6 +29,10 @@ __all__ = ["PassageSettings", "PassageResult", "PassageError", "simulate_passage
            "contact_resonance", "passage_summary", "write_passage"]
 
 
+#: N: Newton's absolute residual tolerance in a passage (see benchmarks/bench_passage.py).
+NEWTON_ABSOLUTE_TOLERANCE = 1.0
+
+
 class PassageError(RuntimeError):
     """Bad passage settings, or a solver failure (the message says when and where)."""
 
@@ -94,27 +98,25 @@ def _pair_key(wheel: str, rail: str) -> str:
     return f"{wheel}_{rail}"
 
 
-def _segment_columns(element: WheelRailElement, t: np.ndarray, q: np.ndarray, q_t: np.ndarray,
+def _segment_columns(element: WheelRailElement, t: np.ndarray, q: np.ndarray, force: np.ndarray,
                      rails: Mapping[str, int]) -> dict[str, np.ndarray]:
-    """Forces and displacements of one zone's run from the element's stored coordinates.
+    """Forces and displacements of one zone's run.
 
-    ``q``, ``q_t``: (samples, element coordinates); ``rails``: slot -> index of its y.
+    ``q``: stored element coordinates (samples x n); ``force``: the element's stored
+    generalised forces, the left-hand side K q - f_user of its equations, so that the force
+    a wheel puts on a rail is +force[z] (pressing down) and -force[y] (lateral, on the
+    rail); ``rails``: slot -> index of its y in the element.
     """
-    x = element.x0 + element.v * t
-    cols: dict[str, np.ndarray] = {"t_s": t, "x_m": x}
+    cols: dict[str, np.ndarray] = {"t_s": t, "x_m": element.x0 + element.v * t}
+    wheel_of = {bp.pair.rail: bp.pair.wheel for bp in element.pairs}
     for wheel in ("right", "left"):
         for name in ("Fz", "Fy"):
             cols[f"{name}_{wheel}_N"] = np.zeros_like(t)
-    for bp in element.pairs:
-        key = _pair_key(bp.pair.wheel, bp.pair.rail)
-        fz, fy = cols.setdefault(f"Fz_{key}_N", np.zeros_like(t)), cols.setdefault(f"Fy_{key}_N", np.zeros_like(t))
-        for k in range(len(t)):
-            pf = element.pair_forces(bp, x[k], q[k], q_t[k])
-            fz[k] += pf.N
-            fy[k] += pf.F_y
-    for key in [c for c in cols if c.count("_") == 3 and c.startswith(("Fz_", "Fy_"))]:
-        name, wheel = key.split("_")[:2]
-        cols[f"{name}_{wheel}_N"] += cols[key]
+    for slot, i in rails.items():
+        key = _pair_key(wheel_of[slot], slot)
+        cols[f"Fz_{key}_N"], cols[f"Fy_{key}_N"] = force[:, i + 1].copy(), -force[:, i]
+        cols[f"Fz_{wheel_of[slot]}_N"] += cols[f"Fz_{key}_N"]
+        cols[f"Fy_{wheel_of[slot]}_N"] += cols[f"Fy_{key}_N"]
     for i, name in enumerate(("y_wheelset_m", "z_wheelset_m", "roll_wheelset_rad", "yaw_wheelset_rad")):
         cols[name] = q[:, i]
     for slot, i in rails.items():
@@ -158,8 +160,9 @@ class _ZoneSystem:
     element: WheelRailElement
     names: dict  #: node name ("wheelset", "yaw", "sprung", "sleeper", "rail_r1", "m0_r1") -> node
     rails: dict  #: rail slot touched by a wheel -> index of its y in the element
-    sensors: list  #: (node, sensor of coordinates, sensor of velocities) for the element's nodes
+    sensors: list  #: sensors of the coordinates of the element's nodes, in element order
     params: object  #: CoRunningParameters of the zone, with the route's cross-section
+    force_sensor: int  #: stores the contact element's generalised forces every step
 
     @property
     def sleeper_y(self) -> float:
@@ -176,7 +179,7 @@ def _initial_guess(vehicle: Vehicle) -> tuple[float, float]:
 def _build(turnout: Turnout, route: Route, vehicle: Vehicle, zone: Zone, settings: PassageSettings,
            x0: float, v: float) -> _ZoneSystem:
     import exudyn as exu
-    from exudyn.itemInterface import ObjectGenericODE2, SensorNode
+    from exudyn.itemInterface import ObjectGenericODE2, SensorBody, SensorNode
     from dataclasses import replace
 
     from .track import add_co_running_track
@@ -189,22 +192,26 @@ def _build(turnout: Turnout, route: Route, vehicle: Vehicle, zone: Zone, setting
     veh = add_vehicle(mbs, vehicle, track.ground, *_initial_guess(vehicle))
     pairs = [p for p in route.pairs_in(zone) if p.rail in zone.active_rails]
     slots = [r for r in zone.active_rails if any(p.rail == r for p in pairs)]
+    for r in slots:
+        if len({p.wheel for p in pairs if p.rail == r}) > 1:
+            raise PassageError(f"route {route.name}: rail {r} is touched by both wheels in zone {zone.index}")
     rails = {r: 6 + 2 * i for i, r in enumerate(slots)}
     element = WheelRailElement(vehicle, route, [BoundPair(p, rails[p.rail], rails[p.rail] + 1) for p in pairs], x0, v)
     nodes = [veh.wheelset_node, veh.yaw_node, veh.sprung_node] + [track.wheel_nodes[r] for r in slots]
     M, K = np.zeros((element.n, element.n)), np.zeros((element.n, element.n))
     M[3, 3], K[3, 3] = vehicle.J_yaw, vehicle.k_yaw
-    mbs.AddObject(ObjectGenericODE2(nodeNumbers=nodes, massMatrix=M, stiffnessMatrix=K, forceUserFunction=element))
-    sensors = [(n, *(mbs.AddSensor(SensorNode(nodeNumber=n, storeInternal=True, writeToFile=False,
-                                               outputVariableType=o))
-                     for o in (exu.OutputVariableType.Coordinates, exu.OutputVariableType.Coordinates_t)))
-               for n in nodes]
+    contact = mbs.AddObject(ObjectGenericODE2(nodeNumbers=nodes, massMatrix=M, stiffnessMatrix=K,
+                                              forceUserFunction=element))
+    force_sensor = mbs.AddSensor(SensorBody(bodyNumber=contact, storeInternal=True, writeToFile=False,
+                                            outputVariableType=exu.OutputVariableType.Force))
+    sensors = [mbs.AddSensor(SensorNode(nodeNumber=n, storeInternal=True, writeToFile=False,
+                                        outputVariableType=exu.OutputVariableType.Coordinates)) for n in nodes]
     names = {"wheelset": veh.wheelset_node, "yaw": veh.yaw_node, "sprung": veh.sprung_node,
              "sleeper": track.sleeper_node}
     names.update({f"rail_{r}": n for r, n in track.rail_nodes.items()})
     names.update({f"m0_{r}": n for r, n in track.layer_nodes.items()})
     mbs.Assemble()
-    return _ZoneSystem(container, mbs, zone, element, names, rails, sensors, params)
+    return _ZoneSystem(container, mbs, zone, element, names, rails, sensors, params, force_sensor)
 
 
 def _node_state(system: _ZoneSystem) -> dict[str, tuple[np.ndarray, np.ndarray]]:
@@ -247,8 +254,7 @@ def _wheel_rail_loads(system: _ZoneSystem, state: dict, layers: int) -> dict[str
     q_t = np.concatenate([state[n][1] for n in _element_nodes(system, layers)])
     el, x = system.element, system.element.x_at(system.mbs.systemData.GetTime())
     loads: dict[str, list[float]] = {}
-    for bp in el.pairs:
-        pf = el.pair_forces(bp, x, q, q_t)
+    for bp, pf in zip(el.pairs, el.all_pair_forces(x, q, q_t)):
         acc = loads.setdefault(bp.pair.rail, [0.0, 0.0])
         acc[0], acc[1] = acc[0] + pf.N, acc[1] + pf.F_y
     return {r: (v[0], v[1]) for r, v in loads.items()}
@@ -349,8 +355,8 @@ def _wheel_loads(system: _ZoneSystem, state: dict, layers: int) -> dict[str, flo
     """Total normal force (N) on each wheel in ``state``."""
     q = np.concatenate([state[n][0] for n in _element_nodes(system, layers)])
     el, loads = system.element, {"left": 0.0, "right": 0.0}
-    for bp in el.pairs:
-        loads[bp.pair.wheel] += el.pair_forces(bp, el.x0, q, np.zeros_like(q)).N
+    for bp, pf in zip(el.pairs, el.all_pair_forces(el.x0, q, np.zeros_like(q))):
+        loads[bp.pair.wheel] += pf.N
     return loads
 
 
@@ -387,6 +393,8 @@ def _run(system: _ZoneSystem, duration: float, settings: PassageSettings, t_offs
     sim = simulation_settings(duration, h, 0.999 * (settings.output_step or h))  # every step: no rounding skips
     sim.timeIntegration.numberOfSteps = max(1, int(math.ceil(duration / h - 1e-9)))
     sim.timeIntegration.generalizedAlpha.spectralRadius = settings.spectral_radius
+    # 1 N residual: 2e-5 of a wheel load; peaks equal those at 1e-4 N to 0.2 N, with half the iterations
+    sim.timeIntegration.newton.absoluteTolerance = NEWTON_ABSOLUTE_TOLERANCE
     el = system.element
     if progress is not None:
         system.mbs.SetPreStepUserFunction(_progress_function(progress, t_offset, total, el.x0, el.v))
@@ -396,15 +404,16 @@ def _run(system: _ZoneSystem, duration: float, settings: PassageSettings, t_offs
         t = system.mbs.systemData.GetTime()
         raise PassageError(f"solver failed at t = {t_offset + t:.5f} s, x = {el.x_at(t):.3f} m "
                            f"(zone {system.zone.index}, {system.zone.name}): {str(err).strip()}") from None
-    stored = [(system.mbs.GetSensorStoredData(sq), system.mbs.GetSensorStoredData(st)) for _, sq, st in system.sensors]
-    t = stored[0][0][:, 0]
-    q = np.hstack([a[:, 1:] for a, _ in stored])
-    q_t = np.hstack([b[:, 1:] for _, b in stored])
-    if not (np.all(np.isfinite(q)) and np.all(np.isfinite(q_t))):
-        bad = t[~np.all(np.isfinite(q), axis=1)][0]
+    stored = [system.mbs.GetSensorStoredData(sensor) for sensor in system.sensors]
+    t = stored[0][:, 0]
+    q = np.hstack([a[:, 1:] for a in stored])
+    force = system.mbs.GetSensorStoredData(system.force_sensor)[:, 1:]
+    finite = np.all(np.isfinite(q), axis=1) & np.all(np.isfinite(force), axis=1)
+    if not finite.all():
+        bad = t[~finite][0]
         raise PassageError(f"solution diverged at t = {t_offset + bad:.5f} s, x = {el.x_at(bad):.3f} m "
                            f"(zone {system.zone.index}): reduce the time step")
-    cols = _segment_columns(el, t, q, q_t, system.rails)
+    cols = _segment_columns(el, t, q, force, system.rails)
     cols["t_s"] = t + t_offset
     return cols
 

@@ -107,8 +107,12 @@ class WheelRailElement:
 
     def pair_forces(self, bp: BoundPair, x: float, q, q_t) -> PairForces:
         """Forces of one pair at position x for element coordinates q, q_t."""
+        return self.all_pair_forces(x, q, q_t)[self.pairs.index(bp)]
+
+    def all_pair_forces(self, x: float, q, q_t) -> list[PairForces]:
+        """Forces of every pair (in ``self.pairs`` order) at position x."""
         rows, kappa = self.geometry(x)
-        return PairForces(*self._forces(bp, rows[self.pairs.index(bp)], kappa, q, q_t))
+        return [PairForces(*self._forces(bp, row, kappa, q, q_t)) for bp, row in zip(self.pairs, rows)]
 
     def _forces(self, bp: BoundPair, row: tuple, kappa: float, q, q_t) -> tuple:
         """(N, F_y on the rail, F_x on the wheel, delta, in contact) of one pair."""
