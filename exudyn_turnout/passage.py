@@ -26,7 +26,7 @@ from .vehicle import Vehicle, add_vehicle, load_vehicle
 from .wheelrail import BoundPair, WheelRailElement
 
 __all__ = ["PassageSettings", "PassageResult", "PassageError", "simulate_passage", "max_time_step",
-           "contact_resonance", "passage_summary", "write_passage"]
+           "contact_resonance", "passage_summary", "write_passage", "compare_layers", "peaks_table"]
 
 
 #: N: Newton's absolute residual tolerance in a passage (see benchmarks/bench_passage.py).
@@ -48,6 +48,7 @@ class PassageSettings:
     time_step: float = 1e-4  #: s, converged: halving it moves the crossing peak < 0.4 %
     output_step: float | None = None  #: s, default: every time step
     spectral_radius: float = 0.8  #: generalized-alpha rho_inf
+    track_mechanism: str = "symbolic"  #: how track springs follow x: "symbolic", "python" or "constant"
 
     @property
     def v(self) -> float:
@@ -188,7 +189,7 @@ def _build(turnout: Turnout, route: Route, vehicle: Vehicle, zone: Zone, setting
     mbs = container.AddSystem()
     params = co_running_parameters(turnout, zone=zone.index, layers=settings.layers, source=settings.source)
     params = replace(params, zone=route.zone(params.zone))
-    track = add_co_running_track(mbs, params, x0, v)
+    track = add_co_running_track(mbs, params, x0, v, mechanism=settings.track_mechanism)
     veh = add_vehicle(mbs, vehicle, track.ground, *_initial_guess(vehicle))
     pairs = [p for p in route.pairs_in(zone) if p.rail in zone.active_rails]
     slots = [r for r in zone.active_rails if any(p.rail == r for p in pairs)]
@@ -543,3 +544,20 @@ def write_passage(result: PassageResult, out_dir) -> dict[str, str]:
     summary = {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in result.summary.items()}
     Path(paths["summary"]).write_text(json.dumps(summary, indent=1, default=float), encoding="utf-8")
     return paths
+
+
+def compare_layers(turnout: Turnout, settings: PassageSettings = PassageSettings(),
+                   vehicle: Vehicle | None = None) -> dict[int, PassageResult]:
+    """The same passage on the two-layer and the three-layer track: {2: result, 3: result}."""
+    from dataclasses import replace
+    return {layers: simulate_passage(turnout, replace(settings, layers=layers), vehicle) for layers in (2, 3)}
+
+
+def peaks_table(results: Mapping[str, PassageResult]) -> str:
+    """Plain-text table of the right wheel's peak forces (kN) of labelled results."""
+    keys = ("peak_Fz_switch_N", "peak_Fz_crossing_N", "peak_Fy_switch_N", "peak_Fy_crossing_N")
+    lines = [f"{'model':<28}" + "".join(f"{k[5:-2]:>18}" for k in keys) + f"{'wall (s)':>10}"]
+    for label, r in results.items():
+        lines.append(f"{label:<28}" + "".join(f"{r.summary[k] / 1e3:>18.1f}" for k in keys)
+                     + f"{r.summary['wall_time_s']:>10.2f}")
+    return "\n".join(lines)

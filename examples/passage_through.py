@@ -1,0 +1,35 @@
+"""Through route: vertical contact force of the right wheel at the switch and the crossing
+nose, two-layer vs three-layer co-running track (the layout of the paper's Fig. 7).
+
+Run: ``python examples/passage_through.py [--out DIR] [--speed KMH]``.
+"""
+import argparse
+from pathlib import Path
+
+from exudyn_turnout.passage import PassageSettings, compare_layers, peaks_table
+from exudyn_turnout.plotting import plot_passage_forces
+from exudyn_turnout.turnout import load_turnout
+
+
+def run(out_dir, route="through", speed_kmh=100.0, x_start=None, x_end=None):
+    """Run both models, print the peaks, save the figure; return {layers: PassageResult}."""
+    turnout = load_turnout()
+    settings = PassageSettings(route=route, speed_kmh=speed_kmh, x_start=x_start, x_end=x_end)
+    results = compare_layers(turnout, settings)
+    print(peaks_table({f"{n}-layer, {route}, {speed_kmh:g} km/h": r for n, r in results.items()}))
+    fig, _ = plot_passage_forces(results.values(), title=f"{turnout.name}, {route} route, {speed_kmh:g} km/h")
+    Path(out_dir).mkdir(parents=True, exist_ok=True)
+    fig.savefig(Path(out_dir) / f"{route}_2_vs_3_layers.png", dpi=120)
+    return results
+
+
+def main(route="through"):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--out", default="out", help="output directory (default: out)")
+    parser.add_argument("--speed", type=float, default=100.0, help="km/h (default 100)")
+    args = parser.parse_args()
+    run(args.out, route, args.speed)
+
+
+if __name__ == "__main__":
+    main()
