@@ -36,6 +36,7 @@ __all__ = [
     "RailSupport",
     "CoRunningParameters",
     "rail_support",
+    "reference_support",
     "delta_z",
     "delta_y",
     "co_running_parameters",
@@ -116,18 +117,19 @@ def rail_support(turnout: Turnout, type_name: str, readings: Readings = DEFAULT_
                        k_b_y, c_b_y, k_s_y, K_st_y, eq.effective_length_rail(K_st_y, k_s_y), L_eff_s)
 
 
-def _reference(turnout: Turnout) -> RailSupport:
+def reference_support(turnout: Turnout) -> RailSupport:
+    """Support of the reference (stock) rail: its K_st,z and K_st,y are Eqs 11 and 15's denominators."""
     return rail_support(turnout, str(turnout.raw.get("turnout", {}).get("reference_rail_type", "stock")))
 
 
 def delta_z(turnout: Turnout, x: float) -> float:
     """Eq 11: Delta_z(x) = K_sw(x) / K_st,z, K_sw from Eq 10, K_st,z of the stock rail (Eq 2)."""
-    return eq.stiffness_ratio(turnout.K_sw(x), _reference(turnout).K_st_z)
+    return eq.stiffness_ratio(turnout.K_sw(x), reference_support(turnout).K_st_z)
 
 
 def delta_y(turnout: Turnout, x: float) -> float:
     """Eq 15: Delta_y(x) = K_sh(x) / K_st,y, K_sh from Eq 14, K_st,y of the stock rail (Eq 2)."""
-    return eq.stiffness_ratio(turnout.K_sh(x), _reference(turnout).K_st_y)
+    return eq.stiffness_ratio(turnout.K_sh(x), reference_support(turnout).K_st_y)
 
 
 @dataclass(frozen=True)
@@ -229,7 +231,7 @@ def _derived(turnout: Turnout, zone: Zone, readings: Readings) -> tuple[dict[str
         if slot in zone.rail_types:
             entries.update(_rail_entries(turnout, zone, slot, readings))
     entries.update(_sleeper_entries(turnout, zone, readings))
-    ref = _reference(turnout)
+    ref = reference_support(turnout)
     g = rail_support(turnout, zone.ballast_rail_type, readings)
     constants = {"K_st_z": ref.K_st_z, "K_st_y": ref.K_st_y, "L_eff_r_z": ref.L_eff_r_z,
                  "L_eff_r_y": ref.L_eff_r_y, "L_eff_s": g.L_eff_s}

@@ -19,7 +19,7 @@ from exudyn.itemInterface import (CartesianSpringDamper, MarkerBodyPosition, Mar
                                   NodePoint2D, NodeRigidBody2D, ObjectGround, RigidBody2D)
 
 from .modal import TrackMatrices, dof_names
-from .parameters import CoRunningParameters, delta_y, delta_z
+from .parameters import CoRunningParameters, reference_support
 from .turnout import RAIL_SLOTS, Entry, Polynomial
 
 __all__ = [
@@ -57,9 +57,8 @@ class EntryLaw:
     @classmethod
     def of(cls, params: CoRunningParameters) -> "EntryLaw":
         t, z = params.turnout, params.zone
-        x_z, x_y = t.K_sw.x_min, t.K_sh.x_min  # Delta = K(x) / K_st: read K_st at any x
-        return cls(t.K_sw, t.K_sh, delta_z(t, x_z) / t.K_sw(x_z), delta_y(t, x_y) / t.K_sh(x_y),
-                   z.x_start, z.x_end)
+        ref = reference_support(t)  # Delta = K(x) / K_st (Eqs 11, 15)
+        return cls(t.K_sw, t.K_sh, 1.0 / ref.K_st_z, 1.0 / ref.K_st_y, z.x_start, z.x_end)
 
     def value(self, entry: Entry, x: Any, lib: Any = None) -> Any:
         """Entry at x; ``lib`` provides ``min``/``max`` (default: Python's, or ``exudyn.symbolic``)."""

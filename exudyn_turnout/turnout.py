@@ -37,6 +37,7 @@ __all__ = [
     "PARAMETER_NAMES",
     "default_turnout_path",
     "load_turnout",
+    "read_toml",
 ]
 
 #: Rail slots of the co-running model: r1 stock, r2 switch/crossing nose, r3 check, r4 stock.
@@ -439,6 +440,16 @@ def _check_references(r: _Reader, rail_types: Mapping[str, RailType]) -> None:
             raise r.fail(f"rail_types.{t.name}.poisson", f"must be in [0, 0.5), got {t.poisson:g}")
 
 
+def read_toml(path: Path) -> dict:
+    """Parse a TOML file; TurnoutFileError naming the file if it cannot be read or parsed."""
+    try:
+        return tomllib.loads(path.read_text(encoding="utf-8"))
+    except OSError as err:
+        raise TurnoutFileError(f"{path.name}: cannot be read ({err.strerror or err})") from None
+    except tomllib.TOMLDecodeError as err:
+        raise TurnoutFileError(f"{path.name}: is not valid TOML ({err})") from None
+
+
 def load_turnout(path: str | Path | None = None) -> Turnout:
     """Load and validate a turnout file.
 
@@ -459,12 +470,7 @@ def load_turnout(path: str | Path | None = None) -> Turnout:
         the file and the field.
     """
     path = Path(path) if path is not None else default_turnout_path()
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except OSError as err:
-        raise TurnoutFileError(f"{path.name}: cannot be read ({err.strerror or err})") from None
-    except tomllib.TOMLDecodeError as err:
-        raise TurnoutFileError(f"{path.name}: is not valid TOML ({err})") from None
+    data = read_toml(path)
     r = _Reader(path.name, data)
     names = r.get("rail_types")
     if not isinstance(names, Mapping) or not names:

@@ -16,13 +16,12 @@ plane: X = lateral y (positive left), Y = vertical z (up), rotation about Z = ro
 """
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
 from .contact import ContactLaw, load_contact_law
-from .turnout import TurnoutFileError, _Reader
+from .turnout import _Reader, read_toml
 
 __all__ = ["Vehicle", "VehicleHandles", "load_vehicle", "default_vehicle_path", "add_vehicle", "GRAVITY"]
 
@@ -64,12 +63,7 @@ def default_vehicle_path() -> Path:
 def load_vehicle(path: str | Path | None = None) -> Vehicle:
     """Load a vehicle file (default: the packaged Manchester benchmark wheelset)."""
     path = Path(path) if path is not None else default_vehicle_path()
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except OSError as err:
-        raise TurnoutFileError(f"{path.name}: cannot be read ({err.strerror or err})") from None
-    except tomllib.TOMLDecodeError as err:
-        raise TurnoutFileError(f"{path.name}: is not valid TOML ({err})") from None
+    data = read_toml(path)
     r = _Reader(path.name, data)
     w, p = "wheelset", "primary_suspension"
     return Vehicle(
