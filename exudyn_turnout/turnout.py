@@ -416,19 +416,22 @@ def _entry(r: _Reader, field: str) -> Entry:
 
 
 def _published(r: _Reader, zones: tuple[Zone, ...]) -> dict[int, dict[str, Entry]]:
+    """Table 2 sections ``[published.zoneN]``; optional per zone (a file may have more zones)."""
     out: dict[int, dict[str, Entry]] = {}
-    if r.get("published", None) is None:
-        return out
-    for zone in zones:
-        p = f"published.zone{zone.index}"
+    sections = r.get("published", None) or {}
+    for key in sections:
+        index = int(key[4:]) if key.startswith("zone") and key[4:].isdigit() else 0
+        if not 1 <= index <= len(zones):
+            raise r.fail(f"published.{key}", f"names no zone of this file (zones 1..{len(zones)})")
+        p = f"published.{key}"
         section = r.get(p)
         for name in section:
             if name not in PARAMETER_NAMES:
                 raise r.fail(f"{p}.{name}", "is not a co-running parameter name")
-        out[zone.index] = {n: _entry(r, f"{p}.{n}") for n in PARAMETER_NAMES if n in section}
         missing = [n for n in PARAMETER_NAMES if n not in section]
         if missing:
             raise r.fail(f"{p}.{missing[0]}", "is missing")
+        out[index] = {n: _entry(r, f"{p}.{n}") for n in PARAMETER_NAMES}
     return out
 
 

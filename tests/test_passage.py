@@ -142,3 +142,44 @@ def test_cli_simulate_writes_files(tmp_path, capsys):
     assert main(["simulate", "--layers", "2", "--x-start", "45", "--x-end", "46.5", "--out", str(out)]) == 0
     assert {p.name for p in out.iterdir()} == {"timeseries.csv", "summary.json", "forces.png"}
     assert "peak Fz" in capsys.readouterr().out
+
+
+def _five_zone_file(tmp_path):
+    """The packaged turnout with zone 1 split into three zones (masses from Eqs 17, 18 at each zone's
+    middle via mass_at_x) and no published Table 2 (which has three zones)."""
+    from exudyn_turnout.turnout import default_turnout_path
+    lines, out, skip = default_turnout_path().read_text(encoding="utf-8").splitlines(), [], False
+    for line in lines:
+        if line.startswith("[published."):
+            skip = True
+        elif skip and (line.startswith("[") or line.startswith("# ---")):
+            skip = False
+        if not skip:
+            out.append(line)
+    text = "\n".join(out).replace('continues = [{ zone = 3, slot = "r1", from = "r2" }]',
+                                  'continues = [{ zone = 5, slot = "r1", from = "r2" }]')
+    text = text.replace('continues = [{ zone = 3, slot = "r4", from = "r2" }]',
+                        'continues = [{ zone = 5, slot = "r4", from = "r2" }]')
+    zone1 = text[text.index("[[zones]]"):text.index("[[zones]]", text.index("[[zones]]") + 1)]
+    parts = []
+    for a, b in ((-5.0, 10.0), (10.0, 25.0), (25.0, 44.29)):
+        parts.append(zone1.replace("x_start = -5.0", f"x_start = {a}").replace("x_end = 44.29", f"x_end = {b}")
+                     .replace('ballast_rail_type = "switch"', f'ballast_rail_type = "switch"\nmass_at_x = {(a + b) / 2}'))
+    path = tmp_path / "five_zones.toml"
+    path.write_text(text.replace(zone1, "".join(parts)), encoding="utf-8")
+    return path
+
+
+def test_more_zones_than_three(tmp_path):
+    """The paper's future work: more zones, masses per zone from Eqs 17, 18 (Delta at the zone middle)."""
+    from exudyn_turnout.turnout import load_turnout
+    turnout = load_turnout(_five_zone_file(tmp_path))
+    assert len(turnout.zones) == 5 and not turnout.published
+    masses = [co_running_parameters(turnout, zone=z).entries["m_r2"].a for z in (1, 2, 3)]
+    assert masses[0] < masses[1] < masses[2]  # the switch rail builds up mass from the toe (Eq 17)
+    res = simulate_passage(turnout, PassageSettings(layers=3, x_start=8.0, x_end=12.0))
+    c = res.columns
+    i = int(np.searchsorted(c["x_m"], 10.0))
+    assert np.max(np.abs(np.diff(c["Fz_right_N"][i - 2:i + 3]))) < 0.02 * W
+    with pytest.raises(ValueError, match="no published parameters for zone 1"):
+        co_running_parameters(turnout, zone=1, source="published")
