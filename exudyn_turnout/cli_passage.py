@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 
 from .cli import UsageError, add_turnout_options, number
@@ -44,11 +45,15 @@ def _run(args: argparse.Namespace) -> int:
                                      title=f"{turnout.name}, {args.route} route, {args.speed:g} km/h")
         fig.savefig(f"{args.out}/forces.png", dpi=120)
     s = result.summary
-    print(f"wrote {paths['timeseries']}, {paths['summary']}: right wheel peak Fz {s['peak_Fz_switch_N'] / 1e3:.1f} kN "
-          f"at the switch, {s['peak_Fz_crossing_N'] / 1e3:.1f} kN at the crossing (static "
-          f"{s['static_wheel_load_N'] / 1e3:.1f} kN); {s['simulated_time_s']:.2f} s simulated in "
-          f"{s['wall_time_s']:.1f} s")
+    print(f"wrote {paths['timeseries']}, {paths['summary']}: right wheel peak Fz {_kn(s['peak_Fz_switch_N'])} "
+          f"at the switch, {_kn(s['peak_Fz_crossing_N'])} at the crossing (static "
+          f"{_kn(s['static_wheel_load_N'])}); {s['simulated_time_s']:.2f} s simulated in {s['wall_time_s']:.1f} s")
     return 0
+
+
+def _kn(force: float) -> str:
+    """A force in kN, or "n/a" where the run did not cover the region."""
+    return f"{force / 1e3:.1f} kN" if math.isfinite(force) else "n/a (region not in the run)"
 
 
 def build(sub: argparse._SubParsersAction) -> None:
