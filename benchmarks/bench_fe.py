@@ -1,0 +1,110 @@
+"""Benchmark of the FE reference model (printed table): receptance sweep and static profile.
+
+Run: ``python benchmarks/bench_fe.py [--n 400] [--x 46.0]``. Measures, on the packaged
+UIC60-760-1:15 turnout with the default FE options:
+
+- the model: DOFs of each plane, build time (mesh, assembly), condensation set-up;
+- the point receptance of slot r2 at x (the crossing rail by default), vertical and
+  lateral, n log-spaced frequencies 1-2000 Hz: wall and CPU time, split into the block
+  elimination (Schur complement), the sparse LU and the solve with its residual check;
+- the static stiffness profile of every rail at every sleeper, both planes;
+- the peak memory of the process (ru_maxrss). Targets (issue 4): receptance <= 10 s,
+  < 2 GB; profile <= 60 s. The timings are of this one run on this machine.
+"""
+from __future__ import annotations
+
+import argparse
+import resource
+import time
+
+import numpy as np
+import scipy.sparse.linalg as sla
+
+from exudyn_turnout.fe.frf import sweep
+from exudyn_turnout.fe.layout import load_layout
+from exudyn_turnout.fe.mesh import FEOptions, build_mesh
+from exudyn_turnout.fe.model import assemble
+from exudyn_turnout.fe.solver import condense, default_keep
+from exudyn_turnout.fe.stiffness import static_stiffness_profile
+from exudyn_turnout.receptance import log_frequencies
+from exudyn_turnout.turnout import load_turnout
+
+
+class Clock:
+    """Wall and CPU seconds of a block."""
+
+    def __enter__(self):
+        self.wall, self.cpu = time.perf_counter(), time.process_time()
+        return self
+
+    def __exit__(self, *exc):
+        self.wall, self.cpu = time.perf_counter() - self.wall, time.process_time() - self.cpu
+
+
+def _parts(system, b, f) -> dict[str, float]:
+    """Wall seconds of the three steps of CondensedSystem.solve over all frequencies."""
+    out = {"block elimination (Schur)": 0.0, "sparse LU (SuperLU)": 0.0, "solve + residual check": 0.0}
+    for fk in f:
+        w = 2 * np.pi * fk
+        t0 = time.perf_counter()
+        S = system.schur(w)
+        t1 = time.perf_counter()
+        lu = sla.splu(S, permc_spec="COLAMD")
+        t2 = time.perf_counter()
+        x = lu.solve(b)
+        np.linalg.norm(b - S @ x)
+        t3 = time.perf_counter()
+        out["block elimination (Schur)"] += t1 - t0
+        out["sparse LU (SuperLU)"] += t2 - t1
+        out["solve + residual check"] += t3 - t2
+    return out
+
+
+def receptance_rows(turnout, layout, direction, x, f) -> list[tuple[str, str]]:
+    rail = layout.slot_rail("r2", x)
+    with Clock() as build:
+        mesh = build_mesh(turnout, layout, FEOptions(), points={rail: [x]})
+        model = assemble(turnout, mesh, direction)
+    b_full = model.point_vector(rail, x)
+    with Clock() as prep:
+        system = condense(model, np.union1d(default_keep(model), np.nonzero(b_full)[0]))
+    with Clock() as run:
+        H = sweep(model, rail, x, f)
+    b = system.restrict(b_full).astype(complex)
+    parts = _parts(system, b, f)
+    rows = [(f"{direction}: DOFs (full / kept after condensation)", f"{model.n_dof} / {system.n_keep}"),
+            (f"{direction}: build mesh + assemble K, G, D, M", f"{build.wall:.2f} s"),
+            (f"{direction}: condensation set-up (blocks, modes)", f"{prep.wall:.2f} s"),
+            (f"{direction}: receptance r2 ({rail}) x = {x:g} m, {len(f)} freq.",
+             f"{run.wall:.2f} s wall, {run.cpu:.2f} s CPU, {1e3 * run.wall / len(f):.1f} ms/freq."),
+            (f"{direction}: total (build + sweep)", f"{build.wall + run.wall:.2f} s")]
+    rows += [(f"{direction}:   {k}", f"{v:.2f} s ({100 * v / sum(parts.values()):.0f}%)") for k, v in parts.items()]
+    rows.append((f"{direction}: static stiffness 1/|H(1 Hz)|", f"{1 / abs(H[0]):.4g} N/m"))
+    return rows
+
+
+def main(argv=None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--n", type=int, default=400, help="frequencies, 1-2000 Hz (default 400)")
+    parser.add_argument("--x", type=float, default=46.0, help="position of the r2 receptance (m, default 46)")
+    args = parser.parse_args(argv)
+    turnout = load_turnout()
+    layout = load_layout(turnout)
+    f = log_frequencies(1.0, 2000.0, args.n)
+    rows = [("FE options", str(FEOptions()))]
+    for direction in ("vertical", "lateral"):
+        rows += receptance_rows(turnout, layout, direction, args.x, f)
+    with Clock() as prof:
+        profile = static_stiffness_profile(turnout, layout)
+    rows += [("static stiffness profile, both planes", f"{prof.wall:.2f} s wall, {prof.cpu:.2f} s CPU, "
+                                                       f"{len(profile.x)} rail positions, {len(profile.rails)} rails")]
+    rows += [("peak memory of the process (ru_maxrss)", f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024:.0f} MB")]
+    width = max(len(k) for k, _ in rows)
+    print(f"{'quantity':<{width}}  value")
+    print("-" * (width + 60))
+    for k, v in rows:
+        print(f"{k:<{width}}  {v}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,36 @@
+"""FE reference model of the turnout (numpy/scipy only; no exudyn).
+
+The paper validates its co-running models against an Ansys model of the turnout that we
+do not have; this package builds our own from the same Table 1 properties:
+
+- :mod:`.timoshenko`  element matrices (Timoshenko beam and bar of order p, foundations);
+- :mod:`.analytic`    closed forms: infinite Timoshenko beam on a two-layer support,
+  simply supported Timoshenko beam (pinned-pinned frequency);
+- :mod:`.layout`      the turnout geometry of the file's ``[layout]`` section;
+- :mod:`.mesh`        rails, sleepers, pads; FE options (element size, absorbing ends);
+- :mod:`.model`       sparse K, G, D, M of the vertical or lateral plane;
+- :mod:`.solver`      exact condensation and sparse LU at each frequency;
+- :mod:`.frf`         point receptance (a :class:`~exudyn_turnout.receptance.Receptance`);
+- :mod:`.stiffness`   static stiffness at every sleeper (paper Fig. 1(b,c));
+- :mod:`.fits`        Eq 10 / Eq 14 analogues fitted to it;
+- :mod:`.continuous`  one rail on a smeared support, the check against the closed form.
+"""
+from .fits import PolynomialFit, TurnoutFits, fit_turnout_profiles, with_fitted_profiles
+from .frf import fe_receptance
+from .layout import Layout, load_layout, plain_track_layout
+from .mesh import FEOptions
+from .stiffness import StiffnessProfile, static_stiffness_profile
+
+__all__ = [
+    "FEOptions",
+    "Layout",
+    "load_layout",
+    "plain_track_layout",
+    "fe_receptance",
+    "StiffnessProfile",
+    "static_stiffness_profile",
+    "PolynomialFit",
+    "TurnoutFits",
+    "fit_turnout_profiles",
+    "with_fitted_profiles",
+]

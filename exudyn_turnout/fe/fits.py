@@ -1,0 +1,96 @@
+"""Polynomial fits of the FE static stiffness along the switch: analogues of Eqs 10 and 14.
+
+The paper fits the vertical static stiffness of the switch rail with a quadratic in x
+(Eq 10, K_sw) and the lateral one with a line (Eq 14, K_sh). We fit the FE profile of
+:mod:`exudyn_turnout.fe.stiffness` the same way (least squares, ascending powers), on
+the rail and x range the turnout file's ``[layout.fits]`` names (for the UIC60 turnout:
+the switch rail from the toe to 22 m, the range of Eq 10, held constant beyond as
+Section 3.1.1 says; the stock rail from the toe to the end of the long bearers, since the
+paper finds the lateral stiffness equal for all rails). :func:`with_fitted_profiles` returns
+the turnout with its K_sw, K_sh replaced, so the co-running parameters (Delta_z, Delta_y,
+Eqs 11, 15) can come from our FE instead of the paper's.
+"""
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..turnout import Polynomial, Turnout
+from .layout import Layout, load_layout
+from .stiffness import StiffnessProfile
+
+__all__ = ["PolynomialFit", "TurnoutFits", "fit_polynomial", "fit_profile", "fit_turnout_profiles",
+           "with_fitted_profiles"]
+
+
+@dataclass(frozen=True)
+class PolynomialFit:
+    """A least-squares polynomial K(x) of one rail's static stiffness."""
+
+    rail: str  #: layout rail id
+    direction: str  #: "vertical" or "lateral"
+    coefficients: tuple[float, ...]  #: N/m, N/m^2, ... ascending powers of x
+    x_min: float  #: m, fitted range
+    x_max: float  #: m
+    r_squared: float  #: coefficient of determination (-)
+    n_points: int  #: sleepers used
+
+    @property
+    def polynomial(self) -> Polynomial:
+        """As the turnout's :class:`~exudyn_turnout.turnout.Polynomial` (held outside the range)."""
+        return Polynomial(self.coefficients, self.x_min, self.x_max)
+
+    def __call__(self, x: float) -> float:
+        return self.polynomial(x)
+
+
+@dataclass(frozen=True)
+class TurnoutFits:
+    K_sw: PolynomialFit  #: Eq 10 analogue (vertical, quadratic)
+    K_sh: PolynomialFit  #: Eq 14 analogue (lateral, linear)
+
+
+def fit_polynomial(x, y, degree: int) -> tuple[tuple[float, ...], float]:
+    """Least-squares coefficients (ascending powers) and R^2 of a polynomial y(x)."""
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    if len(x) <= degree:
+        raise ValueError(f"need more than {degree} points for a degree-{degree} fit, got {len(x)}")
+    c = np.polynomial.polynomial.polyfit(x, y, degree)
+    residual = y - np.polynomial.polynomial.polyval(x, c)
+    ss_tot = float(np.sum((y - y.mean()) ** 2))
+    r2 = 1.0 - float(np.sum(residual**2)) / ss_tot if ss_tot > 0 else 1.0
+    return tuple(float(v) for v in c), r2
+
+
+def fit_profile(profile: StiffnessProfile, rail: str, direction: str, degree: int,
+                x_min: float, x_max: float) -> PolynomialFit:
+    """Fit one rail's vertical or lateral stiffness over [x_min, x_max] (m)."""
+    xs, kz, ky = profile.of(rail)
+    sel = (xs >= x_min) & (xs <= x_max)
+    K = (kz if direction == "vertical" else ky)[sel]
+    coefficients, r2 = fit_polynomial(xs[sel], K, degree)
+    return PolynomialFit(rail, direction, coefficients, float(x_min), float(x_max), r2, int(sel.sum()))
+
+
+def fit_turnout_profiles(profile: StiffnessProfile, turnout: Turnout, layout: Layout | None = None) -> TurnoutFits:
+    """Quadratic K_sw (Eq 10) and linear K_sh (Eq 14) from the FE profile.
+
+    Parameters
+    ----------
+    profile : StiffnessProfile
+    turnout : Turnout
+    layout : Layout, optional
+        Default :func:`~exudyn_turnout.fe.layout.load_layout` of the turnout; its
+        ``fits`` name the rail and x range of each fit.
+    """
+    layout = layout or load_layout(turnout)
+    sw, sh = layout.fits["K_sw"], layout.fits["K_sh"]
+    return TurnoutFits(fit_profile(profile, sw.rail, "vertical", 2, sw.x_min, sw.x_max),
+                       fit_profile(profile, sh.rail, "lateral", 1, sh.x_min, sh.x_max))
+
+
+def with_fitted_profiles(turnout: Turnout, fits: TurnoutFits) -> Turnout:
+    """The turnout with K_sw and K_sh replaced by the fitted polynomials."""
+    return dataclasses.replace(turnout, K_sw=fits.K_sw.polynomial, K_sh=fits.K_sh.polynomial)

@@ -1,0 +1,112 @@
+"""Point receptance of the FE turnout model by a direct frequency-domain solve.
+
+H(f) = b^T Z(omega)^-1 b with b the element shape functions of the loaded rail at x (a
+unit point force and the deflection under it), Z = K + iG + i omega D - omega^2 M of
+one bending plane, solved with the exact condensation of
+:mod:`exudyn_turnout.fe.solver` and sparse LU at every frequency. The result is a
+:class:`~exudyn_turnout.receptance.Receptance` (model "FE"), the object and CSV columns
+of the co-running models, so the curves compare directly.
+"""
+from __future__ import annotations
+
+from dataclasses import asdict
+
+import numpy as np
+
+from ..receptance import Receptance, log_frequencies
+from ..turnout import RAIL_SLOTS, Turnout
+from .layout import Layout, load_layout
+from .mesh import FEOptions, build_mesh
+from .model import PlaneModel, assemble
+from .solver import condense, default_keep
+
+__all__ = ["sweep", "sweep_points", "point_receptances", "resolve_rail", "fe_receptance"]
+
+
+def sweep(model: PlaneModel, rail_id: str, x: float, frequencies) -> np.ndarray:
+    """Point receptance H (m/N, complex) of rail ``rail_id`` at x over ``frequencies`` (Hz).
+
+    x must be a rail node (build the mesh with ``points={rail_id: [x]}``).
+    """
+    return sweep_points(model, [(rail_id, x)], frequencies)[:, 0]
+
+
+def sweep_points(model: PlaneModel, points, frequencies) -> np.ndarray:
+    """Point receptances (m/N, complex), shape (n_frequencies, n_points), of (rail_id, x)
+    nodes, one factorisation per frequency for all points."""
+    B = np.column_stack([model.point_vector(r, x) for r, x in points])
+    system = condense(model, np.union1d(default_keep(model), np.nonzero(B.any(axis=1))[0]))
+    B = system.restrict(B).astype(complex)
+    return np.array([np.einsum("ij,ij->j", B, system.solve(2 * np.pi * f, B))
+                     for f in np.asarray(frequencies, float)])
+
+
+def point_receptances(model: PlaneModel, points, frequency_hz: float) -> np.ndarray:
+    """Point receptances (m/N, complex) at many (rail_id, x) nodes, one factorisation.
+
+    Parameters
+    ----------
+    model : PlaneModel
+    points : sequence of (str, float)
+        Rail ids and positions (m) of rail nodes.
+    frequency_hz : float
+    """
+    B = np.column_stack([model.point_vector(r, x) for r, x in points])
+    system = condense(model, np.union1d(default_keep(model), np.nonzero(B.any(axis=1))[0]))
+    B = system.restrict(B).astype(complex)
+    return np.einsum("ij,ij->j", B, system.solve(2 * np.pi * frequency_hz, B))
+
+
+def resolve_rail(layout: Layout, rail: str, x: float, route: str = "through") -> str:
+    """Layout rail id of a co-running slot (r1..r4) or rail id at x; ValueError otherwise."""
+    if rail in RAIL_SLOTS:
+        return layout.slot_rail(rail, x, route)
+    r = layout.rail(rail) if rail in {q.id for q in layout.rails} else None
+    if r is None:
+        raise ValueError(f"rail must be one of {', '.join(RAIL_SLOTS)} or a layout rail "
+                         f"({', '.join(q.id for q in layout.rails)}), got {rail!r}")
+    if not r.x_from <= x <= r.x_to:
+        raise ValueError(f"rail {rail} is not present at x = {x:g} m (it runs from {r.x_from:g} to {r.x_to:g} m)")
+    return rail
+
+
+def fe_receptance(turnout: Turnout, rail: str, direction: str, x: float, frequencies=None,
+                  route: str = "through", options: FEOptions = FEOptions(),
+                  layout: Layout | None = None) -> Receptance:
+    """Point receptance of the FE turnout model at one rail position.
+
+    Parameters
+    ----------
+    turnout : Turnout
+        With a ``[layout]`` section (or give ``layout``).
+    rail : str
+        Co-running slot "r1".."r4" (mapped to a rail by ``layout.slots``) or a layout
+        rail id such as "straight".
+    direction : {"vertical", "lateral"}
+    x : float
+        Position from the switch toe (m).
+    frequencies : array_like, optional
+        Hz; default :func:`~exudyn_turnout.receptance.log_frequencies` (400, 1-2000 Hz).
+    route : {"through", "diverging"}
+        Slot mapping to use.
+    options : FEOptions
+    layout : Layout, optional
+        Default :func:`~exudyn_turnout.fe.layout.load_layout` of the turnout.
+
+    Returns
+    -------
+    Receptance
+        model "FE", ``metadata`` with the rail id, the DOF count and the options.
+
+    Raises
+    ------
+    ValueError
+        The rail is not present at x, or x is outside the model.
+    """
+    layout = layout or load_layout(turnout)
+    rail_id = resolve_rail(layout, rail, float(x), route)
+    f = log_frequencies() if frequencies is None else np.asarray(frequencies, float)
+    model = assemble(turnout, build_mesh(turnout, layout, options, points={rail_id: [float(x)]}), direction)
+    H = sweep(model, rail_id, float(x), f)
+    meta = {"rail_id": rail_id, "route": route, "n_dof": model.n_dof, "options": asdict(options)}
+    return Receptance(f, H, rail, direction, float(x), "FE", meta)

@@ -1,0 +1,398 @@
+"""Turnout layout for the FE reference model: rails, their paths, tracks, rail slots.
+
+Read from the ``[layout]`` section of a turnout file (see the comments there for the
+UIC60-760-1:15 geometry and its sources). A rail follows a route centreline at a lateral
+offset (y positive to the left, through-route centreline y = 0); it is a chain of
+segments, each of a Table 1 rail type, welded end to end; a rail may start or end on
+another rail (a rigid joint, the crossing). Sleepers belong to tracks: the turnout's
+bearers (length from ``[sleeper].length``, centred between the outermost rails they
+carry) or a track of its own sleepers (e.g. the diverging track after the crossing).
+``slots`` maps the co-running rail slots r1..r4 of each route to rails along x.
+
+Errors in the section raise :class:`~exudyn_turnout.turnout.TurnoutFileError` naming
+the file and the field, e.g. ``uic60.toml: layout.rails[3].route must be one of
+through, diverging, got 'divergent'``.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Mapping
+
+import numpy as np
+
+from ..turnout import RAIL_SLOTS, Turnout, TurnoutFileError
+
+__all__ = [
+    "TURNOUT_TRACK",
+    "Route",
+    "Segment",
+    "LayoutRail",
+    "Track",
+    "SlotRange",
+    "FitRange",
+    "Layout",
+    "load_layout",
+    "plain_track_layout",
+]
+
+#: Name of the track whose sleepers are the turnout's bearers.
+TURNOUT_TRACK = "turnout"
+
+
+@dataclass(frozen=True)
+class Route:
+    """A route centreline: straight, or straight - circular curve - straight tangent."""
+
+    name: str
+    side: float  #: -1 curve to the right, +1 to the left, 0 straight
+    radius: float = math.inf  #: m, R of the curve
+    curve_start_x: float = math.inf  #: m, where the curve leaves y = 0 tangentially
+    curve_end_x: float = math.inf  #: m, centreline tangent point after the curve
+
+    def y(self, x, offset: float = 0.0):
+        """Lateral position (m) of a line at ``offset`` (m, left positive) from the centreline.
+
+        On the curve the line is the concentric circle of radius R - side * offset.
+        """
+        x = np.asarray(x, float)
+        if self.side == 0 or not math.isfinite(self.radius):
+            return np.full_like(x, offset) if x.ndim else float(offset)
+        R, s = self.radius, self.side
+        rho = R - s * offset
+        theta1 = math.asin(min((self.curve_end_x - self.curve_start_x) / R, 1.0))
+        x1 = self.curve_start_x + rho * math.sin(theta1)
+        dx = np.clip(x - self.curve_start_x, 0.0, x1 - self.curve_start_x)
+        y = s * (R - np.sqrt(rho**2 - dx**2))
+        y = y + s * math.tan(theta1) * np.maximum(x - x1, 0.0)
+        return y if y.ndim else float(y)
+
+
+@dataclass(frozen=True)
+class Segment:
+    """A piece of rail of one rail type (Table 1) on one track's sleepers."""
+
+    rail_type: str  #: name in Turnout.rail_types
+    x_from: float  #: m
+    x_to: float  #: m
+    track: str = TURNOUT_TRACK  #: the track whose sleepers carry it
+
+
+@dataclass(frozen=True)
+class LayoutRail:
+    """One continuous rail: segments welded end to end along a route at an offset."""
+
+    id: str  #: short name used in CSV files and the API
+    name: str  #: description
+    route: str  #: route name
+    offset: float  #: m, lateral offset from the route centreline (left positive)
+    segments: tuple[Segment, ...]
+    start_joins: str | None = None  #: rail whose node the first node is
+    end_joins: str | None = None  #: rail whose node the last node is
+
+    @property
+    def x_from(self) -> float:
+        return self.segments[0].x_from
+
+    @property
+    def x_to(self) -> float:
+        return self.segments[-1].x_to
+
+    def segment_at(self, x: float) -> Segment:
+        """The segment containing x (the later one on a boundary)."""
+        for seg in reversed(self.segments):
+            if seg.x_from <= x <= seg.x_to:
+                return seg
+        raise ValueError(f"x = {x:g} m is not on rail {self.id} ({self.x_from:g} m to {self.x_to:g} m)")
+
+
+@dataclass(frozen=True)
+class Track:
+    """Sleepers of a track: turnout bearers (length None: from the sleeper table) or own."""
+
+    name: str
+    route: str  #: centreline of own sleepers
+    sleeper_length: float | None  #: m; None: ``[sleeper].length(x)``, centred between the rails
+
+
+@dataclass(frozen=True)
+class SlotRange:
+    rail: str  #: rail id
+    x_from: float  #: m
+    x_to: float  #: m
+
+
+@dataclass(frozen=True)
+class FitRange:
+    """Which rail and x range a stiffness polynomial is fitted on."""
+
+    rail: str  #: rail id
+    x_min: float  #: m
+    x_max: float  #: m
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Geometry of the FE reference model (SI units)."""
+
+    source: str  #: file name, for messages
+    x_start: float  #: m, first x of the turnout proper
+    x_end: float  #: m, last x
+    sleeper_x0: float  #: m, a sleeper at sleeper_x0 + i L_s
+    routes: Mapping[str, Route]
+    tracks: Mapping[str, Track]
+    rails: tuple[LayoutRail, ...]
+    slots: Mapping[str, Mapping[str, tuple[SlotRange, ...]]]  #: route -> slot -> ranges
+    fits: Mapping[str, FitRange]  #: "K_sw" (Eq 10 analogue), "K_sh" (Eq 14 analogue)
+    bearer_shear_coefficient: float = 5.0 / 6.0  #: kappa of the sleeper (-)
+    bearer_poisson: float = 0.2  #: nu of the sleeper concrete (-)
+    min_overhang: float = 0.2  #: m
+
+    def rail(self, rail_id: str) -> LayoutRail:
+        for r in self.rails:
+            if r.id == rail_id:
+                return r
+        raise KeyError(f"rail {rail_id!r} is not in the layout (rails: {', '.join(r.id for r in self.rails)})")
+
+    def rail_y(self, rail_id: str, x):
+        """Lateral position (m) of a rail at x."""
+        r = self.rail(rail_id)
+        return self.routes[r.route].y(x, r.offset)
+
+    def slot_rail(self, slot: str, x: float, route: str = "through") -> str:
+        """Id of the rail in co-running slot ``slot`` at x; ValueError naming where it is."""
+        if route not in self.slots:
+            raise ValueError(f"route must be one of {', '.join(self.slots)}, got {route!r}")
+        if not self.x_start <= x <= self.x_end:
+            raise ValueError(f"x = {x:g} m is outside the FE model of the turnout "
+                             f"({self.x_start:g} m to {self.x_end:g} m)")
+        ranges = self.slots[route].get(slot, ())
+        for rng in ranges:
+            if rng.x_from <= x <= rng.x_to:
+                return rng.rail
+        where = ", ".join(f"{r.x_from:g} to {r.x_to:g} m" for r in ranges) or "nowhere"
+        raise ValueError(f"rail {slot} is not present at x = {x:g} m on the {route} route (it is at {where})")
+
+
+def _fail(src: str, field: str, problem: str) -> TurnoutFileError:
+    return TurnoutFileError(f"{src}: {field} {problem}")
+
+
+def _get(src: str, data: Mapping[str, Any], field: str, path: str, default: Any = ...) -> Any:
+    if not isinstance(data, Mapping) or path not in data:
+        if default is not ...:
+            return default
+        raise _fail(src, field, "is missing")
+    return data[path]
+
+
+def _number(src: str, field: str, value: Any, positive: bool = False) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise _fail(src, field, f"must be a finite number, got {value!r}")
+    if positive and value <= 0:
+        raise _fail(src, field, f"must be > 0, got {value:g}")
+    return float(value)
+
+
+def _interval(src: str, field: str, value: Any) -> tuple[float, float]:
+    if not isinstance(value, list) or len(value) != 2:
+        raise _fail(src, field, f"must be [x_from, x_to] in metres, got {value!r}")
+    a, b = (_number(src, field, v) for v in value)
+    if not b > a:
+        raise _fail(src, field, f"must have x_from < x_to, got [{a:g}, {b:g}]")
+    return a, b
+
+
+def _routes(src: str, sec: Mapping[str, Any]) -> dict[str, Route]:
+    p = "layout.diverging"
+    d = _get(src, sec, p, "diverging")
+    side = _get(src, d, p + ".side", "side")
+    if side not in ("left", "right"):
+        raise _fail(src, p + ".side", f"must be one of left, right, got {side!r}")
+    R = _number(src, p + ".radius", _get(src, d, p + ".radius", "radius"), positive=True)
+    x0 = _number(src, p + ".curve_start_x", _get(src, d, p + ".curve_start_x", "curve_start_x"))
+    x1 = _number(src, p + ".curve_end_x", _get(src, d, p + ".curve_end_x", "curve_end_x"))
+    if not x0 < x1 < x0 + R:
+        raise _fail(src, p + ".curve_end_x", f"must lie between curve_start_x and curve_start_x + radius, got {x1:g}")
+    return {"through": Route("through", 0.0),
+            "diverging": Route("diverging", 1.0 if side == "left" else -1.0, R, x0, x1)}
+
+
+def _segments(src: str, p: str, raw: Any, turnout: Turnout, tracks: Mapping[str, Track]) -> tuple[Segment, ...]:
+    if not isinstance(raw, list) or not raw:
+        raise _fail(src, p, "must be a non-empty list of {type = ..., x = [x_from, x_to]}")
+    out = []
+    for i, s in enumerate(raw):
+        f = f"{p}[{i + 1}]"
+        rtype = _get(src, s, f + ".type", "type")
+        if rtype not in turnout.rail_types:
+            raise _fail(src, f + ".type", f"names rail type {rtype!r}, which is not defined "
+                        f"(types: {', '.join(turnout.rail_types)})")
+        a, b = _interval(src, f + ".x", _get(src, s, f + ".x", "x"))
+        track = _get(src, s, f + ".track", "track", TURNOUT_TRACK)
+        if track not in tracks:
+            raise _fail(src, f + ".track", f"names track {track!r}, which is not defined (tracks: {', '.join(tracks)})")
+        if out and abs(out[-1].x_to - a) > 1e-9:
+            raise _fail(src, f + ".x", f"must start where the previous segment ends ({out[-1].x_to:g} m), got {a:g}")
+        out.append(Segment(rtype, a, b, track))
+    return tuple(out)
+
+
+def _rails(src: str, sec: Mapping[str, Any], turnout: Turnout, routes, tracks) -> tuple[LayoutRail, ...]:
+    raw = _get(src, sec, "layout.rails", "rails")
+    if not isinstance(raw, list) or not raw:
+        raise _fail(src, "layout.rails", "must be a non-empty list of [[layout.rails]] tables")
+    rails: list[LayoutRail] = []
+    for i, r in enumerate(raw):
+        p = f"layout.rails[{i + 1}]"
+        rid = _get(src, r, p + ".id", "id")
+        if not isinstance(rid, str) or not rid or any(c in rid for c in " ,"):
+            raise _fail(src, p + ".id", f"must be a short name without spaces or commas, got {rid!r}")
+        if rid in [q.id for q in rails]:
+            raise _fail(src, p + ".id", f"{rid!r} is used twice")
+        route = _get(src, r, p + ".route", "route")
+        if route not in routes:
+            raise _fail(src, p + ".route", f"must be one of {', '.join(routes)}, got {route!r}")
+        segments = _segments(src, p + ".segments", _get(src, r, p + ".segments", "segments"), turnout, tracks)
+        rails.append(LayoutRail(rid, str(_get(src, r, p + ".name", "name", rid)), route,
+                                _number(src, p + ".offset", _get(src, r, p + ".offset", "offset")), segments,
+                                _get(src, r, p + ".start_joins", "start_joins", None),
+                                _get(src, r, p + ".end_joins", "end_joins", None)))
+    _check_joins(src, rails)
+    return tuple(rails)
+
+
+def _check_joins(src: str, rails: list[LayoutRail]) -> None:
+    by_id = {r.id: r for r in rails}
+    for i, r in enumerate(rails):
+        for key, x in (("start_joins", r.x_from), ("end_joins", r.x_to)):
+            target = getattr(r, key)
+            if target is None:
+                continue
+            f = f"layout.rails[{i + 1}].{key}"
+            if target not in by_id or target == r.id:
+                raise _fail(src, f, f"must name another rail, got {target!r}")
+            t = by_id[target]
+            if not t.x_from <= x <= t.x_to:
+                raise _fail(src, f, f"joins rail {target!r} at x = {x:g} m, outside it ({t.x_from:g} to {t.x_to:g} m)")
+
+
+def _tracks(src: str, sec: Mapping[str, Any], routes) -> dict[str, Track]:
+    tracks = {TURNOUT_TRACK: Track(TURNOUT_TRACK, "through", None)}
+    raw = _get(src, sec, "layout.tracks", "tracks", {})
+    if not isinstance(raw, Mapping):
+        raise _fail(src, "layout.tracks", "must be a table of [layout.tracks.<name>] tables")
+    for name, t in raw.items():
+        p = f"layout.tracks.{name}"
+        route = _get(src, t, p + ".route", "route")
+        if route not in routes:
+            raise _fail(src, p + ".route", f"must be one of {', '.join(routes)}, got {route!r}")
+        L = _number(src, p + ".sleeper_length", _get(src, t, p + ".sleeper_length", "sleeper_length"), positive=True)
+        tracks[name] = Track(name, route, L)
+    return tracks
+
+
+def _slots(src: str, sec: Mapping[str, Any], rails: tuple[LayoutRail, ...], routes) -> dict:
+    raw = _get(src, sec, "layout.slots", "slots")
+    if not isinstance(raw, Mapping) or not all(isinstance(t, Mapping) for t in raw.values()):
+        raise _fail(src, "layout.slots", "must be tables [layout.slots.<route>] of slot = [{rail, x}, ...]")
+    by_id = {r.id: r for r in rails}
+    out: dict[str, dict[str, tuple[SlotRange, ...]]] = {}
+    for route, table in raw.items():
+        if route not in routes:
+            raise _fail(src, f"layout.slots.{route}", f"names route {route!r}; routes are {', '.join(routes)}")
+        out[route] = {}
+        for slot, ranges in table.items():
+            p = f"layout.slots.{route}.{slot}"
+            if slot not in RAIL_SLOTS:
+                raise _fail(src, p, f"names rail slot {slot!r}; slots are {', '.join(RAIL_SLOTS)}")
+            if not isinstance(ranges, list):
+                raise _fail(src, p, "must be a list of {rail = ..., x = [x_from, x_to]}")
+            items = []
+            for i, rng in enumerate(ranges):
+                f = f"{p}[{i + 1}]"
+                rid = _get(src, rng, f + ".rail", "rail")
+                if rid not in by_id:
+                    raise _fail(src, f + ".rail", f"names rail {rid!r}, which is not in layout.rails")
+                a, b = _interval(src, f + ".x", _get(src, rng, f + ".x", "x"))
+                if a < by_id[rid].x_from - 1e-9 or b > by_id[rid].x_to + 1e-9:
+                    raise _fail(src, f + ".x", f"[{a:g}, {b:g}] is not within rail {rid!r} "
+                                f"({by_id[rid].x_from:g} to {by_id[rid].x_to:g} m)")
+                items.append(SlotRange(rid, a, b))
+            out[route][slot] = tuple(items)
+    return out
+
+
+def _fits(src: str, sec: Mapping[str, Any], rails: tuple[LayoutRail, ...]) -> dict[str, FitRange]:
+    raw = _get(src, sec, "layout.fits", "fits")
+    by_id = {r.id: r for r in rails}
+    out = {}
+    for key in ("K_sw", "K_sh"):
+        p = f"layout.fits.{key}"
+        spec = _get(src, raw, p, key)
+        rid = _get(src, spec, p + ".rail", "rail")
+        if rid not in by_id:
+            raise _fail(src, p + ".rail", f"names rail {rid!r}, which is not in layout.rails")
+        a, b = _interval(src, p + ".x", _get(src, spec, p + ".x", "x"))
+        out[key] = FitRange(rid, a, b)
+    return out
+
+
+def load_layout(turnout: Turnout) -> Layout:
+    """The ``[layout]`` section of a turnout file as a :class:`Layout`.
+
+    Raises
+    ------
+    TurnoutFileError
+        The section is missing or a field is wrong; the message names file and field.
+    """
+    src = Path(turnout.source).name
+    sec = turnout.raw.get("layout")
+    if not isinstance(sec, Mapping):
+        raise _fail(src, "layout", "is missing (the FE model needs the turnout's geometry)")
+    x0 = _number(src, "layout.x_start", _get(src, sec, "layout.x_start", "x_start"))
+    x1 = _number(src, "layout.x_end", _get(src, sec, "layout.x_end", "x_end"))
+    if not x1 > x0:
+        raise _fail(src, "layout.x_end", f"must be > x_start = {x0:g}, got {x1:g}")
+    routes = _routes(src, sec)
+    tracks = _tracks(src, sec, routes)
+    rails = _rails(src, sec, turnout, routes, tracks)
+    fits = _fits(src, sec, rails)
+    b = _get(src, sec, "layout.bearers", "bearers")
+    kappa = _number(src, "layout.bearers.shear_coefficient", _get(src, b, "layout.bearers.shear_coefficient",
+                                                                "shear_coefficient"), positive=True)
+    nu = _number(src, "layout.bearers.poisson", _get(src, b, "layout.bearers.poisson", "poisson"))
+    if not 0 <= nu < 0.5:
+        raise _fail(src, "layout.bearers.poisson", f"must be in [0, 0.5), got {nu:g}")
+    overhang = _number(src, "layout.bearers.min_overhang", _get(src, b, "layout.bearers.min_overhang",
+                                                              "min_overhang", 0.2))
+    return Layout(src, x0, x1, _number(src, "layout.sleeper_x0", _get(src, sec, "layout.sleeper_x0", "sleeper_x0")),
+                  routes, tracks, rails, _slots(src, sec, rails, routes), fits, kappa, nu, overhang)
+
+
+def plain_track_layout(rail_type: str = "stock", length: float = 6.0, rail_spacing: float = 1.5,
+                       sleeper_length: float = 2.5, sleeper_x0: float = 0.0) -> Layout:
+    """Plain track: two straight rails of one type on sleepers of one length.
+
+    Parameters
+    ----------
+    rail_type : str
+        Rail type of the turnout's Table 1 for both rails.
+    length : float
+        m, x range [-length/2, length/2] of the layout (the FE options add plain-track
+        extensions beyond it).
+    rail_spacing : float
+        m, distance of the rail-head centres; rails at y = +-rail_spacing / 2.
+    sleeper_length : float
+        m, length of every sleeper.
+    sleeper_x0 : float
+        m, a sleeper at x = sleeper_x0 + i L_s (x = 0 above a sleeper by default).
+    """
+    h = length / 2.0
+    tracks = {TURNOUT_TRACK: Track(TURNOUT_TRACK, "through", sleeper_length)}
+    rails = tuple(LayoutRail(rid, rid, "through", y, (Segment(rail_type, -h, h),))
+                  for rid, y in (("left", rail_spacing / 2), ("right", -rail_spacing / 2)))
+    slots = {"through": {"r1": (SlotRange("right", -h, h),), "r4": (SlotRange("left", -h, h),)}}
+    fits = {"K_sw": FitRange("right", -h, h), "K_sh": FitRange("right", -h, h)}
+    return Layout("plain track", -h, h, sleeper_x0, {"through": Route("through", 0.0)}, tracks, rails, slots, fits)
