@@ -17,7 +17,8 @@ from typing import Sequence
 from .parameters import SOURCES, CoRunningParameters, co_running_parameters
 from .turnout import Turnout, TurnoutFileError, load_turnout
 
-__all__ = ["main", "UsageError", "unit_of", "add_turnout_options", "add_position_options", "number"]
+__all__ = ["main", "UsageError", "unit_of", "add_turnout_options", "add_position_options", "number",
+           "turnout_from_args"]
 
 
 class UsageError(Exception):
@@ -52,9 +53,23 @@ def number(text: str) -> float:
 
 
 def add_turnout_options(p: argparse.ArgumentParser) -> None:
+    """--turnout, --source and --profiles, shared by the co-running commands."""
     p.add_argument("--turnout", metavar="FILE", help="turnout file (default: packaged UIC60-760-1:15)")
     p.add_argument("--source", choices=SOURCES, default="derived",
                    help="derived: Eqs 1-19 on Table 1; published: the paper's Table 2 (default: derived)")
+    p.add_argument("--profiles", choices=("paper", "fe-fit"), default="paper",
+                   help="K_sw(x), K_sh(x) behind Delta_z, Delta_y: the paper's Eqs 10, 14 (default) or "
+                        "polynomials fitted to our FE reference's static stiffness (computed, ~5 s)")
+
+
+def turnout_from_args(args: argparse.Namespace) -> Turnout:
+    """The turnout of ``--turnout``, with FE-fitted K_sw, K_sh if ``--profiles fe-fit``."""
+    turnout = load_turnout(args.turnout)
+    if getattr(args, "profiles", "paper") == "fe-fit":
+        from .fe.fits import fit_turnout_profiles, with_fitted_profiles
+        from .fe.stiffness import static_stiffness_profile
+        turnout = with_fitted_profiles(turnout, fit_turnout_profiles(static_stiffness_profile(turnout), turnout))
+    return turnout
 
 
 def add_position_options(p: argparse.ArgumentParser) -> None:
@@ -115,7 +130,7 @@ def _format(rows: dict[str, object], fmt: str) -> str:
 
 
 def _cmd_params(args: argparse.Namespace) -> int:
-    turnout = load_turnout(args.turnout)
+    turnout = turnout_from_args(args)
     p = _parameter_set(args, turnout)
     rows = _zone_rows(p) if args.zone is not None else _x_rows(p, args.x)
     print(_format(rows, args.format))

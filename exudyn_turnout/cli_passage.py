@@ -5,7 +5,7 @@ import argparse
 import math
 import sys
 
-from .cli import UsageError, add_turnout_options, number
+from .cli import UsageError, add_turnout_options, number, turnout_from_args
 
 __all__ = ["build"]
 
@@ -24,9 +24,8 @@ def _progress_bar(stream):
 
 def _run(args: argparse.Namespace) -> int:
     from .passage import PassageError, PassageSettings, simulate_passage, write_passage
-    from .turnout import load_turnout
 
-    turnout = load_turnout(args.turnout)
+    turnout = turnout_from_args(args)
     settings = PassageSettings(route=args.route, speed_kmh=args.speed, layers=args.layers, source=args.source,
                                x_start=args.x_start, x_end=args.x_end, time_step=args.time_step)
     bar = _progress_bar(sys.stderr)

@@ -7,9 +7,9 @@ from __future__ import annotations
 
 import argparse
 
-from .cli import UsageError, add_position_options, add_turnout_options, number
+from .cli import UsageError, add_position_options, add_turnout_options, number, turnout_from_args
 from .receptance import DIRECTIONS, log_frequencies
-from .turnout import RAIL_SLOTS, load_turnout
+from .turnout import RAIL_SLOTS
 
 __all__ = ["build"]
 
@@ -41,7 +41,7 @@ def _run(args: argparse.Namespace) -> int:
         frequencies = log_frequencies(args.fmin, args.fmax, args.n)
     except ValueError as err:
         raise UsageError(f"frf: {err}") from None
-    turnout = load_turnout(args.turnout)
+    turnout = turnout_from_args(args)
     try:
         r = co_running_receptance(turnout, args.layers, args.rail, args.direction, x=args.x, zone=args.zone,
                                   source=args.source, frequencies=frequencies)

@@ -70,3 +70,17 @@ def test_bad_input_one_line_exit_2(capsys, argv, fragment):
     code, out, err = _run(capsys, *argv)
     assert code == 2 and out == ""
     assert err.count("\n") == 1 and fragment in err
+
+
+def test_fe_fitted_profiles(capsys):
+    """--profiles fe-fit: Delta_z(x) = K_sw,fit(x) / K_st with the FE fit (fe/fits.py) in place of Eq 10."""
+    from exudyn_turnout.fe.fits import fit_turnout_profiles
+    from exudyn_turnout.fe.stiffness import static_stiffness_profile
+    from exudyn_turnout.parameters import reference_support
+    from exudyn_turnout.turnout import load_turnout
+    code, out, _ = _run(capsys, "params", "--x", "10", "--format", "json", "--profiles", "fe-fit")
+    t = load_turnout()
+    fits = fit_turnout_profiles(static_stiffness_profile(t), t)
+    assert code == 0
+    assert json.loads(out)["Delta_z"] == pytest.approx(fits.K_sw(10.0) / reference_support(t).K_st_z, rel=1e-9)
+    assert json.loads(out)["Delta_z"] != pytest.approx(0.96712, rel=1e-3)  # Eq 10's value differs
