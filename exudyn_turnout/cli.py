@@ -18,7 +18,7 @@ from .parameters import SOURCES, CoRunningParameters, co_running_parameters
 from .turnout import Turnout, TurnoutFileError, load_turnout
 
 __all__ = ["main", "UsageError", "unit_of", "add_turnout_options", "add_position_options", "number",
-           "turnout_from_args"]
+           "turnout_from_args", "kilonewtons"]
 
 
 class UsageError(Exception):
@@ -43,6 +43,11 @@ def unit_of(name: str) -> str:
     if name.startswith("L_eff_r") or name.endswith("_m"):
         return "m"
     return "-"
+
+
+def kilonewtons(force: float) -> str:
+    """A force (N) as "12.3 kN", or "n/a (region not in the run)" where it is not finite."""
+    return f"{force / 1e3:.1f} kN" if math.isfinite(force) else "n/a (region not in the run)"
 
 
 def number(text: str) -> float:

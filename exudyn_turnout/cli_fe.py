@@ -12,6 +12,7 @@ import argparse
 import time
 
 from .cli import UsageError, number
+from .cli_fe_passage import add_simulate
 from .receptance import DIRECTIONS, log_frequencies
 from .turnout import load_turnout
 
@@ -100,3 +101,4 @@ def build(sub: argparse._SubParsersAction) -> None:
     s.add_argument("--plot", metavar="FILE.png")
     _turnout_option(s)
     s.set_defaults(run=_cmd_stiffness)
+    add_simulate(fe_sub)

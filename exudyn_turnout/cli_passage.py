@@ -2,10 +2,9 @@
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 
-from .cli import UsageError, add_turnout_options, number, turnout_from_args
+from .cli import UsageError, add_turnout_options, kilonewtons, number, turnout_from_args
 
 __all__ = ["build"]
 
@@ -44,15 +43,10 @@ def _run(args: argparse.Namespace) -> int:
                                      title=f"{turnout.name}, {args.route} route, {args.speed:g} km/h")
         fig.savefig(f"{args.out}/forces.png", dpi=120)
     s = result.summary
-    print(f"wrote {paths['timeseries']}, {paths['summary']}: right wheel peak Fz {_kn(s['peak_Fz_switch_N'])} "
-          f"at the switch, {_kn(s['peak_Fz_crossing_N'])} at the crossing (static "
-          f"{_kn(s['static_wheel_load_N'])}); {s['simulated_time_s']:.2f} s simulated in {s['wall_time_s']:.1f} s")
+    print(f"wrote {paths['timeseries']}, {paths['summary']}: right wheel peak Fz {kilonewtons(s['peak_Fz_switch_N'])} "
+          f"at the switch, {kilonewtons(s['peak_Fz_crossing_N'])} at the crossing (static "
+          f"{kilonewtons(s['static_wheel_load_N'])}); {s['simulated_time_s']:.2f} s simulated in {s['wall_time_s']:.1f} s")
     return 0
-
-
-def _kn(force: float) -> str:
-    """A force in kN, or "n/a" where the run did not cover the region."""
-    return f"{force / 1e3:.1f} kN" if math.isfinite(force) else "n/a (region not in the run)"
 
 
 def build(sub: argparse._SubParsersAction) -> None:

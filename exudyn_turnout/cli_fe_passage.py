@@ -1,0 +1,89 @@
+"""``exudyn-turnout fe simulate``: the wheelset passage over the FE turnout track (vertical).
+
+:func:`add_simulate` adds the ``simulate`` sub-command to the ``fe`` group of
+:mod:`exudyn_turnout.cli_fe` (pass it that group's sub-parsers). numpy/scipy only at
+import; matplotlib is imported only to draw ``forces.png``.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+
+from .cli import UsageError, kilonewtons, number
+
+__all__ = ["add_simulate"]
+
+
+def _progress_bar(stream):
+    """A one-line progress bar on a terminal; nothing when output is not a terminal."""
+    if not stream.isatty():
+        return None
+
+    def show(fraction: float, x: float) -> None:
+        n = int(30 * fraction)
+        stream.write(f"\r[{'#' * n}{'.' * (30 - n)}] {100 * fraction:5.1f} %  x = {x:7.2f} m")
+        stream.flush()
+    return show
+
+
+def _options(args: argparse.Namespace):
+    from .fe.mesh import FEOptions
+    from .fe_passage import FEPassageOptions
+    try:
+        return FEPassageOptions(mesh=FEOptions(element_length=args.element_length))
+    except ValueError as err:
+        raise UsageError(str(err)) from None
+
+
+def _run(args: argparse.Namespace) -> int:
+    from .fe_passage import simulate_fe_passage
+    from .passage import PassageError, PassageSettings, write_passage
+    from .turnout import load_turnout
+
+    turnout = load_turnout(args.turnout)
+    settings = PassageSettings(route=args.route, speed_kmh=args.speed, x_start=args.x_start, x_end=args.x_end,
+                               time_step=args.time_step)
+    bar = _progress_bar(sys.stderr)
+    try:
+        result = simulate_fe_passage(turnout, settings, options=_options(args), progress=bar)
+    except PassageError as err:
+        raise UsageError(str(err)) from None
+    finally:
+        if bar:
+            sys.stderr.write("\n")
+    paths = write_passage(result, args.out)
+    if not args.no_plot:
+        from .plotting import plot_passage_forces
+        fig, _ = plot_passage_forces([result], wheel="right",
+                                     title=f"FE track, {turnout.name}, {args.route} route, {args.speed:g} km/h")
+        fig.savefig(f"{args.out}/forces.png", dpi=120)
+    s = result.summary
+    print(f"wrote {paths['timeseries']}, {paths['summary']}: FE track ({s['n_dof']} DOFs), right wheel peak Fz "
+          f"{kilonewtons(s['peak_Fz_switch_N'])} at the switch, {kilonewtons(s['peak_Fz_crossing_N'])} at the "
+          f"crossing (static {kilonewtons(s['static_wheel_load_N'])}); {s['simulated_time_s']:.2f} s simulated "
+          f"in {s['wall_time_s']:.1f} s")
+    return 0
+
+
+def add_simulate(fe_sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
+    """Add ``simulate`` to the ``fe`` group; returns its parser."""
+    p = fe_sub.add_parser("simulate", help="wheelset passage over the FE turnout track (vertical)",
+                          description="Run one wheelset (Manchester benchmark, vertical part) over the vertical FE "
+                                      "model of the turnout with Hertz contact, the route's rail height profiles "
+                                      "and HHT-alpha time integration; write timeseries.csv, summary.json and "
+                                      "forces.png (the columns of `exudyn-turnout simulate`; lateral columns "
+                                      "empty) into --out.")
+    p.add_argument("--turnout", metavar="FILE", help="turnout file with a [layout] section "
+                   "(default: packaged UIC60-760-1:15)")
+    p.add_argument("--route", default="through", help="route of the turnout file (default through)")
+    p.add_argument("--speed", type=number, default=100.0, metavar="KMH", help="km/h (default 100)")
+    p.add_argument("--x-start", type=number, metavar="M", help="start position (m), default: turnout start")
+    p.add_argument("--x-end", type=number, metavar="M", help="end position (m), default: turnout end")
+    p.add_argument("--time-step", type=number, default=1e-4, metavar="S",
+                   help="s (default 1e-4: halving it moves the crossing peak < 2 %%)")
+    p.add_argument("--element-length", type=number, default=0.2, metavar="M",
+                   help="longest rail element (m), order 4 (default 0.2)")
+    p.add_argument("--out", required=True, metavar="DIR", help="output directory")
+    p.add_argument("--no-plot", action="store_true", help="skip forces.png")
+    p.set_defaults(run=_run)
+    return p
