@@ -156,7 +156,7 @@ def _build_params(sub: argparse._SubParsersAction) -> None:
 #: Modules defining further subcommands, each with ``build(subparsers)``. A subcommand
 #: module must not import exudyn or matplotlib at import time (import inside its run
 #: function) so that every command starts fast.
-_COMMAND_MODULES: tuple[str, ...] = ("exudyn_turnout.cli_track", "exudyn_turnout.cli_passage",
+_COMMAND_MODULES: tuple[str, ...] = ("exudyn_turnout.cli_track", "exudyn_turnout.cli_passage", "exudyn_turnout.cli_validate",
                                       "exudyn_turnout.cli_fe")
 
 

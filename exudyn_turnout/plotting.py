@@ -81,6 +81,8 @@ def passage_label(result) -> str:
     """Legend text of a passage: layers (or model), parameter source and speed."""
     s = result.settings
     model = result.summary.get("model", f"{s.layers}-layer")
+    if model == "FE":  # the FE track takes Table 1 directly: no parameter source
+        return f"FE, {s.speed_kmh:g} km/h"
     return f"{model}, {s.source}, {s.speed_kmh:g} km/h"
 
 

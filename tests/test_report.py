@@ -1,0 +1,220 @@
+"""Validation report (issue 7): metric functions against hand-computed values, claims, cache, quick report.
+
+References:
+- one-third-octave bands, base 10 (IEC 61260-1): centres 10^(n/10) Hz, edges centre * 10^(+-1/20);
+- a constant receptance ratio r gives 20 log10 r dB in every band (r = 2: 6.0206 dB);
+- a single-DOF receptance 1/(k - w^2 m + i w c) peaks at f0 = sqrt(k/m)/(2 pi) (light damping);
+- the mean of sin over whole periods is 0 and its RMS is amplitude/sqrt(2).
+"""
+import json
+import math
+import re
+
+import numpy as np
+import pytest
+
+from exudyn_turnout import agreement as ag
+from exudyn_turnout.claims import FAILS, HOLDS, NOT_CHECKED, Criteria, evaluate_claims
+from exudyn_turnout.cli import main
+from exudyn_turnout.result_cache import ResultCache, input_key
+
+# --- metric functions -----------------------------------------------------------------
+
+
+def test_third_octave_centres_are_base_10():
+    c = ag.third_octave_centres(1.0, 125.0)
+    assert len(c) == 22 and c[0] == pytest.approx(1.0) and c[-1] == pytest.approx(10**2.1)
+    assert ag.third_octave_centres(500.0, 2000.0) == pytest.approx(10 ** (np.arange(27, 34) / 10))
+    lo, hi = ag.band_edges(1000.0)
+    assert (lo, hi) == pytest.approx((891.25, 1122.02), rel=1e-5)
+
+
+def test_band_rms_of_a_constant_ratio_is_its_level():
+    f = np.geomspace(1, 2000, 400)
+    d = ag.level_difference_db(2.0 * np.exp(1j * f), np.ones_like(f))
+    bands = ag.band_rms_db(f, d, ag.third_octave_centres(1, 2000))
+    assert len(bands) == 34
+    assert all(v == pytest.approx(6.0206, abs=1e-4) for v in bands.values())
+    assert ag.range_rms_db(bands, 125, 500) == pytest.approx(6.0206, abs=1e-4)
+
+
+def test_band_rms_by_hand():
+    """Band 100 Hz holds 95 and 105 Hz (diffs 3, -4 dB): sqrt((9 + 16)/2); 1000 Hz holds 1000 Hz (2 dB)."""
+    bands = ag.band_rms_db([95.0, 105.0, 1000.0], [3.0, -4.0, 2.0], ag.third_octave_centres(1, 2000))
+    assert bands == pytest.approx({100.0: math.sqrt(12.5), 1000.0: 2.0})
+    # range RMS: every band once, whatever its number of frequencies: sqrt((12.5 + 4)/2)
+    assert ag.range_rms_db(bands, 1, 2000) == pytest.approx(math.sqrt(8.25))
+    assert ag.range_rms_db(bands, 1, 2000, exclude=ag.bands_near(1000.0, 1)) == pytest.approx(math.sqrt(12.5))
+    assert math.isnan(ag.range_rms_db(bands, 125, 500))
+
+
+def test_bands_near_a_frequency():
+    assert ag.bands_near(1000.0, 1) == pytest.approx((10**2.9, 1000.0, 10**3.1))
+    assert ag.bands_near(770.0, 0) == pytest.approx((10**2.9,))
+
+
+def test_peak_of_a_single_dof_receptance():
+    m, k, c = 100.0, 4e7, 2e3
+    f = np.geomspace(1, 2000, 2000)
+    w = 2 * np.pi * f
+    H = 1 / (k - w**2 * m + 1j * w * c)
+    (peak,) = ag.peak_frequencies(f, H)
+    assert peak == pytest.approx(math.sqrt(k / m) / (2 * math.pi), rel=5e-3)
+    assert ag.peak_frequencies(f, 1 / (k + 1j * w * c)) == ()
+
+
+def test_running_mean_dynamic_rms_and_differences():
+    x = np.linspace(0.0, 10.0, 10001)
+    line = 3.0 * x + 1.0
+    inner = (x > 1) & (x < 9)
+    assert ag.running_mean(x, line, 1.0)[inner] == pytest.approx(line[inner])
+    wave = 5.0 + 2.0 * np.sin(2 * np.pi * x / 0.1)  # ten periods per 1 m window
+    assert ag.dynamic_rms(x, wave, 1.0, (2.0, 8.0)) == pytest.approx(2.0 / math.sqrt(2), rel=1e-3)
+    assert ag.rms_difference(x, line + 0.5, x, line, (2.0, 8.0)) == pytest.approx(0.5)
+    assert ag.max_trend_difference(x, wave, x, wave - 0.25, 1.0, (2.0, 8.0)) == pytest.approx(0.25)
+    assert ag.relative_difference(110.0, 100.0) == pytest.approx(0.1)
+    # a load that doubles both times after the first pair leaves the paired median at the true ratio 1.1
+    assert ag.paired_median_ratio([1.1, 2.2, 2.2], [1.0, 2.0, 2.0]) == pytest.approx(1.1)
+    with pytest.raises(ValueError):
+        ag.paired_median_ratio([1.0], [])
+    assert math.isnan(ag.relative_difference(1.0, float("nan")))
+
+
+# --- claims ---------------------------------------------------------------------------
+
+def _receptance_metrics(low_2l: float) -> dict:
+    ranges = {"1-125 Hz": low_2l, "125-500 Hz": 8.0, "500-2000 Hz": 12.0}
+    r3 = {"1-125 Hz": 1.0, "125-500 Hz": 2.0, "500-2000 Hz": 2.5}
+
+    def model(r):
+        out = dict(r)
+        out.update({k + " excl. pinned-pinned": v for k, v in r.items()})
+        out["1-2000 Hz excl. pinned-pinned"] = max(r.values())
+        return {"range_rms_db": out, "pinned_pinned_bands_rms_db": 5.0}
+    case = {"pinned_pinned_hz": 1000.0, "fe_peak_near_pinned_pinned_hz": 1010.0, "fe_dip_near_pinned_pinned_hz": None,
+            "models": {"2-layer": model(ranges), "3-layer": model(r3)}}
+    return {"cases": {f"case {i}": case for i in range(4)}}
+
+
+def _verdicts(metrics: dict) -> dict:
+    return {c.id: c.verdict for c in evaluate_claims(metrics, Criteria())}
+
+
+def test_receptance_claims_follow_the_criteria():
+    v = _verdicts({"receptance": _receptance_metrics(2.9)})
+    assert v["R1"] == HOLDS and v["R2"] == HOLDS and v["R3"] == HOLDS and v["R4"] == HOLDS and v["R5"] == HOLDS
+    assert _verdicts({"receptance": _receptance_metrics(3.1)})["R1"] == FAILS
+
+
+def test_claims_without_data_are_not_checked():
+    v = _verdicts({})
+    assert set(v) >= {"S1", "R1", "F1", "F4", "C1", "C3"}
+    assert all(x == NOT_CHECKED for x in v.values())
+
+
+def test_cost_claim_range():
+    cost = {"repeats": 5, "ratio_3_over_2": {"through": 1.1}, "extra_dof_per_zone": {"2": 8}}
+    assert _verdicts({"cost": cost})["C1"] == HOLDS and _verdicts({"cost": cost})["C2"] == HOLDS
+    cost["ratio_3_over_2"]["through"] = 1.3
+    assert _verdicts({"cost": cost})["C1"] == FAILS
+
+
+# --- cache ----------------------------------------------------------------------------
+
+def test_cache_round_trip_and_keys(tmp_path):
+    cache = ResultCache(tmp_path / "c")
+    key = input_key("x", np.arange(3.0), {"a": 1})
+    assert key != input_key("x", np.arange(3.0) + 1e-12, {"a": 1}) and key == input_key("x", np.arange(3.0), {"a": 1})
+    assert cache.load(key) is None
+    cache.save(key, {"H": np.array([1 + 2j, 3j])}, {"wall_time_s": 1.5})
+    arrays, meta = cache.load(key)
+    assert arrays["H"] == pytest.approx(np.array([1 + 2j, 3j])) and meta == {"wall_time_s": 1.5}
+    assert ResultCache(None).load(key) is None
+
+
+# --- the quick report -----------------------------------------------------------------
+
+_NUMBER = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:e[+-]?\d+)?"
+_CELL = re.compile(rf"^({_NUMBER})\s*(%|kN|dB|Hz|MN/m|s|m)?$")
+
+
+def _leaves(value):
+    if isinstance(value, dict):
+        for v in value.values():
+            yield from _leaves(v)
+    elif isinstance(value, list):
+        for v in value:
+            yield from _leaves(v)
+    elif isinstance(value, (int, float)) and not isinstance(value, bool):
+        yield float(value)
+
+
+def _numeric_cells(markdown: str):
+    """Table cells that are numbers (or comma-separated numbers), with a decimal point or exponent."""
+    for line in markdown.splitlines():
+        if not line.startswith("| ") or set(line) <= set("|-"):
+            continue
+        for cell in line.strip("|").split(" | "):
+            parts = [p.strip() for p in cell.split(",")]
+            matches = [_CELL.match(p) for p in parts]
+            if all(matches):
+                yield from (m.group(1) for m in matches if re.search(r"[.e]", m.group(1)))
+
+
+def _resolution(token: str) -> float:
+    mantissa, _, exponent = token.lower().partition("e")
+    decimals = len(mantissa.split(".")[1]) if "." in mantissa else 0
+    return 0.5 * 10.0 ** (int(exponent or 0) - decimals)
+
+
+@pytest.fixture(scope="module")
+def quick_report(tmp_path_factory):
+    out = tmp_path_factory.mktemp("report")
+    code = main(["validate", "--out", str(out), "--quick", "--cache", str(out / ".cache")])
+    return code, out
+
+
+def test_quick_report_writes_its_files(quick_report):
+    code, out = quick_report
+    assert code == 0
+    md = (out / "report.md").read_text()
+    for png in re.findall(r"!\[[^\]]*\]\(([^)]+)\)", md):
+        assert (out / png).stat().st_size > 1000
+    pngs = {p.name for p in out.glob("*.png")}
+    assert {"receptance_vertical.png", "receptance_lateral.png", "forces_through.png", "stiffness.png"} <= pngs
+    metrics = json.loads((out / "metrics.json").read_text())
+    for section in ("parameters", "stiffness", "receptance", "passage", "cost", "convergence", "checks", "claims"):
+        assert section in metrics
+    assert {c["verdict"] for c in metrics["claims"]} <= {HOLDS, FAILS, NOT_CHECKED}
+    assert all(c["id"] in md for c in metrics["claims"]) and "## Closing note" in md
+
+
+def test_every_number_in_the_tables_is_in_metrics(quick_report):
+    _, out = quick_report
+    values = np.array(list(_leaves(json.loads((out / "metrics.json").read_text()))))
+    tokens = list(_numeric_cells((out / "report.md").read_text()))
+    assert len(tokens) > 100
+    missing = []
+    for token in tokens:
+        v, tol = float(token), _resolution(token) * (1 + 1e-9) + 1e-12
+        if not any(np.any(np.abs(values * scale - v) <= tol) for scale in (1.0, 1e-3, 1e-6, 100.0)):
+            missing.append(token)
+    assert not missing, f"numbers in report.md tables not in metrics.json: {missing[:10]}"
+
+
+def test_tables_keep_their_columns(quick_report):
+    """Every row of a Markdown table has its header's number of cells ("|" inside a cell is escaped)."""
+    _, out = quick_report
+    columns = None
+    for line in (out / "report.md").read_text().splitlines():
+        if not line.startswith("|"):
+            columns = None
+            continue
+        n = len(re.split(r"(?<!\\)\|", line))
+        columns = columns or n
+        assert n == columns, line
+
+
+def test_cache_and_no_cache_are_exclusive(capsys, tmp_path):
+    assert main(["validate", "--out", str(tmp_path), "--quick", "--cache", str(tmp_path), "--no-cache"]) == 2
+    assert "not both" in capsys.readouterr().err

@@ -1,0 +1,15 @@
+"""Validation report: ``python validation/report.py [--out DIR] [--quick] [--cache DIR | --no-cache]``.
+
+The same as ``exudyn-turnout validate``; the default output is ``validation/report/``
+(the committed copy of the full report).
+"""
+import sys
+from pathlib import Path
+
+from exudyn_turnout.cli import main
+
+if __name__ == "__main__":
+    argv = sys.argv[1:]
+    if "--out" not in argv:
+        argv += ["--out", str(Path(__file__).resolve().parent / "report")]
+    sys.exit(main(["validate"] + argv))
