@@ -18,7 +18,7 @@ from .parameters import SOURCES, CoRunningParameters, co_running_parameters
 from .turnout import Turnout, TurnoutFileError, load_turnout
 
 __all__ = ["main", "UsageError", "unit_of", "add_turnout_options", "add_position_options", "number",
-           "turnout_from_args", "kilonewtons"]
+           "turnout_from_args", "kilonewtons", "progress_bar"]
 
 
 class UsageError(Exception):
@@ -43,6 +43,18 @@ def unit_of(name: str) -> str:
     if name.startswith("L_eff_r") or name.endswith("_m"):
         return "m"
     return "-"
+
+
+def progress_bar(stream):
+    """A one-line progress bar on a terminal; nothing when output is not a terminal."""
+    if not stream.isatty():
+        return None
+
+    def show(fraction: float, x: float) -> None:
+        n = int(30 * fraction)
+        stream.write(f"\r[{'#' * n}{'.' * (30 - n)}] {100 * fraction:5.1f} %  x = {x:7.2f} m")
+        stream.flush()
+    return show
 
 
 def kilonewtons(force: float) -> str:

@@ -9,21 +9,9 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .cli import UsageError, kilonewtons, number
+from .cli import UsageError, progress_bar, kilonewtons, number
 
 __all__ = ["add_simulate"]
-
-
-def _progress_bar(stream):
-    """A one-line progress bar on a terminal; nothing when output is not a terminal."""
-    if not stream.isatty():
-        return None
-
-    def show(fraction: float, x: float) -> None:
-        n = int(30 * fraction)
-        stream.write(f"\r[{'#' * n}{'.' * (30 - n)}] {100 * fraction:5.1f} %  x = {x:7.2f} m")
-        stream.flush()
-    return show
 
 
 def _options(args: argparse.Namespace):
@@ -43,7 +31,7 @@ def _run(args: argparse.Namespace) -> int:
     turnout = load_turnout(args.turnout)
     settings = PassageSettings(route=args.route, speed_kmh=args.speed, x_start=args.x_start, x_end=args.x_end,
                                time_step=args.time_step)
-    bar = _progress_bar(sys.stderr)
+    bar = progress_bar(sys.stderr)
     try:
         result = simulate_fe_passage(turnout, settings, options=_options(args), progress=bar)
     except PassageError as err:

@@ -4,21 +4,9 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .cli import UsageError, add_turnout_options, kilonewtons, number, turnout_from_args
+from .cli import UsageError, progress_bar, add_turnout_options, kilonewtons, number, turnout_from_args
 
 __all__ = ["build"]
-
-
-def _progress_bar(stream):
-    """A one-line progress bar on a terminal; nothing when output is not a terminal."""
-    if not stream.isatty():
-        return None
-
-    def show(fraction: float, x: float) -> None:
-        n = int(30 * fraction)
-        stream.write(f"\r[{'#' * n}{'.' * (30 - n)}] {100 * fraction:5.1f} %  x = {x:7.2f} m")
-        stream.flush()
-    return show
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -27,7 +15,7 @@ def _run(args: argparse.Namespace) -> int:
     turnout = turnout_from_args(args)
     settings = PassageSettings(route=args.route, speed_kmh=args.speed, layers=args.layers, source=args.source,
                                x_start=args.x_start, x_end=args.x_end, time_step=args.time_step)
-    bar = _progress_bar(sys.stderr)
+    bar = progress_bar(sys.stderr)
     try:
         result = simulate_passage(turnout, settings, progress=bar)
     except PassageError as err:

@@ -1,7 +1,7 @@
 """``exudyn-turnout frf``: point receptance of a rail of the co-running track model.
 
 Writes ``frequency_hz,real,imag,magnitude`` (m/N) and optionally a log-log plot; prints
-one summary line with the first eigenfrequencies. Imports matplotlib only with --plot.
+one summary line with the first eigenfrequencies. Plots (with --plot) through exudyn_turnout.plotting.
 """
 from __future__ import annotations
 
@@ -67,18 +67,11 @@ def _write(r, path: str) -> None:
 
 
 def _plot(r, path: str) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    from .plotting import plot_receptance
+    from .plotting import plot_receptance, save_figure
 
     zone = r.metadata["zone"]
     fig, _ = plot_receptance(r, title=f"{r.model} co-running track, zone {zone}, {r.metadata['source']} parameters")
     try:
-        fig.savefig(path, dpi=120, bbox_inches="tight")
+        save_figure(fig, path, dpi=120)
     except OSError as err:
         raise UsageError(f"frf: cannot write {path}: {err.strerror}") from None
-    finally:
-        import matplotlib.pyplot as plt
-
-        plt.close(fig)
