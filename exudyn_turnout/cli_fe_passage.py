@@ -7,9 +7,9 @@ import; matplotlib is imported only to draw ``forces.png``.
 from __future__ import annotations
 
 import argparse
-import sys
 
-from .cli import UsageError, progress_bar, kilonewtons, number
+from .cli import UsageError, number
+from .cli_passage import run_passage_command
 
 __all__ = ["add_simulate"]
 
@@ -25,32 +25,15 @@ def _options(args: argparse.Namespace):
 
 def _run(args: argparse.Namespace) -> int:
     from .fe_passage import simulate_fe_passage
-    from .passage import PassageError, PassageSettings, write_passage
+    from .passage import PassageSettings
     from .turnout import load_turnout
 
     turnout = load_turnout(args.turnout)
     settings = PassageSettings(route=args.route, speed_kmh=args.speed, x_start=args.x_start, x_end=args.x_end,
                                time_step=args.time_step)
-    bar = progress_bar(sys.stderr)
-    try:
-        result = simulate_fe_passage(turnout, settings, options=_options(args), progress=bar)
-    except PassageError as err:
-        raise UsageError(str(err)) from None
-    finally:
-        if bar:
-            sys.stderr.write("\n")
-    paths = write_passage(result, args.out)
-    if not args.no_plot:
-        from .plotting import plot_passage_forces
-        fig, _ = plot_passage_forces([result], wheel="right",
-                                     title=f"FE track, {turnout.name}, {args.route} route, {args.speed:g} km/h")
-        fig.savefig(f"{args.out}/forces.png", dpi=120)
-    s = result.summary
-    print(f"wrote {paths['timeseries']}, {paths['summary']}: FE track ({s['n_dof']} DOFs), right wheel peak Fz "
-          f"{kilonewtons(s['peak_Fz_switch_N'])} at the switch, {kilonewtons(s['peak_Fz_crossing_N'])} at the "
-          f"crossing (static {kilonewtons(s['static_wheel_load_N'])}); {s['simulated_time_s']:.2f} s simulated "
-          f"in {s['wall_time_s']:.1f} s")
-    return 0
+    return run_passage_command(
+        args, lambda bar: simulate_fe_passage(turnout, settings, options=_options(args), progress=bar),
+        f"FE track, {turnout.name}, {args.route} route, {args.speed:g} km/h", "FE track, ")
 
 
 def add_simulate(fe_sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
