@@ -4,8 +4,9 @@ The layout of the paper's Figs 5 (vertical) and 6 (lateral), without the FE curv
 (a) the switch rail, panel (b) the crossing rail. The paper shows them "where the load is
 transferring at the switch and crossing" (Section 3.3), so the defaults are the load
 transfer positions of the packaged through route: x = 4 m on the switch blade (the wheel
-passes from the stock rail to the blade near 3.9 m) and x = 45.8 m on the crossing nose
-(the wheel meets the nose 0.27 m after its tip at 45.5 m). Both are rail slot r2.
+passes from the stock rail to the blade near 3.9 m) and, on the crossing nose, where the
+wheel meets the nose (0.27 m after the nose tip that the turnout's plan puts at 46.9 m:
+x = 47.2 m). Both are rail slot r2.
 
 Run::
 
@@ -21,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
+from exudyn_turnout.geometry import turnout_plan
 from exudyn_turnout.modal import co_running_modes, co_running_receptance
 from exudyn_turnout.receptance import log_frequencies
 from exudyn_turnout.turnout import Turnout, load_turnout
@@ -37,7 +39,7 @@ def eigenfrequency_table(turnout: Turnout, cases: dict[str, float], source: str,
             f_d, _ = md.damped()
             undamped = " ".join(f"{f:6.1f}" for f in md.frequency_hz[:count])
             damped = " ".join(f"{f:6.1f}" for f in f_d[:count])
-            lines.append(f"{name + f' (x = {x:g} m)':<28}{layers}-layer  {undamped} | {damped}")
+            lines.append(f"{name + f' (x = {x:.1f} m)':<28}{layers}-layer  {undamped} | {damped}")
     return "\n".join(lines)
 
 
@@ -55,7 +57,7 @@ def plot_direction(turnout: Turnout, cases: dict[str, float], direction: str, so
         for r in curves:
             r.to_csv(out_dir / f"{name.replace(' ', '_')}_{direction}_{r.model}.csv")
         plot_receptance(curves, ax=ax, labels=[r.model for r in curves],
-                        title=f"({letter}) {name}, x = {x:g} m, {direction}")
+                        title=f"({letter}) {name}, x = {x:.1f} m, {direction}")
     fig.tight_layout()
     path = out_dir / FIGURES[direction]
     fig.savefig(path, dpi=120)
@@ -64,11 +66,17 @@ def plot_direction(turnout: Turnout, cases: dict[str, float], direction: str, so
 
 
 def main(out_dir: str | Path, turnout_path: str | None = None, source: str = "derived",
-         x_switch: float = 4.0, x_crossing: float = 45.8) -> list[Path]:
-    """Print the eigenfrequencies, write both figures and the CSVs; returns the figure paths."""
+         x_switch: float = 4.0, x_crossing: float | None = None) -> list[Path]:
+    """Print the eigenfrequencies, write both figures and the CSVs; returns the figure paths.
+
+    ``x_crossing`` defaults to where the wheel meets the nose: 0.267 m after the plan's nose
+    tip (the packaged profiles' 3 and 6 mrad lines meet there).
+    """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     turnout = load_turnout(turnout_path)
+    if x_crossing is None:
+        x_crossing = turnout_plan(turnout).nose_tip_x + 0.267
     cases = {"switch rail": x_switch, "crossing rail": x_crossing}
     print(f"{turnout.name}, {source} parameters")
     print(eigenfrequency_table(turnout, cases, source))
@@ -85,7 +93,8 @@ if __name__ == "__main__":
     parser.add_argument("--turnout", help="turnout file (default: packaged UIC60-760-1:15)")
     parser.add_argument("--source", choices=("derived", "published"), default="derived")
     parser.add_argument("--x-switch", type=float, default=4.0, help="switch-rail position (m)")
-    parser.add_argument("--x-crossing", type=float, default=45.8, help="crossing-rail position (m)")
+    parser.add_argument("--x-crossing", type=float, default=None,
+                        help="crossing-rail position (m; default: where the wheel meets the nose)")
     args = parser.parse_args()
     for written in main(args.out, args.turnout, args.source, args.x_switch, args.x_crossing):
         print(f"wrote {written}")

@@ -47,6 +47,16 @@ def third_octave_centres(f_min: float, f_max: float) -> np.ndarray:
 
     The bounds are compared with a tolerance of 1/20 decade, so nominal values work:
     ``third_octave_centres(1, 125)`` ends at 125.9 Hz (nominal 125 Hz).
+
+    Parameters
+    ----------
+    f_min, f_max : float
+        Hz, the (nominal) range.
+
+    Returns
+    -------
+    numpy.ndarray
+        Hz, ascending centres.
     """
     n_lo = math.ceil(10.0 * math.log10(f_min) - 0.5)
     n_hi = math.floor(10.0 * math.log10(f_max) + 0.5)
@@ -54,12 +64,34 @@ def third_octave_centres(f_min: float, f_max: float) -> np.ndarray:
 
 
 def band_edges(centre: float) -> tuple[float, float]:
-    """Lower and upper edge (Hz) of the one-third-octave band of this centre."""
+    """Lower and upper edge (Hz) of the one-third-octave band of this centre.
+
+    Parameters
+    ----------
+    centre : float
+        Hz, a band centre.
+
+    Returns
+    -------
+    (float, float)
+        Hz, lower and upper edge.
+    """
     return centre / _HALF_BAND, centre * _HALF_BAND
 
 
 def level_difference_db(H_model: np.ndarray, H_ref: np.ndarray) -> np.ndarray:
-    """20 log10(|H_model| / |H_ref|) (dB) per frequency; both on the same frequencies."""
+    """20 log10(|H_model| / |H_ref|) (dB) per frequency; both on the same frequencies.
+
+    Parameters
+    ----------
+    H_model, H_ref : array_like
+        Complex (or real) receptances on the same frequencies.
+
+    Returns
+    -------
+    numpy.ndarray
+        dB per frequency.
+    """
     return 20.0 * np.log10(np.abs(np.asarray(H_model)) / np.abs(np.asarray(H_ref)))
 
 
@@ -116,7 +148,20 @@ def range_rms_db(band_values: dict[float, float], f_min: float, f_max: float,
 
 
 def bands_near(frequency: float, neighbours: int = 1) -> tuple[float, ...]:
-    """Centre of the one-third-octave band holding ``frequency`` and of ``neighbours`` bands either side (Hz)."""
+    """Centres (Hz) of the third-octave band holding ``frequency`` and ``neighbours`` either side.
+
+    Parameters
+    ----------
+    frequency : float
+        Hz, e.g. a resonance.
+    neighbours : int
+        Bands either side to include.
+
+    Returns
+    -------
+    tuple of float
+        Hz, ascending band centres.
+    """
     n = round(10.0 * math.log10(frequency))
     return tuple(float(10.0 ** (k / 10.0)) for k in range(n - neighbours, n + neighbours + 1))
 
@@ -127,6 +172,22 @@ def peak_frequencies(frequency_hz: np.ndarray, H: np.ndarray, prominence_db: flo
 
     A peak is a local maximum of 20 log10 |H| whose prominence is at least
     ``prominence_db``; of those the ``n_max`` most prominent are returned.
+
+    Parameters
+    ----------
+    frequency_hz : array_like
+        Hz, the frequencies of ``H``.
+    H : array_like
+        Receptance (complex or magnitude).
+    prominence_db : float
+        dB, minimum prominence of a peak.
+    n_max : int
+        Most peaks returned.
+
+    Returns
+    -------
+    tuple of float
+        Hz, ascending.
     """
     level = 20.0 * np.log10(np.abs(np.asarray(H)))
     idx, props = scipy.signal.find_peaks(level, prominence=prominence_db)
@@ -135,7 +196,17 @@ def peak_frequencies(frequency_hz: np.ndarray, H: np.ndarray, prominence_db: flo
 
 
 def relative_difference(value: float, reference: float) -> float:
-    """(value - reference) / |reference| (-); NaN if either is NaN or the reference is 0."""
+    """(value - reference) / |reference| (-); NaN if either is NaN or the reference is 0.
+
+    Parameters
+    ----------
+    value, reference : float
+
+    Returns
+    -------
+    float
+        The relative difference (-), or NaN.
+    """
     if not (math.isfinite(value) and math.isfinite(reference)) or reference == 0:
         return math.nan
     return (value - reference) / abs(reference)
@@ -146,6 +217,20 @@ def running_mean(x: np.ndarray, signal: np.ndarray, window: float) -> np.ndarray
 
     Near the ends the window is cut to the data. Uses the trapezoidal integral, so uneven
     spacing of x is allowed.
+
+    Parameters
+    ----------
+    x : array_like
+        m, increasing positions of the samples.
+    signal : array_like
+        The samples.
+    window : float
+        m, window length.
+
+    Returns
+    -------
+    numpy.ndarray
+        The running mean at every x.
     """
     x, s = np.asarray(x, float), np.asarray(signal, float)
     integral = np.concatenate(([0.0], np.cumsum(0.5 * (s[1:] + s[:-1]) * np.diff(x))))
@@ -160,6 +245,22 @@ def dynamic_rms(x: np.ndarray, signal: np.ndarray, window: float, x_range: tuple
 
     The running mean is taken over the whole signal before cutting to ``x_range``, so the
     range's ends see a full window where the data allow. NaN if no sample lies in the range.
+
+    Parameters
+    ----------
+    x : array_like
+        m, increasing positions.
+    signal : array_like
+        The samples (e.g. a force in N).
+    window : float
+        m, running-mean window.
+    x_range : (float, float)
+        m, where the RMS is taken.
+
+    Returns
+    -------
+    float
+        In the unit of ``signal``; NaN if no sample lies in the range.
     """
     x, s = np.asarray(x, float), np.asarray(signal, float)
     fluct = s - running_mean(x, s, window)
@@ -172,6 +273,22 @@ def rms_difference(x_a: np.ndarray, a: np.ndarray, x_b: np.ndarray, b: np.ndarra
     """RMS of a(x) - b(x) on a common grid of spacing ``dx`` (m) over ``x_range`` (linear interpolation).
 
     The grid covers the part of ``x_range`` that both signals span; NaN if there is none.
+
+    Parameters
+    ----------
+    x_a, a : array_like
+        Positions (m, increasing) and samples of the first signal.
+    x_b, b : array_like
+        The same for the second signal.
+    x_range : (float, float)
+        m, where the difference is taken.
+    dx : float
+        m, spacing of the common grid.
+
+    Returns
+    -------
+    float
+        In the unit of the signals; NaN if they do not overlap in the range.
     """
     lo = max(x_range[0], float(np.min(x_a)), float(np.min(x_b)))
     hi = min(x_range[1], float(np.max(x_a)), float(np.max(x_b)))
@@ -188,6 +305,24 @@ def max_trend_difference(x_a: np.ndarray, a: np.ndarray, x_b: np.ndarray, b: np.
 
     Each signal's running mean over ``window`` (m) is taken on its own samples, then both
     are compared on a grid of spacing ``dx``; NaN if the signals do not overlap in the range.
+
+    Parameters
+    ----------
+    x_a, a : array_like
+        Positions (m, increasing) and samples of the first signal.
+    x_b, b : array_like
+        The same for the second signal.
+    window : float
+        m, running-mean window.
+    x_range : (float, float)
+        m, where the difference is taken.
+    dx : float
+        m, spacing of the common grid.
+
+    Returns
+    -------
+    float
+        In the unit of the signals; NaN if they do not overlap in the range.
     """
     lo = max(x_range[0], float(np.min(x_a)), float(np.min(x_b)))
     hi = min(x_range[1], float(np.max(x_a)), float(np.max(x_b)))
@@ -200,7 +335,23 @@ def max_trend_difference(x_a: np.ndarray, a: np.ndarray, x_b: np.ndarray, b: np.
 
 
 def paired_median_ratio(a: Sequence[float], b: Sequence[float]) -> float:
-    """Median of a[i] / b[i] over pairs (e.g. wall times of two models run one after the other)."""
+    """Median of a[i] / b[i] over pairs (e.g. wall times of two models run one after the other).
+
+    Parameters
+    ----------
+    a, b : sequence of float
+        Paired values (same length, not empty).
+
+    Returns
+    -------
+    float
+        median(a[i] / b[i]).
+
+    Raises
+    ------
+    ValueError
+        The sequences differ in length or are empty.
+    """
     if len(a) != len(b) or not len(a):
         raise ValueError(f"need two sequences of the same non-zero length, got {len(a)} and {len(b)}")
     return float(np.median(np.asarray(a, float) / np.asarray(b, float)))

@@ -8,8 +8,8 @@ from __future__ import annotations
 
 import argparse
 
-from .cli import UsageError, number
-from .cli_passage import run_passage_command
+from .cli import UsageError, check_out_dir, number
+from .cli_passage import add_passage_options, route_from_args, run_passage_command
 
 __all__ = ["add_simulate"]
 
@@ -24,20 +24,49 @@ def _options(args: argparse.Namespace):
 
 
 def _run(args: argparse.Namespace) -> int:
+    from dataclasses import asdict
+
     from .fe_passage import simulate_fe_passage
     from .passage import PassageSettings
     from .turnout import load_turnout
+    from .vehicle import load_vehicle
 
+    check_out_dir(args.out)
     turnout = load_turnout(args.turnout)
+    vehicle = load_vehicle(args.vehicle)
+    args.route = route_from_args(args, turnout)
+    options = _options(args)
     settings = PassageSettings(route=args.route, speed_kmh=args.speed, x_start=args.x_start, x_end=args.x_end,
-                               time_step=args.time_step)
+                               time_step=args.time_step, output_step=args.output_step)
     return run_passage_command(
-        args, lambda bar: simulate_fe_passage(turnout, settings, options=_options(args), progress=bar),
-        f"FE track, {turnout.name}, {args.route} route, {args.speed:g} km/h", "FE track, ")
+        args,
+        lambda bar: simulate_fe_passage(
+            turnout, settings, vehicle=vehicle, options=options, progress=bar
+        ),
+        f"FE track, {turnout.name}, {args.route} route, {args.speed:g} km/h",
+        "FE track, ",
+        turnout=turnout,
+        vehicle=vehicle,
+        extra_settings={
+            "model": "FE",
+            "fe_options": asdict(options.mesh),
+            "loss_reference_hz": options.loss_reference_hz,
+        },
+    )
 
 
 def add_simulate(fe_sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
-    """Add ``simulate`` to the ``fe`` group; returns its parser."""
+    """Add ``simulate`` to the ``fe`` group.
+
+    Parameters
+    ----------
+    fe_sub : argparse._SubParsersAction
+        The ``fe`` group's sub-parsers.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+    """
     p = fe_sub.add_parser("simulate", help="wheelset passage over the FE turnout track (vertical)",
                           description="Run one wheelset (Manchester benchmark, vertical part) over the vertical FE "
                                       "model of the turnout with Hertz contact, the route's rail height profiles "
@@ -46,15 +75,12 @@ def add_simulate(fe_sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                                       "empty) into --out.")
     p.add_argument("--turnout", metavar="FILE", help="turnout file with a [layout] section "
                    "(default: packaged UIC60-760-1:15)")
-    p.add_argument("--route", default="through", help="route of the turnout file (default through)")
-    p.add_argument("--speed", type=number, default=100.0, metavar="KMH", help="km/h (default 100)")
-    p.add_argument("--x-start", type=number, metavar="M", help="start position (m), default: turnout start")
-    p.add_argument("--x-end", type=number, metavar="M", help="end position (m), default: turnout end")
+    p.add_argument("--route", metavar="NAME", help="route of the turnout file (default: through, "
+                   "or the file's first route)")
     p.add_argument("--time-step", type=number, default=1e-4, metavar="S",
                    help="s (default 1e-4: halving it moves the crossing peak < 2 %%)")
     p.add_argument("--element-length", type=number, default=0.2, metavar="M",
                    help="longest rail element (m), order 4 (default 0.2)")
-    p.add_argument("--out", required=True, metavar="DIR", help="output directory")
-    p.add_argument("--no-plot", action="store_true", help="skip forces.png")
+    add_passage_options(p)
     p.set_defaults(run=_run)
     return p

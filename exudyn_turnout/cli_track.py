@@ -7,7 +7,8 @@ from __future__ import annotations
 
 import argparse
 
-from .cli import UsageError, add_position_options, add_turnout_options, number, turnout_from_args
+from .cli import (UsageError, add_position_options, add_turnout_options, check_out_file,
+                  check_plot_file, number, turnout_from_args, write_output, write_sidecar)
 from .receptance import DIRECTIONS, log_frequencies
 from .turnout import RAIL_SLOTS
 
@@ -15,7 +16,12 @@ __all__ = ["build"]
 
 
 def build(sub: argparse._SubParsersAction) -> None:
-    """Register the ``frf`` subcommand."""
+    """Register the command on the ``exudyn-turnout`` subcommand parsers.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+    """
     p = sub.add_parser("frf", help="receptance (FRF) of a rail of the co-running track model",
                        description="Point receptance H = displacement / force (m/N) of one rail of the two- "
                                    "or three-layer co-running model (paper Section 3.3), at x or at a "
@@ -36,7 +42,11 @@ def build(sub: argparse._SubParsersAction) -> None:
 
 def _run(args: argparse.Namespace) -> int:
     from .modal import co_running_receptance
+    from .provenance import provenance
 
+    check_out_file(args.out)
+    if args.plot:
+        check_plot_file(args.plot)
     try:
         frequencies = log_frequencies(args.fmin, args.fmax, args.n)
     except ValueError as err:
@@ -47,7 +57,21 @@ def _run(args: argparse.Namespace) -> int:
                                   source=args.source, frequencies=frequencies)
     except (KeyError, ValueError) as err:
         raise UsageError(f"frf: {str(err).strip(chr(39))}") from None
-    _write(r, args.out)
+    settings = {
+        "model": f"co-running, {args.layers} layers",
+        "source": args.source,
+        "profiles": args.profiles,
+        "zone": args.zone,
+        "x_m": r.x,
+        "layers": args.layers,
+        "rail": args.rail,
+        "direction": args.direction,
+        "fmin_hz": args.fmin,
+        "fmax_hz": args.fmax,
+        "n": args.n,
+    }
+    write_output(args.out, r.to_csv)
+    write_sidecar(args.out, provenance(settings, turnout=turnout, argv=getattr(args, "argv", None)))
     if args.plot:
         _plot(r, args.plot)
     undamped = ", ".join(f"{f:.0f}" for f in r.metadata["eigenfrequencies_hz"][:4])
@@ -59,19 +83,9 @@ def _run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _write(r, path: str) -> None:
-    try:
-        r.to_csv(path)
-    except OSError as err:
-        raise UsageError(f"frf: cannot write {path}: {err.strerror}") from None
-
-
 def _plot(r, path: str) -> None:
     from .plotting import plot_receptance, save_figure
 
     zone = r.metadata["zone"]
     fig, _ = plot_receptance(r, title=f"{r.model} co-running track, zone {zone}, {r.metadata['source']} parameters")
-    try:
-        save_figure(fig, path, dpi=120)
-    except OSError as err:
-        raise UsageError(f"frf: cannot write {path}: {err.strerror}") from None
+    write_output(path, lambda tmp: save_figure(fig, tmp, dpi=120), "--plot")

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import argparse
 
-from .cli import UsageError
+from .cli import UsageError, check_out_dir
 
 __all__ = ["build"]
 
@@ -13,6 +13,9 @@ def _run(args: argparse.Namespace) -> int:
     from .report import report_config, write_report
     from .turnout import load_turnout
 
+    check_out_dir(args.out)
+    if args.cache:
+        check_out_dir(args.cache, "--cache")
     turnout = load_turnout(args.turnout)
     if args.no_cache and args.cache:
         raise UsageError("validate: give --cache DIR or --no-cache, not both")
@@ -21,6 +24,7 @@ def _run(args: argparse.Namespace) -> int:
         report = write_report(args.out, report_config(quick=args.quick, cache_dir=cache), turnout)
     except OSError as err:
         raise UsageError(f"validate: cannot write the report: {err}") from None
+    _add_provenance(args, turnout, cache)
     verdicts = {}
     for c in report.claims:
         verdicts[c.verdict] = verdicts.get(c.verdict, 0) + 1
@@ -29,8 +33,47 @@ def _run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _add_provenance(args: argparse.Namespace, turnout, cache) -> None:
+    """Put the provenance record into DIR/metrics.json unless the report code already did."""
+    import json
+    from pathlib import Path
+
+    import os
+
+    from .provenance import provenance
+    path = Path(args.out) / "metrics.json"
+    try:
+        metrics = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return
+    if not isinstance(metrics, dict) or "provenance" in metrics:
+        return
+    settings = {
+        "quick": args.quick,
+        "cache": "none"
+        if cache is None
+        else ("default" if cache == "default" else Path(cache).name),
+    }
+    metrics["provenance"] = provenance(settings, turnout=turnout, argv=getattr(args, "argv", None))
+    tmp = path.with_name(f".metrics.partial-{os.getpid()}.json")
+    try:
+        # the report's numbers as they are (no rounding here)
+        tmp.write_text(json.dumps(metrics, indent=1) + "\n", encoding="utf-8")
+        os.replace(tmp, path)
+    except OSError as err:
+        raise UsageError(f"validate: cannot write {path.name}: {err.strerror or err}") from None
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
 def build(sub: argparse._SubParsersAction) -> None:
-    """Register ``validate`` on the ``exudyn-turnout`` subcommand parsers."""
+    """Register the command on the ``exudyn-turnout`` subcommand parsers.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+    """
     p = sub.add_parser("validate", help="validation report: 2-layer vs 3-layer vs FE reference",
                        description="Write DIR/report.md, its PNG figures and DIR/metrics.json: parameters vs Table 2, "
                                    "track stiffness, receptance, contact forces, computing cost and checks, with a "

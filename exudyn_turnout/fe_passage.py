@@ -97,7 +97,17 @@ from .fe.layout import Layout, load_layout
 from .fe.mesh import FEOptions, build_mesh
 from .fe.model import PlaneModel, assemble
 from .fe.timoshenko import lagrange_shape_functions
-from .passage import PassageError, PassageResult, PassageSettings, max_time_step, passage_summary
+from .passage import (
+    PLAUSIBLE,
+    PassageError,
+    PassageFailure,
+    PassageResult,
+    PassageSettings,
+    check_plausible,
+    lightest_rail_mass,
+    max_time_step,
+    passage_summary,
+)
 from .routes import WHEELS, ContactPair, Route, load_route
 from .turnout import Turnout
 from .vehicle import GRAVITY, Vehicle, load_vehicle
@@ -169,22 +179,27 @@ class FETrack:
 
     @property
     def n_track(self) -> int:
+        """Number of track DOFs (the FE model's)."""
         return self.model.n_dof
 
     @property
     def n_dof(self) -> int:
+        """Number of DOFs: track, then z_w, phi, z_s."""
         return self.model.n_dof + 3
 
     @property
     def i_zw(self) -> int:
+        """Index of the wheelset heave z_w."""
         return self.model.n_dof
 
     @property
     def i_phi(self) -> int:
+        """Index of the wheelset roll phi."""
         return self.model.n_dof + 1
 
     @property
     def i_zs(self) -> int:
+        """Index of the sprung-mass heave z_s."""
         return self.model.n_dof + 2
 
 
@@ -201,6 +216,7 @@ class ContactPoint:
 
     @property
     def side(self) -> int:
+        """+1 for the left wheel, -1 for the right."""
         return WHEELS[self.pair.wheel]
 
 
@@ -208,6 +224,16 @@ def hht_parameters(spectral_radius: float) -> tuple[float, float, float]:
     """HHT-alpha (alpha, beta, gamma) for a high-frequency spectral radius rho_inf in [0.5, 1].
 
     rho_inf = (1 + alpha) / (1 - alpha) (Hilber, Hughes & Taylor 1977), alpha in [-1/3, 0].
+
+    Parameters
+    ----------
+    spectral_radius : float
+        rho_inf in [0.5, 1].
+
+    Returns
+    -------
+    tuple of float
+        (alpha, beta, gamma).
     """
     if not 0.5 <= spectral_radius <= 1.0:
         raise PassageError(f"spectral radius must be in [0.5, 1] for HHT-alpha, got {spectral_radius:g}")
@@ -257,6 +283,11 @@ def build_fe_track(turnout: Turnout, vehicle: Vehicle | None = None, layout: Lay
         Default :func:`~exudyn_turnout.fe.layout.load_layout` of the turnout; e.g.
         :func:`~exudyn_turnout.fe.layout.plain_track_layout` for checks.
     options : FEPassageOptions
+        Mesh and solver options.
+
+    Returns
+    -------
+    FETrack
     """
     vehicle = vehicle or load_vehicle()
     layout = layout or load_layout(turnout)
@@ -306,6 +337,17 @@ def _element_at(index: _RailIndex, x: float, rail_id: str) -> tuple[int, float]:
 
 def contact_points(track: FETrack, route: Route, x: float) -> tuple[ContactPoint, ...]:
     """The route's pairs in tread contact range at x, placed on the FE rails.
+
+    Parameters
+    ----------
+    track : FETrack
+    route : Route
+    x : float
+        m, wheelset position.
+
+    Returns
+    -------
+    tuple of ContactPoint
 
     Raises
     ------
@@ -363,6 +405,8 @@ def solve_contacts(d0: np.ndarray, C: np.ndarray, C_H: float, F0: np.ndarray | N
     tolerance : float
         N, largest force residual accepted (raised to the round-off level
         8 eps max|d0| max|C~^-1| if that is larger).
+    max_iterations : int
+        Newton iterations before giving up.
     groups : sequence of int (n,), optional
         Contacts with the same number act at one point (same wheel, same rail, same x:
         e.g. wing rail and crossing nose on one beam, or two route pairs at a table end):
@@ -472,8 +516,20 @@ def static_state(track: FETrack, K_lu, points: Sequence[ContactPoint], tolerance
 
     Parameters
     ----------
+    track : FETrack
     K_lu : SuperLU
         Factorisation of the track stiffness (``track.K`` without the vehicle DOFs).
+    points : sequence of ContactPoint
+        The contacts at the start position.
+    tolerance : float
+        N, force residual of the contact solution.
+    max_iterations : int
+        Newton iterations on (z_w, phi) before giving up.
+
+    Returns
+    -------
+    _Static
+        Displacements, contact points and forces of the static state.
     """
     veh = track.vehicle
     X, C = _track_compliance(track, K_lu, points)
@@ -499,8 +555,8 @@ def static_state(track: FETrack, K_lu, points: Sequence[ContactPoint], tolerance
         dd0 = np.column_stack([-np.ones_like(s), -s * veh.b])
         J = np.array([np.ones_like(s), veh.b * s]) @ dF_dd0 @ dd0 - np.array([[0.0, 0.0], [0.0, k_roll]])
         q = q - np.linalg.solve(J, R)
-    raise PassageError(f"static equilibrium not found in {max_iterations} iterations "
-                       f"(residual {R[0]:.3g} N, {R[1]:.3g} N m)")
+    raise PassageFailure(f"static equilibrium not found in {max_iterations} iterations "
+                         f"(residual {R[0]:.3g} N, {R[1]:.3g} N m)")
 
 
 class _Integrator:
@@ -601,12 +657,21 @@ def _check(settings: PassageSettings, turnout: Turnout, track: FETrack, own_layo
     if not (lo <= x_a < x_b <= hi):
         raise PassageError(f"x range {x_a:g}..{x_b:g} m must lie within {lo:g}..{hi:g} m "
                            f"({'turnout and FE layout' if own_layout else 'FE layout'}) with x_start < x_end")
-    h_max = max_time_step(track.vehicle, 111.0)
+    # the lightest rail of the turnout's (derived, two-layer) co-running set: the FE rail's
+    # contact mass is of that order, and the limit must not depend on the run's x range
+    m_rail = lightest_rail_mass(turnout, turnout.x_min, turnout.x_max, 2, "derived")
+    h_max = max_time_step(track.vehicle, m_rail)
     if not (math.isfinite(s.time_step) and 0 < s.time_step <= h_max):
-        raise PassageError(f"time step {s.time_step:g} s is out of range: use 0 < step <= {h_max:.2g} s "
-                           "(10 steps per period of the wheel/rail contact resonance)")
-    if s.output_step is not None and not s.output_step > 0:
-        raise PassageError(f"output step must be > 0 s, got {s.output_step:g}")
+        raise PassageError(
+            f"time step {s.time_step:g} s is out of range: use 0 < step <= {h_max:.2g} s "
+            f"(10 steps per period of the wheel/rail contact resonance, lightest rail "
+            f"{m_rail:.4g} kg)"
+        )
+    duration = (x_b - x_a) / s.v
+    if s.output_step is not None and not (math.isfinite(s.output_step)
+                                          and s.time_step <= s.output_step <= duration):
+        raise PassageError(f"output step {s.output_step:g} s must be >= the time step "
+                           f"({s.time_step:g} s) and <= the run's duration ({duration:.4g} s)")
     return x_a, x_b
 
 
@@ -730,9 +795,16 @@ def simulate_fe_passage(turnout: Turnout, settings: PassageSettings = PassageSet
     route = route or _load_route(turnout, settings.route)
     x_a, x_b = _check(settings, turnout, track, own_layout)
     columns, state0, timings = _run(track, route, settings, options, x_a, x_b, progress)
+    loads = _static_loads(state0)
+    check_plausible(columns, 0.5 * (loads["left"] + loads["right"]), "FE track")
     summary = passage_summary(columns, turnout, settings, _static_loads(state0), time.perf_counter() - wall)
     summary.update(_fe_summary(track, options, settings, timings))
+    summary["settings"] = {k: v for k, v in summary["settings"].items() if k not in _NOT_FE}
     return PassageResult(replace(settings, x_start=x_a, x_end=x_b), columns, summary, (x_a,))
+
+
+#: PassageSettings fields that do not apply to the FE passage (left out of its summary).
+_NOT_FE = ("layers", "source", "track_mechanism")
 
 
 def _load_route(turnout: Turnout, name: str) -> Route:
@@ -753,6 +825,8 @@ def _run(track: FETrack, route: Route, settings: PassageSettings, options: FEPas
     integ = _Integrator(track, h, settings.spectral_radius)
     state, static_s = _start(track, route, x_a, v, options)
     state0, rec, due = state, _Recorder(track, route), 0
+    # per contact, against the whole weight (generous; the wheel check follows the run)
+    f_limit = PLAUSIBLE["force_over_static"] * max(float(np.sum(state.F)), 1.0)
     rec.add(0.0, x_a, state)
     t0 = time.perf_counter()
     for n in range(1, n_steps + 1):
@@ -760,9 +834,19 @@ def _run(track: FETrack, route: Route, settings: PassageSettings, options: FEPas
         try:
             state = integ.step(state, contact_points(track, route, x), options)
         except ArithmeticError as err:
-            raise PassageError(f"FE passage failed at t = {t:.5f} s, x = {x:.3f} m: {err}") from None
+            message = f"FE passage failed at t = {t:.5f} s, x = {x:.3f} m: {err}"
+            raise PassageFailure(message) from None
         if not np.isfinite(state.F).all() or not np.isfinite(state.u[track.i_zw]):
-            raise PassageError(f"FE passage diverged at t = {t:.5f} s, x = {x:.3f} m: reduce the time step")
+            raise PassageFailure(f"FE passage diverged at t = {t:.5f} s, x = {x:.3f} m: "
+                                 "reduce the time step")
+        if abs(state.u[track.i_zw]) > PLAUSIBLE["wheelset_m"] or (
+                state.F.size and np.max(state.F) > f_limit):
+            what = (f"wheelset z {state.u[track.i_zw]:.4g} m" if abs(state.u[track.i_zw])
+                    > PLAUSIBLE["wheelset_m"] else f"contact force {np.max(state.F):.4g} N")
+            raise PassageFailure(
+                f"implausible run stopped at t = {t:.5f} s, x = {x:.3f} m (FE track): "
+                f"{what} is beyond the physical limit"
+            )
         if n % every == 0 or n == n_steps:
             rec.add(t, x, state)
         if progress is not None and n >= due:

@@ -23,10 +23,11 @@ paper.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Mapping
 
 from . import equations as eq
-from .turnout import PARAMETER_NAMES, RAIL_SLOTS, Entry, RailType, Turnout, Zone
+from .turnout import PARAMETER_NAMES, RAIL_SLOTS, Entry, Polynomial, RailType, Turnout, Zone
 
 __all__ = [
     "Readings",
@@ -36,6 +37,7 @@ __all__ = [
     "RailSupport",
     "CoRunningParameters",
     "rail_support",
+    "reference_rail_type",
     "reference_support",
     "delta_z",
     "delta_y",
@@ -117,19 +119,54 @@ def rail_support(turnout: Turnout, type_name: str, readings: Readings = DEFAULT_
                        k_b_y, c_b_y, k_s_y, K_st_y, eq.effective_length_rail(K_st_y, k_s_y), L_eff_s)
 
 
+def reference_rail_type(turnout: Turnout) -> str:
+    """Name of the plain-track rail type (``[turnout] reference_rail_type``, default "stock")."""
+    name = str(turnout.raw.get("turnout", {}).get("reference_rail_type", "stock"))
+    if name not in turnout.rail_types:
+        raise ValueError(f"{Path(turnout.source).name}: turnout.reference_rail_type {name!r} is not "
+                         f"a rail type of the file ({', '.join(turnout.rail_types)})")
+    return name
+
+
 def reference_support(turnout: Turnout) -> RailSupport:
-    """Support of the reference (stock) rail: its K_st,z and K_st,y are Eqs 11 and 15's denominators."""
-    return rail_support(turnout, str(turnout.raw.get("turnout", {}).get("reference_rail_type", "stock")))
+    """Support of the reference (plain-track) rail: K_st,z and K_st,y of Eqs 11 and 15."""
+    return rail_support(turnout, reference_rail_type(turnout))
+
+
+def _support_factor(profile: Polynomial, K_st: float, x: float) -> float:
+    """Eq 11 / 15 ratio K(x) / K_st, plain track (1) ahead of the profile's range.
+
+    Eqs 10 and 14 are FE fits from the switch toe on (x >= x_min). Ahead of the toe there
+    is no switch rail: the track is plain and the factor is 1 (the paper's zone 1 starts
+    5 m before the toe, Table 3, but its stiffness "continuously varied as a function of
+    the rail position" has nothing to vary there). If the file gives ``plain_track_end``,
+    the factor is 1 up to it and blends linearly to Eq 10's / 14's toe value at x_min, so
+    that the co-running springs do not change stepwise under a loaded rail; without it the
+    toe value is held (the earlier behaviour, which softened plain track by up to 34 %).
+    """
+    if profile.plain_track_end is None or x >= profile.x_min:
+        return eq.stiffness_ratio(profile(x), K_st)
+    if x <= profile.plain_track_end:
+        return 1.0
+    at_toe = eq.stiffness_ratio(profile(profile.x_min), K_st)
+    weight = (x - profile.plain_track_end) / (profile.x_min - profile.plain_track_end)
+    return 1.0 + weight * (at_toe - 1.0)
 
 
 def delta_z(turnout: Turnout, x: float) -> float:
-    """Eq 11: Delta_z(x) = K_sw(x) / K_st,z, K_sw from Eq 10, K_st,z of the stock rail (Eq 2)."""
-    return eq.stiffness_ratio(turnout.K_sw(x), reference_support(turnout).K_st_z)
+    """Eq 11: Delta_z(x) = K_sw(x) / K_st,z, K_sw from Eq 10, K_st,z of the reference rail (Eq 2).
+
+    Plain track (1) ahead of the toe: see :func:`_support_factor`.
+    """
+    return _support_factor(turnout.K_sw, reference_support(turnout).K_st_z, x)
 
 
 def delta_y(turnout: Turnout, x: float) -> float:
-    """Eq 15: Delta_y(x) = K_sh(x) / K_st,y, K_sh from Eq 14, K_st,y of the stock rail (Eq 2)."""
-    return eq.stiffness_ratio(turnout.K_sh(x), reference_support(turnout).K_st_y)
+    """Eq 15: Delta_y(x) = K_sh(x) / K_st,y, K_sh from Eq 14, K_st,y of the reference rail (Eq 2).
+
+    Plain track (1) ahead of the toe: see :func:`_support_factor`.
+    """
+    return _support_factor(turnout.K_sh, reference_support(turnout).K_st_y, x)
 
 
 @dataclass(frozen=True)
@@ -203,7 +240,8 @@ def _rail_entries(turnout: Turnout, zone: Zone, slot: str, readings: Readings) -
 def _sleeper_entries(turnout: Turnout, zone: Zone, readings: Readings) -> dict[str, Entry]:
     g_type = turnout.rail_types[zone.ballast_rail_type]
     g = rail_support(turnout, g_type.name, readings)
-    other = rail_support(turnout, zone.rail_types.get("r4", "stock"), readings)
+    other_type = zone.rail_types.get("r4", reference_rail_type(turnout))
+    other = rail_support(turnout, other_type, readings)
     sl, L_s, x = turnout.sleeper, turnout.sleeper.spacing, zone.mass_at_x
     if g.rail_type.support == "middle":
         m_t = eq.crossing_sleeper_mass(sl.area, sl.density, g.L_eff_s, g.L_eff_r_z, L_s)

@@ -13,6 +13,7 @@ both zones, or a rail slot that a route says continues another) is carried over.
 from __future__ import annotations
 
 import math
+import warnings
 import time
 from dataclasses import dataclass, field
 from typing import Callable, Mapping
@@ -20,13 +21,28 @@ from typing import Callable, Mapping
 import numpy as np
 
 from .parameters import co_running_parameters
-from .routes import Route, load_route
+from .routes import SpeedWarning, speed_warnings, Route, load_route
 from .turnout import Turnout, Zone
 from .vehicle import Vehicle, add_vehicle, load_vehicle
 from .wheelrail import BoundPair, WheelRailElement
 
-__all__ = ["PassageSettings", "PassageResult", "PassageError", "simulate_passage", "max_time_step",
-           "contact_resonance", "passage_summary", "write_passage", "compare_layers", "peaks_table"]
+__all__ = [
+    "PassageSettings",
+    "PassageResult",
+    "PassageError",
+    "PassageFailure",
+    "simulate_passage",
+    "max_time_step",
+    "contact_resonance",
+    "passage_summary",
+    "write_passage",
+    "compare_layers",
+    "peaks_table",
+    "lightest_rail_mass",
+    "check_plausible",
+    "OUTPUT_FILES",
+    "PLAUSIBLE",
+]
 
 
 #: N: Newton's absolute residual tolerance in a passage (see benchmarks/bench_passage.py).
@@ -37,8 +53,23 @@ class PassageError(RuntimeError):
     """Bad passage settings, or a solver failure (the message says when and where)."""
 
 
+class PassageFailure(PassageError):
+    """A run that failed, diverged or left every physical state (the CLI's exit code 3).
+
+    The message gives the time, the position and what went wrong.
+    """
+
+
+#: Plausibility limits of a passage: beyond any of them the run stops with a
+#: :class:`PassageFailure`. m: wheelset vertical and lateral displacement (a wheel 50 mm
+#: up or down has derailed or fallen through the track); m: rail deflection; -: contact
+#: force over the static wheel load.
+PLAUSIBLE = {"wheelset_m": 0.05, "rail_m": 0.02, "force_over_static": 50.0}
+
+
 @dataclass(frozen=True)
 class PassageSettings:
+    """Settings of a passage (SI units but the speed in km/h)."""
     route: str = "through"
     speed_kmh: float = 100.0  #: km/h
     layers: int = 3
@@ -67,7 +98,19 @@ class PassageResult:
 
 
 def contact_resonance(vehicle: Vehicle, m_contact: float) -> float:
-    """Wheel-on-rail resonance (Hz) of half the wheelset on the linearised Hertz spring over m_contact."""
+    """Wheel-on-rail resonance (Hz): half the wheelset on the linear Hertz spring over m_contact.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+    m_contact : float
+        kg, the mass of rail under the wheel.
+
+    Returns
+    -------
+    float
+        Hz.
+    """
     W = vehicle.static_wheel_load
     k_H = 1.5 * vehicle.contact.C_H ** (2.0 / 3.0) * W ** (1.0 / 3.0)  # dF/d delta at F = W
     m_w = 0.5 * vehicle.m_w
@@ -75,8 +118,61 @@ def contact_resonance(vehicle: Vehicle, m_contact: float) -> float:
 
 
 def max_time_step(vehicle: Vehicle, m_rail: float) -> float:
-    """Largest time step (s) that resolves the wheel/rail contact: 10 steps per period."""
+    """Largest time step (s) that resolves the wheel/rail contact: 10 steps per period.
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+    m_rail : float
+        kg, the lightest rail mass of the run (:func:`lightest_rail_mass`).
+
+    Returns
+    -------
+    float
+        s.
+    """
     return 1.0 / (10.0 * contact_resonance(vehicle, m_rail))
+
+
+def lightest_rail_mass(turnout: Turnout, x_a: float, x_b: float, layers: int = 3,
+                       source: str = "derived") -> float:
+    """Lightest co-running rail mass m_r (kg) of the active rails between x_a and x_b.
+
+    Evaluated from the actual parameter set (``layers``, ``source``) at both ends of each
+    zone's part of the range; it sets the time-step limit (:func:`max_time_step`).
+
+    Parameters
+    ----------
+    turnout : Turnout
+    x_a, x_b : float
+        Range of the run (m).
+    layers : {2, 3}
+    source : {"derived", "published"}
+
+    Returns
+    -------
+    float
+        kg.
+
+    Raises
+    ------
+    PassageError
+        The parameter set does not exist (e.g. ``source="published"`` without Table 2 for a zone).
+    """
+    masses = []
+    for zone in _zones_of_run(turnout, x_a, x_b):
+        try:
+            p = co_running_parameters(turnout, zone=zone.index, layers=layers, source=source)
+        except (KeyError, ValueError) as err:
+            name = turnout.source.replace("\\", "/").rsplit("/", 1)[-1]
+            raise PassageError(
+                f"--source {source}: {name} has no parameter set for zone {zone.index} "
+                f"({str(err).rsplit(': ', 1)[-1]})"
+            ) from None
+        for x in (max(zone.x_start, x_a), min(zone.x_end, x_b)):
+            values = p.at(x)
+            masses += [values[f"m_r{slot[1:]}"] for slot in zone.active_rails]
+    return float(min(masses))
 
 
 def _check(settings: PassageSettings, turnout: Turnout, vehicle: Vehicle) -> tuple[float, float]:
@@ -88,11 +184,71 @@ def _check(settings: PassageSettings, turnout: Turnout, vehicle: Vehicle) -> tup
     if not (turnout.x_min <= x_a < x_b <= turnout.x_max):
         raise PassageError(f"x range {x_a:g}..{x_b:g} m must lie within the turnout "
                            f"({turnout.x_min:g}..{turnout.x_max:g} m) with x_start < x_end")
-    h_max = max_time_step(vehicle, 111.0)
+    m_rail = lightest_rail_mass(turnout, x_a, x_b, s.layers, s.source)
+    h_max = max_time_step(vehicle, m_rail)
     if not (math.isfinite(s.time_step) and 0 < s.time_step <= h_max):
         raise PassageError(f"time step {s.time_step:g} s is too large to resolve the wheel/rail contact "
-                           f"(~{contact_resonance(vehicle, 111.0):.0f} Hz): use a step <= {h_max:.2g} s")
+                           f"(~{contact_resonance(vehicle, m_rail):.0f} Hz with the lightest rail, "
+                           f"{m_rail:.4g} kg): use a step <= {h_max:.2g} s")
+    _check_output_step(s, (x_b - x_a) / s.v)
     return x_a, x_b
+
+
+def _check_output_step(s: PassageSettings, duration: float) -> None:
+    if s.output_step is None:
+        return
+    if not (math.isfinite(s.output_step) and s.time_step <= s.output_step <= duration):
+        raise PassageError(f"output step {s.output_step:g} s must be >= the time step "
+                           f"({s.time_step:g} s) and <= the run's duration ({duration:.4g} s)")
+
+
+def check_plausible(columns: Mapping[str, np.ndarray], static_load: float, what: str = "") -> None:
+    """Stop a run that left every physical state (limits in :data:`PLAUSIBLE`).
+
+    Parameters
+    ----------
+    columns : mapping
+        Columns of a passage (or of one zone's part): ``t_s``, ``x_m``, ``z_wheelset_m``,
+        ``y_wheelset_m``, ``z_rail_<slot>_m``, ``Fz_<wheel>_N``.
+    static_load : float
+        Static wheel load (N); forces above ``PLAUSIBLE["force_over_static"]`` times it stop
+        the run.
+    what : str
+        Where (e.g. "zone 2, crossing panel"), put into the message.
+
+    Raises
+    ------
+    PassageFailure
+        At the first sample beyond a limit: its time, x, the quantity and its value.
+    """
+    t, x = columns["t_s"], columns["x_m"]
+    checks = []
+    for name in ("z_wheelset_m", "y_wheelset_m"):
+        if name in columns:
+            label = "wheelset " + name[0]
+            checks.append((name, label, columns[name], PLAUSIBLE["wheelset_m"], "m"))
+    for name, values in columns.items():
+        if name.startswith("z_rail_"):
+            checks.append((name, f"rail {name[7:-2]} deflection", values, PLAUSIBLE["rail_m"], "m"))
+    limit = PLAUSIBLE["force_over_static"] * abs(static_load)
+    for wheel in ("right", "left"):
+        if f"Fz_{wheel}_N" in columns and limit > 0:
+            label = f"{wheel} wheel's normal force"
+            checks.append((wheel, label, columns[f"Fz_{wheel}_N"], limit, "N"))
+    first = None
+    for _, label, values, bound, unit in checks:
+        with np.errstate(invalid="ignore"):
+            bad = np.nonzero(np.abs(np.nan_to_num(values, nan=0.0)) > bound)[0]
+        if bad.size and (first is None or bad[0] < first[0]):
+            first = (int(bad[0]), label, float(values[bad[0]]), bound, unit)
+    if first is None:
+        return
+    i, label, value, bound, unit = first
+    where = f" ({what})" if what else ""
+    raise PassageFailure(
+        f"implausible run stopped at t = {t[i]:.5f} s, x = {x[i]:.3f} m{where}: "
+        f"{label} {value:.4g} {unit} is beyond the physical limit {bound:.4g} {unit}"
+    )
 
 
 def _pair_key(wheel: str, rail: str) -> str:
@@ -369,7 +525,7 @@ def _solve_static(system: _ZoneSystem) -> None:
     try:
         system.mbs.SolveStatic(sim, updateInitialValues=True)
     except (exu.SolverError, RuntimeError) as err:
-        raise PassageError(f"static equilibrium not found at x = {system.element.x0:g} m "
+        raise PassageFailure(f"static equilibrium not found at x = {system.element.x0:g} m "
                            f"(zone {system.zone.index}): {err}") from None
 
 
@@ -403,7 +559,7 @@ def _run(system: _ZoneSystem, duration: float, settings: PassageSettings, t_offs
         system.mbs.SolveDynamic(sim)
     except (exu.SolverError, RuntimeError) as err:
         t = system.mbs.systemData.GetTime()
-        raise PassageError(f"solver failed at t = {t_offset + t:.5f} s, x = {el.x_at(t):.3f} m "
+        raise PassageFailure(f"solver failed at t = {t_offset + t:.5f} s, x = {el.x_at(t):.3f} m "
                            f"(zone {system.zone.index}, {system.zone.name}): {str(err).strip()}") from None
     stored = [system.mbs.GetSensorStoredData(sensor) for sensor in system.sensors]
     t = stored[0][:, 0]
@@ -412,8 +568,10 @@ def _run(system: _ZoneSystem, duration: float, settings: PassageSettings, t_offs
     finite = np.all(np.isfinite(q), axis=1) & np.all(np.isfinite(force), axis=1)
     if not finite.all():
         bad = t[~finite][0]
-        raise PassageError(f"solution diverged at t = {t_offset + bad:.5f} s, x = {el.x_at(bad):.3f} m "
-                           f"(zone {system.zone.index}): reduce the time step")
+        raise PassageFailure(
+            f"solution diverged at t = {t_offset + bad:.5f} s, x = {el.x_at(bad):.3f} m "
+            f"(zone {system.zone.index}): reduce the time step"
+        )
     cols = _segment_columns(el, t, q, force, system.rails)
     cols["t_s"] = t + t_offset
     return cols
@@ -455,6 +613,8 @@ def simulate_passage(turnout: Turnout, settings: PassageSettings = PassageSettin
     vehicle = vehicle or load_vehicle()
     x_a, x_b = _check(settings, turnout, vehicle)
     route = load_route(turnout, settings.route)
+    for text in speed_warnings(route, settings.speed_kmh, x_a, x_b):
+        warnings.warn(text, SpeedWarning, stacklevel=2)
     zones = _zones_of_run(turnout, x_a, x_b)
     wall = time.perf_counter()
     with _QuietExudyn():
@@ -468,12 +628,15 @@ def _simulate(turnout: Turnout, settings: PassageSettings, vehicle: Vehicle, rou
     _solve_static(static)
     state = _node_state(static)
     static_loads = _wheel_loads(static, state, settings.layers)
+    _check_static(state, static_loads, x_a, vehicle)
+    W = 0.5 * (static_loads["left"] + static_loads["right"])
     segments, x, t_offset, previous, total = [], x_a, 0.0, static, (x_b - x_a) / v
     for k, zone in enumerate(zones):
         system = _build(turnout, route, vehicle, zone, settings, x, v)
         _carry_over(state, previous, system, route.continues.get(zone.index, {}) if k else {}, settings.layers, x)
         duration = (min(zone.x_end, x_b) - x) / v
         cols = _run(system, duration, settings, t_offset, total, progress)
+        check_plausible(cols, W, f"zone {zone.index}, {zone.name}")
         segments.append(cols if k == 0 else {n: c[1:] for n, c in cols.items()})
         state, previous = _node_state(system), system
         x, t_offset = min(zone.x_end, x_b), t_offset + duration
@@ -482,15 +645,107 @@ def _simulate(turnout: Turnout, settings: PassageSettings, vehicle: Vehicle, rou
     return PassageResult(settings, columns, summary, tuple(max(z.x_start, x_a) for z in zones))
 
 
+def _check_static(
+    state: Mapping[str, tuple[np.ndarray, np.ndarray]],
+    loads: Mapping[str, float],
+    x: float,
+    vehicle: Vehicle,
+) -> None:
+    """Stop on an absurd static state: deflections beyond :data:`PLAUSIBLE`, or wheel loads
+    that do not carry the vehicle (their sum off the weight by more than 20 %)."""
+    cols = {"t_s": np.zeros(1), "x_m": np.full(1, x), "z_wheelset_m": state["wheelset"][0][1:2],
+            "y_wheelset_m": state["wheelset"][0][0:1]}
+    for name, (q, _) in state.items():
+        if name.startswith("rail_"):
+            cols[f"z_{name}_m"] = q[1:2]
+    try:
+        check_plausible(cols, vehicle.static_wheel_load, "static equilibrium")
+    except PassageFailure as err:
+        message = str(err).replace("implausible run stopped", "absurd static state")
+        raise PassageFailure(message) from None
+    total = loads["left"] + loads["right"]
+    if not abs(total - 2.0 * vehicle.static_wheel_load) <= 0.2 * 2.0 * vehicle.static_wheel_load:
+        raise PassageFailure(
+            f"absurd static state at x = {x:g} m: the wheel loads sum to {total:.4g} N, "
+            f"the vehicle weighs {2.0 * vehicle.static_wheel_load:.4g} N"
+        )
+
+
 def _regions(turnout: Turnout) -> dict[str, tuple[float, float]]:
     regions = turnout.raw.get("regions", {})
     return {name: tuple(regions.get(name, default)) for name, default in
             (("switch", (0.0, 10.0)), ("crossing", (turnout.zones[-1].x_start, turnout.x_max)))}
 
 
+def _argpeak(cols: Mapping[str, np.ndarray], name: str, x_range: tuple[float, float],
+             signed: bool) -> tuple[float, float]:
+    """(peak, x of the peak) of column ``name`` in x_range; (nan, nan) if none (or all NaN)."""
+    x = cols["x_m"]
+    values = np.where((x >= x_range[0]) & (x <= x_range[1]), cols[name], np.nan)
+    if not np.isfinite(values).any():
+        return math.nan, math.nan
+    i = int(np.nanargmax(np.abs(values)) if signed else np.nanargmax(values))
+    return float(values[i]), float(x[i])
+
+
+def _contact_peaks(columns: Mapping[str, np.ndarray], regions: Mapping[str, tuple[float, float]]
+                   ) -> dict[str, object]:
+    """Peaks per wheel and per contact (rail slot), and which wheel and rail carry each largest one.
+
+    Keys: ``peak_<Fz|Fy>_<region>_<wheel>_<slot>_N`` (every wheel/rail pair of the run),
+    ``peak_<Fz|Fy>_<region>_<wheel>_N`` (per wheel, both wheels), and for the largest
+    (|Fy| for Fy) of the region ``max_<Fz|Fy>_<region>_N``, ``_wheel``, ``_rail``, ``_x_m``.
+    """
+    out: dict[str, object] = {}
+    pairs = [n[3:-2].split("_") for n in columns if n.startswith("Fz_") and n.count("_") == 3]
+    for q, signed in (("Fz", False), ("Fy", True)):
+        for where, rng in regions.items():
+            best = None
+            for wheel in ("right", "left"):
+                peak = _argpeak(columns, f"{q}_{wheel}_N", rng, signed)[0]
+                out[f"peak_{q}_{where}_{wheel}_N"] = peak
+            for wheel, slot in pairs:
+                name = f"{q}_{wheel}_{slot}_N"
+                if name not in columns:
+                    continue
+                value, x = _argpeak(columns, name, rng, signed)
+                out[f"peak_{q}_{where}_{wheel}_{slot}_N"] = value
+                if math.isfinite(value) and (best is None or abs(value) > abs(best[0])):
+                    best = (value, wheel, slot, x)
+            best = best or (math.nan, None, None, math.nan)
+            out[f"max_{q}_{where}_N"], out[f"max_{q}_{where}_wheel"] = best[0], best[1]
+            out[f"max_{q}_{where}_rail"], out[f"max_{q}_{where}_x_m"] = best[2], best[3]
+    return out
+
+
 def passage_summary(columns: Mapping[str, np.ndarray], turnout: Turnout, settings: PassageSettings,
                     static_loads: Mapping[str, float], wall_time: float) -> dict[str, object]:
-    """Peaks at the switch and crossing (right wheel, as the paper's Figs 7, 8; ``_left`` keys too)."""
+    """Peaks at the switch and crossing, per wheel and per contact, and the run's settings.
+
+    ``peak_Fz_switch_N`` etc. are the right wheel's (as the paper's Figs 7, 8), ``_left``
+    keys the left wheel's; per wheel ``peak_Fz_crossing_<wheel>_N``, per wheel and contact
+    (rail slot) ``peak_Fz_crossing_<wheel>_<slot>_N``, and ``max_Fz_crossing_N`` with
+    ``_wheel``, ``_rail``, ``_x_m``: which wheel and rail carry the largest force (on the
+    diverging route the left wheel meets the crossing); the same for Fy (largest |Fy|).
+
+    Parameters
+    ----------
+    columns : mapping
+        The passage's columns.
+    turnout : Turnout
+        Its ``[regions]``.
+    settings : PassageSettings
+        Stored under ``settings``.
+    static_loads : mapping
+        Static load (N) of each wheel, "left" and "right".
+    wall_time : float
+        s.
+
+    Returns
+    -------
+    dict
+    """
+    from dataclasses import asdict
     regions = _regions(turnout)
     out: dict[str, object] = {"route": settings.route, "layers": settings.layers, "source": settings.source,
                               "speed_kmh": settings.speed_kmh,
@@ -500,11 +755,16 @@ def passage_summary(columns: Mapping[str, np.ndarray], turnout: Turnout, setting
         for where, rng in regions.items():
             out[f"peak_Fz_{where}{suffix}_N"] = _peak(columns, f"Fz_{wheel}_N", rng)
             out[f"peak_Fy_{where}{suffix}_N"] = _peak(columns, f"Fy_{wheel}_N", rng, signed=True)
+    out.update(_contact_peaks(columns, regions))
     out["contact_losses"] = sum(_contact_losses(columns[f"Fz_{w}_N"]) for w in ("right", "left"))
     out["time_step_s"] = settings.time_step
+    h_out = settings.output_step
+    out["output_step_s"] = h_out if h_out is not None else settings.time_step
+    out["x_start_m"], out["x_end_m"] = float(columns["x_m"][0]), float(columns["x_m"][-1])
     out["simulated_time_s"] = float(columns["t_s"][-1] - columns["t_s"][0])
     out["wall_time_s"] = wall_time
     out["switch_region_m"], out["crossing_region_m"] = list(regions["switch"]), list(regions["crossing"])
+    out["settings"] = asdict(settings)
     return out
 
 
@@ -522,39 +782,121 @@ class _QuietExudyn:
         return False
 
 
-def write_passage(result: PassageResult, out_dir) -> dict[str, str]:
-    """Write ``timeseries.csv`` and ``summary.json`` into out_dir; return their paths.
+#: Files a passage command writes into its output directory (cleared before a run).
+OUTPUT_FILES = ("timeseries.csv", "timeseries.npz", "summary.json", "forces.png")
 
-    Columns of a rail that is not part of a zone are left empty there (no NaN in the file).
+
+def write_passage(
+    result: PassageResult,
+    out_dir,
+    fmt: str = "csv",
+    provenance: Mapping | None = None,
+    figure: Callable | None = None,
+) -> dict[str, str]:
+    """Write the time series and ``summary.json`` into out_dir; return their paths.
+
+    Files are written into a temporary directory inside out_dir and moved into place
+    (``summary.json`` last), so that out_dir never holds a partial or mixed set.
+
+    Parameters
+    ----------
+    result : PassageResult
+    out_dir : str or Path
+        Created if missing.
+    fmt : {"csv", "npz"}
+        ``timeseries.csv`` (columns of a rail that is not part of a zone are empty there,
+        no NaN in the file; 9 significant digits) or ``timeseries.npz`` (one float64 array
+        per column, NaN where a rail is not part of a zone, and ``summary``: the summary
+        as a JSON string).
+    provenance : mapping, optional
+        Stored as ``summary["provenance"]`` (see :mod:`exudyn_turnout.provenance`).
+    figure : callable(directory), optional
+        Draws further files (``forces.png``) into the temporary directory before the move.
+
+    Returns
+    -------
+    dict
+        ``{"timeseries": path, "summary": path}`` (and ``"figure"`` with ``figure``).
     """
     import csv
     import json
+    import os
+    import shutil
+    import tempfile
     from pathlib import Path
 
+    from .provenance import round_floats
+
+    if fmt not in ("csv", "npz"):
+        raise ValueError(f"format must be csv or npz, got {fmt!r}")
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
+    summary = dict(result.summary)
+    if provenance is not None:
+        summary["provenance"] = dict(provenance)
+    summary_text = json.dumps(round_floats(summary), indent=1)
     names = list(result.columns)
-    data = np.column_stack([result.columns[n] for n in names])
-    paths = {"timeseries": str(out / "timeseries.csv"), "summary": str(out / "summary.json")}
-    with open(paths["timeseries"], "w", newline="", encoding="utf-8") as fh:
-        w = csv.writer(fh)
-        w.writerow(names)
-        for row in data:
-            w.writerow(["" if not math.isfinite(v) else f"{v:.9g}" for v in row])
-    summary = {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in result.summary.items()}
-    Path(paths["summary"]).write_text(json.dumps(summary, indent=1, default=float), encoding="utf-8")
+    tmp = Path(tempfile.mkdtemp(prefix=".partial-", dir=out))
+    try:
+        series = tmp / f"timeseries.{fmt}"
+        if fmt == "csv":
+            data = np.column_stack([result.columns[n] for n in names])
+            with open(series, "w", newline="", encoding="utf-8") as fh:
+                w = csv.writer(fh)
+                w.writerow(names)
+                for row in data:
+                    w.writerow(["" if not math.isfinite(v) else f"{v:.9g}" for v in row])
+        else:
+            arrays = {n: np.asarray(result.columns[n], dtype=float) for n in names}
+            np.savez(series, summary=np.array(summary_text), **arrays)
+        (tmp / "summary.json").write_text(summary_text + "\n", encoding="utf-8")
+        files = [series.name]
+        if figure is not None:
+            figure(tmp)
+            written = (series.name, "summary.json")
+            files += sorted(p.name for p in tmp.iterdir() if p.name not in written)
+        for name in files + ["summary.json"]:
+            os.replace(tmp / name, out / name)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    paths = {"timeseries": str(out / f"timeseries.{fmt}"), "summary": str(out / "summary.json")}
+    if figure is not None:
+        paths["figure"] = str(out / "forces.png")
     return paths
 
 
 def compare_layers(turnout: Turnout, settings: PassageSettings = PassageSettings(),
                    vehicle: Vehicle | None = None) -> dict[int, PassageResult]:
-    """The same passage on the two-layer and the three-layer track: {2: result, 3: result}."""
+    """The same passage on the two-layer and the three-layer track.
+
+    Parameters
+    ----------
+    turnout : Turnout
+    settings : PassageSettings
+        ``layers`` is replaced.
+    vehicle : Vehicle, optional
+
+    Returns
+    -------
+    dict
+        {2: PassageResult, 3: PassageResult}.
+    """
     from dataclasses import replace
     return {layers: simulate_passage(turnout, replace(settings, layers=layers), vehicle) for layers in (2, 3)}
 
 
 def peaks_table(results: Mapping[str, PassageResult]) -> str:
-    """Plain-text table of the right wheel's peak forces (kN) of labelled results."""
+    """Plain-text table of the right wheel's peak forces (kN) of labelled results.
+
+    Parameters
+    ----------
+    results : mapping
+        Label -> PassageResult.
+
+    Returns
+    -------
+    str
+    """
     keys = ("peak_Fz_switch_N", "peak_Fz_crossing_N", "peak_Fy_switch_N", "peak_Fy_crossing_N")
     lines = [f"{'model':<28}" + "".join(f"{k[5:-2]:>18}" for k in keys) + f"{'wall (s)':>10}"]
     for label, r in results.items():

@@ -14,27 +14,64 @@ import numpy as np
 
 __all__ = ["write_figures", "receptance_panels", "force_panels", "crossing_window", "stiffness_panels"]
 
-#: m, the crossing panel of a force figure shows this much before and after the wheel's dip.
-_CROSSING_WINDOW = (0.8, 2.2)
+#: m, before / after the wheel's dip shown in a crossing panel when the report has no settings.
+_DEFAULT_CROSSING_WINDOW = (0.8, 2.2)
 
 
 def receptance_panels(report, direction: str) -> list[tuple[str, Mapping, float]]:
-    """(title, model -> Receptance, pinned-pinned Hz) per rail for one direction."""
+    """(title, model -> Receptance, pinned-pinned Hz) per rail for one direction.
+
+    Parameters
+    ----------
+    report : Report
+    direction : {"vertical", "lateral"}
+
+    Returns
+    -------
+    list of (str, dict, float)
+    """
     cases = report.metrics["receptance"]["cases"]
     return [(f"{case} at x = {c['x_m']:.2f} m", report.receptances[case], c["pinned_pinned_hz"])
             for case, c in cases.items() if c["direction"] == direction]
 
 
 def crossing_window(report) -> tuple[float, float]:
-    """x range (m) of the crossing panels: around the crossing receptance position (the wheel's dip)."""
+    """x range (m) of the crossing panels: around the crossing receptance position (the dip).
+
+    How far before and after: the turnout file's ``report.crossing_plot_window``.
+
+    Parameters
+    ----------
+    report : Report
+
+    Returns
+    -------
+    (float, float)
+        m, x_from and x_to.
+    """
     x = report.metrics["receptance"]["positions"]["crossing rail"]["x_m"]
-    return x - _CROSSING_WINDOW[0], x + _CROSSING_WINDOW[1]
+    settings = getattr(report, "settings", None)
+    window = settings.crossing_plot_window if settings is not None else _DEFAULT_CROSSING_WINDOW
+    before, after = window
+    return x - before, x + after
 
 
 def force_panels(report, route: str) -> list[tuple[str, Mapping, str, tuple[float, float]]]:
-    """(title, model -> PassageResult, column, x range) per plotted signal of a route."""
+    """(title, model -> PassageResult, column, x range) per plotted signal of a route.
+
+    Parameters
+    ----------
+    report : Report
+    route : str
+        A route of the report.
+
+    Returns
+    -------
+    list of (str, dict, str, (float, float))
+    """
     p = report.metrics["passage"]
     lo, hi = p["x_range_m"]
+    wheel = p["routes"][route].get("wheel", "right")
     panels = []
     for signal in p["routes"][route]["signals"]:
         quantity, region = signal.split("_")
@@ -42,8 +79,9 @@ def force_panels(report, route: str) -> list[tuple[str, Mapping, str, tuple[floa
         x0, x1 = max(x0, lo), min(x1, hi)
         if x1 > x0:
             what = "vertical" if quantity == "Fz" else "lateral"
-            title = f"{route}, {p['speeds_kmh'][route]:g} km/h: {what} force, right wheel, {region}"
-            column = f"{quantity}_right_N"
+            title = (f"{route}, {p['speeds_kmh'][route]:g} km/h: {what} force, {wheel} wheel, "
+                     f"{region}")
+            column = f"{quantity}_{wheel}_N"
             results = {m: r for m, r in report.passages[route].items()
                        if column in r.columns and np.isfinite(r.columns[column]).any()}
             panels.append((title, results, column, (x0, x1)))
@@ -51,7 +89,19 @@ def force_panels(report, route: str) -> list[tuple[str, Mapping, str, tuple[floa
 
 
 def write_figures(report, out_dir: str | Path, dpi: int = 100) -> dict[str, str]:
-    """Write the report's figures into out_dir; name -> file name."""
+    """Write the report's figures into out_dir; name -> file name.
+
+    Parameters
+    ----------
+    report : Report
+    out_dir : str or Path
+    dpi : int
+
+    Returns
+    -------
+    dict
+        Figure name -> file name.
+    """
     from .plotting import plot_force_signals, plot_receptance_agreement, save_figure
     out, files = Path(out_dir), {}
     agree = report.config.criteria.agree_db
@@ -75,7 +125,19 @@ def _save(fig: Any, out: Path, name: str, dpi: int, save_figure) -> str:
 
 
 def stiffness_panels(report) -> list[tuple[str, list]]:
-    """Vertical and lateral panels: FE per rail (points), fits, the paper's Eqs 10/14, the 2-layer model's r2."""
+    """Vertical and lateral panels: FE per rail (points), fits, the paper's Eqs 10/14, the 2-layer
+    model's receptance slot (r2).
+
+    Parameters
+    ----------
+    report : Report
+        With a stiffness profile (``report.stiffness``).
+
+    Returns
+    -------
+    list of (str, list)
+        Title and series (label, x, y, kind) per panel.
+    """
     data, paper = report.stiffness, report.metrics["stiffness"]["paper"]
     profile, fits = data["profile"], data["fits"]
     panels = []
@@ -85,8 +147,9 @@ def stiffness_panels(report) -> list[tuple[str, list]]:
         xf = [fit.x_min + (fit.x_max - fit.x_min) * k / 50 for k in range(51)]
         series.append((f"fit of FE {fit.rail} ({fit.x_min:g}-{fit.x_max:g} m)", xf, [fit(x) for x in xf], "fit"))
         series.append((f"paper {eq[0]}", paper["x_m"], paper[eq[1]], "paper"))
-        series.append(("2-layer co-running r2, 1/|H(1 Hz)|", data["co_running_x"], data["co_running"][direction],
-                       "model"))
+        slot = report.metrics["stiffness"].get("co_running_slot", "r2")
+        series.append((f"2-layer co-running {slot}, 1/|H(1 Hz)|", data["co_running_x"],
+                       data["co_running"][direction], "model"))
         panels.append((f"{direction} static stiffness 1/|H(1 Hz)|", series))
     return panels
 

@@ -24,11 +24,32 @@ _EXCL = " excl. pinned-pinned"
 
 #: How the criteria came about (stated in the report, not hidden).
 CRITERIA_HISTORY = (
-    "Set before the results were computed, except three, revised once after the first full run and kept since: R4 (the first version looked for a pinned-pinned *peak*, but above a sleeper the mode shows as a dip: now the 3-layer band RMS over the pinned-pinned bands > 3 dB), S4 ('end of the turnout' is now the last sleeper of the crossing panel, not the plain track of zone 3 after it) and C1 (best-of-N wall times swung between 0.96 and 1.69 under the machine's changing load: now the median of paired 3-layer/2-layer ratios, with every individual time shown)."
+    "Set before the results were computed, except three, revised once after the first full run "
+    "and kept since: R4 (the first version looked for a pinned-pinned *peak*, but above a "
+    "sleeper the mode shows as a dip: now the 3-layer band RMS over the pinned-pinned bands > "
+    "3 dB), S4 ('end of the turnout' is now the last sleeper of the crossing panel, not the "
+    "plain track after it, zone 3 of the UIC60 turnout) and C1 (best-of-N wall times swung "
+    "between 0.96 and 1.69 under the machine's changing load: now the median of paired "
+    "3-layer/2-layer ratios, with every individual time shown)."
 )
 
 def fmt(value: Any, spec: str = ".3g", scale: float = 1.0, unit: str = "") -> str:
-    """``value * scale`` formatted with ``spec`` (and `` unit``); "n/a" for None or NaN."""
+    """``value * scale`` formatted with ``spec`` (and `` unit``); "n/a" for None or NaN.
+
+    Parameters
+    ----------
+    value : float or None
+    spec : str
+        Format specification, e.g. ``".3g"``.
+    scale : float
+        Factor applied before formatting (e.g. 1e-3 for kN).
+    unit : str
+        Appended after a space when not empty.
+
+    Returns
+    -------
+    str
+    """
     if value is None or (isinstance(value, float) and not math.isfinite(value)):
         return "n/a"
     return f"{value * scale:{spec}}" + (f" {unit}" if unit else "")
@@ -47,7 +68,18 @@ def _plain(value: Any) -> Any:
 
 
 def to_json(metrics: Mapping[str, Any]) -> str:
-    """metrics as strict JSON (NaN and infinities as null, numpy scalars as numbers)."""
+    """metrics as strict JSON (NaN and infinities as null, numpy scalars as numbers).
+
+    Parameters
+    ----------
+    metrics : mapping
+        Nested dicts, lists, numbers and text.
+
+    Returns
+    -------
+    str
+        Indented JSON.
+    """
     return json.dumps(_plain(metrics), indent=1, allow_nan=False)
 
 
@@ -151,8 +183,23 @@ def _ratio_text(r: Mapping) -> str:
     return lo if lo == hi else f"{lo}-{hi}"
 
 
+def _derived_parameters(p: Mapping) -> list[str]:
+    """Section 1 of a turnout without a published set: the derived entries per zone."""
+    zones = list(p["derived"])
+    names = list(dict.fromkeys(n for z in zones for n in p["derived"][z]))
+    rows = [[f"`{n}`"] + [fmt(p["derived"][z].get(n), ".4g") for z in zones] for n in names]
+    return (["## 1 Parameters: derived (no published set in this file)", "",
+             "The turnout file has no `[published]` co-running parameters to compare with; the "
+             "derived 3-layer set (Eqs 1-19 on the file's rail, sleeper and ballast data) at each "
+             "zone's middle, SI units (N/m, N s/m, kg, kg m^2); entries of rails that are not "
+             "active in a zone are derived all the same.", ""]
+            + _table(["entry"] + [f"zone {z}" for z in zones], rows))
+
+
 def _parameters(report) -> list[str]:
     p = report.metrics["parameters"]
+    if not p["rows"] and p.get("derived"):
+        return _derived_parameters(p)
     rows = [[str(r["zone"]), f"`{r['name']}`", fmt(r["derived"], ".4g"), fmt(r["published"], ".4g"),
              r["published_text"], _ratio_text(r), "yes" if r["reproduced"] else "no", r["explanation"] or "-"]
             for r in p["rows"]]
@@ -189,6 +236,7 @@ def _fit_rows(s: Mapping) -> list[list[str]]:
 def _stiffness_available(report, figures) -> list[str]:
     s = report.metrics["stiffness"]
     co = s["co_running_over_FE"]
+    zones = ", ".join(str(z) for z in s.get("co_running_zones", ())) or "n/a"
     return ([f"FE: K = 1/|H(1 Hz)| at every sleeper of every rail (as the paper), {s['fe_n_dof']['vertical']} / "
              f"{s['fe_n_dof']['lateral']} coordinates (vertical / lateral), {fmt(s['fe']['wall_time_s'], '.1f')} s, "
              f"{_source(s['fe'])}.", ""]
@@ -198,8 +246,10 @@ def _stiffness_available(report, figures) -> list[str]:
             + ["Polynomial fits of the FE stiffness (N/m, x in m) against the paper's; values in MN/m "
                "(fit vs paper, ratio):", ""]
             + _table(["fit", "rail", "x (m)", "ours", "paper", "R^2", "sleepers", "fit vs paper"], _fit_rows(s))
-            + ["The 2-layer co-running model's static stiffness of r2 (Delta_z, Delta_y from the paper's Eqs 10, 14) "
-               f"over the FE value of the same rail, along zones 1-2: vertical {_span(co['vertical'], '.3f')}, "
+            + ["The 2-layer co-running model's static stiffness of "
+               f"{s.get('co_running_slot', 'r2')} (Delta_z, Delta_y from the paper's Eqs 10, 14) "
+               "over the FE value of the same rail, along the zones where it is active "
+               f"({zones}): vertical {_span(co['vertical'], '.3f')}, "
                f"lateral {_span(co['lateral'], '.3f')}.", ""])
 
 
@@ -208,7 +258,9 @@ def _stiffness(report, figures) -> list[str]:
     paper = s["paper"]
     lines = ["## 2 Track stiffness along the turnout (Fig. 1 analogue)", "",
              "Paper: Eq 10 K_sw(x) (switch rail, vertical) and Eq 14 K_sh(x) (lateral), as stored in the turnout "
-             f"file; stock rail K_st,z = {fmt(paper['K_st_z_N_per_m'], '.4g', 1e-6)} MN/m and K_st,y = "
+             "file; reference (plain-track) rail type "
+             f"`{s.get('reference_rail_type', 'stock')}`: K_st,z = "
+             f"{fmt(paper['K_st_z_N_per_m'], '.4g', 1e-6)} MN/m and K_st,y = "
              f"{fmt(paper['K_st_y_N_per_m'], '.4g', 1e-6)} MN/m from Eq 2.", ""]
     if s["available"]:
         lines += _stiffness_available(report, figures)
@@ -221,15 +273,17 @@ def _stiffness(report, figures) -> list[str]:
 
 def _receptance_intro(r: Mapping) -> list[str]:
     sw, cr, fq = r["positions"]["switch rail"], r["positions"]["crossing rail"], r["frequencies"]
+    where = f"rail slot {sw['rail']} on the {r.get('route', 'through')} route"
     return ["## 3 Receptance (Figs 5, 6 analogue)", "",
-            f"Point receptance of rail slot r2 on the through route, {fq['n']} log-spaced frequencies "
+            f"Point receptance of {where}, {fq['n']} log-spaced frequencies "
             f"{fq['f_min_hz']:g}-{fq['f_max_hz']:g} Hz; force and response on the rail (2-layer: rail mass; "
             "3-layer: the m_0 above it, where the wheel acts). **Where**: the paper's caption says 'at the crossing "
             "panel', its text 'at the most crucial locations, where the load is transferring at the switch and "
             "crossing'; the co-running model has no switch rail in the crossing panel (Table 3), so we take the "
             "switch rail where the wheel's load passes from the stock rail to the switch blade "
             f"(x = {sw['x_m']:.3f} m) and the crossing rail where it passes from the wing rail to the nose "
-            f"(x = {cr['x_m']:.3f} m): the lowest point of the wheel's path in the turnout file's height profiles.",
+            f"(x = {cr['x_m']:.3f} m): the lowest point of the {r.get('wheel', 'right')} wheel's "
+            "path in the turnout file's height profiles, within its switch and crossing regions.",
             ""]
 
 
@@ -321,18 +375,31 @@ def _fe_coverage(p: Mapping) -> str:
     return "FE reference for " + "; ".join(parts) + note
 
 
+def _radius(p: Mapping, route: str) -> str:
+    r = p.get("radius_m", {}).get(route)
+    return "straight" if r is None or not math.isfinite(r) else f"R = {r:.0f} m"
+
+
+def _wheels(p: Mapping) -> str:
+    """Which wheel the forces are of: one for all routes, or per route."""
+    wheels = p.get("wheel", {})
+    if isinstance(wheels, str):
+        return f"{wheels} wheel"
+    if len(set(wheels.values())) == 1:
+        wheel = next(iter(wheels.values()))
+        return f"{wheel} wheel" + (" (as the paper)" if wheel == "right" else "")
+    return ", ".join(f"{w} wheel on the {r} route" for r, w in wheels.items())
+
+
 def _passage_intro(report) -> list[str]:
     p = report.metrics["passage"]
     acc = p["steady_lateral_acceleration_m_s2"]
-    speeds = ", ".join(f"{r} {v:g} km/h (steady lateral acceleration v^2/R {fmt(acc[r], '.2f')} m/s^2)"
-                       for r, v in p["speeds_kmh"].items())
+    speeds = ", ".join(f"{r} {v:g} km/h ({_radius(p, r)}, steady lateral acceleration v^2/R "
+                       f"{fmt(acc[r], '.2f')} m/s^2)" for r, v in p["speeds_kmh"].items())
     fe = _fe_coverage(p) if p["fe_available"] else f"**not available** ({p['fe_note']})"
     return ["## 4 Contact forces (Figs 7, 8 analogue)", "",
-            f"Manchester benchmark wheelset, right wheel (as the paper), x from {p['x_range_m'][0]:g} m to "
-            f"{p['x_range_m'][1]:g} m. **Speeds**: {speeds}. The paper does not state its speeds (only that the "
-            "two-layer model overestimates the crossing peak 'despite a lower vehicle speed'); ours are a usual line "
-            "speed over a turnout on the through route and the usual permitted speed of a 760 m diverging route "
-            "without cant (lateral acceleration at most ~0.65 m/s^2). Regions: "
+            f"Manchester benchmark wheelset, {_wheels(p)}, x from {p['x_range_m'][0]:g} m to "
+            f"{p['x_range_m'][1]:g} m. **Speeds**: {speeds}. {p.get('speeds_note', '')} Regions: "
             + ", ".join(f"{k} {v[0]:g}-{v[1]:g} m" for k, v in p["regions_m"].items()) + f". FE passage: {fe}.", ""]
 
 
@@ -404,8 +471,9 @@ def _static(report) -> list[str]:
     loads = [[k, fmt(v["right_N"], ".1f"), fmt(v["left_N"], ".1f"), fmt(v["right_relative"], "+.2%"),
               fmt(v["left_relative"], "+.2%"), fmt(v["mean_relative"], "+.2e")]
              for k, v in ck["static_wheel_load"].items()]
-    starts = "; ".join(f"{route}, x = {ck['start_x_m'][route]:g} m: right rail y = {y['r1']:+.2f} m, left rail "
-                       f"y = {y['r4']:+.2f} m" for route, y in ck["start_rail_y_m"].items())
+    starts = "; ".join(f"{route}, x = {ck['start_x_m'][route]:g} m: right rail y = "
+                       f"{fmt(y.get('r1'), '+.2f')} m, left rail y = {fmt(y.get('r4'), '+.2f')} m"
+                       for route, y in ck["start_rail_y_m"].items())
     stiff = [[case, fmt(v["2-layer"], ".3f"), fmt(v["3-layer"], ".3f")]
              for case, v in ck["static_stiffness_ratio_to_FE"].items()]
     return ([f"Static wheel loads at the start of each passage (static equilibrium) vs W = (m_w + m_s) g / 2 = "
@@ -448,13 +516,15 @@ def _closing_receptance(report) -> tuple[str, str]:
 
 def _closing_forces(report) -> str:
     p, c = report.metrics["passage"], {x.id: x.verdict for x in report.claims}
-    t = p["routes"].get("through", {}).get("models", {})
+    route = p.get("impact_route")
+    t = p["routes"].get(route, {}).get("models", {}) if route else {}
     if "2-layer" not in t:
-        return "Contact forces: no through-route passage."
+        return "Contact forces: no passage with the vertical force at the crossing."
     peak = {m: fmt(d["peaks_N"]["Fz_crossing"], ".1f", 1e-3) for m, d in t.items()}
     fe = (f"against FE ({peak.get('FE', 'n/a')} kN): F2 {c['F2']}, F3 {c['F3']}, F4 {c['F4']}, F5 {c['F5']}"
           if p["fe_available"] else "no FE passage in this version, so F2-F5 are not checked")
-    return (f"Contact forces: crossing peak (through, {p['speeds_kmh']['through']:g} km/h) {peak['2-layer']} kN "
+    return (f"Contact forces: crossing peak ({route}, {p['speeds_kmh'][route]:g} km/h) "
+            f"{peak['2-layer']} kN "
             f"(2-layer) vs {peak['3-layer']} kN (3-layer); F1 (2-layer oscillates more) {c['F1']}; {fe}.")
 
 
@@ -485,7 +555,20 @@ def _closing(report) -> list[str]:
 
 
 def render_markdown(report, figures: Mapping[str, str]) -> str:
-    """report.md of a built report; ``figures``: figure name -> file name relative to report.md."""
+    """report.md of a built report; ``figures``: figure name -> file name relative to report.md.
+
+    Parameters
+    ----------
+    report : Report
+        From :func:`~exudyn_turnout.report.build_report`.
+    figures : mapping
+        Figure name -> file name relative to report.md.
+
+    Returns
+    -------
+    str
+        The Markdown text.
+    """
     lines = (_header(report) + _criteria(report) + ["## Verdicts", ""] + _claims_table(report.claims)
              + _parameters(report) + _stiffness(report, figures) + _receptance(report, figures)
              + _passage(report, figures) + _cost(report) + _checks(report) + _closing(report))

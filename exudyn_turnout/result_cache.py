@@ -25,7 +25,13 @@ __all__ = ["ResultCache", "default_cache_dir", "input_key", "source_fingerprint"
 
 
 def default_cache_dir() -> Path:
-    """``$XDG_CACHE_HOME/exudyn_turnout``, or ``~/.cache/exudyn_turnout``."""
+    """``$XDG_CACHE_HOME/exudyn_turnout``, or ``~/.cache/exudyn_turnout``.
+
+    Returns
+    -------
+    Path
+        The directory (it may not exist yet).
+    """
     base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
     return Path(base) / "exudyn_turnout"
 
@@ -43,13 +49,34 @@ def _jsonable(value: Any) -> Any:
 
 
 def input_key(*parts: Any) -> str:
-    """SHA-256 (hex) of the parts: dataclasses, arrays (by their bytes), mappings, numbers, text."""
+    """SHA-256 (hex) of the parts: dataclasses, arrays (by their bytes), mappings, numbers, text.
+
+    Parameters
+    ----------
+    *parts : Any
+        Everything the result depends on.
+
+    Returns
+    -------
+    str
+        64 hex digits.
+    """
     text = json.dumps(_jsonable(list(parts)), sort_keys=True, allow_nan=True)
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
 def file_fingerprint(path: str | Path) -> str:
-    """SHA-256 (hex) of a file's bytes."""
+    """SHA-256 (hex) of a file's bytes.
+
+    Parameters
+    ----------
+    path : str or Path
+
+    Returns
+    -------
+    str
+        64 hex digits.
+    """
     return hashlib.sha256(Path(path).read_bytes()).hexdigest()
 
 
@@ -57,6 +84,16 @@ def source_fingerprint(modules: Iterable[str]) -> str:
     """SHA-256 (hex) of the source files of modules (a package contributes all its ``.py`` files).
 
     Modules that cannot be found contribute their name only.
+
+    Parameters
+    ----------
+    modules : iterable of str
+        Dotted module or package names.
+
+    Returns
+    -------
+    str
+        64 hex digits.
     """
     h = hashlib.sha256()
     for name in sorted(modules):
@@ -83,7 +120,18 @@ class ResultCache:
         return self.directory / f"{key}.npz", self.directory / f"{key}.json"
 
     def load(self, key: str) -> tuple[dict[str, np.ndarray], dict[str, Any]] | None:
-        """The stored (arrays, metadata), or None if absent, disabled or unreadable."""
+        """The stored (arrays, metadata), or None if absent, disabled or unreadable.
+
+        Parameters
+        ----------
+        key : str
+            From :func:`input_key`.
+
+        Returns
+        -------
+        (dict, dict) or None
+            Arrays by name and the JSON metadata.
+        """
         if self.directory is None:
             return None
         npz, meta = self._paths(key)
@@ -97,7 +145,17 @@ class ResultCache:
             return None
 
     def save(self, key: str, arrays: Mapping[str, np.ndarray], metadata: Mapping[str, Any]) -> None:
-        """Store arrays and JSON-serialisable metadata under key (no-op when disabled)."""
+        """Store arrays and JSON-serialisable metadata under key (no-op when disabled).
+
+        Parameters
+        ----------
+        key : str
+            From :func:`input_key`.
+        arrays : mapping
+            name -> array (stored as ``<key>.npz``, no pickle).
+        metadata : mapping
+            JSON-serialisable values (stored as ``<key>.json``).
+        """
         if self.directory is None:
             return
         self.directory.mkdir(parents=True, exist_ok=True)

@@ -2,7 +2,9 @@
 
 A route (``through``, ``diverging``) is read from the turnout file's ``[routes.<name>]``
 section (see the file's comments for the format and the reasoning behind the default
-profiles). Load transfer between rails (stock rail to switch blade, wing rail to
+profiles). Positions in a route (profile x, flange and check ranges) are numbers (m) or
+features of the turnout's plan (:mod:`exudyn_turnout.geometry`), e.g. ``"nose_tip + 0.5"``,
+so that the crossing lies where the layout puts it. Load transfer between rails (stock rail to switch blade, wing rail to
 crossing nose) is not coded anywhere: it follows from the height tables alone, through
 the Hertz springs of whichever rail stands higher under the wheel.
 """
@@ -14,9 +16,21 @@ from typing import Mapping
 
 import numpy as np
 
+from .geometry import TurnoutPlan, resolve_position, turnout_plan
 from .turnout import RAIL_SLOTS, Table1D, Turnout, TurnoutFileError, Zone, _Reader
 
-__all__ = ["ContactPair", "Route", "load_route", "route_names", "WHEELS", "dip_angle"]
+__all__ = ["ContactPair", "Route", "load_route", "route_names", "WHEELS", "dip_angle",
+           "SpeedWarning", "cant_deficiency", "speed_warnings", "RAIL_CENTRE_DISTANCE",
+           "GRAVITY"]
+
+#: m, distance between the rail centres used to express cant (EN 13803: 1500 mm for 1435 mm gauge).
+RAIL_CENTRE_DISTANCE = 1.5
+#: m/s^2
+GRAVITY = 9.81
+
+
+class SpeedWarning(UserWarning):
+    """A passage runs a route faster than the turnout file permits (a warning, not an error)."""
 
 #: Wheels of the wheelset and their side: +1 left (positive y), -1 right.
 WHEELS = {"left": 1, "right": -1}
@@ -64,6 +78,14 @@ class Route:
     continues: Mapping[int, Mapping[str, str]]  #: zone -> {new slot: slot it continues}
     check_clearance: float  #: m, nominal check-rail clearance
     check_flare: tuple[float, float] = (0.0, 0.0)  #: m, (length, opening) of the flared ends
+    cant: float = 0.0  #: m, cant of the route's curve (height difference of the rails)
+    permitted_speed_kmh: float | None = None  #: km/h, the file's permitted speed; None: none
+    permitted_cant_deficiency: float | None = None  #: m, the file's limit; None: none
+
+    def max_curvature(self, x_from: float, x_to: float) -> float:
+        """Largest |1/R| (1/m) of the route between x_from and x_to (table points and ends)."""
+        xs = [x_from, x_to] + [x for x in self.curvature.x if x_from <= x <= x_to]
+        return max(abs(self.curvature(x)) for x in xs)
 
     def check_clearance_at(self, pair: ContactPair, x: float) -> float | None:
         """Check-rail clearance (m) at x, opened at the flared ends; None outside the check rail."""
@@ -91,32 +113,42 @@ def route_names(turnout: Turnout) -> tuple[str, ...]:
     return tuple(turnout.raw.get("routes", {}))
 
 
-def _range(r: _Reader, field: str) -> tuple[float, float] | None:
+def _x(r: _Reader, field: str, value: object, plan: TurnoutPlan | None) -> float:
+    """A position: a number (m) or a feature of the plan, e.g. ``"nose_tip - 0.2"``."""
+    if isinstance(value, str):
+        try:
+            return resolve_position(value, plan)
+        except ValueError as err:
+            raise r.fail(field, str(err)) from None
+    return r.check(field, value, positive=False)
+
+
+def _range(r: _Reader, field: str, plan: TurnoutPlan | None) -> tuple[float, float] | None:
     value = r.get(field, None)
     if value is None:
         return None
     if not isinstance(value, list) or len(value) != 2:
         raise r.fail(field, f"must be [x_from, x_to], got {value!r}")
-    a, b = (r.check(field, v, positive=False) for v in value)
+    a, b = (_x(r, field, v, plan) for v in value)
     if not b > a:
         raise r.fail(field, f"range is inverted: {a:g} >= {b:g}")
     return a, b
 
 
-def _pair(r: _Reader, p: str) -> ContactPair:
+def _pair(r: _Reader, p: str, plan: TurnoutPlan | None) -> ContactPair:
     wheel = r.choice(p + ".wheel", tuple(WHEELS))
     rail = r.choice(p + ".rail", RAIL_SLOTS)
     xs, zs = r.get(p + ".x", []), r.get(p + ".z", [])
     if not isinstance(xs, list) or not isinstance(zs, list) or len(xs) != len(zs) or len(xs) == 1:
         raise r.fail(p, "needs lists x and z of the same length (>= 2), or neither")
-    xs = [r.check(p + ".x", v, positive=False) for v in xs]
+    xs = [_x(r, p + ".x", v, plan) for v in xs]
     zs = [r.check(p + ".z", v, positive=False) for v in zs]
     if any(b <= a for a, b in zip(xs, xs[1:])):
         raise r.fail(p + ".x", f"must be increasing, got {xs}")
     if any(abs(z) > 0.05 for z in zs):
         raise r.fail(p + ".z", f"heights must be within +-0.05 m of nominal, got {zs}")
     pair = ContactPair(str(r.get(p + ".name", f"{wheel} wheel on {rail}")), wheel, rail, tuple(xs), tuple(zs),
-                       _range(r, p + ".flange"), _range(r, p + ".check"))
+                       _range(r, p + ".flange", plan), _range(r, p + ".check", plan))
     if not pair.x and not pair.check:
         raise r.fail(p, "needs a height profile (x, z) or a check range")
     return pair
@@ -164,10 +196,11 @@ def load_route(turnout: Turnout, name: str) -> Route:
     raw_pairs = r.get(p + ".contacts")
     if not isinstance(raw_pairs, list) or not raw_pairs:
         raise r.fail(p + ".contacts", "must be a non-empty list of [[contacts]] tables")
+    plan = turnout_plan(turnout) if isinstance(turnout.raw.get("layout"), Mapping) else None
     pairs = []
     for i, raw in enumerate(raw_pairs):
         field = f"{p}.contacts[{i}]"
-        pair = _pair(r.sub(field, raw), field)
+        pair = _pair(r.sub(field, raw), field, plan)
         _check_active(r, turnout, field, pair)
         pairs.append(pair)
     curvature = r.get(p + ".curvature", 0.0)
@@ -177,8 +210,66 @@ def load_route(turnout: Turnout, name: str) -> Route:
     clearance = r.number("check_rail.clearance") if has_check else math.nan
     flare = (r.number("check_rail.flare_length", False, 0.0), r.number("check_rail.flare_opening", False, 0.0)) \
         if has_check else (0.0, 0.0)
+    limit_speed = r.get(p + ".permitted_speed_kmh", None)
+    limit_deficiency = r.get(p + ".permitted_cant_deficiency", None)
     return Route(name, str(r.get(p + ".description", "")), curvature, tuple(pairs), rail_y,
-                 _continues(r, p + ".continues", turnout), clearance, flare)
+                 _continues(r, p + ".continues", turnout), clearance, flare,
+                 r.number(p + ".cant", positive=False, default=0.0),
+                 None if limit_speed is None else r.number(p + ".permitted_speed_kmh"),
+                 None if limit_deficiency is None else r.number(p + ".permitted_cant_deficiency"))
+
+
+def cant_deficiency(speed_kmh: float, curvature: float, cant: float = 0.0) -> float:
+    """Cant deficiency (m): the cant that would balance the curve, less the cant there is.
+
+    D = G v^2 |1/R| / g - cant, G = :data:`RAIL_CENTRE_DISTANCE` (EN 13803's definition of
+    cant deficiency for standard gauge).
+
+    Parameters
+    ----------
+    speed_kmh : float
+        Speed (km/h).
+    curvature : float
+        1/R (1/m); its sign is ignored.
+    cant : float
+        Cant (m) of the curve.
+
+    Returns
+    -------
+    float
+        Cant deficiency (m).
+    """
+    v = speed_kmh / 3.6
+    return RAIL_CENTRE_DISTANCE * v**2 * abs(curvature) / GRAVITY - cant
+
+
+def speed_warnings(route: Route, speed_kmh: float, x_from: float, x_to: float) -> list[str]:
+    """Warnings for a passage above the route's permitted speed or cant deficiency.
+
+    Parameters
+    ----------
+    route : Route
+    speed_kmh : float
+        The passage's speed (km/h).
+    x_from, x_to : float
+        The passage's x range (m).
+
+    Returns
+    -------
+    list of str
+        One sentence per limit exceeded (empty when none is or the file sets none).
+    """
+    out = []
+    if route.permitted_speed_kmh is not None and speed_kmh > route.permitted_speed_kmh + 1e-9:
+        out.append(f"route {route.name}: {speed_kmh:g} km/h is above the permitted "
+                   f"{route.permitted_speed_kmh:g} km/h of the turnout file")
+    deficiency = cant_deficiency(speed_kmh, route.max_curvature(x_from, x_to), route.cant)
+    if route.permitted_cant_deficiency is not None \
+            and deficiency > route.permitted_cant_deficiency + 1e-9:
+        out.append(f"route {route.name}: cant deficiency {1e3 * deficiency:.0f} mm at "
+                   f"{speed_kmh:g} km/h is above the permitted "
+                   f"{1e3 * route.permitted_cant_deficiency:.0f} mm of the turnout file")
+    return out
 
 
 def _curvature(r: _Reader, p: str) -> Table1D:

@@ -18,6 +18,7 @@ from exudyn.advancedUtilities import CreateSymbolicUserFunction
 from exudyn.itemInterface import (CartesianSpringDamper, MarkerBodyPosition, MarkerNodePosition, MassPoint2D,
                                   NodePoint2D, NodeRigidBody2D, ObjectGround, RigidBody2D)
 
+from .cross_section import CrossSectionSpring, cross_section_springs
 from .modal import TrackMatrices, dof_names
 from .parameters import CoRunningParameters, reference_support
 from .turnout import RAIL_SLOTS, Entry, Polynomial
@@ -64,13 +65,27 @@ class EntryLaw:
         """Entry at x; ``lib`` provides ``min``/``max`` (default: Python's, or ``exudyn.symbolic``)."""
         lo, hi = (min, max) if lib is None else (lib.min, lib.max)
         if entry.kind == "Delta_z":
-            return entry.a * self.inv_K_st_z * _horner(self.K_sw, x, lo, hi)
+            return entry.a * _support_factor(self.K_sw, self.inv_K_st_z, x, lo, hi)
         if entry.kind == "Delta_y":
-            return entry.a * self.inv_K_st_y * _horner(self.K_sh, x, lo, hi)
+            return entry.a * _support_factor(self.K_sh, self.inv_K_st_y, x, lo, hi)
         if entry.kind == "ramp":
             s = lo(hi((x - self.x_start) * (1.0 / (self.x_end - self.x_start)), 0.0), 1.0)
             return entry.a + (entry.b - entry.a) * s
         return entry.a
+
+
+def _support_factor(p: Polynomial, inv_K_st: float, x: Any, lo: Callable, hi: Callable) -> Any:
+    """Delta(x) of Eqs 11, 15 with plain track ahead of the toe, with min/max only.
+
+    Equals :func:`exudyn_turnout.parameters.delta_z` / ``delta_y``: with the blend weight
+    w = clamp((x - plain_track_end) / (x_min - plain_track_end), 0, 1), Delta is
+    (1 - w) + w K(x) / K_st (K held at its end values outside [x_min, x_max]).
+    """
+    ratio = inv_K_st * _horner(p, x, lo, hi)
+    if p.plain_track_end is None:
+        return ratio
+    w = lo(hi((x - p.plain_track_end) * (1.0 / (p.x_min - p.plain_track_end)), 0.0), 1.0)
+    return (1.0 - w) + w * ratio
 
 
 def _horner(p: Polynomial, x: Any, lo: Callable, hi: Callable) -> Any:
@@ -79,33 +94,6 @@ def _horner(p: Polynomial, x: Any, lo: Callable, hi: Callable) -> Any:
     for c in reversed(p.coefficients[:-1]):
         acc = acc * xc + c
     return acc
-
-
-@dataclass(frozen=True)
-class _Spring:
-    """One CartesianSpringDamper of the cross-section: its ends and entry names (y, z)."""
-
-    name: str
-    sleeper_y: float | None  #: m, attachment on the sleeper (from its centre); None: not on it
-    ground_y: float | None  #: m, attachment on the ground; None: not on it
-    nodes: tuple[str, ...]  #: names of node ends ("r1", "m0_r1")
-    k: tuple[str | None, str | None]  #: entry names for y and z stiffness
-    c: tuple[str | None, str | None]  #: entry names for y and z damping
-
-
-def _springs(params: CoRunningParameters) -> list[_Spring]:
-    zone, out = params.zone, []
-    for j, y_b in zip((1, 2), zone.ballast_y):
-        out.append(_Spring(f"ballast_z{j}", y_b - zone.sleeper_y, y_b, (), (None, f"k_tg{j}_z"), (None, f"c_tg{j}_z")))
-    out.append(_Spring("ballast_y", 0.0, zone.sleeper_y, (), ("k_tg_y", None), ("c_tg_y", None)))
-    for rail in (r for r in RAIL_SLOTS if r in params.active_rails):
-        j = rail[1:]
-        out.append(_Spring(f"pad_{rail}", zone.rail_y[rail] - zone.sleeper_y, None, (rail,),
-                           (f"k_rt{j}_y", f"k_rt{j}_z"), (f"c_rt{j}_y", f"c_rt{j}_z")))
-        if params.layers == 3:
-            out.append(_Spring(f"layer_{rail}", None, None, (rail, f"m0_{rail}"),
-                               (f"k_0{j}_y", f"k_0{j}_z"), (f"c_0{j}_y", f"c_0{j}_z")))
-    return out
 
 
 @dataclass(frozen=True)
@@ -246,7 +234,7 @@ def _add_springs(mbs: exu.MainSystem, params: CoRunningParameters, items: Mappin
     law = EntryLaw.of(params)
     connectors, dependent = {}, []
     keep = mbs.variables.setdefault(_KEEPALIVE, [])  # symbolic functions must outlive the run
-    for spring in _springs(params):
+    for spring in cross_section_springs(params):
         connectors[spring.name] = co = _add_spring(mbs, items, spring, values)
         entries = [params.entries[n] if n else None for n in spring.k + spring.c]
         if mechanism != "constant" and any(e is not None and e.kind != "const" for e in entries):
@@ -281,7 +269,7 @@ def _add_bodies(mbs: exu.MainSystem, params: CoRunningParameters, values: Mappin
     return out
 
 
-def _add_spring(mbs: exu.MainSystem, items: Mapping, spring: _Spring, values: Mapping[str, float]) -> int:
+def _add_spring(mbs: exu.MainSystem, items: Mapping, spring: CrossSectionSpring, values: Mapping[str, float]) -> int:
     markers = []
     if spring.ground_y is not None:
         markers.append(mbs.AddMarker(MarkerBodyPosition(bodyNumber=items["ground"],

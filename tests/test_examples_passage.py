@@ -18,7 +18,7 @@ def _load(name):
 
 
 def test_through_example(tmp_path, capsys):
-    results = _load("passage_through").run(tmp_path, x_start=45.0, x_end=47.0)
+    results = _load("passage_through").run(tmp_path, x_start=46.4, x_end=48.4)
     assert (tmp_path / "through_2_vs_3_layers.png").exists()
     assert results[3].summary["peak_Fz_crossing_N"] < results[2].summary["peak_Fz_crossing_N"]
     assert "2-layer, through" in capsys.readouterr().out

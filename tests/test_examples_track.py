@@ -28,7 +28,8 @@ def test_example_writes_figures_and_csvs(example, tmp_path, capsys):
         assert p.read_bytes()[:4] == b"\x89PNG"
     csvs = sorted(p.name for p in (tmp_path / "out").glob("*.csv"))
     assert len(csvs) == 8 and "crossing_rail_vertical_3-layer.csv" in csvs
-    for case in ("switch rail (x = 4 m)", "crossing rail (x = 45.8 m)"):
+    # x of the crossing case: 0.267 m after the plan's nose tip, 46.898 m (test_geometry.py)
+    for case in ("switch rail (x = 4.0 m)", "crossing rail (x = 47.2 m)"):
         assert f"{case}" in printed
     assert printed.count("2-layer") == 2 and printed.count("3-layer") == 2
 

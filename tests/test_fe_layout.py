@@ -6,8 +6,8 @@ Reference values and their sources:
   44.29 m (start of the crossing panel, paper Section 2) and -0.750 m at 47.749 m, the
   rail-centre crossing point (inside the crossing panel 44.29-51.52 m); the right rail
   (radius R - 0.75) is at -0.816 m at 10 m and -2.253 m at 47.749 m;
-- the file's [[zones]] rail_y (cross-sections of the co-running model: zone 1 r1 = -0.82
-  m, zone 2 r1 = -2.25 m, r2 = -0.75 m, r3 = 0.68 m, r4 = 0.75 m, sleeper_y = -0.75 m)
+- the file's [[zones]] rail_y (cross-sections of the co-running model: zone 1 r1 = -0.75
+  m where the wheel runs on it, checked at 3 m before the load transfer; zone 2 r1 = -2.25 m, r2 = -0.75 m, r3 = 0.68 m, r4 = 0.75 m, sleeper_y = -0.75 m)
   and rail_types per slot (Table 3): the layout must agree with them;
 - sleeper length table of the file (2.5 m plain track, 4.06 m crossing panel, Table 1).
 """
@@ -35,7 +35,7 @@ def test_rail_positions(layout, rail, x, y):
     assert layout.rail_y(rail, x) == pytest.approx(y, abs=0.001)
 
 
-@pytest.mark.parametrize("zone_index,x", [(1, 10.0), (2, 47.749), (3, 55.0)])
+@pytest.mark.parametrize("zone_index,x", [(1, 3.0), (2, 47.749), (3, 55.0)])
 def test_slots_agree_with_zones(turnout, layout, zone_index, x):
     """Every active slot's rail sits at the zone's rail_y (10 mm) and has its rail type."""
     zone = turnout.zone(zone_index)

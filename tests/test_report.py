@@ -218,3 +218,84 @@ def test_tables_keep_their_columns(quick_report):
 def test_cache_and_no_cache_are_exclusive(capsys, tmp_path):
     assert main(["validate", "--out", str(tmp_path), "--quick", "--cache", str(tmp_path), "--no-cache"]) == 2
     assert "not both" in capsys.readouterr().err
+
+
+# --- report settings: everything turnout-specific from the file or the model ---------------
+
+def _without_report(turnout, **report):
+    """The turnout with its [report] section replaced (or removed when ``report`` is empty)."""
+    import dataclasses
+    raw = {k: v for k, v in turnout.raw.items() if k != "report"}
+    if report:
+        raw["report"] = report
+    return dataclasses.replace(turnout, raw=raw)
+
+
+def test_default_report_settings_are_the_former_constants(turnout):
+    """The packaged file's [report] and model give what the report used to hard-code.
+
+    Except the quick passage window, which used to be 44.0-47.5 m and now follows the nose.
+    """
+    from exudyn_turnout.fe.layout import load_layout
+    from exudyn_turnout.report import receptance_positions
+    from exudyn_turnout.report_settings import (check_rails, quick_passage_x, report_settings,
+                                                stock_rails)
+    s = report_settings(turnout)
+    assert s.speeds_kmh == (("through", 100.0), ("diverging", 80.0))
+    assert [r.signals for r in s.routes] == [(("Fz", "switch"), ("Fz", "crossing")),
+                                             (("Fy", "switch"), ("Fy", "crossing"))]
+    assert {r.wheel for r in s.routes} == {"right"} and s.impact_route == "through"
+    assert s.crossing_plot_window == (0.8, 2.2)
+    # quick passages: 3.5 m centred on the wheel's dip onto the nose, on a 0.1 m grid
+    x_dip = receptance_positions(turnout, settings=s)["crossing rail"][1]
+    assert s.quick_passage_x is None
+    x0, x1 = quick_passage_x(turnout, s)
+    assert x0 <= x_dip - 1.75 < x0 + 0.1 and x1 - 0.1 < x_dip + 1.75 <= x1
+    # the crossing region is the crossing panel, zone 2
+    assert s.regions == {"switch": (0.0, 10.0), "crossing": (44.29, 51.0)}
+    assert s.switch_claim_x == 22.0 and s.reference_rail_type == "stock"
+    assert (s.receptance_route, s.receptance_wheel, s.receptance_slot) == ("through", "right", "r2")
+    layout = load_layout(turnout)
+    assert stock_rails(s, layout) == ("stock_left", "stock_right")
+    assert check_rails(s, layout, turnout) == ("check_through", "check_diverging")
+
+
+def test_report_defaults_without_a_report_section(turnout):
+    """Defaults: every route; 100 km/h straight; sqrt(0.65 x 760) x 3.6 = 80.0 km/h on 760 m."""
+    from exudyn_turnout.report_settings import quick_passage_x, report_settings
+    t = _without_report(turnout)
+    s = report_settings(t)
+    assert s.speeds_kmh == (("through", 100.0), ("diverging", 80.0))
+    assert s.route("through").forces == ("Fz",) and s.route("diverging").forces == ("Fy",)
+    assert s.route("diverging").radius == pytest.approx(760.0, rel=1e-6)
+    x0, x1 = quick_passage_x(t, s)
+    # 3.5 m about the dip, rounded outwards to 0.1 m
+    assert x1 - x0 == pytest.approx(3.6, abs=0.11) and x0 < 47.0 < x1
+    assert "by the report's default" in s.speeds_note
+
+
+@pytest.mark.parametrize("report, field", [
+    ({"routes": {"through": {"wheel": "middle"}}}, "report.routes.through.wheel"),
+    ({"routes": {"through": {"speed_kmh": -5.0}}}, "report.routes.through.speed_kmh"),
+    ({"routes": {"through": {"forces": ["Fx"]}}}, "report.routes.through.forces"),
+    ({"routes": {"main": {}}}, "report.routes.main"),
+    ({"routes": {"through": {"speeed_kmh": 90.0}}}, "report.routes.through.speeed_kmh"),
+    ({"quick_passage_x": [50.0, 70.0]}, "report.quick_passage_x"),
+    ({"crossing_plot_window": [1.0]}, "report.crossing_plot_window"),
+    ({"receptance_slot": "r7"}, "report.receptance_slot"),
+    ({"stock_rail": ["stock_left"]}, "report.stock_rail"),
+])
+def test_bad_report_settings_name_file_and_field(turnout, report, field):
+    from exudyn_turnout.report_settings import report_settings
+    from exudyn_turnout.turnout import TurnoutFileError
+    with pytest.raises(TurnoutFileError, match=rf"^uic60_760_1_15\.toml: {re.escape(field)} "):
+        report_settings(_without_report(turnout, **report))
+
+
+def test_unknown_report_rail_ids_are_named(turnout):
+    from exudyn_turnout.fe.layout import load_layout
+    from exudyn_turnout.report_settings import report_settings, stock_rails
+    from exudyn_turnout.turnout import TurnoutFileError
+    s = report_settings(_without_report(turnout, stock_rails=["stock_left", "nonesuch"]))
+    with pytest.raises(TurnoutFileError, match="report.stock_rails names rail 'nonesuch'"):
+        stock_rails(s, load_layout(turnout))

@@ -16,7 +16,7 @@ from exudyn_turnout.routes import dip_angle, load_route
 from exudyn_turnout.turnout import load_turnout
 
 #: x windows (m) of the overlay: the load transfer at the switch and the crossing nose.
-WINDOWS = (("switch: stock rail to switch blade", (1.0, 8.0)), ("crossing nose", (45.0, 47.5)))
+WINDOWS = (("switch: stock rail to switch blade", (1.0, 8.0)), ("crossing nose", (46.0, 48.5)))
 
 
 def run_all(turnout, speed_kmh: float = 100.0) -> dict:
@@ -49,7 +49,7 @@ def main(argv=None):
     out = Path(args.out)
     for name, r in results.items():
         write_passage(r, out / f"through_100_{name}")
-    x, depth, two_alpha = dip_angle(load_route(turnout, "through"), "right", 45.0, 46.5)
+    x, depth, two_alpha = dip_angle(load_route(turnout, "through"), "right", 46.0, 48.5)
     print(f"through route, 100 km/h, right wheel; crossing dip at x = {x:.2f} m, depth {1e3 * depth:.2f} mm, "
           f"2 alpha = {1e3 * two_alpha:.1f} mrad; FE: {results['FE'].summary['n_dof']} DOFs\n")
     print(peak_table(results))

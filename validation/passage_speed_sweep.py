@@ -33,7 +33,7 @@ def main(argv=None):
     args = parser.parse_args(argv)
     turnout = load_turnout()
     for route, wheel in (("through", "right"), ("diverging", "left")):
-        x, depth, two_alpha = dip_angle(load_route(turnout, route), wheel, 45.0, 46.5)
+        x, depth, two_alpha = dip_angle(load_route(turnout, route), wheel, 46.0, 48.5)
         print(f"{route}: crossing dip of the {wheel} wheel's path at x = {x:.2f} m, depth {1e3 * depth:.2f} mm, "
               f"2 alpha = {1e3 * two_alpha:.1f} mrad")
     print("\nright wheel peaks (kN), forces on the rail:\n")

@@ -20,8 +20,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping
 
-import numpy as np
 
+from ..geometry import Centreline, load_centrelines
 from ..turnout import RAIL_SLOTS, Turnout, TurnoutFileError
 
 __all__ = [
@@ -41,32 +41,8 @@ __all__ = [
 TURNOUT_TRACK = "turnout"
 
 
-@dataclass(frozen=True)
-class Route:
-    """A route centreline: straight, or straight - circular curve - straight tangent."""
-
-    name: str
-    side: float  #: -1 curve to the right, +1 to the left, 0 straight
-    radius: float = math.inf  #: m, R of the curve
-    curve_start_x: float = math.inf  #: m, where the curve leaves y = 0 tangentially
-    curve_end_x: float = math.inf  #: m, centreline tangent point after the curve
-
-    def y(self, x, offset: float = 0.0):
-        """Lateral position (m) of a line at ``offset`` (m, left positive) from the centreline.
-
-        On the curve the line is the concentric circle of radius R - side * offset.
-        """
-        x = np.asarray(x, float)
-        if self.side == 0 or not math.isfinite(self.radius):
-            return np.full_like(x, offset) if x.ndim else float(offset)
-        R, s = self.radius, self.side
-        rho = R - s * offset
-        theta1 = math.asin(min((self.curve_end_x - self.curve_start_x) / R, 1.0))
-        x1 = self.curve_start_x + rho * math.sin(theta1)
-        dx = np.clip(x - self.curve_start_x, 0.0, x1 - self.curve_start_x)
-        y = s * (R - np.sqrt(rho**2 - dx**2))
-        y = y + s * math.tan(theta1) * np.maximum(x - x1, 0.0)
-        return y if y.ndim else float(y)
+#: A route centreline (the plan geometry lives in :mod:`exudyn_turnout.geometry`).
+Route = Centreline
 
 
 @dataclass(frozen=True)
@@ -204,19 +180,8 @@ def _interval(src: str, field: str, value: Any) -> tuple[float, float]:
     return a, b
 
 
-def _routes(src: str, sec: Mapping[str, Any]) -> dict[str, Route]:
-    p = "layout.diverging"
-    d = _get(src, sec, p, "diverging")
-    side = _get(src, d, p + ".side", "side")
-    if side not in ("left", "right"):
-        raise _fail(src, p + ".side", f"must be one of left, right, got {side!r}")
-    R = _number(src, p + ".radius", _get(src, d, p + ".radius", "radius"), positive=True)
-    x0 = _number(src, p + ".curve_start_x", _get(src, d, p + ".curve_start_x", "curve_start_x"))
-    x1 = _number(src, p + ".curve_end_x", _get(src, d, p + ".curve_end_x", "curve_end_x"))
-    if not x0 < x1 < x0 + R:
-        raise _fail(src, p + ".curve_end_x", f"must lie between curve_start_x and curve_start_x + radius, got {x1:g}")
-    return {"through": Route("through", 0.0),
-            "diverging": Route("diverging", 1.0 if side == "left" else -1.0, R, x0, x1)}
+def _routes(turnout: Turnout) -> dict[str, Route]:
+    return load_centrelines(turnout)
 
 
 def _segments(src: str, p: str, raw: Any, turnout: Turnout, tracks: Mapping[str, Track]) -> tuple[Segment, ...]:
@@ -293,7 +258,10 @@ def _tracks(src: str, sec: Mapping[str, Any], routes) -> dict[str, Track]:
     return tracks
 
 
-def _slots(src: str, sec: Mapping[str, Any], rails: tuple[LayoutRail, ...], routes) -> dict:
+def _slots(src: str, sec: Mapping[str, Any], rails: tuple[LayoutRail, ...], routes,
+           route_names: tuple[str, ...] = ()) -> dict:
+    """Slot tables per route: keyed by the file's routes ([routes.<name>]), or by a centreline."""
+    routes = tuple(route_names) + tuple(r for r in routes if r not in route_names)
     raw = _get(src, sec, "layout.slots", "slots")
     if not isinstance(raw, Mapping) or not all(isinstance(t, Mapping) for t in raw.values()):
         raise _fail(src, "layout.slots", "must be tables [layout.slots.<route>] of slot = [{rail, x}, ...]")
@@ -322,6 +290,11 @@ def _slots(src: str, sec: Mapping[str, Any], rails: tuple[LayoutRail, ...], rout
                 items.append(SlotRange(rid, a, b))
             out[route][slot] = tuple(items)
     return out
+
+
+def _route_names(turnout: Turnout) -> tuple[str, ...]:
+    routes = turnout.raw.get("routes")
+    return tuple(routes) if isinstance(routes, Mapping) else ()
 
 
 def _fits(src: str, sec: Mapping[str, Any], rails: tuple[LayoutRail, ...]) -> dict[str, FitRange]:
@@ -355,7 +328,7 @@ def load_layout(turnout: Turnout) -> Layout:
     x1 = _number(src, "layout.x_end", _get(src, sec, "layout.x_end", "x_end"))
     if not x1 > x0:
         raise _fail(src, "layout.x_end", f"must be > x_start = {x0:g}, got {x1:g}")
-    routes = _routes(src, sec)
+    routes = _routes(turnout)
     tracks = _tracks(src, sec, routes)
     rails = _rails(src, sec, turnout, routes, tracks)
     fits = _fits(src, sec, rails)
@@ -368,7 +341,8 @@ def load_layout(turnout: Turnout) -> Layout:
     overhang = _number(src, "layout.bearers.min_overhang", _get(src, b, "layout.bearers.min_overhang",
                                                               "min_overhang", 0.2))
     return Layout(src, x0, x1, _number(src, "layout.sleeper_x0", _get(src, sec, "layout.sleeper_x0", "sleeper_x0")),
-                  routes, tracks, rails, _slots(src, sec, rails, routes), fits, kappa, nu, overhang)
+                  routes, tracks, rails, _slots(src, sec, rails, routes, _route_names(turnout)),
+                  fits, kappa, nu, overhang)
 
 
 def plain_track_layout(rail_type: str = "stock", length: float = 6.0, rail_spacing: float = 1.5,

@@ -1,0 +1,865 @@
+"""The railway vehicle as data: bodies, suspensions, bumpstop; derived loads; hand frequencies.
+
+Pure data and arithmetic (no Exudyn, no plotting). :func:`load_vehicle_model` reads a
+vehicle file (TOML, SI units) into the frozen :class:`VehicleModel`; the packaged default
+is ``data/manchester_vehicle.toml``, the Manchester benchmark vehicle 1 (Iwnicki (ed.),
+Vehicle System Dynamics 30(3-4) (1998) 295-313). One file layout describes
+
+- a full vehicle: a car body on two bogies, two wheelsets per bogie (``bogies = 2``), or
+- single wheelsets, each under its own sprung share (``bogies = 0``, a ``[sprung_mass]``
+  table, no car body, no secondary suspension): the package's fast study model.
+
+Axes: x forward, y left, z up; heights above the rail top; x of every body relative to the
+vehicle reference, the front wheelset at x = 0 (the others behind it, x < 0).
+
+The ``*_frequency`` functions are hand calculations of natural frequencies on rigid track,
+used as references for the Exudyn model (``tests/test_full_vehicle.py``). Each states its
+source and its assumptions (which neighbours are held, which springs act in series).
+
+Errors in a file raise :class:`VehicleModelError` (a ``ValueError``) with one line naming
+the file and the field, e.g. ``v.toml: car_body.mass must be > 0, got -1``.
+"""
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, replace
+from importlib import resources
+from pathlib import Path
+from typing import Any, Mapping
+
+import numpy as np
+
+__all__ = [
+    "GRAVITY",
+    "VehicleModelError",
+    "BodyData",
+    "WheelsetData",
+    "SuspensionData",
+    "BumpStop",
+    "SprungMass",
+    "VehicleModel",
+    "default_vehicle_model_path",
+    "load_vehicle_model",
+    "single_wheelset_share",
+    "series",
+    "sway_frequencies",
+    "carbody_bounce_frequency",
+    "carbody_pitch_frequency",
+    "carbody_yaw_frequency",
+    "carbody_sway_frequencies",
+    "bogie_bounce_frequency",
+    "bogie_pitch_frequency",
+    "bogie_sway_frequencies",
+    "wheelset_bounce_frequency",
+    "hand_frequencies",
+]
+
+GRAVITY = 9.81  #: m/s^2, as the package's single-wheelset model (vehicle.GRAVITY)
+
+
+class VehicleModelError(ValueError):
+    """A vehicle file cannot be read, misses a field or holds a value that cannot be right."""
+
+
+@dataclass(frozen=True)
+class BodyData:
+    """A rigid body kind (car body or bogie frame) and where its copies sit."""
+
+    mass: float  #: kg, each
+    roll_inertia: float  #: kg m^2, Jx about the longitudinal axis through the CoG
+    pitch_inertia: float  #: kg m^2, Jy about the lateral axis
+    yaw_inertia: float  #: kg m^2, Jz about the vertical axis
+    cog_height: float  #: m above the rail top
+    x: tuple[float, ...]  #: m, longitudinal position of each copy (front wheelset at 0)
+
+
+@dataclass(frozen=True)
+class WheelsetData:
+    """The wheelsets: one kind, several positions."""
+
+    mass: float  #: kg, each
+    roll_inertia: float  #: kg m^2, Jx
+    spin_inertia: float  #: kg m^2, Jy about the axle
+    yaw_inertia: float  #: kg m^2, Jz
+    wheel_radius: float  #: m, nominal rolling radius r0 (= axle height above the rail)
+    back_to_back: float  #: m, flange back distance
+    contact_semi_spacing: float  #: m, lateral semi-distance of the nominal contact points
+    x: tuple[float, ...]  #: m, position of each wheelset, x[0] = 0 (front), then decreasing
+    bogie: tuple[int, ...]  #: 0-based bogie index of each wheelset, -1: none
+
+    @property
+    def cog_height(self) -> float:
+        """Height (m) of the axle above the rail: the wheel radius."""
+        return self.wheel_radius
+
+
+@dataclass(frozen=True)
+class SuspensionData:
+    """One suspension element (per axlebox or per bogie side), acting along x, y, z."""
+
+    k_x: float  #: N/m, longitudinal stiffness
+    k_y: float  #: N/m, lateral stiffness
+    k_z: float  #: N/m, vertical stiffness
+    c_x: float  #: N s/m, longitudinal damping
+    c_y: float  #: N s/m, lateral damping
+    c_z: float  #: N s/m, vertical damping
+    semi_spacing: float  #: m, lateral semi-spacing of the two elements of a body
+    height: float  #: m above the rail top, where the element acts
+
+
+@dataclass(frozen=True)
+class BumpStop:
+    """Lateral bumpstop between car body and bogie: free within +-clearance, then a table."""
+
+    clearance: float  #: m, free play each side
+    height: float  #: m above the rail, where it acts (at the bogie centre's x)
+    displacement: tuple[float, ...]  #: m, increasing, all > clearance
+    force: tuple[float, ...]  #: N at those displacements, non-decreasing, >= 0
+
+    def ramps(self) -> tuple[tuple[float, ...], tuple[float, ...]]:
+        """Breakpoints u_i (m) and slope increments s_i (N/m) of the characteristic.
+
+        F(u) = sign(u) sum_i s_i max(|u| - u_i, 0): the table (with (clearance, 0) in front),
+        linear in between and extrapolated with the last slope, as a sum of ramps; written
+        with abs, max and sign only, so it serves Python and Exudyn symbolic functions.
+
+        Returns
+        -------
+        tuple of tuple of float
+            (breakpoints, slope increments), the same length.
+        """
+        u = (self.clearance,) + self.displacement
+        f = (0.0,) + self.force
+        slopes = [(f[i + 1] - f[i]) / (u[i + 1] - u[i]) for i in range(len(u) - 1)]
+        slopes.append(slopes[-1])  # extrapolation beyond the table: the last slope
+        increments = [slopes[0]] + [slopes[i] - slopes[i - 1] for i in range(1, len(u) - 1)]
+        return u[:-1], tuple(increments)
+
+    def lateral_force(self, u: float) -> float:
+        """Force (N) at relative lateral displacement u (m); odd in u, 0 within the clearance.
+
+        Parameters
+        ----------
+        u : float
+            Relative lateral displacement car body minus bogie at the bumpstop (m).
+
+        Returns
+        -------
+        float
+            Restoring force magnitude with the sign of u (N).
+        """
+        points, increments = self.ramps()
+        a = abs(u)
+        return math.copysign(sum(s * max(a - p, 0.0) for p, s in zip(points, increments)), u)
+
+
+@dataclass(frozen=True)
+class SprungMass:
+    """Share of bogie and car body carried by one wheelset (single-wheelset model)."""
+
+    mass: float  #: kg, per wheelset
+    height: float  #: m above the rail, where the point mass sits (primary springs reach it)
+
+
+@dataclass(frozen=True)
+class VehicleModel:
+    """A vehicle file's content, SI units (see the module docstring for the two layouts)."""
+
+    name: str
+    description: str
+    reference: str  #: literature source of the data
+    wheelset: WheelsetData
+    primary: SuspensionData  #: per axlebox
+    car_body: BodyData | None  #: None for the single-wheelset layout
+    bogie: BodyData | None  #: None for the single-wheelset layout
+    secondary: SuspensionData | None  #: per bogie side
+    secondary_yaw_stiffness: float  #: N m/rad per bogie, bogie vs car body about z
+    anti_roll_stiffness: float  #: N m/rad per bogie, anti-roll bar (relative roll)
+    bumpstop: BumpStop | None  #: lateral, one per bogie
+    sprung_mass: SprungMass | None  #: per wheelset, single-wheelset layout only
+    source: str  #: file name the model was read from ("" if built in code)
+
+    @property
+    def n_wheelsets(self) -> int:
+        """Number of wheelsets."""
+        return len(self.wheelset.x)
+
+    @property
+    def n_bogies(self) -> int:
+        """Number of bogies (0 in the single-wheelset layout)."""
+        return 0 if self.bogie is None else len(self.bogie.x)
+
+    @property
+    def total_mass(self) -> float:
+        """Mass (kg) of the whole vehicle (for a single wheelset: wheelset + sprung share)."""
+        m = self.n_wheelsets * self.wheelset.mass
+        if self.car_body is not None:
+            m += self.car_body.mass * len(self.car_body.x)
+        if self.bogie is not None:
+            m += self.bogie.mass * self.n_bogies
+        if self.sprung_mass is not None:
+            m += self.sprung_mass.mass * self.n_wheelsets
+        return m
+
+    @property
+    def unsprung_mass_per_wheel(self) -> float:
+        """Unsprung mass (kg) per wheel: half a wheelset."""
+        return 0.5 * self.wheelset.mass
+
+    def wheelset_loads(self) -> tuple[float, ...]:
+        """Static vertical load (N) of each wheelset on level track, by the lever rule.
+
+        The car body's weight goes to the two bogies in inverse proportion to their
+        distance from its CoG, each bogie's load (its share plus its weight) to its two
+        wheelsets the same way, plus each wheelset's own weight (statics, first principles).
+
+        Returns
+        -------
+        tuple of float
+            One load per wheelset (N), in the order of ``wheelset.x``.
+        """
+        w = self.wheelset
+        loads = [w.mass * GRAVITY] * self.n_wheelsets
+        if self.sprung_mass is not None:
+            return tuple(q + self.sprung_mass.mass * GRAVITY for q in loads)
+        body, bogie = self.car_body, self.bogie
+        xb = bogie.x
+        xc = body.x[0]
+        shares = ((xc - xb[1]) / (xb[0] - xb[1]), (xb[0] - xc) / (xb[0] - xb[1]))
+        for j, share in enumerate(shares):
+            q = share * body.mass * GRAVITY + bogie.mass * GRAVITY
+            mine = [i for i, b in enumerate(w.bogie) if b == j]
+            x0, x1 = w.x[mine[0]], w.x[mine[1]]
+            loads[mine[0]] += q * (xb[j] - x1) / (x0 - x1)
+            loads[mine[1]] += q * (x0 - xb[j]) / (x0 - x1)
+        return tuple(loads)
+
+    def static_wheel_loads(self) -> tuple[float, ...]:
+        """Static wheel load (N) of each wheelset on straight level track: half its load.
+
+        Returns
+        -------
+        tuple of float
+            One value per wheelset (both wheels carry the same on level track).
+        """
+        return tuple(0.5 * q for q in self.wheelset_loads())
+
+    @property
+    def static_wheel_load(self) -> float:
+        """Mean static wheel load (N): total weight / (2 n_wheelsets)."""
+        return self.total_mass * GRAVITY / (2 * self.n_wheelsets)
+
+
+def default_vehicle_model_path() -> Path:
+    """Path of the packaged Manchester benchmark vehicle 1 file.
+
+    Returns
+    -------
+    Path
+    """
+    return Path(str(resources.files("exudyn_turnout") / "data" / "manchester_vehicle.toml"))
+
+
+# ----------------------------------------------------------------------------------- reading
+#: Plausibility bounds (upper limits, SI) of vehicle-file quantities.
+_BOUNDS = {"mass": 1e6, "inertia": 1e7, "height": 10.0, "spacing": 5.0, "stiffness": 1e12,
+           "damping": 1e10, "x": 1e3, "rot_stiffness": 1e12, "force": 1e8, "clearance": 0.5}
+
+
+class _Fields:
+    """Reads fields of a parsed vehicle file; one error naming file and field per problem."""
+
+    def __init__(self, filename: str, data: Mapping[str, Any]):
+        self.filename = filename
+        self.data = data
+
+    def fail(self, field: str, problem: str) -> VehicleModelError:
+        return VehicleModelError(f"{self.filename}: {field} {problem}")
+
+    def has(self, table: str) -> bool:
+        return table in self.data
+
+    def get(self, field: str) -> Any:
+        node: Any = self.data
+        for part in field.split("."):
+            if not isinstance(node, Mapping) or part not in node:
+                raise self.fail(field, "is missing")
+            node = node[part]
+        return node
+
+    def text(self, field: str) -> str:
+        value = self.get(field)
+        if not isinstance(value, str):
+            raise self.fail(field, f"must be a string, got {value!r}")
+        return value
+
+    def check(self, field: str, value: Any, kind: str, positive: bool = True) -> float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise self.fail(field, f"must be a number, got {value!r}")
+        if not math.isfinite(value):
+            raise self.fail(field, f"must be finite, got {value!r}")
+        if kind == "x":
+            if abs(value) > _BOUNDS["x"]:
+                raise self.fail(field, f"must be within +-{_BOUNDS['x']:g} m, got {value:g}")
+            return float(value)
+        if positive and value <= 0:
+            raise self.fail(field, f"must be > 0, got {value:g}")
+        if value < 0:
+            raise self.fail(field, f"must be >= 0, got {value:g}")
+        if value > _BOUNDS[kind]:
+            raise self.fail(field, f"must be <= {_BOUNDS[kind]:g} (physically plausible bound), "
+                                   f"got {value:g}")
+        return float(value)
+
+    def number(self, field: str, kind: str, positive: bool = True) -> float:
+        return self.check(field, self.get(field), kind, positive)
+
+    def numbers(self, field: str, kind: str, positive: bool = True) -> tuple[float, ...]:
+        value = self.get(field)
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            value = [value]
+        if not isinstance(value, list) or not value:
+            raise self.fail(field, "must be a number or a non-empty list of numbers, "
+                                   f"got {value!r}")
+        return tuple(self.check(f"{field}[{i}]", v, kind, positive) for i, v in enumerate(value))
+
+    def integer(self, field: str, lo: int, hi: int) -> int:
+        return _integer(self, field, self.get(field), lo, hi)
+
+
+def _read(path: Path) -> dict:
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise VehicleModelError(f"{path.name}: cannot be read ({exc.strerror or exc})") from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        raise VehicleModelError(f"{path.name}: is not UTF-8 text") from None
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise VehicleModelError(f"{path.name}: is not valid TOML ({exc})") from None
+
+
+def _body(r: _Fields, table: str, count: int | None) -> BodyData:
+    if count is None:  # the car body: one position
+        x = (r.number(f"{table}.x", "x"),)
+    else:
+        x = r.numbers(f"{table}.x", "x")
+        if len(x) != count:
+            raise r.fail(f"{table}.x",
+                         f"must list {count} positions (vehicle.bogies), got {len(x)}")
+    return BodyData(r.number(f"{table}.mass", "mass"), r.number(f"{table}.roll_inertia", "inertia"),
+                    r.number(f"{table}.pitch_inertia", "inertia"),
+                    r.number(f"{table}.yaw_inertia", "inertia"),
+                    r.number(f"{table}.cog_height", "height"), x)
+
+
+def _suspension(r: _Fields, table: str) -> SuspensionData:
+    k = [r.number(f"{table}.k_{d}", "stiffness") for d in "xyz"]
+    c = [r.number(f"{table}.c_{d}", "damping", positive=False) for d in "xyz"]
+    return SuspensionData(*k, *c, r.number(f"{table}.semi_spacing", "spacing"),
+                          r.number(f"{table}.height", "height"))
+
+
+def _bumpstop(r: _Fields) -> BumpStop:
+    t = "lateral_bumpstop"
+    clearance = r.number(f"{t}.clearance", "clearance")
+    u = r.numbers(f"{t}.displacement", "clearance")
+    f = r.numbers(f"{t}.force", "force", positive=False)
+    if len(f) != len(u):
+        raise r.fail(f"{t}.force", f"must have one value per displacement ({len(u)}), got {len(f)}")
+    if u[0] <= clearance or any(b <= a for a, b in zip(u, u[1:])):
+        raise r.fail(f"{t}.displacement", "must increase strictly and start beyond the clearance")
+    if any(b < a for a, b in zip(f, f[1:])):
+        raise r.fail(f"{t}.force", "must not decrease")
+    return BumpStop(clearance, r.number(f"{t}.height", "height"), u, f)
+
+
+def _wheelset(r: _Fields, n_wheelsets: int, n_bogies: int) -> WheelsetData:
+    t = "wheelset"
+    radius = r.number(f"{t}.wheel_radius", "height")
+    if not 0.1 <= radius <= 2.0:
+        raise r.fail(f"{t}.wheel_radius", f"must be in 0.1..2 m (a railway wheel), got {radius:g}")
+    x = r.numbers(f"{t}.x", "x")
+    if len(x) != n_wheelsets:
+        raise r.fail(f"{t}.x",
+                     f"must list {n_wheelsets} positions (vehicle.wheelsets), got {len(x)}")
+    if x[0] != 0.0 or any(b >= a for a, b in zip(x, x[1:])):
+        raise r.fail(f"{t}.x", "must start at 0 (the front wheelset) and decrease strictly")
+    if n_bogies:
+        raw = r.get(f"{t}.bogie")
+        if not isinstance(raw, list) or len(raw) != n_wheelsets:
+            raise r.fail(f"{t}.bogie", f"must list one bogie number per wheelset, got {raw!r}")
+        bogie = tuple(_integer(r, f"{t}.bogie[{i}]", v, 1, n_bogies) - 1
+                      for i, v in enumerate(raw))
+        for j in range(n_bogies):
+            if bogie.count(j) != 2:
+                raise r.fail(f"{t}.bogie", f"must give bogie {j + 1} exactly two wheelsets")
+    else:
+        bogie = (-1,) * n_wheelsets
+    b = r.number(f"{t}.contact_semi_spacing", "spacing")
+    back = r.number(f"{t}.back_to_back", "spacing")
+    if back >= 2.0 * b:
+        raise r.fail(f"{t}.back_to_back", f"must be < 2 contact_semi_spacing ({2 * b:g} m), "
+                                          f"got {back:g}")
+    return WheelsetData(r.number(f"{t}.mass", "mass"), r.number(f"{t}.roll_inertia", "inertia"),
+                        r.number(f"{t}.spin_inertia", "inertia"),
+                        r.number(f"{t}.yaw_inertia", "inertia"), radius, back, b, x, bogie)
+
+
+def _integer(r: _Fields, field: str, value: Any, lo: int, hi: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise r.fail(field, f"must be an integer, got {value!r}")
+    if not lo <= value <= hi:
+        raise r.fail(field, f"must be in {lo}..{hi}, got {value}")
+    return int(value)
+
+
+def load_vehicle_model(path: str | Path | None = None) -> VehicleModel:
+    """Load and validate a vehicle file (default: the packaged Manchester vehicle 1).
+
+    Every number must be finite, > 0 (dampings, yaw and anti-roll stiffness, bumpstop
+    forces >= 0) and within a plausibility bound: masses <= 1e6 kg, inertias <= 1e7 kg m^2,
+    heights <= 10 m, semi-spacings <= 5 m, stiffnesses <= 1e12 N/m (N m/rad), dampings
+    <= 1e10 N s/m, positions |x| <= 1e3 m, wheel radius 0.1..2 m; the counts
+    ``vehicle.wheelsets`` (1..16) and ``vehicle.bogies`` (0 or 2) must match the positions;
+    a bogie has exactly two wheelsets; with bogies the file has ``[car_body]``, ``[bogie]``,
+    ``[secondary_suspension]``, ``[secondary_yaw]``, ``[anti_roll]``,
+    ``[lateral_bumpstop]`` and no ``[sprung_mass]``; without bogies it is the other way.
+    Tables the vehicle model does not use (e.g. ``[contact]``) are ignored.
+
+    Parameters
+    ----------
+    path : str or Path, optional
+        TOML vehicle file.
+
+    Returns
+    -------
+    VehicleModel
+
+    Raises
+    ------
+    VehicleModelError
+        The file cannot be read, is not UTF-8 TOML, or a field is missing or out of range;
+        one line naming the file and the field.
+    """
+    path = Path(path) if path is not None else default_vehicle_model_path()
+    r = _Fields(path.name, _read(path))
+    n_w = r.integer("vehicle.wheelsets", 1, 16)
+    n_b = r.integer("vehicle.bogies", 0, 2)
+    if n_b == 1:
+        raise r.fail("vehicle.bogies", "must be 0 (single wheelsets) or 2 (car body on two bogies)")
+    full_tables = ("car_body", "bogie", "secondary_suspension", "secondary_yaw", "anti_roll",
+                   "lateral_bumpstop")
+    required, forbidden = full_tables, ("sprung_mass",)
+    if not n_b:
+        required, forbidden = forbidden, required
+    for table in required:
+        if not r.has(table):
+            raise r.fail(f"[{table}]", f"is missing (vehicle.bogies = {n_b})")
+    for table in forbidden:
+        if r.has(table):
+            raise r.fail(f"[{table}]", f"must be absent (vehicle.bogies = {n_b})")
+    wheelset = _wheelset(r, n_w, n_b)
+    primary = _suspension(r, "primary_suspension")
+    if n_b:
+        if n_w != 2 * n_b:
+            raise r.fail("vehicle.wheelsets", f"must be 2 per bogie ({2 * n_b}), got {n_w}")
+        car_body, bogie = _body(r, "car_body", None), _body(r, "bogie", n_b)
+        if not bogie.x[0] > car_body.x[0] > bogie.x[1]:
+            raise r.fail("car_body.x", "must lie between the bogie centres")
+        secondary = _suspension(r, "secondary_suspension")
+        k_yaw = r.number("secondary_yaw.stiffness", "rot_stiffness", positive=False)
+        k_roll = r.number("anti_roll.stiffness", "rot_stiffness", positive=False)
+        bumpstop, sprung = _bumpstop(r), None
+    else:
+        car_body = bogie = secondary = bumpstop = None
+        k_yaw = k_roll = 0.0
+        sprung = SprungMass(r.number("sprung_mass.mass", "mass"),
+                            r.number("sprung_mass.height", "height"))
+    return VehicleModel(r.text("vehicle.name"), r.text("vehicle.description"),
+                        r.text("vehicle.reference"), wheelset, primary, car_body, bogie, secondary,
+                        k_yaw, k_roll, bumpstop, sprung, path.name)
+
+
+def single_wheelset_share(model: VehicleModel, index: int = 0) -> VehicleModel:
+    """The single-wheelset study model of a full vehicle: one wheelset under its sprung share.
+
+    The sprung mass is the wheelset's static load / g minus its own mass (lever rule; for
+    the Manchester vehicle 32000 / 4 + 2615 / 2 = 9307.5 kg), at the primary springs'
+    height, on the same primary suspension.
+
+    Parameters
+    ----------
+    model : VehicleModel
+        A full vehicle (with bogies), or a single-wheelset model (returned unchanged).
+    index : int
+        Which wheelset's share (0: the front one).
+
+    Returns
+    -------
+    VehicleModel
+    """
+    if model.sprung_mass is not None:
+        return model
+    share = model.wheelset_loads()[index] / GRAVITY - model.wheelset.mass
+    wheelset = replace(model.wheelset, x=(0.0,), bogie=(-1,))
+    return replace(model, name=f"{model.name}, wheelset {index + 1} with its sprung share",
+                   wheelset=wheelset, car_body=None, bogie=None, secondary=None,
+                   secondary_yaw_stiffness=0.0, anti_roll_stiffness=0.0, bumpstop=None,
+                   sprung_mass=SprungMass(share, model.primary.height))
+
+
+# -------------------------------------------------------------------------- hand calculations
+def series(*stiffnesses: float) -> float:
+    """Stiffness of springs in series, 1 / sum(1 / k_i) (first principles; inf allowed).
+
+    Parameters
+    ----------
+    *stiffnesses : float
+        Stiffnesses (any consistent unit); ``math.inf`` is a rigid link.
+
+    Returns
+    -------
+    float
+    """
+    return 1.0 / sum(1.0 / k for k in stiffnesses)
+
+
+def _hz(k: float, m: float) -> float:
+    return math.sqrt(k / m) / (2.0 * math.pi)
+
+
+def sway_frequencies(mass: float, roll_inertia: float, k_lateral: float, lever: float,
+                     k_roll: float) -> tuple[float, float]:
+    """Coupled lateral-roll (sway) frequencies of a rigid body on springs, 2x2 (Hz).
+
+    First principles (as Garg & Dukkipati, Dynamics of Railway Vehicle Systems, 1984,
+    ch. 7, lateral/roll model of a car body): coordinates y (lateral, at the CoG) and phi
+    (roll, positive lifting the left side); the lateral springs act at ``lever`` above the
+    CoG (negative: below), where the lateral displacement is y - lever phi, so
+    ``K = [[k, -k e], [-k e, k e^2 + k_roll]]``, ``M = diag(m, J)``.
+
+    Parameters
+    ----------
+    mass : float
+        kg.
+    roll_inertia : float
+        kg m^2 about the longitudinal axis through the CoG.
+    k_lateral : float
+        N/m, total lateral stiffness.
+    lever : float
+        m, height of the lateral springs relative to the CoG.
+    k_roll : float
+        N m/rad, roll stiffness from the vertical springs (and anti-roll bars), including
+        the gravitational term (negative for a body standing on springs below its CoG).
+
+    Returns
+    -------
+    tuple of float
+        (lower sway, upper sway) frequencies in Hz.
+    """
+    k = np.array([[k_lateral, -k_lateral * lever],
+                  [-k_lateral * lever, k_lateral * lever**2 + k_roll]])
+    w2 = np.linalg.eigvalsh(k / np.sqrt(np.outer([mass, roll_inertia], [mass, roll_inertia])))
+    lo, hi = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * math.pi)
+    return float(lo), float(hi)
+
+
+def _wheelsets_of(model: VehicleModel, j: int) -> list[int]:
+    return [i for i, b in enumerate(model.wheelset.bogie) if b == j]
+
+
+def _primary_vertical(model: VehicleModel, k_track_z: float) -> float:
+    """Vertical stiffness (N/m) of one axlebox spring in series with its wheel's track spring."""
+    return series(model.primary.k_z, k_track_z)
+
+
+def _per_bogie_vertical(model: VehicleModel, k_track_z: float) -> float:
+    """Vertical stiffness (N/m) under the car body at one bogie: secondary in series with the
+    bogie's four axlebox springs (each in series with its track spring); bogie mass neglected."""
+    return series(2.0 * model.secondary.k_z, 4.0 * _primary_vertical(model, k_track_z))
+
+
+def _require_full(model: VehicleModel) -> None:
+    if model.car_body is None:
+        raise ValueError(f"{model.name}: has no car body and bogies (single-wheelset layout)")
+
+
+def carbody_bounce_frequency(model: VehicleModel, k_track_z: float = math.inf) -> float:
+    """Car body bounce (Hz): f = sqrt(K / m) / 2 pi.
+
+    K: per bogie the two secondary springs in series with the four axlebox springs (each in
+    series with the wheel's track spring ``k_track_z``), summed over the bogies; the bogie
+    mass is neglected (quasi-static series: Iwnicki (ed.), Handbook of Railway Vehicle
+    Dynamics, 2006, ch. 5 "Suspension components", the suspension stages of a bogie vehicle
+    in series; first principles). Bounce and pitch uncouple for a car body midway between
+    the bogies.
+
+    Parameters
+    ----------
+    model : VehicleModel
+        A full vehicle.
+    k_track_z : float
+        N/m, vertical support stiffness under each wheel (default: rigid).
+
+    Returns
+    -------
+    float
+        Hz.
+    """
+    _require_full(model)
+    return _hz(model.n_bogies * _per_bogie_vertical(model, k_track_z), model.car_body.mass)
+
+
+def carbody_pitch_frequency(model: VehicleModel, k_track_z: float = math.inf) -> float:
+    """Car body pitch (Hz): K = sum_bogies (K_b a_b^2 + 2 k_x2 e^2) + m g e, J = Jy.
+
+    K_b as in :func:`carbody_bounce_frequency`, a_b the bogie centre's distance from the
+    car body's CoG; e = height of the secondary springs minus the CoG height (< 0): pitch
+    moves the springs' ends longitudinally by e theta against the bogies (the car body's
+    longitudinal position is held by the moving frame), and m g e is the gravitational term
+    of a body standing on vertical springs below its CoG (first principles; Garg &
+    Dukkipati 1984, ch. 7).
+
+    Parameters
+    ----------
+    model : VehicleModel
+        A full vehicle.
+    k_track_z : float
+        N/m, vertical support stiffness under each wheel (default: rigid).
+
+    Returns
+    -------
+    float
+        Hz.
+    """
+    _require_full(model)
+    c, s = model.car_body, model.secondary
+    e = s.height - c.cog_height
+    k = sum(_per_bogie_vertical(model, k_track_z) * (xb - c.x[0])**2 + 2.0 * s.k_x * e**2
+            for xb in model.bogie.x)
+    return _hz(k + c.mass * GRAVITY * e, c.pitch_inertia)
+
+
+def carbody_yaw_frequency(model: VehicleModel) -> float:
+    """Car body yaw on the secondary suspension, bogies held (Hz).
+
+    K = sum over bogies of 2 k_y a_b^2 (lateral springs at the bogie centre's distance a_b
+    from the CoG) + 2 k_x b^2 (longitudinal springs at the lateral semi-spacing b) +
+    the secondary yaw stiffness; J = Jz (first principles; Garg & Dukkipati 1984, ch. 7).
+
+    Parameters
+    ----------
+    model : VehicleModel
+        A full vehicle.
+
+    Returns
+    -------
+    float
+        Hz.
+    """
+    _require_full(model)
+    s, c = model.secondary, model.car_body
+    k = sum(2.0 * s.k_y * (xb - c.x[0])**2 + 2.0 * s.k_x * s.semi_spacing**2
+            + model.secondary_yaw_stiffness for xb in model.bogie.x)
+    return _hz(k, c.yaw_inertia)
+
+
+def carbody_sway_frequencies(model: VehicleModel, k_track_z: float = math.inf,
+                             bogies_held: bool = False) -> tuple[float, float]:
+    """Car body lower and upper sway (coupled lateral-roll), 2x2 (Hz).
+
+    :func:`sway_frequencies` with: lateral springs 2 k_y2 per bogie at the secondary
+    height (in series with the bogie's four primary k_y1 unless ``bogies_held``); roll
+    stiffness per bogie (2 k_z2 b2^2 + anti-roll bar) in series with the primary roll
+    stiffness 4 k_z1 b1^2 (unless ``bogies_held``); gravitational term m g e with
+    e = secondary height - CoG height (< 0). Bogie masses neglected (quasi-static series).
+
+    Parameters
+    ----------
+    model : VehicleModel
+        A full vehicle.
+    k_track_z : float
+        N/m, vertical support stiffness under each wheel (default: rigid).
+    bogies_held : bool
+        True: the textbook model on the secondary suspension alone.
+
+    Returns
+    -------
+    tuple of float
+        (lower, upper) in Hz.
+    """
+    _require_full(model)
+    s, p, c = model.secondary, model.primary, model.car_body
+    k_lat = 2.0 * s.k_y
+    k_roll = 2.0 * s.k_z * s.semi_spacing**2 + model.anti_roll_stiffness
+    if not bogies_held:
+        k_lat = series(k_lat, 4.0 * p.k_y)
+        k_roll = series(k_roll, 4.0 * _primary_vertical(model, k_track_z) * p.semi_spacing**2)
+    e = s.height - c.cog_height
+    return sway_frequencies(c.mass, c.roll_inertia, model.n_bogies * k_lat, e,
+                            model.n_bogies * k_roll + c.mass * GRAVITY * e)
+
+
+def bogie_bounce_frequency(model: VehicleModel, k_track_z: float = math.inf) -> float:
+    """Bogie frame bounce with car body held (Hz): K = 4 k_z1 (series track) + 2 k_z2.
+
+    First principles: the car body is ~12x heavier and bounces at ~1 Hz, far below, so it
+    acts as held; the axlebox springs stand on the wheelsets on the track springs.
+
+    Parameters
+    ----------
+    model : VehicleModel
+        A full vehicle.
+    k_track_z : float
+        N/m, vertical support stiffness under each wheel (default: rigid).
+
+    Returns
+    -------
+    float
+        Hz.
+    """
+    _require_full(model)
+    k = 4.0 * _primary_vertical(model, k_track_z) + 2.0 * model.secondary.k_z
+    return _hz(k, model.bogie.mass)
+
+
+def bogie_pitch_frequency(model: VehicleModel, k_track_z: float = math.inf, j: int = 0) -> float:
+    """Bogie frame pitch, car body and wheelsets held longitudinally (Hz).
+
+    K = sum over its axleboxes of k_z1 a^2 (a: axle distance from the bogie centre)
+    + 4 k_x1 h1^2 + 2 k_x2 h2^2 (longitudinal springs at heights h1, h2 relative to the
+    bogie CoG) + the gravitational terms sum F_i h_i of the preloaded vertical springs;
+    J = Jy (first principles).
+
+    Parameters
+    ----------
+    model : VehicleModel
+        A full vehicle.
+    k_track_z : float
+        N/m, vertical support stiffness under each wheel (default: rigid).
+    j : int
+        Bogie index.
+
+    Returns
+    -------
+    float
+        Hz.
+    """
+    _require_full(model)
+    p, s, b = model.primary, model.secondary, model.bogie
+    h1, h2 = p.height - b.cog_height, s.height - b.cog_height
+    kz = _primary_vertical(model, k_track_z)
+    k = sum(2.0 * kz * (model.wheelset.x[i] - b.x[j])**2 for i in _wheelsets_of(model, j))
+    k += 4.0 * p.k_x * h1**2 + 2.0 * s.k_x * h2**2 + _bogie_gravity_term(model, j)
+    return _hz(k, b.pitch_inertia)
+
+
+def _bogie_gravity_term(model: VehicleModel, j: int) -> float:
+    """sum_i F_i h_i (N m/rad) of the preloaded vertical springs on bogie j: primary forces up
+    at h1, secondary forces down at h2 (relative to the bogie CoG): the geometric stiffness
+    of rotating a body under vertical point loads (first principles)."""
+    b, c = model.bogie, model.car_body
+    xb, xc = b.x, c.x[0]
+    share = ((xc - xb[1]) / (xb[0] - xb[1]), (xb[0] - xc) / (xb[0] - xb[1]))[j] * c.mass * GRAVITY
+    h1 = model.primary.height - b.cog_height
+    h2 = model.secondary.height - b.cog_height
+    return (share + b.mass * GRAVITY) * h1 - share * h2
+
+
+def bogie_sway_frequencies(model: VehicleModel, k_track_z: float = math.inf,
+                           k_track_y: float = math.inf, j: int = 0) -> tuple[float, float]:
+    """Bogie frame lower and upper sway (coupled lateral-roll), car body held (Hz).
+
+    For the Manchester bogie the lower mode is ~80 % roll (kinetic energy), the upper ~80 %
+    lateral (the lateral springs act 0.14 m below and 0.23 m above the CoG).
+
+    :func:`sway_frequencies` with lateral springs 4 k_y1 at the primary height (each
+    wheelset's pair in series with its two track springs ``k_track_y``) and 2 k_y2 at the
+    secondary height (their combined lever about the CoG), roll stiffness
+    4 k_z1 b1^2 (series track) + 2 k_z2 b2^2 + anti-roll bar + the gravitational term
+    (first principles; car body ~33x the bogie's roll inertia: held).
+
+    Parameters
+    ----------
+    model : VehicleModel
+        A full vehicle.
+    k_track_z, k_track_y : float
+        N/m, vertical and lateral support stiffness under each wheel (default: rigid).
+    j : int
+        Bogie index.
+
+    Returns
+    -------
+    tuple of float
+        (lower, upper) in Hz.
+    """
+    _require_full(model)
+    p, s, b = model.primary, model.secondary, model.bogie
+    h1, h2 = p.height - b.cog_height, s.height - b.cog_height
+    k1 = 2.0 * series(2.0 * p.k_y, 2.0 * k_track_y)  # two wheelsets
+    k2 = 2.0 * s.k_y
+    k_lat = k1 + k2
+    lever = (k1 * h1 + k2 * h2) / k_lat
+    # the lateral springs' own roll stiffness beyond k_lat lever^2 (two levers)
+    extra = k1 * h1**2 + k2 * h2**2 - k_lat * lever**2
+    k_roll = (4.0 * _primary_vertical(model, k_track_z) * p.semi_spacing**2
+              + 2.0 * s.k_z * s.semi_spacing**2 + model.anti_roll_stiffness
+              + _bogie_gravity_term(model, j) + extra)
+    return sway_frequencies(b.mass, b.roll_inertia, k_lat, lever, k_roll)
+
+
+def wheelset_bounce_frequency(model: VehicleModel, k_track_z: float) -> float:
+    """Wheelset bounce on the track springs and the primary suspension, bogie held (Hz).
+
+    K = 2 k_track_z + 2 k_z1, m = wheelset mass (first principles).
+
+    Parameters
+    ----------
+    model : VehicleModel
+    k_track_z : float
+        N/m, vertical support stiffness under each wheel.
+
+    Returns
+    -------
+    float
+        Hz.
+    """
+    return _hz(2.0 * k_track_z + 2.0 * model.primary.k_z, model.wheelset.mass)
+
+
+def hand_frequencies(model: VehicleModel, k_track_z: float = math.inf,
+                     k_track_y: float = math.inf) -> dict[str, float]:
+    """All hand-calculated natural frequencies of a full vehicle (Hz), keyed by mode name.
+
+    Keys: ``carbody_bounce``, ``carbody_pitch``, ``carbody_yaw``, ``carbody_lower_sway``,
+    ``carbody_upper_sway``, ``bogie_bounce``, ``bogie_pitch``, ``bogie_lower_sway``,
+    ``bogie_upper_sway`` and, for finite ``k_track_z``, ``wheelset_bounce``.
+
+    Parameters
+    ----------
+    model : VehicleModel
+        A full vehicle.
+    k_track_z, k_track_y : float
+        N/m, vertical and lateral support stiffness under each wheel (default: rigid).
+
+    Returns
+    -------
+    dict of str to float
+    """
+    lower, upper = carbody_sway_frequencies(model, k_track_z)
+    b_lower, b_upper = bogie_sway_frequencies(model, k_track_z, k_track_y)
+    out = {"carbody_bounce": carbody_bounce_frequency(model, k_track_z),
+           "carbody_pitch": carbody_pitch_frequency(model, k_track_z),
+           "carbody_yaw": carbody_yaw_frequency(model),
+           "carbody_lower_sway": lower, "carbody_upper_sway": upper,
+           "bogie_bounce": bogie_bounce_frequency(model, k_track_z),
+           "bogie_pitch": bogie_pitch_frequency(model, k_track_z),
+           "bogie_lower_sway": b_lower, "bogie_upper_sway": b_upper}
+    if math.isfinite(k_track_z):
+        out["wheelset_bounce"] = wheelset_bounce_frequency(model, k_track_z)
+    return out

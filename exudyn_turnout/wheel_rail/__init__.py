@@ -1,0 +1,46 @@
+"""Wheel/rail contact from real profiles: readers, sections, geometry, Hertz, creep, tables.
+
+Self-contained (numpy/scipy; no exudyn): the passage simulation plugs in through
+:func:`tables.build_contact_table` and :func:`tables.lookup`.  Conventions (every module):
+SI units; a profile's lateral axis y points towards the field side, z up; rails placed in
+*side coordinates* (y from the track centre line, the same for left and right rail); contact
+angles positive when the normal force on the wheel points towards the track centre.
+
+Modules: :mod:`.profiles` (Simpack .prw/.prr, CONTACT .slcs readers), :mod:`.sections`
+(gridded rail sections along x, placement, slices, switch/crossing design sections, rigid
+wheel envelope), :mod:`.geometry` (candidate contact points, wheelset equilibrium,
+equivalent conicity, flange angle, Nadal), :mod:`.hertz` (exact Hertz ellipse, C_H),
+:mod:`.creep` (Kalker coefficients, Polach's creep forces with spin), :mod:`.tables`
+(cached tables, vectorised lookup), :mod:`.transfer` (load transfer and dips),
+:mod:`.references` (CONTACT reference outputs), :mod:`.data` (packaged data),
+:mod:`.figures` (plots; the only module importing matplotlib, imported on demand).
+"""
+from .creep import CreepForces, KalkerCoefficients, kalker_coefficients, polach_creep_forces
+from .geometry import (Candidates, WheelGrid, WheelsetContact, WheelsetSetup,
+                       equivalent_conicity, find_candidates, flange_angle, grid_wheel,
+                       nadal_limit, solve_wheelset, surface_derivatives)
+from .hertz import HertzContact, curvature_sums, effective_modulus, hertz_constant, hertz_contact
+from .profiles import (Profile, ProfileFormatError, SliceSet, read_plain_profile, read_profile,
+                       read_simpack_profile, read_slices)
+from .sections import (CrossingDesign, SectionGrid, SwitchDesign, crossing_sections,
+                       lateral_grid, place_rail, plain_rail_sections, slice_sections,
+                       switch_sections, wheel_envelope)
+from .tables import (ContactLookup, ContactTable, TableSettings, build_contact_table,
+                     default_cache_dir, lookup, normal_force)
+from .transfer import DipSummary, WheelPath, dip_summary, wheel_path
+
+__all__ = [
+    "CreepForces", "KalkerCoefficients", "kalker_coefficients", "polach_creep_forces",
+    "Candidates", "WheelGrid", "WheelsetContact", "WheelsetSetup", "equivalent_conicity",
+    "find_candidates", "flange_angle", "grid_wheel", "nadal_limit", "solve_wheelset",
+    "surface_derivatives",
+    "HertzContact", "curvature_sums", "effective_modulus", "hertz_constant", "hertz_contact",
+    "Profile", "ProfileFormatError", "SliceSet", "read_plain_profile", "read_profile",
+    "read_simpack_profile", "read_slices",
+    "CrossingDesign", "SectionGrid", "SwitchDesign", "crossing_sections", "lateral_grid",
+    "place_rail", "plain_rail_sections", "slice_sections", "switch_sections",
+    "wheel_envelope",
+    "ContactLookup", "ContactTable", "TableSettings", "build_contact_table",
+    "default_cache_dir", "lookup", "normal_force",
+    "DipSummary", "WheelPath", "dip_summary", "wheel_path",
+]

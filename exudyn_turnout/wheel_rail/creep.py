@@ -1,0 +1,212 @@
+"""Kalker's creep coefficients and Polach's creep-force law with spin.
+
+Kalker coefficients
+-------------------
+``C11, C22, C23, C33`` of the linear theory, ``F_x = -G a b C11 xi``,
+``F_y = -G a b (C22 eta + sqrt(a b) C23 phi)``, ``M_z = -G (a b)^1.5 (-C23 eta + sqrt(a b)
+C33 phi)`` (a: semi-axis in the rolling direction, b lateral), interpolated linearly in the
+ellipse ratio and in Poisson's ratio from Kalker's table (J.J. Kalker, *Three-dimensional
+elastic bodies in rolling contact*, Kluwer 1990, Table E3; first published in his 1967
+thesis; reproduced in Iwnicki (ed.), *Handbook of Railway Vehicle Dynamics*, CRC 2006,
+ch. 4).  Rows a/b = 0.1 ... 1 and b/a = 0.9 ... 0.1, columns nu = 0, 0.25, 0.5; outside
+a/b in [0.1, 10] the end rows are used (Kalker's slender-ellipse asymptotes are not).
+
+Provenance of the numbers (checked 2026-11):
+
+* C11, C22, C23: all 171 entries equal, digit for digit, the copy of Table E.3 in CONTACT
+  (E.A.H. Vollebregt, github.com/eve70a/CONTACT, ``src/m_hertz.f90``, subroutine
+  ``linrol``, commit e60b3ac, which cites Kalker 1990 Table E.3).  CONTACT interpolates in
+  Poisson's ratio with a parabola in 1/C; the linear interpolation here differs from it by
+  at most 2.4 % at nu = 0.28 (C33 at b/a = 0.1), mostly by well under 1 %.
+* C33: no published copy could be consulted (CONTACT tabulates only C11, C22, C23, and
+  the book was not at hand), so this column was not checked entry by entry against a
+  publication.  Its a/b = 0.1 row agrees with the leading-order strip-theory asymptote
+  ``C33 -> pi^2 / (16 (1 - nu) a/b)`` (derived from Carter's 2-D linear solution per
+  strip) within 4 %, 1 % and 5 % for nu = 0, 0.25, 0.5, the same size as the deviation of
+  the verified C23 row from its asymptote.  An independent numerical solution of the
+  linear theory for nu = 0 (panel method: two identical half-spaces, uniform tractions on
+  up to 170 x 170 cells, full stick in steady rolling; a one-off check, not part of the
+  package) reproduces the verified C11 and C23 within 1 % and gives C33 = 1.22 at
+  a/b = 1 (table 1.19), 1.76 at 0.5 (1.74), 3.48 at 0.2 (3.46) and 0.98 at b/a = 0.5
+  (0.958), the last three still falling with refinement.  So the nu = 0 column of C33 is
+  confirmed within about 3 %; the nu = 0.25 and 0.5 columns only by the asymptote.  Treat
+  C33 as uncertain to a few per cent until compared with Table E3 itself.
+
+Saturation: Polach's method
+---------------------------
+O. Polach, "A fast wheel-rail forces calculation computer code", VSD 33 Suppl. (1999)
+728-739, with the reduction factors of O. Polach, "Creep forces in simulations of traction
+vehicles running on adhesion limit", Wear 258 (2005) 992-1000:
+
+    F = 2 Q mu / pi (k_A eps / (1 + (k_A eps)^2) + arctan(k_S eps)),
+    eps = pi G a b c_jj s / (4 Q mu),  c_jj = sqrt((C11 xi / s)^2 + (C22 eta / s)^2),
+
+plus the lateral force of spin from the same paper (``F_yS``, with the spin-reduced
+creepage ``s_C``).  Why Polach and not FASTSIM: it is closed form (a few dozen flops per
+contact, no strip discretisation), smooth in the creepages (good for the implicit
+integrator's Newton iterations), vectorises over all contacts of a step, and reproduces
+Kalker's linear theory for small creepage and Coulomb saturation at large creepage,
+including spin, which the flange and crossing contacts need.  FASTSIM would give the
+traction distribution (for wear maps) at ~100 times the cost; not needed here.
+
+Sign convention: forces on the wheel, opposing the creepages (Kalker's convention).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["KalkerCoefficients", "kalker_coefficients", "CreepForces", "polach_creep_forces"]
+
+# Kalker (1990) Table E3.  Columns: C11 (nu = 0, .25, .5), C22 (...), C23 (...), C33 (...).
+# Rows: a/b = 0.1 ... 1.0, then b/a = 0.9 ... 0.1.  C11-C23 checked against CONTACT's
+# copy (src/m_hertz.f90, linrol); C33 unchecked against a publication (module docstring).
+_KALKER_ROWS = (
+    (2.51, 3.31, 4.85, 2.51, 2.52, 2.53, 0.334, 0.473, 0.731, 6.42, 8.28, 11.7),
+    (2.59, 3.37, 4.81, 2.59, 2.63, 2.66, 0.483, 0.603, 0.809, 3.46, 4.27, 5.66),
+    (2.68, 3.44, 4.80, 2.68, 2.75, 2.81, 0.607, 0.715, 0.889, 2.49, 2.96, 3.72),
+    (2.78, 3.53, 4.82, 2.78, 2.88, 2.98, 0.720, 0.823, 0.977, 2.02, 2.32, 2.77),
+    (2.88, 3.62, 4.83, 2.88, 3.01, 3.14, 0.827, 0.929, 1.07, 1.74, 1.93, 2.22),
+    (2.98, 3.72, 4.91, 2.98, 3.14, 3.31, 0.930, 1.03, 1.18, 1.56, 1.68, 1.86),
+    (3.09, 3.81, 4.97, 3.09, 3.28, 3.48, 1.03, 1.14, 1.29, 1.43, 1.50, 1.60),
+    (3.19, 3.91, 5.05, 3.19, 3.41, 3.65, 1.13, 1.25, 1.40, 1.33, 1.37, 1.42),
+    (3.29, 4.01, 5.12, 3.29, 3.54, 3.82, 1.23, 1.36, 1.51, 1.26, 1.26, 1.27),
+    (3.40, 4.12, 5.20, 3.40, 3.67, 3.98, 1.33, 1.47, 1.63, 1.19, 1.17, 1.16),
+    (3.51, 4.22, 5.30, 3.51, 3.81, 4.16, 1.44, 1.59, 1.77, 1.14, 1.09, 1.06),
+    (3.65, 4.36, 5.42, 3.65, 3.99, 4.39, 1.58, 1.75, 1.94, 1.09, 1.01, 0.954),
+    (3.82, 4.54, 5.58, 3.82, 4.21, 4.67, 1.76, 1.95, 2.18, 1.05, 0.946, 0.852),
+    (4.06, 4.78, 5.80, 4.06, 4.50, 5.04, 2.01, 2.23, 2.50, 1.01, 0.892, 0.751),
+    (4.37, 5.10, 6.11, 4.37, 4.90, 5.56, 2.35, 2.62, 2.96, 0.958, 0.830, 0.649),
+    (4.84, 5.57, 6.57, 4.84, 5.48, 6.31, 2.88, 3.24, 3.70, 0.912, 0.773, 0.555),
+    (5.57, 6.34, 7.34, 5.57, 6.40, 7.51, 3.79, 4.32, 5.01, 0.868, 0.708, 0.455),
+    (6.96, 7.78, 8.82, 6.96, 8.14, 9.79, 5.72, 6.63, 7.89, 0.828, 0.642, 0.356),
+    (10.7, 11.7, 12.9, 10.7, 12.8, 16.0, 12.2, 14.6, 18.0, 0.795, 0.578, 0.261),
+)
+# Table axis: t = a/b for a <= b, t = 2 - b/a for a > b (continuous, increasing in a/b).
+_KALKER_AXIS = tuple([0.1 * i for i in range(1, 11)] + [2.0 - 0.1 * i for i in range(9, 0, -1)])
+
+
+@dataclass(frozen=True, eq=False)
+class KalkerCoefficients:
+    """Kalker's creep and spin coefficients (dimensionless, arrays like the inputs)."""
+
+    c11: np.ndarray  #: longitudinal creep
+    c22: np.ndarray  #: lateral creep
+    c23: np.ndarray  #: lateral force from spin / moment from lateral creep
+    c33: np.ndarray  #: spin moment
+
+
+def kalker_coefficients(a, b, poisson: float = 0.28) -> KalkerCoefficients:
+    """Kalker's coefficients for a contact ellipse (table interpolation).
+
+    Parameters
+    ----------
+    a, b : array_like
+        m (or any common unit), semi-axes in rolling and lateral direction.
+    poisson : float
+        Poisson's ratio, 0 ... 0.5 (steel 0.28-0.3).
+
+    Returns
+    -------
+    KalkerCoefficients
+
+    Notes
+    -----
+    C11, C22 and C23 are Kalker's published values (checked against CONTACT's copy of
+    Table E3); C33 is not checked against a publication and is uncertain to a few per cent
+    (see the module docstring).
+    """
+    ratio = np.asarray(a, float) / np.asarray(b, float)
+    axis = np.where(ratio <= 1.0, ratio, 2.0 - 1.0 / ratio)
+    table = np.asarray(_KALKER_ROWS)
+    nu = float(np.clip(poisson, 0.0, 0.5))
+    values = []
+    for block in range(4):
+        columns = table[:, 3 * block:3 * block + 3]
+        per_nu = [np.interp(axis, _KALKER_AXIS, columns[:, j]) for j in range(3)]
+        values.append(_interp_poisson(nu, per_nu))
+    return KalkerCoefficients(*values)
+
+
+def _interp_poisson(nu: float, per_nu: list) -> np.ndarray:
+    if nu <= 0.25:
+        t = nu / 0.25
+        return (1.0 - t) * per_nu[0] + t * per_nu[1]
+    t = (nu - 0.25) / 0.25
+    return (1.0 - t) * per_nu[1] + t * per_nu[2]
+
+
+@dataclass(frozen=True, eq=False)
+class CreepForces:
+    """Creep forces on the wheel (N), arrays like the inputs."""
+
+    longitudinal: np.ndarray  #: N, along the rolling direction
+    lateral: np.ndarray  #: N, in the contact plane, across the rolling direction
+
+
+def polach_creep_forces(creep_longitudinal, creep_lateral, spin, a, b, normal_force,
+                        friction, shear_modulus: float = 8.1e10, poisson: float = 0.28,
+                        reduction_adhesion: float = 1.0, reduction_slip: float = 1.0
+                        ) -> CreepForces:
+    """Creep forces by Polach's method (1999, with 2005's reduction factors).
+
+    Parameters
+    ----------
+    creep_longitudinal, creep_lateral : array_like
+        Creepages xi, eta (-).
+    spin : array_like
+        1/m, spin creepage phi.
+    a, b : array_like
+        m, Hertz semi-axes in rolling and lateral direction.
+    normal_force : array_like
+        N, normal force Q (>= 0; zero gives zero force).
+    friction : array_like
+        Coefficient of friction mu.
+    shear_modulus : float
+        Pa, G (steel 81 GPa).
+    poisson : float
+        Poisson's ratio for Kalker's coefficients.
+    reduction_adhesion, reduction_slip : float
+        Polach's k_A and k_S (1 and 1: the 1999 model, Kalker's linear slope).
+
+    Returns
+    -------
+    CreepForces
+        On the wheel; for small creepages equal to Kalker's linear theory.
+    """
+    xi = np.asarray(creep_longitudinal, float)
+    eta = np.asarray(creep_lateral, float)
+    phi = np.asarray(spin, float)
+    a = np.asarray(a, float)
+    b = np.asarray(b, float)
+    q = np.asarray(normal_force, float)
+    mu = np.asarray(friction, float)
+    coeff = kalker_coefficients(a, b, poisson)
+    loaded = q > 0.0
+    q_mu = np.where(loaded, q * mu, 1.0)
+    # spin-corrected lateral creepage (Polach 1999, Eq. 17)
+    eta_spin = eta + phi * a
+    eta_c = np.where(np.abs(eta_spin) > np.abs(eta), eta_spin, eta)
+    s = np.hypot(xi, eta)
+    s_c = np.hypot(xi, eta_c)
+    safe_s = np.where(s > 0.0, s, 1.0)
+    c_jj = np.where(s > 0.0, np.hypot(coeff.c11 * xi / safe_s, coeff.c22 * eta / safe_s),
+                    coeff.c11)
+    eps = np.pi * shear_modulus * a * b * c_jj * s / (4.0 * q_mu)
+    ka_eps = reduction_adhesion * eps
+    force = 2.0 * q_mu / np.pi * (ka_eps / (1.0 + ka_eps ** 2)
+                                  + np.arctan(reduction_slip * eps))
+    fx = -force * np.where(s > 0.0, xi / safe_s, 0.0)
+    fy = -force * np.where(s > 0.0, eta / safe_s, 0.0)
+    # lateral force of spin (Polach 1999, Eqs 18-21)
+    growth = 1.0 + 6.3 * (1.0 - np.exp(-a / b))
+    eps_m = (8.0 / 3.0) * shear_modulus * b * np.sqrt(a * b) / q_mu * coeff.c23 * eta_c / growth
+    delta = (eps_m ** 2 - 1.0) / (eps_m ** 2 + 1.0)
+    k_m = (np.abs(eps_m) * (delta ** 3 / 3.0 - delta ** 2 / 2.0 + 1.0 / 6.0)
+           - np.sqrt(np.maximum(1.0 - delta ** 2, 0.0) ** 3) / 3.0)
+    safe_sc = np.where(s_c > 0.0, s_c, 1.0)
+    fy_spin = np.where(s_c > 0.0, (9.0 / 16.0) * a * q_mu * k_m * growth * phi / safe_sc, 0.0)
+    fy = fy + fy_spin
+    return CreepForces(longitudinal=np.where(loaded, fx, 0.0),
+                       lateral=np.where(loaded, fy, 0.0))

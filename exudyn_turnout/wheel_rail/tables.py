@@ -1,0 +1,385 @@
+"""Precomputed contact-geometry tables, cached on disk, with a vectorised lookup.
+
+A :class:`ContactTable` holds, for one wheel and one rail body, every candidate contact
+point over the section position x and the wheel's lateral shift towards the field side
+(see :mod:`.geometry`), at zero lift and zero roll relative to the rail: gap, positions on
+rail and wheel, contact angle, rolling radius, curvatures and the Hertz constant.  Roll
+relative to the rail (a few mrad) changes the contact angle by the roll angle to first
+order; the table does not tabulate it.
+
+:func:`lookup` evaluates all contacts of a time step in one call.  Per query it interpolates
+bilinearly between the four surrounding table nodes when they describe the same contact
+points (same candidates present, positions on the rail within 2 mm); otherwise it takes the
+cell's first node (so a change of contact configuration happens within one grid step).
+Gaps are normal gaps, carried to the query's lift to first order, ``gap + cos(gamma) lift``;
+in a cell that is not interpolated also to its shift, ``- sin(gamma) (shift - shift_node)``.
+
+Tables are cached as ``.npz`` under a directory (default ``$XDG_CACHE_HOME/exudyn_turnout``
+or ``~/.cache/exudyn_turnout``, never the working directory) keyed by a SHA-256 of every
+input.
+"""
+from __future__ import annotations
+
+import hashlib
+import os
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .geometry import (FLANGE_DIRECTION, WheelGrid, prepare_rail, prepare_wheel,
+                       search_candidates_batch, surface_derivatives)
+from .hertz import curvature_sums, effective_modulus, hertz_constant
+from .sections import SectionGrid
+
+__all__ = [
+    "TableSettings",
+    "ContactTable",
+    "ContactLookup",
+    "default_cache_dir",
+    "table_key",
+    "build_contact_table",
+    "lookup",
+    "lookup_values",
+    "cell_coefficients",
+    "normal_force",
+]
+
+_FORMAT_VERSION = "wheel_rail-table-8"
+_FIELDS = ("gap", "y_rail", "z_rail", "s_wheel", "angle", "radius", "curvature_rail",
+           "curvature_wheel", "hertz_constant", "x_offset")
+_SIN = len(_FIELDS)  # stored after the public fields: sin(angle) and cos(angle), for the
+_COS = _SIN + 1  # gap's first-order change with shift and lift
+_EMPTY_GAP = 1.0  # m, gap of an empty candidate slot
+_CONSISTENT_DISTANCE = 2e-3  # m, nodes describe the same contact point when this close
+
+
+@dataclass(frozen=True)
+class TableSettings:
+    """Grid and candidate settings of a contact table (SI)."""
+
+    shift_min: float = -0.012  #: m, smallest lateral shift (towards the track centre)
+    shift_max: float = 0.012  #: m, largest lateral shift (towards the field side)
+    shift_step: float = 2e-4  #: m, shift step (0.2 mm: Delta r is piecewise smooth on it)
+    max_candidates: int = 3  #: candidate slots per node
+    #: m, candidates up to this much above the lowest gap are kept (a flange 5 mm away
+    #: from the rail is still tabulated, so that it is found before it hits)
+    max_gap: float = 0.005
+    prominence: float = 5e-5  #: m, gap rise that separates two contact regions
+    #: rad, extra search directions besides vertical (60 deg: flange; add e.g. -70 deg,
+    #: radians, for the back of the flange against a check rail)
+    directions: tuple = (FLANGE_DIRECTION,)
+    young: float = 2.1e11  #: Pa, Young's modulus of wheel and rail steel
+    poisson: float = 0.3  #: Poisson's ratio of wheel and rail steel
+
+
+@dataclass(frozen=True, eq=False)
+class ContactTable:
+    """Candidate contact points over section position and lateral shift."""
+
+    x: np.ndarray  #: m, section positions (n_x,)
+    shift: np.ndarray  #: m, lateral shifts of the wheel towards the field side (n_s,)
+    #: (n_x, n_s, n_c, n_fields + 2) values, fields in ``ContactTable.fields`` order, then
+    #: sin and cos of the contact angle; empty slots: gap 1 m, everything else 0
+    values: np.ndarray
+    count: np.ndarray  #: (n_x, n_s) number of candidates found
+    #: (n_x, n_s) the cell from this node to the next x and shift node may be interpolated
+    #: (its four nodes hold the same slots, contact points within 2 mm)
+    blendable: np.ndarray
+    #: (n_x - 1, n_s - 1, n_c, n_fields + 2, 4) per cell: value = c0 + c1 tx + c2 ts
+    #: + c3 tx ts (bilinear in blendable cells; else the cell's first node with the gap's
+    #: first-order change with shift), see :func:`cell_coefficients`
+    coefficients: np.ndarray
+    key: str  #: SHA-256 of the inputs
+    build_seconds: float  #: s, time to build (0 when loaded from the cache)
+    fields: tuple = _FIELDS  #: names of the last axis of ``values``
+
+    def field(self, name: str) -> np.ndarray:
+        """(n_x, n_s, n_c) array of one field (m, rad, 1/m or N/m^1.5)."""
+        return self.values[..., self.fields.index(name)]
+
+
+@dataclass(frozen=True, eq=False)
+class ContactLookup:
+    """Interpolated candidates for a batch of queries, arrays (n_query, n_candidates)."""
+
+    gap: np.ndarray  #: m, normal gap (negative: interpenetration); 1 m for empty slots
+    penetration: np.ndarray  #: m, normal interpenetration max(-gap, 0)
+    y_rail: np.ndarray  #: m, contact point on the rail (side coordinates)
+    z_rail: np.ndarray  #: m, rail surface height at the contact point
+    s_wheel: np.ndarray  #: m, contact point on the wheel from its taping line
+    angle: np.ndarray  #: rad, contact angle (positive: normal on wheel towards track centre)
+    radius: np.ndarray  #: m, rolling radius
+    hertz_constant: np.ndarray  #: N/m^1.5
+    x_offset: np.ndarray  #: m, longitudinal position of the contact relative to the wheel
+    valid: np.ndarray  #: bool, slot holds a candidate
+
+
+def default_cache_dir() -> Path:
+    """User cache directory for tables: ``$XDG_CACHE_HOME/exudyn_turnout`` or ``~/.cache/...``.
+
+    Returns
+    -------
+    Path
+    """
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "exudyn_turnout" / "wheel_rail"
+
+
+def table_key(wheel: WheelGrid, sections: SectionGrid, taping_line: float,
+              settings: TableSettings) -> str:
+    """SHA-256 of every input of a table.
+
+    Parameters
+    ----------
+    wheel : WheelGrid
+        Gridded wheel.
+    sections : SectionGrid
+        Rail sections.
+    taping_line : float
+        m, nominal taping-line position in the sections' frame.
+    settings : TableSettings
+        Grid settings.
+
+    Returns
+    -------
+    str
+        Hex digest.
+    """
+    digest = hashlib.sha256(_FORMAT_VERSION.encode())
+    for array in (wheel.s, wheel.z, sections.x, sections.y, sections.z,
+                  sections.x_offset if sections.x_offset is not None else np.zeros(0)):
+        digest.update(np.ascontiguousarray(array, dtype=float).tobytes())
+    digest.update(repr((wheel.nominal_radius, taping_line, settings)).encode())
+    return digest.hexdigest()
+
+
+def _blendable_cells(values: np.ndarray) -> np.ndarray:
+    valid = values[..., 0] < 0.5 * _EMPTY_GAP
+    y_rail = values[..., 1]
+    ok = np.zeros(valid.shape[:2], dtype=bool)
+    base_valid, base_y = valid[:-1, :-1], y_rail[:-1, :-1]
+    ok_inner = np.ones(base_valid.shape[:2], dtype=bool)
+    for di, dj in ((1, 0), (0, 1), (1, 1)):
+        other_valid = valid[di:valid.shape[0] - 1 + di, dj:valid.shape[1] - 1 + dj]
+        other_y = y_rail[di:valid.shape[0] - 1 + di, dj:valid.shape[1] - 1 + dj]
+        same = np.all(other_valid == base_valid, axis=-1)
+        close = np.all(np.abs(other_y - base_y) < _CONSISTENT_DISTANCE, axis=-1)
+        ok_inner &= same & close
+    ok[:-1, :-1] = ok_inner
+    return ok
+
+
+def _build_values(wheel: WheelGrid, sections: SectionGrid, taping_line: float,
+                  settings: TableSettings, shifts: np.ndarray
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    derivatives = surface_derivatives(sections)
+    n_c = settings.max_candidates
+    values = np.zeros((len(sections.x), len(shifts), n_c, len(_FIELDS) + 2))
+    values[..., 0] = _EMPTY_GAP
+    count = np.zeros((len(sections.x), len(shifts)), dtype=int)
+    step = float(sections.y[1] - sections.y[0])
+    prepared_wheel = prepare_wheel(wheel, taping_line, 0.0, settings.directions)
+    for i in range(len(sections.x)):
+        rail = prepare_rail(sections.z[i], derivatives.slope[i], derivatives.curvature[i],
+                            sections.y, settings.directions)
+        batch = search_candidates_batch(rail, prepared_wheel, shifts, max_candidates=n_c,
+                                        prominence=settings.prominence,
+                                        max_gap=settings.max_gap)
+        for j, found in enumerate(batch):
+            n = len(found.gap)
+            count[i, j] = n
+            if n == 0:
+                continue
+            if sections.x_offset is not None:
+                index = np.clip(np.round((found.y_rail - sections.y[0]) / step).astype(int),
+                                0, len(sections.y) - 1)
+                x_offset = sections.x_offset[i, index]
+            else:
+                x_offset = np.zeros(n)
+            order = np.argsort(found.y_rail)  # slots ordered from gauge to field side
+            columns = (found.gap, found.y_rail, found.z_rail, found.s_wheel, found.angle,
+                       found.radius, np.nan_to_num(found.curvature_rail),
+                       np.nan_to_num(found.curvature_wheel), np.zeros(n), x_offset,
+                       np.sin(found.angle), np.cos(found.angle))
+            for k, column in enumerate(columns):
+                values[i, j, :n, k] = np.asarray(column, float)[order]
+    valid = count[..., None] > np.arange(n_c)
+    a_sum, b_sum = curvature_sums(values[valid][:, 5], values[valid][:, 4],
+                                  values[valid][:, 7], values[valid][:, 6])
+    values[..., 8][valid] = hertz_constant(a_sum, b_sum,
+                                           effective_modulus(settings.young, settings.poisson))
+    return values, count, _blendable_cells(values)
+
+
+def cell_coefficients(values: np.ndarray, blendable: np.ndarray,
+                      shifts: np.ndarray) -> np.ndarray:
+    """Per-cell interpolation coefficients of a table (what :func:`lookup_values` uses).
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        (n_x, n_s, n_c, n_f) node values (``ContactTable.values``).
+    blendable : numpy.ndarray
+        (n_x, n_s) whether the cell starting at a node may be interpolated bilinearly.
+    shifts : numpy.ndarray
+        m, the table's uniform shift grid.
+
+    Returns
+    -------
+    numpy.ndarray
+        (n_x - 1, n_s - 1, n_c, n_f, 4): ``value = c0 + c1 tx + c2 ts + c3 tx ts`` for the
+        fractions tx, ts of the query inside the cell.  A cell whose four nodes do not hold
+        the same contact points uses its first node, with the normal gap carried to the
+        query's shift to first order (``-sin(angle) (shift - shift_node)``).
+    """
+    v00, v10 = values[:-1, :-1], values[1:, :-1]
+    v01, v11 = values[:-1, 1:], values[1:, 1:]
+    bilinear = np.stack((v00, v10 - v00, v01 - v00, v11 - v10 - v01 + v00), axis=-1)
+    nearest = np.zeros_like(bilinear)
+    nearest[..., 0] = v00
+    step = float(shifts[1] - shifts[0])
+    nearest[..., 0, 2] = -v00[..., _SIN] * step
+    ok = blendable[:-1, :-1][..., None, None, None]
+    return np.where(ok, bilinear, nearest)
+
+
+def build_contact_table(wheel: WheelGrid, sections: SectionGrid, taping_line: float,
+                        settings: TableSettings = TableSettings(),
+                        cache_dir: str | Path | None = None, use_cache: bool = True
+                        ) -> ContactTable:
+    """Build (or load from the cache) the contact table of one wheel on one rail body.
+
+    Parameters
+    ----------
+    wheel : WheelGrid
+        Gridded wheel (same grid step as the sections).
+    sections : SectionGrid
+        Rail sections along x (side coordinates, or the rail's own frame with the wheel's
+        nominal taping line at ``taping_line``).
+    taping_line : float
+        m, nominal lateral position of the wheel's taping line in the sections' frame.
+    settings : TableSettings
+        Grid and candidate settings.
+    cache_dir : str or Path, optional
+        Where tables are cached (default :func:`default_cache_dir`).
+    use_cache : bool
+        Read and write the cache.
+
+    Returns
+    -------
+    ContactTable
+    """
+    shifts = settings.shift_min + settings.shift_step * np.arange(
+        int(round((settings.shift_max - settings.shift_min) / settings.shift_step)) + 1)
+    key = table_key(wheel, sections, taping_line, settings)
+    path = Path(cache_dir or default_cache_dir()) / f"contact_table_{key[:24]}.npz"
+    if use_cache and path.exists():
+        with np.load(path) as data:
+            return ContactTable(x=data["x"], shift=data["shift"], values=data["values"],
+                                count=data["count"], blendable=data["blendable"],
+                                coefficients=cell_coefficients(data["values"],
+                                                               data["blendable"],
+                                                               data["shift"]),
+                                key=key, build_seconds=0.0)
+    start = time.perf_counter()
+    values, count, blendable = _build_values(wheel, sections, taping_line, settings, shifts)
+    elapsed = time.perf_counter() - start
+    if use_cache:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        temporary = path.with_suffix(".tmp.npz")
+        np.savez(temporary, x=sections.x, shift=shifts, values=values, count=count,
+                 blendable=blendable)
+        os.replace(temporary, path)
+    return ContactTable(x=np.asarray(sections.x, float), shift=shifts, values=values,
+                        count=count, blendable=blendable,
+                        coefficients=cell_coefficients(values, blendable, shifts), key=key,
+                        build_seconds=elapsed)
+
+
+def lookup(table: ContactTable, x, shift, lift=0.0) -> ContactLookup:
+    """All candidate contacts for a batch of wheel positions, in one vectorised call.
+
+    Parameters
+    ----------
+    table : ContactTable
+        Table of the wheel/rail pair.
+    x : array_like
+        m, section positions of the queries (clamped to the table).
+    shift : array_like
+        m, lateral shifts of the wheel towards the field side (clamped to the table).
+    lift : array_like
+        m, height of the wheel above its table reference (positive: up).
+
+    Returns
+    -------
+    ContactLookup
+        Arrays (n_query, n_candidates).
+    """
+    values = lookup_values(table, x, shift, lift)
+    index = {name: k for k, name in enumerate(table.fields)}
+    gap = values[..., index["gap"]]
+    valid = gap < 0.5 * _EMPTY_GAP
+    angle = values[..., index["angle"]]
+    penetration = np.where(valid, np.maximum(-gap, 0.0), 0.0)
+    return ContactLookup(gap=gap, penetration=penetration, y_rail=values[..., index["y_rail"]],
+                         z_rail=values[..., index["z_rail"]],
+                         s_wheel=values[..., index["s_wheel"]], angle=angle,
+                         radius=values[..., index["radius"]],
+                         hertz_constant=values[..., index["hertz_constant"]],
+                         x_offset=values[..., index["x_offset"]], valid=valid)
+
+
+def lookup_values(table: ContactTable, x, shift, lift=0.0) -> np.ndarray:
+    """The raw interpolated field array of :func:`lookup` (fastest form).
+
+    Parameters
+    ----------
+    table : ContactTable
+        Table of the wheel/rail pair.
+    x, shift, lift : array_like
+        m, as for :func:`lookup`.
+
+    Returns
+    -------
+    numpy.ndarray
+        (n_query, n_candidates, n_fields) in ``table.fields`` order; the gap (field 0) is the
+        normal gap at the query's shift and lift, 1 m in empty slots (whose Hertz constant
+        is 0, so they never carry force).
+    """
+    xs = table.x
+    shifts = table.shift
+    x = np.asarray(x, dtype=float).ravel()
+    ix = np.minimum(np.maximum(xs.searchsorted(x, side="right") - 1, 0), xs.shape[0] - 2)
+    x_low = xs[ix]
+    tx = np.minimum(np.maximum((x - x_low) / (xs[ix + 1] - x_low), 0.0), 1.0)
+    position = (np.asarray(shift, dtype=float).ravel() - shifts[0]) / (shifts[1] - shifts[0])
+    position = np.minimum(np.maximum(position, 0.0), shifts.shape[0] - 1.000001)
+    js = position.astype(np.intp)
+    ts = (position - js)[:, None, None]
+    tx = tx[:, None, None]
+    c = table.coefficients[ix, js]  # (n_q, n_c, n_f, 4)
+    result = c[..., 0] + tx * c[..., 1] + ts * (c[..., 2] + tx * c[..., 3])
+    gap = result[..., 0]
+    empty = gap >= 0.5 * _EMPTY_GAP
+    gap += result[..., _COS] * np.asarray(lift, dtype=float).reshape(-1, 1)
+    gap[empty] = _EMPTY_GAP
+    return result[..., :_SIN]
+
+
+def normal_force(contacts: ContactLookup) -> np.ndarray:
+    """One-sided Hertz force ``C_H delta^1.5`` along each contact normal.
+
+    Parameters
+    ----------
+    contacts : ContactLookup
+        From :func:`lookup`.
+
+    Returns
+    -------
+    numpy.ndarray
+        N, (n_query, n_candidates); 0 where separated or empty.
+    """
+    delta = contacts.penetration
+    return np.where(delta > 0.0, contacts.hertz_constant * delta * np.sqrt(delta), 0.0)

@@ -1,0 +1,136 @@
+"""Rail sections along x, the rigid-wheel envelope, design sections, cached contact tables."""
+import math
+
+import numpy as np
+import pytest
+
+from exudyn_turnout.wheel_rail.data import profile_path, s1002_wheel, standard_track
+from exudyn_turnout.wheel_rail.geometry import WheelsetSetup, find_candidates, rail_row, \
+    surface_derivatives
+from exudyn_turnout.wheel_rail.profiles import read_simpack_profile, read_slices
+from exudyn_turnout.wheel_rail.sections import (CrossingDesign, SectionGrid, SwitchDesign,
+                                                crossing_sections, incline_profile,
+                                                lateral_grid, place_rail, section_at,
+                                                slice_sections, switch_sections,
+                                                wheel_envelope)
+from exudyn_turnout.wheel_rail.tables import (TableSettings, build_contact_table, lookup,
+                                              normal_force, table_key)
+
+SETUP = WheelsetSetup()
+
+
+def upright_uic60():
+    rail = read_simpack_profile(profile_path("MBench_UIC60_v3.prr"))
+    return place_rail(incline_profile(rail, -1 / 40))
+
+
+def test_slices_are_interpolated_linearly_between_positions():
+    slices = read_slices(profile_path("cross_nose.slcs"))
+    grid = lateral_grid(-0.02, 0.08)
+    sections = slice_sections(slices, grid)
+    np.testing.assert_array_equal(section_at(sections, slices.u[4]), sections.z[4])
+    middle = section_at(sections, 0.5 * (slices.u[4] + slices.u[5]))
+    both = np.isfinite(sections.z[4]) & np.isfinite(sections.z[5])
+    np.testing.assert_allclose(middle[both], 0.5 * (sections.z[4] + sections.z[5])[both])
+    # CONTACT's artificial nose rises at 1:10 (the slice file's comment): 1 mm per 10 mm
+    top = np.nanmax(sections.z, axis=1)
+    assert np.median(np.diff(top[5:15]) / np.diff(slices.u[5:15])) == pytest.approx(0.1,
+                                                                                    rel=0.02)
+
+
+def test_wheel_envelope_meets_a_rising_nose_ahead_and_a_flat_rail_under_the_centre():
+    grid = lateral_grid(-0.02, 0.02, 1e-3)
+    x = np.linspace(-0.2, 0.2, 41)
+    flat = SectionGrid(x=x, y=grid, z=np.zeros((len(x), len(grid))))
+    enveloped = wheel_envelope(flat, np.array([0.0]), 0.46, reach=0.1, step=0.005)
+    np.testing.assert_allclose(enveloped.z, 0.0, atol=1e-15)
+    np.testing.assert_allclose(enveloped.x_offset, 0.0, atol=1e-12)
+    # a ramp z = x / 10 (x > 0): the circle r = 0.46 m touches where its slope is 1/10,
+    # dx = r sin(atan(0.1)) = 45.8 mm ahead (hand value; CONTACT's cross_brute: 45.76 mm)
+    ramp = SectionGrid(x=x, y=grid, z=np.maximum(x, 0.0)[:, None] / 10 + 0 * grid)
+    met = wheel_envelope(ramp, np.array([0.0]), 0.46, reach=0.1, step=0.0005)
+    assert met.x_offset[0, 0] == pytest.approx(0.46 * math.sin(math.atan(0.1)), abs=6e-4)
+
+
+def test_switch_blade_planed_and_lowered_near_the_toe():
+    design = SwitchDesign()
+    grid = lateral_grid(0.70, 0.92)
+    sections = switch_sections(design, upright_uic60(), np.array([0.0, 2.5, 5.0, 8.0]), grid)
+    blade, stock = sections["blade"], sections["stock"]
+    unlowered = switch_sections(SwitchDesign(toe_lowering=0.0), upright_uic60(),
+                                np.array([0.0, 2.5, 5.0, 8.0]), grid)["blade"]
+    lowering = np.nanmax(unlowered.z - blade.z, axis=1)
+    # 3 mm low at the toe, rising linearly to full height at 5 m (SwitchDesign defaults)
+    np.testing.assert_allclose(lowering, [0.003, 0.0015, 0.0, 0.0], atol=1e-9)
+    # a 3 mm wide blade tip is the rail's gauge corner: its top is far below the crown
+    assert np.nanmax(blade.z[0]) < -0.006
+    widths = [np.ptp(grid[np.isfinite(row)]) for row in blade.z]
+    assert widths[0] < widths[1] < widths[2]
+    # the stock rail curves away: its gauge face moves x^2 / 2R + entry angle
+    def gauge_face(row):
+        return grid[np.argmax(row > -0.014)]
+    moved = gauge_face(stock.z[3]) - gauge_face(stock.z[0])
+    expected = design.entry_tangent * 8.0 + 64.0 / (2 * design.radius)
+    assert moved == pytest.approx(expected, abs=3e-4)
+
+
+def test_crossing_nose_widens_at_1_in_n_and_is_low_at_its_tip():
+    design = CrossingDesign()
+    grid = lateral_grid(0.70, 0.90)
+    x = design.nose_tip + np.array([-0.1, 0.0, 0.25, 0.75])
+    sections = crossing_sections(design, upright_uic60(), x, grid)
+    nose = sections["nose"].z
+    assert np.all(np.isnan(nose[0]))
+    top = np.nanmax(nose[1:], axis=1)
+    # tip: 3 mm design lowering plus the narrow head's own drop; full height 0.5 m after
+    assert top[0] < -0.003 and top[0] < top[1] < top[2]
+    assert top[2] == pytest.approx(0.0, abs=2e-4)
+    # the wing rail's gauge face has left the running line by (x - throat) / N
+    wing = sections["wing"].z
+    throat = design.nose_tip - design.crossing_number * (design.tip_width + design.flangeway)
+    face = grid[np.argmax(wing[3] > -0.014)] - grid[np.argmax(wing[0] > -0.014)]
+    assert face == pytest.approx((x[3] - x[0]) / design.crossing_number, abs=3e-4)
+    assert throat < x[0]
+
+
+@pytest.fixture(scope="module")
+def plain_table(tmp_path_factory):
+    settings = TableSettings(shift_min=-0.008, shift_max=0.008, shift_step=4e-4)
+    cache = tmp_path_factory.mktemp("tables")
+    wheel = s1002_wheel(SETUP)
+    track = standard_track(SETUP)
+    table = build_contact_table(wheel, track, SETUP.taping_line, settings, cache_dir=cache)
+    return wheel, track, settings, cache, table
+
+
+def test_table_cache_is_keyed_by_the_inputs(plain_table):
+    wheel, track, settings, cache, table = plain_table
+    assert table.build_seconds > 0.0
+    again = build_contact_table(wheel, track, SETUP.taping_line, settings, cache_dir=cache)
+    assert again.build_seconds == 0.0
+    np.testing.assert_array_equal(again.values, table.values)
+    assert len(list(cache.glob("*.npz"))) == 1
+    other = TableSettings(shift_min=-0.008, shift_max=0.008, shift_step=4e-4, young=2.0e11)
+    assert table_key(wheel, track, SETUP.taping_line, other) != table.key
+    assert table_key(wheel, track, SETUP.taping_line + 1e-4, settings) != table.key
+
+
+def test_lookup_matches_the_direct_search_on_and_between_nodes(plain_table):
+    wheel, track, _settings, _cache, table = plain_table
+    row = rail_row(track, surface_derivatives(track))
+    shifts = np.array([0.0, 0.0012, 0.0031, -0.0027, 0.0049])
+    lifts = np.array([-3e-4, -2.5e-4, 0.0, -2e-4, -3e-4])  # touching at about -0.18 mm
+    found = lookup(table, np.full(len(shifts), 0.5), shifts, lifts)
+    for k, (shift, lift) in enumerate(zip(shifts, lifts)):
+        direct = find_candidates(*row, wheel, SETUP.taping_line, shift=shift, lift=lift,
+                                 max_gap=0.005)
+        first = int(np.argmin(found.gap[k]))
+        # normal gap within 3 micrometres, contact point within 0.5 mm, angle 0.5 deg
+        assert found.gap[k, first] == pytest.approx(direct.gap[0], abs=3e-6)
+        assert found.y_rail[k, first] == pytest.approx(direct.y_rail[0], abs=5e-4)
+        assert math.degrees(found.angle[k, first]) == pytest.approx(
+            math.degrees(direct.angle[0]), abs=0.5)
+    forces = normal_force(found)
+    expected = found.hertz_constant * np.maximum(-found.gap, 0.0) ** 1.5
+    np.testing.assert_allclose(forces, np.where(found.valid, expected, 0.0))
+    assert forces[0].sum() > 0.0 and np.all(forces[~found.valid] == 0.0)
