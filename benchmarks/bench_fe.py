@@ -27,7 +27,7 @@ from exudyn_turnout.fe.model import assemble
 from exudyn_turnout.fe.solver import condense, default_keep
 from exudyn_turnout.fe.stiffness import static_stiffness_profile
 from exudyn_turnout.receptance import log_frequencies
-from exudyn_turnout.turnout import load_turnout
+from exudyn_turnout.inputs.turnout import load_turnout
 
 
 class Clock:

@@ -11,9 +11,9 @@ per step: contact geometry, state update, recording).
 import argparse
 import time
 
-from exudyn_turnout.fe_passage import simulate_fe_passage
-from exudyn_turnout.passage import PassageSettings, simulate_passage
-from exudyn_turnout.turnout import load_turnout
+from exudyn_turnout.passage.fe_track import simulate_fe_passage
+from exudyn_turnout.passage.simulate import PassageSettings, simulate_passage
+from exudyn_turnout.inputs.turnout import load_turnout
 
 #: Parts of the FE passage's wall time (summary ``wall_time_parts_s``) and what they are.
 PARTS = (("assemble", "assemble M, D, K (FE model and wheelset)"),

@@ -20,9 +20,9 @@ import numpy as np
 
 import exudyn as exu
 
-from exudyn_turnout.vehicle_builder import (RigidTrack, add_vehicle_model, dynamic_settings,
+from exudyn_turnout.passage.vehicle_builder import (RigidTrack, add_vehicle_model, dynamic_settings,
                                             rigid_track_support, solve_static)
-from exudyn_turnout.vehicle_model import load_vehicle_model, single_wheelset_share
+from exudyn_turnout.inputs.vehicle_model import load_vehicle_model, single_wheelset_share
 
 
 def _perturb(mbs, build) -> None:

@@ -7,9 +7,9 @@ most half its simulated time (1.2 s). Ratios are taken within this one run.
 import argparse
 import time
 
-from exudyn_turnout.passage import PassageSettings, simulate_passage
-from exudyn_turnout.turnout import load_turnout
-from exudyn_turnout import wheelrail
+from exudyn_turnout.passage.simulate import PassageSettings, simulate_passage
+from exudyn_turnout.inputs.turnout import load_turnout
+from exudyn_turnout.passage import contact_element as wheelrail
 
 
 def _timed(turnout, settings, repeat):

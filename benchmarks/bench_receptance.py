@@ -25,8 +25,8 @@ def best_of(fn: Callable[[], object], repeat: int) -> float:
 
 
 def receptance_rows(turnout, repeat: int) -> list[tuple[str, float, str, str]]:
-    from exudyn_turnout.modal import assemble_track_matrices, co_running_receptance, receptance_from_matrices
-    from exudyn_turnout.parameters import co_running_parameters
+    from exudyn_turnout.corunning.modal import assemble_track_matrices, co_running_receptance, receptance_from_matrices
+    from exudyn_turnout.corunning.parameters import co_running_parameters
     from exudyn_turnout.receptance import log_frequencies
 
     f = log_frequencies(1.0, 2000.0, 2000)
@@ -54,8 +54,8 @@ def exudyn_rows(turnout, steps: int) -> list[tuple[str, float, str, str]]:
     import exudyn as exu
     from exudyn.itemInterface import LoadForceVector
 
-    from exudyn_turnout.parameters import co_running_parameters
-    from exudyn_turnout.track import MECHANISMS, add_co_running_track, linearized_matrices, simulation_settings
+    from exudyn_turnout.corunning.parameters import co_running_parameters
+    from exudyn_turnout.corunning.track import MECHANISMS, add_co_running_track, linearized_matrices, simulation_settings
 
     exu.config.printToConsole = False
     h = 5e-5
@@ -102,7 +102,7 @@ def main(argv=None) -> None:
     parser.add_argument("--repeat", type=int, default=10, help="repetitions of each receptance timing")
     parser.add_argument("--steps", type=int, default=10000, help="time steps per Exudyn timing")
     args = parser.parse_args(argv)
-    from exudyn_turnout.turnout import load_turnout
+    from exudyn_turnout.inputs.turnout import load_turnout
 
     turnout = load_turnout()
     rows = receptance_rows(turnout, args.repeat) + exudyn_rows(turnout, args.steps)

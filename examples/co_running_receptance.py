@@ -22,10 +22,10 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_turnout.geometry import turnout_plan
-from exudyn_turnout.modal import co_running_modes, co_running_receptance
+from exudyn_turnout.inputs.geometry import turnout_plan
+from exudyn_turnout.corunning.modal import co_running_modes, co_running_receptance
 from exudyn_turnout.receptance import log_frequencies
-from exudyn_turnout.turnout import Turnout, load_turnout
+from exudyn_turnout.inputs.turnout import Turnout, load_turnout
 
 FIGURES = {"vertical": "fig5_vertical_receptance.png", "lateral": "fig6_lateral_receptance.png"}
 
@@ -48,7 +48,7 @@ def plot_direction(turnout: Turnout, cases: dict[str, float], direction: str, so
     """One figure, a panel per case, both models in each; CSVs beside it."""
     import matplotlib.pyplot as plt
 
-    from exudyn_turnout.plotting import plot_receptance
+    from exudyn_turnout.plotting.curves import plot_receptance
 
     fig, axes = plt.subplots(1, len(cases), figsize=(5.2 * len(cases), 4.2), squeeze=False)
     for ax, (letter, (name, x)) in zip(axes[0], zip("abcdef", cases.items())):

@@ -6,9 +6,9 @@ Run: ``python examples/passage_through.py [--out DIR] [--speed KMH]``.
 import argparse
 from pathlib import Path
 
-from exudyn_turnout.passage import PassageSettings, compare_layers, peaks_table
-from exudyn_turnout.plotting import plot_passage_forces
-from exudyn_turnout.turnout import load_turnout
+from exudyn_turnout.passage.simulate import PassageSettings, compare_layers, peaks_table
+from exudyn_turnout.plotting.curves import plot_passage_forces
+from exudyn_turnout.inputs.turnout import load_turnout
 
 
 def run(out_dir, route="through", speed_kmh=100.0, x_start=None, x_end=None):

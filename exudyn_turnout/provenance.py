@@ -172,7 +172,7 @@ def provenance(
     In the report code: ``metrics["provenance"] = provenance({"quick": config.quick},
     turnout=turnout)``.
     """
-    from . import __version__
+    from exudyn_turnout import __version__
 
     inputs = {
         "turnout": file_record(_source_of(turnout)) if turnout is not None else None,

@@ -5,7 +5,7 @@ import pytest
 
 os.environ.setdefault("MPLBACKEND", "Agg")
 
-from exudyn_turnout.turnout import load_turnout  # noqa: E402
+from exudyn_turnout.inputs.turnout import load_turnout  # noqa: E402
 
 
 @pytest.fixture(scope="session")

@@ -14,9 +14,9 @@ import sys
 
 import pytest
 
-from exudyn_turnout.cli import main
-from exudyn_turnout.turnout import default_turnout_path
-from exudyn_turnout.vehicle import default_vehicle_path
+from exudyn_turnout.cli.main import main
+from exudyn_turnout.inputs.turnout import default_turnout_path
+from exudyn_turnout.inputs.vehicle import default_vehicle_path
 
 TURNOUT = default_turnout_path().read_text(encoding="utf-8")
 VEHICLE = default_vehicle_path().read_text(encoding="utf-8")
@@ -460,7 +460,7 @@ def test_broken_pipe_is_quiet(monkeypatch, capsys):
 def test_closed_pipe_subprocess():
     """The real thing: the reader closes the pipe before the command writes."""
     proc = subprocess.Popen(
-        [sys.executable, "-m", "exudyn_turnout.cli", "params", "--zone", "2", "--format", "csv"],
+        [sys.executable, "-m", "exudyn_turnout.cli.main", "params", "--zone", "2", "--format", "csv"],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
     )
@@ -473,7 +473,7 @@ def test_closed_pipe_subprocess():
 
 def test_no_arguments_prints_the_help():
     proc = subprocess.run(
-        [sys.executable, "-m", "exudyn_turnout.cli"], capture_output=True, text=True, timeout=60
+        [sys.executable, "-m", "exudyn_turnout.cli.main"], capture_output=True, text=True, timeout=60
     )
     assert proc.returncode == 0 and proc.stdout.startswith("usage: exudyn-turnout")
     assert "simulate" in proc.stdout and "Exit codes" in proc.stdout and proc.stderr == ""

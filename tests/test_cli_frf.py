@@ -10,8 +10,8 @@ import sys
 import numpy as np
 import pytest
 
-from exudyn_turnout.cli import main
-from exudyn_turnout.modal import co_running_receptance
+from exudyn_turnout.cli.main import main
+from exudyn_turnout.corunning.modal import co_running_receptance
 
 BASE = ["frf", "--layers", "3", "--rail", "r2", "--direction", "vertical"]
 
@@ -69,7 +69,7 @@ def test_bad_input_is_one_line_and_exit_2(capsys, tmp_path, argv, fragment):
 
 def test_frf_imports_neither_exudyn_nor_matplotlib(tmp_path):
     """The receptance is numpy/scipy only; matplotlib only with --plot (fast start)."""
-    code = ("import sys; from exudyn_turnout.cli import main; "
+    code = ("import sys; from exudyn_turnout.cli.main import main; "
             f"rc = main(['frf', '--layers', '3', '--rail', 'r2', '--direction', 'lateral', '--zone', '1', "
             f"'--out', r'{tmp_path / 'h.csv'}']); "
             "print(rc, 'exudyn' in sys.modules, 'matplotlib' in sys.modules)")

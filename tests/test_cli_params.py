@@ -9,7 +9,7 @@ import json
 
 import pytest
 
-from exudyn_turnout.cli import main
+from exudyn_turnout.cli.main import main
 
 
 def _run(capsys, *argv):
@@ -76,8 +76,8 @@ def test_fe_fitted_profiles(capsys):
     """--profiles fe-fit: Delta_z(x) = K_sw,fit(x) / K_st with the FE fit (fe/fits.py) in place of Eq 10."""
     from exudyn_turnout.fe.fits import fit_turnout_profiles
     from exudyn_turnout.fe.stiffness import static_stiffness_profile
-    from exudyn_turnout.parameters import reference_support
-    from exudyn_turnout.turnout import load_turnout
+    from exudyn_turnout.corunning.parameters import reference_support
+    from exudyn_turnout.inputs.turnout import load_turnout
     code, out, _ = _run(capsys, "params", "--x", "10", "--format", "json", "--profiles", "fe-fit")
     t = load_turnout()
     fits = fit_turnout_profiles(static_stiffness_profile(t), t)

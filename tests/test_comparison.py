@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from exudyn_turnout.comparison import TOLERANCE, compare_with_table2, comparison_markdown
+from exudyn_turnout.corunning.comparison import TOLERANCE, compare_with_table2, comparison_markdown
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from exudyn_turnout import track
-from exudyn_turnout.cross_section import cross_section_springs
-from exudyn_turnout.drawing import (
+from exudyn_turnout.corunning import track
+from exudyn_turnout.corunning.cross_section import cross_section_springs
+from exudyn_turnout.plotting.model import (
     animate_passage,
     cross_section_geometry,
     draw_cross_section,
@@ -22,10 +22,10 @@ from exudyn_turnout.drawing import (
     passage_frames,
     spring_label,
 )
-from exudyn_turnout.parameters import co_running_parameters
-from exudyn_turnout.passage import PassageSettings, simulate_passage
-from exudyn_turnout.routes import load_route
-from exudyn_turnout.vehicle import load_vehicle
+from exudyn_turnout.corunning.parameters import co_running_parameters
+from exudyn_turnout.passage.simulate import PassageSettings, simulate_passage
+from exudyn_turnout.inputs.routes import load_route
+from exudyn_turnout.inputs.vehicle import load_vehicle
 
 CASES = [(zone, layers) for zone in (1, 2, 3) for layers in (2, 3)]
 

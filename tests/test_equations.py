@@ -13,8 +13,8 @@ import math
 
 import pytest
 
-from exudyn_turnout import equations as eq
-from exudyn_turnout.parameters import co_running_parameters, delta_y, delta_z, rail_support
+from exudyn_turnout.corunning import equations as eq
+from exudyn_turnout.corunning.parameters import co_running_parameters, delta_y, delta_z, rail_support
 
 #: Table 2, zone 1 ("Simulation-1"), stock-rail (plain-track) entries; Delta-dependent
 #: entries by their coefficient. Table 2 prints 2-3 significant digits: 2 % tolerance.
@@ -75,7 +75,7 @@ def test_lateral_check_rail_and_crossing_rail_reproduce_table2(turnout):
 
 def test_crossing_rail_reproduces_table2_only_with_reciprocal_eq5(turnout):
     """Table 2 zone 2: k_rt2,z 453e6 (range end), m_r2 409 kg, m_t 881 kg."""
-    from exudyn_turnout.parameters import AS_PRINTED
+    from exudyn_turnout.corunning.parameters import AS_PRINTED
     derived = co_running_parameters(turnout, zone=2).entries
     printed = co_running_parameters(turnout, zone=2, readings=AS_PRINTED).entries
     assert derived["k_rt2_z"].a == pytest.approx(453e6, rel=0.02)

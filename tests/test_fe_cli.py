@@ -7,7 +7,7 @@ import csv
 
 import pytest
 
-from exudyn_turnout.cli import main
+from exudyn_turnout.cli.main import main
 
 
 def _run(capsys, *argv):

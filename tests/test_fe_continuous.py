@@ -15,7 +15,7 @@ Reference values and their sources:
 import numpy as np
 import pytest
 
-from exudyn_turnout import equations as eq
+from exudyn_turnout.corunning import equations as eq
 from exudyn_turnout.fe.analytic import infinite_timoshenko_receptance, two_layer_support
 from exudyn_turnout.fe.continuous import continuous_beam_receptance, smeared_support
 from exudyn_turnout.fe.model import rail_section

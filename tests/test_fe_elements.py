@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 import scipy.linalg as la
 
-from exudyn_turnout import equations as eq
+from exudyn_turnout.corunning import equations as eq
 from exudyn_turnout.fe import analytic as an
 from exudyn_turnout.fe import timoshenko as tim
 from exudyn_turnout.fe.model import rail_section

@@ -19,7 +19,7 @@ import pytest
 
 from exudyn_turnout.fe.layout import load_layout
 from exudyn_turnout.fe.mesh import build_mesh
-from exudyn_turnout.turnout import TurnoutFileError
+from exudyn_turnout.inputs.turnout import TurnoutFileError
 
 
 @pytest.fixture(scope="module")

@@ -19,17 +19,17 @@ import pytest
 import scipy.sparse.linalg as sla
 from scipy.signal import butter, filtfilt
 
-from exudyn_turnout.cli import UsageError
+from exudyn_turnout.cli.main import UsageError
 from exudyn_turnout.fe.frf import point_receptances
 from exudyn_turnout.fe.layout import plain_track_layout
 from exudyn_turnout.fe.mesh import FEOptions
 from exudyn_turnout.fe.timoshenko import lagrange_shape_functions
-from exudyn_turnout.fe_passage import (FEPassageOptions, build_fe_track, contact_points, hht_parameters,
+from exudyn_turnout.passage.fe_track import (FEPassageOptions, build_fe_track, contact_points, hht_parameters,
                                        simulate_fe_passage, solve_contacts)
-from exudyn_turnout.passage import PassageError, PassageSettings
-from exudyn_turnout.routes import ContactPair, Route
-from exudyn_turnout.turnout import Table1D
-from exudyn_turnout.vehicle import load_vehicle
+from exudyn_turnout.passage.simulate import PassageError, PassageSettings
+from exudyn_turnout.inputs.routes import ContactPair, Route
+from exudyn_turnout.inputs.turnout import Table1D
+from exudyn_turnout.inputs.vehicle import load_vehicle
 
 W = (1813 + 32000 / 4 + 2615 / 2) * 9.81 / 2
 #: 8 m of plain track (sleepers at x = 0 +- i 0.6 m) + 4 m undamped + 4 m absorbing ends: ~3600 DOFs.
@@ -243,7 +243,7 @@ def test_peak_converged_in_mesh(dip_peaks):
 # --- the turnout: where the wheel meets which rail ----------------------------------------
 
 def test_turnout_contacts_follow_the_route_and_slots(turnout):
-    from exudyn_turnout.routes import load_route
+    from exudyn_turnout.inputs.routes import load_route
     track = build_fe_track(turnout)
     route = load_route(turnout, "through")
     at = {x: {(p.pair.wheel, p.pair.rail, p.rail_id) for p in contact_points(track, route, x)} for x in
@@ -266,7 +266,7 @@ def test_bad_settings_name_the_problem(turnout, plain_track, kwargs, text):
 
 def _fe_parser():
     import argparse
-    from exudyn_turnout.cli_fe_passage import add_simulate
+    from exudyn_turnout.cli.fe_passage import add_simulate
     parser = argparse.ArgumentParser(prog="exudyn-turnout")
     fe = parser.add_subparsers(dest="command").add_parser("fe").add_subparsers(dest="fe_command")
     add_simulate(fe)
@@ -283,7 +283,7 @@ def test_cli_bad_input_is_a_usage_error(tmp_path, argv, text):
 
 def test_cli_writes_the_passage_files(tmp_path, turnout, capsys):
     import json
-    from exudyn_turnout.passage import simulate_passage
+    from exudyn_turnout.passage.simulate import simulate_passage
     args = _fe_parser().parse_args(["fe", "simulate", "--x-start", "55", "--x-end", "55.02", "--out",
                                     str(tmp_path), "--no-plot"])
     assert args.run(args) == 0

@@ -26,7 +26,7 @@ from exudyn_turnout.fe.layout import plain_track_layout
 from exudyn_turnout.fe.mesh import FEOptions, build_mesh
 from exudyn_turnout.fe.model import assemble, rail_section
 from exudyn_turnout.fe.solver import condense, default_keep, solve_full
-from exudyn_turnout.parameters import reference_support
+from exudyn_turnout.corunning.parameters import reference_support
 
 F = np.geomspace(20.0, 2000.0, 40)
 

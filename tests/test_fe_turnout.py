@@ -20,7 +20,7 @@ import pytest
 from exudyn_turnout.fe.fits import fit_turnout_profiles, with_fitted_profiles
 from exudyn_turnout.fe.frf import fe_receptance
 from exudyn_turnout.fe.stiffness import CSV_COLUMNS, static_stiffness_profile
-from exudyn_turnout.parameters import delta_z, reference_support
+from exudyn_turnout.corunning.parameters import delta_z, reference_support
 from exudyn_turnout.receptance import CSV_COLUMNS as RECEPTANCE_COLUMNS
 
 

@@ -15,12 +15,13 @@ import numpy as np
 import pytest
 
 import exudyn as exu
-from exudyn_turnout.parameters import co_running_parameters
-from exudyn_turnout.passage import PassageSettings, _build
-from exudyn_turnout.routes import load_route
-from exudyn_turnout.track import add_co_running_track
-from exudyn_turnout.turnout import load_turnout
-from exudyn_turnout.vehicle import add_vehicle, load_vehicle
+from exudyn_turnout.corunning.parameters import co_running_parameters
+from exudyn_turnout.passage.simulate import PassageSettings, _build
+from exudyn_turnout.inputs.routes import load_route
+from exudyn_turnout.corunning.track import add_co_running_track
+from exudyn_turnout.inputs.turnout import load_turnout
+from exudyn_turnout.inputs.vehicle import load_vehicle
+from exudyn_turnout.passage.vehicle import add_vehicle
 
 #: Exudyn connector types that carry a force law; all the package uses are listed here.
 CONNECTOR_TYPES = tuple("Connector" + kind for kind in (

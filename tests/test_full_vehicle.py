@@ -19,11 +19,11 @@ import numpy as np
 import pytest
 
 import exudyn as exu
-from exudyn_turnout.vehicle_builder import (RigidTrack, add_vehicle_model,
+from exudyn_turnout.passage.vehicle_builder import (RigidTrack, add_vehicle_model,
                                             connector_forces_at_reference, dynamic_settings,
                                             rigid_track_support, solve_static, support_wheel_loads,
                                             vehicle_modes)
-from exudyn_turnout.vehicle_model import (GRAVITY, VehicleModelError, carbody_bounce_frequency,
+from exudyn_turnout.inputs.vehicle_model import (GRAVITY, VehicleModelError, carbody_bounce_frequency,
                                           carbody_pitch_frequency, carbody_sway_frequencies,
                                           carbody_yaw_frequency, default_vehicle_model_path,
                                           hand_frequencies, load_vehicle_model,

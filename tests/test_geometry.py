@@ -15,8 +15,8 @@ import math
 import pytest
 
 from exudyn_turnout.fe.layout import load_layout
-from exudyn_turnout.geometry import resolve_position, turnout_plan
-from exudyn_turnout.routes import load_route
+from exudyn_turnout.inputs.geometry import resolve_position, turnout_plan
+from exudyn_turnout.inputs.routes import load_route
 
 
 def test_crossing_point_and_angle_by_hand(turnout):

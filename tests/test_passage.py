@@ -4,7 +4,7 @@ Reference values and their sources:
 - static wheel load (m_w + m_s) g / 2 with the Manchester benchmark's masses
   (Iwnicki 1998): (1813 + 32000/4 + 2615/2) * 9.81 / 2 = 54546 N;
 - static rail deflection u = K^-1 f, K the co-running model's stiffness matrix assembled
-  by hand from the parameter set (exudyn_turnout.modal), f the two wheel loads;
+  by hand from the parameter set (exudyn_turnout.corunning.modal), f the two wheel loads;
 - steady curving: the lateral forces on the rails balance (m_w + m_s) v^2 / R (R = 760 m,
   no cant; paper Section 4, SPEC.md);
 - P2-type crossing impact forces grow with speed (Jenkins et al. 1974, Railway Engineering
@@ -15,12 +15,12 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_turnout.cli import main
-from exudyn_turnout.geometry import turnout_plan
-from exudyn_turnout.modal import assemble_track_matrices, wheel_dof
-from exudyn_turnout.parameters import co_running_parameters
-from exudyn_turnout.passage import PassageError, PassageSettings, simulate_passage, write_passage
-from exudyn_turnout.vehicle import load_vehicle
+from exudyn_turnout.cli.main import main
+from exudyn_turnout.inputs.geometry import turnout_plan
+from exudyn_turnout.corunning.modal import assemble_track_matrices, wheel_dof
+from exudyn_turnout.corunning.parameters import co_running_parameters
+from exudyn_turnout.passage.simulate import PassageError, PassageSettings, simulate_passage, write_passage
+from exudyn_turnout.inputs.vehicle import load_vehicle
 
 W = (1813 + 32000 / 4 + 2615 / 2) * 9.81 / 2
 
@@ -130,7 +130,7 @@ def test_cli_bad_input(tmp_path, capsys, argv, fragment):
 
 
 def test_solver_failure_names_time_and_position(turnout, monkeypatch):
-    from exudyn_turnout import wheelrail
+    from exudyn_turnout.passage import contact_element as wheelrail
     original = wheelrail.WheelRailElement.__call__
 
     def failing(self, mbs, t, i, q, q_t):
@@ -153,7 +153,7 @@ def test_cli_simulate_writes_files(tmp_path, capsys):
 def _five_zone_file(tmp_path):
     """The packaged turnout with zone 1 split into three zones (masses from Eqs 17, 18 at each zone's
     middle via mass_at_x) and no published Table 2 (which has three zones)."""
-    from exudyn_turnout.turnout import default_turnout_path
+    from exudyn_turnout.inputs.turnout import default_turnout_path
     lines, out, skip = default_turnout_path().read_text(encoding="utf-8").splitlines(), [], False
     for line in lines:
         if line.startswith("[published."):
@@ -178,7 +178,7 @@ def _five_zone_file(tmp_path):
 
 def test_more_zones_than_three(tmp_path):
     """The paper's future work: more zones, masses per zone from Eqs 17, 18 (Delta at the zone middle)."""
-    from exudyn_turnout.turnout import load_turnout
+    from exudyn_turnout.inputs.turnout import load_turnout
     turnout = load_turnout(_five_zone_file(tmp_path))
     assert len(turnout.zones) == 5 and not turnout.published
     masses = [co_running_parameters(turnout, zone=z).entries["m_r2"].a for z in (1, 2, 3)]

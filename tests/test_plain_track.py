@@ -13,10 +13,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from exudyn_turnout.modal import assemble_track_matrices, wheel_dof
-from exudyn_turnout.parameters import co_running_parameters, delta_y, delta_z, reference_support
-from exudyn_turnout.passage import PassageSettings, simulate_passage
-from exudyn_turnout.track import EntryLaw
+from exudyn_turnout.corunning.modal import assemble_track_matrices, wheel_dof
+from exudyn_turnout.corunning.parameters import co_running_parameters, delta_y, delta_z, reference_support
+from exudyn_turnout.passage.simulate import PassageSettings, simulate_passage
+from exudyn_turnout.corunning.track import EntryLaw
 
 
 def _static_stiffness(params, x: float, rail: str, direction: str) -> float:

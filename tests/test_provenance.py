@@ -13,10 +13,10 @@ import re
 import numpy as np
 import pytest
 
-from exudyn_turnout.cli import main
+from exudyn_turnout.cli.main import main
 from exudyn_turnout.provenance import provenance, reduce_argv, round_floats
-from exudyn_turnout.turnout import default_turnout_path
-from exudyn_turnout.vehicle import default_vehicle_path
+from exudyn_turnout.inputs.turnout import default_turnout_path
+from exudyn_turnout.inputs.vehicle import default_vehicle_path
 
 SHORT = ["simulate", "--layers", "2", "--x-start", "45.2", "--x-end", "45.6", "--no-plot"]
 
@@ -179,7 +179,7 @@ def test_params_carries_its_provenance(capsys):
 
 def test_implausible_dynamics_stop_with_time_and_x(tmp_path, capsys, monkeypatch):
     """A force beyond the limit during the run: exit 3 naming t, x and the quantity, no output."""
-    from exudyn_turnout import passage
+    from exudyn_turnout.passage import simulate as passage
 
     monkeypatch.setitem(passage.PLAUSIBLE, "force_over_static", 2.0)  # the nose impact is ~3 W
     code = main(

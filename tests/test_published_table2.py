@@ -8,7 +8,7 @@ shows up. Cells: a number, "<coef> Dz" / "<coef> Dy" for coef * Delta_z / Delta_
 """
 import pytest
 
-from exudyn_turnout.parameters import co_running_parameters
+from exudyn_turnout.corunning.parameters import co_running_parameters
 
 TABLE2 = """
 k_01_z 369e6 | 369e6 | 369e6

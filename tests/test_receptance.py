@@ -1,4 +1,4 @@
-"""Receptance and modes of the co-running model (exudyn_turnout.modal), numpy only.
+"""Receptance and modes of the co-running model (exudyn_turnout.corunning.modal), numpy only.
 
 Reference values are not copied from anywhere: each test checks the receptance against
 an independent statement of linear vibration theory about this model,
@@ -14,7 +14,7 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_turnout.modal import (TrackMatrices, assemble_track_matrices, co_running_modes, co_running_parameters_at,
+from exudyn_turnout.corunning.modal import (TrackMatrices, assemble_track_matrices, co_running_modes, co_running_parameters_at,
                                   co_running_receptance, modes, receptance_from_matrices)
 
 #: (zone, x): zone 1 on the switch rail's plateau region, zone 2 on the crossing nose.

@@ -13,10 +13,10 @@ import re
 import numpy as np
 import pytest
 
-from exudyn_turnout import agreement as ag
-from exudyn_turnout.claims import FAILS, HOLDS, NOT_CHECKED, Criteria, evaluate_claims
-from exudyn_turnout.cli import main
-from exudyn_turnout.result_cache import ResultCache, input_key
+from exudyn_turnout.report import agreement as ag
+from exudyn_turnout.report.claims import FAILS, HOLDS, NOT_CHECKED, Criteria, evaluate_claims
+from exudyn_turnout.cli.main import main
+from exudyn_turnout.report.cache import ResultCache, input_key
 
 # --- metric functions -----------------------------------------------------------------
 
@@ -237,8 +237,8 @@ def test_default_report_settings_are_the_former_constants(turnout):
     Except the quick passage window, which used to be 44.0-47.5 m and now follows the nose.
     """
     from exudyn_turnout.fe.layout import load_layout
-    from exudyn_turnout.report import receptance_positions
-    from exudyn_turnout.report_settings import (check_rails, quick_passage_x, report_settings,
+    from exudyn_turnout.report.metrics import receptance_positions
+    from exudyn_turnout.report.settings import (check_rails, quick_passage_x, report_settings,
                                                 stock_rails)
     s = report_settings(turnout)
     assert s.speeds_kmh == (("through", 100.0), ("diverging", 80.0))
@@ -262,7 +262,7 @@ def test_default_report_settings_are_the_former_constants(turnout):
 
 def test_report_defaults_without_a_report_section(turnout):
     """Defaults: every route; 100 km/h straight; sqrt(0.65 x 760) x 3.6 = 80.0 km/h on 760 m."""
-    from exudyn_turnout.report_settings import quick_passage_x, report_settings
+    from exudyn_turnout.report.settings import quick_passage_x, report_settings
     t = _without_report(turnout)
     s = report_settings(t)
     assert s.speeds_kmh == (("through", 100.0), ("diverging", 80.0))
@@ -286,16 +286,16 @@ def test_report_defaults_without_a_report_section(turnout):
     ({"stock_rail": ["stock_left"]}, "report.stock_rail"),
 ])
 def test_bad_report_settings_name_file_and_field(turnout, report, field):
-    from exudyn_turnout.report_settings import report_settings
-    from exudyn_turnout.turnout import TurnoutFileError
+    from exudyn_turnout.report.settings import report_settings
+    from exudyn_turnout.inputs.turnout import TurnoutFileError
     with pytest.raises(TurnoutFileError, match=rf"^uic60_760_1_15\.toml: {re.escape(field)} "):
         report_settings(_without_report(turnout, **report))
 
 
 def test_unknown_report_rail_ids_are_named(turnout):
     from exudyn_turnout.fe.layout import load_layout
-    from exudyn_turnout.report_settings import report_settings, stock_rails
-    from exudyn_turnout.turnout import TurnoutFileError
+    from exudyn_turnout.report.settings import report_settings, stock_rails
+    from exudyn_turnout.inputs.turnout import TurnoutFileError
     s = report_settings(_without_report(turnout, stock_rails=["stock_left", "nonesuch"]))
     with pytest.raises(TurnoutFileError, match="report.stock_rails names rail 'nonesuch'"):
         stock_rails(s, load_layout(turnout))

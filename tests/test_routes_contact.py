@@ -13,10 +13,10 @@ Reference values:
 """
 import pytest
 
-from exudyn_turnout import contact
-from exudyn_turnout.geometry import turnout_plan
-from exudyn_turnout.routes import dip_angle, load_route
-from exudyn_turnout.turnout import TurnoutFileError, default_turnout_path, load_turnout
+from exudyn_turnout.wheel_rail import laws as contact
+from exudyn_turnout.inputs.geometry import turnout_plan
+from exudyn_turnout.inputs.routes import dip_angle, load_route
+from exudyn_turnout.inputs.turnout import TurnoutFileError, default_turnout_path, load_turnout
 
 
 def test_crossing_dip_of_packaged_profiles(turnout):

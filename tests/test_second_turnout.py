@@ -21,9 +21,9 @@ import numpy as np
 import pytest
 
 import exudyn_turnout
-from exudyn_turnout.cli import main
-from exudyn_turnout.report_settings import check_rails, report_settings, stock_rails
-from exudyn_turnout.turnout import load_turnout
+from exudyn_turnout.cli.main import main
+from exudyn_turnout.report.settings import check_rails, report_settings, stock_rails
+from exudyn_turnout.inputs.turnout import load_turnout
 
 SECOND = Path(exudyn_turnout.__file__).parent / "data" / "ew54_190_1_9.toml"
 STATIC_WHEEL_LOAD = (1813.0 + 9307.5) * 9.81 / 2
@@ -45,7 +45,7 @@ def _run(argv, capsys) -> tuple[int, str, str]:
 
 
 def test_second_turnout_is_materially_different(second, turnout):
-    from exudyn_turnout.geometry import turnout_plan
+    from exudyn_turnout.inputs.geometry import turnout_plan
 
     assert len(second.zones) == 4 and len(turnout.zones) == 3
     assert not {"stock", "switch", "crossing"} & set(second.rail_types)

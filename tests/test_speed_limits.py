@@ -6,7 +6,7 @@ gauge): R = 760 m, no cant, 100 km/h: 1.5 x 27.778^2 / (9.81 x 760) = 0.15524 m;
 """
 import pytest
 
-from exudyn_turnout.routes import cant_deficiency, load_route, speed_warnings
+from exudyn_turnout.inputs.routes import cant_deficiency, load_route, speed_warnings
 
 
 def test_cant_deficiency_by_hand():

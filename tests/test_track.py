@@ -1,7 +1,7 @@
-"""Exudyn co-running track builder (exudyn_turnout.track), headless and quiet.
+"""Exudyn co-running track builder (exudyn_turnout.corunning.track), headless and quiet.
 
 References: the cross-section of SPEC.md section 3 (paper Figs 2, 3) assembled by hand in
-exudyn_turnout.modal.assemble_track_matrices; the active rails of the paper's Table 3
+exudyn_turnout.corunning.modal.assemble_track_matrices; the active rails of the paper's Table 3
 (zone 1: r1 r2 r4; zone 2: r1-r4; zone 3: r1 r4); Eqs 10, 11, 14, 15 through
 CoRunningParameters.at. Every simulation runs in tmp_path as working directory, and the
 tests check that Exudyn wrote no file there.
@@ -15,11 +15,11 @@ exu = pytest.importorskip("exudyn")
 
 from exudyn.itemInterface import LoadForceVector, MassPoint2D, NodePoint2D, SensorObject  # noqa: E402
 
-from exudyn_turnout.modal import assemble_track_matrices  # noqa: E402
-from exudyn_turnout.parameters import co_running_parameters, delta_y, delta_z  # noqa: E402
-from exudyn_turnout.track import (MECHANISMS, EntryLaw, add_co_running_track, linearized_matrices,  # noqa: E402
+from exudyn_turnout.corunning.modal import assemble_track_matrices  # noqa: E402
+from exudyn_turnout.corunning.parameters import co_running_parameters, delta_y, delta_z  # noqa: E402
+from exudyn_turnout.corunning.track import (MECHANISMS, EntryLaw, add_co_running_track, linearized_matrices,  # noqa: E402
                                   simulation_settings)
-from exudyn_turnout.turnout import Polynomial  # noqa: E402
+from exudyn_turnout.inputs.turnout import Polynomial  # noqa: E402
 
 
 @pytest.fixture(autouse=True)

@@ -9,8 +9,8 @@ import sys
 
 import pytest
 
-from exudyn_turnout.cli import main
-from exudyn_turnout.turnout import TurnoutFileError, default_turnout_path, load_turnout
+from exudyn_turnout.cli.main import main
+from exudyn_turnout.inputs.turnout import TurnoutFileError, default_turnout_path, load_turnout
 
 PACKAGED = default_turnout_path().read_text(encoding="utf-8")
 
@@ -78,7 +78,7 @@ def test_packaged_file_loads_in_si_units():
 
 def test_installed_console_script_reports_bad_input():
     """The entry point from setup.cfg: exit 2, one line, no traceback."""
-    proc = subprocess.run([sys.executable, "-m", "exudyn_turnout.cli", "params", "--zone", "9"],
+    proc = subprocess.run([sys.executable, "-m", "exudyn_turnout.cli.main", "params", "--zone", "9"],
                           capture_output=True, text=True)
     assert proc.returncode == 2
     assert "Traceback" not in proc.stderr and re.fullmatch(r"error: .*zone 9.*\n", proc.stderr)

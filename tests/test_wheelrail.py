@@ -6,9 +6,9 @@ oscillation of Klingel); flange forces only push; curving load m v^2 / R.
 """
 import pytest
 
-from exudyn_turnout.routes import load_route
-from exudyn_turnout.vehicle import load_vehicle
-from exudyn_turnout.wheelrail import BoundPair, WheelRailElement
+from exudyn_turnout.inputs.routes import load_route
+from exudyn_turnout.inputs.vehicle import load_vehicle
+from exudyn_turnout.passage.contact_element import BoundPair, WheelRailElement
 
 
 @pytest.fixture(scope="module")

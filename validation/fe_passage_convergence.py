@@ -12,7 +12,7 @@ Run: ``python validation/fe_passage_convergence.py [--quick]``; prints Markdown 
   extension: the largest difference of the force history, relative to the static load.
 
 Each window starts from its own static equilibrium (a steady start, see
-:mod:`exudyn_turnout.fe_passage`), so the windows stand for the full passage there.
+:mod:`exudyn_turnout.passage.fe_track`), so the windows stand for the full passage there.
 """
 import argparse
 from dataclasses import replace
@@ -20,9 +20,9 @@ from dataclasses import replace
 import numpy as np
 
 from exudyn_turnout.fe.mesh import FEOptions
-from exudyn_turnout.fe_passage import FEPassageOptions, simulate_fe_passage
-from exudyn_turnout.passage import PassageSettings
-from exudyn_turnout.turnout import load_turnout
+from exudyn_turnout.passage.fe_track import FEPassageOptions, simulate_fe_passage
+from exudyn_turnout.passage.simulate import PassageSettings
+from exudyn_turnout.inputs.turnout import load_turnout
 
 #: (name, x_start, x_end, summary key) of the windows (m).
 WINDOWS = (("switch", 2.0, 6.0, "peak_Fz_switch_N"), ("crossing", 44.0, 48.0, "peak_Fz_crossing_N"))

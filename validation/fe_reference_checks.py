@@ -26,7 +26,7 @@ from exudyn_turnout.fe.layout import load_layout
 from exudyn_turnout.fe.mesh import FEOptions, build_mesh
 from exudyn_turnout.fe.model import assemble
 from exudyn_turnout.receptance import log_frequencies
-from exudyn_turnout.turnout import load_turnout
+from exudyn_turnout.inputs.turnout import load_turnout
 
 #: (label, slot, x in m): switch rail near the load transfer, crossing rail at the nose,
 #: a stock rail in the switch panel.

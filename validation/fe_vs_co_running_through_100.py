@@ -10,10 +10,10 @@ into DIR (default ``validation/out``).
 import argparse
 from pathlib import Path
 
-from exudyn_turnout.fe_passage import simulate_fe_passage
-from exudyn_turnout.passage import PassageSettings, simulate_passage, write_passage
-from exudyn_turnout.routes import dip_angle, load_route
-from exudyn_turnout.turnout import load_turnout
+from exudyn_turnout.passage.fe_track import simulate_fe_passage
+from exudyn_turnout.passage.simulate import PassageSettings, simulate_passage, write_passage
+from exudyn_turnout.inputs.routes import dip_angle, load_route
+from exudyn_turnout.inputs.turnout import load_turnout
 
 #: x windows (m) of the overlay: the load transfer at the switch and the crossing nose.
 WINDOWS = (("switch: stock rail to switch blade", (1.0, 8.0)), ("crossing nose", (46.0, 48.5)))
@@ -55,7 +55,7 @@ def main(argv=None):
     print(peak_table(results))
     ratio = results["FE"].summary["wall_time_s"] / results["3-layer"].summary["wall_time_s"]
     print(f"\ncost ratio FE / 3-layer: {ratio:.0f}")
-    from exudyn_turnout.plotting import plot_force_signals
+    from exudyn_turnout.plotting.curves import plot_force_signals
     fig, _ = plot_force_signals([(title, results, "Fz_right_N", rng) for title, rng in WINDOWS],
                                 ylabel="vertical force on rail, right wheel (kN)")
     fig.savefig(out / "fe_vs_co_running_through_100.png", dpi=130)

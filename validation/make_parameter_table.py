@@ -5,8 +5,8 @@ Run: ``python validation/make_parameter_table.py [--turnout FILE] [--out FILE]``
 import argparse
 from pathlib import Path
 
-from exudyn_turnout.comparison import compare_with_table2, comparison_markdown
-from exudyn_turnout.turnout import load_turnout
+from exudyn_turnout.corunning.comparison import compare_with_table2, comparison_markdown
+from exudyn_turnout.inputs.turnout import load_turnout
 
 
 def main(argv=None):

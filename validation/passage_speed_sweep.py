@@ -5,9 +5,9 @@ Markdown table (kN) and the crossing dip angle of the route profiles.
 """
 import argparse
 
-from exudyn_turnout.passage import PassageSettings, simulate_passage
-from exudyn_turnout.routes import dip_angle, load_route
-from exudyn_turnout.turnout import load_turnout
+from exudyn_turnout.passage.simulate import PassageSettings, simulate_passage
+from exudyn_turnout.inputs.routes import dip_angle, load_route
+from exudyn_turnout.inputs.turnout import load_turnout
 
 
 def sweep(speeds, routes=("through", "diverging"), layers=(2, 3)):

@@ -6,7 +6,7 @@ The same as ``exudyn-turnout validate``; the default output is ``validation/repo
 import sys
 from pathlib import Path
 
-from exudyn_turnout.cli import main
+from exudyn_turnout.cli.main import main
 
 if __name__ == "__main__":
     argv = sys.argv[1:]

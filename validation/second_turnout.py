@@ -13,7 +13,7 @@ takes ~30 s).
 import sys
 from pathlib import Path
 
-from exudyn_turnout.cli import main
+from exudyn_turnout.cli.main import main
 
 HERE = Path(__file__).resolve().parent
 SECOND = HERE.parent / "exudyn_turnout" / "data" / "ew54_190_1_9.toml"

@@ -16,9 +16,9 @@ from pathlib import Path
 
 import exudyn as exu
 
-from exudyn_turnout.vehicle_builder import (RigidTrack, add_vehicle_model, rigid_track_support,
+from exudyn_turnout.passage.vehicle_builder import (RigidTrack, add_vehicle_model, rigid_track_support,
                                             solve_static, support_wheel_loads, vehicle_modes)
-from exudyn_turnout.vehicle_model import (carbody_bounce_frequency, carbody_pitch_frequency,
+from exudyn_turnout.inputs.vehicle_model import (carbody_bounce_frequency, carbody_pitch_frequency,
                                           carbody_sway_frequencies, carbody_yaw_frequency,
                                           hand_frequencies, load_vehicle_model)
 

@@ -16,10 +16,10 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse.linalg as sla
 
-from ..turnout import Turnout
-from . import timoshenko as tim
-from .mesh import FEOptions
-from .model import Triplets, rail_section
+from exudyn_turnout.inputs.turnout import Turnout
+from exudyn_turnout.fe import timoshenko as tim
+from exudyn_turnout.fe.mesh import FEOptions
+from exudyn_turnout.fe.model import Triplets, rail_section
 
 __all__ = ["ContinuousSupport", "smeared_support", "continuous_beam_receptance"]
 

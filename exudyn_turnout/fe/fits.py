@@ -17,9 +17,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..turnout import Polynomial, Turnout
-from .layout import Layout, load_layout
-from .stiffness import StiffnessProfile
+from exudyn_turnout.inputs.turnout import Polynomial, Turnout
+from exudyn_turnout.fe.layout import Layout, load_layout
+from exudyn_turnout.fe.stiffness import StiffnessProfile
 
 __all__ = ["PolynomialFit", "TurnoutFits", "fit_polynomial", "fit_profile", "fit_turnout_profiles",
            "with_fitted_profiles"]
@@ -39,7 +39,7 @@ class PolynomialFit:
 
     @property
     def polynomial(self) -> Polynomial:
-        """As the turnout's :class:`~exudyn_turnout.turnout.Polynomial` (held outside the range)."""
+        """As the turnout's :class:`~exudyn_turnout.inputs.turnout.Polynomial` (held outside the range)."""
         return Polynomial(self.coefficients, self.x_min, self.x_max)
 
     def __call__(self, x: float) -> float:

@@ -13,12 +13,12 @@ from dataclasses import asdict
 
 import numpy as np
 
-from ..receptance import Receptance, log_frequencies
-from ..turnout import RAIL_SLOTS, Turnout
-from .layout import Layout, load_layout
-from .mesh import FEOptions, build_mesh
-from .model import PlaneModel, assemble
-from .solver import condense, default_keep
+from exudyn_turnout.receptance import Receptance, log_frequencies
+from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Turnout
+from exudyn_turnout.fe.layout import Layout, load_layout
+from exudyn_turnout.fe.mesh import FEOptions, build_mesh
+from exudyn_turnout.fe.model import PlaneModel, assemble
+from exudyn_turnout.fe.solver import condense, default_keep
 
 __all__ = ["sweep", "sweep_points", "point_receptances", "resolve_rail", "fe_receptance"]
 

@@ -9,7 +9,7 @@ bearers (length from ``[sleeper].length``, centred between the outermost rails t
 carry) or a track of its own sleepers (e.g. the diverging track after the crossing).
 ``slots`` maps the co-running rail slots r1..r4 of each route to rails along x.
 
-Errors in the section raise :class:`~exudyn_turnout.turnout.TurnoutFileError` naming
+Errors in the section raise :class:`~exudyn_turnout.inputs.turnout.TurnoutFileError` naming
 the file and the field, e.g. ``uic60.toml: layout.rails[3].route must be one of
 through, diverging, got 'divergent'``.
 """
@@ -21,8 +21,8 @@ from pathlib import Path
 from typing import Any, Mapping
 
 
-from ..geometry import Centreline, load_centrelines
-from ..turnout import RAIL_SLOTS, Turnout, TurnoutFileError
+from exudyn_turnout.inputs.geometry import Centreline, load_centrelines
+from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Turnout, TurnoutFileError
 
 __all__ = [
     "TURNOUT_TRACK",
@@ -41,7 +41,7 @@ __all__ = [
 TURNOUT_TRACK = "turnout"
 
 
-#: A route centreline (the plan geometry lives in :mod:`exudyn_turnout.geometry`).
+#: A route centreline (the plan geometry lives in :mod:`exudyn_turnout.inputs.geometry`).
 Route = Centreline
 
 

@@ -31,8 +31,8 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
-from ..turnout import Turnout, TurnoutFileError
-from .layout import Layout, LayoutRail
+from exudyn_turnout.inputs.turnout import Turnout, TurnoutFileError
+from exudyn_turnout.fe.layout import Layout, LayoutRail
 
 __all__ = ["FEOptions", "Mesh", "build_mesh"]
 

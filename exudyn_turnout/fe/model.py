@@ -41,9 +41,9 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from ..turnout import Turnout
-from . import timoshenko as tim
-from .mesh import Mesh
+from exudyn_turnout.inputs.turnout import Turnout
+from exudyn_turnout.fe import timoshenko as tim
+from exudyn_turnout.fe.mesh import Mesh
 
 __all__ = ["DIRECTIONS", "PlaneModel", "Triplets", "rail_section", "element_nodes", "assemble"]
 

@@ -38,7 +38,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as sla
 from scipy.sparse.csgraph import connected_components
 
-from .model import PlaneModel
+from exudyn_turnout.fe.model import PlaneModel
 
 __all__ = ["DenseGroup", "ModalGroup", "DampedModalGroup", "CondensedSystem", "default_keep", "condense",
            "solve_full"]

@@ -13,11 +13,11 @@ from typing import Mapping
 
 import numpy as np
 
-from ..turnout import Turnout
-from .frf import point_receptances
-from .layout import Layout, load_layout
-from .mesh import FEOptions, build_mesh
-from .model import assemble
+from exudyn_turnout.inputs.turnout import Turnout
+from exudyn_turnout.fe.frf import point_receptances
+from exudyn_turnout.fe.layout import Layout, load_layout
+from exudyn_turnout.fe.mesh import FEOptions, build_mesh
+from exudyn_turnout.fe.model import assemble
 
 __all__ = ["StiffnessProfile", "static_stiffness_profile", "CSV_COLUMNS"]
 

@@ -15,19 +15,19 @@ equivalent conicity, flange angle, Nadal), :mod:`.hertz` (exact Hertz ellipse, C
 :mod:`.references` (CONTACT reference outputs), :mod:`.data` (packaged data),
 :mod:`.figures` (plots; the only module importing matplotlib, imported on demand).
 """
-from .creep import CreepForces, KalkerCoefficients, kalker_coefficients, polach_creep_forces
-from .geometry import (Candidates, WheelGrid, WheelsetContact, WheelsetSetup,
+from exudyn_turnout.wheel_rail.creep import CreepForces, KalkerCoefficients, kalker_coefficients, polach_creep_forces
+from exudyn_turnout.wheel_rail.geometry import (Candidates, WheelGrid, WheelsetContact, WheelsetSetup,
                        equivalent_conicity, find_candidates, flange_angle, grid_wheel,
                        nadal_limit, solve_wheelset, surface_derivatives)
-from .hertz import HertzContact, curvature_sums, effective_modulus, hertz_constant, hertz_contact
-from .profiles import (Profile, ProfileFormatError, SliceSet, read_plain_profile, read_profile,
+from exudyn_turnout.wheel_rail.hertz import HertzContact, curvature_sums, effective_modulus, hertz_constant, hertz_contact
+from exudyn_turnout.wheel_rail.profiles import (Profile, ProfileFormatError, SliceSet, read_plain_profile, read_profile,
                        read_simpack_profile, read_slices)
-from .sections import (CrossingDesign, SectionGrid, SwitchDesign, crossing_sections,
+from exudyn_turnout.wheel_rail.sections import (CrossingDesign, SectionGrid, SwitchDesign, crossing_sections,
                        lateral_grid, place_rail, plain_rail_sections, slice_sections,
                        switch_sections, wheel_envelope)
-from .tables import (ContactLookup, ContactTable, TableSettings, build_contact_table,
+from exudyn_turnout.wheel_rail.tables import (ContactLookup, ContactTable, TableSettings, build_contact_table,
                      default_cache_dir, lookup, normal_force)
-from .transfer import DipSummary, WheelPath, dip_summary, wheel_path
+from exudyn_turnout.wheel_rail.transfer import DipSummary, WheelPath, dip_summary, wheel_path
 
 __all__ = [
     "CreepForces", "KalkerCoefficients", "kalker_coefficients", "polach_creep_forces",

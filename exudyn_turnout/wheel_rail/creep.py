@@ -27,10 +27,11 @@ Provenance of the numbers (checked 2026-11):
   linear theory for nu = 0 (panel method: two identical half-spaces, uniform tractions on
   up to 170 x 170 cells, full stick in steady rolling; a one-off check, not part of the
   package) reproduces the verified C11 and C23 within 1 % and gives C33 = 1.22 at
-  a/b = 1 (table 1.19), 1.76 at 0.5 (1.74), 3.48 at 0.2 (3.46) and 0.98 at b/a = 0.5
-  (0.958), the last three still falling with refinement.  So the nu = 0 column of C33 is
-  confirmed within about 3 %; the nu = 0.25 and 0.5 columns only by the asymptote.  Treat
-  C33 as uncertain to a few per cent until compared with Table E3 itself.
+  a/b = 1 (table 1.19), 0.97 at b/a = 0.5 (0.958), and, on 80 x 80 cells and still
+  falling with refinement, 1.76 at a/b = 0.5 (1.74) and 3.48 at 0.2 (3.46).  So the
+  nu = 0 column of C33 is confirmed within about 3 %; the nu = 0.25 and 0.5 columns only
+  by the asymptote.  Treat C33 as uncertain to a few per cent until compared with
+  Table E3 itself.
 
 Saturation: Polach's method
 ---------------------------

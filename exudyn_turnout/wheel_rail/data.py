@@ -9,9 +9,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .geometry import WheelGrid, WheelsetSetup, grid_wheel
-from .profiles import Profile, read_simpack_profile
-from .sections import SectionGrid, lateral_grid, place_rail, plain_rail_sections
+from exudyn_turnout.wheel_rail.geometry import WheelGrid, WheelsetSetup, grid_wheel
+from exudyn_turnout.wheel_rail.profiles import Profile, read_simpack_profile
+from exudyn_turnout.wheel_rail.sections import SectionGrid, lateral_grid, place_rail, plain_rail_sections
 
 __all__ = ["data_dir", "profile_path", "reference_output_path", "s1002_wheel",
            "uic60_rail", "standard_track"]

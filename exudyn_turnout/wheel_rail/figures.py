@@ -11,9 +11,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .geometry import WheelGrid, WheelsetContact, wheel_heights_on_grid
-from .sections import SectionGrid, section_at
-from .transfer import WheelPath
+from exudyn_turnout.wheel_rail.geometry import WheelGrid, WheelsetContact, wheel_heights_on_grid
+from exudyn_turnout.wheel_rail.sections import SectionGrid, section_at
+from exudyn_turnout.wheel_rail.transfer import WheelPath
 
 __all__ = ["plot_contact_band", "plot_sections", "plot_wheel_path"]
 

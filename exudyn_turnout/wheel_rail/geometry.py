@@ -42,8 +42,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.signal import savgol_filter
 
-from .profiles import Profile
-from .sections import SectionGrid, surface_on_grid
+from exudyn_turnout.wheel_rail.profiles import Profile
+from exudyn_turnout.wheel_rail.sections import SectionGrid, surface_on_grid
 
 __all__ = [
     "WheelsetSetup",

@@ -17,9 +17,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .geometry import WheelGrid, find_candidates, surface_derivatives
-from .profiles import ProfileFormatError, read_slices
-from .sections import lateral_grid, slice_sections, wheel_envelope
+from exudyn_turnout.wheel_rail.geometry import WheelGrid, find_candidates, surface_derivatives
+from exudyn_turnout.wheel_rail.profiles import ProfileFormatError, read_slices
+from exudyn_turnout.wheel_rail.sections import lateral_grid, slice_sections, wheel_envelope
 
 __all__ = ["ReferenceCase", "read_reference_output", "GeometryResult", "geometry_at_reference",
            "compare_all"]

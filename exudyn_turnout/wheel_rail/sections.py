@@ -28,7 +28,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .profiles import Profile, SliceSet
+from exudyn_turnout.wheel_rail.profiles import Profile, SliceSet
 
 __all__ = [
     "SectionGrid",

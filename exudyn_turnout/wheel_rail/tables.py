@@ -28,10 +28,10 @@ from pathlib import Path
 
 import numpy as np
 
-from .geometry import (FLANGE_DIRECTION, WheelGrid, prepare_rail, prepare_wheel,
+from exudyn_turnout.wheel_rail.geometry import (FLANGE_DIRECTION, WheelGrid, prepare_rail, prepare_wheel,
                        search_candidates_batch, surface_derivatives)
-from .hertz import curvature_sums, effective_modulus, hertz_constant
-from .sections import SectionGrid
+from exudyn_turnout.wheel_rail.hertz import curvature_sums, effective_modulus, hertz_constant
+from exudyn_turnout.wheel_rail.sections import SectionGrid
 
 __all__ = [
     "TableSettings",

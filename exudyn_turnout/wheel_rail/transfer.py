@@ -16,9 +16,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .geometry import WheelGrid, prepare_rail, prepare_wheel, search_candidates, \
+from exudyn_turnout.wheel_rail.geometry import WheelGrid, prepare_rail, prepare_wheel, search_candidates, \
     surface_derivatives
-from .sections import SectionGrid
+from exudyn_turnout.wheel_rail.sections import SectionGrid
 
 __all__ = ["WheelPath", "DipSummary", "rail_runs", "wheel_path", "dip_summary"]
 

@@ -1,0 +1,304 @@
+"""Routes through the turnout: which rails each wheel can touch along x, and how high.
+
+A route (``through``, ``diverging``) is read from the turnout file's ``[routes.<name>]``
+section (see the file's comments for the format and the reasoning behind the default
+profiles). Positions in a route (profile x, flange and check ranges) are numbers (m) or
+features of the turnout's plan (:mod:`exudyn_turnout.inputs.geometry`), e.g. ``"nose_tip + 0.5"``,
+so that the crossing lies where the layout puts it. Load transfer between rails (stock rail to switch blade, wing rail to
+crossing nose) is not coded anywhere: it follows from the height tables alone, through
+the Hertz springs of whichever rail stands higher under the wheel.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Mapping
+
+import numpy as np
+
+from exudyn_turnout.inputs.geometry import TurnoutPlan, resolve_position, turnout_plan
+from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Table1D, Turnout, TurnoutFileError, Zone, _Reader
+
+__all__ = ["ContactPair", "Route", "load_route", "route_names", "WHEELS", "dip_angle",
+           "SpeedWarning", "cant_deficiency", "speed_warnings", "RAIL_CENTRE_DISTANCE",
+           "GRAVITY"]
+
+#: m, distance between the rail centres used to express cant (EN 13803: 1500 mm for 1435 mm gauge).
+RAIL_CENTRE_DISTANCE = 1.5
+#: m/s^2
+GRAVITY = 9.81
+
+
+class SpeedWarning(UserWarning):
+    """A passage runs a route faster than the turnout file permits (a warning, not an error)."""
+
+#: Wheels of the wheelset and their side: +1 left (positive y), -1 right.
+WHEELS = {"left": 1, "right": -1}
+
+
+@dataclass(frozen=True)
+class ContactPair:
+    """A wheel and a rail it can touch, with the rail height profile seen by the wheel."""
+
+    name: str
+    wheel: str  #: "left" or "right"
+    rail: str  #: rail slot r1..r4
+    x: tuple[float, ...]  #: m, profile abscissae (empty: no vertical contact)
+    z: tuple[float, ...]  #: m, rail height relative to nominal at x
+    flange: tuple[float, float] | None  #: m, x range where the flange can touch this rail
+    check: tuple[float, float] | None  #: m, x range where the flange back can touch it
+
+    @property
+    def side(self) -> int:
+        return WHEELS[self.wheel]
+
+    @property
+    def has_tread(self) -> bool:
+        return bool(self.x)
+
+    def tread_active(self, x: float) -> bool:
+        return self.has_tread and self.x[0] <= x <= self.x[-1]
+
+    def height(self, x: float) -> float:
+        """Rail height (m) at x, linear between the table's points."""
+        return float(np.interp(x, self.x, self.z))
+
+    def x_range(self) -> tuple[float, float]:
+        ranges = [r for r in (self.flange, self.check) if r] + ([(self.x[0], self.x[-1])] if self.x else [])
+        return min(r[0] for r in ranges), max(r[1] for r in ranges)
+
+
+@dataclass(frozen=True)
+class Route:
+    name: str
+    description: str
+    curvature: Table1D  #: 1/m, positive for a curve to the left
+    pairs: tuple[ContactPair, ...]
+    rail_y: Mapping[str, float]  #: m, overrides of the zones' rail positions for this route
+    continues: Mapping[int, Mapping[str, str]]  #: zone -> {new slot: slot it continues}
+    check_clearance: float  #: m, nominal check-rail clearance
+    check_flare: tuple[float, float] = (0.0, 0.0)  #: m, (length, opening) of the flared ends
+    cant: float = 0.0  #: m, cant of the route's curve (height difference of the rails)
+    permitted_speed_kmh: float | None = None  #: km/h, the file's permitted speed; None: none
+    permitted_cant_deficiency: float | None = None  #: m, the file's limit; None: none
+
+    def max_curvature(self, x_from: float, x_to: float) -> float:
+        """Largest |1/R| (1/m) of the route between x_from and x_to (table points and ends)."""
+        xs = [x_from, x_to] + [x for x in self.curvature.x if x_from <= x <= x_to]
+        return max(abs(self.curvature(x)) for x in xs)
+
+    def check_clearance_at(self, pair: ContactPair, x: float) -> float | None:
+        """Check-rail clearance (m) at x, opened at the flared ends; None outside the check rail."""
+        if not pair.check or not pair.check[0] <= x <= pair.check[1]:
+            return None
+        length, opening = self.check_flare
+        if length <= 0.0:
+            return self.check_clearance
+        into = min(x - pair.check[0], pair.check[1] - x) / length
+        return self.check_clearance + opening * max(0.0, 1.0 - into)
+
+    def zone(self, zone: Zone) -> Zone:
+        """The zone with this route's rail positions."""
+        from dataclasses import replace
+        rail_y = {s: self.rail_y.get(s, y) for s, y in zone.rail_y.items()}
+        return replace(zone, rail_y=rail_y)
+
+    def pairs_in(self, zone: Zone) -> tuple[ContactPair, ...]:
+        """Pairs whose x range overlaps the zone over a positive length (not just a boundary)."""
+        return tuple(p for p in self.pairs
+                     if min(p.x_range()[1], zone.x_end) - max(p.x_range()[0], zone.x_start) > 1e-9)
+
+
+def route_names(turnout: Turnout) -> tuple[str, ...]:
+    return tuple(turnout.raw.get("routes", {}))
+
+
+def _x(r: _Reader, field: str, value: object, plan: TurnoutPlan | None) -> float:
+    """A position: a number (m) or a feature of the plan, e.g. ``"nose_tip - 0.2"``."""
+    if isinstance(value, str):
+        try:
+            return resolve_position(value, plan)
+        except ValueError as err:
+            raise r.fail(field, str(err)) from None
+    return r.check(field, value, positive=False)
+
+
+def _range(r: _Reader, field: str, plan: TurnoutPlan | None) -> tuple[float, float] | None:
+    value = r.get(field, None)
+    if value is None:
+        return None
+    if not isinstance(value, list) or len(value) != 2:
+        raise r.fail(field, f"must be [x_from, x_to], got {value!r}")
+    a, b = (_x(r, field, v, plan) for v in value)
+    if not b > a:
+        raise r.fail(field, f"range is inverted: {a:g} >= {b:g}")
+    return a, b
+
+
+def _pair(r: _Reader, p: str, plan: TurnoutPlan | None) -> ContactPair:
+    wheel = r.choice(p + ".wheel", tuple(WHEELS))
+    rail = r.choice(p + ".rail", RAIL_SLOTS)
+    xs, zs = r.get(p + ".x", []), r.get(p + ".z", [])
+    if not isinstance(xs, list) or not isinstance(zs, list) or len(xs) != len(zs) or len(xs) == 1:
+        raise r.fail(p, "needs lists x and z of the same length (>= 2), or neither")
+    xs = [_x(r, p + ".x", v, plan) for v in xs]
+    zs = [r.check(p + ".z", v, positive=False) for v in zs]
+    if any(b <= a for a, b in zip(xs, xs[1:])):
+        raise r.fail(p + ".x", f"must be increasing, got {xs}")
+    if any(abs(z) > 0.05 for z in zs):
+        raise r.fail(p + ".z", f"heights must be within +-0.05 m of nominal, got {zs}")
+    pair = ContactPair(str(r.get(p + ".name", f"{wheel} wheel on {rail}")), wheel, rail, tuple(xs), tuple(zs),
+                       _range(r, p + ".flange", plan), _range(r, p + ".check", plan))
+    if not pair.x and not pair.check:
+        raise r.fail(p, "needs a height profile (x, z) or a check range")
+    return pair
+
+
+def _check_active(r: _Reader, turnout: Turnout, field: str, pair: ContactPair) -> None:
+    a, b = pair.x_range()
+    if a < turnout.x_min - 1e-9 or b > turnout.x_max + 1e-9:
+        raise r.fail(field, f"x range {a:g}..{b:g} m is outside the turnout ({turnout.x_min:g}..{turnout.x_max:g} m)")
+    for zone in turnout.zones:
+        overlap = min(b, zone.x_end) - max(a, zone.x_start)
+        if overlap > 1e-9 and pair.rail not in zone.active_rails:
+            raise r.fail(field, f"uses rail {pair.rail} over {max(a, zone.x_start):g}..{min(b, zone.x_end):g} m, "
+                         f"where zone {zone.index} has no such active rail")
+
+
+def _continues(r: _Reader, field: str, turnout: Turnout) -> dict[int, dict[str, str]]:
+    out: dict[int, dict[str, str]] = {}
+    for i, item in enumerate(r.get(field, []) or []):
+        f = f"{field}[{i}]"
+        zone = int(r.check(f + ".zone", item.get("zone") if isinstance(item, Mapping) else None))
+        item = item if isinstance(item, Mapping) else {}
+        if not 2 <= zone <= len(turnout.zones):
+            raise r.fail(f + ".zone", f"must be a zone after the first (2..{len(turnout.zones)}), got {zone}")
+        slot, src = item.get("slot"), item.get("from")
+        if slot not in turnout.zone(zone).active_rails or src not in turnout.zone(zone - 1).active_rails:
+            raise r.fail(f, f"maps {src!r} of zone {zone - 1} to {slot!r} of zone {zone}: both must be active there")
+        out.setdefault(zone, {})[slot] = src
+    return out
+
+
+def load_route(turnout: Turnout, name: str) -> Route:
+    """The route ``name`` of the turnout file, validated.
+
+    Raises
+    ------
+    TurnoutFileError
+        Unknown route, or a field that cannot be right (the message names the field).
+    """
+    filename = turnout.source.replace("\\", "/").rsplit("/", 1)[-1]
+    r = _Reader(filename, turnout.raw)
+    if name not in route_names(turnout):
+        raise TurnoutFileError(f"{filename}: no route {name!r} (routes: {', '.join(route_names(turnout)) or 'none'})")
+    p = f"routes.{name}"
+    raw_pairs = r.get(p + ".contacts")
+    if not isinstance(raw_pairs, list) or not raw_pairs:
+        raise r.fail(p + ".contacts", "must be a non-empty list of [[contacts]] tables")
+    plan = turnout_plan(turnout) if isinstance(turnout.raw.get("layout"), Mapping) else None
+    pairs = []
+    for i, raw in enumerate(raw_pairs):
+        field = f"{p}.contacts[{i}]"
+        pair = _pair(r.sub(field, raw), field, plan)
+        _check_active(r, turnout, field, pair)
+        pairs.append(pair)
+    curvature = r.get(p + ".curvature", 0.0)
+    curvature = Table1D((0.0,), (float(curvature),)) if isinstance(curvature, (int, float)) else _curvature(r, p)
+    rail_y = {s: r.number(f"{p}.rail_y.{s}", positive=False) for s in r.get(p + ".rail_y", {})}
+    has_check = any(q.check for q in pairs)
+    clearance = r.number("check_rail.clearance") if has_check else math.nan
+    flare = (r.number("check_rail.flare_length", False, 0.0), r.number("check_rail.flare_opening", False, 0.0)) \
+        if has_check else (0.0, 0.0)
+    limit_speed = r.get(p + ".permitted_speed_kmh", None)
+    limit_deficiency = r.get(p + ".permitted_cant_deficiency", None)
+    return Route(name, str(r.get(p + ".description", "")), curvature, tuple(pairs), rail_y,
+                 _continues(r, p + ".continues", turnout), clearance, flare,
+                 r.number(p + ".cant", positive=False, default=0.0),
+                 None if limit_speed is None else r.number(p + ".permitted_speed_kmh"),
+                 None if limit_deficiency is None else r.number(p + ".permitted_cant_deficiency"))
+
+
+def cant_deficiency(speed_kmh: float, curvature: float, cant: float = 0.0) -> float:
+    """Cant deficiency (m): the cant that would balance the curve, less the cant there is.
+
+    D = G v^2 |1/R| / g - cant, G = :data:`RAIL_CENTRE_DISTANCE` (EN 13803's definition of
+    cant deficiency for standard gauge).
+
+    Parameters
+    ----------
+    speed_kmh : float
+        Speed (km/h).
+    curvature : float
+        1/R (1/m); its sign is ignored.
+    cant : float
+        Cant (m) of the curve.
+
+    Returns
+    -------
+    float
+        Cant deficiency (m).
+    """
+    v = speed_kmh / 3.6
+    return RAIL_CENTRE_DISTANCE * v**2 * abs(curvature) / GRAVITY - cant
+
+
+def speed_warnings(route: Route, speed_kmh: float, x_from: float, x_to: float) -> list[str]:
+    """Warnings for a passage above the route's permitted speed or cant deficiency.
+
+    Parameters
+    ----------
+    route : Route
+    speed_kmh : float
+        The passage's speed (km/h).
+    x_from, x_to : float
+        The passage's x range (m).
+
+    Returns
+    -------
+    list of str
+        One sentence per limit exceeded (empty when none is or the file sets none).
+    """
+    out = []
+    if route.permitted_speed_kmh is not None and speed_kmh > route.permitted_speed_kmh + 1e-9:
+        out.append(f"route {route.name}: {speed_kmh:g} km/h is above the permitted "
+                   f"{route.permitted_speed_kmh:g} km/h of the turnout file")
+    deficiency = cant_deficiency(speed_kmh, route.max_curvature(x_from, x_to), route.cant)
+    if route.permitted_cant_deficiency is not None \
+            and deficiency > route.permitted_cant_deficiency + 1e-9:
+        out.append(f"route {route.name}: cant deficiency {1e3 * deficiency:.0f} mm at "
+                   f"{speed_kmh:g} km/h is above the permitted "
+                   f"{1e3 * route.permitted_cant_deficiency:.0f} mm of the turnout file")
+    return out
+
+
+def _curvature(r: _Reader, p: str) -> Table1D:
+    f = p + ".curvature"
+    xs, vs = r.get(f + ".x"), r.get(f + ".value")
+    if not isinstance(xs, list) or not isinstance(vs, list) or len(xs) != len(vs) or len(xs) < 2:
+        raise r.fail(f, "must be a number or {x = [...], value = [...]} of equal length")
+    xs = [r.check(f + ".x", v, positive=False) for v in xs]
+    if any(b <= a for a, b in zip(xs, xs[1:])):
+        raise r.fail(f + ".x", f"must be increasing, got {xs}")
+    return Table1D(tuple(xs), tuple(r.check(f + ".value", v, positive=False) for v in vs))
+
+
+def dip_angle(route: Route, wheel: str, x_from: float, x_to: float, n: int = 20001) -> tuple[float, float, float]:
+    """Dip of the wheel's path over the highest rail between x_from and x_to.
+
+    Returns
+    -------
+    (x_dip, depth, two_alpha)
+        Position (m) and depth (m) of the lowest point of the upper envelope of the rail
+        heights, and the total dip angle 2 alpha (rad): the slope after minus the slope
+        before that point (the angle Jenkins' P2 formula takes).
+    """
+    xs = np.linspace(x_from, x_to, n)
+    pairs = [p for p in route.pairs if p.wheel == wheel and p.has_tread]
+    env = np.array([max((p.height(x) for p in pairs if p.tread_active(x)), default=-np.inf) for x in xs])
+    i = int(np.argmin(env))
+    h = xs[1] - xs[0]
+    k = max(1, int(0.02 / h))  # slopes over 20 mm either side
+    before = (env[i] - env[max(i - k, 0)]) / (xs[i] - xs[max(i - k, 0)])
+    after = (env[min(i + k, n - 1)] - env[i]) / (xs[min(i + k, n - 1)] - xs[i])
+    return float(xs[i]), float(-env[i]), float(after - before)

@@ -1,0 +1,800 @@
+"""Turnout definition: load and validate a turnout file (TOML) into frozen dataclasses.
+
+A turnout file holds the FE properties of the paper's Table 1 per rail type, sleepers and
+ballast, the support-stiffness polynomials (Eqs 10, 14), the simulation zones with their
+active rails (Table 3) and the published co-running parameters (Table 2). Every quantity
+is in SI units. The packaged default is ``data/uic60_760_1_15.toml``; another turnout is
+another file, never a code change.
+
+Errors in a file raise :class:`TurnoutFileError` with one message naming the file and the
+field, e.g. ``uic60.toml: sleeper.spacing must be > 0, got -0.6``.
+"""
+from __future__ import annotations
+
+import math
+import re
+import tomllib
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+from typing import Any, Mapping
+
+import numpy as np
+
+__all__ = [
+    "TurnoutFileError",
+    "Table1D",
+    "Polynomial",
+    "RailPad",
+    "RailType",
+    "Sleeper",
+    "Ballast",
+    "ExtraLayer",
+    "Zone",
+    "Entry",
+    "Turnout",
+    "RAIL_SLOTS",
+    "PARAMETER_NAMES",
+    "default_turnout_path",
+    "load_turnout",
+    "read_toml",
+]
+
+#: Rail slots of the co-running model: r1 stock, r2 switch/crossing nose, r3 check, r4 stock.
+RAIL_SLOTS = ("r1", "r2", "r3", "r4")
+
+
+def _names() -> tuple[str, ...]:
+    """Names of the co-running entries, in Table 2 order (vertical, lateral, masses)."""
+    out = []
+    for d in ("z", "y"):
+        out += [f"{p}{j}_{d}" for j in range(1, 5) for p in ("k_0", "c_0")]
+        out += [f"{p}{j}_{d}" for j in range(1, 5) for p in ("k_rt", "c_rt")]
+        out += ["k_tg1_z", "c_tg1_z", "k_tg2_z", "c_tg2_z"] if d == "z" else ["k_tg_y", "c_tg_y"]
+    return tuple(out) + ("m_0", "m_t", "m_r1", "m_r2", "m_r3", "m_r4", "J_t")
+
+
+#: Entry names of a co-running parameter set (API, CSV and JSON use these).
+PARAMETER_NAMES = _names()
+
+
+class TurnoutFileError(ValueError):
+    """A turnout file is missing a field or holds a value that cannot be right."""
+
+
+#: m, largest |x| of any position in a turnout file (a turnout is not 10 km long).
+X_LIMIT = 1e4
+
+#: Plausibility bounds (upper limits, SI) of turnout-file quantities; every value must also
+#: be > 0. Wide on purpose (they catch unit slips and typos, not unusual designs):
+#: densities <= 1e5 kg/m^3 (steel 7850, concrete 2400), Young's moduli <= 1e13 Pa
+#: (diamond 1.2e12), Poisson's ratio in (0, 0.5) (checked apart), shear coefficient <= 2,
+#: areas <= 1 m^2, second moments <= 1 m^4, lengths <= 20 m (sleeper, bearer), spacing
+#: <= 5 m, stiffnesses <= 1e12 N/m (per metre for the ballast), damping <= 1e10 N s/m,
+#: masses <= 1e5 kg, stiffness ratios <= 1e6, rails per sleeper 1..10.
+BOUNDS = {
+    "density": 1e5, "youngs_modulus": 1e13, "shear_coefficient": 2.0, "area": 1.0, "I": 1.0,
+    "length": 20.0, "spacing": 5.0, "stiffness": 1e12, "damping": 1e10, "mass": 1e5, "ratio": 1e6,
+}
+
+
+@dataclass(frozen=True)
+class Table1D:
+    """A quantity tabulated along x, linear in between, held outside the table."""
+
+    x: tuple[float, ...]  #: m, increasing
+    value: tuple[float, ...]  #: in the unit of the quantity
+
+    def __call__(self, x: float) -> float:
+        return float(np.interp(x, self.x, self.value))
+
+    @property
+    def is_constant(self) -> bool:
+        """True if every tabulated value is the same."""
+        return len(set(self.value)) == 1
+
+
+@dataclass(frozen=True)
+class Polynomial:
+    """K(x) = sum(c_i x^i) on [x_min, x_max], held at the end values outside (Eqs 10, 14)."""
+
+    coefficients: tuple[float, ...]  #: N/m, N/m^2, N/m^3 ... ascending powers of x
+    x_min: float  #: m
+    x_max: float  #: m
+    #: m; at and before this x the track is plain (its Delta factor is 1); between it and
+    #: x_min the factor blends linearly (see parameters.delta_z). None: held from x_min.
+    plain_track_end: float | None = None
+
+    def __call__(self, x: float) -> float:
+        xc = min(max(x, self.x_min), self.x_max)
+        return float(sum(c * xc**i for i, c in enumerate(self.coefficients)))
+
+
+@dataclass(frozen=True)
+class RailPad:
+    """Rail pad under one rail type (Table 1)."""
+    k_z: float  #: N/m, vertical pad stiffness k_p,z
+    c_z: float  #: N s/m, vertical pad damping c_p,z
+    k_y: float  #: N/m, lateral pad stiffness k_p,y
+    c_y: float  #: N s/m, lateral pad damping c_p,y
+
+
+@dataclass(frozen=True)
+class RailType:
+    """One column of the paper's Table 1 (rail and the pad under it)."""
+
+    name: str
+    density: float  #: kg/m^3, rho_r
+    youngs_modulus: float  #: Pa, E_r
+    shear_coefficient: float  #: kappa (-)
+    poisson: float  #: nu (-)
+    area: Table1D  #: m^2, A_r along x
+    I_z: Table1D  #: m^4, vertical bending inertia along x
+    I_y: Table1D  #: m^4, lateral bending inertia along x
+    sleeper_length: float  #: m, L_t of Table 1 for this rail type
+    support: str  #: "edge" (Eq 4) or "middle" (Eq 3) of the sleeper
+    rails_per_sleeper: int  #: n in Eq 4
+    pad: RailPad
+    vertical_factor: str | None  #: "Delta_z" or None
+    lateral_factor: str | None  #: "Delta_y" or None
+    equivalent_to: str | None  #: rail type whose co-running values this one scales
+
+
+@dataclass(frozen=True)
+class Sleeper:
+    """Sleepers (bearers) of the turnout (Table 1)."""
+    density: float  #: kg/m^3, rho_s
+    youngs_modulus: float  #: Pa, E_s
+    area: float  #: m^2, A_s
+    I: float  #: m^4, I_s (vertical bending)
+    spacing: float  #: m, L_s
+    length: Table1D  #: m, sleeper (bearer) length along x
+
+    @property
+    def height(self) -> float:
+        """Height h_t (m) of the rectangle with the sleeper's A_s and I_s: sqrt(12 I_s / A_s)."""
+        return math.sqrt(12.0 * self.I / self.area)
+
+
+@dataclass(frozen=True)
+class Ballast:
+    """Ballast per unit sleeper length (Table 1)."""
+    s_b_z: float  #: N/m^2, vertical stiffness per unit sleeper length
+    d_b_z: float  #: N s/m^2, vertical damping per unit length
+    s_b_y: float  #: N/m^2, lateral stiffness per unit length
+    d_b_y: float  #: N s/m^2, lateral damping per unit length
+
+
+@dataclass(frozen=True)
+class ExtraLayer:
+    """The third layer of the three-layer model (Section 3.1.1)."""
+    m_0: float  #: kg, dummy mass of the third layer
+    k_0_z_over_k_rt_z: float  #: k_0j,z / k_rtj,z (-)
+    k_0_y_over_k_rt_y: float  #: k_0j,y / k_rtj,y (-)
+
+
+@dataclass(frozen=True)
+class Zone:
+    """A simulation zone (Table 3): masses constant, active rails fixed."""
+
+    index: int  #: 1-based
+    name: str
+    x_start: float  #: m
+    x_end: float  #: m
+    active_rails: tuple[str, ...]
+    rail_types: Mapping[str, str]  #: slot -> rail type name
+    ballast_rail_type: str  #: rail type governing k_tg1, k_tg_y, m_t, J_t
+    mass_at_x: float | None  #: m; masses from Eqs 17/18 at this x, None: Delta = 1
+    rail_y: Mapping[str, float]  #: m, lateral position of each rail slot (y positive left)
+    ballast_y: tuple[float, float]  #: m, lateral positions of the k_tg1 and k_tg2 springs
+    sleeper_y: float  #: m, lateral position of the sleeper's centre of mass
+
+    def contains(self, x: float) -> bool:
+        """True if x (m) lies in the zone, ends included.
+
+        Parameters
+        ----------
+        x : float
+
+        Returns
+        -------
+        bool
+        """
+        return self.x_start <= x <= self.x_end
+
+
+@dataclass(frozen=True)
+class Entry:
+    """One co-running entry as a function of x: a, a*Delta_z, a*Delta_y or a ramp a -> b."""
+
+    kind: str  #: "const", "Delta_z", "Delta_y" or "ramp"
+    a: float  #: value, coefficient, or ramp start value (SI)
+    b: float = math.nan  #: ramp end value (SI), only for kind "ramp"
+
+    def value(self, delta_z: float, delta_y: float, s: float) -> float:
+        """Value at Delta_z, Delta_y and relative zone position s in [0, 1].
+
+        Parameters
+        ----------
+        delta_z, delta_y : float
+            Delta_z(x), Delta_y(x).
+        s : float
+            Relative position in the zone (ramps).
+
+        Returns
+        -------
+        float
+        """
+        if self.kind == "Delta_z":
+            return self.a * delta_z
+        if self.kind == "Delta_y":
+            return self.a * delta_y
+        if self.kind == "ramp":
+            return self.a + (self.b - self.a) * min(max(s, 0.0), 1.0)
+        return self.a
+
+    def describe(self) -> str:
+        """The entry as Table 2 prints it ("369e6 * Delta_z", "448e6 - 453e6", ...).
+
+        Returns
+        -------
+        str
+        """
+        if self.kind in ("Delta_z", "Delta_y"):
+            return f"{self.a:.4g} * {self.kind}"
+        if self.kind == "ramp":
+            return f"{self.a:.4g} - {self.b:.4g}"
+        return f"{self.a:.4g}"
+
+
+@dataclass(frozen=True)
+class Turnout:
+    """A turnout definition in SI units (see the module docstring)."""
+
+    name: str
+    description: str
+    source: str  #: file the definition was read from
+    rail_types: Mapping[str, RailType]
+    sleeper: Sleeper
+    ballast: Ballast
+    K_sw: Polynomial  #: Eq 10, switch-rail vertical support stiffness (N/m)
+    K_sh: Polynomial  #: Eq 14, lateral support stiffness (N/m)
+    extra_layer: ExtraLayer
+    zones: tuple[Zone, ...]
+    published: Mapping[int, Mapping[str, Entry]]  #: zone index -> Table 2 entries
+    raw: Mapping[str, Any]  #: the parsed file, for sections later modules read
+
+    @property
+    def x_min(self) -> float:
+        """m, start of the first zone."""
+        return self.zones[0].x_start
+
+    @property
+    def x_max(self) -> float:
+        """m, end of the last zone."""
+        return self.zones[-1].x_end
+
+    def zone(self, index: int) -> Zone:
+        """Zone by 1-based index; :class:`KeyError` naming the valid range otherwise.
+
+        Parameters
+        ----------
+        index : int
+
+        Returns
+        -------
+        Zone
+        """
+        if not 1 <= index <= len(self.zones):
+            raise KeyError(f"zone {index} does not exist in {self.name} (zones 1..{len(self.zones)})")
+        return self.zones[index - 1]
+
+    def zone_at(self, x: float) -> Zone:
+        """The zone containing x (the later zone on a boundary); ValueError outside.
+
+        Parameters
+        ----------
+        x : float
+            m.
+
+        Returns
+        -------
+        Zone
+        """
+        if not self.x_min <= x <= self.x_max:
+            raise ValueError(
+                f"x = {x:g} m is outside the turnout {self.name} ({self.x_min:g} m to {self.x_max:g} m)"
+            )
+        for zone in reversed(self.zones):
+            if zone.contains(x):
+                return zone
+        raise AssertionError("zones are contiguous by validation")
+
+
+def default_turnout_path() -> Path:
+    """Path of the packaged UIC60-760-1:15 turnout file.
+
+    Returns
+    -------
+    Path
+    """
+    return Path(str(resources.files("exudyn_turnout") / "data" / "uic60_760_1_15.toml"))
+
+
+class _Reader:
+    """Reads fields of a parsed TOML file and raises one clear error per bad field."""
+
+    def __init__(self, filename: str, data: Mapping[str, Any], prefix: str = ""):
+        self.filename = filename
+        self.data = data
+        self.prefix = prefix  # fields under this dotted prefix are looked up in data itself
+
+    def sub(self, prefix: str, data: Any) -> "_Reader":
+        """A reader of ``data`` (e.g. one list item) whose fields are named ``prefix.field``."""
+        return _Reader(self.filename, data if isinstance(data, Mapping) else {}, prefix)
+
+    def fail(self, field: str, problem: str) -> TurnoutFileError:
+        return TurnoutFileError(f"{self.filename}: {field} {problem}")
+
+    def get(self, field: str, default: Any = ...) -> Any:
+        node: Any = self.data
+        path = field[len(self.prefix) + 1:] if self.prefix and field.startswith(self.prefix + ".") else field
+        for part in path.split("."):
+            if not isinstance(node, Mapping) or part not in node:
+                if default is not ...:
+                    return default
+                raise self.fail(field, "is missing")
+            node = node[part]
+        return node
+
+    def number(self, field: str, positive: bool = True, default: Any = ...,
+               upper: float | None = None) -> float:
+        """Field ``field`` as a float (> 0 if ``positive``, <= ``upper`` if given)."""
+        return self.check(field, self.get(field, default), positive, upper)
+
+    def check(self, field: str, value: Any, positive: bool = True,
+              upper: float | None = None) -> float:
+        """``value`` as a float, or an error naming ``field`` if it is not a (positive) number.
+
+        ``upper``: a plausibility bound (see ``BOUNDS``); larger values are an error.
+        """
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise self.fail(field, f"must be a number, got {value!r}")
+        if not math.isfinite(value):
+            raise self.fail(field, f"must be finite, got {value!r}")
+        if positive and value <= 0:
+            raise self.fail(field, f"must be > 0, got {value:g}")
+        if upper is not None and abs(value) > upper:
+            raise self.fail(field, f"must be <= {upper:g} (physically plausible bound), "
+                                   f"got {value:g}")
+        return float(value)
+
+    def integer(self, field: str, lo: int, hi: int, default: Any = ...) -> int:
+        """Field ``field`` as an integer in [lo, hi] (a float such as 2.5 is an error)."""
+        value = self.get(field, default)
+        return self.check_integer(field, value, lo, hi)
+
+    def check_integer(self, field: str, value: Any, lo: int, hi: int) -> int:
+        """``value`` as an int in [lo, hi], or an error naming ``field``."""
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise self.fail(field, f"must be an integer, got {value!r}")
+        if not lo <= value <= hi:
+            raise self.fail(field, f"must be in {lo}..{hi}, got {value}")
+        return int(value)
+
+    def choice(self, field: str, options: tuple, default: Any = ...) -> Any:
+        value = self.get(field, default)
+        if value not in options:
+            raise self.fail(field, f"must be one of {', '.join(map(str, options))}, got {value!r}")
+        return value
+
+    def table(self, field: str, upper: float | None = None) -> Table1D:
+        """A number or ``{x = [...], value = [...]}`` (values > 0 and <= upper, x increasing)."""
+        value = self.get(field)
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            return Table1D((0.0,), (self.number(field, upper=upper),))
+        if not isinstance(value, Mapping):
+            raise self.fail(field, "must be a number or a table {x = [...], value = [...]}")
+        xs, vs = self.get(field + ".x"), self.get(field + ".value")
+        if not isinstance(xs, list) or not isinstance(vs, list) or len(xs) != len(vs) or not xs:
+            raise self.fail(field, "needs lists x and value of the same, non-zero length")
+        for i, v in enumerate(vs):
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not v > 0:
+                raise self.fail(f"{field}.value[{i}]", f"must be > 0, got {v!r}")
+            self.check(f"{field}.value[{i}]", v, upper=upper)
+        for i, a in enumerate(xs):
+            self.check(f"{field}.x[{i}]", a, positive=False, upper=X_LIMIT)
+        if any(b <= a for a, b in zip(xs, xs[1:])):
+            raise self.fail(field + ".x", f"must be increasing numbers, got {xs}")
+        return Table1D(tuple(map(float, xs)), tuple(map(float, vs)))
+
+
+def _rail_type(r: _Reader, name: str) -> RailType:
+    p = f"rail_types.{name}"
+    factor_options = (None, "Delta_z", "Delta_y")
+    b = BOUNDS
+    pad_bounds = {"k_z": b["stiffness"], "c_z": b["damping"], "k_y": b["stiffness"],
+                  "c_y": b["damping"]}
+    poisson = r.number(p + ".poisson", positive=False)
+    if not 0.0 < poisson < 0.5:
+        raise r.fail(p + ".poisson", f"must be in (0, 0.5), got {poisson:g}")
+    equivalent_to = r.get(p + ".equivalent_to", None)
+    if equivalent_to is not None and not isinstance(equivalent_to, str):
+        raise r.fail(p + ".equivalent_to", f"must be a rail type name, got {equivalent_to!r}")
+    return RailType(
+        name=name,
+        density=r.number(p + ".density", upper=b["density"]),
+        youngs_modulus=r.number(p + ".youngs_modulus", upper=b["youngs_modulus"]),
+        shear_coefficient=r.number(p + ".shear_coefficient", upper=b["shear_coefficient"]),
+        poisson=poisson,
+        area=r.table(p + ".area", upper=b["area"]),
+        I_z=r.table(p + ".I_z", upper=b["I"]),
+        I_y=r.table(p + ".I_y", upper=b["I"]),
+        sleeper_length=r.number(p + ".sleeper_length", upper=b["length"]),
+        support=r.choice(p + ".support", ("edge", "middle")),
+        rails_per_sleeper=r.integer(p + ".rails_per_sleeper", 1, 10),
+        pad=RailPad(
+            *(r.number(f"{p}.pad.{k}", upper=pad_bounds[k]) for k in ("k_z", "c_z", "k_y", "c_y"))
+        ),
+        vertical_factor=r.choice(p + ".vertical_factor", factor_options, None),
+        lateral_factor=r.choice(p + ".lateral_factor", factor_options, None),
+        equivalent_to=equivalent_to,
+    )
+
+
+def _polynomial(r: _Reader, name: str) -> Polynomial:
+    p = f"stiffness_profiles.{name}"
+    coefficients = r.get(p + ".coefficients")
+    if not isinstance(coefficients, list) or not coefficients:
+        raise r.fail(p + ".coefficients", "must be a non-empty list of numbers")
+    for i, c in enumerate(coefficients):
+        r.check(f"{p}.coefficients[{i}]", c, positive=False)
+    x_min = r.number(p + ".x_min", positive=False)
+    x_max = r.number(p + ".x_max", positive=False)
+    if not x_max > x_min:
+        raise r.fail(p, f"range is inverted: x_min = {x_min:g} must be < x_max = {x_max:g}")
+    plain_end = r.get(p + ".plain_track_end", None)
+    if plain_end is not None:
+        plain_end = r.check(p + ".plain_track_end", plain_end, positive=False)
+        if not plain_end < x_min:
+            raise r.fail(p + ".plain_track_end", f"must be < x_min = {x_min:g}, got {plain_end:g}")
+    poly = Polynomial(tuple(map(float, coefficients)), x_min, x_max, plain_end)
+    for x in np.linspace(x_min, x_max, 101):
+        if not poly(x) > 0:
+            raise r.fail(p, f"must be > 0 over its range, got {poly(x):g} at x = {x:g}")
+    return poly
+
+
+def _zones(r: _Reader, rail_types: Mapping[str, RailType]) -> tuple[Zone, ...]:
+    raw = r.get("zones")
+    if not isinstance(raw, list) or not raw:
+        raise r.fail("zones", "must be a non-empty list of [[zones]] tables")
+    zones = []
+    for i, _ in enumerate(raw, start=1):
+        p = f"zones[{i}]"
+        zr = r.sub(p, raw[i - 1])
+        x0 = zr.number(p + ".x_start", False, upper=X_LIMIT)
+        x1 = zr.number(p + ".x_end", False, upper=X_LIMIT)
+        if not x1 > x0:
+            raise r.fail(p, f"has x_end = {x1:g} <= x_start = {x0:g}")
+        types = zr.get(p + ".rail_types")
+        if not isinstance(types, Mapping):
+            raise r.fail(p + ".rail_types", "must be a table {r1 = \"stock\", ...}")
+        for slot, tname in types.items():
+            if slot not in RAIL_SLOTS:
+                raise r.fail(f"{p}.rail_types", f"names rail slot {slot!r}; slots are {', '.join(RAIL_SLOTS)}")
+            if tname not in rail_types:
+                raise r.fail(f"{p}.rail_types.{slot}", f"names rail type {tname!r}, which is not defined")
+        active = zr.get(p + ".active_rails")
+        if not isinstance(active, list) or not active:
+            raise r.fail(p + ".active_rails", "must be a non-empty list of rail slots")
+        for slot in active:
+            if slot not in types:
+                raise r.fail(f"{p}.active_rails", f"names rail {slot!r}, which is not defined in its rail_types")
+        ballast_type = zr.choice(p + ".ballast_rail_type", tuple(rail_types))
+        mass_at_x = zr.get(p + ".mass_at_x", None)
+        if mass_at_x is not None:
+            mass_at_x = zr.number(p + ".mass_at_x", positive=False)
+        rail_y = zr.get(p + ".rail_y")
+        if not isinstance(rail_y, Mapping):
+            raise r.fail(p + ".rail_y", "must be a table {r1 = y1, ...} of lateral rail positions (m)")
+        for slot in types:
+            if slot not in rail_y:
+                raise r.fail(f"{p}.rail_y.{slot}", "is missing (every rail in rail_types needs a position)")
+        rail_y = {s: zr.number(f"{p}.rail_y.{s}", positive=False) for s in types}
+        ballast_y = zr.get(p + ".ballast_y")
+        if not isinstance(ballast_y, list) or len(ballast_y) != 2:
+            raise r.fail(p + ".ballast_y", f"must be two lateral positions [y_tg1, y_tg2] (m), got {ballast_y!r}")
+        ballast_y = tuple(zr.check(f"{p}.ballast_y", y, positive=False) for y in ballast_y)
+        if not abs(ballast_y[1] - ballast_y[0]) > 0:
+            raise r.fail(p + ".ballast_y", "must be two different positions")
+        zones.append(Zone(i, str(zr.get(p + ".name", f"zone {i}")), x0, x1, tuple(active),
+                          dict(types), ballast_type, mass_at_x, rail_y, ballast_y,
+                          zr.number(p + ".sleeper_y", positive=False)))
+    for a, b in zip(zones, zones[1:]):
+        if abs(a.x_end - b.x_start) > 1e-9:
+            kind = "overlap" if b.x_start < a.x_end else "leave a gap"
+            raise r.fail("zones", f"{a.index} and {b.index} {kind}: zone {a.index} ends at "
+                         f"{a.x_end:g} m, zone {b.index} starts at {b.x_start:g} m")
+    return tuple(zones)
+
+
+_FORMULA = re.compile(r"^\s*([-+0-9.eE]+)\s*\*\s*(Delta_z|Delta_y)\s*$")
+
+
+def _entry(r: _Reader, field: str) -> Entry:
+    value = r.get(field)
+    if isinstance(value, str):
+        m = _FORMULA.match(value)
+        if not m:
+            raise r.fail(field, f"must be a number, 'NUMBER * Delta_z', 'NUMBER * Delta_y' or [a, b], got {value!r}")
+        return Entry(m.group(2), r.check(field, float(m.group(1))))
+    if isinstance(value, list):
+        if len(value) != 2:
+            raise r.fail(field, f"range must have two values [a, b], got {value!r}")
+        return Entry("ramp", *(r.check(field, v) for v in value))
+    return Entry("const", r.number(field))
+
+
+def _published(r: _Reader, zones: tuple[Zone, ...]) -> dict[int, dict[str, Entry]]:
+    """Table 2 sections ``[published.zoneN]``; optional per zone (a file may have more zones)."""
+    out: dict[int, dict[str, Entry]] = {}
+    sections = r.get("published", None) or {}
+    for key in sections:
+        index = int(key[4:]) if key.startswith("zone") and key[4:].isdigit() else 0
+        if not 1 <= index <= len(zones):
+            raise r.fail(f"published.{key}", f"names no zone of this file (zones 1..{len(zones)})")
+        p = f"published.{key}"
+        section = r.get(p)
+        for name in section:
+            if name not in PARAMETER_NAMES:
+                raise r.fail(f"{p}.{name}", "is not a co-running parameter name")
+        missing = [n for n in PARAMETER_NAMES if n not in section]
+        if missing:
+            raise r.fail(f"{p}.{missing[0]}", "is missing")
+        out[index] = {n: _entry(r, f"{p}.{n}") for n in PARAMETER_NAMES}
+    return out
+
+
+def _check_references(r: _Reader, rail_types: Mapping[str, RailType]) -> None:
+    for t in rail_types.values():
+        if t.equivalent_to is not None and t.equivalent_to not in rail_types:
+            raise r.fail(f"rail_types.{t.name}.equivalent_to", f"names rail type {t.equivalent_to!r}, which is not defined")
+
+
+def _non_finite(node: Any, field: str) -> str | None:
+    """Dotted name of the first NaN or infinite number in a parsed TOML tree, None if all finite."""
+    if isinstance(node, float) and not math.isfinite(node):
+        return field
+    items = node.items() if isinstance(node, Mapping) else (
+        ((f"[{i}]", v) for i, v in enumerate(node)) if isinstance(node, list) else ())
+    for key, value in items:
+        name = f"{field}{key}" if key.startswith("[") else (f"{field}.{key}" if field else key)
+        found = _non_finite(value, name)
+        if found:
+            return found
+    return None
+
+
+def read_toml(path: Path) -> dict:
+    """Parse a TOML file; TurnoutFileError naming the file if it cannot be read or parsed.
+
+    Also an error: a file that is not UTF-8, or a NaN or infinite number anywhere in it
+    (TOML allows ``nan`` and ``inf``; no quantity of a turnout or vehicle may be either).
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+
+    Returns
+    -------
+    dict
+        The parsed file.
+
+    Raises
+    ------
+    TurnoutFileError
+    """
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except IsADirectoryError:
+        raise TurnoutFileError(f"{path.name}: is a directory, not a file") from None
+    except OSError as err:
+        raise TurnoutFileError(f"{path.name}: cannot be read ({err.strerror or err})") from None
+    except UnicodeDecodeError as err:
+        raise TurnoutFileError(f"{path.name}: is not UTF-8 text (byte {err.start}: "
+                               f"{err.object[err.start:err.start + 1]!r})") from None
+    except tomllib.TOMLDecodeError as err:
+        raise TurnoutFileError(f"{path.name}: is not valid TOML ({err})") from None
+    bad = _non_finite(data, "")
+    if bad:
+        raise TurnoutFileError(f"{path.name}: {bad} must be finite, got nan or inf")
+    return data
+
+
+def _regions(r: _Reader, x_min: float, x_max: float) -> None:
+    """``[regions]``: each value two increasing numbers [x_from, x_to] inside the turnout."""
+    regions = r.get("regions", None)
+    if regions is None:
+        return
+    if not isinstance(regions, Mapping):
+        raise r.fail("regions", "must be a table of name = [x_from, x_to]")
+    for name, value in regions.items():
+        f = f"regions.{name}"
+        if not isinstance(value, list) or len(value) != 2:
+            raise r.fail(f, f"must be two numbers [x_from, x_to] (m), got {value!r}")
+        a, b = (r.check(f, v, positive=False) for v in value)
+        if not b > a:
+            raise r.fail(f, f"must be increasing [x_from, x_to], got [{a:g}, {b:g}]")
+        if a < x_min - 1e-9 or b > x_max + 1e-9:
+            raise r.fail(f, f"[{a:g}, {b:g}] m must lie inside the turnout "
+                            f"({x_min:g}..{x_max:g} m)")
+
+
+def _increasing(r: _Reader, field: str, value: Any, min_length: int = 1,
+                features: bool = False) -> list[Any]:
+    """A list of positions: numbers (finite, |x| <= X_LIMIT) and, with ``features``, plan
+    expressions (strings such as ``"nose_tip + 0.5"``, resolved by :mod:`exudyn_turnout.inputs.routes`);
+    consecutive numbers must increase."""
+    if not isinstance(value, list) or len(value) < min_length:
+        raise r.fail(field, f"must be a list of at least {min_length} positions, got {value!r}")
+    xs = [v if features and isinstance(v, str) else
+          r.check(f"{field}[{i}]", v, positive=False, upper=X_LIMIT) for i, v in enumerate(value)]
+    pairs = zip(xs, xs[1:])
+    if any(not isinstance(a, str) and not isinstance(b, str) and b <= a for a, b in pairs):
+        raise r.fail(field, f"must be increasing, got {xs}")
+    return xs
+
+
+def _routes(r: _Reader, n_zones: int) -> None:
+    """Generic checks of ``[routes.*]`` at load time (``routes.load_route`` checks the rest).
+
+    Numbers finite (also table x), x lists increasing, ranges [a, b] increasing, wheel and
+    rail names valid, ``continues`` zones integers of this file.
+    """
+    routes = r.get("routes", None)
+    if routes is None:
+        return
+    if not isinstance(routes, Mapping):
+        raise r.fail("routes", "must be a table of [routes.<name>] sections")
+    for name, route in routes.items():
+        p = f"routes.{name}"
+        if not isinstance(route, Mapping):
+            raise r.fail(p, "must be a table")
+        curvature = route.get("curvature", 0.0)
+        if isinstance(curvature, Mapping):
+            xs = _increasing(r, p + ".curvature.x", curvature.get("x"), 2)
+            vs = curvature.get("value")
+            if not isinstance(vs, list) or len(vs) != len(xs):
+                raise r.fail(p + ".curvature.value", "must be a list as long as curvature.x")
+            for i, v in enumerate(vs):
+                r.check(f"{p}.curvature.value[{i}]", v, positive=False, upper=1.0)
+        else:
+            r.check(p + ".curvature", curvature, positive=False, upper=1.0)
+        for key, upper in (("cant", 0.3), ("permitted_speed_kmh", 500.0),
+                           ("permitted_cant_deficiency", 0.5)):
+            if route.get(key) is not None:
+                r.check(f"{p}.{key}", route[key], positive=key != "cant", upper=upper)
+        for key, y in (route.get("rail_y") or {}).items():
+            r.check(f"{p}.rail_y.{key}", y, positive=False, upper=10.0)
+        continues = route.get("continues", [])
+        if not isinstance(continues, list):
+            raise r.fail(p + ".continues", "must be a list of {zone, slot, from}")
+        for i, item in enumerate(continues):
+            item = item if isinstance(item, Mapping) else {}
+            r.check_integer(f"{p}.continues[{i}].zone", item.get("zone"), 2, max(n_zones, 2))
+        contacts = route.get("contacts", [])
+        if not isinstance(contacts, list):
+            raise r.fail(p + ".contacts", "must be a list of [[contacts]] tables")
+        for i, c in enumerate(contacts):
+            f = f"{p}.contacts[{i}]"
+            if not isinstance(c, Mapping):
+                raise r.fail(f, "must be a table")
+            if c.get("wheel") not in ("left", "right"):
+                raise r.fail(f + ".wheel", f"must be one of left, right, got {c.get('wheel')!r}")
+            if c.get("rail") not in RAIL_SLOTS:
+                raise r.fail(f + ".rail", f"must be one of {', '.join(RAIL_SLOTS)}, "
+                                          f"got {c.get('rail')!r}")
+            if "x" in c:
+                _increasing(r, f + ".x", c["x"], 2, features=True)
+                zs = c.get("z")
+                if not isinstance(zs, list) or len(zs) != len(c["x"]):
+                    raise r.fail(f + ".z", "must be a list as long as x")
+                zs = [r.check(f"{f}.z[{k}]", z, positive=False) for k, z in enumerate(zs)]
+                if any(abs(z) > 0.05 for z in zs):
+                    raise r.fail(f + ".z", f"heights must be within +-0.05 m of nominal, got {zs}")
+            for key in ("flange", "check"):
+                if key in c:
+                    _increasing(r, f"{f}.{key}", c[key], 2, features=True)
+                    if len(c[key]) != 2:
+                        raise r.fail(f"{f}.{key}", f"must be [x_from, x_to], got {c[key]!r}")
+
+
+def _layout_numbers(r: _Reader) -> None:
+    """The ``[layout]`` section's plain numbers (the FE layout and the plan check the rest)."""
+    if not isinstance(r.get("layout", None), Mapping):
+        return
+    for key in ("x_start", "x_end", "sleeper_x0"):
+        if r.get(f"layout.{key}", None) is not None:
+            r.number(f"layout.{key}", positive=False, upper=X_LIMIT)
+    for key in ("gauge", "nose_tip_width"):
+        if r.get(f"layout.{key}", None) is not None:
+            r.number(f"layout.{key}", upper=10.0)
+
+
+def _check_rail(r: _Reader) -> None:
+    if r.get("check_rail", None) is None:
+        return
+    r.number("check_rail.clearance", upper=0.1)
+    r.number("check_rail.flare_length", False, 0.0, upper=100.0)
+    r.number("check_rail.flare_opening", False, 0.0, upper=0.1)
+
+
+def load_turnout(path: str | Path | None = None) -> Turnout:
+    """Load and validate a turnout file.
+
+    Parameters
+    ----------
+    path : str or Path, optional
+        TOML turnout file; the packaged UIC60-760-1:15 turnout when omitted.
+
+    Returns
+    -------
+    Turnout
+        Frozen definition in SI units.
+
+    Raises
+    ------
+    TurnoutFileError
+        The file cannot be read, or a field is missing or out of range; the message names
+        the file and the field.
+    """
+    path = Path(path) if path is not None else default_turnout_path()
+    data = read_toml(path)
+    r = _Reader(path.name, data)
+    names = r.get("rail_types")
+    if not isinstance(names, Mapping) or not names:
+        raise r.fail("rail_types", "must define at least one rail type")
+    rail_types = {n: _rail_type(r, n) for n in names}
+    _check_references(r, rail_types)
+    s, b = "sleeper", BOUNDS
+    sleeper = Sleeper(*(r.number(f"{s}.{k}", upper=b[u]) for k, u in (
+        ("density", "density"), ("youngs_modulus", "youngs_modulus"), ("area", "area"), ("I", "I"),
+        ("spacing", "spacing"))), length=r.table(f"{s}.length", upper=b["length"]))
+    ballast = Ballast(
+        *(
+            r.number(f"ballast.{k}", upper=b[u])
+            for k, u in (
+                ("s_b_z", "stiffness"),
+                ("d_b_z", "damping"),
+                ("s_b_y", "stiffness"),
+                ("d_b_y", "damping"),
+            )
+        )
+    )
+    extra = ExtraLayer(*(r.number(f"extra_layer.{k}", upper=b[u]) for k, u in (
+        ("m_0", "mass"), ("k_0_z_over_k_rt_z", "ratio"), ("k_0_y_over_k_rt_y", "ratio"))))
+    zones = _zones(r, rail_types)
+    name = r.get("turnout.name")
+    if not isinstance(name, str) or not name.strip():
+        raise r.fail("turnout.name", f"must be a non-empty string, got {name!r}")
+    _regions(r, zones[0].x_start, zones[-1].x_end)
+    _routes(r, len(zones))
+    _check_rail(r)
+    _layout_numbers(r)
+    return Turnout(
+        name=str(r.get("turnout.name")),
+        description=str(r.get("turnout.description", "")),
+        source=str(path),
+        rail_types=rail_types,
+        sleeper=sleeper,
+        ballast=ballast,
+        K_sw=_polynomial(r, "K_sw"),
+        K_sh=_polynomial(r, "K_sh"),
+        extra_layer=extra,
+        zones=zones,
+        published=_published(r, zones),
+        raw=data,
+    )

@@ -1,0 +1,129 @@
+"""Vehicle files: the single wheelset with its sprung share, and the contact constants.
+
+The packaged default is ``data/manchester_wheelset.toml`` (one wheelset of the Manchester
+benchmark vehicle under its share of bogie and car body). The Exudyn model built from
+it is :func:`exudyn_turnout.passage.vehicle.add_vehicle`; the full vehicle's file is read
+by :mod:`exudyn_turnout.inputs.vehicle_model`.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+
+from exudyn_turnout.inputs.turnout import _Reader, read_toml
+
+__all__ = ["Vehicle", "ContactLaw", "load_vehicle", "load_contact_law", "default_vehicle_path",
+           "GRAVITY"]
+
+GRAVITY = 9.81  #: m/s^2
+
+
+@dataclass(frozen=True)
+class Vehicle:
+    m_w: float  #: kg, wheelset mass
+    J_roll: float  #: kg m^2
+    J_yaw: float  #: kg m^2
+    r0: float  #: m, nominal rolling radius
+    b: float  #: m, lateral semi-distance of the contact points
+    m_s: float  #: kg, sprung mass carried by this wheelset
+    k_x: float  #: N/m, primary longitudinal stiffness per axlebox
+    k_y: float  #: N/m, primary lateral stiffness per axlebox
+    k_z: float  #: N/m, primary vertical stiffness per axlebox
+    c_y: float  #: N s/m
+    c_z: float  #: N s/m
+    d: float  #: m, lateral semi-spacing of the axleboxes
+    contact: ContactLaw
+    source: str
+
+    @property
+    def static_wheel_load(self) -> float:
+        """(m_w + m_s) g / 2 (N), each wheel's share on straight level track."""
+        return (self.m_w + self.m_s) * GRAVITY / 2.0
+
+    @property
+    def k_roll(self) -> float:
+        """Primary roll stiffness 2 k_z d^2 (N m/rad) of the wheelset against the sprung point."""
+        return 2.0 * self.k_z * self.d**2
+
+    @property
+    def k_yaw(self) -> float:
+        """Primary yaw stiffness 2 k_x d^2 (N m/rad) against the (non-yawing) sprung mass."""
+        return 2.0 * self.k_x * self.d**2
+
+
+def default_vehicle_path() -> Path:
+    return Path(str(resources.files("exudyn_turnout") / "data" / "manchester_wheelset.toml"))
+
+
+def load_vehicle(path: str | Path | None = None) -> Vehicle:
+    """Load and validate a vehicle file (default: the packaged Manchester benchmark wheelset).
+
+    Every number must be finite and > 0 (dampings >= 0) and within a plausibility bound:
+    masses <= 1e6 kg, inertias <= 1e7 kg m^2, wheel radius 0.1..2 m, semi-spacings <= 5 m,
+    stiffnesses <= 1e12 N/m, dampings <= 1e10 N s/m; contact: C_H <= 1e14 N/m^1.5,
+    creep coefficients and N_ref <= 1e10 N, mu <= 2, conicity <= 1, flange clearance <= 0.1 m.
+
+    Parameters
+    ----------
+    path : str or Path, optional
+        TOML vehicle file.
+
+    Returns
+    -------
+    Vehicle
+
+    Raises
+    ------
+    TurnoutFileError
+        The file cannot be read, or a field is missing or out of range (the message names
+        the file and the field).
+    """
+    path = Path(path) if path is not None else default_vehicle_path()
+    data = read_toml(path)
+    r = _Reader(path.name, data)
+    w, p = "wheelset", "primary_suspension"
+    k, c = 1e12, 1e10
+    radius = r.number(f"{w}.wheel_radius", upper=2.0)
+    if radius < 0.1:
+        raise r.fail(f"{w}.wheel_radius", f"must be >= 0.1 m (a railway wheel), got {radius:g}")
+    contact_bounds = {"C_H": (True, 1e14), "damping": (False, c), "f11_ref": (True, 1e10),
+                      "f22_ref": (True, 1e10), "N_ref": (True, 1e10), "mu": (True, 2.0),
+                      "conicity": (True, 1.0), "flange_stiffness": (True, k),
+                      "flange_damping": (False, c), "flange_clearance": (True, 0.1)}
+    for name, (positive, upper) in contact_bounds.items():
+        r.number(f"contact.{name}", positive, upper=upper)
+    return Vehicle(
+        r.number(f"{w}.mass", upper=1e6), r.number(f"{w}.roll_inertia", upper=1e7),
+        r.number(f"{w}.yaw_inertia", upper=1e7), radius,
+        r.number(f"{w}.contact_semi_spacing", upper=5.0), r.number("sprung_mass.mass", upper=1e6),
+        r.number(f"{p}.k_x", upper=k), r.number(f"{p}.k_y", upper=k), r.number(f"{p}.k_z", upper=k),
+        r.number(f"{p}.c_y", positive=False, upper=c),
+        r.number(f"{p}.c_z", positive=False, upper=c),
+        r.number(f"{p}.semi_spacing", upper=5.0),
+        load_contact_law(data, str(path)), str(path))
+
+
+@dataclass(frozen=True)
+class ContactLaw:
+    """Wheel/rail contact constants (from the vehicle file's ``[contact]``)."""
+
+    C_H: float  #: N/m^1.5, Hertz constant
+    damping: float  #: N s/m, normal contact damping (0: none)
+    f11_ref: float  #: N, longitudinal creep coefficient at N_ref
+    f22_ref: float  #: N, lateral creep coefficient at N_ref
+    N_ref: float  #: N, reference normal load
+    mu: float  #: friction coefficient
+    conicity: float  #: equivalent conicity gamma (-)
+    flange_stiffness: float  #: N/m
+    flange_damping: float  #: N s/m
+    flange_clearance: float  #: m
+
+
+def load_contact_law(data: dict, filename: str) -> ContactLaw:
+    """Contact constants from the parsed ``[contact]`` table; errors name file and field."""
+    r = _Reader(Path(filename).name, data)
+    names = ("C_H", "damping", "f11_ref", "f22_ref", "N_ref", "mu", "conicity", "flange_stiffness",
+             "flange_damping", "flange_clearance")
+    positive = {"damping": False, "flange_damping": False}
+    return ContactLaw(*(r.number(f"contact.{n}", positive.get(n, True)) for n in names))

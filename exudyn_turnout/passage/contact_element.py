@@ -1,0 +1,169 @@
+"""Wheel/rail contact as a user-defined penalty load on an Exudyn ``ObjectGenericODE2``.
+
+One element couples the wheelset (y, z, roll), its yaw coordinate, the sprung mass
+(y, z; for the curving load) and the contact body of every rail the route lets a wheel
+touch in the current zone (the rail mass for two layers, m_0 for three). Its Python force
+function evaluates, at the wheelset's position x = x0 + v t, for every wheel/rail pair:
+
+- the normal force, Hertz C_H delta^1.5, one-sided (loss of contact allowed), with delta
+  the rail height profile of the route plus the rail's displacement minus the wheel's
+  contact-point height (wheelset z, roll times b, and the conical tread's radius change);
+- the creep forces, linear Kalker (f11, f22 scaled with N^(2/3)) with Johnson-Vermeulen
+  saturation at mu N, from the longitudinal and lateral creepages of a conical wheelset;
+- the lateral component gamma N of the normal force on the conical tread;
+- flange and check-rail contact, stiff one-sided lateral springs beyond their clearance;
+- the curving load -m v^2 kappa on wheelset and sprung mass (track-following frame).
+
+Every force acts on the wheelset and, with opposite sign, on the rail body it touches.
+Coordinates of the element: ``[y_w, z_w, phi, psi, y_s, z_s, y_r1, z_r1, ...]``.
+"""
+from __future__ import annotations
+
+import math
+from bisect import bisect_right
+from dataclasses import dataclass
+
+from exudyn_turnout.wheel_rail.laws import creep_coefficient, flange_force, hertz_force, lateral_creepage, longitudinal_creepage, \
+    saturation_factor
+from exudyn_turnout.inputs.routes import ContactPair, Route
+from exudyn_turnout.inputs.vehicle import Vehicle
+
+__all__ = ["BoundPair", "PairForces", "WheelRailElement", "STATIC_LATERAL_STIFFNESS"]
+
+#: N/m: holds the wheelset's lateral position in the static solve only, where creep
+#: (a velocity effect) gives no lateral stiffness; the symmetric equilibrium has y = 0.
+STATIC_LATERAL_STIFFNESS = 1e7
+
+
+@dataclass(frozen=True)
+class BoundPair:
+    """A contact pair bound to the element's coordinates."""
+
+    pair: ContactPair
+    i_y: int  #: index of the rail body's lateral coordinate in the element
+    i_z: int  #: index of its vertical coordinate
+
+
+@dataclass(frozen=True)
+class PairForces:
+    """Forces of one wheel/rail pair at one instant, on the rail (N)."""
+
+    N: float  #: normal (vertical) force on the rail, positive pressing it down
+    F_y: float  #: lateral force on the rail, positive to the left
+    F_x: float  #: longitudinal creep force on the wheel
+    delta: float  #: m, normal penetration (negative: separated)
+    in_contact: bool
+
+
+def _interp(xs: tuple, zs: tuple, x: float) -> float:
+    i = bisect_right(xs, x)
+    if i <= 0:
+        return zs[0]
+    if i >= len(xs):
+        return zs[-1]
+    x0, x1 = xs[i - 1], xs[i]
+    return zs[i - 1] + (zs[i] - zs[i - 1]) * (x - x0) / (x1 - x0)
+
+
+class WheelRailElement:
+    """Force function of the wheel/rail contact element (see the module docstring).
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+    route : Route
+    pairs : sequence of BoundPair
+        The route's pairs in this zone, bound to rail coordinates of the element.
+    x0 : float
+        Position (m) of the wheelset at t = 0.
+    v : float
+        Speed (m/s); 0 for the static solve (no creep, lateral position held).
+    """
+
+    def __init__(self, vehicle: Vehicle, route: Route, pairs, x0: float, v: float):
+        self.vehicle, self.route, self.pairs = vehicle, route, tuple(pairs)
+        self.x0, self.v = float(x0), float(v)
+        self.n = 6 + 2 * len({(p.i_y, p.i_z) for p in self.pairs})
+        self._cached_t = math.nan
+        self._geometry: tuple = ()
+
+    def x_at(self, t: float) -> float:
+        return self.x0 + self.v * t
+
+    def geometry(self, x: float) -> tuple:
+        """Per pair at x: (rail height or None off the tread, flange on, check clearance or None); curvature."""
+        rows = []
+        for bp in self.pairs:
+            p = bp.pair
+            h = _interp(p.x, p.z, x) if p.tread_active(x) else None
+            rows.append((h, bool(p.flange and p.flange[0] <= x <= p.flange[1]), self.route.check_clearance_at(p, x)))
+        c = self.route.curvature
+        return tuple(rows), _interp(c.x, c.value, x)
+
+    def _geometry_at(self, t: float) -> tuple:
+        if t != self._cached_t:  # Newton iterations of one step share t
+            self._cached_t, self._geometry = t, self.geometry(self.x_at(t))
+        return self._geometry
+
+    def pair_forces(self, bp: BoundPair, x: float, q, q_t) -> PairForces:
+        """Forces of one pair at position x for element coordinates q, q_t."""
+        return self.all_pair_forces(x, q, q_t)[self.pairs.index(bp)]
+
+    def all_pair_forces(self, x: float, q, q_t) -> list[PairForces]:
+        """Forces of every pair (in ``self.pairs`` order) at position x."""
+        rows, kappa = self.geometry(x)
+        return [PairForces(*self._forces(bp, row, kappa, q, q_t)) for bp, row in zip(self.pairs, rows)]
+
+    def _forces(self, bp: BoundPair, row: tuple, kappa: float, q, q_t) -> tuple:
+        """(N, F_y on the rail, F_x on the wheel, delta, in contact) of one pair."""
+        veh, law = self.vehicle, self.vehicle.contact
+        s, b, gamma = bp.pair.side, veh.b, law.conicity
+        height, flange_on, check_clearance = row
+        dy, dy_t = q[0] - q[bp.i_y], q_t[0] - q_t[bp.i_y]
+        N = F_y = F_x = 0.0
+        delta = -math.inf
+        if height is not None:
+            delta = q[bp.i_z] + height - (q[1] + s * b * q[2] - s * gamma * dy)
+            if delta > 0.0:
+                delta_t = q_t[bp.i_z] - (q_t[1] + s * b * q_t[2] - s * gamma * dy_t)
+                N = max(hertz_force(delta, law.C_H) + law.damping * delta_t, 0.0)
+            if N > 0.0 and self.v > 0.0:
+                F_x, F_y = self._creep(s, N, dy, dy_t, q[3], q_t[3], kappa)
+            F_y -= s * gamma * N  # the conical tread's normal leans towards the track centre
+        if flange_on:
+            F_y -= s * flange_force(s * dy - law.flange_clearance, s * dy_t, law.flange_stiffness, law.flange_damping)
+        if check_clearance is not None:
+            F_y += s * flange_force(-s * dy - check_clearance, -s * dy_t, law.flange_stiffness, law.flange_damping)
+        return N, -F_y, F_x, delta, N > 0.0
+
+    def _creep(self, s: int, N: float, dy: float, dy_t: float, psi: float, psi_t: float, kappa: float):
+        veh, law = self.vehicle, self.vehicle.contact
+        xi_x = longitudinal_creepage(s, dy, psi_t, self.v, veh.b, veh.r0, law.conicity, kappa)
+        xi_y = lateral_creepage(dy_t, psi, self.v)
+        F_x = -creep_coefficient(law.f11_ref, N, law.N_ref) * xi_x
+        F_y = -creep_coefficient(law.f22_ref, N, law.N_ref) * xi_y
+        k = saturation_factor(math.hypot(F_x, F_y), law.mu * N)
+        return k * F_x, k * F_y
+
+    def __call__(self, mbs, t, item_number, q, q_t):
+        """Exudyn ``forceUserFunction``: generalised forces on the element's coordinates."""
+        rows, kappa = self._geometry_at(t)
+        f = [0.0] * self.n
+        b, r0 = self.vehicle.b, self.vehicle.r0
+        for bp, row in zip(self.pairs, rows):
+            N, F_y, F_x = self._forces(bp, row, kappa, q, q_t)[:3]
+            s = bp.pair.side
+            f[0] -= F_y
+            f[1] += N
+            f[2] += s * b * N - r0 * F_y
+            f[3] -= s * b * F_x
+            f[bp.i_y] += F_y
+            f[bp.i_z] -= N
+        veh = self.vehicle
+        if self.v > 0.0:
+            a_y = self.v**2 * kappa
+            f[0] -= veh.m_w * a_y
+            f[4] -= veh.m_s * a_y
+        else:
+            f[0] -= STATIC_LATERAL_STIFFNESS * q[0]
+        return f

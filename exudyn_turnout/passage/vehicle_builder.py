@@ -1,0 +1,872 @@
+"""The vehicle of a :class:`~exudyn_turnout.inputs.vehicle_model.VehicleModel` in Exudyn.
+
+Axes (compatible with the co-running track, ``track.py``, and ``vehicle.py``): Exudyn X =
+lateral y (positive left), Y = vertical z (up), Z = longitudinal x (forward); (y, z, x) is
+right-handed. Rotation about Z = roll (positive lifts the left wheel), about X = pitch (for
+a wheelset: spin), about Y = yaw. Heights are above the rail top: a body's reference
+position is (0, CoG height, x), its reference rotation zero; the vehicle reference (x = 0)
+is the front wheelset. The vehicle runs at constant speed in a moving frame: no body has a
+longitudinal coordinate (rigid representation: it is held by a coordinate constraint).
+
+::
+
+    side view (x forward, to the right of the page)
+
+                      car body (CoG G at 1.8 m)               secondary, per bogie side:
+     +-------------------------------------------------+     k_x k_y k_z c_y c_z at +-b2,
+     |                        G                        |     0.8275 m; per bogie: yaw and
+     +-------------------------------------------------+     anti-roll torsion, lateral
+          S [B] S                         S [B] S             bumpstop [B] (+-25 mm free)
+      +-------------+  bogie 2         +-------------+  bogie 1 (CoG 0.6 m)
+      |  P       P  |                  |  P       P  |   primary, per axlebox: k_x k_y
+      +-------------+                  +-------------+   k_z c_z at +-b1, axle height
+        (O)     (O)   wheelsets          (O)     (O)     axles at r0 = 0.46 m
+     ====*=======*=========================*=======*====  rail top, z = 0
+      -21.56   -19.0                    -2.56     0.0    x of the wheelsets (m)
+
+    end view (looking forward: +y, the left side, is on the left of the page)
+
+        +y <--+                                     z ^
+               +---------------------------------------+
+               |               car body  G             |
+               +---------------------------------------+
+                  S               [B]               S      secondary springs at +-b2 = 1 m
+               +---------------------------------------+
+               |               bogie frame             |
+               +---------------------------------------+
+                  P                                 P      axlebox springs at +-b1 = 1 m
+            ( wheel )===============o=============( wheel )   wheelset, axle at r0
+                  *                                 *      contact points at +-b = 0.75 m
+         ===========                               ===========   rails (rigid_track_support:
+                                                                 k_y, k_z to ground at *)
+
+A single-wheelset model (``bogies = 0``) is one wheelset under a point mass (its sprung
+share) on the same primary springs, the point free in y, z (as ``vehicle.py``).
+
+Two representations (``add_vehicle_model(..., representation=...)``):
+
+- ``"rigid"``: NodeRigidBodyRxyz + ObjectRigidBody per body; every suspension element a
+  ``CartesianSpringDamper`` between body markers at its real position (per axlebox, per
+  bogie side; axes fixed in the frame, which the moving-frame vehicle's small rotations
+  allow); secondary yaw and anti-roll stiffness one ``RigidBodySpringDamper`` per bogie;
+  the bumpstop a ``CartesianSpringDamper`` with a symbolic force function (the table as a
+  sum of ramps, ``BumpStop.ramps``). Longitudinal coordinates and wheelset spin held by
+  ``CoordinateConstraint``. The reference: force-free at rest (tested), preload effects
+  (gravity on springs below/above a CoG) come out of Exudyn's geometry.
+- ``"linear"`` (default): the rigid model linearised at its static equilibrium on rigid
+  track, as one ``ObjectGenericODE2`` over one ``NodeGenericODE2`` per body with just its
+  free coordinates (car body, bogies: y, z, roll, pitch, yaw; wheelsets: y, z, roll, yaw,
+  the coordinates the package's contact element reads, + spin optionally); the bumpstops
+  a second ObjectGenericODE2 with a Python force function and its analytic Jacobian. Same
+  static equilibrium (to 1e-17 m) and modes (to 0.1 %) as the rigid one (tested).
+
+Chosen by measurement (``python benchmarks/bench_full_vehicle.py``: vehicle alone on
+rigid-track springs, generalized-alpha h = 1e-4 s, modified Newton, car body released 30
+mm off centre so that the bumpstops work; 2 cores shared with other jobs, load 2-8, so
+the ranges are two runs; us per step):
+
+=============================================================  =======  ============
+case                                                            ODE2    us per step
+=============================================================  =======  ============
+4 wheelsets, linear, bumpstop engaged (1.9 Newton it./step)       31     80 - 134
+4 wheelsets, linear, without bumpstop (1.0 it./step)              31     17 - 23
+4 wheelsets, rigid Rxyz, symbolic bumpstop (2.9 it./step)         42    330 - 410
+4 wheelsets, rigid Rxyz, Python bumpstop                          42    380 - 440
+4 wheelsets, rigid Rxyz, no bumpstop                              42    350 - 365
+4 wheelsets, rigid RotVecLG, symbolic bumpstop (2.0 it./step)     42    310 - 325
+1 wheelset + sprung point, linear                                  6      5
+1 wheelset + sprung point, rigid Rxyz                              9     40 - 49
+=============================================================  =======  ============
+
+The rigid model spends ~75 % in Exudyn's ODE2 right-hand side (~75 us per evaluation for
+24 connectors on rigid-body markers, measured with ``show.computationTime``); a full
+Newton Jacobian costs ~0.6 ms. The issue's budget (4 wheelsets with their co-running
+tracks at <= 1x real time, i.e. ~100 us per step in all) rules it out for passages; the
+linear model costs ~20 us per step plus the bumpstop's Python call (~10 us free, ~20 us
+engaged) when it engages. RotVecLG was no faster than Rxyz within the noise. The linear
+model leaves out what the rigid one has beyond small angles: finite rotations, and the
+wheel-load preload's geometric roll term (-2 r0 Q), which the contact element supplies.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Callable, Mapping, Sequence
+
+import numpy as np
+import scipy.linalg
+
+import exudyn as exu
+from exudyn.advancedUtilities import CreateSymbolicUserFunction
+from exudyn.itemInterface import (CartesianSpringDamper, CoordinateConstraint, LoadMassProportional,
+                                  MarkerBodyMass, MarkerBodyPosition, MarkerBodyRigid,
+                                  MarkerNodeCoordinate, MarkerNodeCoordinates, MarkerNodePosition,
+                                  MassPoint, NodeGenericODE2, NodePoint, NodePointGround,
+                                  NodeRigidBodyRotVecLG, NodeRigidBodyRxyz, ObjectGenericODE2,
+                                  ObjectGround, RigidBody, RigidBodySpringDamper)
+
+from exudyn_turnout.inputs.vehicle_model import GRAVITY, BumpStop, VehicleModel
+
+__all__ = [
+    "REPRESENTATIONS",
+    "ROTATIONS",
+    "BUMPSTOP_LAWS",
+    "RigidTrack",
+    "BodyHandles",
+    "WheelsetHandles",
+    "VehicleBuild",
+    "TrackSupport",
+    "VehicleMode",
+    "add_vehicle_model",
+    "rigid_track_support",
+    "support_wheel_loads",
+    "static_settings",
+    "dynamic_settings",
+    "solve_static",
+    "connector_forces_at_reference",
+    "vehicle_modes",
+]
+
+#: "linear": small-angle linear model (one ObjectGenericODE2), "rigid": rigid bodies + connectors.
+REPRESENTATIONS = ("linear", "rigid")
+#: Rotation parametrizations of the rigid-body nodes ("rigid" representation).
+ROTATIONS = ("Rxyz", "RotVecLG")
+#: Lateral bumpstop force law: "auto" (symbolic on "rigid", Python on "linear"), or one of them,
+#: or "none" (left out).
+BUMPSTOP_LAWS = ("auto", "symbolic", "python", "none")
+
+#: Coordinates of a rigid-body node (X, Y, Z, rotation about X, Y, Z) by name.
+_RIGID_DOF = {"y": 0, "z": 1, "x": 2, "pitch": 3, "yaw": 4, "roll": 5}
+#: ... of a wheelset's rigid-body node: the rotation about its axle is the spin.
+_WHEELSET_DOF = {"y": 0, "z": 1, "x": 2, "spin": 3, "yaw": 4, "roll": 5}
+#: ... of a sprung point (NodePoint).
+_POINT_DOF = {"y": 0, "z": 1, "x": 2}
+#: Free coordinates of each body kind in the linear representation, in node order.
+_LINEAR_DOF = {"body": ("y", "z", "roll", "pitch", "yaw"), "wheelset": ("y", "z", "roll", "yaw"),
+               "sprung": ("y", "z")}
+#: Connector outputs read by :func:`connector_forces_at_reference` (those a type has).
+_FORCE_OUTPUTS = (exu.OutputVariableType.Force, exu.OutputVariableType.ForceLocal,
+                  exu.OutputVariableType.Torque, exu.OutputVariableType.TorqueLocal)
+_KEEPALIVE = "exudyn_turnout.passage.vehicle_builder.user_functions"  # mbs.variables key
+
+
+@dataclass(frozen=True)
+class RigidTrack:
+    """Linear wheel supports of rigid track, for static loads and eigen-analysis.
+
+    Defaults: vertical k_z = the linearised Hertz spring 1.5 C_H^(2/3) N^(1/3) = 1.14e9 N/m
+    (C_H = 9e10 N/m^1.5, data/manchester_wheelset.toml; N = 54.55 kN) in series with the
+    plain-track support K_st,z = 6.37e7 N/m (paper Eq 2, README) = 6.03e7 N/m; lateral
+    k_y = the plain-track lateral support K_st,y = 2.80e7 N/m (``exudyn-turnout params
+    --zone 1``; creep forces, a velocity effect, are not in it). No longitudinal support
+    (the longitudinal coordinates are held) and no damping unless given.
+    """
+
+    k_z: float = 6.03e7  #: N/m, vertical, per wheel
+    k_y: float = 2.80e7  #: N/m, lateral, per wheel
+    k_x: float = 0.0  #: N/m, longitudinal, per wheel (needed if the wheelset spin is free)
+    c_z: float = 0.0  #: N s/m, vertical damping per wheel
+    c_y: float = 0.0  #: N s/m, lateral damping per wheel
+
+
+@dataclass(frozen=True)
+class BodyHandles:
+    """Exudyn items of a car body, bogie frame or sprung point."""
+
+    name: str  #: "car_body", "bogie1", "sprung1", ...
+    node: int  #: its node (rigid: NodeRigidBodyRxyz/RotVecLG or NodePoint; linear: NodeGenericODE2)
+    body: int  #: rigid: ObjectRigidBody / ObjectMassPoint; linear: -1 (mass in the element)
+    x: float  #: m, longitudinal position relative to the vehicle reference
+    reference: tuple[float, float, float]  #: m, reference position (Exudyn X, Y, Z)
+    dof: Mapping[str, int]  #: coordinate name -> index in the node (held ones too)
+
+
+@dataclass(frozen=True)
+class WheelsetHandles:
+    """Exudyn items of one wheelset, for a contact element and the track under it.
+
+    Linear representation: ``node`` is a NodeGenericODE2 with (y, z, roll, yaw[, spin]), the
+    coordinates the package's contact element reads; ``body`` is -1, ``wheel_markers`` is
+    empty and ``centre_marker`` a MarkerNodeCoordinates. Rigid representation: a rigid-body
+    node and body, MarkerBodyPosition at the wheels' nominal contact points, a
+    MarkerBodyRigid at the centre.
+    """
+
+    index: int  #: 0-based, front first
+    name: str  #: "wheelset1", ...
+    x: float  #: m, offset from the vehicle reference (front wheelset 0, others < 0)
+    node: int
+    body: int
+    centre_marker: int
+    wheel_markers: tuple[int, ...]  #: (right, left) contact-point markers (rigid only)
+    wheel_positions: tuple[tuple[float, float, float], ...]  #: m, (right, left) contact
+    #: points relative to the wheelset centre (Exudyn X, Y, Z): (-+b, -r0, 0)
+    reference: tuple[float, float, float]  #: m, reference position of the centre
+    dof: Mapping[str, int]  #: coordinate name -> index in the node (held ones too)
+
+
+@dataclass(frozen=True)
+class VehicleBuild:
+    """Handles of a vehicle built by :func:`add_vehicle_model`."""
+
+    model: VehicleModel
+    representation: str  #: one of REPRESENTATIONS
+    rotation: str  #: rigid-body node parametrization (rigid representation)
+    ground: int  #: ObjectGround
+    wheelsets: tuple[WheelsetHandles, ...]
+    bogies: tuple[BodyHandles, ...]
+    car_body: BodyHandles | None
+    sprung: tuple[BodyHandles, ...]  #: sprung points (single-wheelset layout)
+    #: name -> object: connectors ("primary_ws1_left", "secondary_b2_right", "torsion_b1",
+    #: "bumpstop_b1") or, linear, "suspension" and "bumpstops" (ObjectGenericODE2)
+    items: Mapping[str, int]
+    constraints: tuple[int, ...]  #: coordinate constraints holding x (and spin), rigid only
+    held: tuple[tuple[int, int], ...]  #: (node, local coordinate) held at its reference
+    gravity_loads: tuple[int, ...]  #: rigid: LoadMassProportional; linear: -
+    #: linear: the static equilibrium of the rigid model it was linearised at (free coords)
+    static_state: tuple[float, ...] = ()
+    keepalive: tuple[Any, ...] = field(default=(), repr=False)  #: user functions
+
+    def bodies(self) -> tuple[BodyHandles | WheelsetHandles, ...]:
+        """All bodies in node order: car body, bogies, sprung points, wheelsets.
+
+        Returns
+        -------
+        tuple of BodyHandles or WheelsetHandles
+        """
+        out: list = [] if self.car_body is None else [self.car_body]
+        return tuple(out + list(self.bogies) + list(self.sprung) + list(self.wheelsets))
+
+
+@dataclass(frozen=True)
+class TrackSupport:
+    """Rigid-track wheel supports added by :func:`rigid_track_support`."""
+
+    track: RigidTrack
+    items: tuple[int, ...]  #: rigid: connectors (right, left per wheelset); linear: one element
+    build: VehicleBuild = field(repr=False)
+
+
+@dataclass(frozen=True)
+class VehicleMode:
+    """One vibration mode of the linearised vehicle."""
+
+    frequency_hz: float  #: Hz, undamped natural frequency (eig of K, M)
+    damped_frequency_hz: float  #: Hz, |lambda| / 2 pi of the matching damped mode
+    damping_ratio: float  #: -, -Re(lambda) / |lambda| of the matching damped mode
+    body: str  #: body with the largest share of kinetic energy, e.g. "car_body"
+    direction: str  #: its dominant direction: "y", "z", "roll", "pitch", "yaw", "spin"
+    share: float  #: -, that coordinate's share of the mode's kinetic energy
+    participation: Mapping[str, float]  #: "body.direction" -> energy share (>= 1 %)
+
+
+# ------------------------------------------------------------------------------ geometry
+def _point_transform(dof: Sequence[str], r: Sequence[float]) -> np.ndarray:
+    """3 x n matrix: small-angle displacement (X, Y, Z) of a body point at offset r (Exudyn
+    axes) from the body's coordinates ``dof``: u = t + theta x r, theta = (pitch, yaw, roll)."""
+    rx, ry, rz = r
+    cols = {"y": (1.0, 0.0, 0.0), "z": (0.0, 1.0, 0.0), "x": (0.0, 0.0, 1.0),
+            "roll": (-ry, rx, 0.0), "pitch": (0.0, -rz, ry), "spin": (0.0, -rz, ry),
+            "yaw": (rz, 0.0, -rx)}
+    return np.array([cols[d] for d in dof]).T
+
+
+def _offset(point: Sequence[float], reference: Sequence[float]) -> list[float]:
+    return [float(a - b) for a, b in zip(point, reference)]
+
+
+def _bumpstop_slope(stop: BumpStop) -> Callable[[float], float]:
+    points, increments = stop.ramps()
+    pairs = tuple(zip(points, increments))
+
+    def slope(u: float) -> float:
+        a = abs(u)
+        return sum(s for p, s in pairs if a > p)
+
+    return slope
+
+
+def _bumpstop_connector_function(stop: BumpStop, symbolic: bool) -> Callable:
+    points, increments = stop.ramps()
+    pairs = list(zip(points, increments))
+    law = stop.lateral_force
+
+    def springForceUserFunction(mbs, t, itemNumber, displacement, velocity, stiffness, damping,
+                                offset):
+        u = displacement[0] - offset[0]
+        if symbolic:
+            lib = exu.symbolic
+            a = lib.abs(u)
+            f = 0.0
+            for p, s in pairs:
+                f = f + s * lib.max(a - p, 0.0)
+            return [lib.sign(u) * f, 0.0, 0.0]
+        return [law(u), 0.0, 0.0]
+
+    return springForceUserFunction
+
+
+# ------------------------------------------------------------------------------ builders
+def add_vehicle_model(mbs: exu.MainSystem, model: VehicleModel, *, representation: str = "linear",
+                      rotation: str = "Rxyz", wheelset_spin: bool = False, bumpstop: str = "auto",
+                      gravity: bool = True) -> VehicleBuild:
+    """Add the vehicle (bodies, suspensions, bumpstops, gravity) to ``mbs``.
+
+    ``"rigid"``: rigid bodies, every suspension element a 3-D spring-damper connector at its
+    real position, force-free in the reference configuration (all coordinates zero: both
+    markers at the same point, or an offset equal to their reference distance); gravity is
+    a load; the longitudinal coordinate of every body (and each wheelset's spin unless
+    ``wheelset_spin``) is held by a coordinate constraint. ``"linear"`` (default, ~15x
+    faster, see the module docstring): that rigid model linearised at its static
+    equilibrium on rigid track (Exudyn's ComputeLinearizedSystem, held coordinates
+    removed; preload effects included), one NodeGenericODE2 per body with its free
+    coordinates and one ObjectGenericODE2 with M, K, D and the constant force
+    F0 = K q_s - f_wheels(q_s), so that the rigid model's static equilibrium q_s under its
+    wheel loads is the linear one's too; the lateral bumpstops are a second
+    ObjectGenericODE2 with a Python force function of the relative lateral displacement.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+    model : VehicleModel
+        A full vehicle or a single-wheelset model.
+    representation : str
+        One of :data:`REPRESENTATIONS`.
+    rotation : str
+        Rigid-body node parametrization, one of :data:`ROTATIONS` ("rigid"; "linear" uses it
+        for the model it linearises).
+    wheelset_spin : bool
+        True: each wheelset's spin perturbation (rotation about its axle) is a free
+        coordinate (the contact's longitudinal creep forces must then hold it).
+    bumpstop : str
+        Force law of the lateral bumpstops, one of :data:`BUMPSTOP_LAWS`.
+    gravity : bool
+        Include gravity (rigid: LoadMassProportional per body; linear: in F0).
+
+    Returns
+    -------
+    VehicleBuild
+    """
+    if representation not in REPRESENTATIONS:
+        raise ValueError(f"representation must be one of {REPRESENTATIONS}, got {representation!r}")
+    if rotation not in ROTATIONS:
+        raise ValueError(f"rotation must be one of {ROTATIONS}, got {rotation!r}")
+    if bumpstop not in BUMPSTOP_LAWS:
+        raise ValueError(f"bumpstop must be one of {BUMPSTOP_LAWS}, got {bumpstop!r}")
+    if representation == "rigid":
+        law = "symbolic" if bumpstop == "auto" else bumpstop
+        return _add_rigid(mbs, model, rotation, wheelset_spin, law, gravity)
+    if bumpstop == "symbolic":
+        raise ValueError("bumpstop 'symbolic' needs representation 'rigid'")
+    return _add_linear(mbs, model, rotation, wheelset_spin, bumpstop != "none", gravity)
+
+
+def _add_rigid(mbs: exu.MainSystem, model: VehicleModel, rotation: str, wheelset_spin: bool,
+               bumpstop: str, gravity: bool) -> VehicleBuild:
+    ground = int(mbs.AddObject(ObjectGround()))
+    ground_node = int(mbs.AddNode(NodePointGround()))
+    ground_coordinate = int(mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=ground_node,
+                                                               coordinate=0)))
+    w, p = model.wheelset, model.primary
+    held: list[tuple[int, int]] = []
+    items: dict[str, int] = {}
+
+    def rigid(name, mass, inertia, ref, dof):
+        node_type = NodeRigidBodyRxyz if rotation == "Rxyz" else NodeRigidBodyRotVecLG
+        node = int(mbs.AddNode(node_type(referenceCoordinates=list(ref) + [0.0, 0.0, 0.0])))
+        body = int(mbs.AddObject(RigidBody(mass=mass, inertia=list(inertia) + [0.0, 0.0, 0.0],
+                                           nodeNumber=node)))
+        held.append((node, dof["x"]))
+        return node, body
+
+    car, bogies, sprung, wheelsets = None, [], [], []
+    if model.car_body is not None:
+        c = model.car_body
+        ref = (0.0, c.cog_height, c.x[0])
+        node, body = rigid("car_body", c.mass, (c.pitch_inertia, c.yaw_inertia, c.roll_inertia),
+                           ref, _RIGID_DOF)
+        car = BodyHandles("car_body", node, body, c.x[0], ref, dict(_RIGID_DOF))
+        b = model.bogie
+        for j, xb in enumerate(b.x):
+            ref = (0.0, b.cog_height, xb)
+            node, body = rigid(f"bogie{j + 1}", b.mass,
+                               (b.pitch_inertia, b.yaw_inertia, b.roll_inertia), ref, _RIGID_DOF)
+            bogies.append(BodyHandles(f"bogie{j + 1}", node, body, xb, ref, dict(_RIGID_DOF)))
+    for i, xw in enumerate(w.x):
+        ref = (0.0, w.wheel_radius, xw)
+        node, body = rigid(f"wheelset{i + 1}", w.mass,
+                           (w.spin_inertia, w.yaw_inertia, w.roll_inertia), ref, _WHEELSET_DOF)
+        if not wheelset_spin:
+            held.append((node, _WHEELSET_DOF["spin"]))
+        local = tuple((side * w.contact_semi_spacing, -w.wheel_radius, 0.0) for side in (-1, 1))
+        markers = tuple(int(mbs.AddMarker(MarkerBodyPosition(bodyNumber=body,
+                                                             localPosition=list(q))))
+                        for q in local)
+        centre = int(mbs.AddMarker(MarkerBodyRigid(bodyNumber=body, localPosition=[0.0, 0.0, 0.0])))
+        wheelsets.append(WheelsetHandles(i, f"wheelset{i + 1}", xw, node, body, centre, markers,
+                                         local, ref, dict(_WHEELSET_DOF)))
+        if model.sprung_mass is not None:
+            ref = (0.0, model.sprung_mass.height, xw)
+            node = int(mbs.AddNode(NodePoint(referenceCoordinates=list(ref))))
+            body = int(mbs.AddObject(MassPoint(mass=model.sprung_mass.mass, nodeNumber=node)))
+            sprung.append(BodyHandles(f"sprung{i + 1}", node, body, xw, ref, dict(_POINT_DOF)))
+            held.append((node, _POINT_DOF["x"]))
+
+    def position_marker(handles, point):
+        local = _offset(point, handles.reference)
+        return int(mbs.AddMarker(MarkerBodyPosition(bodyNumber=handles.body, localPosition=local)))
+
+    # primary suspension, per axlebox: bogie frame (or the sprung point) -> wheelset
+    for ws in wheelsets:
+        j = w.bogie[ws.index]
+        for side, label in ((-1.0, "right"), (1.0, "left")):
+            point = (side * p.semi_spacing, p.height, ws.x)
+            if j >= 0:
+                m_parent, offset = position_marker(bogies[j], point), [0.0, 0.0, 0.0]
+            else:  # the sprung point: its marker is at the point, the offset makes it force-free
+                parent = sprung[ws.index]
+                m_parent = int(mbs.AddMarker(MarkerNodePosition(nodeNumber=parent.node)))
+                offset = _offset(point, parent.reference)
+            items[f"primary_ws{ws.index + 1}_{label}"] = int(mbs.AddObject(CartesianSpringDamper(
+                markerNumbers=[m_parent, position_marker(ws, point)],
+                stiffness=[p.k_y, p.k_z, p.k_x], damping=[p.c_y, p.c_z, p.c_x], offset=offset)))
+
+    # secondary suspension, torsion (yaw, anti-roll), bumpstop: bogie frame -> car body
+    keep: list[Any] = []
+    if car is not None:
+        s = model.secondary
+        for j, bg in enumerate(bogies):
+            for side, label in ((-1.0, "right"), (1.0, "left")):
+                point = (side * s.semi_spacing, s.height, bg.x)
+                items[f"secondary_b{j + 1}_{label}"] = int(mbs.AddObject(CartesianSpringDamper(
+                    markerNumbers=[position_marker(bg, point), position_marker(car, point)],
+                    stiffness=[s.k_y, s.k_z, s.k_x], damping=[s.c_y, s.c_z, s.c_x])))
+            centre = (0.0, s.height, bg.x)
+            k6 = np.zeros((6, 6))
+            k6[4, 4] = model.secondary_yaw_stiffness  # about Y: yaw
+            k6[5, 5] = model.anti_roll_stiffness  # about Z: roll
+            markers = [int(mbs.AddMarker(MarkerBodyRigid(
+                bodyNumber=h.body, localPosition=_offset(centre, h.reference)))) for h in (bg, car)]
+            items[f"torsion_b{j + 1}"] = int(mbs.AddObject(RigidBodySpringDamper(
+                markerNumbers=markers, stiffness=k6.tolist(), damping=np.zeros((6, 6)).tolist())))
+            if bumpstop != "none":
+                point = (0.0, model.bumpstop.height, bg.x)
+                item = int(mbs.AddObject(CartesianSpringDamper(
+                    markerNumbers=[position_marker(bg, point), position_marker(car, point)],
+                    stiffness=[0.0, 0.0, 0.0], damping=[0.0, 0.0, 0.0])))
+                law = _bumpstop_connector_function(model.bumpstop, bumpstop == "symbolic")
+                if bumpstop == "symbolic":
+                    law = CreateSymbolicUserFunction(mbs, law, "springForceUserFunction",
+                                                     exu.ObjectIndex(item))
+                keep.append(law)
+                mbs.SetObjectParameter(item, "springForceUserFunction", law)
+                items[f"bumpstop_b{j + 1}"] = item
+    if keep:
+        mbs.variables.setdefault(_KEEPALIVE, []).extend(keep)
+
+    constraints = tuple(int(mbs.AddObject(CoordinateConstraint(markerNumbers=[
+        ground_coordinate, int(mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=n, coordinate=k)))])))
+        for n, k in held)
+    loads: tuple[int, ...] = ()
+    if gravity:
+        bodies = ([car] if car else []) + bogies + sprung + wheelsets
+        loads = tuple(int(mbs.AddLoad(LoadMassProportional(
+            markerNumber=int(mbs.AddMarker(MarkerBodyMass(bodyNumber=h.body))),
+            loadVector=[0.0, -GRAVITY, 0.0]))) for h in bodies)
+    return VehicleBuild(model, "rigid", rotation, ground, tuple(wheelsets), tuple(bogies), car,
+                        tuple(sprung), items, constraints, tuple(held), loads, (), tuple(keep))
+
+
+def _free_names(build: VehicleBuild, spin: bool) -> list[tuple[Any, str]]:
+    """(body, coordinate name) of the linear representation's coordinates, in node order."""
+    out = []
+    for h in build.bodies():
+        if isinstance(h, WheelsetHandles):
+            names = _LINEAR_DOF["wheelset"] + (("spin",) if spin else ())
+        elif h.name.startswith("sprung"):
+            names = _LINEAR_DOF["sprung"]
+        else:
+            names = _LINEAR_DOF["body"]
+        out += [(h, d) for d in names]
+    return out
+
+
+def _add_linear(mbs: exu.MainSystem, model: VehicleModel, rotation: str, wheelset_spin: bool,
+                bumpstop: bool, gravity: bool) -> VehicleBuild:
+    # 1. the rigid model, its static equilibrium on rigid track and its linearisation there
+    ref_mbs = exu.SystemContainer().AddSystem()
+    rigid = _add_rigid(ref_mbs, model, rotation, wheelset_spin, "none", gravity)
+    support = rigid_track_support(ref_mbs, rigid, RigidTrack(k_x=1e7 if wheelset_spin else 0.0))
+    ref_mbs.Assemble()
+    solve_static(ref_mbs)
+    loads = support_wheel_loads(ref_mbs, support)
+    for item in support.items:
+        ref_mbs.SetObjectParameter(item, "activeConnector", False)
+    m, k, d = _linearize(ref_mbs)
+    q_rigid = np.array(ref_mbs.systemData.GetODE2Coordinates())
+    held = {ref_mbs.GetNodeODE2Index(n) + c for n, c in rigid.held}
+
+    # 2. the same bodies as generic nodes of their free coordinates
+    spin = ("spin",) if wheelset_spin else ()
+    names = _free_names(rigid, wheelset_spin)
+    index = [ref_mbs.GetNodeODE2Index(h.node) + h.dof[dname] for h, dname in names]
+    assert not held.intersection(index)
+    m, k, d = (np.asarray(a)[np.ix_(index, index)] for a in (m, k, d))
+    q_s = q_rigid[index]
+
+    def generic_node(n):
+        return int(mbs.AddNode(NodeGenericODE2(referenceCoordinates=[0.0] * n,
+                                               initialCoordinates=[0.0] * n,
+                                               initialCoordinates_t=[0.0] * n,
+                                               numberOfODE2Coordinates=n)))
+
+    def body(h, dof):
+        return BodyHandles(h.name, generic_node(len(dof)), -1, h.x, h.reference,
+                           {dname: i for i, dname in enumerate(dof)})
+
+    car = None if rigid.car_body is None else body(rigid.car_body, _LINEAR_DOF["body"])
+    bogies = tuple(body(h, _LINEAR_DOF["body"]) for h in rigid.bogies)
+    sprung = tuple(body(h, _LINEAR_DOF["sprung"]) for h in rigid.sprung)
+    wheelsets = []
+    for h in rigid.wheelsets:
+        dof = _LINEAR_DOF["wheelset"] + spin
+        node = generic_node(len(dof))
+        wheelsets.append(WheelsetHandles(h.index, h.name, h.x, node, -1,
+                                         int(mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=node))),
+                                         (), h.wheel_positions, h.reference,
+                                         {dname: i for i, dname in enumerate(dof)}))
+    ground = int(mbs.AddObject(ObjectGround()))
+    partial = VehicleBuild(model, "linear", rotation, ground, tuple(wheelsets), bogies, car,
+                           sprung, {}, (), (), (), tuple(q_s))
+    nodes = [h.node for h in partial.bodies()]
+
+    # 3. F0 = K q_s - f_wheels: the rigid model's equilibrium under its wheel loads
+    f_wheels = np.zeros(len(index))
+    offsets = _node_offsets(partial)
+    for ws, pair in zip(partial.wheelsets, loads):
+        dof = list(ws.dof)
+        for q, r in zip(pair, ws.wheel_positions):
+            t = _point_transform(dof, r)
+            f_wheels[offsets[ws.node]:offsets[ws.node] + len(dof)] += t.T @ np.array([0.0, q, 0.0])
+    force = k @ q_s - f_wheels if gravity else np.zeros(len(index))
+    items = {"suspension": int(mbs.AddObject(ObjectGenericODE2(
+        nodeNumbers=nodes, massMatrix=m, stiffnessMatrix=k, dampingMatrix=d,
+        forceVector=list(force))))}
+    keep: tuple[Any, ...] = ()
+    if bumpstop and car is not None:
+        items["bumpstops"], keep = _add_linear_bumpstops(mbs, model, car, bogies)
+    return VehicleBuild(model, "linear", rotation, ground, tuple(wheelsets), bogies, car, sprung,
+                        items, (), (), (), tuple(q_s), keep)
+
+
+def _node_offsets(build: VehicleBuild) -> dict[int, int]:
+    """Linear representation: first index of each body node's coordinates in the element."""
+    out, k = {}, 0
+    for h in build.bodies():
+        out[h.node] = k
+        k += len(h.dof)
+    return out
+
+
+def _add_linear_bumpstops(mbs: exu.MainSystem, model: VehicleModel, car: BodyHandles,
+                          bogies: Sequence[BodyHandles]) -> tuple[int, tuple[Any, ...]]:
+    """One ObjectGenericODE2 on (car body, bogies): F = -c F_stop(c^T q) per bogie, with c^T q
+    the relative lateral displacement car body - bogie at the bumpstop (small angles)."""
+    stop = model.bumpstop
+    n_car = len(car.dof)
+    size = n_car + sum(len(b.dof) for b in bogies)
+    rows = []
+    start = n_car
+    for bg in bogies:
+        point = (0.0, stop.height, bg.x)
+        c = np.zeros(size)
+        c[:n_car] = _point_transform(list(car.dof), _offset(point, car.reference))[0]
+        c[start:start + len(bg.dof)] = -_point_transform(list(bg.dof),
+                                                         _offset(point, bg.reference))[0]
+        rows.append(c)
+        start += len(bg.dof)
+    c_matrix = np.array(rows)
+    # plain Python on the few non-zero entries: numpy's per-call overhead on 15-vectors was
+    # ~50 us per force evaluation, this is a few us
+    sparse = tuple(tuple((int(i), float(c[i])) for i in np.flatnonzero(c)) for c in rows)
+    points, increments = stop.ramps()
+    pairs = tuple(zip(points, increments))
+    slope = _bumpstop_slope(stop)
+
+    def forceUserFunction(mbs, t, itemNumber, q, q_t):
+        out = [0.0] * size
+        for row in sparse:
+            u = sum(v * q[i] for i, v in row)
+            a = abs(u)
+            if a > pairs[0][0]:
+                f = math.copysign(sum(s * (a - p) for p, s in pairs if a > p), u)
+                for i, v in row:
+                    out[i] -= v * f
+        return out
+
+    def jacobianUserFunction(mbs, t, itemNumber, q, q_t, fODE2, fODE2_t):
+        # d(left-hand side)/dq = c^T diag(dF/du) c: the bumpstop's tangent stiffness
+        u = c_matrix @ np.asarray(q)
+        return fODE2 * (c_matrix.T * np.array([slope(v) for v in u])) @ c_matrix
+
+    zero = np.zeros((size, size))
+    item = int(mbs.AddObject(ObjectGenericODE2(
+        nodeNumbers=[car.node] + [b.node for b in bogies], massMatrix=zero, stiffnessMatrix=zero,
+        dampingMatrix=zero, forceUserFunction=forceUserFunction,
+        jacobianUserFunction=jacobianUserFunction)))
+    functions = (forceUserFunction, jacobianUserFunction)
+    mbs.variables.setdefault(_KEEPALIVE, []).extend(functions)
+    return item, functions
+
+
+def rigid_track_support(mbs: exu.MainSystem, build: VehicleBuild,
+                        track: RigidTrack = RigidTrack()) -> TrackSupport:
+    """Put every wheel on linear springs to ground at its contact point (rigid track).
+
+    Rigid representation: a ``CartesianSpringDamper`` per wheel from a ground point at the
+    nominal contact point (y = -+b, z = 0, x of the wheelset) to the wheel's contact marker,
+    stiffness (k_y, k_z, k_x), force-free in the reference configuration. Linear: the same
+    springs (small-angle transform of the contact points) as one ObjectGenericODE2 on the
+    wheelset nodes.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+    build : VehicleBuild
+    track : RigidTrack
+        Support stiffness and damping per wheel.
+
+    Returns
+    -------
+    TrackSupport
+    """
+    k3 = np.diag([track.k_y, track.k_z, track.k_x])
+    c3 = np.diag([track.c_y, track.c_z, 0.0])
+    if build.representation == "rigid":
+        items = []
+        for ws in build.wheelsets:
+            for marker, local in zip(ws.wheel_markers, ws.wheel_positions):
+                ground = int(mbs.AddMarker(MarkerBodyPosition(
+                    bodyNumber=build.ground, localPosition=[local[0], 0.0, ws.x])))
+                items.append(int(mbs.AddObject(CartesianSpringDamper(
+                    markerNumbers=[ground, marker], stiffness=np.diag(k3).tolist(),
+                    damping=np.diag(c3).tolist()))))
+        return TrackSupport(track, tuple(items), build)
+    n = sum(len(ws.dof) for ws in build.wheelsets)
+    k, d = np.zeros((n, n)), np.zeros((n, n))
+    start = 0
+    for ws in build.wheelsets:
+        sl = slice(start, start + len(ws.dof))
+        for r in ws.wheel_positions:
+            t = _point_transform(list(ws.dof), r)
+            k[sl, sl] += t.T @ k3 @ t
+            d[sl, sl] += t.T @ c3 @ t
+        start += len(ws.dof)
+    item = int(mbs.AddObject(ObjectGenericODE2(
+        nodeNumbers=[ws.node for ws in build.wheelsets], massMatrix=np.zeros((n, n)),
+        stiffnessMatrix=k, dampingMatrix=d)))
+    return TrackSupport(track, (item,), build)
+
+
+def support_wheel_loads(mbs: exu.MainSystem, support: TrackSupport) -> np.ndarray:
+    """Vertical wheel loads (N, positive pressing the rail) carried by the rigid-track supports.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+    support : TrackSupport
+        As returned by :func:`rigid_track_support`.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (n_wheelsets, 2): (right, left) per wheelset, at the current state.
+    """
+    build = support.build
+    if build.representation == "rigid":
+        f = [-float(mbs.GetObjectOutput(o, exu.OutputVariableType.Force)[1]) for o in support.items]
+        return np.array(f).reshape(-1, 2)
+    out = []
+    for ws in build.wheelsets:
+        q = np.array(mbs.GetNodeOutput(ws.node, exu.OutputVariableType.Coordinates))
+        out.append([-support.track.k_z * (_point_transform(list(ws.dof), r) @ q)[1]
+                    for r in ws.wheel_positions])
+    return np.array(out)
+
+
+def static_settings() -> exu.SimulationSettings:
+    """Quiet static-solver settings: Newton tolerance in force units, no files.
+
+    Returns
+    -------
+    exudyn.SimulationSettings
+    """
+    settings = exu.SimulationSettings()
+    settings.staticSolver.verboseMode = 0
+    settings.staticSolver.newton.relativeTolerance = 1e-10
+    settings.staticSolver.newton.absoluteTolerance = 1e-6
+    settings.staticSolver.numberOfLoadSteps = 1
+    settings.solution.file.write = False
+    settings.timeIntegration.verboseMode = 0
+    return settings
+
+
+def dynamic_settings(end_time: float, step: float) -> exu.SimulationSettings:
+    """Quiet generalized-alpha settings (spectral radius 0.8, modified Newton, fixed step).
+
+    Parameters
+    ----------
+    end_time : float
+        s.
+    step : float
+        s, time step.
+
+    Returns
+    -------
+    exudyn.SimulationSettings
+    """
+    s = static_settings()
+    s.timeIntegration.endTime = end_time
+    s.timeIntegration.numberOfSteps = max(1, int(round(end_time / step)))
+    s.timeIntegration.generalizedAlpha.spectralRadius = 0.8
+    s.timeIntegration.newton.useModifiedNewton = True
+    s.timeIntegration.newton.absoluteTolerance = 1e-4
+    s.timeIntegration.adaptiveStep = False
+    s.solution.sensors.writePeriod = step
+    return s
+
+
+def solve_static(mbs: exu.MainSystem) -> np.ndarray:
+    """Static equilibrium under gravity; it becomes the initial state. Quiet, no files.
+
+    ``mbs`` must be assembled.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+
+    Returns
+    -------
+    numpy.ndarray
+        ODE2 coordinates (m, rad) at static equilibrium.
+    """
+    previous = exu.config.printToConsole
+    exu.config.printToConsole = False
+    try:
+        ok = mbs.SolveStatic(static_settings(), updateInitialValues=True)
+    finally:
+        exu.config.printToConsole = previous
+    if not ok:
+        raise RuntimeError("static solver did not converge")
+    return np.array(mbs.systemData.GetODE2Coordinates())
+
+
+def connector_forces_at_reference(mbs: exu.MainSystem) -> dict[int, np.ndarray]:
+    """Force and torque outputs of every ``Connector*`` spring-damper with all ODE2
+    coordinates and velocities zero (the reference configuration).
+
+    Reads ``OutputVariableType.Force``, ``ForceLocal``, ``Torque``, ``TorqueLocal``, those
+    the connector type has (``RigidBodySpringDamper`` has only the local ones); coordinate
+    constraints (``ConnectorCoordinate``) have no force law and are skipped. Leaves the
+    current state at zero. ``mbs`` must be assembled.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+
+    Returns
+    -------
+    dict of int to numpy.ndarray
+        Object index -> concatenated force (and torque) components.
+    """
+    data = mbs.systemData
+    n = len(data.GetODE2Coordinates())
+    data.SetODE2Coordinates(np.zeros(n), exu.ConfigurationType.Current)
+    data.SetODE2Coordinates_t(np.zeros(n), exu.ConfigurationType.Current)
+    out = {}
+    for i in range(data.NumberOfObjects()):
+        kind = mbs.GetObject(i)["objectType"]
+        if not kind.startswith("Connector") or kind == "ConnectorCoordinate":
+            continue
+        parts = []
+        for output in _FORCE_OUTPUTS:
+            try:
+                parts.append(np.atleast_1d(mbs.GetObjectOutput(i, output)))
+            except ValueError:  # exudyn.ExudynValueError: the type has no such output
+                pass
+        if not parts:
+            raise ValueError(f"connector {i} ({kind}) has no force or torque output")
+        out[i] = np.concatenate(parts)
+    return out
+
+
+def _linearize(mbs: exu.MainSystem) -> list[np.ndarray]:
+    previous = exu.config.printToConsole
+    exu.config.printToConsole = False
+    try:
+        return [np.asarray(a) for a in mbs.ComputeLinearizedSystem(static_settings())]
+    finally:
+        exu.config.printToConsole = previous
+
+
+def _coordinate_names(mbs: exu.MainSystem, build: VehicleBuild) -> list[str]:
+    n = len(mbs.systemData.GetODE2Coordinates())
+    names = [""] * n
+    for h in build.bodies():
+        start = mbs.GetNodeODE2Index(h.node)
+        for dname, k in h.dof.items():
+            names[start + k] = f"{h.name}.{dname}"
+    return names
+
+
+def vehicle_modes(mbs: exu.MainSystem, build: VehicleBuild) -> tuple[VehicleMode, ...]:
+    """Vibration modes of a vehicle-alone system, linearised at its initial state.
+
+    Call after :func:`solve_static` (the equilibrium is then the initial state). M, K, D
+    come from ``mbs.ComputeLinearizedSystem()``; held coordinates and coordinates of other
+    items are removed. The undamped frequencies solve K v = w^2 M v; each undamped mode is
+    paired with the damped mode (state-space eigenvalue lambda) of highest modal assurance
+    criterion for its damping ratio.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+    build : VehicleBuild
+
+    Returns
+    -------
+    tuple of VehicleMode
+        Sorted by frequency.
+    """
+    m, k, d = _linearize(mbs)
+    names = _coordinate_names(mbs, build)
+    removed = {mbs.GetNodeODE2Index(n) + c for n, c in build.held}
+    keep = [i for i, name in enumerate(names) if name and i not in removed]
+    m, k, d = (a[np.ix_(keep, keep)] for a in (m, k, d))
+    names = [names[i] for i in keep]
+    w2, vectors = scipy.linalg.eig(k, m)
+    order = np.argsort(w2.real)
+    w2, vectors = w2.real[order], vectors.real[:, order]
+    n = len(keep)
+    a = np.block([[np.zeros((n, n)), np.eye(n)],
+                  [-np.linalg.solve(m, k), -np.linalg.solve(m, d)]])
+    lam, psi = scipy.linalg.eig(a)
+    upper = lam.imag > 1e-9
+    lam, psi = lam[upper], psi[:n, upper]
+    modes = []
+    for col in range(n):
+        v = vectors[:, col]
+        energy = np.abs(v * (m @ v))
+        energy = energy / np.sum(energy)
+        top = int(np.argmax(energy))
+        body, direction = names[top].split(".")
+        f_d, zeta = math.nan, math.nan
+        if len(lam):
+            mac = np.abs(psi.conj().T @ v) ** 2 / (np.sum(np.abs(psi) ** 2, axis=0) * (v @ v))
+            best = int(np.argmax(mac))
+            f_d = abs(lam[best]) / (2 * math.pi)
+            zeta = -lam[best].real / abs(lam[best])
+        part = {names[i]: float(energy[i]) for i in np.argsort(-energy) if energy[i] >= 0.01}
+        modes.append(VehicleMode(math.sqrt(max(w2[col], 0.0)) / (2 * math.pi), float(f_d),
+                                 float(zeta), body, direction, float(energy[top]), part))
+    return tuple(modes)

@@ -1,0 +1,310 @@
+"""Plots of computed results (the only module that imports matplotlib).
+
+Each function takes data objects (e.g. :class:`~exudyn_turnout.receptance.Receptance`),
+draws into given axes or a new figure, and returns ``(figure, axes)``; saving is left to
+the caller (``fig.savefig(path)``).
+"""
+from __future__ import annotations
+
+import math
+from typing import Sequence
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+from exudyn_turnout.receptance import Receptance
+
+__all__ = ["receptance_label", "plot_receptance", "passage_label", "plot_passage_forces"]
+
+
+def receptance_label(r: Receptance) -> str:
+    """Legend text of a receptance: model, rail, direction and position."""
+    x = "" if math.isnan(r.x) else f" at x = {r.x:g} m"
+    return f"{r.model} {r.rail} {r.direction}{x}".strip()
+
+
+def plot_receptance(receptances: Receptance | Sequence[Receptance], ax=None, *, phase: bool = False,
+                    labels: Sequence[str] | None = None, title: str | None = None):
+    """Log-log magnitude |H| (m/N) over frequency (Hz), optionally the phase below it.
+
+    Parameters
+    ----------
+    receptances : Receptance or sequence of Receptance
+        Curves to draw, in order.
+    ax : matplotlib Axes or (Axes, Axes), optional
+        Magnitude axes, or (magnitude, phase) axes when ``phase``; new figure if None.
+    phase : bool
+        Also draw the phase (degrees, -180 to 180).
+    labels : sequence of str, optional
+        Legend entries; default :func:`receptance_label`.
+    title : str, optional
+
+    Returns
+    -------
+    (Figure, tuple of Axes)
+    """
+    curves = [receptances] if isinstance(receptances, Receptance) else list(receptances)
+    axes = _axes(ax, phase)
+    names = list(labels) if labels is not None else [receptance_label(r) for r in curves]
+    for r, name in zip(curves, names):
+        axes[0].loglog(r.frequency_hz, r.magnitude, label=name)
+        if phase:
+            axes[1].semilogx(r.frequency_hz, np.degrees(np.angle(r.H)), label=name)
+    axes[0].set_ylabel("receptance |H| (m/N)")
+    axes[0].grid(True, which="both", alpha=0.3)
+    if curves:
+        axes[0].legend(fontsize="small")
+    if title:
+        axes[0].set_title(title)
+    if phase:
+        axes[1].set_ylabel("phase (deg)")
+        axes[1].set_ylim(-180, 180)
+        axes[1].grid(True, which="both", alpha=0.3)
+    axes[-1].set_xlabel("frequency (Hz)")
+    return axes[0].figure, axes
+
+
+def _axes(ax, phase: bool) -> tuple:
+    if ax is None:
+        if phase:
+            _, pair = plt.subplots(2, 1, sharex=True, figsize=(6.4, 6.0), height_ratios=(2, 1))
+            return tuple(pair)
+        _, single = plt.subplots(figsize=(6.4, 4.2))
+        return (single,)
+    axes = tuple(ax) if isinstance(ax, (tuple, list, np.ndarray)) else (ax,)
+    if len(axes) != (2 if phase else 1):
+        raise ValueError(f"phase={phase} needs {2 if phase else 1} axes, got {len(axes)}")
+    return axes
+
+
+def passage_label(result) -> str:
+    """Legend text of a passage: layers (or model), parameter source and speed."""
+    s = result.settings
+    model = result.summary.get("model", f"{s.layers}-layer")
+    if model == "FE":  # the FE track takes Table 1 directly: no parameter source
+        return f"FE, {s.speed_kmh:g} km/h"
+    return f"{model}, {s.source}, {s.speed_kmh:g} km/h"
+
+
+def plot_passage_forces(results, wheel: str = "right", labels=None, title: str | None = None):
+    """Contact forces of passages against x, at the switch and at the crossing (Figs 7, 8 layout).
+
+    Parameters
+    ----------
+    results : sequence of PassageResult
+        Runs to overlay (e.g. 2-layer, 3-layer, FE reference).
+    wheel : {"right", "left"}
+    labels : sequence of str, optional
+
+    Returns
+    -------
+    (figure, axes)
+        A 2 x 2 grid: rows vertical (Fz) and lateral (Fy) force on the rail, columns the
+        switch and crossing regions named in the results' summaries.
+    """
+    results = list(results)
+    fig, axes = plt.subplots(2, 2, figsize=(10.0, 6.4), sharex="col")
+    names = list(labels) if labels is not None else [passage_label(r) for r in results]
+    regions = (("switch", results[0].summary["switch_region_m"]), ("crossing", results[0].summary["crossing_region_m"]))
+    for row, (quantity, unit) in enumerate((("Fz", "vertical"), ("Fy", "lateral"))):
+        for col, (where, (x0, x1)) in enumerate(regions):
+            ax = axes[row, col]
+            for r, name in zip(results, names):
+                x, f = r.columns["x_m"], r.columns[f"{quantity}_{wheel}_N"]
+                sel = (x >= x0) & (x <= x1)
+                ax.plot(x[sel], f[sel] / 1e3, label=name, lw=1.0)
+            ax.grid(True, alpha=0.3)
+            ax.set_title(f"{unit} force, {wheel} wheel, {where}", fontsize="medium")
+            if col == 0:
+                ax.set_ylabel(f"{quantity} on rail (kN)")
+            if row == 1:
+                ax.set_xlabel("x from switch toe (m)")
+    axes[0, 0].legend(fontsize="small")
+    if title:
+        fig.suptitle(title)
+    fig.tight_layout()
+    return fig, axes
+
+
+# --- validation report figures (exudyn_turnout.report.metrics) ---------------------------------
+
+__all__ += ["plot_receptance_agreement", "plot_force_signals", "plot_stiffness_series", "save_figure"]
+
+
+def _style(model: str) -> dict:
+    """Line style of a model in the validation report's figures (FE black, 2-layer blue dashed, 3-layer red)."""
+    styles = {"FE": dict(color="black", lw=1.6), "2-layer": dict(color="tab:blue", lw=1.1, ls="--"),
+              "3-layer": dict(color="tab:red", lw=1.1)}
+    return styles.get(model, {})
+
+
+def plot_receptance_agreement(panels, reference: str = "FE", agree_db: float = 3.0,
+                              range_edges: Sequence[float] = (125.0, 500.0)):
+    """Receptances of several models and their level difference from a reference, side by side.
+
+    Parameters
+    ----------
+    panels : sequence of (str, mapping, float or None)
+        Per column: title, model name -> Receptance (same frequencies), and a frequency
+        (Hz) to mark with a dotted line (e.g. the pinned-pinned resonance) or None.
+    reference : str
+        Model the level difference 20 log10(|H| / |H_ref|) (dB) is taken against.
+    agree_db : float
+        dB, shaded band +- agree_db in the difference plot.
+    range_edges : sequence of float
+        Hz, frequencies drawn as thin vertical lines (the report's range limits).
+
+    Returns
+    -------
+    (Figure, ndarray of Axes)
+        2 x n: magnitude |H| (m/N) on top, difference (dB) below.
+    """
+    panels = list(panels)
+    fig, axes = plt.subplots(2, len(panels), figsize=(5.0 * len(panels), 6.2), sharex=True,
+                             height_ratios=(2, 1), squeeze=False)
+    for col, (title, curves, mark) in enumerate(panels):
+        top, bottom = axes[0, col], axes[1, col]
+        ref = curves[reference]
+        for name, r in curves.items():
+            top.loglog(r.frequency_hz, r.magnitude, label=name, **_style(name))
+            if name != reference:
+                bottom.semilogx(r.frequency_hz, 20 * np.log10(r.magnitude / ref.magnitude), label=name, **_style(name))
+        bottom.axhspan(-agree_db, agree_db, color="0.85", zorder=0)
+        for ax in (top, bottom):
+            for f in range_edges:
+                ax.axvline(f, color="0.6", lw=0.6)
+            if mark is not None:
+                ax.axvline(mark, color="tab:green", ls=":", lw=1.2)
+            ax.grid(True, which="both", alpha=0.3)
+        top.set_title(title, fontsize="medium")
+        bottom.set_xlabel("frequency (Hz)")
+        bottom.set_ylim(-20, 20)
+    axes[0, 0].set_ylabel("receptance |H| (m/N)")
+    axes[1, 0].set_ylabel(f"20 log10(|H|/|H_{reference}|) (dB)")
+    axes[0, 0].legend(fontsize="small")
+    fig.tight_layout()
+    return fig, axes
+
+
+def plot_force_signals(panels, ylabel: str = "force on rail (kN)"):
+    """Contact-force histories of several models along x, one panel per signal.
+
+    Parameters
+    ----------
+    panels : sequence of (str, mapping, str, (float, float))
+        Per panel: title, model name -> PassageResult, column name (e.g. "Fz_right_N")
+        and the x range (m) to show.
+    ylabel : str
+
+    Returns
+    -------
+    (Figure, ndarray of Axes)
+    """
+    panels = list(panels)
+    fig, axes = plt.subplots(1, len(panels), figsize=(5.0 * len(panels), 3.6), squeeze=False)
+    for ax, (title, results, column, (x0, x1)) in zip(axes[0], panels):
+        for name, r in results.items():
+            x, f = r.columns["x_m"], r.columns[column]
+            sel = (x >= x0) & (x <= x1)
+            ax.plot(x[sel], f[sel] / 1e3, label=name, **_style(name))
+        ax.set_xlim(x0, x1)
+        ax.set_title(title, fontsize="medium")
+        ax.set_xlabel("x from switch toe (m)")
+        ax.grid(True, alpha=0.3)
+    axes[0, 0].set_ylabel(ylabel)
+    axes[0, 0].legend(fontsize="small")
+    fig.tight_layout()
+    return fig, axes
+
+
+def plot_stiffness_series(panels, ylabel: str = "static stiffness (MN/m)"):
+    """Stiffness along x: one panel per direction, several labelled series each.
+
+    Parameters
+    ----------
+    panels : sequence of (str, sequence of (str, array, array, str))
+        Per panel (stacked, shared x): title and series (label, x in m, K in N/m, kind);
+        kind "points" (markers, e.g. FE values at the sleepers), "fit", "paper" or "model"
+        (lines: solid, dashed, dotted).
+    ylabel : str
+
+    Returns
+    -------
+    (Figure, ndarray of Axes)
+    """
+    panels = list(panels)
+    styles = {"points": dict(ls="none", marker=".", ms=3), "fit": dict(color="black", lw=1.6),
+              "paper": dict(color="black", lw=1.4, ls="--"), "model": dict(color="tab:red", lw=1.2, ls=":")}
+    fig, axes = plt.subplots(len(panels), 1, figsize=(9.0, 3.4 * len(panels)), sharex=True, squeeze=False)
+    for ax, (title, series) in zip(axes[:, 0], panels):
+        for label, x, K, kind in series:
+            ax.plot(x, np.asarray(K) / 1e6, label=label, **styles.get(kind, {}))
+        ax.set_title(title, fontsize="medium")
+        ax.set_ylabel(ylabel)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize="x-small", ncol=2)
+    axes[-1, 0].set_xlabel("x from switch toe (m)")
+    fig.tight_layout()
+    return fig, axes
+
+
+def save_figure(fig, path, dpi: int = 100) -> None:
+    """Save a figure to ``path`` (format from the suffix) and close it."""
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)
+
+
+# --- FE static stiffness along the turnout (exudyn_turnout.fe) ----------------------------
+
+__all__ += ["plot_stiffness_profile"]
+
+
+def plot_stiffness_profile(profile, fits=None, turnout=None, axes=None):
+    """The analogue of the paper's Fig. 1(b,c): static stiffness of every rail along x.
+
+    Parameters
+    ----------
+    profile : exudyn_turnout.fe.stiffness.StiffnessProfile
+        FE values at every sleeper (one marker shape and colour per rail, so rails with
+        equal values stay visible).
+    fits : exudyn_turnout.fe.fits.TurnoutFits, optional
+        Fitted K_sw (vertical) and K_sh (lateral), drawn over their x range (solid black).
+    turnout : exudyn_turnout.inputs.turnout.Turnout, optional
+        Its K_sw (Eq 10) and K_sh (Eq 14), drawn dashed: K_sw from its x_min to the end of
+        the first zone (held constant beyond its x_max, as the paper says), K_sh over its
+        range.
+    axes : (Axes, Axes), optional
+        Vertical and lateral axes; a new figure if None.
+
+    Returns
+    -------
+    (Figure, tuple of Axes)
+    """
+    if axes is None:
+        _, pair = plt.subplots(2, 1, figsize=(12.0, 8.0), sharex=True)
+        axes = tuple(pair)
+    markers = "o^sDvx+P*<>"
+    for i, rail in enumerate(profile.rails):
+        x, kz, ky = profile.of(rail)
+        style = dict(ls="none", marker=markers[i % len(markers)], ms=3.5, mfc="none", mew=0.9,
+                     label=f"{rail}: {profile.rail_names.get(rail, rail)}")
+        for ax, K in zip(axes, (kz, ky)):
+            ax.plot(x, K / 1e6, **style)
+    if fits is not None:
+        for ax, fit, eq in zip(axes, (fits.K_sw, fits.K_sh), ("Eq 10", "Eq 14")):
+            xs = np.linspace(fit.x_min, fit.x_max, 200)
+            ax.plot(xs, [fit(v) / 1e6 for v in xs], color="black", lw=1.6,
+                    label=f"FE fit, {eq} analogue ({fit.rail}, R$^2$ = {fit.r_squared:.2f})")
+    if turnout is not None:
+        spans = ((turnout.K_sw.x_min, turnout.zones[0].x_end), (turnout.K_sh.x_min, turnout.K_sh.x_max))
+        for ax, poly, (a, b), eq in zip(axes, (turnout.K_sw, turnout.K_sh), spans, ("Eq 10 (paper)", "Eq 14 (paper)")):
+            xs = np.linspace(a, b, 200)
+            ax.plot(xs, [poly(v) / 1e6 for v in xs], color="black", lw=1.4, ls="--", label=eq)
+    for ax, title in zip(axes, ("(b) vertical static stiffness 1/|H(1 Hz)|", "(c) lateral static stiffness 1/|H(1 Hz)|")):
+        ax.set_title(title, fontsize="medium")
+        ax.set_ylabel("stiffness (MN/m)")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize="x-small", loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    axes[-1].set_xlabel("x from switch toe (m)")
+    axes[0].figure.tight_layout()
+    return axes[0].figure, axes
