@@ -8,6 +8,7 @@ rails each; 8; 100) and per contact.  Tables are cached in a temporary folder th
 removed afterwards.  Target (issue 12): build "a few seconds, cached"; lookup "a few
 microseconds" per contact, since a passage makes ~25 000 steps with ~3 calls each.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -19,8 +20,12 @@ import numpy as np
 from exudyn_turnout.wheel_rail.data import profile_path, s1002_wheel, standard_track
 from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
 from exudyn_turnout.wheel_rail.profiles import read_slices
-from exudyn_turnout.wheel_rail.sections import (gauge_point, lateral_grid, slice_sections,
-                                                wheel_envelope)
+from exudyn_turnout.wheel_rail.sections import (
+    gauge_point,
+    lateral_grid,
+    slice_sections,
+    wheel_envelope,
+)
 from exudyn_turnout.wheel_rail.tables import TableSettings, build_contact_table, lookup_values
 
 
@@ -56,32 +61,43 @@ def main() -> None:
     start = time.perf_counter()
     crossing, taping = crossing_sections(setup, 0.05 if args.quick else 0.01)
     envelope_time = time.perf_counter() - start
-    cases = [("plain UIC60 1:40", standard_track(setup), setup.taping_line),
-             ("UK crossing (enveloped)", crossing, taping)]
+    cases = [
+        ("plain UIC60 1:40", standard_track(setup), setup.taping_line),
+        ("UK crossing (enveloped)", crossing, taping),
+    ]
     rng = np.random.default_rng(1)
-    print(f"{'table':26s} {'nodes':>8s} {'build s':>8s} {'cpu s':>6s} {'load s':>7s} "
-          f"{'lookup us/call (4 / 8 / 100)':>30s} {'us/contact (100)':>17s}")
+    print(
+        f"{'table':26s} {'nodes':>8s} {'build s':>8s} {'cpu s':>6s} {'load s':>7s} "
+        f"{'lookup us/call (4 / 8 / 100)':>30s} {'us/contact (100)':>17s}"
+    )
     with tempfile.TemporaryDirectory() as cache:
         for name, sections, taping_line in cases:
             cpu = time.process_time()
-            table = build_contact_table(wheel, sections, taping_line, settings,
-                                        cache_dir=cache)
+            table = build_contact_table(wheel, sections, taping_line, settings, cache_dir=cache)
             cpu = time.process_time() - cpu
-            load = best_of(lambda: build_contact_table(wheel, sections, taping_line, settings,
-                                                       cache_dir=cache), 3)
+            load = best_of(
+                lambda: build_contact_table(
+                    wheel, sections, taping_line, settings, cache_dir=cache
+                ),
+                3,
+            )
             per_call = []
             for n in (4, 8, 100):
                 x = rng.uniform(sections.x[0], sections.x[-1], n)
                 shift = rng.uniform(-0.008, 0.008, n)
                 lift = rng.uniform(-4e-4, 0.0, n)
-                per_call.append(best_of(lambda: lookup_values(table, x, shift, lift),
-                                        args.repeat) * 1e6)
+                per_call.append(
+                    best_of(lambda: lookup_values(table, x, shift, lift), args.repeat) * 1e6
+                )
             nodes = table.values.shape[0] * table.values.shape[1]
-            print(f"{name:26s} {nodes:8d} {table.build_seconds:8.2f} {cpu:6.2f} {load:7.3f} "
-                  f"{per_call[0]:10.1f} / {per_call[1]:5.1f} / {per_call[2]:6.1f} "
-                  f"{per_call[2] / 100:17.2f}")
-    print(f"(crossing sections: reading 148 slices and the wheel envelope took "
-          f"{envelope_time:.2f} s)")
+            print(
+                f"{name:26s} {nodes:8d} {table.build_seconds:8.2f} {cpu:6.2f} {load:7.3f} "
+                f"{per_call[0]:10.1f} / {per_call[1]:5.1f} / {per_call[2]:6.1f} "
+                f"{per_call[2] / 100:17.2f}"
+            )
+    print(
+        f"(crossing sections: reading 148 slices and the wheel envelope took {envelope_time:.2f} s)"
+    )
 
 
 if __name__ == "__main__":

@@ -11,6 +11,7 @@ UIC60-760-1:15 turnout with the default FE options:
 - the peak memory of the process (ru_maxrss). Targets (issue 4): receptance <= 10 s,
   < 2 GB; profile <= 60 s. The timings are of this one run on this machine.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -26,8 +27,8 @@ from exudyn_turnout.fe.mesh import FEOptions, build_mesh
 from exudyn_turnout.fe.model import assemble
 from exudyn_turnout.fe.solver import condense, default_keep
 from exudyn_turnout.fe.stiffness import static_stiffness_profile
-from exudyn_turnout.receptance import log_frequencies
 from exudyn_turnout.inputs.turnout import load_turnout
+from exudyn_turnout.receptance import log_frequencies
 
 
 class Clock:
@@ -43,7 +44,11 @@ class Clock:
 
 def _parts(system, b, f) -> dict[str, float]:
     """Wall seconds of the three steps of CondensedSystem.solve over all frequencies."""
-    out = {"block elimination (Schur)": 0.0, "sparse LU (SuperLU)": 0.0, "solve + residual check": 0.0}
+    out = {
+        "block elimination (Schur)": 0.0,
+        "sparse LU (SuperLU)": 0.0,
+        "solve + residual check": 0.0,
+    }
     for fk in f:
         w = 2 * np.pi * fk
         t0 = time.perf_counter()
@@ -72,13 +77,20 @@ def receptance_rows(turnout, layout, direction, x, f) -> list[tuple[str, str]]:
         H = sweep(model, rail, x, f)
     b = system.restrict(b_full).astype(complex)
     parts = _parts(system, b, f)
-    rows = [(f"{direction}: DOFs (full / kept after condensation)", f"{model.n_dof} / {system.n_keep}"),
-            (f"{direction}: build mesh + assemble K, G, D, M", f"{build.wall:.2f} s"),
-            (f"{direction}: condensation set-up (blocks, modes)", f"{prep.wall:.2f} s"),
-            (f"{direction}: receptance r2 ({rail}) x = {x:g} m, {len(f)} freq.",
-             f"{run.wall:.2f} s wall, {run.cpu:.2f} s CPU, {1e3 * run.wall / len(f):.1f} ms/freq."),
-            (f"{direction}: total (build + sweep)", f"{build.wall + run.wall:.2f} s")]
-    rows += [(f"{direction}:   {k}", f"{v:.2f} s ({100 * v / sum(parts.values()):.0f}%)") for k, v in parts.items()]
+    rows = [
+        (f"{direction}: DOFs (full / kept after condensation)", f"{model.n_dof} / {system.n_keep}"),
+        (f"{direction}: build mesh + assemble K, G, D, M", f"{build.wall:.2f} s"),
+        (f"{direction}: condensation set-up (blocks, modes)", f"{prep.wall:.2f} s"),
+        (
+            f"{direction}: receptance r2 ({rail}) x = {x:g} m, {len(f)} freq.",
+            f"{run.wall:.2f} s wall, {run.cpu:.2f} s CPU, {1e3 * run.wall / len(f):.1f} ms/freq.",
+        ),
+        (f"{direction}: total (build + sweep)", f"{build.wall + run.wall:.2f} s"),
+    ]
+    rows += [
+        (f"{direction}:   {k}", f"{v:.2f} s ({100 * v / sum(parts.values()):.0f}%)")
+        for k, v in parts.items()
+    ]
     rows.append((f"{direction}: static stiffness 1/|H(1 Hz)|", f"{1 / abs(H[0]):.4g} N/m"))
     return rows
 
@@ -86,7 +98,9 @@ def receptance_rows(turnout, layout, direction, x, f) -> list[tuple[str, str]]:
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--n", type=int, default=400, help="frequencies, 1-2000 Hz (default 400)")
-    parser.add_argument("--x", type=float, default=46.0, help="position of the r2 receptance (m, default 46)")
+    parser.add_argument(
+        "--x", type=float, default=46.0, help="position of the r2 receptance (m, default 46)"
+    )
     args = parser.parse_args(argv)
     turnout = load_turnout()
     layout = load_layout(turnout)
@@ -96,9 +110,19 @@ def main(argv=None) -> None:
         rows += receptance_rows(turnout, layout, direction, args.x, f)
     with Clock() as prof:
         profile = static_stiffness_profile(turnout, layout)
-    rows += [("static stiffness profile, both planes", f"{prof.wall:.2f} s wall, {prof.cpu:.2f} s CPU, "
-                                                       f"{len(profile.x)} rail positions, {len(profile.rails)} rails")]
-    rows += [("peak memory of the process (ru_maxrss)", f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024:.0f} MB")]
+    rows += [
+        (
+            "static stiffness profile, both planes",
+            f"{prof.wall:.2f} s wall, {prof.cpu:.2f} s CPU, "
+            f"{len(profile.x)} rail positions, {len(profile.rails)} rails",
+        )
+    ]
+    rows += [
+        (
+            "peak memory of the process (ru_maxrss)",
+            f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024:.0f} MB",
+        )
+    ]
     width = max(len(k) for k, _ in rows)
     print(f"{'quantity':<{width}}  value")
     print("-" * (width + 60))

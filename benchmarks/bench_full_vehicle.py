@@ -11,18 +11,23 @@ bumpstop law in both representations of ``vehicle_builder`` (linear: one
 ``ObjectGenericODE2``; rigid: rigid bodies and connectors), and the single-wheelset model
 (1 wheelset) through the same builder.
 """
+
 from __future__ import annotations
 
 import argparse
 import time
 
+import exudyn as exu
 import numpy as np
 
-import exudyn as exu
-
-from exudyn_turnout.passage.vehicle_builder import (RigidTrack, add_vehicle_model, dynamic_settings,
-                                            rigid_track_support, solve_static)
 from exudyn_turnout.inputs.vehicle_model import load_vehicle_model, single_wheelset_share
+from exudyn_turnout.passage.vehicle_builder import (
+    RigidTrack,
+    add_vehicle_model,
+    dynamic_settings,
+    rigid_track_support,
+    solve_static,
+)
 
 
 def _perturb(mbs, build) -> None:
@@ -79,16 +84,21 @@ def main(argv=None):
         ("1 wheelset + sprung point, rigid Rxyz", single, rigid),
     ]
     steps = int(round(args.time / args.step))
-    print(f"vehicle alone on rigid-track springs, h = {args.step:g} s, {steps} steps, "
-          f"best of {args.repeat}")
-    print(f"{'case':<44}{'ODE2':>6}{'Newton/step':>12}{'wall s':>9}{'us/step':>9}"
-          f"{'x real time':>13}")
+    print(
+        f"vehicle alone on rigid-track springs, h = {args.step:g} s, {steps} steps, "
+        f"best of {args.repeat}"
+    )
+    print(
+        f"{'case':<44}{'ODE2':>6}{'Newton/step':>12}{'wall s':>9}{'us/step':>9}{'x real time':>13}"
+    )
     for name, model, options in cases:
         runs = [_case(model, args.time, args.step, **options) for _ in range(args.repeat)]
         best = min(r[0] for r in runs)
         _, n, its = runs[0]
-        print(f"{name:<44}{n:>6}{its:>12.2f}{best:>9.3f}{1e6 * best / steps:>9.1f}"
-              f"{best / args.time:>13.3f}")
+        print(
+            f"{name:<44}{n:>6}{its:>12.2f}{best:>9.3f}{1e6 * best / steps:>9.1f}"
+            f"{best / args.time:>13.3f}"
+        )
 
 
 if __name__ == "__main__":

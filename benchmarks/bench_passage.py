@@ -4,12 +4,13 @@ Run: ``python benchmarks/bench_passage.py [--repeat N]``. The 65 m passage (-5 m
 at 100 km/h is 2.34 s of simulated time. Target (issue 5): the three-layer passage takes at
 most half its simulated time (1.2 s). Ratios are taken within this one run.
 """
+
 import argparse
 import time
 
-from exudyn_turnout.passage.simulate import PassageSettings, simulate_passage
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.passage import contact_element as wheelrail
+from exudyn_turnout.passage.simulate import PassageSettings, simulate_passage
 
 
 def _timed(turnout, settings, repeat):
@@ -20,6 +21,7 @@ def _timed(turnout, settings, repeat):
     def counted(self, *args):
         calls[0] += 1
         return original(self, *args)
+
     best, result = float("inf"), None
     wheelrail.WheelRailElement.__call__ = counted
     try:
@@ -36,27 +38,46 @@ def _timed(turnout, settings, repeat):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--repeat", type=int, default=3, help="runs per case, best taken (default 3)")
+    parser.add_argument(
+        "--repeat", type=int, default=3, help="runs per case, best taken (default 3)"
+    )
     args = parser.parse_args(argv)
     turnout = load_turnout()
-    cases = [("through, 2-layer", PassageSettings(layers=2)),
-             ("through, 3-layer", PassageSettings(layers=3)),
-             ("through, 3-layer, python track springs", PassageSettings(layers=3, track_mechanism="python")),
-             ("diverging, 2-layer", PassageSettings(route="diverging", layers=2)),
-             ("diverging, 3-layer", PassageSettings(route="diverging", layers=3))]
+    cases = [
+        ("through, 2-layer", PassageSettings(layers=2)),
+        ("through, 3-layer", PassageSettings(layers=3)),
+        (
+            "through, 3-layer, python track springs",
+            PassageSettings(layers=3, track_mechanism="python"),
+        ),
+        ("diverging, 2-layer", PassageSettings(route="diverging", layers=2)),
+        ("diverging, 3-layer", PassageSettings(route="diverging", layers=3)),
+    ]
     rows = {}
-    print(f"{'case (100 km/h, -5..60 m, h = 1e-4 s)':<42}{'wall s':>9}{'wall/sim s':>12}{'us/step':>9}{'calls/step':>12}")
+    print(
+        f"{'case (100 km/h, -5..60 m, h = 1e-4 s)':<42}{'wall s':>9}{'wall/sim s':>12}{'us/step':>9}{'calls/step':>12}"
+    )
     for name, settings in cases:
         wall, result, calls = _timed(turnout, settings, args.repeat)
         sim = result.summary["simulated_time_s"]
         rows[name] = wall
-        print(f"{name:<42}{wall:>9.2f}{wall / sim:>12.2f}{1e6 * wall / (sim / settings.time_step):>9.0f}{calls:>12.2f}")
-    print(f"{'ratio 3-layer / 2-layer, through':<42}{rows['through, 3-layer'] / rows['through, 2-layer']:>9.2f}"
-          "   (paper: about 1.10)")
-    print(f"{'ratio 3-layer / 2-layer, diverging':<42}{rows['diverging, 3-layer'] / rows['diverging, 2-layer']:>9.2f}")
-    print(f"{'ratio python / symbolic track springs':<42}"
-          f"{rows['through, 3-layer, python track springs'] / rows['through, 3-layer']:>9.2f}")
-    print(f"{'target: 3-layer through wall <= 1.2 s':<42}{'met' if rows['through, 3-layer'] <= 1.2 else 'missed':>9}")
+        print(
+            f"{name:<42}{wall:>9.2f}{wall / sim:>12.2f}{1e6 * wall / (sim / settings.time_step):>9.0f}{calls:>12.2f}"
+        )
+    print(
+        f"{'ratio 3-layer / 2-layer, through':<42}{rows['through, 3-layer'] / rows['through, 2-layer']:>9.2f}"
+        "   (paper: about 1.10)"
+    )
+    print(
+        f"{'ratio 3-layer / 2-layer, diverging':<42}{rows['diverging, 3-layer'] / rows['diverging, 2-layer']:>9.2f}"
+    )
+    print(
+        f"{'ratio python / symbolic track springs':<42}"
+        f"{rows['through, 3-layer, python track springs'] / rows['through, 3-layer']:>9.2f}"
+    )
+    print(
+        f"{'target: 3-layer through wall <= 1.2 s':<42}{'met' if rows['through, 3-layer'] <= 1.2 else 'missed':>9}"
+    )
 
 
 if __name__ == "__main__":

@@ -15,6 +15,7 @@ Run::
 Writes ``fig5_vertical_receptance.png``, ``fig6_lateral_receptance.png`` and one CSV per
 curve to the output directory and prints the eigenfrequencies of both models there.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -22,17 +23,21 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_turnout.inputs.geometry import turnout_plan
 from exudyn_turnout.corunning.modal import co_running_modes, co_running_receptance
-from exudyn_turnout.receptance import log_frequencies
+from exudyn_turnout.inputs.geometry import turnout_plan
 from exudyn_turnout.inputs.turnout import Turnout, load_turnout
+from exudyn_turnout.receptance import log_frequencies
 
 FIGURES = {"vertical": "fig5_vertical_receptance.png", "lateral": "fig6_lateral_receptance.png"}
 
 
-def eigenfrequency_table(turnout: Turnout, cases: dict[str, float], source: str, count: int = 6) -> str:
+def eigenfrequency_table(
+    turnout: Turnout, cases: dict[str, float], source: str, count: int = 6
+) -> str:
     """Text table: the first undamped eigenfrequencies and the oscillating damped modes."""
-    lines = [f"{'case':<28}{'model':<9}first undamped eigenfrequencies (Hz) | oscillating modes, damped (Hz)"]
+    lines = [
+        f"{'case':<28}{'model':<9}first undamped eigenfrequencies (Hz) | oscillating modes, damped (Hz)"
+    ]
     for name, x in cases.items():
         for layers in (2, 3):
             md = co_running_modes(turnout, layers, x=x, source=source)
@@ -43,8 +48,14 @@ def eigenfrequency_table(turnout: Turnout, cases: dict[str, float], source: str,
     return "\n".join(lines)
 
 
-def plot_direction(turnout: Turnout, cases: dict[str, float], direction: str, source: str,
-                   frequencies: np.ndarray, out_dir: Path) -> Path:
+def plot_direction(
+    turnout: Turnout,
+    cases: dict[str, float],
+    direction: str,
+    source: str,
+    frequencies: np.ndarray,
+    out_dir: Path,
+) -> Path:
     """One figure, a panel per case, both models in each; CSVs beside it."""
     import matplotlib.pyplot as plt
 
@@ -52,12 +63,20 @@ def plot_direction(turnout: Turnout, cases: dict[str, float], direction: str, so
 
     fig, axes = plt.subplots(1, len(cases), figsize=(5.2 * len(cases), 4.2), squeeze=False)
     for ax, (letter, (name, x)) in zip(axes[0], zip("abcdef", cases.items())):
-        curves = [co_running_receptance(turnout, layers, "r2", direction, x=x, source=source,
-                                        frequencies=frequencies) for layers in (2, 3)]
+        curves = [
+            co_running_receptance(
+                turnout, layers, "r2", direction, x=x, source=source, frequencies=frequencies
+            )
+            for layers in (2, 3)
+        ]
         for r in curves:
             r.to_csv(out_dir / f"{name.replace(' ', '_')}_{direction}_{r.model}.csv")
-        plot_receptance(curves, ax=ax, labels=[r.model for r in curves],
-                        title=f"({letter}) {name}, x = {x:.1f} m, {direction}")
+        plot_receptance(
+            curves,
+            ax=ax,
+            labels=[r.model for r in curves],
+            title=f"({letter}) {name}, x = {x:.1f} m, {direction}",
+        )
     fig.tight_layout()
     path = out_dir / FIGURES[direction]
     fig.savefig(path, dpi=120)
@@ -65,8 +84,13 @@ def plot_direction(turnout: Turnout, cases: dict[str, float], direction: str, so
     return path
 
 
-def main(out_dir: str | Path, turnout_path: str | None = None, source: str = "derived",
-         x_switch: float = 4.0, x_crossing: float | None = None) -> list[Path]:
+def main(
+    out_dir: str | Path,
+    turnout_path: str | None = None,
+    source: str = "derived",
+    x_switch: float = 4.0,
+    x_crossing: float | None = None,
+) -> list[Path]:
     """Print the eigenfrequencies, write both figures and the CSVs; returns the figure paths.
 
     ``x_crossing`` defaults to where the wheel meets the nose: 0.267 m after the plan's nose
@@ -93,8 +117,12 @@ if __name__ == "__main__":
     parser.add_argument("--turnout", help="turnout file (default: packaged UIC60-760-1:15)")
     parser.add_argument("--source", choices=("derived", "published"), default="derived")
     parser.add_argument("--x-switch", type=float, default=4.0, help="switch-rail position (m)")
-    parser.add_argument("--x-crossing", type=float, default=None,
-                        help="crossing-rail position (m; default: where the wheel meets the nose)")
+    parser.add_argument(
+        "--x-crossing",
+        type=float,
+        default=None,
+        help="crossing-rail position (m; default: where the wheel meets the nose)",
+    )
     args = parser.parse_args()
     for written in main(args.out, args.turnout, args.source, args.x_switch, args.x_crossing):
         print(f"wrote {written}")

@@ -4,6 +4,7 @@ paper's Fig. 8).
 
 Run: ``python examples/passage_diverging.py [--out DIR] [--speed KMH]``.
 """
+
 import sys
 from pathlib import Path
 

@@ -3,12 +3,13 @@ nose, two-layer vs three-layer co-running track (the layout of the paper's Fig. 
 
 Run: ``python examples/passage_through.py [--out DIR] [--speed KMH]``.
 """
+
 import argparse
 from pathlib import Path
 
+from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.passage.simulate import PassageSettings, compare_layers, peaks_table
 from exudyn_turnout.plotting.curves import plot_passage_forces
-from exudyn_turnout.inputs.turnout import load_turnout
 
 
 def run(out_dir, route="through", speed_kmh=100.0, x_start=None, x_end=None):
@@ -17,7 +18,9 @@ def run(out_dir, route="through", speed_kmh=100.0, x_start=None, x_end=None):
     settings = PassageSettings(route=route, speed_kmh=speed_kmh, x_start=x_start, x_end=x_end)
     results = compare_layers(turnout, settings)
     print(peaks_table({f"{n}-layer, {route}, {speed_kmh:g} km/h": r for n, r in results.items()}))
-    fig, _ = plot_passage_forces(results.values(), title=f"{turnout.name}, {route} route, {speed_kmh:g} km/h")
+    fig, _ = plot_passage_forces(
+        results.values(), title=f"{turnout.name}, {route} route, {speed_kmh:g} km/h"
+    )
     Path(out_dir).mkdir(parents=True, exist_ok=True)
     fig.savefig(Path(out_dir) / f"{route}_2_vs_3_layers.png", dpi=120)
     return results

@@ -8,7 +8,14 @@ Modules: :mod:`~exudyn_turnout.inputs.turnout` (turnout file), :mod:`~exudyn_tur
 (Eqs 1-19), :mod:`~exudyn_turnout.corunning.parameters` (co-running parameter sets),
 :mod:`~exudyn_turnout.corunning.comparison` (derived vs published Table 2), :mod:`~exudyn_turnout.cli.main`.
 """
-from exudyn_turnout.corunning.parameters import CoRunningParameters, Readings, co_running_parameters, delta_y, delta_z
+
+from exudyn_turnout.corunning.parameters import (
+    CoRunningParameters,
+    Readings,
+    co_running_parameters,
+    delta_y,
+    delta_z,
+)
 from exudyn_turnout.inputs.turnout import PARAMETER_NAMES, Turnout, TurnoutFileError, load_turnout
 
 __version__ = "0.1.0"

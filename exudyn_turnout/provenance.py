@@ -17,9 +17,10 @@ import json
 import math
 import os
 import platform
+from collections.abc import Mapping, Sequence
 from importlib import metadata
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 __all__ = [
     "provenance",
@@ -193,7 +194,7 @@ def provenance(
         reduced = reduce_argv(argv)
         record["argv"] = reduced
         record["command_line"] = " ".join([command] + reduced)
-    record["date_utc"] = datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")
+    record["date_utc"] = datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
     return round_floats(record)
 
 

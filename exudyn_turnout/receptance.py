@@ -4,12 +4,13 @@ A :class:`Receptance` holds H(f) = displacement / force (m/N, complex) at one ra
 direction and one position, with the model that produced it. CSV columns are
 ``frequency_hz,real,imag,magnitude`` (m/N) for every model, so curves compare directly.
 """
+
 from __future__ import annotations
 
 import csv
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Mapping
 
 import numpy as np
 
@@ -59,8 +60,14 @@ class Receptance:
                 w.writerow([f"{f:.8g}", f"{h.real:.8e}", f"{h.imag:.8e}", f"{abs(h):.8e}"])
 
     @classmethod
-    def from_csv(cls, path: str | Path, rail: str = "", direction: str = "", x: float = float("nan"),
-                 model: str = "") -> "Receptance":
+    def from_csv(
+        cls,
+        path: str | Path,
+        rail: str = "",
+        direction: str = "",
+        x: float = float("nan"),
+        model: str = "",
+    ) -> Receptance:
         """Read a file written by :meth:`to_csv`."""
         data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
         return cls(data[:, 0], data[:, 1] + 1j * data[:, 2], rail, direction, x, model)

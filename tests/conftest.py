@@ -1,4 +1,5 @@
 """Shared fixtures: the packaged turnout, loaded once; headless matplotlib."""
+
 import os
 
 import pytest

@@ -7,6 +7,7 @@
 - nothing imports ``cli/`` or ``report/`` from below (they are the top of the pipeline);
 - no star imports.
 """
+
 from __future__ import annotations
 
 import ast
@@ -38,8 +39,10 @@ STAGES = ("inputs", "wheel_rail", "corunning", "fe", "passage", "report", "cli")
 
 
 def _modules() -> dict[str, ast.Module]:
-    return {p.relative_to(PACKAGE).as_posix(): ast.parse(p.read_text(encoding="utf-8"))
-            for p in sorted(PACKAGE.rglob("*.py"))}
+    return {
+        p.relative_to(PACKAGE).as_posix(): ast.parse(p.read_text(encoding="utf-8"))
+        for p in sorted(PACKAGE.rglob("*.py"))
+    }
 
 
 def _imports(name: str, tree: ast.Module) -> set[str]:
@@ -56,7 +59,7 @@ def _imports(name: str, tree: ast.Module) -> set[str]:
             out.update(alias.name for alias in node.names)
         elif isinstance(node, ast.ImportFrom):
             if node.level:
-                base = package[:len(package) - node.level + 1]
+                base = package[: len(package) - node.level + 1]
                 stem = ".".join(base + ([node.module] if node.module else []))
             else:
                 stem = node.module or ""

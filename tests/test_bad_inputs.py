@@ -119,8 +119,13 @@ CASES = [
         None,
         "is an existing file",
     ),
-    ("plot in an unknown format", FRF + ["--out", "{out}.csv", "--plot", "{dir}/h.xyz"], None, None,
-     "must end in one of .png"),
+    (
+        "plot in an unknown format",
+        FRF + ["--out", "{out}.csv", "--plot", "{dir}/h.xyz"],
+        None,
+        None,
+        "must end in one of .png",
+    ),
     # options
     (
         "output step below the time step",
@@ -324,9 +329,17 @@ CASES = [
         lambda t: _sub(t, r"^curvature = 0\.0", "curvature = 5.0"),
         "curvature must be <= 1",
     ),
-    ("route position on no feature", SIM + ["--turnout", "{turnout}"], T,
-     lambda t: _sub(t, r'^(x = \[[^\n]*?)"nose_tip', r'\1"no_such_feature') if '"nose_tip' in t
-     else _sub(t, r"^(x = \[)[^,\]]*", r'\1"no_such_feature"'), "routes.through"),
+    (
+        "route position on no feature",
+        SIM + ["--turnout", "{turnout}"],
+        T,
+        lambda t: (
+            _sub(t, r'^(x = \[[^\n]*?)"nose_tip', r'\1"no_such_feature')
+            if '"nose_tip' in t
+            else _sub(t, r"^(x = \[)[^,\]]*", r'\1"no_such_feature"')
+        ),
+        "routes.through",
+    ),
     # vehicle file
     (
         "vehicle nan mass",
@@ -460,7 +473,16 @@ def test_broken_pipe_is_quiet(monkeypatch, capsys):
 def test_closed_pipe_subprocess():
     """The real thing: the reader closes the pipe before the command writes."""
     proc = subprocess.Popen(
-        [sys.executable, "-m", "exudyn_turnout.cli.main", "params", "--zone", "2", "--format", "csv"],
+        [
+            sys.executable,
+            "-m",
+            "exudyn_turnout.cli.main",
+            "params",
+            "--zone",
+            "2",
+            "--format",
+            "csv",
+        ],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
     )
@@ -473,7 +495,10 @@ def test_closed_pipe_subprocess():
 
 def test_no_arguments_prints_the_help():
     proc = subprocess.run(
-        [sys.executable, "-m", "exudyn_turnout.cli.main"], capture_output=True, text=True, timeout=60
+        [sys.executable, "-m", "exudyn_turnout.cli.main"],
+        capture_output=True,
+        text=True,
+        timeout=60,
     )
     assert proc.returncode == 0 and proc.stdout.startswith("usage: exudyn-turnout")
     assert "simulate" in proc.stdout and "Exit codes" in proc.stdout and proc.stderr == ""

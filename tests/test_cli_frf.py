@@ -3,6 +3,7 @@
 Reference: the CSV format of exudyn_turnout.receptance (frequency_hz,real,imag,magnitude
 in m/N) and the active rails of the paper's Table 3 (zone 1: r1 r2 r4).
 """
+
 import csv
 import subprocess
 import sys
@@ -25,7 +26,9 @@ def _run(capsys, *argv):
 def test_writes_csv_with_the_receptance(capsys, tmp_path, turnout):
     """Columns and values: the CSV holds co_running_receptance of zone 2 (8 significant digits)."""
     out = tmp_path / "h.csv"
-    code, stdout, _ = _run(capsys, *BASE, "--zone", "2", "--n", "50", "--fmax", "5000", "--out", str(out))
+    code, stdout, _ = _run(
+        capsys, *BASE, "--zone", "2", "--n", "50", "--fmax", "5000", "--out", str(out)
+    )
     assert code == 0 and "wrote" in stdout
     with open(out, newline="") as fh:
         rows = list(csv.reader(fh))
@@ -40,24 +43,41 @@ def test_writes_csv_with_the_receptance(capsys, tmp_path, turnout):
 
 def test_plot_is_written(capsys, tmp_path):
     png = tmp_path / "h.png"
-    code, _, _ = _run(capsys, *BASE, "--x", "47", "--source", "published", "--out", str(tmp_path / "h.csv"),
-                      "--plot", str(png))
+    code, _, _ = _run(
+        capsys,
+        *BASE,
+        "--x",
+        "47",
+        "--source",
+        "published",
+        "--out",
+        str(tmp_path / "h.csv"),
+        "--plot",
+        str(png),
+    )
     assert code == 0
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
-@pytest.mark.parametrize("argv,fragment", [
-    (["frf", "--layers", "2", "--rail", "r3", "--direction", "lateral", "--zone", "1"],
-     "rail r3 is not active in zone 1"),
-    (["frf", "--layers", "2", "--rail", "r3", "--direction", "lateral", "--x", "55"],
-     "rail r3 is not active at x = 55 m"),
-    (BASE + ["--zone", "2", "--fmin", "100", "--fmax", "10"], "need 0 < fmin < fmax"),
-    (BASE + ["--zone", "2", "--fmin", "0"], "need 0 < fmin < fmax"),
-    (BASE + ["--zone", "2", "--n", "1"], "at least 2 frequencies"),
-    (BASE + ["--zone", "2", "--fmax", "inf"], "finite"),
-    (BASE + ["--x", "80"], "outside the turnout"),
-    (BASE + ["--zone", "9"], "zone 9 does not exist"),
-])
+@pytest.mark.parametrize(
+    "argv,fragment",
+    [
+        (
+            ["frf", "--layers", "2", "--rail", "r3", "--direction", "lateral", "--zone", "1"],
+            "rail r3 is not active in zone 1",
+        ),
+        (
+            ["frf", "--layers", "2", "--rail", "r3", "--direction", "lateral", "--x", "55"],
+            "rail r3 is not active at x = 55 m",
+        ),
+        (BASE + ["--zone", "2", "--fmin", "100", "--fmax", "10"], "need 0 < fmin < fmax"),
+        (BASE + ["--zone", "2", "--fmin", "0"], "need 0 < fmin < fmax"),
+        (BASE + ["--zone", "2", "--n", "1"], "at least 2 frequencies"),
+        (BASE + ["--zone", "2", "--fmax", "inf"], "finite"),
+        (BASE + ["--x", "80"], "outside the turnout"),
+        (BASE + ["--zone", "9"], "zone 9 does not exist"),
+    ],
+)
 def test_bad_input_is_one_line_and_exit_2(capsys, tmp_path, argv, fragment):
     out = tmp_path / "h.csv"
     code, stdout, stderr = _run(capsys, *argv, "--out", str(out))
@@ -69,9 +89,13 @@ def test_bad_input_is_one_line_and_exit_2(capsys, tmp_path, argv, fragment):
 
 def test_frf_imports_neither_exudyn_nor_matplotlib(tmp_path):
     """The receptance is numpy/scipy only; matplotlib only with --plot (fast start)."""
-    code = ("import sys; from exudyn_turnout.cli.main import main; "
-            f"rc = main(['frf', '--layers', '3', '--rail', 'r2', '--direction', 'lateral', '--zone', '1', "
-            f"'--out', r'{tmp_path / 'h.csv'}']); "
-            "print(rc, 'exudyn' in sys.modules, 'matplotlib' in sys.modules)")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    code = (
+        "import sys; from exudyn_turnout.cli.main import main; "
+        f"rc = main(['frf', '--layers', '3', '--rail', 'r2', '--direction', 'lateral', '--zone', '1', "
+        f"'--out', r'{tmp_path / 'h.csv'}']); "
+        "print(rc, 'exudyn' in sys.modules, 'matplotlib' in sys.modules)"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True
+    ).stdout
     assert out.strip().splitlines()[-1] == "0 False False"

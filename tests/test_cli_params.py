@@ -3,6 +3,7 @@
 Reference values: Table 2 of Shih, Ambur & Dixon (2023) (zone 1, published) and the
 derived plain-track values of Eqs 1-9 (k_rt1,z = 369.4e6 N/m, see test_equations.py).
 """
+
 import csv
 import io
 import json
@@ -56,16 +57,19 @@ def test_table_format_shows_factors(capsys):
     assert "* Delta_y" in out
 
 
-@pytest.mark.parametrize("argv,fragment", [
-    (["params", "--zone", "4"], "zone 4 does not exist"),
-    (["params", "--x", "-6"], "x = -6 m is outside the turnout"),
-    (["params", "--x", "nan"], "--x"),
-    (["params", "--zone", "1", "--x", "3"], "not allowed with argument"),
-    (["params", "--zone", "1", "--layers", "4"], "--layers"),
-    (["params", "--zone", "1", "--source", "fe"], "--source"),
-    (["params", "--zone", "1", "--frobnicate"], "unrecognized arguments: --frobnicate"),
-    (["nosuchcommand"], "invalid choice"),
-])
+@pytest.mark.parametrize(
+    "argv,fragment",
+    [
+        (["params", "--zone", "4"], "zone 4 does not exist"),
+        (["params", "--x", "-6"], "x = -6 m is outside the turnout"),
+        (["params", "--x", "nan"], "--x"),
+        (["params", "--zone", "1", "--x", "3"], "not allowed with argument"),
+        (["params", "--zone", "1", "--layers", "4"], "--layers"),
+        (["params", "--zone", "1", "--source", "fe"], "--source"),
+        (["params", "--zone", "1", "--frobnicate"], "unrecognized arguments: --frobnicate"),
+        (["nosuchcommand"], "invalid choice"),
+    ],
+)
 def test_bad_input_one_line_exit_2(capsys, argv, fragment):
     code, out, err = _run(capsys, *argv)
     assert code == 2 and out == ""
@@ -74,13 +78,16 @@ def test_bad_input_one_line_exit_2(capsys, argv, fragment):
 
 def test_fe_fitted_profiles(capsys):
     """--profiles fe-fit: Delta_z(x) = K_sw,fit(x) / K_st with the FE fit (fe/fits.py) in place of Eq 10."""
+    from exudyn_turnout.corunning.parameters import reference_support
     from exudyn_turnout.fe.fits import fit_turnout_profiles
     from exudyn_turnout.fe.stiffness import static_stiffness_profile
-    from exudyn_turnout.corunning.parameters import reference_support
     from exudyn_turnout.inputs.turnout import load_turnout
+
     code, out, _ = _run(capsys, "params", "--x", "10", "--format", "json", "--profiles", "fe-fit")
     t = load_turnout()
     fits = fit_turnout_profiles(static_stiffness_profile(t), t)
     assert code == 0
-    assert json.loads(out)["Delta_z"] == pytest.approx(fits.K_sw(10.0) / reference_support(t).K_st_z, rel=1e-9)
+    assert json.loads(out)["Delta_z"] == pytest.approx(
+        fits.K_sw(10.0) / reference_support(t).K_st_z, rel=1e-9
+    )
     assert json.loads(out)["Delta_z"] != pytest.approx(0.96712, rel=1e-3)  # Eq 10's value differs

@@ -12,6 +12,10 @@ from PIL import Image
 
 from exudyn_turnout.corunning import track
 from exudyn_turnout.corunning.cross_section import cross_section_springs
+from exudyn_turnout.corunning.parameters import co_running_parameters
+from exudyn_turnout.inputs.routes import load_route
+from exudyn_turnout.inputs.vehicle import load_vehicle
+from exudyn_turnout.passage.simulate import PassageSettings, simulate_passage
 from exudyn_turnout.plotting.model import (
     animate_passage,
     cross_section_geometry,
@@ -22,10 +26,6 @@ from exudyn_turnout.plotting.model import (
     passage_frames,
     spring_label,
 )
-from exudyn_turnout.corunning.parameters import co_running_parameters
-from exudyn_turnout.passage.simulate import PassageSettings, simulate_passage
-from exudyn_turnout.inputs.routes import load_route
-from exudyn_turnout.inputs.vehicle import load_vehicle
 
 CASES = [(zone, layers) for zone in (1, 2, 3) for layers in (2, 3)]
 
@@ -70,7 +70,9 @@ def test_geometry_lists_the_springs_exudyn_builds(turnout, zone, layers):
         if mbs.GetObject(i)["objectType"] == "ConnectorCartesianSpringDamper"
     ]
     assert (
-        geo.connectors == tuple(s.name for s in cross_section_springs(params)) == tuple(handles.connectors)
+        geo.connectors
+        == tuple(s.name for s in cross_section_springs(params))
+        == tuple(handles.connectors)
     )
     assert len(geo.connectors) == len(springs)
     for spring in geo.springs:  # stiffness, damping and attachment points of the built object

@@ -9,23 +9,48 @@ Reference values and their sources:
 - Eq 2 is the point stiffness of an infinite beam on a Winkler foundation, 8 EI beta^3
   with beta^4 = k_s / (4 EI) (Hetenyi, Beams on Elastic Foundation, 1946, ch. 2).
 """
+
 import math
 
 import pytest
 
 from exudyn_turnout.corunning import equations as eq
-from exudyn_turnout.corunning.parameters import co_running_parameters, delta_y, delta_z, rail_support
+from exudyn_turnout.corunning.parameters import (
+    co_running_parameters,
+    delta_y,
+    delta_z,
+    rail_support,
+)
 
 #: Table 2, zone 1 ("Simulation-1"), stock-rail (plain-track) entries; Delta-dependent
 #: entries by their coefficient. Table 2 prints 2-3 significant digits: 2 % tolerance.
 PLAIN_TRACK_TABLE2 = {
-    "k_rt1_z": 369e6, "c_rt1_z": 77e3, "k_rt4_z": 369e6, "c_rt4_z": 77e3,
-    "k_tg2_z": 77e6, "c_tg2_z": 77e4, "k_01_z": 369e6, "k_04_z": 369e6,
-    "k_rt1_y": 56e6, "c_rt1_y": 22e3, "k_rt4_y": 56e6, "c_rt4_y": 22e3,
-    "k_tg_y": 56e6, "c_tg_y": 56e4, "k_01_y": 280e6, "k_04_y": 280e6,
-    "m_r1": 111.0, "m_r4": 111.0, "m_t": 500.0, "J_t": 265.0, "m_0": 2.5,
+    "k_rt1_z": 369e6,
+    "c_rt1_z": 77e3,
+    "k_rt4_z": 369e6,
+    "c_rt4_z": 77e3,
+    "k_tg2_z": 77e6,
+    "c_tg2_z": 77e4,
+    "k_01_z": 369e6,
+    "k_04_z": 369e6,
+    "k_rt1_y": 56e6,
+    "c_rt1_y": 22e3,
+    "k_rt4_y": 56e6,
+    "c_rt4_y": 22e3,
+    "k_tg_y": 56e6,
+    "c_tg_y": 56e4,
+    "k_01_y": 280e6,
+    "k_04_y": 280e6,
+    "m_r1": 111.0,
+    "m_r4": 111.0,
+    "m_t": 500.0,
+    "J_t": 265.0,
+    "m_0": 2.5,
     # the switch rail's entries are the stock values times Delta_z (Section 3.1.1)
-    "k_rt2_z": 369e6, "c_rt2_z": 77e3, "k_tg1_z": 77e6, "c_tg1_z": 77e4,
+    "k_rt2_z": 369e6,
+    "c_rt2_z": 77e3,
+    "k_tg1_z": 77e6,
+    "c_tg1_z": 77e4,
 }
 
 
@@ -53,13 +78,16 @@ def test_eq2_equals_winkler_point_stiffness(EI, k_s):
     assert eq.static_track_stiffness(EI, k_s) == pytest.approx(8 * EI * beta**3, rel=1e-12)
 
 
-@pytest.mark.parametrize("x,expected_dz,expected_dy", [
-    (0.0, 0.65940, 1.03577),   # 4.2e7 / 6.3694e7 ; 2.9e7 / 2.79986e7
-    (10.0, 0.96712, 1.07505),  # 6.16e7 / 6.3694e7 ; 3.01e7 / 2.79986e7
-    (22.0, 1.23691, 1.12220),  # 7.8784e7 / 6.3694e7 ; 3.142e7 / 2.79986e7
-    (30.0, 1.23691, 1.15363),  # K_sw held at its 22 m value (Section 3.1.1); 3.23e7
-    (44.0, 1.23691, 1.20863),  # ; 3.384e7 / 2.79986e7
-])
+@pytest.mark.parametrize(
+    "x,expected_dz,expected_dy",
+    [
+        (0.0, 0.65940, 1.03577),  # 4.2e7 / 6.3694e7 ; 2.9e7 / 2.79986e7
+        (10.0, 0.96712, 1.07505),  # 6.16e7 / 6.3694e7 ; 3.01e7 / 2.79986e7
+        (22.0, 1.23691, 1.12220),  # 7.8784e7 / 6.3694e7 ; 3.142e7 / 2.79986e7
+        (30.0, 1.23691, 1.15363),  # K_sw held at its 22 m value (Section 3.1.1); 3.23e7
+        (44.0, 1.23691, 1.20863),  # ; 3.384e7 / 2.79986e7
+    ],
+)
 def test_delta_factors_hand_values(turnout, x, expected_dz, expected_dy):
     assert delta_z(turnout, x) == pytest.approx(expected_dz, rel=1e-4)
     assert delta_y(turnout, x) == pytest.approx(expected_dy, rel=1e-4)
@@ -76,6 +104,7 @@ def test_lateral_check_rail_and_crossing_rail_reproduce_table2(turnout):
 def test_crossing_rail_reproduces_table2_only_with_reciprocal_eq5(turnout):
     """Table 2 zone 2: k_rt2,z 453e6 (range end), m_r2 409 kg, m_t 881 kg."""
     from exudyn_turnout.corunning.parameters import AS_PRINTED
+
     derived = co_running_parameters(turnout, zone=2).entries
     printed = co_running_parameters(turnout, zone=2, readings=AS_PRINTED).entries
     assert derived["k_rt2_z"].a == pytest.approx(453e6, rel=0.02)
@@ -89,9 +118,11 @@ def test_eq12_textbook_shear_modulus_value():
     G = eq.shear_modulus(207e9, 0.3)
     assert G == pytest.approx(79.615e9, rel=1e-4)
     assert eq.extra_layer_damping(0.0076668, G, 7850) == pytest.approx(
-        2 * 0.0076668 * math.sqrt(0.4 * 207e9 / 2.6 * 7850), rel=1e-12)
-    assert eq.extra_layer_damping(0.0076668, eq.shear_modulus(207e9, 0.3, "E(1+nu)/2"), 7850) == \
-        pytest.approx(315e3, rel=0.005)
+        2 * 0.0076668 * math.sqrt(0.4 * 207e9 / 2.6 * 7850), rel=1e-12
+    )
+    assert eq.extra_layer_damping(
+        0.0076668, eq.shear_modulus(207e9, 0.3, "E(1+nu)/2"), 7850
+    ) == pytest.approx(315e3, rel=0.005)
 
 
 def test_unknown_reading_is_refused():

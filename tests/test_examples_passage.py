@@ -4,6 +4,7 @@ Reference: the paper's Section 4 finding that the two-layer model overestimates 
 crossing impact; here checked as a property of our models (3-layer peak < 2-layer peak at
 the crossing nose), not as a number from the paper.
 """
+
 import importlib.util
 from pathlib import Path
 

@@ -4,6 +4,7 @@ Checks that both figures and the eight CSVs (2 rails x 2 directions x 2 models) 
 table lists both models at both positions; the numbers themselves are tested in
 test_receptance.py.
 """
+
 import importlib.util
 from pathlib import Path
 
@@ -23,7 +24,10 @@ def example():
 def test_example_writes_figures_and_csvs(example, tmp_path, capsys):
     written = example.main(tmp_path / "out")
     printed = capsys.readouterr().out
-    assert [p.name for p in written] == ["fig5_vertical_receptance.png", "fig6_lateral_receptance.png"]
+    assert [p.name for p in written] == [
+        "fig5_vertical_receptance.png",
+        "fig6_lateral_receptance.png",
+    ]
     for p in written:
         assert p.read_bytes()[:4] == b"\x89PNG"
     csvs = sorted(p.name for p in (tmp_path / "out").glob("*.csv"))
@@ -36,5 +40,7 @@ def test_example_writes_figures_and_csvs(example, tmp_path, capsys):
 
 def test_example_module_does_no_work_on_import(example, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    importlib.util.spec_from_file_location("again", EXAMPLE).loader.exec_module(type(example)("again"))
+    importlib.util.spec_from_file_location("again", EXAMPLE).loader.exec_module(
+        type(example)("again")
+    )
     assert list(tmp_path.iterdir()) == []

@@ -3,6 +3,7 @@
 Reference: issue 4 (CLI and CSV columns); the receptance CSV columns are those of the
 co-running receptance (exudyn_turnout.receptance.CSV_COLUMNS).
 """
+
 import csv
 
 import pytest
@@ -18,8 +19,21 @@ def _run(capsys, *argv):
 
 def test_frf_csv(capsys, tmp_path):
     out = tmp_path / "h.csv"
-    code, text, _ = _run(capsys, "fe", "frf", "--rail", "r2", "--direction", "lateral", "--x", "46",
-                         "--n", "4", "--out", str(out))
+    code, text, _ = _run(
+        capsys,
+        "fe",
+        "frf",
+        "--rail",
+        "r2",
+        "--direction",
+        "lateral",
+        "--x",
+        "46",
+        "--n",
+        "4",
+        "--out",
+        str(out),
+    )
     rows = list(csv.reader(open(out)))
     assert code == 0 and "straight" in text
     assert rows[0] == ["frequency_hz", "real", "imag", "magnitude"] and len(rows) == 5
@@ -33,14 +47,29 @@ def test_stiffness_csv_and_plot(capsys, tmp_path):
     assert png.stat().st_size > 10000
 
 
-@pytest.mark.parametrize("argv,fragment", [
-    (["--rail", "r2", "--direction", "vertical", "--x", "-2"], "rail r2 is not present at x = -2 m"),
-    (["--rail", "r3", "--direction", "vertical", "--x", "20"], "rail r3 is not present at x = 20 m"),
-    (["--rail", "r1", "--direction", "vertical", "--x", "70"], "outside the FE model"),
-    (["--rail", "r7", "--direction", "vertical", "--x", "2"], "rail must be one of r1, r2, r3, r4"),
-    (["--rail", "r1", "--direction", "up", "--x", "2"], "invalid choice: 'up'"),
-    (["--rail", "r1", "--direction", "vertical", "--x", "2", "--fmin", "10", "--fmax", "5"], "need 0 < fmin < fmax"),
-])
+@pytest.mark.parametrize(
+    "argv,fragment",
+    [
+        (
+            ["--rail", "r2", "--direction", "vertical", "--x", "-2"],
+            "rail r2 is not present at x = -2 m",
+        ),
+        (
+            ["--rail", "r3", "--direction", "vertical", "--x", "20"],
+            "rail r3 is not present at x = 20 m",
+        ),
+        (["--rail", "r1", "--direction", "vertical", "--x", "70"], "outside the FE model"),
+        (
+            ["--rail", "r7", "--direction", "vertical", "--x", "2"],
+            "rail must be one of r1, r2, r3, r4",
+        ),
+        (["--rail", "r1", "--direction", "up", "--x", "2"], "invalid choice: 'up'"),
+        (
+            ["--rail", "r1", "--direction", "vertical", "--x", "2", "--fmin", "10", "--fmax", "5"],
+            "need 0 < fmin < fmax",
+        ),
+    ],
+)
 def test_bad_input_is_one_line_exit_2(capsys, tmp_path, argv, fragment):
     code, _, err = _run(capsys, "fe", "frf", *argv, "--out", str(tmp_path / "h.csv"))
     assert code == 2 and fragment in err and err.count("\n") == 1

@@ -12,6 +12,7 @@ Reference values and their sources:
   4.27% vertically (1.42% laterally): shear deflection, the closed form's own number.
 - Support data: Table 1 (stock rail column), smeared over L_s = 0.6 m.
 """
+
 import numpy as np
 import pytest
 
@@ -22,21 +23,28 @@ from exudyn_turnout.fe.model import rail_section
 
 
 def _section(turnout, direction):
-    return {k: float(np.ravel(v)[0]) for k, v in rail_section(turnout, "stock", np.array([0.0]), direction).items()}
+    return {
+        k: float(np.ravel(v)[0])
+        for k, v in rail_section(turnout, "stock", np.array([0.0]), direction).items()
+    }
 
 
 def _closed_form(turnout, direction, f):
     s, sec = smeared_support(turnout, "stock", direction), _section(turnout, direction)
     w = 2 * np.pi * np.asarray(f, float)
     support = two_layer_support(w, s.k_p, s.c_p, s.m_s, s.k_b, s.c_b, 1.0)
-    return infinite_timoshenko_receptance(w, sec["EI"], sec["kGA"], sec["rhoA"], sec["rhoI"], support)
+    return infinite_timoshenko_receptance(
+        w, sec["EI"], sec["kGA"], sec["rhoA"], sec["rhoI"], support
+    )
 
 
 @pytest.mark.parametrize("direction", ["vertical", "lateral"])
 def test_smeared_fe_matches_closed_form_within_2_percent(turnout, direction):
     """Complex relative error below 2% at 60 frequencies, 20-2000 Hz (it is ~1e-5)."""
     f = np.geomspace(20.0, 2000.0, 60)
-    H_fe = continuous_beam_receptance(turnout, smeared_support(turnout, "stock", direction), f, direction=direction)
+    H_fe = continuous_beam_receptance(
+        turnout, smeared_support(turnout, "stock", direction), f, direction=direction
+    )
     assert np.abs(H_fe / _closed_form(turnout, direction, f) - 1).max() < 0.02
 
 
@@ -54,4 +62,6 @@ def test_static_stiffness_timoshenko_shear_deflection(turnout, direction, soften
     K_fe = 1 / abs(continuous_beam_receptance(turnout, s, [0.0], direction=direction)[0])
     K_closed = 1 / abs(_closed_form(turnout, direction, [0.0])[0])
     assert K_fe == pytest.approx(K_closed, rel=1e-4)
-    assert 1 - K_fe / eq.static_track_stiffness(sec["EI"], s.k_s) == pytest.approx(softening, abs=0.001)
+    assert 1 - K_fe / eq.static_track_stiffness(sec["EI"], s.k_s) == pytest.approx(
+        softening, abs=0.001
+    )

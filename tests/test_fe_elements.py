@@ -11,6 +11,7 @@ Reference values and their sources:
   resonance ~35% too high": 1408.6 / 1058.9 = 1.33);
 - the infinite beam's static stiffness in the Euler-Bernoulli limit is Eq 2 of the paper.
 """
+
 import math
 
 import numpy as np
@@ -25,7 +26,10 @@ from exudyn_turnout.fe.model import rail_section
 
 @pytest.fixture(scope="module")
 def stock(turnout):
-    return {k: float(np.ravel(v)[0]) for k, v in rail_section(turnout, "stock", np.array([0.0]), "vertical").items()}
+    return {
+        k: float(np.ravel(v)[0])
+        for k, v in rail_section(turnout, "stock", np.array([0.0]), "vertical").items()
+    }
 
 
 @pytest.mark.parametrize("p", [1, 2, 4, 6])
@@ -71,26 +75,38 @@ def _simply_supported(p, n_el, span, s):
         KK[np.ix_(d, d)] += K[e]
         MM[np.ix_(d, d)] += M[e]
     free = [i for i in range(n) if i not in (0, n - 2)]  # w = 0 at both ends, psi free
-    return np.sqrt(la.eigh(KK[np.ix_(free, free)], MM[np.ix_(free, free)], eigvals_only=True)) / (2 * math.pi)
+    return np.sqrt(la.eigh(KK[np.ix_(free, free)], MM[np.ix_(free, free)], eigvals_only=True)) / (
+        2 * math.pi
+    )
 
 
 def test_pinned_pinned_modes_of_two_quartic_elements(stock):
     """Two quartic elements per span: modes 1, 2 within 1e-4 of the closed form."""
     f = _simply_supported(4, 2, 0.6, stock)
     for n in (1, 2):
-        exact = an.simply_supported_timoshenko_frequency(0.6, stock["EI"], stock["kGA"], stock["rhoA"], stock["rhoI"], n)
+        exact = an.simply_supported_timoshenko_frequency(
+            0.6, stock["EI"], stock["kGA"], stock["rhoA"], stock["rhoI"], n
+        )
         assert f[n - 1] == pytest.approx(exact, rel=1e-4)
 
 
 def test_pinned_pinned_closed_form_values(stock):
-    f_t = an.simply_supported_timoshenko_frequency(0.6, stock["EI"], stock["kGA"], stock["rhoA"], stock["rhoI"])
+    f_t = an.simply_supported_timoshenko_frequency(
+        0.6, stock["EI"], stock["kGA"], stock["rhoA"], stock["rhoI"]
+    )
     f_eb = an.simply_supported_euler_frequency(0.6, stock["EI"], stock["rhoA"])
     assert f_eb == pytest.approx(1408.6, abs=0.1) and f_t == pytest.approx(1058.9, abs=0.1)
-    limit = an.simply_supported_timoshenko_frequency(0.6, stock["EI"], stock["kGA"] * 1e8, stock["rhoA"], 1e-12)
+    limit = an.simply_supported_timoshenko_frequency(
+        0.6, stock["EI"], stock["kGA"] * 1e8, stock["rhoA"], 1e-12
+    )
     assert limit == pytest.approx(f_eb, rel=1e-6)
 
 
 def test_infinite_beam_static_limit_is_eq2(turnout, stock):
     s = an.two_layer_support(0.0, 120e6, 25e3, 164.5, 25e6, 200e3, 0.6)
-    H = an.infinite_timoshenko_receptance(0.0, stock["EI"], stock["kGA"] * 1e8, stock["rhoA"], stock["rhoI"], s)
-    assert 1 / abs(H) == pytest.approx(eq.static_track_stiffness(stock["EI"], float(s.real)), rel=1e-6)
+    H = an.infinite_timoshenko_receptance(
+        0.0, stock["EI"], stock["kGA"] * 1e8, stock["rhoA"], stock["rhoI"], s
+    )
+    assert 1 / abs(H) == pytest.approx(
+        eq.static_track_stiffness(stock["EI"], float(s.real)), rel=1e-6
+    )

@@ -11,6 +11,7 @@ Reference values and their sources:
   and rail_types per slot (Table 3): the layout must agree with them;
 - sleeper length table of the file (2.5 m plain track, 4.06 m crossing panel, Table 1).
 """
+
 import copy
 import dataclasses
 
@@ -27,10 +28,18 @@ def layout(turnout):
     return load_layout(turnout)
 
 
-@pytest.mark.parametrize("rail,x,y", [("curved", 44.29, -0.540), ("curved", 47.749, -0.750),
-                                      ("stock_right", 10.0, -0.816), ("stock_right", 47.749, -2.253),
-                                      ("stock_right", -3.0, -0.75), ("stock_left", 30.0, 0.75),
-                                      ("check_through", 47.0, 0.68)])
+@pytest.mark.parametrize(
+    "rail,x,y",
+    [
+        ("curved", 44.29, -0.540),
+        ("curved", 47.749, -0.750),
+        ("stock_right", 10.0, -0.816),
+        ("stock_right", 47.749, -2.253),
+        ("stock_right", -3.0, -0.75),
+        ("stock_left", 30.0, 0.75),
+        ("check_through", 47.0, 0.68),
+    ],
+)
 def test_rail_positions(layout, rail, x, y):
     assert layout.rail_y(rail, x) == pytest.approx(y, abs=0.001)
 
@@ -47,17 +56,28 @@ def test_slots_agree_with_zones(turnout, layout, zone_index, x):
 
 def test_bearers_follow_the_sleeper_table(turnout, layout):
     mesh = build_mesh(turnout, layout)
-    at = lambda x: int(np.argmin(np.abs(mesh.sleeper_x - x) + (np.array(mesh.sleeper_track) != "turnout")))  # noqa: E731
+    at = lambda x: int(
+        np.argmin(np.abs(mesh.sleeper_x - x) + (np.array(mesh.sleeper_track) != "turnout"))
+    )  # noqa: E731
     plain, crossing = at(-3.0), at(47.7)
-    assert mesh.sleeper_length[plain] == pytest.approx(2.5) and mesh.sleeper_centre[plain] == pytest.approx(0.0)
+    assert mesh.sleeper_length[plain] == pytest.approx(2.5) and mesh.sleeper_centre[
+        plain
+    ] == pytest.approx(0.0)
     assert mesh.sleeper_length[crossing] == pytest.approx(4.06)
     assert mesh.sleeper_centre[crossing] == pytest.approx(turnout.zone(2).sleeper_y, abs=0.05)
-    assert "diverging" in mesh.sleeper_track  # the diverging track's own sleepers after the crossing
+    assert (
+        "diverging" in mesh.sleeper_track
+    )  # the diverging track's own sleepers after the crossing
 
 
-@pytest.mark.parametrize("slot,x,message", [("r2", -2.0, "rail r2 is not present at x = -2 m"),
-                                            ("r3", 30.0, "rail r3 is not present"),
-                                            ("r1", 70.0, "outside the FE model")])
+@pytest.mark.parametrize(
+    "slot,x,message",
+    [
+        ("r2", -2.0, "rail r2 is not present at x = -2 m"),
+        ("r3", 30.0, "rail r3 is not present"),
+        ("r1", 70.0, "outside the FE model"),
+    ],
+)
 def test_slot_errors(layout, slot, x, message):
     with pytest.raises(ValueError, match=message):
         layout.slot_rail(slot, x)
@@ -69,17 +89,28 @@ def _broken(turnout, edit):
     return dataclasses.replace(turnout, raw=raw)
 
 
-@pytest.mark.parametrize("edit,field", [
-    (lambda s: s["rails"][2].update(route="divergent"), "layout.rails[3].route must be one of"),
-    (lambda s: s["rails"][0]["segments"][0].update(type="steel"), "layout.rails[1].segments[1].type"),
-    (lambda s: s["rails"][3].update(end_joins="nowhere"), "layout.rails[4].end_joins"),
-    (lambda s: s["slots"]["through"].update(r2=[{"rail": "straight", "x": [-3.0, 10.0]}]),
-     "layout.slots.through.r2[1].x"),
-    (lambda s: s["diverging"].pop("radius"), "layout.diverging.radius is missing"),
-    (lambda s: s["fits"]["K_sw"].update(rail="nope"), "layout.fits.K_sw.rail"),
-])
+@pytest.mark.parametrize(
+    "edit,field",
+    [
+        (lambda s: s["rails"][2].update(route="divergent"), "layout.rails[3].route must be one of"),
+        (
+            lambda s: s["rails"][0]["segments"][0].update(type="steel"),
+            "layout.rails[1].segments[1].type",
+        ),
+        (lambda s: s["rails"][3].update(end_joins="nowhere"), "layout.rails[4].end_joins"),
+        (
+            lambda s: s["slots"]["through"].update(r2=[{"rail": "straight", "x": [-3.0, 10.0]}]),
+            "layout.slots.through.r2[1].x",
+        ),
+        (lambda s: s["diverging"].pop("radius"), "layout.diverging.radius is missing"),
+        (lambda s: s["fits"]["K_sw"].update(rail="nope"), "layout.fits.K_sw.rail"),
+    ],
+)
 def test_file_errors_name_file_and_field(turnout, edit, field):
-    with pytest.raises(TurnoutFileError, match="uic60_760_1_15.toml: " + field.replace("[", r"\[").replace("]", r"\]")):
+    with pytest.raises(
+        TurnoutFileError,
+        match="uic60_760_1_15.toml: " + field.replace("[", r"\[").replace("]", r"\]"),
+    ):
         load_layout(_broken(turnout, edit))
 
 
@@ -90,6 +121,8 @@ def test_missing_section(turnout):
 
 
 def test_too_short_sleeper_is_an_error(turnout, layout):
-    sleeper = dataclasses.replace(turnout.sleeper, length=dataclasses.replace(turnout.sleeper.length, value=(2.5,) * 7))
+    sleeper = dataclasses.replace(
+        turnout.sleeper, length=dataclasses.replace(turnout.sleeper.length, value=(2.5,) * 7)
+    )
     with pytest.raises(TurnoutFileError, match="sleeper.length = 2.5 m at x = .* is too short"):
         build_mesh(dataclasses.replace(turnout, sleeper=sleeper), layout)

@@ -11,6 +11,7 @@ Reference values and their sources:
   Lyon, "The effect of track and vehicle parameters on wheel/rail vertical dynamic
   forces", Railway Engineering Journal 3(1) 2-16, 1974), see :func:`jenkins_p2`.
 """
+
 import math
 from dataclasses import replace
 
@@ -24,12 +25,18 @@ from exudyn_turnout.fe.frf import point_receptances
 from exudyn_turnout.fe.layout import plain_track_layout
 from exudyn_turnout.fe.mesh import FEOptions
 from exudyn_turnout.fe.timoshenko import lagrange_shape_functions
-from exudyn_turnout.passage.fe_track import (FEPassageOptions, build_fe_track, contact_points, hht_parameters,
-                                       simulate_fe_passage, solve_contacts)
-from exudyn_turnout.passage.simulate import PassageError, PassageSettings
 from exudyn_turnout.inputs.routes import ContactPair, Route
 from exudyn_turnout.inputs.turnout import Table1D
 from exudyn_turnout.inputs.vehicle import load_vehicle
+from exudyn_turnout.passage.fe_track import (
+    FEPassageOptions,
+    build_fe_track,
+    contact_points,
+    hht_parameters,
+    simulate_fe_passage,
+    solve_contacts,
+)
+from exudyn_turnout.passage.simulate import PassageError, PassageSettings
 
 W = (1813 + 32000 / 4 + 2615 / 2) * 9.81 / 2
 #: 8 m of plain track (sleepers at x = 0 +- i 0.6 m) + 4 m undamped + 4 m absorbing ends: ~3600 DOFs.
@@ -41,22 +48,31 @@ def plain_route(dip_angle: float = 0.0, ramp: float = 1.5) -> Route:
     a symmetric V-dip of total angle ``dip_angle`` (rad) with its vertex at x = 0 on both rails."""
     xs = (-4.0, -ramp, 0.0, ramp, 4.0)
     zs = (0.0, 0.0, -0.5 * dip_angle * ramp, 0.0, 0.0)
-    pairs = tuple(ContactPair(f"{w} wheel", w, slot, xs, zs, None, None)
-                  for w, slot in (("right", "r1"), ("left", "r4")))
+    pairs = tuple(
+        ContactPair(f"{w} wheel", w, slot, xs, zs, None, None)
+        for w, slot in (("right", "r1"), ("left", "r4"))
+    )
     return Route("through", "plain track", Table1D((0.0,), (0.0,)), pairs, {}, {}, math.nan)
 
 
 @pytest.fixture(scope="module")
 def plain_track(turnout):
-    return build_fe_track(turnout, layout=plain_track_layout(length=8.0), options=FEPassageOptions(mesh=MESH))
+    return build_fe_track(
+        turnout, layout=plain_track_layout(length=8.0), options=FEPassageOptions(mesh=MESH)
+    )
 
 
 def run(turnout, track, speed, x0, x1, route=None, h=1e-4):
-    return simulate_fe_passage(turnout, PassageSettings(speed_kmh=speed, x_start=x0, x_end=x1, time_step=h),
-                               route=route or plain_route(), track=track)
+    return simulate_fe_passage(
+        turnout,
+        PassageSettings(speed_kmh=speed, x_start=x0, x_end=x1, time_step=h),
+        route=route or plain_route(),
+        track=track,
+    )
 
 
 # --- pieces ------------------------------------------------------------------------------
+
 
 def test_solve_contacts_scalar_and_separation():
     """Residuals within 1e-6 of the force: the solver adds 1e-16 m/N to each contact's
@@ -69,12 +85,18 @@ def test_solve_contacts_scalar_and_separation():
     C = np.array([[c, c], [c, c]])
     F = solve_contacts(np.array([5e-4, 4e-4]), C, C_H)
     delta = np.array([5e-4, 4e-4]) - C @ F
-    assert F == pytest.approx(C_H * np.maximum(delta, 0) ** 1.5, rel=1e-6, abs=1e-3) and F[0] > F[1] >= 0
+    assert (
+        F == pytest.approx(C_H * np.maximum(delta, 0) ** 1.5, rel=1e-6, abs=1e-3)
+        and F[0] > F[1] >= 0
+    )
     # the same two as one point (wing rail and nose on one beam): solved with one unknown
     d0 = np.array([3.0e-4, 2.9e-4])
     F = solve_contacts(d0, C, C_H, groups=[0, 0])
     delta = d0 - C @ F
-    assert F == pytest.approx(C_H * np.maximum(delta, 0) ** 1.5, rel=1e-6, abs=1e-3) and F[0] > F[1] > 0
+    assert (
+        F == pytest.approx(C_H * np.maximum(delta, 0) ** 1.5, rel=1e-6, abs=1e-3)
+        and F[0] > F[1] > 0
+    )
 
 
 def test_hht_parameters_spectral_radius():
@@ -90,11 +112,14 @@ def test_contact_point_uses_the_element_shape_functions(plain_track):
     e = plain_track.model.rail_elem_nodes[right.element]
     x = plain_track.model.mesh.node_x[e[[0, -1]]]
     xi = (0.37 - x[0]) / (x[1] - x[0])
-    assert right.shape == pytest.approx(lagrange_shape_functions(plain_track.model.order, [xi])[0][0], abs=1e-12)
+    assert right.shape == pytest.approx(
+        lagrange_shape_functions(plain_track.model.order, [xi])[0][0], abs=1e-12
+    )
     assert right.rail_id == "right" and right.dofs.tolist() == (2 * e).tolist()
 
 
 # --- (1) uniform plain track: static load and static deflection ---------------------------
+
 
 def test_static_deflection_matches_fe_static_stiffness(turnout, plain_track):
     res = run(turnout, plain_track, 100.0, 0.0, 0.01)
@@ -102,11 +127,13 @@ def test_static_deflection_matches_fe_static_stiffness(turnout, plain_track):
     H = point_receptances(model, [("right", 0.0), ("left", 0.0)], 0.01)  # unit load on one rail
     pair = np.column_stack([model.point_vector("right", 0.0), model.point_vector("left", 0.0)])
     lu = sla.splu(model.dynamic_stiffness(2 * np.pi * 0.01).tocsc())
-    H_cross = (pair[:, 0] @ lu.solve(pair[:, 1].astype(complex)))
+    H_cross = pair[:, 0] @ lu.solve(pair[:, 1].astype(complex))
     w_expected = -W * abs(H[0] + H_cross)  # both wheels load the track
     c = res.columns
     assert res.summary["static_wheel_load_N"] == pytest.approx(W, rel=1e-6)
-    assert c["z_rail_r1_m"][0] == pytest.approx(w_expected, rel=1e-3)  # 1e-3: structural loss at 0.01 Hz
+    assert c["z_rail_r1_m"][0] == pytest.approx(
+        w_expected, rel=1e-3
+    )  # 1e-3: structural loss at 0.01 Hz
     hertz = (W / load_vehicle().contact.C_H) ** (2 / 3)
     assert c["z_wheelset_m"][0] == pytest.approx(w_expected - hertz, rel=1e-3)
 
@@ -130,13 +157,19 @@ def test_force_settles_to_static_load_at_100_kmh(turnout, plain_track):
 
 def test_model_ends_do_not_matter(turnout, plain_track):
     """Twice the plain-track extension beyond the layout changes the force by < 0.1 % of W."""
-    longer = build_fe_track(turnout, layout=plain_track_layout(length=8.0),
-                            options=FEPassageOptions(mesh=replace(MESH, extension=8.0)))
-    a, b = (run(turnout, tr, 100.0, -3.0, -1.5).columns["Fz_right_N"] for tr in (plain_track, longer))
+    longer = build_fe_track(
+        turnout,
+        layout=plain_track_layout(length=8.0),
+        options=FEPassageOptions(mesh=replace(MESH, extension=8.0)),
+    )
+    a, b = (
+        run(turnout, tr, 100.0, -3.0, -1.5).columns["Fz_right_N"] for tr in (plain_track, longer)
+    )
     assert np.max(np.abs(a - b)) / W < 1e-3
 
 
 # --- (2) a dip of total angle 2 alpha: Jenkins' P2 ----------------------------------------
+
 
 def jenkins_p2(P0, two_alpha, v, M_u, M_t, K_t, C_t):
     """Jenkins et al. (1974) P2 force (N) after a dip of total angle 2 alpha (rad) at speed v (m/s).
@@ -165,7 +198,7 @@ def equivalent_track(track):
     b = m.point_vector("right", 0.0) + m.point_vector("left", 0.0)
     u = sla.spsolve(m.K.tocsc(), b)
     w0 = u @ m.point_vector("right", 0.0)
-    D = track.D[:m.n_dof, :m.n_dof]
+    D = track.D[: m.n_dof, : m.n_dof]
     return tuple(float(u @ (A @ u)) / (2 * w0**2) for A in (m.K, m.M, D))
 
 
@@ -185,7 +218,9 @@ def light_damping(turnout):
     0.67 and Jenkins' damping factor turns negative (-0.05): outside its assumptions.
     """
     t = replace(turnout, ballast=replace(turnout.ballast, d_b_z=0.1 * turnout.ballast.d_b_z))
-    return t, build_fe_track(t, layout=plain_track_layout(length=8.0), options=FEPassageOptions(mesh=MESH))
+    return t, build_fe_track(
+        t, layout=plain_track_layout(length=8.0), options=FEPassageOptions(mesh=MESH)
+    )
 
 
 def test_p2_force_after_a_dip_against_jenkins(light_damping):
@@ -213,11 +248,15 @@ def test_p2_increment_is_linear_in_dip_angle(light_damping):
     """Linear P2 theory: the dynamic increment is proportional to 2 alpha v (within 5 %:
     the Hertz spring is nonlinear and P1 leaks slightly into the band)."""
     turnout, track = light_damping
-    inc = [p2_band_peak(run(turnout, track, 100.0, -1.0, 0.8, plain_route(a)).columns) - W for a in (4e-3, 9e-3)]
+    inc = [
+        p2_band_peak(run(turnout, track, 100.0, -1.0, 0.8, plain_route(a)).columns) - W
+        for a in (4e-3, 9e-3)
+    ]
     assert inc[1] / inc[0] == pytest.approx(9 / 4, rel=0.05)
 
 
 # --- (3) convergence of the peak after a crossing-like dip (cheap version) ----------------
+
 
 @pytest.fixture(scope="module")
 def dip_peaks(turnout, plain_track):
@@ -226,9 +265,17 @@ def dip_peaks(turnout, plain_track):
 
     def peak(track, h):
         return run(turnout, track, 100.0, -0.5, 0.4, route, h).columns["Fz_right_N"].max()
-    fine = build_fe_track(turnout, layout=plain_track_layout(length=8.0),
-                          options=FEPassageOptions(mesh=replace(MESH, element_length=0.1)))
-    return {"default": peak(plain_track, 1e-4), "half step": peak(plain_track, 5e-5), "fine mesh": peak(fine, 1e-4)}
+
+    fine = build_fe_track(
+        turnout,
+        layout=plain_track_layout(length=8.0),
+        options=FEPassageOptions(mesh=replace(MESH, element_length=0.1)),
+    )
+    return {
+        "default": peak(plain_track, 1e-4),
+        "half step": peak(plain_track, 5e-5),
+        "fine mesh": peak(fine, 1e-4),
+    }
 
 
 def test_peak_converged_in_time_step(dip_peaks):
@@ -242,39 +289,62 @@ def test_peak_converged_in_mesh(dip_peaks):
 
 # --- the turnout: where the wheel meets which rail ----------------------------------------
 
+
 def test_turnout_contacts_follow_the_route_and_slots(turnout):
     from exudyn_turnout.inputs.routes import load_route
+
     track = build_fe_track(turnout)
     route = load_route(turnout, "through")
-    at = {x: {(p.pair.wheel, p.pair.rail, p.rail_id) for p in contact_points(track, route, x)} for x in
-          (-3.0, 3.9, 45.8, 51.0, 55.0)}
+    at = {
+        x: {(p.pair.wheel, p.pair.rail, p.rail_id) for p in contact_points(track, route, x)}
+        for x in (-3.0, 3.9, 45.8, 51.0, 55.0)
+    }
     assert at[-3.0] == {("right", "r1", "stock_right"), ("left", "r4", "stock_left")}
     assert ("right", "r1", "stock_right") in at[3.9] and ("right", "r2", "straight") in at[3.9]
-    assert {r for w, _, r in at[45.8] if w == "right"} == {"straight"}  # wing rail and nose: one beam
+    assert {r for w, _, r in at[45.8] if w == "right"} == {
+        "straight"
+    }  # wing rail and nose: one beam
     assert at[51.0] == {("right", "r2", "straight"), ("left", "r4", "stock_left")}  # counted once
     assert at[55.0] == {("right", "r1", "straight"), ("left", "r4", "stock_left")}
 
 
 # --- settings and command line --------------------------------------------------------------
 
-@pytest.mark.parametrize("kwargs, text", [(dict(speed_kmh=0.0), "speed"), (dict(x_start=-20.0), "x range"),
-                                          (dict(time_step=1e-3), "time step")])
+
+@pytest.mark.parametrize(
+    "kwargs, text",
+    [
+        (dict(speed_kmh=0.0), "speed"),
+        (dict(x_start=-20.0), "x range"),
+        (dict(time_step=1e-3), "time step"),
+    ],
+)
 def test_bad_settings_name_the_problem(turnout, plain_track, kwargs, text):
     with pytest.raises(PassageError, match=text):
-        simulate_fe_passage(turnout, PassageSettings(**kwargs), route=plain_route(), track=plain_track)
+        simulate_fe_passage(
+            turnout, PassageSettings(**kwargs), route=plain_route(), track=plain_track
+        )
 
 
 def _fe_parser():
     import argparse
+
     from exudyn_turnout.cli.fe_passage import add_simulate
+
     parser = argparse.ArgumentParser(prog="exudyn-turnout")
     fe = parser.add_subparsers(dest="command").add_parser("fe").add_subparsers(dest="fe_command")
     add_simulate(fe)
     return parser
 
 
-@pytest.mark.parametrize("argv, text", [(["--speed", "-10"], "speed"), (["--route", "sideways"], "route"),
-                                        (["--x-start", "70"], "x range")])
+@pytest.mark.parametrize(
+    "argv, text",
+    [
+        (["--speed", "-10"], "speed"),
+        (["--route", "sideways"], "route"),
+        (["--x-start", "70"], "x range"),
+    ],
+)
 def test_cli_bad_input_is_a_usage_error(tmp_path, argv, text):
     args = _fe_parser().parse_args(["fe", "simulate", "--out", str(tmp_path)] + argv)
     with pytest.raises(UsageError, match=text):
@@ -283,9 +353,22 @@ def test_cli_bad_input_is_a_usage_error(tmp_path, argv, text):
 
 def test_cli_writes_the_passage_files(tmp_path, turnout, capsys):
     import json
+
     from exudyn_turnout.passage.simulate import simulate_passage
-    args = _fe_parser().parse_args(["fe", "simulate", "--x-start", "55", "--x-end", "55.02", "--out",
-                                    str(tmp_path), "--no-plot"])
+
+    args = _fe_parser().parse_args(
+        [
+            "fe",
+            "simulate",
+            "--x-start",
+            "55",
+            "--x-end",
+            "55.02",
+            "--out",
+            str(tmp_path),
+            "--no-plot",
+        ]
+    )
     assert args.run(args) == 0
     header = (tmp_path / "timeseries.csv").read_text().splitlines()[0].split(",")
     co = simulate_passage(turnout, PassageSettings(x_start=55.0, x_end=55.02))

@@ -15,31 +15,37 @@ Reference values and their sources:
   absorbing ends changes it by < 0.5 dB (issue 4);
 - the condensed solve is exact: equal to the direct solve of the full system.
 """
+
 import dataclasses
 
 import numpy as np
 import pytest
 
+from exudyn_turnout.corunning.parameters import reference_support
 from exudyn_turnout.fe.analytic import simply_supported_timoshenko_frequency
 from exudyn_turnout.fe.frf import point_receptances, sweep, sweep_points
 from exudyn_turnout.fe.layout import plain_track_layout
 from exudyn_turnout.fe.mesh import FEOptions, build_mesh
 from exudyn_turnout.fe.model import assemble, rail_section
 from exudyn_turnout.fe.solver import condense, default_keep, solve_full
-from exudyn_turnout.corunning.parameters import reference_support
 
 F = np.geomspace(20.0, 2000.0, 40)
 
 
 def _model(turnout, direction, options=FEOptions(), spacing=None, points=(0.3,)):
     if spacing is not None:
-        turnout = dataclasses.replace(turnout, sleeper=dataclasses.replace(turnout.sleeper, spacing=spacing))
+        turnout = dataclasses.replace(
+            turnout, sleeper=dataclasses.replace(turnout.sleeper, spacing=spacing)
+        )
     mesh = build_mesh(turnout, plain_track_layout(), options, points={"right": list(points)})
     return assemble(turnout, mesh, direction)
 
 
 def _f_pp(turnout, direction, span):
-    s = {k: float(np.ravel(v)[0]) for k, v in rail_section(turnout, "stock", np.array([0.0]), direction).items()}
+    s = {
+        k: float(np.ravel(v)[0])
+        for k, v in rail_section(turnout, "stock", np.array([0.0]), direction).items()
+    }
     return simply_supported_timoshenko_frequency(span, s["EI"], s["kGA"], s["rhoA"], s["rhoI"])
 
 
@@ -84,15 +90,26 @@ def _level_change(turnout, direction, coarse, fine):
 def test_mesh_convergence_halving_elements(turnout, direction):
     """Default element lengths against halved ones (shorter model ends: the mesh is compared)."""
     coarse = FEOptions(extension=6.0, absorbing_length=12.0)
-    fine = dataclasses.replace(coarse, element_length=coarse.element_length / 2,
-                               sleeper_element_length=coarse.sleeper_element_length / 2)
+    fine = dataclasses.replace(
+        coarse,
+        element_length=coarse.element_length / 2,
+        sleeper_element_length=coarse.sleeper_element_length / 2,
+    )
     assert _level_change(turnout, direction, coarse, fine) < 0.5
 
 
 @pytest.mark.parametrize("direction", ["vertical", "lateral"])
 def test_no_reflections_when_extension_doubles(turnout, direction):
     default = FEOptions()
-    assert _level_change(turnout, direction, default, dataclasses.replace(default, extension=2 * default.extension)) < 0.5
+    assert (
+        _level_change(
+            turnout,
+            direction,
+            default,
+            dataclasses.replace(default, extension=2 * default.extension),
+        )
+        < 0.5
+    )
 
 
 @pytest.mark.parametrize("direction", ["vertical", "lateral"])

@@ -12,15 +12,16 @@ Reference values and their sources (Shih, Ambur & Dixon 2023):
   grows; the crossing nose region is much stiffer; the check rails, on stiff L-brackets,
   are laterally much stiffer than the running rails (Table 1: k_p,y 120e6 vs 25e6 N/m).
 """
+
 import csv
 
 import numpy as np
 import pytest
 
+from exudyn_turnout.corunning.parameters import delta_z, reference_support
 from exudyn_turnout.fe.fits import fit_turnout_profiles, with_fitted_profiles
 from exudyn_turnout.fe.frf import fe_receptance
 from exudyn_turnout.fe.stiffness import CSV_COLUMNS, static_stiffness_profile
-from exudyn_turnout.corunning.parameters import delta_z, reference_support
 from exudyn_turnout.receptance import CSV_COLUMNS as RECEPTANCE_COLUMNS
 
 
@@ -35,8 +36,15 @@ def fits(profile, turnout):
 
 
 def test_every_rail_is_in_the_profile(profile):
-    assert set(profile.rails) == {"stock_left", "stock_right", "straight", "curved", "diverging_left",
-                                  "check_through", "check_diverging"}
+    assert set(profile.rails) == {
+        "stock_left",
+        "stock_right",
+        "straight",
+        "curved",
+        "diverging_left",
+        "check_through",
+        "check_diverging",
+    }
     assert profile.n_dof["vertical"] > profile.n_dof["lateral"] > 10000
 
 
@@ -60,8 +68,16 @@ def test_section_2_statements(profile):
 
 
 def test_fits(fits, turnout):
-    assert fits.K_sw.rail == "straight" and len(fits.K_sw.coefficients) == 3 and fits.K_sw.r_squared > 0.9
-    assert fits.K_sh.rail == "stock_left" and len(fits.K_sh.coefficients) == 2 and fits.K_sh.r_squared > 0.9
+    assert (
+        fits.K_sw.rail == "straight"
+        and len(fits.K_sw.coefficients) == 3
+        and fits.K_sw.r_squared > 0.9
+    )
+    assert (
+        fits.K_sh.rail == "stock_left"
+        and len(fits.K_sh.coefficients) == 2
+        and fits.K_sh.r_squared > 0.9
+    )
     for x in (10.0, 22.0):
         assert fits.K_sw(x) == pytest.approx(turnout.K_sw(x), rel=0.10)
     for x in (0.0, 44.0):
@@ -70,9 +86,15 @@ def test_fits(fits, turnout):
 
 def test_fitted_turnout_drives_delta(fits, turnout):
     fitted = with_fitted_profiles(turnout, fits)
-    assert fitted.K_sw.coefficients == fits.K_sw.coefficients and fitted.K_sh == fits.K_sh.polynomial
-    assert delta_z(fitted, 10.0) == pytest.approx(fits.K_sw(10.0) / reference_support(turnout).K_st_z)
-    assert delta_z(fitted, 30.0) == pytest.approx(delta_z(fitted, 22.0))  # held beyond the fit range
+    assert (
+        fitted.K_sw.coefficients == fits.K_sw.coefficients and fitted.K_sh == fits.K_sh.polynomial
+    )
+    assert delta_z(fitted, 10.0) == pytest.approx(
+        fits.K_sw(10.0) / reference_support(turnout).K_st_z
+    )
+    assert delta_z(fitted, 30.0) == pytest.approx(
+        delta_z(fitted, 22.0)
+    )  # held beyond the fit range
 
 
 def test_profile_csv(profile, tmp_path):

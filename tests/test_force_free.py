@@ -7,26 +7,35 @@ stiffness negative. The checks below build every Exudyn model of the package (th
 co-running track of every zone, both layer counts, both routes' passage systems with the
 vehicle) and read each connector's force with every coordinate and velocity at zero.
 """
+
 from __future__ import annotations
 
 from dataclasses import replace
 
+import exudyn as exu
 import numpy as np
 import pytest
 
-import exudyn as exu
 from exudyn_turnout.corunning.parameters import co_running_parameters
-from exudyn_turnout.passage.simulate import PassageSettings, _build
-from exudyn_turnout.inputs.routes import load_route
 from exudyn_turnout.corunning.track import add_co_running_track
+from exudyn_turnout.inputs.routes import load_route
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
+from exudyn_turnout.passage.simulate import PassageSettings, _build
 from exudyn_turnout.passage.vehicle import add_vehicle
 
 #: Exudyn connector types that carry a force law; all the package uses are listed here.
-CONNECTOR_TYPES = tuple("Connector" + kind for kind in (
-    "CartesianSpringDamper", "SpringDamper", "RigidBodySpringDamper", "TorsionalSpringDamper",
-    "LinearSpringDamper", "CoordinateSpringDamper"))
+CONNECTOR_TYPES = tuple(
+    "Connector" + kind
+    for kind in (
+        "CartesianSpringDamper",
+        "SpringDamper",
+        "RigidBodySpringDamper",
+        "TorsionalSpringDamper",
+        "LinearSpringDamper",
+        "CoordinateSpringDamper",
+    )
+)
 
 
 def _connector_forces(mbs) -> dict[int, np.ndarray]:

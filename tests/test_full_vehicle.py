@@ -10,24 +10,40 @@ Sources of the reference numbers:
   Garg & Dukkipati 1984, Iwnicki's handbook), each with its tolerance and the reason the
   Exudyn value may differ.
 """
+
 from __future__ import annotations
 
 import math
 from dataclasses import FrozenInstanceError, replace
 
+import exudyn as exu
 import numpy as np
 import pytest
 
-import exudyn as exu
-from exudyn_turnout.passage.vehicle_builder import (RigidTrack, add_vehicle_model,
-                                            connector_forces_at_reference, dynamic_settings,
-                                            rigid_track_support, solve_static, support_wheel_loads,
-                                            vehicle_modes)
-from exudyn_turnout.inputs.vehicle_model import (GRAVITY, VehicleModelError, carbody_bounce_frequency,
-                                          carbody_pitch_frequency, carbody_sway_frequencies,
-                                          carbody_yaw_frequency, default_vehicle_model_path,
-                                          hand_frequencies, load_vehicle_model,
-                                          single_wheelset_share, series, sway_frequencies)
+from exudyn_turnout.inputs.vehicle_model import (
+    GRAVITY,
+    VehicleModelError,
+    carbody_bounce_frequency,
+    carbody_pitch_frequency,
+    carbody_sway_frequencies,
+    carbody_yaw_frequency,
+    default_vehicle_model_path,
+    hand_frequencies,
+    load_vehicle_model,
+    series,
+    single_wheelset_share,
+    sway_frequencies,
+)
+from exudyn_turnout.passage.vehicle_builder import (
+    RigidTrack,
+    add_vehicle_model,
+    connector_forces_at_reference,
+    dynamic_settings,
+    rigid_track_support,
+    solve_static,
+    support_wheel_loads,
+    vehicle_modes,
+)
 
 #: N, the data sheet's static wheel load: 44 482 kg x 9.81 / 8.
 SHEET_WHEEL_LOAD = 44482.0 * 9.81 / 8
@@ -126,8 +142,11 @@ def test_static_wheel_loads_on_rigid_track(static_vehicle):
     assert np.all(np.abs(loads / SHEET_WHEEL_LOAD - 1) < 1e-3), loads
 
 
-@pytest.mark.parametrize("options", [{}, {"wheelset_spin": True}, {"bumpstop": "python"}],
-                         ids=["default", "spin", "python-bumpstop"])
+@pytest.mark.parametrize(
+    "options",
+    [{}, {"wheelset_spin": True}, {"bumpstop": "python"}],
+    ids=["default", "spin", "python-bumpstop"],
+)
 def test_every_connector_force_free_at_rest(model, options):
     """Rigid representation: each Connector* reads zero force/torque with all coordinates 0."""
     mbs, build, _ = _system(model, RigidTrack(k_x=1e7), representation="rigid", **options)
@@ -200,32 +219,63 @@ def test_bumpstop_same_in_both_representations(model):
 
 # ---------------------------------------------------------------- frequencies vs hand values
 def _by_kind(modes, kind: str, directions: tuple[str, ...], f_max: float = 100.0) -> list[float]:
-    return sorted(m.frequency_hz for m in modes
-                  if m.body.rstrip("0123456789") == kind and m.direction in directions
-                  and m.frequency_hz < f_max)
+    return sorted(
+        m.frequency_hz
+        for m in modes
+        if m.body.rstrip("0123456789") == kind
+        and m.direction in directions
+        and m.frequency_hz < f_max
+    )
 
 
 #: (hand key, body kind, dominant directions, which of the sorted matches, tolerance, reason)
 FREQUENCY_CHECKS = [
-    ("carbody_bounce", "car_body", ("z",), 0, 0.01,
-     "hand: secondary in series with primary and track, bogie mass neglected"),
+    (
+        "carbody_bounce",
+        "car_body",
+        ("z",),
+        0,
+        0.01,
+        "hand: secondary in series with primary and track, bogie mass neglected",
+    ),
     ("carbody_pitch", "car_body", ("pitch",), 0, 0.01, "as bounce"),
-    ("carbody_yaw", "car_body", ("yaw",), 0, 0.03,
-     "hand: bogies held; Exudyn: bogies yaw/shift on primary + track springs"),
-    ("carbody_lower_sway", "car_body", ("y", "roll"), 0, 0.05,
-     "hand: quasi-static series of secondary and primary; Exudyn: bogie lateral-roll coupled"),
+    (
+        "carbody_yaw",
+        "car_body",
+        ("yaw",),
+        0,
+        0.03,
+        "hand: bogies held; Exudyn: bogies yaw/shift on primary + track springs",
+    ),
+    (
+        "carbody_lower_sway",
+        "car_body",
+        ("y", "roll"),
+        0,
+        0.05,
+        "hand: quasi-static series of secondary and primary; Exudyn: bogie lateral-roll coupled",
+    ),
     ("carbody_upper_sway", "car_body", ("y", "roll"), -1, 0.05, "as lower sway"),
     ("bogie_bounce", "bogie", ("z",), 0, 0.02, "hand: car body held (it is 12x heavier)"),
     ("bogie_pitch", "bogie", ("pitch",), 0, 0.02, "hand: car body held"),
-    ("bogie_lower_sway", "bogie", ("y", "roll"), 0, 0.04,
-     "hand: car body and wheelsets held; Exudyn: wheelsets on track springs"),
+    (
+        "bogie_lower_sway",
+        "bogie",
+        ("y", "roll"),
+        0,
+        0.04,
+        "hand: car body and wheelsets held; Exudyn: wheelsets on track springs",
+    ),
     ("bogie_upper_sway", "bogie", ("y", "roll"), -1, 0.04, "as bogie lower sway"),
     ("wheelset_bounce", "wheelset", ("z",), 0, 0.01, "hand: bogie held"),
 ]
 
 
-@pytest.mark.parametrize("key, kind, directions, pick, tolerance, reason", FREQUENCY_CHECKS,
-                         ids=[c[0] for c in FREQUENCY_CHECKS])
+@pytest.mark.parametrize(
+    "key, kind, directions, pick, tolerance, reason",
+    FREQUENCY_CHECKS,
+    ids=[c[0] for c in FREQUENCY_CHECKS],
+)
 def test_frequency_vs_hand(static_vehicle, model, key, kind, directions, pick, tolerance, reason):
     *_, modes = static_vehicle
     track = RigidTrack()
@@ -243,14 +293,21 @@ def test_car_body_modes_exact_on_held_bogies(model):
     gravitational term."""
     stiff = replace(model, primary=replace(model.primary, k_x=1e11, k_y=1e11, k_z=1e11))
     lower, upper = carbody_sway_frequencies(stiff, bogies_held=True)
-    hand = {"y": lower, "roll": upper, "z": carbody_bounce_frequency(stiff),
-            "pitch": carbody_pitch_frequency(stiff), "yaw": carbody_yaw_frequency(stiff)}
+    hand = {
+        "y": lower,
+        "roll": upper,
+        "z": carbody_bounce_frequency(stiff),
+        "pitch": carbody_pitch_frequency(stiff),
+        "yaw": carbody_yaw_frequency(stiff),
+    }
     for representation in ("linear", "rigid"):
-        mbs, build, _ = _system(stiff, RigidTrack(k_z=1e11, k_y=1e11),
-                                representation=representation)
+        mbs, build, _ = _system(
+            stiff, RigidTrack(k_z=1e11, k_y=1e11), representation=representation
+        )
         solve_static(mbs)
-        body = {m.direction: m.frequency_hz for m in vehicle_modes(mbs, build)
-                if m.body == "car_body"}
+        body = {
+            m.direction: m.frequency_hz for m in vehicle_modes(mbs, build) if m.body == "car_body"
+        }
         assert body == pytest.approx(hand, rel=1e-4), representation
 
 
@@ -311,24 +368,27 @@ def _variant(tmp_path, old: str, new: str):
     return path
 
 
-@pytest.mark.parametrize("old, new, field", [
-    ("mass = 32000.0", "mass = nan", "car_body.mass"),
-    ("mass = 32000.0", "mass = inf", "car_body.mass"),
-    ("mass = 2615.0", "mass = -2615.0", "bogie.mass"),
-    ("mass = 1813.0", "mass = 0.0", "wheelset.mass"),
-    ("mass = 1813.0", "mass = '1813'", "wheelset.mass"),
-    ("k_z = 430.0e3", "k_z = 4.3e13", "secondary_suspension.k_z"),
-    ("c_y = 32.0e3", "c_y = -1.0", "secondary_suspension.c_y"),
-    ("cog_height = 1.8", "cog_heigth = 1.8", "car_body.cog_height"),
-    ("wheelsets = 4", "wheelsets = 3", "wheelset.x"),
-    ("bogies = 2", "bogies = 1", "vehicle.bogies"),
-    ("wheelsets = 4", "wheelsets = 4.0", "vehicle.wheelsets"),
-    ("x = [0.0, -2.56,", "x = [0.5, -2.56,", "wheelset.x"),
-    ("bogie = [1, 1, 2, 2]", "bogie = [1, 1, 1, 2]", "wheelset.bogie"),
-    ("wheel_radius = 0.46", "wheel_radius = 4.6", "wheelset.wheel_radius"),
-    ("force = [0.6e3,", "force = [6e3,", "lateral_bumpstop.force"),
-    ("x = -10.78", "x = -30.0", "car_body.x"),
-])
+@pytest.mark.parametrize(
+    "old, new, field",
+    [
+        ("mass = 32000.0", "mass = nan", "car_body.mass"),
+        ("mass = 32000.0", "mass = inf", "car_body.mass"),
+        ("mass = 2615.0", "mass = -2615.0", "bogie.mass"),
+        ("mass = 1813.0", "mass = 0.0", "wheelset.mass"),
+        ("mass = 1813.0", "mass = '1813'", "wheelset.mass"),
+        ("k_z = 430.0e3", "k_z = 4.3e13", "secondary_suspension.k_z"),
+        ("c_y = 32.0e3", "c_y = -1.0", "secondary_suspension.c_y"),
+        ("cog_height = 1.8", "cog_heigth = 1.8", "car_body.cog_height"),
+        ("wheelsets = 4", "wheelsets = 3", "wheelset.x"),
+        ("bogies = 2", "bogies = 1", "vehicle.bogies"),
+        ("wheelsets = 4", "wheelsets = 4.0", "vehicle.wheelsets"),
+        ("x = [0.0, -2.56,", "x = [0.5, -2.56,", "wheelset.x"),
+        ("bogie = [1, 1, 2, 2]", "bogie = [1, 1, 1, 2]", "wheelset.bogie"),
+        ("wheel_radius = 0.46", "wheel_radius = 4.6", "wheelset.wheel_radius"),
+        ("force = [0.6e3,", "force = [6e3,", "lateral_bumpstop.force"),
+        ("x = -10.78", "x = -30.0", "car_body.x"),
+    ],
+)
 def test_bad_vehicle_file(tmp_path, old, new, field):
     with pytest.raises(VehicleModelError) as err:
         load_vehicle_model(_variant(tmp_path, old, new))

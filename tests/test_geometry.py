@@ -8,6 +8,7 @@ through route tangentially at the toe, standard gauge 1.435 m, gauge lines at +-
 - the crossing angle there: dy/dx = x / sqrt((R + 0.7175)^2 - x^2) = 1 / 16.26;
 - a 12 mm nose tip lies about 0.012 x 16.26 = 0.195 m after the crossing point.
 """
+
 from __future__ import annotations
 
 import math
@@ -35,9 +36,15 @@ def test_routes_put_the_nose_where_the_layout_does(turnout, route, wheel):
     whose slot r2 is the crossing type."""
     plan = turnout_plan(turnout)
     layout = load_layout(turnout)
-    nose_pairs = [p for p in load_route(turnout, route).pairs
-                  if p.wheel == wheel and p.rail == "r2" and p.x and p.z[0] < 0 < p.z[1] + 1e-12
-                  and p.x[0] > 10.0]
+    nose_pairs = [
+        p
+        for p in load_route(turnout, route).pairs
+        if p.wheel == wheel
+        and p.rail == "r2"
+        and p.x
+        and p.z[0] < 0 < p.z[1] + 1e-12
+        and p.x[0] > 10.0
+    ]
     assert len(nose_pairs) == 1
     assert nose_pairs[0].x[0] == pytest.approx(plan.nose_tip_x, abs=1e-9)
     zone = turnout.zone_at(plan.nose_tip_x)

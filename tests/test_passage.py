@@ -10,17 +10,23 @@ Reference values and their sources:
 - P2-type crossing impact forces grow with speed (Jenkins et al. 1974, Railway Engineering
   Journal 3(1)); time-step convergence is checked against the run with half the step.
 """
+
 import math
 
 import numpy as np
 import pytest
 
 from exudyn_turnout.cli.main import main
-from exudyn_turnout.inputs.geometry import turnout_plan
 from exudyn_turnout.corunning.modal import assemble_track_matrices, wheel_dof
 from exudyn_turnout.corunning.parameters import co_running_parameters
-from exudyn_turnout.passage.simulate import PassageError, PassageSettings, simulate_passage, write_passage
+from exudyn_turnout.inputs.geometry import turnout_plan
 from exudyn_turnout.inputs.vehicle import load_vehicle
+from exudyn_turnout.passage.simulate import (
+    PassageError,
+    PassageSettings,
+    simulate_passage,
+    write_passage,
+)
 
 W = (1813 + 32000 / 4 + 2615 / 2) * 9.81 / 2
 
@@ -45,7 +51,9 @@ def test_static_rail_deflection_is_load_over_track_stiffness(turnout, layers):
     m = assemble_track_matrices(params, x)
     f = np.zeros(len(m.dof))
     for rail, wheel in (("r1", "right"), ("r4", "left")):
-        f[m.index(wheel_dof(rail, "vertical", layers))] = -res.summary[f"static_wheel_load{'' if wheel == 'right' else '_left'}_N"]
+        f[m.index(wheel_dof(rail, "vertical", layers))] = -res.summary[
+            f"static_wheel_load{'' if wheel == 'right' else '_left'}_N"
+        ]
     u = np.linalg.solve(m.K, f)
     for rail in ("r1", "r4"):
         expected = u[m.index(wheel_dof(rail, "vertical", layers))]
@@ -62,7 +70,9 @@ def test_plain_track_force_is_constant_after_0_1_s(plain):
 
 @pytest.fixture(scope="module")
 def diverging(turnout):
-    return simulate_passage(turnout, PassageSettings(route="diverging", layers=2, x_start=-5.0, x_end=40.0))
+    return simulate_passage(
+        turnout, PassageSettings(route="diverging", layers=2, x_start=-5.0, x_end=40.0)
+    )
 
 
 def test_steady_curving_lateral_force(diverging):
@@ -74,17 +84,24 @@ def test_steady_curving_lateral_force(diverging):
 
 
 def test_crossing_peak_grows_with_speed(turnout):
-    peaks = [simulate_passage(turnout, PassageSettings(layers=2, speed_kmh=v, x_start=44.5, x_end=47.0))
-             .summary["peak_Fz_crossing_N"] for v in (50.0, 100.0, 150.0)]
+    peaks = [
+        simulate_passage(
+            turnout, PassageSettings(layers=2, speed_kmh=v, x_start=44.5, x_end=47.0)
+        ).summary["peak_Fz_crossing_N"]
+        for v in (50.0, 100.0, 150.0)
+    ]
     assert peaks[0] < peaks[1] < peaks[2]
     assert peaks[0] > 1.2 * W  # a dip of 9 mrad gives a real impact already at 50 km/h
 
 
 def test_halving_the_time_step_changes_the_crossing_peak_by_less_than_2_percent(turnout):
     nose = turnout_plan(turnout).nose_tip_x
-    peaks = [simulate_passage(turnout, PassageSettings(layers=3, time_step=h, x_start=nose - 0.5,
-                                                       x_end=nose + 1.1))
-             .summary["peak_Fz_crossing_N"] for h in (1e-4, 5e-5)]
+    peaks = [
+        simulate_passage(
+            turnout, PassageSettings(layers=3, time_step=h, x_start=nose - 0.5, x_end=nose + 1.1)
+        ).summary["peak_Fz_crossing_N"]
+        for h in (1e-4, 5e-5)
+    ]
     assert abs(peaks[0] / peaks[1] - 1) < 0.02
 
 
@@ -96,32 +113,57 @@ def test_no_force_jump_at_zone_boundary_on_plain_geometry(turnout, x_from, x_to,
     c = res.columns
     i = int(np.searchsorted(c["x_m"], boundary))
     for wheel in ("right", "left"):
-        jump = np.max(np.abs(np.diff(c[f"Fz_{wheel}_N"][i - 2:i + 3])))
+        jump = np.max(np.abs(np.diff(c[f"Fz_{wheel}_N"][i - 2 : i + 3])))
         assert jump < 0.02 * W, (wheel, jump)
 
 
 def test_outputs(tmp_path, plain):
     paths = write_passage(plain, tmp_path)
     header = open(paths["timeseries"]).readline().strip().split(",")
-    for name in ("t_s", "x_m", "Fz_right_r1_N", "Fy_left_r4_N", "Fz_right_N", "Fy_right_N", "Fz_left_N",
-                 "Fy_left_N", "z_wheelset_m", "z_rail_r1_m"):
+    for name in (
+        "t_s",
+        "x_m",
+        "Fz_right_r1_N",
+        "Fy_left_r4_N",
+        "Fz_right_N",
+        "Fy_right_N",
+        "Fz_left_N",
+        "Fy_left_N",
+        "z_wheelset_m",
+        "z_rail_r1_m",
+    ):
         assert name in header
     import json
+
     summary = json.loads(open(paths["summary"]).read())
-    for key in ("static_wheel_load_N", "peak_Fz_switch_N", "peak_Fz_crossing_N", "peak_Fy_switch_N",
-                "peak_Fy_crossing_N", "contact_losses", "time_step_s", "simulated_time_s", "wall_time_s"):
+    for key in (
+        "static_wheel_load_N",
+        "peak_Fz_switch_N",
+        "peak_Fz_crossing_N",
+        "peak_Fy_switch_N",
+        "peak_Fy_crossing_N",
+        "contact_losses",
+        "time_step_s",
+        "simulated_time_s",
+        "wall_time_s",
+    ):
         assert key in summary
-    assert "NaN" not in open(paths["timeseries"]).read() and "NaN" not in open(paths["summary"]).read()
+    assert (
+        "NaN" not in open(paths["timeseries"]).read() and "NaN" not in open(paths["summary"]).read()
+    )
 
 
-@pytest.mark.parametrize("argv,fragment", [
-    (["--speed", "0"], "speed must be > 0"),
-    (["--speed", "-10"], "speed must be > 0"),
-    (["--route", "sideways"], "--route sideways: uic60_760_1_15.toml has no such route"),
-    (["--x-start", "-20"], "must lie within the turnout"),
-    (["--x-start", "30", "--x-end", "20"], "x_start < x_end"),
-    (["--time-step", "0.01"], "too large to resolve the wheel/rail contact"),
-])
+@pytest.mark.parametrize(
+    "argv,fragment",
+    [
+        (["--speed", "0"], "speed must be > 0"),
+        (["--speed", "-10"], "speed must be > 0"),
+        (["--route", "sideways"], "--route sideways: uic60_760_1_15.toml has no such route"),
+        (["--x-start", "-20"], "must lie within the turnout"),
+        (["--x-start", "30", "--x-end", "20"], "x_start < x_end"),
+        (["--time-step", "0.01"], "too large to resolve the wheel/rail contact"),
+    ],
+)
 def test_cli_bad_input(tmp_path, capsys, argv, fragment):
     assert main(["simulate", "--out", str(tmp_path / "o")] + argv) == 2
     err = capsys.readouterr().err
@@ -131,11 +173,13 @@ def test_cli_bad_input(tmp_path, capsys, argv, fragment):
 
 def test_solver_failure_names_time_and_position(turnout, monkeypatch):
     from exudyn_turnout.passage import contact_element as wheelrail
+
     original = wheelrail.WheelRailElement.__call__
 
     def failing(self, mbs, t, i, q, q_t):
         f = original(self, mbs, t, i, q, q_t)
         return [math.nan] * len(f) if self.v > 0 and t > 0.01 else f
+
     monkeypatch.setattr(wheelrail.WheelRailElement, "__call__", failing)
     with pytest.raises(PassageError, match=r"at t = 0\.01\d* s, x = 5[0-9.]* m \(zone 3"):
         simulate_passage(turnout, PassageSettings(layers=2, x_start=52.0, x_end=53.0))
@@ -143,8 +187,10 @@ def test_solver_failure_names_time_and_position(turnout, monkeypatch):
 
 def test_cli_simulate_writes_files(tmp_path, capsys):
     out = tmp_path / "run"
-    assert main(["simulate", "--layers", "2", "--x-start", "46.5", "--x-end", "48", "--out",
-                 str(out)]) == 0
+    assert (
+        main(["simulate", "--layers", "2", "--x-start", "46.5", "--x-end", "48", "--out", str(out)])
+        == 0
+    )
     assert {p.name for p in out.iterdir()} == {"timeseries.csv", "summary.json", "forces.png"}
     out = capsys.readouterr().out
     assert "peak Fz n/a (region not in the run) at the switch" in out and "nan" not in out
@@ -154,6 +200,7 @@ def _five_zone_file(tmp_path):
     """The packaged turnout with zone 1 split into three zones (masses from Eqs 17, 18 at each zone's
     middle via mass_at_x) and no published Table 2 (which has three zones)."""
     from exudyn_turnout.inputs.turnout import default_turnout_path
+
     lines, out, skip = default_turnout_path().read_text(encoding="utf-8").splitlines(), [], False
     for line in lines:
         if line.startswith("[published."):
@@ -162,15 +209,25 @@ def _five_zone_file(tmp_path):
             skip = False
         if not skip:
             out.append(line)
-    text = "\n".join(out).replace('continues = [{ zone = 3, slot = "r1", from = "r2" }]',
-                                  'continues = [{ zone = 5, slot = "r1", from = "r2" }]')
-    text = text.replace('continues = [{ zone = 3, slot = "r4", from = "r2" }]',
-                        'continues = [{ zone = 5, slot = "r4", from = "r2" }]')
-    zone1 = text[text.index("[[zones]]"):text.index("[[zones]]", text.index("[[zones]]") + 1)]
+    text = "\n".join(out).replace(
+        'continues = [{ zone = 3, slot = "r1", from = "r2" }]',
+        'continues = [{ zone = 5, slot = "r1", from = "r2" }]',
+    )
+    text = text.replace(
+        'continues = [{ zone = 3, slot = "r4", from = "r2" }]',
+        'continues = [{ zone = 5, slot = "r4", from = "r2" }]',
+    )
+    zone1 = text[text.index("[[zones]]") : text.index("[[zones]]", text.index("[[zones]]") + 1)]
     parts = []
     for a, b in ((-5.0, 10.0), (10.0, 25.0), (25.0, 44.29)):
-        parts.append(zone1.replace("x_start = -5.0", f"x_start = {a}").replace("x_end = 44.29", f"x_end = {b}")
-                     .replace('ballast_rail_type = "switch"', f'ballast_rail_type = "switch"\nmass_at_x = {(a + b) / 2}'))
+        parts.append(
+            zone1.replace("x_start = -5.0", f"x_start = {a}")
+            .replace("x_end = 44.29", f"x_end = {b}")
+            .replace(
+                'ballast_rail_type = "switch"',
+                f'ballast_rail_type = "switch"\nmass_at_x = {(a + b) / 2}',
+            )
+        )
     path = tmp_path / "five_zones.toml"
     path.write_text(text.replace(zone1, "".join(parts)), encoding="utf-8")
     return path
@@ -179,6 +236,7 @@ def _five_zone_file(tmp_path):
 def test_more_zones_than_three(tmp_path):
     """The paper's future work: more zones, masses per zone from Eqs 17, 18 (Delta at the zone middle)."""
     from exudyn_turnout.inputs.turnout import load_turnout
+
     turnout = load_turnout(_five_zone_file(tmp_path))
     assert len(turnout.zones) == 5 and not turnout.published
     masses = [co_running_parameters(turnout, zone=z).entries["m_r2"].a for z in (1, 2, 3)]
@@ -186,6 +244,6 @@ def test_more_zones_than_three(tmp_path):
     res = simulate_passage(turnout, PassageSettings(layers=3, x_start=8.0, x_end=12.0))
     c = res.columns
     i = int(np.searchsorted(c["x_m"], 10.0))
-    assert np.max(np.abs(np.diff(c["Fz_right_N"][i - 2:i + 3]))) < 0.02 * W
+    assert np.max(np.abs(np.diff(c["Fz_right_N"][i - 2 : i + 3]))) < 0.02 * W
     with pytest.raises(ValueError, match="no published parameters for zone 1"):
         co_running_parameters(turnout, zone=1, source="published")

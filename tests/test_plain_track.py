@@ -8,15 +8,21 @@ References:
 - a symmetric vehicle on symmetric straight track: both static wheel loads are
   (m_w + m_s) g / 2 = (1813 + 9307.5) 9.81 / 2 = 54 546.05 N (Manchester wheelset file).
 """
+
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
 from exudyn_turnout.corunning.modal import assemble_track_matrices, wheel_dof
-from exudyn_turnout.corunning.parameters import co_running_parameters, delta_y, delta_z, reference_support
-from exudyn_turnout.passage.simulate import PassageSettings, simulate_passage
+from exudyn_turnout.corunning.parameters import (
+    co_running_parameters,
+    delta_y,
+    delta_z,
+    reference_support,
+)
 from exudyn_turnout.corunning.track import EntryLaw
+from exudyn_turnout.passage.simulate import PassageSettings, simulate_passage
 
 
 def _static_stiffness(params, x: float, rail: str, direction: str) -> float:

@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 
 from exudyn_turnout.cli.main import main
-from exudyn_turnout.provenance import provenance, reduce_argv, round_floats
 from exudyn_turnout.inputs.turnout import default_turnout_path
 from exudyn_turnout.inputs.vehicle import default_vehicle_path
+from exudyn_turnout.provenance import provenance, reduce_argv, round_floats
 
 SHORT = ["simulate", "--layers", "2", "--x-start", "45.2", "--x-end", "45.6", "--no-plot"]
 

@@ -6,6 +6,7 @@ second time, independently of the turnout file, so that a transcription error in
 shows up. Cells: a number, "<coef> Dz" / "<coef> Dy" for coef * Delta_z / Delta_y, and
 "a-b" for Table 2's ranges.
 """
+
 import pytest
 
 from exudyn_turnout.corunning.parameters import co_running_parameters

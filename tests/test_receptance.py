@@ -9,13 +9,21 @@ an independent statement of linear vibration theory about this model,
   three-layer model the dashpot c_0 (Eq 12) dominates up to many kHz (|H| -> 1/(c_0 w)),
 as stated in issue 3. Parameters: the packaged turnout, derived set (Eqs 1-19).
 """
+
 import math
 
 import numpy as np
 import pytest
 
-from exudyn_turnout.corunning.modal import (TrackMatrices, assemble_track_matrices, co_running_modes, co_running_parameters_at,
-                                  co_running_receptance, modes, receptance_from_matrices)
+from exudyn_turnout.corunning.modal import (
+    TrackMatrices,
+    assemble_track_matrices,
+    co_running_modes,
+    co_running_parameters_at,
+    co_running_receptance,
+    modes,
+    receptance_from_matrices,
+)
 
 #: (zone, x): zone 1 on the switch rail's plateau region, zone 2 on the crossing nose.
 POSITIONS = [(1, 20.0), (2, 47.0)]
@@ -185,7 +193,9 @@ def test_co_running_modes_count_and_order(turnout):
 
 
 def test_inactive_rail_is_an_error(turnout):
-    with pytest.raises(ValueError, match=r"rail r3 is not active in zone 1 .*active rails: r1 r2 r4"):
+    with pytest.raises(
+        ValueError, match=r"rail r3 is not active in zone 1 .*active rails: r1 r2 r4"
+    ):
         co_running_receptance(turnout, 3, "r3", "vertical", zone=1)
     with pytest.raises(ValueError, match="exactly one of x or zone"):
         co_running_receptance(turnout, 3, "r2", "vertical")

@@ -6,6 +6,7 @@ References:
 - a single-DOF receptance 1/(k - w^2 m + i w c) peaks at f0 = sqrt(k/m)/(2 pi) (light damping);
 - the mean of sin over whole periods is 0 and its RMS is amplitude/sqrt(2).
 """
+
 import json
 import math
 import re
@@ -13,10 +14,10 @@ import re
 import numpy as np
 import pytest
 
-from exudyn_turnout.report import agreement as ag
-from exudyn_turnout.report.claims import FAILS, HOLDS, NOT_CHECKED, Criteria, evaluate_claims
 from exudyn_turnout.cli.main import main
+from exudyn_turnout.report import agreement as ag
 from exudyn_turnout.report.cache import ResultCache, input_key
+from exudyn_turnout.report.claims import FAILS, HOLDS, NOT_CHECKED, Criteria, evaluate_claims
 
 # --- metric functions -----------------------------------------------------------------
 
@@ -40,11 +41,15 @@ def test_band_rms_of_a_constant_ratio_is_its_level():
 
 def test_band_rms_by_hand():
     """Band 100 Hz holds 95 and 105 Hz (diffs 3, -4 dB): sqrt((9 + 16)/2); 1000 Hz holds 1000 Hz (2 dB)."""
-    bands = ag.band_rms_db([95.0, 105.0, 1000.0], [3.0, -4.0, 2.0], ag.third_octave_centres(1, 2000))
+    bands = ag.band_rms_db(
+        [95.0, 105.0, 1000.0], [3.0, -4.0, 2.0], ag.third_octave_centres(1, 2000)
+    )
     assert bands == pytest.approx({100.0: math.sqrt(12.5), 1000.0: 2.0})
     # range RMS: every band once, whatever its number of frequencies: sqrt((12.5 + 4)/2)
     assert ag.range_rms_db(bands, 1, 2000) == pytest.approx(math.sqrt(8.25))
-    assert ag.range_rms_db(bands, 1, 2000, exclude=ag.bands_near(1000.0, 1)) == pytest.approx(math.sqrt(12.5))
+    assert ag.range_rms_db(bands, 1, 2000, exclude=ag.bands_near(1000.0, 1)) == pytest.approx(
+        math.sqrt(12.5)
+    )
     assert math.isnan(ag.range_rms_db(bands, 125, 500))
 
 
@@ -82,6 +87,7 @@ def test_running_mean_dynamic_rms_and_differences():
 
 # --- claims ---------------------------------------------------------------------------
 
+
 def _receptance_metrics(low_2l: float) -> dict:
     ranges = {"1-125 Hz": low_2l, "125-500 Hz": 8.0, "500-2000 Hz": 12.0}
     r3 = {"1-125 Hz": 1.0, "125-500 Hz": 2.0, "500-2000 Hz": 2.5}
@@ -91,8 +97,13 @@ def _receptance_metrics(low_2l: float) -> dict:
         out.update({k + " excl. pinned-pinned": v for k, v in r.items()})
         out["1-2000 Hz excl. pinned-pinned"] = max(r.values())
         return {"range_rms_db": out, "pinned_pinned_bands_rms_db": 5.0}
-    case = {"pinned_pinned_hz": 1000.0, "fe_peak_near_pinned_pinned_hz": 1010.0, "fe_dip_near_pinned_pinned_hz": None,
-            "models": {"2-layer": model(ranges), "3-layer": model(r3)}}
+
+    case = {
+        "pinned_pinned_hz": 1000.0,
+        "fe_peak_near_pinned_pinned_hz": 1010.0,
+        "fe_dip_near_pinned_pinned_hz": None,
+        "models": {"2-layer": model(ranges), "3-layer": model(r3)},
+    }
     return {"cases": {f"case {i}": case for i in range(4)}}
 
 
@@ -102,7 +113,13 @@ def _verdicts(metrics: dict) -> dict:
 
 def test_receptance_claims_follow_the_criteria():
     v = _verdicts({"receptance": _receptance_metrics(2.9)})
-    assert v["R1"] == HOLDS and v["R2"] == HOLDS and v["R3"] == HOLDS and v["R4"] == HOLDS and v["R5"] == HOLDS
+    assert (
+        v["R1"] == HOLDS
+        and v["R2"] == HOLDS
+        and v["R3"] == HOLDS
+        and v["R4"] == HOLDS
+        and v["R5"] == HOLDS
+    )
     assert _verdicts({"receptance": _receptance_metrics(3.1)})["R1"] == FAILS
 
 
@@ -121,10 +138,13 @@ def test_cost_claim_range():
 
 # --- cache ----------------------------------------------------------------------------
 
+
 def test_cache_round_trip_and_keys(tmp_path):
     cache = ResultCache(tmp_path / "c")
     key = input_key("x", np.arange(3.0), {"a": 1})
-    assert key != input_key("x", np.arange(3.0) + 1e-12, {"a": 1}) and key == input_key("x", np.arange(3.0), {"a": 1})
+    assert key != input_key("x", np.arange(3.0) + 1e-12, {"a": 1}) and key == input_key(
+        "x", np.arange(3.0), {"a": 1}
+    )
     assert cache.load(key) is None
     cache.save(key, {"H": np.array([1 + 2j, 3j])}, {"wall_time_s": 1.5})
     arrays, meta = cache.load(key)
@@ -181,9 +201,23 @@ def test_quick_report_writes_its_files(quick_report):
     for png in re.findall(r"!\[[^\]]*\]\(([^)]+)\)", md):
         assert (out / png).stat().st_size > 1000
     pngs = {p.name for p in out.glob("*.png")}
-    assert {"receptance_vertical.png", "receptance_lateral.png", "forces_through.png", "stiffness.png"} <= pngs
+    assert {
+        "receptance_vertical.png",
+        "receptance_lateral.png",
+        "forces_through.png",
+        "stiffness.png",
+    } <= pngs
     metrics = json.loads((out / "metrics.json").read_text())
-    for section in ("parameters", "stiffness", "receptance", "passage", "cost", "convergence", "checks", "claims"):
+    for section in (
+        "parameters",
+        "stiffness",
+        "receptance",
+        "passage",
+        "cost",
+        "convergence",
+        "checks",
+        "claims",
+    ):
         assert section in metrics
     assert {c["verdict"] for c in metrics["claims"]} <= {HOLDS, FAILS, NOT_CHECKED}
     assert all(c["id"] in md for c in metrics["claims"]) and "## Closing note" in md
@@ -216,15 +250,22 @@ def test_tables_keep_their_columns(quick_report):
 
 
 def test_cache_and_no_cache_are_exclusive(capsys, tmp_path):
-    assert main(["validate", "--out", str(tmp_path), "--quick", "--cache", str(tmp_path), "--no-cache"]) == 2
+    assert (
+        main(
+            ["validate", "--out", str(tmp_path), "--quick", "--cache", str(tmp_path), "--no-cache"]
+        )
+        == 2
+    )
     assert "not both" in capsys.readouterr().err
 
 
 # --- report settings: everything turnout-specific from the file or the model ---------------
 
+
 def _without_report(turnout, **report):
     """The turnout with its [report] section replaced (or removed when ``report`` is empty)."""
     import dataclasses
+
     raw = {k: v for k, v in turnout.raw.items() if k != "report"}
     if report:
         raw["report"] = report
@@ -238,12 +279,19 @@ def test_default_report_settings_are_the_former_constants(turnout):
     """
     from exudyn_turnout.fe.layout import load_layout
     from exudyn_turnout.report.metrics import receptance_positions
-    from exudyn_turnout.report.settings import (check_rails, quick_passage_x, report_settings,
-                                                stock_rails)
+    from exudyn_turnout.report.settings import (
+        check_rails,
+        quick_passage_x,
+        report_settings,
+        stock_rails,
+    )
+
     s = report_settings(turnout)
     assert s.speeds_kmh == (("through", 100.0), ("diverging", 80.0))
-    assert [r.signals for r in s.routes] == [(("Fz", "switch"), ("Fz", "crossing")),
-                                             (("Fy", "switch"), ("Fy", "crossing"))]
+    assert [r.signals for r in s.routes] == [
+        (("Fz", "switch"), ("Fz", "crossing")),
+        (("Fy", "switch"), ("Fy", "crossing")),
+    ]
     assert {r.wheel for r in s.routes} == {"right"} and s.impact_route == "through"
     assert s.crossing_plot_window == (0.8, 2.2)
     # quick passages: 3.5 m centred on the wheel's dip onto the nose, on a 0.1 m grid
@@ -263,6 +311,7 @@ def test_default_report_settings_are_the_former_constants(turnout):
 def test_report_defaults_without_a_report_section(turnout):
     """Defaults: every route; 100 km/h straight; sqrt(0.65 x 760) x 3.6 = 80.0 km/h on 760 m."""
     from exudyn_turnout.report.settings import quick_passage_x, report_settings
+
     t = _without_report(turnout)
     s = report_settings(t)
     assert s.speeds_kmh == (("through", 100.0), ("diverging", 80.0))
@@ -274,28 +323,33 @@ def test_report_defaults_without_a_report_section(turnout):
     assert "by the report's default" in s.speeds_note
 
 
-@pytest.mark.parametrize("report, field", [
-    ({"routes": {"through": {"wheel": "middle"}}}, "report.routes.through.wheel"),
-    ({"routes": {"through": {"speed_kmh": -5.0}}}, "report.routes.through.speed_kmh"),
-    ({"routes": {"through": {"forces": ["Fx"]}}}, "report.routes.through.forces"),
-    ({"routes": {"main": {}}}, "report.routes.main"),
-    ({"routes": {"through": {"speeed_kmh": 90.0}}}, "report.routes.through.speeed_kmh"),
-    ({"quick_passage_x": [50.0, 70.0]}, "report.quick_passage_x"),
-    ({"crossing_plot_window": [1.0]}, "report.crossing_plot_window"),
-    ({"receptance_slot": "r7"}, "report.receptance_slot"),
-    ({"stock_rail": ["stock_left"]}, "report.stock_rail"),
-])
+@pytest.mark.parametrize(
+    "report, field",
+    [
+        ({"routes": {"through": {"wheel": "middle"}}}, "report.routes.through.wheel"),
+        ({"routes": {"through": {"speed_kmh": -5.0}}}, "report.routes.through.speed_kmh"),
+        ({"routes": {"through": {"forces": ["Fx"]}}}, "report.routes.through.forces"),
+        ({"routes": {"main": {}}}, "report.routes.main"),
+        ({"routes": {"through": {"speeed_kmh": 90.0}}}, "report.routes.through.speeed_kmh"),
+        ({"quick_passage_x": [50.0, 70.0]}, "report.quick_passage_x"),
+        ({"crossing_plot_window": [1.0]}, "report.crossing_plot_window"),
+        ({"receptance_slot": "r7"}, "report.receptance_slot"),
+        ({"stock_rail": ["stock_left"]}, "report.stock_rail"),
+    ],
+)
 def test_bad_report_settings_name_file_and_field(turnout, report, field):
-    from exudyn_turnout.report.settings import report_settings
     from exudyn_turnout.inputs.turnout import TurnoutFileError
+    from exudyn_turnout.report.settings import report_settings
+
     with pytest.raises(TurnoutFileError, match=rf"^uic60_760_1_15\.toml: {re.escape(field)} "):
         report_settings(_without_report(turnout, **report))
 
 
 def test_unknown_report_rail_ids_are_named(turnout):
     from exudyn_turnout.fe.layout import load_layout
-    from exudyn_turnout.report.settings import report_settings, stock_rails
     from exudyn_turnout.inputs.turnout import TurnoutFileError
+    from exudyn_turnout.report.settings import report_settings, stock_rails
+
     s = report_settings(_without_report(turnout, stock_rails=["stock_left", "nonesuch"]))
     with pytest.raises(TurnoutFileError, match="report.stock_rails names rail 'nonesuch'"):
         stock_rails(s, load_layout(turnout))

@@ -11,12 +11,13 @@ Reference values:
 - steady curving of a conical wheelset (Wickens, Fundamentals of Rail Vehicle Dynamics,
   2003, ch. 3): zero longitudinal creep at y = -b kappa r0 / gamma.
 """
+
 import pytest
 
-from exudyn_turnout.wheel_rail import laws as contact
 from exudyn_turnout.inputs.geometry import turnout_plan
 from exudyn_turnout.inputs.routes import dip_angle, load_route
 from exudyn_turnout.inputs.turnout import TurnoutFileError, default_turnout_path, load_turnout
+from exudyn_turnout.wheel_rail import laws as contact
 
 
 def test_crossing_dip_of_packaged_profiles(turnout):
@@ -33,14 +34,27 @@ def test_diverging_route_mirrors_the_through_route(turnout):
     assert r.curvature(20.0) == pytest.approx(-1 / 760, rel=1e-6) and r.curvature(-2.0) == 0.0
 
 
-@pytest.mark.parametrize("old,new,message", [
-    ('rail = "r3"\ncheck = [44.29, 51.0]', 'rail = "r3"\ncheck = [40.0, 51.0]',
-     "uses rail r3 over 40..44.29 m, where zone 1 has no such active rail"),
-    ("x = [-5.0, 60.0]\nz = [0.0, 0.0]\nflange = [-5.0, 60.0]", "x = [-5.0, 61.0]\nz = [0.0, 0.0]\nflange = [-5.0, 60.0]",
-     "is outside the turnout"),
-    ("z = [-0.003, 0.0, 0.0]", "z = [-0.3, 0.0, 0.0]", "heights must be within"),
-    ('wheel = "left"\nrail = "r4"', 'wheel = "middle"\nrail = "r4"', "wheel must be one of left, right"),
-])
+@pytest.mark.parametrize(
+    "old,new,message",
+    [
+        (
+            'rail = "r3"\ncheck = [44.29, 51.0]',
+            'rail = "r3"\ncheck = [40.0, 51.0]',
+            "uses rail r3 over 40..44.29 m, where zone 1 has no such active rail",
+        ),
+        (
+            "x = [-5.0, 60.0]\nz = [0.0, 0.0]\nflange = [-5.0, 60.0]",
+            "x = [-5.0, 61.0]\nz = [0.0, 0.0]\nflange = [-5.0, 60.0]",
+            "is outside the turnout",
+        ),
+        ("z = [-0.003, 0.0, 0.0]", "z = [-0.3, 0.0, 0.0]", "heights must be within"),
+        (
+            'wheel = "left"\nrail = "r4"',
+            'wheel = "middle"\nrail = "r4"',
+            "wheel must be one of left, right",
+        ),
+    ],
+)
 def test_route_errors_name_the_field(tmp_path, old, new, message):
     text = default_turnout_path().read_text(encoding="utf-8")
     assert old in text
@@ -63,13 +77,18 @@ def test_hertz():
     assert contact.hertz_force(-1e-5, 9e10) == 0.0
     d = 9.2e-5
     assert contact.hertz_stiffness(d, 9e10) == pytest.approx(
-        (contact.hertz_force(d * 1.0001, 9e10) - contact.hertz_force(d * 0.9999, 9e10)) / (2e-4 * d), rel=1e-6)
+        (contact.hertz_force(d * 1.0001, 9e10) - contact.hertz_force(d * 0.9999, 9e10))
+        / (2e-4 * d),
+        rel=1e-6,
+    )
 
 
 @pytest.mark.parametrize("u", [0.01, 0.5, 1.0, 2.0, 2.999])
 def test_saturation_below_three(u):
     mu_N = 2e4
-    assert contact.saturation_factor(u * mu_N, mu_N) * u * mu_N == pytest.approx(mu_N * (u - u**2 / 3 + u**3 / 27))
+    assert contact.saturation_factor(u * mu_N, mu_N) * u * mu_N == pytest.approx(
+        mu_N * (u - u**2 / 3 + u**3 / 27)
+    )
 
 
 def test_saturation_limits():
@@ -83,7 +102,9 @@ def test_steady_curving_has_no_longitudinal_creep():
     y = -b * kappa * r0 / gamma
     assert y > 0  # a right-hand curve pushes the wheelset to the left (outwards)
     for side in (1, -1):
-        assert contact.longitudinal_creepage(side, y, 0.0, 27.8, b, r0, gamma, kappa) == pytest.approx(0, abs=1e-15)
+        assert contact.longitudinal_creepage(
+            side, y, 0.0, 27.8, b, r0, gamma, kappa
+        ) == pytest.approx(0, abs=1e-15)
 
 
 def test_flange_force_one_sided():

@@ -22,8 +22,8 @@ import pytest
 
 import exudyn_turnout
 from exudyn_turnout.cli.main import main
-from exudyn_turnout.report.settings import check_rails, report_settings, stock_rails
 from exudyn_turnout.inputs.turnout import load_turnout
+from exudyn_turnout.report.settings import check_rails, report_settings, stock_rails
 
 SECOND = Path(exudyn_turnout.__file__).parent / "data" / "ew54_190_1_9.toml"
 STATIC_WHEEL_LOAD = (1813.0 + 9307.5) * 9.81 / 2

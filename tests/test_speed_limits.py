@@ -4,6 +4,7 @@ Reference: cant deficiency D = G v^2 / (g R) - cant with G = 1.5 m (EN 13803, st
 gauge): R = 760 m, no cant, 100 km/h: 1.5 x 27.778^2 / (9.81 x 760) = 0.15524 m; 80 km/h:
 0.09935 m (the diverging route's limits in the packaged file: 80 km/h, 100 mm).
 """
+
 import pytest
 
 from exudyn_turnout.inputs.routes import cant_deficiency, load_route, speed_warnings

@@ -6,6 +6,7 @@ exudyn_turnout.corunning.modal.assemble_track_matrices; the active rails of the 
 CoRunningParameters.at. Every simulation runs in tmp_path as working directory, and the
 tests check that Exudyn wrote no file there.
 """
+
 import dataclasses
 
 import numpy as np
@@ -17,8 +18,13 @@ from exudyn.itemInterface import LoadForceVector, MassPoint2D, NodePoint2D, Sens
 
 from exudyn_turnout.corunning.modal import assemble_track_matrices  # noqa: E402
 from exudyn_turnout.corunning.parameters import co_running_parameters, delta_y, delta_z  # noqa: E402
-from exudyn_turnout.corunning.track import (MECHANISMS, EntryLaw, add_co_running_track, linearized_matrices,  # noqa: E402
-                                  simulation_settings)
+from exudyn_turnout.corunning.track import (
+    MECHANISMS,
+    EntryLaw,
+    add_co_running_track,
+    linearized_matrices,  # noqa: E402
+    simulation_settings,
+)
 from exudyn_turnout.inputs.turnout import Polynomial  # noqa: E402
 
 
@@ -61,7 +67,9 @@ def test_linearized_system_equals_hand_assembly(turnout, source, layers, mechani
         assert handles.position_dependent
 
 
-@pytest.mark.parametrize("zone,rails", [(1, ("r1", "r2", "r4")), (2, ("r1", "r2", "r3", "r4")), (3, ("r1", "r4"))])
+@pytest.mark.parametrize(
+    "zone,rails", [(1, ("r1", "r2", "r4")), (2, ("r1", "r2", "r3", "r4")), (3, ("r1", "r4"))]
+)
 @pytest.mark.parametrize("layers", [2, 3])
 def test_only_active_rails_get_coordinates(turnout, zone, rails, layers):
     """Table 3: an inactive rail has no node, no marker and no coordinate in the system."""
@@ -114,11 +122,23 @@ def _simulate(params, mechanism, x0=2.0, v=100.0, carrier=False, steps=300, h=5e
         node = mbs.AddNode(NodePoint2D(initialVelocities=[v, 0.0]))
         mbs.AddObject(MassPoint2D(nodeNumber=node, mass=1.0))
         x_coordinate = (int(node), 0)
-    handles = add_co_running_track(mbs, params, x0, v, mechanism=mechanism, x_coordinate=x_coordinate)
-    mbs.AddLoad(LoadForceVector(markerNumber=handles.wheel_markers["r2"], loadVector=[2e4, -1e5, 0.0]))
-    sensors = {name: mbs.AddSensor(SensorObject(objectNumber=c, outputVariableType=exu.OutputVariableType.Force,
-                                                storeInternal=True, writeToFile=False))
-               for name, c in handles.connectors.items()}
+    handles = add_co_running_track(
+        mbs, params, x0, v, mechanism=mechanism, x_coordinate=x_coordinate
+    )
+    mbs.AddLoad(
+        LoadForceVector(markerNumber=handles.wheel_markers["r2"], loadVector=[2e4, -1e5, 0.0])
+    )
+    sensors = {
+        name: mbs.AddSensor(
+            SensorObject(
+                objectNumber=c,
+                outputVariableType=exu.OutputVariableType.Force,
+                storeInternal=True,
+                writeToFile=False,
+            )
+        )
+        for name, c in handles.connectors.items()
+    }
     mbs.Assemble()
     mbs.SolveDynamic(simulation_settings(steps * h, h))
     return {name: mbs.GetSensorStoredData(s)[:, 1:] for name, s in sensors.items()}, handles
@@ -134,8 +154,9 @@ def _unit_delta_turnout(turnout):
     """The turnout with K_sw = K_st,z and K_sh = K_st,y everywhere: Delta_z = Delta_y = 1."""
     K_st_z = turnout.K_sw(0.0) / delta_z(turnout, 0.0)
     K_st_y = turnout.K_sh(0.0) / delta_y(turnout, 0.0)
-    return dataclasses.replace(turnout, K_sw=Polynomial((K_st_z,), 0.0, 22.0),
-                               K_sh=Polynomial((K_st_y,), 0.0, 60.0))
+    return dataclasses.replace(
+        turnout, K_sw=Polynomial((K_st_z,), 0.0, 22.0), K_sh=Polynomial((K_st_y,), 0.0, 60.0)
+    )
 
 
 def test_unit_delta_user_functions_equal_constant_springs(turnout):

@@ -24,6 +24,7 @@ ZCP, 0.0205 mm off.  There the contact sits on the nose rising at 1:10 and our X
 moves ZCP by 0.024 mm.  Changed after comparing (the only change): on a rising surface the
 height tolerance is 0.02 mm plus the rise over the longitudinal difference, 0.1 |dX|.
 """
+
 import pytest
 
 from exudyn_turnout.wheel_rail.data import data_dir, s1002_wheel
@@ -38,8 +39,9 @@ NOSE_RISE = 0.1  # CONTACT's artificial nose rises at 1:10 (cross_nose.slcs comm
 
 @pytest.fixture(scope="module")
 def comparison():
-    return {name: (reference, ours) for name, reference, ours in
-            compare_all(s1002_wheel(), data_dir())}
+    return {
+        name: (reference, ours) for name, reference, ours in compare_all(s1002_wheel(), data_dir())
+    }
 
 
 def test_reference_outputs_are_read():
@@ -52,8 +54,9 @@ def test_reference_outputs_are_read():
     assert first.approach == pytest.approx(3.732e-5)
 
 
-@pytest.mark.parametrize("name", ["wing_brute#1", "cross_brute#1", "cross+wing#1",
-                                  "cw_interrupt#1", "cw_interrupt#2"])
+@pytest.mark.parametrize(
+    "name", ["wing_brute#1", "cross_brute#1", "cross+wing#1", "cw_interrupt#1", "cw_interrupt#2"]
+)
 def test_contact_point_and_approach_match_contact(comparison, name):
     reference, ours = comparison[name]
     dx = abs(ours.x_contact - reference.x_contact)

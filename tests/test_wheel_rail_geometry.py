@@ -4,6 +4,7 @@ S1002 wheel / UIC60 rail inclined 1:40 (Manchester benchmark profiles, CONTACT's
 gauge 1435 mm, back-to-back 1360 mm, flange back 70 mm from the taping line (EN 13715),
 gauge point 14 mm below the top of rail (EN 15302).
 """
+
 import math
 import warnings
 
@@ -12,14 +13,26 @@ import pytest
 from scipy.integrate import IntegrationWarning, quad
 
 from exudyn_turnout.wheel_rail.data import s1002_wheel, standard_track
-from exudyn_turnout.wheel_rail.geometry import (WheelsetSetup, equivalent_conicity,
-                                                equivalent_conicity_klingel,
-                                                find_candidates, flange_angle, grid_wheel,
-                                                nadal_limit, rail_row, solve_wheelset,
-                                                surface_derivatives)
+from exudyn_turnout.wheel_rail.geometry import (
+    WheelsetSetup,
+    equivalent_conicity,
+    equivalent_conicity_klingel,
+    find_candidates,
+    flange_angle,
+    grid_wheel,
+    nadal_limit,
+    rail_row,
+    solve_wheelset,
+    surface_derivatives,
+)
 from exudyn_turnout.wheel_rail.profiles import Profile
-from exudyn_turnout.wheel_rail.sections import (CrossingDesign, crossing_sections,
-                                                lateral_grid, place_rail, plain_rail_sections)
+from exudyn_turnout.wheel_rail.sections import (
+    CrossingDesign,
+    crossing_sections,
+    lateral_grid,
+    place_rail,
+    plain_rail_sections,
+)
 
 SETUP = WheelsetSetup()
 
@@ -57,10 +70,10 @@ def test_contact_angle_equals_both_profile_slopes_at_the_contact_point(s1002_on_
         y = result.y_rail_left[i]
         raw_rail_slope = np.interp(y, grid, np.gradient(np.nan_to_num(rail_z), grid))
         if abs(result.y[i]) < 0.004:  # tread: slopes within 0.3 deg of each other
-            assert math.degrees(math.atan(raw_wheel_slope) - angle) == pytest.approx(
-                0.0, abs=0.3)
-            assert math.degrees(math.atan(raw_rail_slope) - result.angle_left[i]) == \
-                pytest.approx(0.0, abs=0.3)
+            assert math.degrees(math.atan(raw_wheel_slope) - angle) == pytest.approx(0.0, abs=0.3)
+            assert math.degrees(math.atan(raw_rail_slope) - result.angle_left[i]) == pytest.approx(
+                0.0, abs=0.3
+            )
 
 
 def test_rolling_radius_difference_jumps_to_the_flange_root(s1002_on_uic60):
@@ -107,24 +120,152 @@ def test_equivalent_conicity_en15302_at_3_mm(s1002_on_uic60):
 # y grid from its Select.java.  Wheel A / B are S1002 flanges with other treads, so these
 # check the conicity methods, not our S1002 / UIC60 geometry.
 ANNEX_E_DELTA_R = {
-    "E1": (0.0, 0.032, 0.051, 0.071, 0.092, 0.116, 0.142, 0.167, 0.197, 0.227, 0.257, 0.292,
-           0.328, 0.361, 0.402, 0.443, 0.481, 0.527, 0.574, 0.616, 0.667, 0.719, 0.766,
-           0.822, 0.879, 0.931, 0.992, 1.055, 1.111, 1.177, 1.236, 1.299, 1.346, 1.407,
-           1.471, 1.539, 1.598, 1.673, 1.752, 1.834, 1.906, 1.995, 2.088, 2.185, 2.286,
-           2.373, 2.481, 2.593, 2.709, 2.808, 2.931, 3.058, 3.189, 3.324, 3.44, 3.582,
-           3.729, 3.879, 4.008, 4.166, 4.328, 4.494, 4.636, 5.064, 5.692, 6.521, 7.597,
-           9.01, 10.954),
-    "E2": (0.0, 0.005, 0.01, 0.015, 0.02, 0.025, 0.03, 0.035, 0.04, 0.045, 0.05, 0.055,
-           0.06, 0.065, 0.07, 0.075, 0.08, 0.085, 0.09, 0.095, 0.1, 0.105, 0.11, 0.115,
-           0.12, 0.125, 0.13, 0.135, 0.14, 0.145, 1.95, 2.003, 2.057, 2.112, 2.167, 2.224,
-           2.281, 2.339, 2.397, 2.457, 2.517, 2.578, 2.64, 2.702, 2.766, 2.83, 2.895, 2.961,
-           3.027, 3.095, 3.163, 3.232, 3.302, 3.372, 3.444, 3.516, 3.589, 3.663, 3.737,
-           3.813, 3.889, 3.966, 4.044, 4.123, 5.392, 6.111, 7.05, 8.27, 9.895),
+    "E1": (
+        0.0,
+        0.032,
+        0.051,
+        0.071,
+        0.092,
+        0.116,
+        0.142,
+        0.167,
+        0.197,
+        0.227,
+        0.257,
+        0.292,
+        0.328,
+        0.361,
+        0.402,
+        0.443,
+        0.481,
+        0.527,
+        0.574,
+        0.616,
+        0.667,
+        0.719,
+        0.766,
+        0.822,
+        0.879,
+        0.931,
+        0.992,
+        1.055,
+        1.111,
+        1.177,
+        1.236,
+        1.299,
+        1.346,
+        1.407,
+        1.471,
+        1.539,
+        1.598,
+        1.673,
+        1.752,
+        1.834,
+        1.906,
+        1.995,
+        2.088,
+        2.185,
+        2.286,
+        2.373,
+        2.481,
+        2.593,
+        2.709,
+        2.808,
+        2.931,
+        3.058,
+        3.189,
+        3.324,
+        3.44,
+        3.582,
+        3.729,
+        3.879,
+        4.008,
+        4.166,
+        4.328,
+        4.494,
+        4.636,
+        5.064,
+        5.692,
+        6.521,
+        7.597,
+        9.01,
+        10.954,
+    ),
+    "E2": (
+        0.0,
+        0.005,
+        0.01,
+        0.015,
+        0.02,
+        0.025,
+        0.03,
+        0.035,
+        0.04,
+        0.045,
+        0.05,
+        0.055,
+        0.06,
+        0.065,
+        0.07,
+        0.075,
+        0.08,
+        0.085,
+        0.09,
+        0.095,
+        0.1,
+        0.105,
+        0.11,
+        0.115,
+        0.12,
+        0.125,
+        0.13,
+        0.135,
+        0.14,
+        0.145,
+        1.95,
+        2.003,
+        2.057,
+        2.112,
+        2.167,
+        2.224,
+        2.281,
+        2.339,
+        2.397,
+        2.457,
+        2.517,
+        2.578,
+        2.64,
+        2.702,
+        2.766,
+        2.83,
+        2.895,
+        2.961,
+        3.027,
+        3.095,
+        3.163,
+        3.232,
+        3.302,
+        3.372,
+        3.444,
+        3.516,
+        3.589,
+        3.663,
+        3.737,
+        3.813,
+        3.889,
+        3.966,
+        4.044,
+        4.123,
+        5.392,
+        6.111,
+        7.05,
+        8.27,
+        9.895,
+    ),
 }
 ANNEX_E_CONICITY = {  # amplitude (mm): reference tan(gamma_e)
     "E1": {1.0: 0.125, 2.0: 0.155, 3.0: 0.188, 4.0: 0.216, 5.0: 0.254, 6.0: 0.303},
-    "E2": {1.0: 0.025, 2.0: 0.025, 3.0: 0.058, 3.5: 0.189, 4.0: 0.241, 5.0: 0.283,
-           6.0: 0.302},
+    "E2": {1.0: 0.025, 2.0: 0.025, 3.0: 0.058, 3.5: 0.189, 4.0: 0.241, 5.0: 0.283, 6.0: 0.302},
 }
 
 
@@ -143,7 +284,8 @@ def test_klingel_conicity_reproduces_en15302_annex_e(case):
     y, delta_r = _annex_e(case)
     for amplitude, reference in ANNEX_E_CONICITY[case].items():
         assert equivalent_conicity_klingel(y, delta_r, amplitude) == pytest.approx(
-            reference, abs=0.002), amplitude
+            reference, abs=0.002
+        ), amplitude
 
 
 def test_regression_conicity_overshoots_when_the_amplitude_just_reaches_a_jump():
@@ -166,6 +308,7 @@ def test_klingel_conicity_of_s1002_on_uic60_agrees_with_the_regression(s1002_on_
     integration = equivalent_conicity_klingel(result.y, result.delta_r, 0.003)
     assert integration == pytest.approx(regression, abs=0.005)
 
+
 def test_conicity_of_a_cone_on_circular_crowns_matches_the_closed_form():
     """Hand derivation for a cone (slope g) on rails with a circular crown (radius R,
     inclination e), wheelset radius r0, contact points b' from the centre line:
@@ -183,9 +326,10 @@ def test_conicity_of_a_cone_on_circular_crowns_matches_the_closed_form():
     wheel = grid_wheel(cone, nominal_radius=0.46)
     y = np.linspace(-0.036, 0.036, 721)
     head = np.concatenate(([-0.036], y, [0.036]))
-    crown = np.concatenate(([-0.040], -(0.3 - np.sqrt(0.3 ** 2 - y ** 2)), [-0.040]))
-    rail = place_rail(Profile(y=head, z=crown, kind="rail", source="R300 crown"),
-                      inclination=1 / 40)
+    crown = np.concatenate(([-0.040], -(0.3 - np.sqrt(0.3**2 - y**2)), [-0.040]))
+    rail = place_rail(
+        Profile(y=head, z=crown, kind="rail", source="R300 crown"), inclination=1 / 40
+    )
     grid = lateral_grid(0.66, 0.84)
     track = plain_rail_sections(rail, np.array([0.0]), grid)
     row = rail_row(track, surface_derivatives(track))
@@ -195,8 +339,7 @@ def test_conicity_of_a_cone_on_circular_crowns_matches_the_closed_form():
     b_prime = result.y_rail_left[8]  # centred wheelset (0.7457 m)
     expected = g / (1 - g * (r0 + radius) / (b_prime + radius * (g - e)))
     assert expected == pytest.approx(0.05266, abs=1e-4)
-    assert equivalent_conicity(result.y, result.delta_r, 0.003) == pytest.approx(expected,
-                                                                                 rel=2e-3)
+    assert equivalent_conicity(result.y, result.delta_r, 0.003) == pytest.approx(expected, rel=2e-3)
     # the contact angle is the cone's, turned by the roll
     np.testing.assert_allclose(np.tan(result.angle_left - result.roll), g, atol=1e-3)
 
@@ -221,6 +364,7 @@ def test_two_rail_heads_give_two_candidates_each_with_its_own_gap():
     sections = crossing_sections(design, base, x, grid)
     merged = np.fmax(sections["wing"].z, sections["nose"].z)
     from exudyn_turnout.wheel_rail.sections import SectionGrid
+
     both = SectionGrid(x=x, y=grid, z=merged)
     row = rail_row(both, surface_derivatives(both))
     found = find_candidates(*row, wheel, SETUP.taping_line, max_gap=0.003)
@@ -240,6 +384,7 @@ def wheel_rail_base():
     from exudyn_turnout.wheel_rail.data import profile_path
     from exudyn_turnout.wheel_rail.profiles import read_simpack_profile
     from exudyn_turnout.wheel_rail.sections import incline_profile
+
     return incline_profile(read_simpack_profile(profile_path("MBench_UIC60_v3.prr")), -1 / 40)
 
 
@@ -249,18 +394,28 @@ def test_back_of_flange_against_a_check_rail_is_found_along_its_own_direction():
     gap closing one to one with the wheel's shift towards the track centre."""
     from exudyn_turnout.wheel_rail.geometry import CHECK_RAIL_DIRECTION, FLANGE_DIRECTION
     from exudyn_turnout.wheel_rail.sections import SectionGrid, surface_on_grid
+
     wheel = s1002_wheel(SETUP)
     face = 0.675  # m from the track centre; the wheel's inner face is at 0.6804 m
-    block = Profile(y=np.array([face - 0.04, face - 0.04, face - 0.002, face, face]),
-                    z=np.array([-0.05, 0.010, 0.010, 0.008, -0.05]), kind="rail",
-                    source="check rail block")
+    block = Profile(
+        y=np.array([face - 0.04, face - 0.04, face - 0.002, face, face]),
+        z=np.array([-0.05, 0.010, 0.010, 0.008, -0.05]),
+        kind="rail",
+        source="check rail block",
+    )
     grid = lateral_grid(0.60, 0.84)
     check = SectionGrid(x=np.array([0.0]), y=grid, z=surface_on_grid(block, grid)[None, :])
     row = rail_row(check, surface_derivatives(check))
     gaps = []
     for shift in (0.0, -0.003):
-        found = find_candidates(*row, wheel, SETUP.taping_line, shift=shift, lift=-1.8e-4,
-                                directions=(FLANGE_DIRECTION, CHECK_RAIL_DIRECTION))
+        found = find_candidates(
+            *row,
+            wheel,
+            SETUP.taping_line,
+            shift=shift,
+            lift=-1.8e-4,
+            directions=(FLANGE_DIRECTION, CHECK_RAIL_DIRECTION),
+        )
         assert math.degrees(found.angle[0]) == pytest.approx(-90.0, abs=1.0)
         gaps.append(found.gap[0])
     assert gaps[0] == pytest.approx(0.6804 - face, abs=2e-4)

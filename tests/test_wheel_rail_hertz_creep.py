@@ -1,12 +1,18 @@
 """Hertz constant and ellipse; Kalker coefficients; Polach's creep forces."""
+
 import math
 
 import numpy as np
 import pytest
 
 from exudyn_turnout.wheel_rail.creep import kalker_coefficients, polach_creep_forces
-from exudyn_turnout.wheel_rail.hertz import (curvature_sums, effective_modulus,
-                                             ellipse_parameter, hertz_constant, hertz_contact)
+from exudyn_turnout.wheel_rail.hertz import (
+    curvature_sums,
+    effective_modulus,
+    ellipse_parameter,
+    hertz_constant,
+    hertz_contact,
+)
 
 STEEL = effective_modulus(2.1e11, 0.3)  # E* = E / (2 (1 - nu^2)) = 115.4 GPa
 
@@ -16,9 +22,10 @@ def test_sphere_on_plane_is_hertz_exactly():
     radius = 0.02
     curvature = 1.0 / (2.0 * radius)
     assert hertz_constant(curvature, curvature, STEEL) == pytest.approx(
-        4.0 / 3.0 * STEEL * math.sqrt(radius), rel=1e-8)
+        4.0 / 3.0 * STEEL * math.sqrt(radius), rel=1e-8
+    )
     delta = 1e-5
-    force = 4.0 / 3.0 * STEEL * math.sqrt(radius) * delta ** 1.5
+    force = 4.0 / 3.0 * STEEL * math.sqrt(radius) * delta**1.5
     contact = hertz_contact(curvature, curvature, force, STEEL)
     assert contact.a == pytest.approx(math.sqrt(radius * delta), rel=1e-6)
     assert contact.b == pytest.approx(contact.a, rel=1e-6)
@@ -49,21 +56,22 @@ def test_kalker_table_values_and_asymptotes():
     # Kalker (1967): for a/b -> 0, C11 -> pi^2 / (4 (1 - nu)), C22 -> pi^2 / 4
     for nu in (0.0, 0.25, 0.5):
         narrow = kalker_coefficients(0.1, 1.0, nu)
-        assert float(narrow.c11) == pytest.approx(math.pi ** 2 / (4 * (1 - nu)), rel=0.03)
-        assert float(narrow.c22) == pytest.approx(math.pi ** 2 / 4, rel=0.03)
+        assert float(narrow.c11) == pytest.approx(math.pi**2 / (4 * (1 - nu)), rel=0.03)
+        assert float(narrow.c22) == pytest.approx(math.pi**2 / 4, rel=0.03)
     # Kalker (1967) asymptotes for g = a/b -> 0: C23 = pi sqrt(g) / 3 at nu = 0,
     # C33 = pi^2 / (16 (1 - nu) g)
     assert float(kalker_coefficients(0.1, 1.0, 0.0).c23) == pytest.approx(
-        math.pi * math.sqrt(0.1) / 3.0, rel=0.03)
+        math.pi * math.sqrt(0.1) / 3.0, rel=0.03
+    )
     assert float(kalker_coefficients(0.1, 1.0, 0.25).c33) == pytest.approx(
-        math.pi ** 2 / (16 * 0.75 * 0.1), rel=0.03)
+        math.pi**2 / (16 * 0.75 * 0.1), rel=0.03
+    )
     # for nu = 0 longitudinal and lateral coefficients are equal (Kalker's table columns)
     ratios = np.array([0.2, 0.7, 1.0, 1.6, 5.0])
     at_zero = kalker_coefficients(ratios, 1.0, 0.0)
     np.testing.assert_allclose(at_zero.c11, at_zero.c22)
     # monotone in the ellipse ratio (a/b up: longitudinal stiffer)
     assert np.all(np.diff(kalker_coefficients(ratios, 1.0, 0.28).c11) > 0)
-
 
 
 # Kalker (1990) Table E3 as copied in CONTACT (E.A.H. Vollebregt, Apache-2.0):
@@ -88,6 +96,7 @@ def test_kalker_table_matches_the_published_table(ratio, nu, name, published):
     value = float(getattr(kalker_coefficients(ratio, 1.0, nu), name))
     assert value == pytest.approx(published, rel=1e-9)
 
+
 def test_polach_small_creepage_is_kalker_linear_and_large_is_coulomb():
     a, b, load, mu, shear = 6e-3, 5e-3, 1e5, 0.3, 8.1e10
     coeff = kalker_coefficients(a, b, 0.28)
@@ -97,7 +106,8 @@ def test_polach_small_creepage_is_kalker_linear_and_large_is_coulomb():
     assert float(lateral.lateral) == pytest.approx(-shear * a * b * coeff.c22 * 1e-6, rel=1e-4)
     spin = polach_creep_forces(0.0, 0.0, 1e-4, a, b, load, mu, shear)
     assert float(spin.lateral) == pytest.approx(
-        -shear * (a * b) ** 1.5 * coeff.c23 * 1e-4, rel=1e-3)
+        -shear * (a * b) ** 1.5 * coeff.c23 * 1e-4, rel=1e-3
+    )
     big = polach_creep_forces(0.3, 0.0, 0.0, a, b, load, mu, shear)
     assert -float(big.longitudinal) == pytest.approx(mu * load, rel=0.01)
     combined = polach_creep_forces(0.05, 0.05, 0.0, a, b, load, mu, shear)

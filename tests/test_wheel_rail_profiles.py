@@ -1,10 +1,16 @@
 """Readers for Simpack profiles and CONTACT slice files (exudyn_turnout.wheel_rail.profiles)."""
+
 import numpy as np
 import pytest
 
 from exudyn_turnout.wheel_rail.data import profile_path
-from exudyn_turnout.wheel_rail.profiles import (ProfileFormatError, read_plain_profile,
-                                                read_profile, read_simpack_profile, read_slices)
+from exudyn_turnout.wheel_rail.profiles import (
+    ProfileFormatError,
+    read_plain_profile,
+    read_profile,
+    read_simpack_profile,
+    read_slices,
+)
 from exudyn_turnout.wheel_rail.sections import gauge_point, place_rail
 
 
@@ -64,13 +70,20 @@ def test_plain_profile_units(tmp_path):
         read_profile(path, length_unit="m")  # 1 m steps: the wrong unit is caught
 
 
-@pytest.mark.parametrize("content, problem", [
-    ("header.begin\n type = 0\nheader.end\nspline.begin\n point.begin\n1 2\n", "only 1"),
-    ("spline.begin\n point.begin\n1 x\n point.end\nspline.end\n", "not a number"),
-    ("foo.begin\n", "unknown block"),
-    ("header.begin\n type = 7\nheader.end\nspline.begin\npoint.begin\n" +
-     "".join(f"{i} 0\n" for i in range(9)) + "point.end\nspline.end\n", "header type"),
-])
+@pytest.mark.parametrize(
+    "content, problem",
+    [
+        ("header.begin\n type = 0\nheader.end\nspline.begin\n point.begin\n1 2\n", "only 1"),
+        ("spline.begin\n point.begin\n1 x\n point.end\nspline.end\n", "not a number"),
+        ("foo.begin\n", "unknown block"),
+        (
+            "header.begin\n type = 7\nheader.end\nspline.begin\npoint.begin\n"
+            + "".join(f"{i} 0\n" for i in range(9))
+            + "point.end\nspline.end\n",
+            "header type",
+        ),
+    ],
+)
 def test_bad_simpack_files_raise_one_clear_error(tmp_path, content, problem):
     path = tmp_path / "bad.prr"
     path.write_text(content)
@@ -85,8 +98,11 @@ def test_missing_and_bad_slice_files(tmp_path):
         read_simpack_profile(tmp_path / "nothere.prw")
     slcs = tmp_path / "set.slcs"
     slcs.write_text("0 1\n2\n0 0 0\n1\n0.0 'a.prr'\n10.0 'missing.prr'\n")
-    (tmp_path / "a.prr").write_text("spline.begin\nunits.len.f = 1000.\npoint.begin\n" +
-                                    "".join(f"{i} 0\n" for i in range(9)) + "point.end\n")
+    (tmp_path / "a.prr").write_text(
+        "spline.begin\nunits.len.f = 1000.\npoint.begin\n"
+        + "".join(f"{i} 0\n" for i in range(9))
+        + "point.end\n"
+    )
     with pytest.raises(ProfileFormatError, match="set.slcs: slice 'missing.prr'"):
         read_slices(slcs)
     slcs.write_text("0 1\n2\n0 0 0\n1\n10.0 'a.prr'\n0.0 'a.prr'\n")

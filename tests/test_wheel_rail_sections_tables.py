@@ -1,20 +1,38 @@
 """Rail sections along x, the rigid-wheel envelope, design sections, cached contact tables."""
+
 import math
 
 import numpy as np
 import pytest
 
 from exudyn_turnout.wheel_rail.data import profile_path, s1002_wheel, standard_track
-from exudyn_turnout.wheel_rail.geometry import WheelsetSetup, find_candidates, rail_row, \
-    surface_derivatives
+from exudyn_turnout.wheel_rail.geometry import (
+    WheelsetSetup,
+    find_candidates,
+    rail_row,
+    surface_derivatives,
+)
 from exudyn_turnout.wheel_rail.profiles import read_simpack_profile, read_slices
-from exudyn_turnout.wheel_rail.sections import (CrossingDesign, SectionGrid, SwitchDesign,
-                                                crossing_sections, incline_profile,
-                                                lateral_grid, place_rail, section_at,
-                                                slice_sections, switch_sections,
-                                                wheel_envelope)
-from exudyn_turnout.wheel_rail.tables import (TableSettings, build_contact_table, lookup,
-                                              normal_force, table_key)
+from exudyn_turnout.wheel_rail.sections import (
+    CrossingDesign,
+    SectionGrid,
+    SwitchDesign,
+    crossing_sections,
+    incline_profile,
+    lateral_grid,
+    place_rail,
+    section_at,
+    slice_sections,
+    switch_sections,
+    wheel_envelope,
+)
+from exudyn_turnout.wheel_rail.tables import (
+    TableSettings,
+    build_contact_table,
+    lookup,
+    normal_force,
+    table_key,
+)
 
 SETUP = WheelsetSetup()
 
@@ -34,8 +52,7 @@ def test_slices_are_interpolated_linearly_between_positions():
     np.testing.assert_allclose(middle[both], 0.5 * (sections.z[4] + sections.z[5])[both])
     # CONTACT's artificial nose rises at 1:10 (the slice file's comment): 1 mm per 10 mm
     top = np.nanmax(sections.z, axis=1)
-    assert np.median(np.diff(top[5:15]) / np.diff(slices.u[5:15])) == pytest.approx(0.1,
-                                                                                    rel=0.02)
+    assert np.median(np.diff(top[5:15]) / np.diff(slices.u[5:15])) == pytest.approx(0.1, rel=0.02)
 
 
 def test_wheel_envelope_meets_a_rising_nose_ahead_and_a_flat_rail_under_the_centre():
@@ -57,8 +74,9 @@ def test_switch_blade_planed_and_lowered_near_the_toe():
     grid = lateral_grid(0.70, 0.92)
     sections = switch_sections(design, upright_uic60(), np.array([0.0, 2.5, 5.0, 8.0]), grid)
     blade, stock = sections["blade"], sections["stock"]
-    unlowered = switch_sections(SwitchDesign(toe_lowering=0.0), upright_uic60(),
-                                np.array([0.0, 2.5, 5.0, 8.0]), grid)["blade"]
+    unlowered = switch_sections(
+        SwitchDesign(toe_lowering=0.0), upright_uic60(), np.array([0.0, 2.5, 5.0, 8.0]), grid
+    )["blade"]
     lowering = np.nanmax(unlowered.z - blade.z, axis=1)
     # 3 mm low at the toe, rising linearly to full height at 5 m (SwitchDesign defaults)
     np.testing.assert_allclose(lowering, [0.003, 0.0015, 0.0, 0.0], atol=1e-9)
@@ -66,9 +84,11 @@ def test_switch_blade_planed_and_lowered_near_the_toe():
     assert np.nanmax(blade.z[0]) < -0.006
     widths = [np.ptp(grid[np.isfinite(row)]) for row in blade.z]
     assert widths[0] < widths[1] < widths[2]
+
     # the stock rail curves away: its gauge face moves x^2 / 2R + entry angle
     def gauge_face(row):
         return grid[np.argmax(row > -0.014)]
+
     moved = gauge_face(stock.z[3]) - gauge_face(stock.z[0])
     expected = design.entry_tangent * 8.0 + 64.0 / (2 * design.radius)
     assert moved == pytest.approx(expected, abs=3e-4)
@@ -122,14 +142,16 @@ def test_lookup_matches_the_direct_search_on_and_between_nodes(plain_table):
     lifts = np.array([-3e-4, -2.5e-4, 0.0, -2e-4, -3e-4])  # touching at about -0.18 mm
     found = lookup(table, np.full(len(shifts), 0.5), shifts, lifts)
     for k, (shift, lift) in enumerate(zip(shifts, lifts)):
-        direct = find_candidates(*row, wheel, SETUP.taping_line, shift=shift, lift=lift,
-                                 max_gap=0.005)
+        direct = find_candidates(
+            *row, wheel, SETUP.taping_line, shift=shift, lift=lift, max_gap=0.005
+        )
         first = int(np.argmin(found.gap[k]))
         # normal gap within 3 micrometres, contact point within 0.5 mm, angle 0.5 deg
         assert found.gap[k, first] == pytest.approx(direct.gap[0], abs=3e-6)
         assert found.y_rail[k, first] == pytest.approx(direct.y_rail[0], abs=5e-4)
         assert math.degrees(found.angle[k, first]) == pytest.approx(
-            math.degrees(direct.angle[0]), abs=0.5)
+            math.degrees(direct.angle[0]), abs=0.5
+        )
     forces = normal_force(found)
     expected = found.hertz_constant * np.maximum(-found.gap, 0.0) ** 1.5
     np.testing.assert_allclose(forces, np.where(found.valid, expected, 0.0))

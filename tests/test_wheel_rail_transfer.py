@@ -5,14 +5,19 @@ Crossing: the real UK crossing 56E1-R245-1:9.25 of the multibody S&C benchmark (
 position: taping line 70 mm + 1360 / 2 mm from the track centre, the rail's gauge point
 (14 mm below its top, at the start of the slice set) at 1435 / 2 mm.
 """
+
 import numpy as np
 import pytest
 
 from exudyn_turnout.wheel_rail.data import profile_path, s1002_wheel
 from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
 from exudyn_turnout.wheel_rail.profiles import read_slices
-from exudyn_turnout.wheel_rail.sections import (gauge_point, lateral_grid, slice_sections,
-                                                wheel_envelope)
+from exudyn_turnout.wheel_rail.sections import (
+    gauge_point,
+    lateral_grid,
+    slice_sections,
+    wheel_envelope,
+)
 from exudyn_turnout.wheel_rail.transfer import dip_summary, wheel_path
 
 SETUP = WheelsetSetup()
@@ -27,8 +32,7 @@ def paths():
     x = np.arange(0.0, 0.5, 0.01)
     enveloped = wheel_envelope(sections, x, SETUP.nominal_radius, reach=0.08, step=0.004)
     wheel = s1002_wheel(SETUP)
-    return {shift: wheel_path(enveloped, wheel, taping, shift)
-            for shift in (-0.003, 0.0, 0.003)}
+    return {shift: wheel_path(enveloped, wheel, taping, shift) for shift in (-0.003, 0.0, 0.003)}
 
 
 def test_load_passes_from_wing_rail_to_nose_with_a_dip(paths):

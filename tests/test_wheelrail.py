@@ -4,6 +4,7 @@ Reference values: Hertz F = C_H delta^1.5; a wheelset displaced to the left by y
 conical tread gets a yaw moment that turns it right (Wickens 2003, ch. 3: the kinematic
 oscillation of Klingel); flange forces only push; curving load m v^2 / R.
 """
+
 import pytest
 
 from exudyn_turnout.inputs.routes import load_route
@@ -44,7 +45,10 @@ def test_flange_pushes_back_only_beyond_clearance(through):
     q, q_t = [0.0] * el.n, [0.0] * el.n
     q[1] = -1e-4
     gamma, b = el.vehicle.contact.conicity, el.vehicle.b
-    q[0], q[2] = 0.004, gamma * 0.004 / b  # within the 6 mm clearance, with the cone's kinematic roll
+    q[0], q[2] = (
+        0.004,
+        gamma * 0.004 / b,
+    )  # within the 6 mm clearance, with the cone's kinematic roll
     inside = el(None, 0.0, 0, q, q_t)[0]
     q[0], q[2] = 0.008, gamma * 0.008 / b  # 2 mm into the left flange
     beyond = el(None, 0.0, 0, q, q_t)[0]
@@ -57,7 +61,9 @@ def test_curving_load(turnout):
     q = [0.0] * el.n
     f = el(None, 0.0, 0, q, [0.0] * el.n)  # no contact: only the curving load remains
     veh = load_vehicle()
-    assert f[0] == pytest.approx(veh.m_w * 27.8**2 / 760, rel=1e-6)  # curve to the right: load to the left
+    assert f[0] == pytest.approx(
+        veh.m_w * 27.8**2 / 760, rel=1e-6
+    )  # curve to the right: load to the left
     assert f[4] == pytest.approx(veh.m_s * 27.8**2 / 760, rel=1e-6)
 
 

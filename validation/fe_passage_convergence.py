@@ -14,15 +14,16 @@ Run: ``python validation/fe_passage_convergence.py [--quick]``; prints Markdown 
 Each window starts from its own static equilibrium (a steady start, see
 :mod:`exudyn_turnout.passage.fe_track`), so the windows stand for the full passage there.
 """
+
 import argparse
 from dataclasses import replace
 
 import numpy as np
 
 from exudyn_turnout.fe.mesh import FEOptions
+from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.passage.fe_track import FEPassageOptions, simulate_fe_passage
 from exudyn_turnout.passage.simulate import PassageSettings
-from exudyn_turnout.inputs.turnout import load_turnout
 
 #: (name, x_start, x_end, summary key) of the windows (m).
 WINDOWS = (("switch", 2.0, 6.0, "peak_Fz_switch_N"), ("crossing", 44.0, 48.0, "peak_Fz_crossing_N"))
@@ -33,16 +34,23 @@ def peaks(turnout, time_step: float, mesh: FEOptions) -> dict[str, float]:
     out = {}
     for name, x0, x1, key in WINDOWS:
         settings = PassageSettings(speed_kmh=100.0, x_start=x0, x_end=x1, time_step=time_step)
-        out[name] = simulate_fe_passage(turnout, settings, options=FEPassageOptions(mesh=mesh)).summary[key]
+        out[name] = simulate_fe_passage(
+            turnout, settings, options=FEPassageOptions(mesh=mesh)
+        ).summary[key]
     return out
 
 
 def table(rows: dict[str, dict[str, float]], reference: str) -> str:
-    lines = ["| case | switch peak (kN) | vs ref | crossing peak (kN) | vs ref |", "|---|---|---|---|---|"]
+    lines = [
+        "| case | switch peak (kN) | vs ref | crossing peak (kN) | vs ref |",
+        "|---|---|---|---|---|",
+    ]
     ref = rows[reference]
     for case, p in rows.items():
-        lines.append(f"| {case} | {p['switch'] / 1e3:.2f} | {100 * (p['switch'] / ref['switch'] - 1):+.2f} % | "
-                     f"{p['crossing'] / 1e3:.2f} | {100 * (p['crossing'] / ref['crossing'] - 1):+.2f} % |")
+        lines.append(
+            f"| {case} | {p['switch'] / 1e3:.2f} | {100 * (p['switch'] / ref['switch'] - 1):+.2f} % | "
+            f"{p['crossing'] / 1e3:.2f} | {100 * (p['crossing'] / ref['crossing'] - 1):+.2f} % |"
+        )
     return "\n".join(lines)
 
 
@@ -51,17 +59,23 @@ def time_step_study(turnout, steps) -> dict[str, dict[str, float]]:
 
 
 def mesh_study(turnout, meshes) -> dict[str, dict[str, float]]:
-    return {f"{m.element_length:g} m, p = {m.element_order}": peaks(turnout, 1e-4, m) for m in meshes}
+    return {
+        f"{m.element_length:g} m, p = {m.element_order}": peaks(turnout, 1e-4, m) for m in meshes
+    }
 
 
 def ends_study(turnout) -> tuple[float, float]:
     """Largest |F_default - F_long| / W (right wheel) and the static load W (N), x -5 to -1 m."""
     settings = PassageSettings(speed_kmh=100.0, x_start=-5.0, x_end=-1.0)
     base = FEOptions()
-    runs = [simulate_fe_passage(turnout, settings, options=FEPassageOptions(mesh=m))
-            for m in (base, replace(base, extension=2 * base.extension))]
+    runs = [
+        simulate_fe_passage(turnout, settings, options=FEPassageOptions(mesh=m))
+        for m in (base, replace(base, extension=2 * base.extension))
+    ]
     W = runs[0].summary["static_wheel_load_N"]
-    return float(np.max(np.abs(runs[0].columns["Fz_right_N"] - runs[1].columns["Fz_right_N"])) / W), W
+    return float(
+        np.max(np.abs(runs[0].columns["Fz_right_N"] - runs[1].columns["Fz_right_N"])) / W
+    ), W
 
 
 def main(argv=None):
@@ -73,14 +87,17 @@ def main(argv=None):
     rows = time_step_study(turnout, steps)
     print("time step (default mesh: 0.2 m quartic elements)\n")
     print(table(rows, f"h = {steps[-1]:g} s"))
-    meshes = [FEOptions(element_length=0.3), FEOptions()] + ([] if args.quick else [
-        FEOptions(element_order=6), FEOptions(element_length=0.1)])
+    meshes = [FEOptions(element_length=0.3), FEOptions()] + (
+        [] if args.quick else [FEOptions(element_order=6), FEOptions(element_length=0.1)]
+    )
     rows = mesh_study(turnout, meshes)
     print("\nmesh (h = 1e-4 s)\n")
     print(table(rows, list(rows)[-1]))
     diff, W = ends_study(turnout)
-    print(f"\nmodel ends: x -5 to -1 m, extension 12 m vs 24 m: largest force difference "
-          f"{100 * diff:.3f} % of the static load {W / 1e3:.1f} kN")
+    print(
+        f"\nmodel ends: x -5 to -1 m, extension 12 m vs 24 m: largest force difference "
+        f"{100 * diff:.3f} % of the static load {W / 1e3:.1f} kN"
+    )
 
 
 if __name__ == "__main__":

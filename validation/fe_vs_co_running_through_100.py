@@ -7,13 +7,14 @@ the crossing nose with their differences from the FE reference, and saves
 at the crossing nose, three models overlaid) and each run's timeseries.csv / summary.json
 into DIR (default ``validation/out``).
 """
+
 import argparse
 from pathlib import Path
 
-from exudyn_turnout.passage.fe_track import simulate_fe_passage
-from exudyn_turnout.passage.simulate import PassageSettings, simulate_passage, write_passage
 from exudyn_turnout.inputs.routes import dip_angle, load_route
 from exudyn_turnout.inputs.turnout import load_turnout
+from exudyn_turnout.passage.fe_track import simulate_fe_passage
+from exudyn_turnout.passage.simulate import PassageSettings, simulate_passage, write_passage
 
 #: x windows (m) of the overlay: the load transfer at the switch and the crossing nose.
 WINDOWS = (("switch: stock rail to switch blade", (1.0, 8.0)), ("crossing nose", (46.0, 48.5)))
@@ -23,26 +24,35 @@ def run_all(turnout, speed_kmh: float = 100.0) -> dict:
     """{"FE": result, "2-layer": result, "3-layer": result} of the through route."""
     out = {"FE": simulate_fe_passage(turnout, PassageSettings(speed_kmh=speed_kmh))}
     for layers in (2, 3):
-        out[f"{layers}-layer"] = simulate_passage(turnout, PassageSettings(speed_kmh=speed_kmh, layers=layers))
+        out[f"{layers}-layer"] = simulate_passage(
+            turnout, PassageSettings(speed_kmh=speed_kmh, layers=layers)
+        )
     return out
 
 
 def peak_table(results) -> str:
     keys = (("switch", "peak_Fz_switch_N"), ("crossing", "peak_Fz_crossing_N"))
     fe = results["FE"].summary
-    lines = ["| model | static (kN) | peak Fz switch (kN) | vs FE | peak Fz crossing (kN) | vs FE | wall (s) |",
-             "|---|---|---|---|---|---|---|"]
+    lines = [
+        "| model | static (kN) | peak Fz switch (kN) | vs FE | peak Fz crossing (kN) | vs FE | wall (s) |",
+        "|---|---|---|---|---|---|---|",
+    ]
     for name, r in results.items():
         s = r.summary
         cells = [f"{s[k] / 1e3:.1f} | {100 * (s[k] / fe[k] - 1):+.1f} %" for _, k in keys]
-        lines.append(f"| {name} | {s['static_wheel_load_N'] / 1e3:.1f} | " + " | ".join(cells)
-                     + f" | {s['wall_time_s']:.1f} |")
+        lines.append(
+            f"| {name} | {s['static_wheel_load_N'] / 1e3:.1f} | "
+            + " | ".join(cells)
+            + f" | {s['wall_time_s']:.1f} |"
+        )
     return "\n".join(lines)
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out", default=str(Path(__file__).with_name("out")), help="output directory")
+    parser.add_argument(
+        "--out", default=str(Path(__file__).with_name("out")), help="output directory"
+    )
     args = parser.parse_args(argv)
     turnout = load_turnout()
     results = run_all(turnout)
@@ -50,14 +60,19 @@ def main(argv=None):
     for name, r in results.items():
         write_passage(r, out / f"through_100_{name}")
     x, depth, two_alpha = dip_angle(load_route(turnout, "through"), "right", 46.0, 48.5)
-    print(f"through route, 100 km/h, right wheel; crossing dip at x = {x:.2f} m, depth {1e3 * depth:.2f} mm, "
-          f"2 alpha = {1e3 * two_alpha:.1f} mrad; FE: {results['FE'].summary['n_dof']} DOFs\n")
+    print(
+        f"through route, 100 km/h, right wheel; crossing dip at x = {x:.2f} m, depth {1e3 * depth:.2f} mm, "
+        f"2 alpha = {1e3 * two_alpha:.1f} mrad; FE: {results['FE'].summary['n_dof']} DOFs\n"
+    )
     print(peak_table(results))
     ratio = results["FE"].summary["wall_time_s"] / results["3-layer"].summary["wall_time_s"]
     print(f"\ncost ratio FE / 3-layer: {ratio:.0f}")
     from exudyn_turnout.plotting.curves import plot_force_signals
-    fig, _ = plot_force_signals([(title, results, "Fz_right_N", rng) for title, rng in WINDOWS],
-                                ylabel="vertical force on rail, right wheel (kN)")
+
+    fig, _ = plot_force_signals(
+        [(title, results, "Fz_right_N", rng) for title, rng in WINDOWS],
+        ylabel="vertical force on rail, right wheel (kN)",
+    )
     fig.savefig(out / "fe_vs_co_running_through_100.png", dpi=130)
     print(f"\nplot -> {out / 'fe_vs_co_running_through_100.png'}")
 

@@ -2,6 +2,7 @@
 
 Run: ``python validation/make_parameter_table.py [--turnout FILE] [--out FILE]``.
 """
+
 import argparse
 from pathlib import Path
 

@@ -3,6 +3,7 @@
 The same as ``exudyn-turnout validate``; the default output is ``validation/report/``
 (the committed copy of the full report).
 """
+
 import sys
 from pathlib import Path
 

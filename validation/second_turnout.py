@@ -10,6 +10,7 @@ Default output: ``validation/second_turnout/`` (the committed copy, the full rep
 min on 2 shared cores, most of it the FE passages over the whole turnout; ``--quick``
 takes ~30 s).
 """
+
 import sys
 from pathlib import Path
 

@@ -8,6 +8,7 @@ linearises there and writes a Markdown report: the named modes against the hand 
 differ), then every mode of the vehicle (undamped frequency, damped natural frequency,
 damping ratio, dominant body and direction by kinetic-energy share).
 """
+
 from __future__ import annotations
 
 import argparse
@@ -16,28 +17,58 @@ from pathlib import Path
 
 import exudyn as exu
 
-from exudyn_turnout.passage.vehicle_builder import (RigidTrack, add_vehicle_model, rigid_track_support,
-                                            solve_static, support_wheel_loads, vehicle_modes)
-from exudyn_turnout.inputs.vehicle_model import (carbody_bounce_frequency, carbody_pitch_frequency,
-                                          carbody_sway_frequencies, carbody_yaw_frequency,
-                                          hand_frequencies, load_vehicle_model)
+from exudyn_turnout.inputs.vehicle_model import (
+    carbody_bounce_frequency,
+    carbody_pitch_frequency,
+    carbody_sway_frequencies,
+    carbody_yaw_frequency,
+    hand_frequencies,
+    load_vehicle_model,
+)
+from exudyn_turnout.passage.vehicle_builder import (
+    RigidTrack,
+    add_vehicle_model,
+    rigid_track_support,
+    solve_static,
+    support_wheel_loads,
+    vehicle_modes,
+)
 
 #: hand key -> (body kind, dominant directions, which of the sorted matches, test tolerance,
 #: why Exudyn and hand differ)
 NAMED = {
-    "carbody_bounce": ("car_body", ("z",), 0, 0.01,
-                       "hand: secondary in series with primary and track, bogie mass neglected"),
+    "carbody_bounce": (
+        "car_body",
+        ("z",),
+        0,
+        0.01,
+        "hand: secondary in series with primary and track, bogie mass neglected",
+    ),
     "carbody_pitch": ("car_body", ("pitch",), 0, 0.01, "as bounce"),
-    "carbody_yaw": ("car_body", ("yaw",), 0, 0.03,
-                    "hand: bogies held; Exudyn: bogies yaw and shift on primary + track"),
-    "carbody_lower_sway": ("car_body", ("y", "roll"), 0, 0.05,
-                           "hand: quasi-static series secondary/primary; bogie lateral-roll "
-                           "coupling left out"),
+    "carbody_yaw": (
+        "car_body",
+        ("yaw",),
+        0,
+        0.03,
+        "hand: bogies held; Exudyn: bogies yaw and shift on primary + track",
+    ),
+    "carbody_lower_sway": (
+        "car_body",
+        ("y", "roll"),
+        0,
+        0.05,
+        "hand: quasi-static series secondary/primary; bogie lateral-roll coupling left out",
+    ),
     "carbody_upper_sway": ("car_body", ("y", "roll"), -1, 0.05, "as lower sway"),
     "bogie_bounce": ("bogie", ("z",), 0, 0.02, "hand: car body held (12x heavier)"),
     "bogie_pitch": ("bogie", ("pitch",), 0, 0.02, "hand: car body held"),
-    "bogie_lower_sway": ("bogie", ("y", "roll"), 0, 0.04,
-                      "hand: car body, wheelsets held; Exudyn: wheelsets on track springs"),
+    "bogie_lower_sway": (
+        "bogie",
+        ("y", "roll"),
+        0,
+        0.04,
+        "hand: car body, wheelsets held; Exudyn: wheelsets on track springs",
+    ),
     "bogie_upper_sway": ("bogie", ("y", "roll"), -1, 0.04, "as bogie lower sway"),
     "wheelset_bounce": ("wheelset", ("z",), 0, 0.01, "hand: bogie held"),
 }
@@ -56,9 +87,13 @@ def analyse(representation: str, track: RigidTrack, model=None):
 
 def _pick(modes, kind, directions, pick):
     f_max = 100.0 if kind == "wheelset" else 20.0
-    found = sorted((m.frequency_hz, m) for m in modes
-                   if m.body.rstrip("0123456789") == kind and m.direction in directions
-                   and m.frequency_hz < f_max)
+    found = sorted(
+        (m.frequency_hz, m)
+        for m in modes
+        if m.body.rstrip("0123456789") == kind
+        and m.direction in directions
+        and m.frequency_hz < f_max
+    )
     return found[pick][1] if found else None
 
 
@@ -92,38 +127,56 @@ def markdown(track: RigidTrack) -> str:
     for key, (kind, directions, pick, tol, why) in NAMED.items():
         lin, rig = _pick(linear, kind, directions, pick), _pick(rigid, kind, directions, pick)
         h = hand[key]
-        out.append(f"| {key} | {h:.3f} | {lin.frequency_hz:.3f} | {rig.frequency_hz:.3f} | "
-                   f"{100 * (lin.frequency_hz / h - 1):+.1f} | {100 * tol:.0f} | "
-                   f"{lin.damping_ratio:.3f} | {why} |")
+        out.append(
+            f"| {key} | {h:.3f} | {lin.frequency_hz:.3f} | {rig.frequency_hz:.3f} | "
+            f"{100 * (lin.frequency_hz / h - 1):+.1f} | {100 * tol:.0f} | "
+            f"{lin.damping_ratio:.3f} | {why} |"
+        )
     stiff = replace(model, primary=replace(model.primary, k_x=1e11, k_y=1e11, k_z=1e11))
     held = RigidTrack(k_z=1e11, k_y=1e11)
     lower, upper = carbody_sway_frequencies(stiff, bogies_held=True)
-    textbook = {"y": ("lower sway", lower), "roll": ("upper sway", upper),
-                "z": ("bounce", carbody_bounce_frequency(stiff)),
-                "pitch": ("pitch", carbody_pitch_frequency(stiff)),
-                "yaw": ("yaw", carbody_yaw_frequency(stiff))}
+    textbook = {
+        "y": ("lower sway", lower),
+        "roll": ("upper sway", upper),
+        "z": ("bounce", carbody_bounce_frequency(stiff)),
+        "pitch": ("pitch", carbody_pitch_frequency(stiff)),
+        "yaw": ("yaw", carbody_yaw_frequency(stiff)),
+    }
     _, stiff_linear, _ = analyse("linear", held, stiff)
     _, stiff_rigid, _ = analyse("rigid", held, stiff)
-    out += ["", "## Car body on held bogies (primary and track springs 1e11 N/m)", "",
-            "The textbook case: the car body on its secondary suspension alone. Exudyn and hand",
-            "values agree within 5e-6 here (the 1e11 N/m springs are not quite rigid; test:",
-            "1e-4), which checks every lever arm, height and the gravitational term m g e; the",
-            "differences above are the primary suspension's and the bogies' share.", "",
-            "| mode | hand Hz | Exudyn linear Hz | Exudyn rigid Hz |", "|---|---|---|---|"]
+    out += [
+        "",
+        "## Car body on held bogies (primary and track springs 1e11 N/m)",
+        "",
+        "The textbook case: the car body on its secondary suspension alone. Exudyn and hand",
+        "values agree within 5e-6 here (the 1e11 N/m springs are not quite rigid; test:",
+        "1e-4), which checks every lever arm, height and the gravitational term m g e; the",
+        "differences above are the primary suspension's and the bogies' share.",
+        "",
+        "| mode | hand Hz | Exudyn linear Hz | Exudyn rigid Hz |",
+        "|---|---|---|---|",
+    ]
     for direction, (name, h) in textbook.items():
         lin = next(m for m in stiff_linear if m.body == "car_body" and m.direction == direction)
         rig = next(m for m in stiff_rigid if m.body == "car_body" and m.direction == direction)
-        out.append(f"| car body {name} | {h:.4f} | {lin.frequency_hz:.4f} | "
-                   f"{rig.frequency_hz:.4f} |")
-    out += ["", "## All modes (linear representation; rigid in the last column)", "",
-            "| # | f Hz | damped f_n Hz | damping ratio | dominant body | direction | share | "
-            "next participations | rigid f Hz |",
-            "|---|---|---|---|---|---|---|---|---|"]
+        out.append(
+            f"| car body {name} | {h:.4f} | {lin.frequency_hz:.4f} | {rig.frequency_hz:.4f} |"
+        )
+    out += [
+        "",
+        "## All modes (linear representation; rigid in the last column)",
+        "",
+        "| # | f Hz | damped f_n Hz | damping ratio | dominant body | direction | share | "
+        "next participations | rigid f Hz |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
     for i, (m, r) in enumerate(zip(linear, rigid), 1):
         others = ", ".join(f"{k} {v:.2f}" for k, v in list(m.participation.items())[1:4])
-        out.append(f"| {i} | {m.frequency_hz:.3f} | {m.damped_frequency_hz:.3f} | "
-                   f"{m.damping_ratio:.3f} | {m.body} | {m.direction} | {m.share:.2f} | "
-                   f"{others} | {r.frequency_hz:.3f} |")
+        out.append(
+            f"| {i} | {m.frequency_hz:.3f} | {m.damped_frequency_hz:.3f} | "
+            f"{m.damping_ratio:.3f} | {m.body} | {m.direction} | {m.share:.2f} | "
+            f"{others} | {r.frequency_hz:.3f} |"
+        )
     return "\n".join(out) + "\n"
 
 

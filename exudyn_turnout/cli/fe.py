@@ -6,23 +6,33 @@
 
 numpy/scipy only; matplotlib is imported only when ``--plot`` is given.
 """
+
 from __future__ import annotations
 
 import argparse
 import time
 
-from exudyn_turnout.cli.main import (UsageError, check_out_file, check_plot_file, number, write_output,
-                  write_sidecar)
 from exudyn_turnout.cli.fe_passage import add_simulate
-from exudyn_turnout.receptance import DIRECTIONS, log_frequencies
+from exudyn_turnout.cli.main import (
+    UsageError,
+    check_out_file,
+    check_plot_file,
+    number,
+    write_output,
+    write_sidecar,
+)
 from exudyn_turnout.inputs.turnout import load_turnout
+from exudyn_turnout.receptance import DIRECTIONS, log_frequencies
 
 __all__ = ["build"]
 
 
 def _turnout_option(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--turnout", metavar="FILE", help="turnout file with a [layout] section "
-                   "(default: packaged UIC60-760-1:15)")
+    p.add_argument(
+        "--turnout",
+        metavar="FILE",
+        help="turnout file with a [layout] section (default: packaged UIC60-760-1:15)",
+    )
 
 
 def _check_outputs(args: argparse.Namespace) -> None:
@@ -33,6 +43,7 @@ def _check_outputs(args: argparse.Namespace) -> None:
 
 def _save_plot(fig, path: str) -> None:
     from exudyn_turnout.plotting.curves import save_figure
+
     write_output(path, lambda tmp: save_figure(fig, tmp, dpi=120), "--plot")
     print(f"plot -> {path}")
 
@@ -42,6 +53,7 @@ def _cmd_frf(args: argparse.Namespace) -> int:
     from exudyn_turnout.fe.frf import fe_receptance
     from exudyn_turnout.fe.layout import load_layout
     from exudyn_turnout.provenance import provenance
+
     _check_outputs(args)
     turnout = load_turnout(args.turnout)
     route = route_from_args(args, turnout)
@@ -66,14 +78,18 @@ def _cmd_frf(args: argparse.Namespace) -> int:
         "n_dof": r.metadata["n_dof"],
     }
     write_sidecar(args.out, provenance(settings, turnout=turnout, argv=getattr(args, "argv", None)))
-    print(f"FE receptance {args.rail} ({r.metadata['rail_id']}) {args.direction} at x = {args.x:g} m: "
-          f"{len(f)} frequencies {args.fmin:g}-{args.fmax:g} Hz, {r.metadata['n_dof']} DOFs, "
-          f"{time.perf_counter() - t0:.1f} s; static stiffness 1/|H({f[0]:g} Hz)| = {r.static_stiffness:.4g} N/m "
-          f"-> {args.out}")
+    print(
+        f"FE receptance {args.rail} ({r.metadata['rail_id']}) {args.direction} at x = {args.x:g} m: "
+        f"{len(f)} frequencies {args.fmin:g}-{args.fmax:g} Hz, {r.metadata['n_dof']} DOFs, "
+        f"{time.perf_counter() - t0:.1f} s; static stiffness 1/|H({f[0]:g} Hz)| = {r.static_stiffness:.4g} N/m "
+        f"-> {args.out}"
+    )
     if args.plot:
         from exudyn_turnout.plotting.curves import plot_receptance
-        fig, _ = plot_receptance(r, title=f"FE {args.rail} ({r.metadata['rail_id']}) {args.direction}, "
-                                          f"x = {args.x:g} m")
+
+        fig, _ = plot_receptance(
+            r, title=f"FE {args.rail} ({r.metadata['rail_id']}) {args.direction}, x = {args.x:g} m"
+        )
         _save_plot(fig, args.plot)
     return 0
 
@@ -83,6 +99,7 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
     from exudyn_turnout.fe.layout import load_layout
     from exudyn_turnout.fe.stiffness import static_stiffness_profile
     from exudyn_turnout.provenance import provenance
+
     _check_outputs(args)
     turnout = load_turnout(args.turnout)
     layout = load_layout(turnout)
@@ -107,18 +124,28 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
         },
     }
     write_sidecar(args.out, provenance(settings, turnout=turnout, argv=getattr(args, "argv", None)))
-    print(f"FE static stiffness 1/|H(1 Hz)|: {len(profile.x)} rail positions, {len(profile.rails)} rails, "
-          f"DOFs {profile.n_dof['vertical']} vertical / {profile.n_dof['lateral']} lateral, "
-          f"{time.perf_counter() - t0:.1f} s -> {args.out}")
-    for name, fit, paper, eq in (("K_sw", fits.K_sw, turnout.K_sw, "Eq 10"),
-                                 ("K_sh", fits.K_sh, turnout.K_sh, "Eq 14")):
-        terms = " + ".join(f"{c:.4g} x^{i}" if i else f"{c:.4g}" for i, c in enumerate(fit.coefficients))
-        paper_terms = " + ".join(f"{c:.4g} x^{i}" if i else f"{c:.4g}"
-                                 for i, c in enumerate(paper.coefficients))
-        print(f"{name} ({fit.direction}, rail {fit.rail}, {fit.x_min:g}-{fit.x_max:g} m): {terms} N/m, "
-              f"R^2 = {fit.r_squared:.3f}; paper {eq}: {paper_terms}")
+    print(
+        f"FE static stiffness 1/|H(1 Hz)|: {len(profile.x)} rail positions, {len(profile.rails)} rails, "
+        f"DOFs {profile.n_dof['vertical']} vertical / {profile.n_dof['lateral']} lateral, "
+        f"{time.perf_counter() - t0:.1f} s -> {args.out}"
+    )
+    for name, fit, paper, eq in (
+        ("K_sw", fits.K_sw, turnout.K_sw, "Eq 10"),
+        ("K_sh", fits.K_sh, turnout.K_sh, "Eq 14"),
+    ):
+        terms = " + ".join(
+            f"{c:.4g} x^{i}" if i else f"{c:.4g}" for i, c in enumerate(fit.coefficients)
+        )
+        paper_terms = " + ".join(
+            f"{c:.4g} x^{i}" if i else f"{c:.4g}" for i, c in enumerate(paper.coefficients)
+        )
+        print(
+            f"{name} ({fit.direction}, rail {fit.rail}, {fit.x_min:g}-{fit.x_max:g} m): {terms} N/m, "
+            f"R^2 = {fit.r_squared:.3f}; paper {eq}: {paper_terms}"
+        )
     if args.plot:
         from exudyn_turnout.plotting.curves import plot_stiffness_profile
+
         fig, _ = plot_stiffness_profile(profile, fits, turnout)
         _save_plot(fig, args.plot)
     return 0
@@ -131,29 +158,47 @@ def build(sub: argparse._SubParsersAction) -> None:
     ----------
     sub : argparse._SubParsersAction
     """
-    fe = sub.add_parser("fe", help="FE reference model of the turnout (receptance, static stiffness)",
-                        description="Timoshenko rails on discrete pads, sleepers as beams on ballast, "
-                                    "the turnout layout of the file's [layout] section.")
+    fe = sub.add_parser(
+        "fe",
+        help="FE reference model of the turnout (receptance, static stiffness)",
+        description="Timoshenko rails on discrete pads, sleepers as beams on ballast, "
+        "the turnout layout of the file's [layout] section.",
+    )
     fe_sub = fe.add_subparsers(dest="fe_command", required=True, parser_class=type(fe))
-    p = fe_sub.add_parser("frf", help="point receptance of a rail at x (direct frequency-domain solve)")
-    p.add_argument("--rail", required=True, metavar="RAIL",
-                   help="co-running slot r1|r2|r3|r4 (layout.slots of the route) or a layout rail id")
+    p = fe_sub.add_parser(
+        "frf", help="point receptance of a rail at x (direct frequency-domain solve)"
+    )
+    p.add_argument(
+        "--rail",
+        required=True,
+        metavar="RAIL",
+        help="co-running slot r1|r2|r3|r4 (layout.slots of the route) or a layout rail id",
+    )
     p.add_argument("--direction", required=True, choices=DIRECTIONS)
-    p.add_argument("--x", required=True, type=number, metavar="METRES", help="position from the switch toe (m)")
+    p.add_argument(
+        "--x", required=True, type=number, metavar="METRES", help="position from the switch toe (m)"
+    )
     p.add_argument(
         "--route",
         metavar="NAME",
         help="route of the turnout file: which slot mapping (default: through, or the first route)",
     )
     p.add_argument("--fmin", type=number, default=1.0, help="lowest frequency (Hz, default 1)")
-    p.add_argument("--fmax", type=number, default=2000.0, help="highest frequency (Hz, default 2000)")
-    p.add_argument("--n", type=int, default=400, help="number of log-spaced frequencies (default 400)")
+    p.add_argument(
+        "--fmax", type=number, default=2000.0, help="highest frequency (Hz, default 2000)"
+    )
+    p.add_argument(
+        "--n", type=int, default=400, help="number of log-spaced frequencies (default 400)"
+    )
     p.add_argument("--out", required=True, metavar="FILE.csv")
     p.add_argument("--plot", metavar="FILE.png")
     _turnout_option(p)
     p.set_defaults(run=_cmd_frf)
-    s = fe_sub.add_parser("stiffness", help="static stiffness 1/|H(1 Hz)| at every sleeper, every rail "
-                                            "(paper Fig. 1(b,c)) and the Eq 10 / 14 analogue fits")
+    s = fe_sub.add_parser(
+        "stiffness",
+        help="static stiffness 1/|H(1 Hz)| at every sleeper, every rail "
+        "(paper Fig. 1(b,c)) and the Eq 10 / 14 analogue fits",
+    )
     s.add_argument("--out", required=True, metavar="FILE.csv")
     s.add_argument("--plot", metavar="FILE.png")
     _turnout_option(s)

@@ -4,6 +4,7 @@
 :mod:`exudyn_turnout.cli.fe` (pass it that group's sub-parsers). numpy/scipy only at
 import; matplotlib is imported only to draw ``forces.png``.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -17,6 +18,7 @@ __all__ = ["add_simulate"]
 def _options(args: argparse.Namespace):
     from exudyn_turnout.fe.mesh import FEOptions
     from exudyn_turnout.passage.fe_track import FEPassageOptions
+
     try:
         return FEPassageOptions(mesh=FEOptions(element_length=args.element_length))
     except ValueError as err:
@@ -26,18 +28,24 @@ def _options(args: argparse.Namespace):
 def _run(args: argparse.Namespace) -> int:
     from dataclasses import asdict
 
-    from exudyn_turnout.passage.fe_track import simulate_fe_passage
-    from exudyn_turnout.passage.simulate import PassageSettings
     from exudyn_turnout.inputs.turnout import load_turnout
     from exudyn_turnout.inputs.vehicle import load_vehicle
+    from exudyn_turnout.passage.fe_track import simulate_fe_passage
+    from exudyn_turnout.passage.simulate import PassageSettings
 
     check_out_dir(args.out)
     turnout = load_turnout(args.turnout)
     vehicle = load_vehicle(args.vehicle)
     args.route = route_from_args(args, turnout)
     options = _options(args)
-    settings = PassageSettings(route=args.route, speed_kmh=args.speed, x_start=args.x_start, x_end=args.x_end,
-                               time_step=args.time_step, output_step=args.output_step)
+    settings = PassageSettings(
+        route=args.route,
+        speed_kmh=args.speed,
+        x_start=args.x_start,
+        x_end=args.x_end,
+        time_step=args.time_step,
+        output_step=args.output_step,
+    )
     return run_passage_command(
         args,
         lambda bar: simulate_fe_passage(
@@ -67,20 +75,39 @@ def add_simulate(fe_sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     -------
     argparse.ArgumentParser
     """
-    p = fe_sub.add_parser("simulate", help="wheelset passage over the FE turnout track (vertical)",
-                          description="Run one wheelset (Manchester benchmark, vertical part) over the vertical FE "
-                                      "model of the turnout with Hertz contact, the route's rail height profiles "
-                                      "and HHT-alpha time integration; write timeseries.csv, summary.json and "
-                                      "forces.png (the columns of `exudyn-turnout simulate`; lateral columns "
-                                      "empty) into --out.")
-    p.add_argument("--turnout", metavar="FILE", help="turnout file with a [layout] section "
-                   "(default: packaged UIC60-760-1:15)")
-    p.add_argument("--route", metavar="NAME", help="route of the turnout file (default: through, "
-                   "or the file's first route)")
-    p.add_argument("--time-step", type=number, default=1e-4, metavar="S",
-                   help="s (default 1e-4: halving it moves the crossing peak < 2 %%)")
-    p.add_argument("--element-length", type=number, default=0.2, metavar="M",
-                   help="longest rail element (m), order 4 (default 0.2)")
+    p = fe_sub.add_parser(
+        "simulate",
+        help="wheelset passage over the FE turnout track (vertical)",
+        description="Run one wheelset (Manchester benchmark, vertical part) over the vertical FE "
+        "model of the turnout with Hertz contact, the route's rail height profiles "
+        "and HHT-alpha time integration; write timeseries.csv, summary.json and "
+        "forces.png (the columns of `exudyn-turnout simulate`; lateral columns "
+        "empty) into --out.",
+    )
+    p.add_argument(
+        "--turnout",
+        metavar="FILE",
+        help="turnout file with a [layout] section (default: packaged UIC60-760-1:15)",
+    )
+    p.add_argument(
+        "--route",
+        metavar="NAME",
+        help="route of the turnout file (default: through, or the file's first route)",
+    )
+    p.add_argument(
+        "--time-step",
+        type=number,
+        default=1e-4,
+        metavar="S",
+        help="s (default 1e-4: halving it moves the crossing peak < 2 %%)",
+    )
+    p.add_argument(
+        "--element-length",
+        type=number,
+        default=0.2,
+        metavar="M",
+        help="longest rail element (m), order 4 (default 0.2)",
+    )
     add_passage_options(p)
     p.set_defaults(run=_run)
     return p

@@ -6,6 +6,7 @@ one line on stderr naming the problem, no traceback; 3 a run that failed, diverg
 left every physical state (one line with the time, x and what went wrong). A closed
 stdout (``exudyn-turnout params ... | head -1``) ends the command quietly with exit 0.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -17,8 +18,8 @@ import math
 import os
 import sys
 import warnings
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Sequence
 
 from exudyn_turnout.corunning.parameters import SOURCES, CoRunningParameters, co_running_parameters
 from exudyn_turnout.inputs.turnout import Turnout, TurnoutFileError, load_turnout
@@ -92,16 +93,28 @@ def check_out_dir(path: str, option: str = "--out") -> Path:
         raise UsageError(f"{option} {path}: is an existing file, not a directory")
     if p.is_dir():
         if not os.access(p, os.W_OK | os.X_OK):
-            raise UsageError(f"{option} {path}: cannot write into this directory "
-                             "(permission denied)")
+            raise UsageError(
+                f"{option} {path}: cannot write into this directory (permission denied)"
+            )
         return p
     _writable_place(p, option)
     return p
 
 
 #: Figure formats ``--plot`` accepts (matplotlib picks the format from the suffix).
-PLOT_SUFFIXES = (".png", ".pdf", ".svg", ".svgz", ".jpg", ".jpeg", ".eps", ".ps", ".tif", ".tiff",
-                 ".webp")
+PLOT_SUFFIXES = (
+    ".png",
+    ".pdf",
+    ".svg",
+    ".svgz",
+    ".jpg",
+    ".jpeg",
+    ".eps",
+    ".ps",
+    ".tif",
+    ".tiff",
+    ".webp",
+)
 
 
 def check_plot_file(path: str, option: str = "--plot") -> Path:
@@ -119,8 +132,9 @@ def check_plot_file(path: str, option: str = "--plot") -> Path:
     Path
     """
     if Path(path).suffix.lower() not in PLOT_SUFFIXES:
-        raise UsageError(f"{option} {path}: the file name must end in one of "
-                         f"{', '.join(PLOT_SUFFIXES)}")
+        raise UsageError(
+            f"{option} {path}: the file name must end in one of {', '.join(PLOT_SUFFIXES)}"
+        )
     return check_out_file(path, option)
 
 
@@ -149,8 +163,9 @@ def check_out_file(path: str, option: str = "--out") -> Path:
     if p.is_dir() or str(path).endswith(("/", os.sep)):
         raise UsageError(f"{option} {path}: is a directory, a file name is needed")
     if p.exists() and not os.access(p, os.W_OK):
-        raise UsageError(f"{option} {path}: the existing file cannot be overwritten "
-                         "(permission denied)")
+        raise UsageError(
+            f"{option} {path}: the existing file cannot be overwritten (permission denied)"
+        )
     _writable_place(p, option)
     return p
 
@@ -208,6 +223,7 @@ def write_sidecar(path: str, record: dict) -> str:
         Path of the sidecar.
     """
     from exudyn_turnout.provenance import sidecar_path, write_json
+
     meta = sidecar_path(path)
     try:
         write_json(meta, record)
@@ -260,6 +276,7 @@ def progress_bar(stream):
         n = int(30 * fraction)
         stream.write(f"\r[{'#' * n}{'.' * (30 - n)}] {100 * fraction:5.1f} %  x = {x:7.2f} m")
         stream.flush()
+
     return show
 
 
@@ -303,12 +320,22 @@ def add_turnout_options(p: argparse.ArgumentParser) -> None:
     ----------
     p : argparse.ArgumentParser
     """
-    p.add_argument("--turnout", metavar="FILE", help="turnout file (default: packaged UIC60-760-1:15)")
-    p.add_argument("--source", choices=SOURCES, default="derived",
-                   help="derived: Eqs 1-19 on Table 1; published: the paper's Table 2 (default: derived)")
-    p.add_argument("--profiles", choices=("paper", "fe-fit"), default="paper",
-                   help="K_sw(x), K_sh(x) behind Delta_z, Delta_y: the paper's Eqs 10, 14 (default) or "
-                        "polynomials fitted to our FE reference's static stiffness (computed, ~5 s)")
+    p.add_argument(
+        "--turnout", metavar="FILE", help="turnout file (default: packaged UIC60-760-1:15)"
+    )
+    p.add_argument(
+        "--source",
+        choices=SOURCES,
+        default="derived",
+        help="derived: Eqs 1-19 on Table 1; published: the paper's Table 2 (default: derived)",
+    )
+    p.add_argument(
+        "--profiles",
+        choices=("paper", "fe-fit"),
+        default="paper",
+        help="K_sw(x), K_sh(x) behind Delta_z, Delta_y: the paper's Eqs 10, 14 (default) or "
+        "polynomials fitted to our FE reference's static stiffness (computed, ~5 s)",
+    )
 
 
 def turnout_from_args(args: argparse.Namespace) -> Turnout:
@@ -333,7 +360,10 @@ def turnout_from_args(args: argparse.Namespace) -> Turnout:
     if getattr(args, "profiles", "paper") == "fe-fit":
         from exudyn_turnout.fe.fits import fit_turnout_profiles, with_fitted_profiles
         from exudyn_turnout.fe.stiffness import static_stiffness_profile
-        turnout = with_fitted_profiles(turnout, fit_turnout_profiles(static_stiffness_profile(turnout), turnout))
+
+        turnout = with_fitted_profiles(
+            turnout, fit_turnout_profiles(static_stiffness_profile(turnout), turnout)
+        )
     return turnout
 
 
@@ -346,20 +376,30 @@ def add_position_options(p: argparse.ArgumentParser) -> None:
     """
     where = p.add_mutually_exclusive_group(required=True)
     where.add_argument("--zone", type=int, metavar="N", help="simulation zone (Table 3), 1-based")
-    where.add_argument("--x", type=number, metavar="METRES", help="position from the switch toe (m)")
+    where.add_argument(
+        "--x", type=number, metavar="METRES", help="position from the switch toe (m)"
+    )
 
 
 def _parameter_set(args: argparse.Namespace, turnout: Turnout) -> CoRunningParameters:
     try:
-        return co_running_parameters(turnout, zone=args.zone, x=args.x, layers=args.layers, source=args.source)
+        return co_running_parameters(
+            turnout, zone=args.zone, x=args.x, layers=args.layers, source=args.source
+        )
     except (KeyError, ValueError) as err:
         message = str(err).strip("'\"").replace(turnout.source, Path(turnout.source).name)
         raise UsageError(message) from None
 
 
 def _zone_rows(p: CoRunningParameters) -> dict[str, object]:
-    out: dict[str, object] = {"zone": p.zone.index, "x_start_m": p.zone.x_start, "x_end_m": p.zone.x_end,
-                              "source": p.source, "layers": p.layers, "active_rails": " ".join(p.active_rails)}
+    out: dict[str, object] = {
+        "zone": p.zone.index,
+        "x_start_m": p.zone.x_start,
+        "x_end_m": p.zone.x_end,
+        "source": p.source,
+        "layers": p.layers,
+        "active_rails": " ".join(p.active_rails),
+    }
     for name, e in p.entries.items():
         out[name] = e.a
         if e.kind == "ramp":
@@ -371,8 +411,13 @@ def _zone_rows(p: CoRunningParameters) -> dict[str, object]:
 
 
 def _x_rows(p: CoRunningParameters, x: float) -> dict[str, object]:
-    out: dict[str, object] = {"x_m": x, "zone": p.zone.index, "source": p.source, "layers": p.layers,
-                              "active_rails": " ".join(p.active_rails)}
+    out: dict[str, object] = {
+        "x_m": x,
+        "zone": p.zone.index,
+        "source": p.source,
+        "layers": p.layers,
+        "active_rails": " ".join(p.active_rails),
+    }
     out.update(p.at(x))
     return out
 
@@ -380,13 +425,20 @@ def _x_rows(p: CoRunningParameters, x: float) -> dict[str, object]:
 def _format(rows: dict[str, object], fmt: str) -> str:
     if fmt == "json":
         from exudyn_turnout.provenance import round_floats
+
         return json.dumps(round_floats(rows), indent=1)
     if fmt == "csv":
         buf = io.StringIO()
         w = csv.writer(buf, lineterminator="\n")
         w.writerow(["name", "value", "unit"])
         for k, v in rows.items():
-            w.writerow([k, f"{v:.6g}" if isinstance(v, float) else v, unit_of(k) if isinstance(v, float) else ""])
+            w.writerow(
+                [
+                    k,
+                    f"{v:.6g}" if isinstance(v, float) else v,
+                    unit_of(k) if isinstance(v, float) else "",
+                ]
+            )
         return buf.getvalue().rstrip("\n")
     lines = []
     for k, v in rows.items():
@@ -405,6 +457,7 @@ def _format(rows: dict[str, object], fmt: str) -> str:
 def _provenance_rows(args: argparse.Namespace, turnout: Turnout) -> dict[str, object]:
     """How the set was made, as flat rows: versions, turnout file and SHA-256, command, date."""
     from exudyn_turnout.provenance import provenance
+
     rec = provenance({"profiles": args.profiles}, turnout=turnout, argv=getattr(args, "argv", None))
     rows: dict[str, object] = {
         "profiles": args.profiles,
@@ -428,12 +481,17 @@ def _cmd_params(args: argparse.Namespace) -> int:
 
 
 def _build_params(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser("params", help="equivalent co-running parameters (Eqs 1-19 / Table 2)",
-                       description="Print the co-running parameter set of a zone (Table 2 form: "
-                                   "coefficients with their Delta factor) or at a position x (numbers).")
+    p = sub.add_parser(
+        "params",
+        help="equivalent co-running parameters (Eqs 1-19 / Table 2)",
+        description="Print the co-running parameter set of a zone (Table 2 form: "
+        "coefficients with their Delta factor) or at a position x (numbers).",
+    )
     add_turnout_options(p)
     add_position_options(p)
-    p.add_argument("--layers", type=int, choices=(2, 3), default=3, help="track model layers (default 3)")
+    p.add_argument(
+        "--layers", type=int, choices=(2, 3), default=3, help="track model layers (default 3)"
+    )
     p.add_argument("--format", choices=("table", "csv", "json"), default="table")
     p.set_defaults(run=_cmd_params)
 
@@ -441,16 +499,23 @@ def _build_params(sub: argparse._SubParsersAction) -> None:
 #: Modules defining further subcommands, each with ``build(subparsers)``. A subcommand
 #: module must not import exudyn or matplotlib at import time (import inside its run
 #: function) so that every command starts fast.
-_COMMAND_MODULES: tuple[str, ...] = ("exudyn_turnout.cli.track", "exudyn_turnout.cli.passage", "exudyn_turnout.cli.validate",
-                                      "exudyn_turnout.cli.fe")
+_COMMAND_MODULES: tuple[str, ...] = (
+    "exudyn_turnout.cli.track",
+    "exudyn_turnout.cli.passage",
+    "exudyn_turnout.cli.validate",
+    "exudyn_turnout.cli.fe",
+)
 
 
 def _version_text() -> str:
     from exudyn_turnout import __version__
     from exudyn_turnout.provenance import provenance
+
     rec = provenance()
-    return (f"exudyn-turnout {__version__} (exudyn {rec['exudyn_version']}, "
-            f"Python {rec['python_version']})")
+    return (
+        f"exudyn-turnout {__version__} (exudyn {rec['exudyn_version']}, "
+        f"Python {rec['python_version']})"
+    )
 
 
 def _parser() -> _Parser:

@@ -1,27 +1,43 @@
 """``exudyn-turnout simulate``: a wheelset passage through the turnout (paper Section 4)."""
+
 from __future__ import annotations
 
 import argparse
 import sys
 from pathlib import Path
 
-from exudyn_turnout.cli.main import (RunFailure, UsageError, add_turnout_options, check_out_dir, kilonewtons, number,
-                  progress_bar, turnout_from_args)
+from exudyn_turnout.cli.main import (
+    RunFailure,
+    UsageError,
+    add_turnout_options,
+    check_out_dir,
+    kilonewtons,
+    number,
+    progress_bar,
+    turnout_from_args,
+)
 
 __all__ = ["build", "run_passage_command", "add_passage_options", "route_from_args"]
 
 
 def _run(args: argparse.Namespace) -> int:
-    from exudyn_turnout.passage.simulate import PassageSettings, simulate_passage
     from exudyn_turnout.inputs.vehicle import load_vehicle
+    from exudyn_turnout.passage.simulate import PassageSettings, simulate_passage
 
     check_out_dir(args.out)
     turnout = turnout_from_args(args)
     vehicle = load_vehicle(args.vehicle)
     args.route = route_from_args(args, turnout)
-    settings = PassageSettings(route=args.route, speed_kmh=args.speed, layers=args.layers, source=args.source,
-                               x_start=args.x_start, x_end=args.x_end, time_step=args.time_step,
-                               output_step=args.output_step)
+    settings = PassageSettings(
+        route=args.route,
+        speed_kmh=args.speed,
+        layers=args.layers,
+        source=args.source,
+        x_start=args.x_start,
+        x_end=args.x_end,
+        time_step=args.time_step,
+        output_step=args.output_step,
+    )
     return run_passage_command(
         args,
         lambda bar: simulate_passage(turnout, settings, vehicle=vehicle, progress=bar),
@@ -46,21 +62,26 @@ def route_from_args(args: argparse.Namespace, turnout) -> str:
         The route name.
     """
     from exudyn_turnout.inputs.routes import route_names
+
     names = route_names(turnout)
     if args.route is None:
         if not names:
-            raise UsageError(f"{Path(turnout.source).name}: has no [routes.<name>] section "
-                             "to run on")
+            raise UsageError(
+                f"{Path(turnout.source).name}: has no [routes.<name>] section to run on"
+            )
         return _checked_route(turnout, "through" if "through" in names else names[0])
     if args.route not in names:
-        raise UsageError(f"--route {args.route}: {Path(turnout.source).name} has no such route "
-                         f"(routes: {', '.join(names) or 'none'})")
+        raise UsageError(
+            f"--route {args.route}: {Path(turnout.source).name} has no such route "
+            f"(routes: {', '.join(names) or 'none'})"
+        )
     return _checked_route(turnout, args.route)
 
 
 def _checked_route(turnout, name: str) -> str:
     """Load the route once (its plan positions resolved): a bad route is exit 2 here."""
     from exudyn_turnout.inputs.routes import load_route
+
     try:
         load_route(turnout, name)
     except ValueError as err:  # TurnoutFileError, or a plan position that cannot be resolved
@@ -75,6 +96,7 @@ def _checked_route(turnout, name: str) -> str:
 def _clear_outputs(out: Path) -> None:
     """Remove the files an earlier run left in ``out`` (so a failure leaves nothing stale)."""
     from exudyn_turnout.passage.simulate import OUTPUT_FILES
+
     if not out.is_dir():
         return
     for name in OUTPUT_FILES:
@@ -85,7 +107,7 @@ def _clear_outputs(out: Path) -> None:
 
 
 def _peak_text(s: dict, where: str) -> str:
-    """"140.2 kN at the crossing (left wheel on r2, x = 45.79 m)" from the summary's max_* keys."""
+    """ "140.2 kN at the crossing (left wheel on r2, x = 45.79 m)" from the summary's max_* keys."""
     value = s.get(f"max_Fz_{where}_N", s.get(f"peak_Fz_{where}_N"))
     value = float("nan") if value is None else value
     text = f"{kilonewtons(value)} at the {where}"
@@ -95,8 +117,16 @@ def _peak_text(s: dict, where: str) -> str:
     return text
 
 
-def run_passage_command(args: argparse.Namespace, simulate, title: str, what: str = "", *,
-                        turnout=None, vehicle=None, extra_settings: dict | None = None) -> int:
+def run_passage_command(
+    args: argparse.Namespace,
+    simulate,
+    title: str,
+    what: str = "",
+    *,
+    turnout=None,
+    vehicle=None,
+    extra_settings: dict | None = None,
+) -> int:
     """Run a passage with a progress bar; write its files and print one summary line.
 
     Shared by ``simulate`` and ``fe simulate``. Before the run the files of an earlier run
@@ -140,8 +170,9 @@ def run_passage_command(args: argparse.Namespace, simulate, title: str, what: st
     finally:
         if bar:
             sys.stderr.write("\n")
-    settings = dict(extra_settings or {}, **asdict(result.settings), format=args.format,
-                    plot=not args.no_plot)
+    settings = dict(
+        extra_settings or {}, **asdict(result.settings), format=args.format, plot=not args.no_plot
+    )
     if settings.get("model") == "FE":  # no layers, parameter source or track mechanism there
         not_fe = ("layers", "source", "track_mechanism")
         settings = {k: v for k, v in settings.items() if k not in not_fe}
@@ -149,10 +180,13 @@ def run_passage_command(args: argparse.Namespace, simulate, title: str, what: st
     record = provenance(settings, turnout=turnout, vehicle=vehicle, argv=argv)
     figure = None
     if not args.no_plot:
+
         def figure(directory: Path) -> None:
             from exudyn_turnout.plotting.curves import plot_passage_forces, save_figure
+
             fig, _ = plot_passage_forces([result], wheel="right", title=title)
             save_figure(fig, str(directory / "forces.png"), dpi=120)
+
     try:
         paths = write_passage(result, out, fmt=args.format, provenance=record, figure=figure)
     except OSError as err:
@@ -178,17 +212,30 @@ def add_passage_options(p: argparse.ArgumentParser) -> None:
     ----------
     p : argparse.ArgumentParser
     """
-    p.add_argument("--vehicle", metavar="FILE",
-                   help="vehicle file (default: packaged Manchester benchmark wheelset)")
+    p.add_argument(
+        "--vehicle",
+        metavar="FILE",
+        help="vehicle file (default: packaged Manchester benchmark wheelset)",
+    )
     p.add_argument("--speed", type=number, default=100.0, metavar="KMH", help="km/h (default 100)")
-    p.add_argument("--x-start", type=number, metavar="M",
-                   help="start position (m), default: turnout start")
-    p.add_argument("--x-end", type=number, metavar="M",
-                   help="end position (m), default: turnout end")
-    p.add_argument("--output-step", type=number, metavar="S",
-                   help="s between stored samples (default: every time step)")
-    p.add_argument("--format", choices=("csv", "npz"), default="csv",
-                   help="time series as timeseries.csv (default) or timeseries.npz")
+    p.add_argument(
+        "--x-start", type=number, metavar="M", help="start position (m), default: turnout start"
+    )
+    p.add_argument(
+        "--x-end", type=number, metavar="M", help="end position (m), default: turnout end"
+    )
+    p.add_argument(
+        "--output-step",
+        type=number,
+        metavar="S",
+        help="s between stored samples (default: every time step)",
+    )
+    p.add_argument(
+        "--format",
+        choices=("csv", "npz"),
+        default="csv",
+        help="time series as timeseries.csv (default) or timeseries.npz",
+    )
     p.add_argument("--out", required=True, metavar="DIR", help="output directory")
     p.add_argument("--no-plot", action="store_true", help="skip forces.png")
 
@@ -200,14 +247,22 @@ def build(sub: argparse._SubParsersAction) -> None:
     ----------
     sub : argparse._SubParsersAction
     """
-    p = sub.add_parser("simulate", help="wheelset passage on the co-running track",
-                       description="Run one wheelset (Manchester benchmark) through the turnout on a 2- or 3-layer "
-                                   "co-running track with penalty wheel/rail contact; write timeseries.csv, "
-                                   "summary.json and forces.png into --out.")
+    p = sub.add_parser(
+        "simulate",
+        help="wheelset passage on the co-running track",
+        description="Run one wheelset (Manchester benchmark) through the turnout on a 2- or 3-layer "
+        "co-running track with penalty wheel/rail contact; write timeseries.csv, "
+        "summary.json and forces.png into --out.",
+    )
     add_turnout_options(p)
     p.add_argument("--layers", type=int, choices=(2, 3), default=3)
-    p.add_argument("--route", metavar="NAME", help="route of the turnout file (default: through, "
-                   "or the file's first route)")
-    p.add_argument("--time-step", type=number, default=1e-4, metavar="S", help="s (default 1e-4, converged)")
+    p.add_argument(
+        "--route",
+        metavar="NAME",
+        help="route of the turnout file (default: through, or the file's first route)",
+    )
+    p.add_argument(
+        "--time-step", type=number, default=1e-4, metavar="S", help="s (default 1e-4, converged)"
+    )
     add_passage_options(p)
     p.set_defaults(run=_run)

@@ -1,4 +1,5 @@
 """``exudyn-turnout validate``: the validation report (2-layer vs 3-layer vs FE, every claim of the paper)."""
+
 from __future__ import annotations
 
 import argparse
@@ -10,8 +11,8 @@ __all__ = ["build"]
 
 def _run(args: argparse.Namespace) -> int:
     """Write the report into ``--out``; print a one-line summary of the verdicts."""
-    from exudyn_turnout.report.metrics import report_config, write_report
     from exudyn_turnout.inputs.turnout import load_turnout
+    from exudyn_turnout.report.metrics import report_config, write_report
 
     check_out_dir(args.out)
     if args.cache:
@@ -28,19 +29,21 @@ def _run(args: argparse.Namespace) -> int:
     verdicts = {}
     for c in report.claims:
         verdicts[c.verdict] = verdicts.get(c.verdict, 0) + 1
-    print(f"wrote {args.out}/report.md, metrics.json and figures in {report.metrics['report_wall_time_s']:.0f} s; "
-          "claims: " + ", ".join(f"{n} {v}" for v, n in verdicts.items()))
+    print(
+        f"wrote {args.out}/report.md, metrics.json and figures in {report.metrics['report_wall_time_s']:.0f} s; "
+        "claims: " + ", ".join(f"{n} {v}" for v, n in verdicts.items())
+    )
     return 0
 
 
 def _add_provenance(args: argparse.Namespace, turnout, cache) -> None:
     """Put the provenance record into DIR/metrics.json unless the report code already did."""
     import json
+    import os
     from pathlib import Path
 
-    import os
-
     from exudyn_turnout.provenance import provenance
+
     path = Path(args.out) / "metrics.json"
     try:
         metrics = json.loads(path.read_text(encoding="utf-8"))
@@ -74,14 +77,24 @@ def build(sub: argparse._SubParsersAction) -> None:
     ----------
     sub : argparse._SubParsersAction
     """
-    p = sub.add_parser("validate", help="validation report: 2-layer vs 3-layer vs FE reference",
-                       description="Write DIR/report.md, its PNG figures and DIR/metrics.json: parameters vs Table 2, "
-                                   "track stiffness, receptance, contact forces, computing cost and checks, with a "
-                                   "verdict on every claim of the paper.")
-    p.add_argument("--turnout", metavar="FILE", help="turnout file (default: packaged UIC60-760-1:15)")
+    p = sub.add_parser(
+        "validate",
+        help="validation report: 2-layer vs 3-layer vs FE reference",
+        description="Write DIR/report.md, its PNG figures and DIR/metrics.json: parameters vs Table 2, "
+        "track stiffness, receptance, contact forces, computing cost and checks, with a "
+        "verdict on every claim of the paper.",
+    )
+    p.add_argument(
+        "--turnout", metavar="FILE", help="turnout file (default: packaged UIC60-760-1:15)"
+    )
     p.add_argument("--out", required=True, metavar="DIR", help="output directory")
-    p.add_argument("--quick", action="store_true",
-                   help="reduced report for CI (coarse FE, few frequencies, short runs)")
-    p.add_argument("--cache", metavar="DIR", help="FE result cache (default: ~/.cache/exudyn_turnout)")
+    p.add_argument(
+        "--quick",
+        action="store_true",
+        help="reduced report for CI (coarse FE, few frequencies, short runs)",
+    )
+    p.add_argument(
+        "--cache", metavar="DIR", help="FE result cache (default: ~/.cache/exudyn_turnout)"
+    )
     p.add_argument("--no-cache", action="store_true", help="compute every FE result in this run")
     p.set_defaults(run=_run)

@@ -8,12 +8,18 @@ either computed value differs from Table 2 by more than 2 %, the row carries an
 explanation and the value that explanation's reading gives (``reading_value``), so that
 every explanation is a number that can be checked, not a sentence.
 """
+
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
-from exudyn_turnout.corunning.parameters import AS_PRINTED, DEFAULT_READINGS, TABLE2_READINGS, co_running_parameters
+from exudyn_turnout.corunning.parameters import (
+    AS_PRINTED,
+    DEFAULT_READINGS,
+    TABLE2_READINGS,
+    co_running_parameters,
+)
 from exudyn_turnout.inputs.turnout import Turnout
 
 __all__ = ["ComparisonRow", "compare_with_table2", "comparison_markdown", "TOLERANCE"]
@@ -58,18 +64,22 @@ _Explain = Callable[[_Context], "tuple[str, float] | None"]
 def _eq12(c: _Context):
     if not c.name.startswith("c_0"):
         return None
-    return ("Eq 12 with G = E/(2(1+nu)) = 79.6 GPa (textbook) gives this; Table 2 reproduces with "
-            "G = E(1+nu)/2 = 134.6 GPa, a misplaced bracket. We keep the textbook G.",
-            c.sets["table2"][c.name])
+    return (
+        "Eq 12 with G = E/(2(1+nu)) = 79.6 GPa (textbook) gives this; Table 2 reproduces with "
+        "G = E(1+nu)/2 = 134.6 GPa, a misplaced bracket. We keep the textbook G.",
+        c.sets["table2"][c.name],
+    )
 
 
 def _check_rail_inactive(c: _Context):
     zone = c.turnout.zone(c.zone)
     if c.name != "k_03_y" or "r3" in zone.active_rails:
         return None
-    return ("Check rail not active in this zone (Table 3). Table 2 prints 5 k_rt1,y (the stock rail's) here, "
-            "although its own k_rt3,y is 215e6 in every zone and 5 x 215e6 = 1075e6 in zone 2.",
-            5.0 * c.sets["derived"]["k_rt1_y"])
+    return (
+        "Check rail not active in this zone (Table 3). Table 2 prints 5 k_rt1,y (the stock rail's) here, "
+        "although its own k_rt3,y is 215e6 in every zone and 5 x 215e6 = 1075e6 in zone 2.",
+        5.0 * c.sets["derived"]["k_rt1_y"],
+    )
 
 
 _PLATEAU = ("k_rt2_z", "k_02_z", "c_rt2_z", "k_tg1_z", "c_tg1_z")
@@ -85,11 +95,13 @@ def _switch_plateau_zone3(c: _Context):
         return None
     f = _plateau_factor(c)
     stock = c.name.replace("2_z", "1_z").replace("tg1", "tg2")
-    return (f"Table 2 carries the switch rail's value past the crossing: stock value x {f:.3f} "
-            f"(the factor is fixed by k_rt2,z = 448e6 and reproduces the other r2/tg1 entries; it is Delta_z of "
-            f"Eq 11 near x = 21 m; the Eq 10 plateau Delta_z(22 m) = 1.237 gives them within 2.5 %). "
-            "Derived gives plain track. r2 is not active here; the tg1 ballast spring is.",
-            f * c.sets["derived"][stock])
+    return (
+        f"Table 2 carries the switch rail's value past the crossing: stock value x {f:.3f} "
+        f"(the factor is fixed by k_rt2,z = 448e6 and reproduces the other r2/tg1 entries; it is Delta_z of "
+        f"Eq 11 near x = 21 m; the Eq 10 plateau Delta_z(22 m) = 1.237 gives them within 2.5 %). "
+        "Derived gives plain track. r2 is not active here; the tg1 ballast spring is.",
+        f * c.sets["derived"][stock],
+    )
 
 
 def _crossing_ramp(c: _Context):
@@ -99,28 +111,37 @@ def _crossing_ramp(c: _Context):
     f = _plateau_factor(c)
     stock = c.name.replace("2_z", "1_z").replace("tg1", "tg2")
     start = f * c.sets["derived"][stock]
-    return (f"Table 2's range runs from the switch rail's plateau (stock x {f:.3f}, see zone 3) to the crossing-nose "
-            f"value; derived gives the crossing-nose value (Eq 3 with the reciprocal of Eq 5) over the whole zone. "
-            f"Reading value: linear from that plateau to the derived crossing-nose value, at the zone middle.",
-            0.5 * (start + c.sets["derived"][c.name]))
+    return (
+        f"Table 2's range runs from the switch rail's plateau (stock x {f:.3f}, see zone 3) to the crossing-nose "
+        f"value; derived gives the crossing-nose value (Eq 3 with the reciprocal of Eq 5) over the whole zone. "
+        f"Reading value: linear from that plateau to the derived crossing-nose value, at the zone middle.",
+        0.5 * (start + c.sets["derived"][c.name]),
+    )
 
 
 def _as_printed(c: _Context):
     """Entries that reproduce only under the package's readings, not as printed."""
     n, zone = c.name, c.turnout.zone(c.zone)
     if n.startswith("m_r") or (n == "m_t" and zone.ballast_rail_type != "crossing"):
-        what = ("Eq 16 as printed (A rho L_eff,r / L_s) has the unit kg/m; read as A rho L_eff,r"
-                if n.startswith("m_r") else
-                "Eq 18 as printed uses the whole sleeper; read with the rail's share L_t/n (n = 2, as Eq 4) and "
-                "Delta_y = 1 (masses constant per zone)")
+        what = (
+            "Eq 16 as printed (A rho L_eff,r / L_s) has the unit kg/m; read as A rho L_eff,r"
+            if n.startswith("m_r")
+            else "Eq 18 as printed uses the whole sleeper; read with the rail's share L_t/n (n = 2, as Eq 4) and "
+            "Delta_y = 1 (masses constant per zone)"
+        )
         if n == "m_r2" and zone.rail_types.get("r2") == "crossing":
             what += "; and Eq 5 read as its reciprocal (L_t beta / 2)"
         return what, c.sets["derived"][n]
     if n == "J_t":
-        return "follows m_t (Eq 18/19 readings); h_t = sqrt(12 I_s / A_s) = 0.221 m", c.sets["derived"][n]
+        return "follows m_t (Eq 18/19 readings); h_t = sqrt(12 I_s / A_s) = 0.221 m", c.sets[
+            "derived"
+        ][n]
     if zone.ballast_rail_type == "crossing" or zone.rail_types.get("r2") == "crossing":
-        return ("Eq 5 as printed, 2/(L_t beta) = 0.561, gives this; Table 2 reproduces with its reciprocal "
-                "L_t beta / 2 = 1.783 (both dimensionless)", c.sets["derived"][n])
+        return (
+            "Eq 5 as printed, 2/(L_t beta) = 0.561, gives this; Table 2 reproduces with its reciprocal "
+            "L_t beta / 2 = 1.783 (both dimensionless)",
+            c.sets["derived"][n],
+        )
     return None
 
 
@@ -145,22 +166,42 @@ def _explain(c: _Context, derived_ok: bool, printed_ok: bool) -> tuple[str, floa
 def _zone_values(turnout: Turnout, zone: int) -> list[dict[str, dict[str, float]]]:
     """Values of the four sets at the zone start, middle and end."""
     z = turnout.zone(zone)
-    sets = {key: co_running_parameters(turnout, zone=zone, source=src, readings=rd)
-            for key, src, rd in (("printed", "derived", AS_PRINTED), ("derived", "derived", DEFAULT_READINGS),
-                                 ("published", "published", DEFAULT_READINGS),
-                                 ("table2", "derived", TABLE2_READINGS))}
-    return [{k: v.at(x) for k, v in sets.items()} for x in (z.x_start, 0.5 * (z.x_start + z.x_end), z.x_end)]
+    sets = {
+        key: co_running_parameters(turnout, zone=zone, source=src, readings=rd)
+        for key, src, rd in (
+            ("printed", "derived", AS_PRINTED),
+            ("derived", "derived", DEFAULT_READINGS),
+            ("published", "published", DEFAULT_READINGS),
+            ("table2", "derived", TABLE2_READINGS),
+        )
+    }
+    return [
+        {k: v.at(x) for k, v in sets.items()}
+        for x in (z.x_start, 0.5 * (z.x_start + z.x_end), z.x_end)
+    ]
 
 
-def _row(turnout: Turnout, zone: int, name: str, at: list[dict[str, dict[str, float]]]) -> ComparisonRow:
+def _row(
+    turnout: Turnout, zone: int, name: str, at: list[dict[str, dict[str, float]]]
+) -> ComparisonRow:
     ratios = [v["derived"][name] / v["published"][name] for v in at]
     printed_ratios = [v["printed"][name] / v["published"][name] for v in at]
     mid = at[1]
     c = _Context(turnout, zone, name, mid)
     ok = lambda rs: max(abs(r - 1) for r in rs) <= TOLERANCE  # noqa: E731
     text, reading_value = _explain(c, ok(ratios), ok(printed_ratios))
-    return ComparisonRow(zone, name, mid["printed"][name], mid["derived"][name], mid["published"][name],
-                         turnout.published[zone][name].describe(), min(ratios), max(ratios), text, reading_value)
+    return ComparisonRow(
+        zone,
+        name,
+        mid["printed"][name],
+        mid["derived"][name],
+        mid["published"][name],
+        turnout.published[zone][name].describe(),
+        min(ratios),
+        max(ratios),
+        text,
+        reading_value,
+    )
 
 
 def compare_with_table2(turnout: Turnout) -> list[ComparisonRow]:
@@ -200,7 +241,13 @@ def comparison_markdown(rows: list[ComparisonRow], turnout: Turnout) -> str:
     ]
     body = []
     for r in rows:
-        ratio = f"{r.ratio_min:.3f}" if abs(r.ratio_max - r.ratio_min) < 5e-4 else f"{r.ratio_min:.3f}-{r.ratio_max:.3f}"
-        body.append(f"| {r.zone} | `{r.name}` | {_fmt(r.as_printed)} | {_fmt(r.derived)} | {_fmt(r.published)} | "
-                    f"{r.published_text} | {ratio} | {_fmt(r.reading_value)} | {r.explanation} |")
+        ratio = (
+            f"{r.ratio_min:.3f}"
+            if abs(r.ratio_max - r.ratio_min) < 5e-4
+            else f"{r.ratio_min:.3f}-{r.ratio_max:.3f}"
+        )
+        body.append(
+            f"| {r.zone} | `{r.name}` | {_fmt(r.as_printed)} | {_fmt(r.derived)} | {_fmt(r.published)} | "
+            f"{r.published_text} | {ratio} | {_fmt(r.reading_value)} | {r.explanation} |"
+        )
     return "\n".join(head + body) + "\n"

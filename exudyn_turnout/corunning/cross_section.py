@@ -4,6 +4,7 @@ The Exudyn builder (:mod:`exudyn_turnout.corunning.track`) adds one ``CartesianS
 item of :func:`cross_section_springs`, and the model drawing
 (:mod:`exudyn_turnout.plotting.model`) draws the same list, so the figure shows what is built.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -42,16 +43,40 @@ def cross_section_springs(params: CoRunningParameters) -> list[CrossSectionSprin
     """
     zone, out = params.zone, []
     for j, y_b in zip((1, 2), zone.ballast_y):
-        out.append(CrossSectionSpring(f"ballast_z{j}", y_b - zone.sleeper_y, y_b, (),
-                                      (None, f"k_tg{j}_z"), (None, f"c_tg{j}_z")))
-    out.append(CrossSectionSpring("ballast_y", 0.0, zone.sleeper_y, (), ("k_tg_y", None),
-                                  ("c_tg_y", None)))
+        out.append(
+            CrossSectionSpring(
+                f"ballast_z{j}",
+                y_b - zone.sleeper_y,
+                y_b,
+                (),
+                (None, f"k_tg{j}_z"),
+                (None, f"c_tg{j}_z"),
+            )
+        )
+    out.append(
+        CrossSectionSpring("ballast_y", 0.0, zone.sleeper_y, (), ("k_tg_y", None), ("c_tg_y", None))
+    )
     for rail in (r for r in RAIL_SLOTS if r in params.active_rails):
         j = rail[1:]
-        out.append(CrossSectionSpring(f"pad_{rail}", zone.rail_y[rail] - zone.sleeper_y, None,
-                                      (rail,), (f"k_rt{j}_y", f"k_rt{j}_z"),
-                                      (f"c_rt{j}_y", f"c_rt{j}_z")))
+        out.append(
+            CrossSectionSpring(
+                f"pad_{rail}",
+                zone.rail_y[rail] - zone.sleeper_y,
+                None,
+                (rail,),
+                (f"k_rt{j}_y", f"k_rt{j}_z"),
+                (f"c_rt{j}_y", f"c_rt{j}_z"),
+            )
+        )
         if params.layers == 3:
-            out.append(CrossSectionSpring(f"layer_{rail}", None, None, (rail, f"m0_{rail}"),
-                                          (f"k_0{j}_y", f"k_0{j}_z"), (f"c_0{j}_y", f"c_0{j}_z")))
+            out.append(
+                CrossSectionSpring(
+                    f"layer_{rail}",
+                    None,
+                    None,
+                    (rail, f"m0_{rail}"),
+                    (f"k_0{j}_y", f"k_0{j}_z"),
+                    (f"c_0{j}_y", f"c_0{j}_z"),
+                )
+            )
     return out

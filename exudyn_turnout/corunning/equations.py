@@ -5,6 +5,7 @@ or is ambiguous, the function takes a ``reading`` argument; the docstring says w
 printed, what each reading computes and which one reproduces the paper's Table 2. The
 readings the package uses by default are chosen in :mod:`exudyn_turnout.corunning.parameters`.
 """
+
 from __future__ import annotations
 
 import math
@@ -82,7 +83,9 @@ def ballast_stiffness_edge(s_b: float, L_t: float, n: int) -> float:
     return s_b * L_t / n
 
 
-def sleeper_effective_length(L_t: float, s_b: float, EI_s: float, reading: str = "reciprocal") -> float:
+def sleeper_effective_length(
+    L_t: float, s_b: float, EI_s: float, reading: str = "reciprocal"
+) -> float:
     """Eq 5: effective length L_eff,s of a sleeper (finite beam on elastic foundation).
 
     Printed: L_eff,s = 2 / (L_t beta) with beta = (s_b / (4 E_s I_s))^(1/4) (1/m). For the
@@ -174,8 +177,9 @@ def lateral_ballast_stiffness(s_b_y: float, L_t: float) -> float:
     return s_b_y * L_t
 
 
-def rail_mass(A_r: float, rho_r: float, L_eff_r: float, L_s: float,
-              reading: str = "per_effective_length") -> float:
+def rail_mass(
+    A_r: float, rho_r: float, L_eff_r: float, L_s: float, reading: str = "per_effective_length"
+) -> float:
     """Eq 16: co-running rail mass m_r (kg).
 
     Printed: m_r = A_r rho_r L_eff,r / L_s, which has the unit kg/m (185 for the stock
@@ -193,14 +197,21 @@ def rail_mass(A_r: float, rho_r: float, L_eff_r: float, L_s: float,
     raise ValueError(f"unknown reading of Eq 16: {reading!r}")
 
 
-def switch_rail_mass(A_r: float, rho_r: float, L_eff_r: float, delta_z: float, L_s: float,
-                     reading: str = "per_effective_length") -> float:
+def switch_rail_mass(
+    A_r: float,
+    rho_r: float,
+    L_eff_r: float,
+    delta_z: float,
+    L_s: float,
+    reading: str = "per_effective_length",
+) -> float:
     """Eq 17: switch rail mass, Eq 16 times Delta_z (kg); same readings as Eq 16."""
     return rail_mass(A_r, rho_r, L_eff_r, L_s, reading) * delta_z
 
 
-def sleeper_mass(A_s: float, rho_s: float, L_t: float, L_eff_r: float, delta_y: float,
-                 L_s: float, n: int = 1) -> float:
+def sleeper_mass(
+    A_s: float, rho_s: float, L_t: float, L_eff_r: float, delta_y: float, L_s: float, n: int = 1
+) -> float:
     """Eq 18: co-running sleeper mass m_t = A_s rho_s (L_t / n) L_eff,r Delta_y / L_s (kg).
 
     Printed with the whole sleeper (n = 1): 1013 kg for plain track. Table 2 prints 500 kg
@@ -211,7 +222,9 @@ def sleeper_mass(A_s: float, rho_s: float, L_t: float, L_eff_r: float, delta_y: 
     return A_s * rho_s * (L_t / n) * L_eff_r * delta_y / L_s
 
 
-def crossing_sleeper_mass(A_s: float, rho_s: float, L_eff_s: float, L_eff_r: float, L_s: float) -> float:
+def crossing_sleeper_mass(
+    A_s: float, rho_s: float, L_eff_s: float, L_eff_r: float, L_s: float
+) -> float:
     """Eq 19: sleeper mass at the crossing m_t = A_s rho_s L_eff,s L_eff,r / L_s (kg)."""
     return A_s * rho_s * L_eff_s * L_eff_r / L_s
 

@@ -18,18 +18,24 @@ each active rail in slot order, then (three layers) ``y_m0_rj, z_m0_rj`` of the 
 above each active rail. y is lateral (positive left), z vertical (positive up); a roll
 phi_t > 0 lifts the left (+y) side of the sleeper.
 """
+
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 import numpy as np
 import scipy.linalg
 
-from exudyn_turnout.corunning.parameters import DEFAULT_READINGS, CoRunningParameters, Readings, co_running_parameters
-from exudyn_turnout.receptance import DIRECTIONS, Receptance, log_frequencies
+from exudyn_turnout.corunning.parameters import (
+    DEFAULT_READINGS,
+    CoRunningParameters,
+    Readings,
+    co_running_parameters,
+)
 from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Turnout, Zone
+from exudyn_turnout.receptance import DIRECTIONS, Receptance, log_frequencies
 
 __all__ = [
     "TrackMatrices",
@@ -61,7 +67,9 @@ class TrackMatrices:
     def index(self, name: str) -> int:
         """Position of coordinate ``name``; KeyError naming the coordinates otherwise."""
         if name not in self.dof:
-            raise KeyError(f"no coordinate {name!r} in this model (coordinates: {' '.join(self.dof)})")
+            raise KeyError(
+                f"no coordinate {name!r} in this model (coordinates: {' '.join(self.dof)})"
+            )
         return self.dof.index(name)
 
 
@@ -85,7 +93,9 @@ class Modes:
 
     def dominant_dof(self) -> tuple[str, ...]:
         """Per mode, the coordinate holding most of its kinetic energy."""
-        return tuple(self.dof[i] for i in np.argmax(self.shapes**2 * self._mass_diag[:, None], axis=0))
+        return tuple(
+            self.dof[i] for i in np.argmax(self.shapes**2 * self._mass_diag[:, None], axis=0)
+        )
 
     @property
     def _mass_diag(self) -> np.ndarray:
@@ -158,7 +168,11 @@ def assemble_track_matrices(params: CoRunningParameters, x: float) -> TrackMatri
             for axis in ("y", "z"):
                 i0 = idx[f"{axis}_m0_{rail}"]
                 M[i0, i0] = v["m_0"]
-                spring({f"{axis}_m0_{rail}": 1.0, f"{axis}_{rail}": -1.0}, v[f"k_0{j}_{axis}"], v[f"c_0{j}_{axis}"])
+                spring(
+                    {f"{axis}_m0_{rail}": 1.0, f"{axis}_{rail}": -1.0},
+                    v[f"k_0{j}_{axis}"],
+                    v[f"c_0{j}_{axis}"],
+                )
     return TrackMatrices(M, K, D, dof)
 
 
@@ -184,8 +198,9 @@ def _state_matrix(M: np.ndarray, K: np.ndarray, D: np.ndarray) -> np.ndarray:
     return np.block([[np.zeros((n, n)), np.eye(n)], [-Minv @ K, -Minv @ D]])
 
 
-def receptance_from_matrices(matrices: TrackMatrices, dof: str, frequency_hz: np.ndarray,
-                             method: str = "modal") -> np.ndarray:
+def receptance_from_matrices(
+    matrices: TrackMatrices, dof: str, frequency_hz: np.ndarray, method: str = "modal"
+) -> np.ndarray:
     """Point receptance H(f) = X/F (m/N, complex) at coordinate ``dof``.
 
     Convention: F e^{i w t} gives X e^{i w t} with (K - w^2 M + i w D) X = F.
@@ -229,20 +244,34 @@ def _modal_receptance(matrices: TrackMatrices, i: int, s: np.ndarray) -> np.ndar
     return (1.0 / (s[:, None] - lam[None, :])) @ residue
 
 
-def co_running_parameters_at(turnout: Turnout, layers: int, x: float | None = None, zone: int | None = None,
-                             source: str = "derived",
-                             readings: Readings = DEFAULT_READINGS) -> tuple[CoRunningParameters, float]:
+def co_running_parameters_at(
+    turnout: Turnout,
+    layers: int,
+    x: float | None = None,
+    zone: int | None = None,
+    source: str = "derived",
+    readings: Readings = DEFAULT_READINGS,
+) -> tuple[CoRunningParameters, float]:
     """The parameter set and the position used for ``x`` or ``zone`` (its midpoint)."""
     if (x is None) == (zone is None):
         raise ValueError("give exactly one of x or zone")
-    params = co_running_parameters(turnout, zone=zone, x=x, layers=layers, source=source, readings=readings)
+    params = co_running_parameters(
+        turnout, zone=zone, x=x, layers=layers, source=source, readings=readings
+    )
     return params, (float(x) if x is not None else zone_position(params.zone))
 
 
-def co_running_receptance(turnout: Turnout, layers: int, rail: str, direction: str,
-                          x: float | None = None, zone: int | None = None, source: str = "derived",
-                          frequencies: np.ndarray | None = None,
-                          readings: Readings = DEFAULT_READINGS) -> Receptance:
+def co_running_receptance(
+    turnout: Turnout,
+    layers: int,
+    rail: str,
+    direction: str,
+    x: float | None = None,
+    zone: int | None = None,
+    source: str = "derived",
+    frequencies: np.ndarray | None = None,
+    readings: Readings = DEFAULT_READINGS,
+) -> Receptance:
     """Point receptance of a rail of the co-running model (paper Section 3.3, Figs 5, 6).
 
     Parameters
@@ -276,16 +305,29 @@ def co_running_receptance(turnout: Turnout, layers: int, rail: str, direction: s
     dof = wheel_dof(rail, direction, layers)
     md = modes(matrices)
     f_d, zeta_d = md.damped()
-    meta = {"zone": params.zone.index, "source": source, "layers": layers, "dof": dof,
-            "turnout": turnout.name, "eigenfrequencies_hz": tuple(md.frequency_hz.tolist()),
-            "damping_ratios": tuple(md.damping_ratio.tolist()),
-            "damped_frequencies_hz": tuple(f_d.tolist()), "damped_damping_ratios": tuple(zeta_d.tolist())}
+    meta = {
+        "zone": params.zone.index,
+        "source": source,
+        "layers": layers,
+        "dof": dof,
+        "turnout": turnout.name,
+        "eigenfrequencies_hz": tuple(md.frequency_hz.tolist()),
+        "damping_ratios": tuple(md.damping_ratio.tolist()),
+        "damped_frequencies_hz": tuple(f_d.tolist()),
+        "damped_damping_ratios": tuple(zeta_d.tolist()),
+    }
     H = receptance_from_matrices(matrices, dof, f)
     return Receptance(f, H, rail, direction, x_at, f"{layers}-layer", meta)
 
 
-def co_running_modes(turnout: Turnout, layers: int, x: float | None = None, zone: int | None = None,
-                     source: str = "derived", readings: Readings = DEFAULT_READINGS) -> Modes:
+def co_running_modes(
+    turnout: Turnout,
+    layers: int,
+    x: float | None = None,
+    zone: int | None = None,
+    source: str = "derived",
+    readings: Readings = DEFAULT_READINGS,
+) -> Modes:
     """Eigen-analysis of the co-running model at x (or at a zone's midpoint)."""
     params, x_at = co_running_parameters_at(turnout, layers, x, zone, source, readings)
     return modes(assemble_track_matrices(params, x_at))
@@ -297,5 +339,7 @@ def _check_rail(params: CoRunningParameters, rail: str, x: float | None) -> None
     if rail not in params.active_rails:
         z = params.zone
         where = f"in zone {z.index} (" if x is None else f"at x = {x:g} m (zone {z.index}, "
-        raise ValueError(f"rail {rail} is not active {where}{z.name}, {z.x_start:g} m to {z.x_end:g} m; "
-                         f"active rails: {' '.join(z.active_rails)})")
+        raise ValueError(
+            f"rail {rail} is not active {where}{z.name}, {z.x_start:g} m to {z.x_end:g} m; "
+            f"active rails: {' '.join(z.active_rails)})"
+        )

@@ -20,14 +20,23 @@ kind ``Delta_z``, ``Delta_y`` (coefficient times the factor of Eq 11 / 15) or ``
 (Table 2's ranges, linear over the zone); masses are constant within a zone, as in the
 paper.
 """
+
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Mapping
 
 from exudyn_turnout.corunning import equations as eq
-from exudyn_turnout.inputs.turnout import PARAMETER_NAMES, RAIL_SLOTS, Entry, Polynomial, RailType, Turnout, Zone
+from exudyn_turnout.inputs.turnout import (
+    PARAMETER_NAMES,
+    RAIL_SLOTS,
+    Entry,
+    Polynomial,
+    RailType,
+    Turnout,
+    Zone,
+)
 
 __all__ = [
     "Readings",
@@ -93,7 +102,9 @@ def _section(rail: RailType, quantity: str) -> float:
     return table.value[0]
 
 
-def rail_support(turnout: Turnout, type_name: str, readings: Readings = DEFAULT_READINGS) -> RailSupport:
+def rail_support(
+    turnout: Turnout, type_name: str, readings: Readings = DEFAULT_READINGS
+) -> RailSupport:
     """Equivalent support stiffness and effective lengths of a rail type (Eqs 1-5, 13).
 
     A rail type with ``equivalent_to`` (the switch rail) takes the values of that type
@@ -106,25 +117,49 @@ def rail_support(turnout: Turnout, type_name: str, readings: Readings = DEFAULT_
     sl, bl, L_s = turnout.sleeper, turnout.ballast, turnout.sleeper.spacing
     L_eff_s = eq.sleeper_effective_length(L_t, bl.s_b_z, sl.youngs_modulus * sl.I, readings.eq5)
     if rail.support == "middle":
-        k_b_z, c_b_z = eq.ballast_stiffness_middle(bl.s_b_z, L_eff_s), eq.ballast_stiffness_middle(bl.d_b_z, L_eff_s)
+        k_b_z, c_b_z = (
+            eq.ballast_stiffness_middle(bl.s_b_z, L_eff_s),
+            eq.ballast_stiffness_middle(bl.d_b_z, L_eff_s),
+        )
     else:
-        k_b_z, c_b_z = eq.ballast_stiffness_edge(bl.s_b_z, L_t, n), eq.ballast_stiffness_edge(bl.d_b_z, L_t, n)
-    k_b_y, c_b_y = eq.lateral_ballast_stiffness(bl.s_b_y, L_t), eq.lateral_ballast_stiffness(bl.d_b_y, L_t)
+        k_b_z, c_b_z = (
+            eq.ballast_stiffness_edge(bl.s_b_z, L_t, n),
+            eq.ballast_stiffness_edge(bl.d_b_z, L_t, n),
+        )
+    k_b_y, c_b_y = (
+        eq.lateral_ballast_stiffness(bl.s_b_y, L_t),
+        eq.lateral_ballast_stiffness(bl.d_b_y, L_t),
+    )
     E = rail.youngs_modulus
     k_s_z = eq.continuous_support_stiffness(rail.pad.k_z, k_b_z, L_s)
     k_s_y = eq.continuous_support_stiffness(rail.pad.k_y, k_b_y, L_s)
     K_st_z = eq.static_track_stiffness(E * _section(rail, "I_z"), k_s_z)
     K_st_y = eq.static_track_stiffness(E * _section(rail, "I_y"), k_s_y)
-    return RailSupport(rail, L_t, k_b_z, c_b_z, k_s_z, K_st_z, eq.effective_length_rail(K_st_z, k_s_z),
-                       k_b_y, c_b_y, k_s_y, K_st_y, eq.effective_length_rail(K_st_y, k_s_y), L_eff_s)
+    return RailSupport(
+        rail,
+        L_t,
+        k_b_z,
+        c_b_z,
+        k_s_z,
+        K_st_z,
+        eq.effective_length_rail(K_st_z, k_s_z),
+        k_b_y,
+        c_b_y,
+        k_s_y,
+        K_st_y,
+        eq.effective_length_rail(K_st_y, k_s_y),
+        L_eff_s,
+    )
 
 
 def reference_rail_type(turnout: Turnout) -> str:
     """Name of the plain-track rail type (``[turnout] reference_rail_type``, default "stock")."""
     name = str(turnout.raw.get("turnout", {}).get("reference_rail_type", "stock"))
     if name not in turnout.rail_types:
-        raise ValueError(f"{Path(turnout.source).name}: turnout.reference_rail_type {name!r} is not "
-                         f"a rail type of the file ({', '.join(turnout.rail_types)})")
+        raise ValueError(
+            f"{Path(turnout.source).name}: turnout.reference_rail_type {name!r} is not "
+            f"a rail type of the file ({', '.join(turnout.rail_types)})"
+        )
     return name
 
 
@@ -192,8 +227,10 @@ class CoRunningParameters:
     def at(self, x: float) -> dict[str, float]:
         """All entries, the constants and ``Delta_z``, ``Delta_y`` evaluated at x (m)."""
         if not self.zone.contains(x):
-            raise ValueError(f"x = {x:g} m is outside zone {self.zone.index} "
-                             f"({self.zone.x_start:g} m to {self.zone.x_end:g} m)")
+            raise ValueError(
+                f"x = {x:g} m is outside zone {self.zone.index} "
+                f"({self.zone.x_start:g} m to {self.zone.x_end:g} m)"
+            )
         dz, dy = delta_z(self.turnout, x), delta_y(self.turnout, x)
         s = (x - self.zone.x_start) / (self.zone.x_end - self.zone.x_start)
         out = {name: e.value(dz, dy, s) for name, e in self.entries.items()}
@@ -219,10 +256,18 @@ def _rail_entries(turnout: Turnout, zone: Zone, slot: str, readings: Readings) -
     k_rt_y = eq.pad_stiffness(base.pad.k_y, sup.L_eff_r_y, L_s)
     G = eq.shear_modulus(base.youngs_modulus, base.poisson, readings.eq12_shear_modulus)
     c_0 = eq.extra_layer_damping(_section(base, "area"), G, base.density, base.shear_coefficient)
-    m_r = eq.rail_mass(_section(base, "area"), base.density, sup.L_eff_r_z, L_s, readings.eq16_rail_mass)
+    m_r = eq.rail_mass(
+        _section(base, "area"), base.density, sup.L_eff_r_z, L_s, readings.eq16_rail_mass
+    )
     if fz and x is not None:  # Eq 17 at the zone's mass position
-        m_r = eq.switch_rail_mass(_section(base, "area"), base.density, sup.L_eff_r_z, delta_z(turnout, x),
-                                  L_s, readings.eq16_rail_mass)
+        m_r = eq.switch_rail_mass(
+            _section(base, "area"),
+            base.density,
+            sup.L_eff_r_z,
+            delta_z(turnout, x),
+            L_s,
+            readings.eq16_rail_mass,
+        )
     layer = turnout.extra_layer
     return {
         f"k_rt{j}_z": _factor(fz, k_rt_z),
@@ -263,7 +308,9 @@ def _sleeper_entries(turnout: Turnout, zone: Zone, readings: Readings) -> dict[s
     }
 
 
-def _derived(turnout: Turnout, zone: Zone, readings: Readings) -> tuple[dict[str, Entry], dict[str, float]]:
+def _derived(
+    turnout: Turnout, zone: Zone, readings: Readings
+) -> tuple[dict[str, Entry], dict[str, float]]:
     entries: dict[str, Entry] = {}
     for slot in RAIL_SLOTS:
         if slot in zone.rail_types:
@@ -271,15 +318,25 @@ def _derived(turnout: Turnout, zone: Zone, readings: Readings) -> tuple[dict[str
     entries.update(_sleeper_entries(turnout, zone, readings))
     ref = reference_support(turnout)
     g = rail_support(turnout, zone.ballast_rail_type, readings)
-    constants = {"K_st_z": ref.K_st_z, "K_st_y": ref.K_st_y, "L_eff_r_z": ref.L_eff_r_z,
-                 "L_eff_r_y": ref.L_eff_r_y, "L_eff_s": g.L_eff_s}
+    constants = {
+        "K_st_z": ref.K_st_z,
+        "K_st_y": ref.K_st_y,
+        "L_eff_r_z": ref.L_eff_r_z,
+        "L_eff_r_y": ref.L_eff_r_y,
+        "L_eff_s": g.L_eff_s,
+    }
     ordered = {n: entries[n] for n in PARAMETER_NAMES if n in entries}
     return ordered, constants
 
 
-def co_running_parameters(turnout: Turnout, zone: int | None = None, x: float | None = None,
-                          layers: int = 3, source: str = "derived",
-                          readings: Readings = DEFAULT_READINGS) -> CoRunningParameters:
+def co_running_parameters(
+    turnout: Turnout,
+    zone: int | None = None,
+    x: float | None = None,
+    layers: int = 3,
+    source: str = "derived",
+    readings: Readings = DEFAULT_READINGS,
+) -> CoRunningParameters:
     """Co-running parameter set of a zone, or of the zone containing x.
 
     Parameters

@@ -7,16 +7,26 @@ model assembled by hand). Exudyn's 2-D items work in its X-Y plane: here X is th
 track's lateral y (positive left) and Y the vertical z (positive up), so a rotation about
 Exudyn's Z is a roll about the track's x (running direction).
 """
+
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any, Callable, Mapping
+from typing import Any
 
 import exudyn as exu
 from exudyn.advancedUtilities import CreateSymbolicUserFunction
-from exudyn.itemInterface import (CartesianSpringDamper, MarkerBodyPosition, MarkerNodePosition, MassPoint2D,
-                                  NodePoint2D, NodeRigidBody2D, ObjectGround, RigidBody2D)
+from exudyn.itemInterface import (
+    CartesianSpringDamper,
+    MarkerBodyPosition,
+    MarkerNodePosition,
+    MassPoint2D,
+    NodePoint2D,
+    NodeRigidBody2D,
+    ObjectGround,
+    RigidBody2D,
+)
 
 from exudyn_turnout.corunning.cross_section import CrossSectionSpring, cross_section_springs
 from exudyn_turnout.corunning.modal import TrackMatrices, dof_names
@@ -56,7 +66,7 @@ class EntryLaw:
     x_end: float  #: m, zone end (ramps)
 
     @classmethod
-    def of(cls, params: CoRunningParameters) -> "EntryLaw":
+    def of(cls, params: CoRunningParameters) -> EntryLaw:
         t, z = params.turnout, params.zone
         ref = reference_support(t)  # Delta = K(x) / K_st (Eqs 11, 15)
         return cls(t.K_sw, t.K_sh, 1.0 / ref.K_st_z, 1.0 / ref.K_st_y, z.x_start, z.x_end)
@@ -151,9 +161,16 @@ class TrackHandles:
             self._symbol.SetValue(x)
 
 
-def add_co_running_track(mbs: exu.MainSystem, params: CoRunningParameters, x0: float, v: float = 0.0, *,
-                         mechanism: str = "symbolic", x_coordinate: tuple[int, int] | None = None,
-                         install_pre_step: bool = True) -> TrackHandles:
+def add_co_running_track(
+    mbs: exu.MainSystem,
+    params: CoRunningParameters,
+    x0: float,
+    v: float = 0.0,
+    *,
+    mechanism: str = "symbolic",
+    x_coordinate: tuple[int, int] | None = None,
+    install_pre_step: bool = True,
+) -> TrackHandles:
     r"""Add the two- or three-layer co-running cross-section (Figs 2, 3) to ``mbs``.
 
     Seen in the running direction (x into the page), zone 2 layout (all four rails)::
@@ -216,20 +233,39 @@ def add_co_running_track(mbs: exu.MainSystem, params: CoRunningParameters, x0: f
     values = params.at(x0)
     items = _add_bodies(mbs, params, values)
     position: list = [float(x0)]
-    symbol = exu.symbolic.Real(f"x_track_{id(position)}", float(x0)) \
-        if (x_coordinate is not None and mechanism == "symbolic") else None
+    symbol = (
+        exu.symbolic.Real(f"x_track_{id(position)}", float(x0))
+        if (x_coordinate is not None and mechanism == "symbolic")
+        else None
+    )
     x_of = _position_functions(x0, v, x_coordinate, position, symbol)
     connectors, dependent = _add_springs(mbs, params, items, values, mechanism, x_of)
-    handles = TrackHandles(params, float(x0), float(v), mechanism, dof_names(params.active_rails, params.layers),
-                           connectors=connectors, position_dependent=dependent, x_coordinate=x_coordinate,
-                           _position=position, _symbol=symbol, **items)
+    handles = TrackHandles(
+        params,
+        float(x0),
+        float(v),
+        mechanism,
+        dof_names(params.active_rails, params.layers),
+        connectors=connectors,
+        position_dependent=dependent,
+        x_coordinate=x_coordinate,
+        _position=position,
+        _symbol=symbol,
+        **items,
+    )
     if x_coordinate is not None and install_pre_step:
         mbs.SetPreStepUserFunction(_pre_step(handles))
     return handles
 
 
-def _add_springs(mbs: exu.MainSystem, params: CoRunningParameters, items: Mapping, values: Mapping[str, float],
-                 mechanism: str, x_of: Callable) -> tuple[dict[str, int], tuple[str, ...]]:
+def _add_springs(
+    mbs: exu.MainSystem,
+    params: CoRunningParameters,
+    items: Mapping,
+    values: Mapping[str, float],
+    mechanism: str,
+    x_of: Callable,
+) -> tuple[dict[str, int], tuple[str, ...]]:
     """All spring-dampers at their values at x0; user functions on those that follow x."""
     law = EntryLaw.of(params)
     connectors, dependent = {}, []
@@ -247,38 +283,74 @@ def _pre_step(handles: TrackHandles) -> Callable:
     def pre_step(mbs: exu.MainSystem, t: float) -> bool:
         handles.update_position(mbs)
         return True
+
     return pre_step
 
 
-def _add_bodies(mbs: exu.MainSystem, params: CoRunningParameters, values: Mapping[str, float]) -> dict:
+def _add_bodies(
+    mbs: exu.MainSystem, params: CoRunningParameters, values: Mapping[str, float]
+) -> dict:
     """Ground, sleeper, rail masses and (three layers) m_0 masses with their markers."""
     zone = params.zone
     ground = int(mbs.AddObject(ObjectGround()))
-    sleeper_node = int(mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[zone.sleeper_y, 0.0, 0.0])))
-    sleeper_body = int(mbs.AddObject(RigidBody2D(nodeNumber=sleeper_node, mass=values["m_t"], inertia=values["J_t"])))
-    out: dict[str, Any] = {"ground": ground, "sleeper_node": sleeper_node, "sleeper_body": sleeper_body}
+    sleeper_node = int(
+        mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[zone.sleeper_y, 0.0, 0.0]))
+    )
+    sleeper_body = int(
+        mbs.AddObject(
+            RigidBody2D(nodeNumber=sleeper_node, mass=values["m_t"], inertia=values["J_t"])
+        )
+    )
+    out: dict[str, Any] = {
+        "ground": ground,
+        "sleeper_node": sleeper_node,
+        "sleeper_body": sleeper_body,
+    }
     rails = [r for r in RAIL_SLOTS if r in params.active_rails]
-    for prefix, mass_of in (("rail", lambda r: values[f"m_r{r[1:]}"]), ("layer", lambda r: values["m_0"])):
+    for prefix, mass_of in (
+        ("rail", lambda r: values[f"m_r{r[1:]}"]),
+        ("layer", lambda r: values["m_0"]),
+    ):
         nodes, bodies, markers = {}, {}, {}
         for rail in rails if (prefix == "rail" or params.layers == 3) else ():
-            nodes[rail] = int(mbs.AddNode(NodePoint2D(referenceCoordinates=[zone.rail_y[rail], 0.0])))
-            bodies[rail] = int(mbs.AddObject(MassPoint2D(nodeNumber=nodes[rail], mass=mass_of(rail))))
+            nodes[rail] = int(
+                mbs.AddNode(NodePoint2D(referenceCoordinates=[zone.rail_y[rail], 0.0]))
+            )
+            bodies[rail] = int(
+                mbs.AddObject(MassPoint2D(nodeNumber=nodes[rail], mass=mass_of(rail)))
+            )
             markers[rail] = int(mbs.AddMarker(MarkerNodePosition(nodeNumber=nodes[rail])))
-        out.update({f"{prefix}_nodes": nodes, f"{prefix}_bodies": bodies, f"{prefix}_markers": markers})
+        out.update(
+            {f"{prefix}_nodes": nodes, f"{prefix}_bodies": bodies, f"{prefix}_markers": markers}
+        )
     out["wheel_markers"] = dict(out["layer_markers"] if params.layers == 3 else out["rail_markers"])
     return out
 
 
-def _add_spring(mbs: exu.MainSystem, items: Mapping, spring: CrossSectionSpring, values: Mapping[str, float]) -> int:
+def _add_spring(
+    mbs: exu.MainSystem, items: Mapping, spring: CrossSectionSpring, values: Mapping[str, float]
+) -> int:
     markers = []
     if spring.ground_y is not None:
-        markers.append(mbs.AddMarker(MarkerBodyPosition(bodyNumber=items["ground"],
-                                                        localPosition=[spring.ground_y, 0.0, 0.0])))
+        markers.append(
+            mbs.AddMarker(
+                MarkerBodyPosition(
+                    bodyNumber=items["ground"], localPosition=[spring.ground_y, 0.0, 0.0]
+                )
+            )
+        )
     if spring.sleeper_y is not None:
-        markers.append(mbs.AddMarker(MarkerBodyPosition(bodyNumber=items["sleeper_body"],
-                                                        localPosition=[spring.sleeper_y, 0.0, 0.0])))
+        markers.append(
+            mbs.AddMarker(
+                MarkerBodyPosition(
+                    bodyNumber=items["sleeper_body"], localPosition=[spring.sleeper_y, 0.0, 0.0]
+                )
+            )
+        )
     for end in spring.nodes:
-        markers.append(items["layer_markers"][end[3:]] if end.startswith("m0_") else items["rail_markers"][end])
+        markers.append(
+            items["layer_markers"][end[3:]] if end.startswith("m0_") else items["rail_markers"][end]
+        )
     k = [values[n] if n else 0.0 for n in spring.k] + [0.0]
     c = [values[n] if n else 0.0 for n in spring.c] + [0.0]
     return int(mbs.AddObject(CartesianSpringDamper(markerNumbers=markers, stiffness=k, damping=c)))
@@ -293,8 +365,14 @@ def _position_functions(x0: float, v: float, x_coordinate, cell: list, symbol) -
     return lambda t: cell[0]
 
 
-def _attach_user_function(mbs: exu.MainSystem, connector: int, law: EntryLaw, entries: list,
-                          mechanism: str, x_of: Callable) -> Any:
+def _attach_user_function(
+    mbs: exu.MainSystem,
+    connector: int,
+    law: EntryLaw,
+    entries: list,
+    mechanism: str,
+    x_of: Callable,
+) -> Any:
     """Make a connector's stiffness and damping follow x; returns a symbolic function to keep alive."""
     lib = exu.symbolic if mechanism == "symbolic" else None
     ky, kz, cy, cz = entries
@@ -302,17 +380,22 @@ def _attach_user_function(mbs: exu.MainSystem, connector: int, law: EntryLaw, en
     def value(entry: Entry | None, x: Any) -> Any:
         return 0.0 if entry is None else law.value(entry, x, lib)
 
-    def springForceUserFunction(mbs, t, itemNumber, displacement, velocity, stiffness, damping, offset):
+    def springForceUserFunction(
+        mbs, t, itemNumber, displacement, velocity, stiffness, damping, offset
+    ):
         x = x_of(t)
-        return [value(ky, x) * (displacement[0] - offset[0]) + value(cy, x) * velocity[0],
-                value(kz, x) * (displacement[1] - offset[1]) + value(cz, x) * velocity[1],
-                0.0]
+        return [
+            value(ky, x) * (displacement[0] - offset[0]) + value(cy, x) * velocity[0],
+            value(kz, x) * (displacement[1] - offset[1]) + value(cz, x) * velocity[1],
+            0.0,
+        ]
 
     if mechanism == "python":
         mbs.SetObjectParameter(connector, "springForceUserFunction", springForceUserFunction)
         return None
-    symbolic = CreateSymbolicUserFunction(mbs, springForceUserFunction, "springForceUserFunction",
-                                          exu.ObjectIndex(connector))
+    symbolic = CreateSymbolicUserFunction(
+        mbs, springForceUserFunction, "springForceUserFunction", exu.ObjectIndex(connector)
+    )
     mbs.SetObjectParameter(connector, "springForceUserFunction", symbolic)
     return symbolic
 
@@ -330,8 +413,12 @@ def linearized_matrices(mbs: exu.MainSystem, handles: TrackHandles) -> TrackMatr
     return TrackMatrices(M[sel][:, sel], K[sel][:, sel], D[sel][:, sel], handles.dof)
 
 
-def simulation_settings(end_time: float, step_size: float, sensor_period: float | None = None,
-                        newton_absolute_tolerance: float = 1e-4) -> exu.SimulationSettings:
+def simulation_settings(
+    end_time: float,
+    step_size: float,
+    sensor_period: float | None = None,
+    newton_absolute_tolerance: float = 1e-4,
+) -> exu.SimulationSettings:
     """Headless, quiet settings: no console output, no solution files, sensors stored every step.
 
     ``newton_absolute_tolerance`` (N per coordinate) replaces Exudyn's 1e-10, which lies

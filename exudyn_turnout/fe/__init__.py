@@ -15,7 +15,13 @@ do not have; this package builds our own from the same Table 1 properties:
 - :mod:`.fits`        Eq 10 / Eq 14 analogues fitted to it;
 - :mod:`.continuous`  one rail on a smeared support, the check against the closed form.
 """
-from exudyn_turnout.fe.fits import PolynomialFit, TurnoutFits, fit_turnout_profiles, with_fitted_profiles
+
+from exudyn_turnout.fe.fits import (
+    PolynomialFit,
+    TurnoutFits,
+    fit_turnout_profiles,
+    with_fitted_profiles,
+)
 from exudyn_turnout.fe.frf import fe_receptance
 from exudyn_turnout.fe.layout import Layout, load_layout, plain_track_layout
 from exudyn_turnout.fe.mesh import FEOptions

@@ -43,6 +43,7 @@ w = W sin(k x), psi = Psi cos(k x), k = n pi / L satisfy the pinned end conditio
 
 a quadratic in omega^2 whose lower root is the flexural frequency (Timoshenko 1921).
 """
+
 from __future__ import annotations
 
 import math

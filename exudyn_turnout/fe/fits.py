@@ -10,6 +10,7 @@ paper finds the lateral stiffness equal for all rails). :func:`with_fitted_profi
 the turnout with its K_sw, K_sh replaced, so the co-running parameters (Delta_z, Delta_y,
 Eqs 11, 15) can come from our FE instead of the paper's.
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -17,12 +18,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from exudyn_turnout.inputs.turnout import Polynomial, Turnout
 from exudyn_turnout.fe.layout import Layout, load_layout
 from exudyn_turnout.fe.stiffness import StiffnessProfile
+from exudyn_turnout.inputs.turnout import Polynomial, Turnout
 
-__all__ = ["PolynomialFit", "TurnoutFits", "fit_polynomial", "fit_profile", "fit_turnout_profiles",
-           "with_fitted_profiles"]
+__all__ = [
+    "PolynomialFit",
+    "TurnoutFits",
+    "fit_polynomial",
+    "fit_profile",
+    "fit_turnout_profiles",
+    "with_fitted_profiles",
+]
 
 
 @dataclass(frozen=True)
@@ -64,17 +71,22 @@ def fit_polynomial(x, y, degree: int) -> tuple[tuple[float, ...], float]:
     return tuple(float(v) for v in c), r2
 
 
-def fit_profile(profile: StiffnessProfile, rail: str, direction: str, degree: int,
-                x_min: float, x_max: float) -> PolynomialFit:
+def fit_profile(
+    profile: StiffnessProfile, rail: str, direction: str, degree: int, x_min: float, x_max: float
+) -> PolynomialFit:
     """Fit one rail's vertical or lateral stiffness over [x_min, x_max] (m)."""
     xs, kz, ky = profile.of(rail)
     sel = (xs >= x_min) & (xs <= x_max)
     K = (kz if direction == "vertical" else ky)[sel]
     coefficients, r2 = fit_polynomial(xs[sel], K, degree)
-    return PolynomialFit(rail, direction, coefficients, float(x_min), float(x_max), r2, int(sel.sum()))
+    return PolynomialFit(
+        rail, direction, coefficients, float(x_min), float(x_max), r2, int(sel.sum())
+    )
 
 
-def fit_turnout_profiles(profile: StiffnessProfile, turnout: Turnout, layout: Layout | None = None) -> TurnoutFits:
+def fit_turnout_profiles(
+    profile: StiffnessProfile, turnout: Turnout, layout: Layout | None = None
+) -> TurnoutFits:
     """Quadratic K_sw (Eq 10) and linear K_sh (Eq 14) from the FE profile.
 
     Parameters
@@ -87,8 +99,10 @@ def fit_turnout_profiles(profile: StiffnessProfile, turnout: Turnout, layout: La
     """
     layout = layout or load_layout(turnout)
     sw, sh = layout.fits["K_sw"], layout.fits["K_sh"]
-    return TurnoutFits(fit_profile(profile, sw.rail, "vertical", 2, sw.x_min, sw.x_max),
-                       fit_profile(profile, sh.rail, "lateral", 1, sh.x_min, sh.x_max))
+    return TurnoutFits(
+        fit_profile(profile, sw.rail, "vertical", 2, sw.x_min, sw.x_max),
+        fit_profile(profile, sh.rail, "lateral", 1, sh.x_min, sh.x_max),
+    )
 
 
 def with_fitted_profiles(turnout: Turnout, fits: TurnoutFits) -> Turnout:

@@ -7,18 +7,19 @@ one bending plane, solved with the exact condensation of
 :class:`~exudyn_turnout.receptance.Receptance` (model "FE"), the object and CSV columns
 of the co-running models, so the curves compare directly.
 """
+
 from __future__ import annotations
 
 from dataclasses import asdict
 
 import numpy as np
 
-from exudyn_turnout.receptance import Receptance, log_frequencies
-from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Turnout
 from exudyn_turnout.fe.layout import Layout, load_layout
 from exudyn_turnout.fe.mesh import FEOptions, build_mesh
 from exudyn_turnout.fe.model import PlaneModel, assemble
 from exudyn_turnout.fe.solver import condense, default_keep
+from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Turnout
+from exudyn_turnout.receptance import Receptance, log_frequencies
 
 __all__ = ["sweep", "sweep_points", "point_receptances", "resolve_rail", "fe_receptance"]
 
@@ -37,8 +38,12 @@ def sweep_points(model: PlaneModel, points, frequencies) -> np.ndarray:
     B = np.column_stack([model.point_vector(r, x) for r, x in points])
     system = condense(model, np.union1d(default_keep(model), np.nonzero(B.any(axis=1))[0]))
     B = system.restrict(B).astype(complex)
-    return np.array([np.einsum("ij,ij->j", B, system.solve(2 * np.pi * f, B))
-                     for f in np.asarray(frequencies, float)])
+    return np.array(
+        [
+            np.einsum("ij,ij->j", B, system.solve(2 * np.pi * f, B))
+            for f in np.asarray(frequencies, float)
+        ]
+    )
 
 
 def point_receptances(model: PlaneModel, points, frequency_hz: float) -> np.ndarray:
@@ -63,16 +68,27 @@ def resolve_rail(layout: Layout, rail: str, x: float, route: str = "through") ->
         return layout.slot_rail(rail, x, route)
     r = layout.rail(rail) if rail in {q.id for q in layout.rails} else None
     if r is None:
-        raise ValueError(f"rail must be one of {', '.join(RAIL_SLOTS)} or a layout rail "
-                         f"({', '.join(q.id for q in layout.rails)}), got {rail!r}")
+        raise ValueError(
+            f"rail must be one of {', '.join(RAIL_SLOTS)} or a layout rail "
+            f"({', '.join(q.id for q in layout.rails)}), got {rail!r}"
+        )
     if not r.x_from <= x <= r.x_to:
-        raise ValueError(f"rail {rail} is not present at x = {x:g} m (it runs from {r.x_from:g} to {r.x_to:g} m)")
+        raise ValueError(
+            f"rail {rail} is not present at x = {x:g} m (it runs from {r.x_from:g} to {r.x_to:g} m)"
+        )
     return rail
 
 
-def fe_receptance(turnout: Turnout, rail: str, direction: str, x: float, frequencies=None,
-                  route: str = "through", options: FEOptions = FEOptions(),
-                  layout: Layout | None = None) -> Receptance:
+def fe_receptance(
+    turnout: Turnout,
+    rail: str,
+    direction: str,
+    x: float,
+    frequencies=None,
+    route: str = "through",
+    options: FEOptions = FEOptions(),
+    layout: Layout | None = None,
+) -> Receptance:
     """Point receptance of the FE turnout model at one rail position.
 
     Parameters
@@ -106,7 +122,9 @@ def fe_receptance(turnout: Turnout, rail: str, direction: str, x: float, frequen
     layout = layout or load_layout(turnout)
     rail_id = resolve_rail(layout, rail, float(x), route)
     f = log_frequencies() if frequencies is None else np.asarray(frequencies, float)
-    model = assemble(turnout, build_mesh(turnout, layout, options, points={rail_id: [float(x)]}), direction)
+    model = assemble(
+        turnout, build_mesh(turnout, layout, options, points={rail_id: [float(x)]}), direction
+    )
     H = sweep(model, rail_id, float(x), f)
     meta = {"rail_id": rail_id, "route": route, "n_dof": model.n_dof, "options": asdict(options)}
     return Receptance(f, H, rail, direction, float(x), "FE", meta)

@@ -13,13 +13,14 @@ Errors in the section raise :class:`~exudyn_turnout.inputs.turnout.TurnoutFileEr
 the file and the field, e.g. ``uic60.toml: layout.rails[3].route must be one of
 through, diverging, got 'divergent'``.
 """
+
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Mapping
-
+from typing import Any
 
 from exudyn_turnout.inputs.geometry import Centreline, load_centrelines
 from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Turnout, TurnoutFileError
@@ -80,7 +81,9 @@ class LayoutRail:
         for seg in reversed(self.segments):
             if seg.x_from <= x <= seg.x_to:
                 return seg
-        raise ValueError(f"x = {x:g} m is not on rail {self.id} ({self.x_from:g} m to {self.x_to:g} m)")
+        raise ValueError(
+            f"x = {x:g} m is not on rail {self.id} ({self.x_from:g} m to {self.x_to:g} m)"
+        )
 
 
 @dataclass(frozen=True)
@@ -129,7 +132,9 @@ class Layout:
         for r in self.rails:
             if r.id == rail_id:
                 return r
-        raise KeyError(f"rail {rail_id!r} is not in the layout (rails: {', '.join(r.id for r in self.rails)})")
+        raise KeyError(
+            f"rail {rail_id!r} is not in the layout (rails: {', '.join(r.id for r in self.rails)})"
+        )
 
     def rail_y(self, rail_id: str, x):
         """Lateral position (m) of a rail at x."""
@@ -141,14 +146,18 @@ class Layout:
         if route not in self.slots:
             raise ValueError(f"route must be one of {', '.join(self.slots)}, got {route!r}")
         if not self.x_start <= x <= self.x_end:
-            raise ValueError(f"x = {x:g} m is outside the FE model of the turnout "
-                             f"({self.x_start:g} m to {self.x_end:g} m)")
+            raise ValueError(
+                f"x = {x:g} m is outside the FE model of the turnout "
+                f"({self.x_start:g} m to {self.x_end:g} m)"
+            )
         ranges = self.slots[route].get(slot, ())
         for rng in ranges:
             if rng.x_from <= x <= rng.x_to:
                 return rng.rail
         where = ", ".join(f"{r.x_from:g} to {r.x_to:g} m" for r in ranges) or "nowhere"
-        raise ValueError(f"rail {slot} is not present at x = {x:g} m on the {route} route (it is at {where})")
+        raise ValueError(
+            f"rail {slot} is not present at x = {x:g} m on the {route} route (it is at {where})"
+        )
 
 
 def _fail(src: str, field: str, problem: str) -> TurnoutFileError:
@@ -184,7 +193,9 @@ def _routes(turnout: Turnout) -> dict[str, Route]:
     return load_centrelines(turnout)
 
 
-def _segments(src: str, p: str, raw: Any, turnout: Turnout, tracks: Mapping[str, Track]) -> tuple[Segment, ...]:
+def _segments(
+    src: str, p: str, raw: Any, turnout: Turnout, tracks: Mapping[str, Track]
+) -> tuple[Segment, ...]:
     if not isinstance(raw, list) or not raw:
         raise _fail(src, p, "must be a non-empty list of {type = ..., x = [x_from, x_to]}")
     out = []
@@ -192,19 +203,33 @@ def _segments(src: str, p: str, raw: Any, turnout: Turnout, tracks: Mapping[str,
         f = f"{p}[{i + 1}]"
         rtype = _get(src, s, f + ".type", "type")
         if rtype not in turnout.rail_types:
-            raise _fail(src, f + ".type", f"names rail type {rtype!r}, which is not defined "
-                        f"(types: {', '.join(turnout.rail_types)})")
+            raise _fail(
+                src,
+                f + ".type",
+                f"names rail type {rtype!r}, which is not defined "
+                f"(types: {', '.join(turnout.rail_types)})",
+            )
         a, b = _interval(src, f + ".x", _get(src, s, f + ".x", "x"))
         track = _get(src, s, f + ".track", "track", TURNOUT_TRACK)
         if track not in tracks:
-            raise _fail(src, f + ".track", f"names track {track!r}, which is not defined (tracks: {', '.join(tracks)})")
+            raise _fail(
+                src,
+                f + ".track",
+                f"names track {track!r}, which is not defined (tracks: {', '.join(tracks)})",
+            )
         if out and abs(out[-1].x_to - a) > 1e-9:
-            raise _fail(src, f + ".x", f"must start where the previous segment ends ({out[-1].x_to:g} m), got {a:g}")
+            raise _fail(
+                src,
+                f + ".x",
+                f"must start where the previous segment ends ({out[-1].x_to:g} m), got {a:g}",
+            )
         out.append(Segment(rtype, a, b, track))
     return tuple(out)
 
 
-def _rails(src: str, sec: Mapping[str, Any], turnout: Turnout, routes, tracks) -> tuple[LayoutRail, ...]:
+def _rails(
+    src: str, sec: Mapping[str, Any], turnout: Turnout, routes, tracks
+) -> tuple[LayoutRail, ...]:
     raw = _get(src, sec, "layout.rails", "rails")
     if not isinstance(raw, list) or not raw:
         raise _fail(src, "layout.rails", "must be a non-empty list of [[layout.rails]] tables")
@@ -213,17 +238,28 @@ def _rails(src: str, sec: Mapping[str, Any], turnout: Turnout, routes, tracks) -
         p = f"layout.rails[{i + 1}]"
         rid = _get(src, r, p + ".id", "id")
         if not isinstance(rid, str) or not rid or any(c in rid for c in " ,"):
-            raise _fail(src, p + ".id", f"must be a short name without spaces or commas, got {rid!r}")
+            raise _fail(
+                src, p + ".id", f"must be a short name without spaces or commas, got {rid!r}"
+            )
         if rid in [q.id for q in rails]:
             raise _fail(src, p + ".id", f"{rid!r} is used twice")
         route = _get(src, r, p + ".route", "route")
         if route not in routes:
             raise _fail(src, p + ".route", f"must be one of {', '.join(routes)}, got {route!r}")
-        segments = _segments(src, p + ".segments", _get(src, r, p + ".segments", "segments"), turnout, tracks)
-        rails.append(LayoutRail(rid, str(_get(src, r, p + ".name", "name", rid)), route,
-                                _number(src, p + ".offset", _get(src, r, p + ".offset", "offset")), segments,
-                                _get(src, r, p + ".start_joins", "start_joins", None),
-                                _get(src, r, p + ".end_joins", "end_joins", None)))
+        segments = _segments(
+            src, p + ".segments", _get(src, r, p + ".segments", "segments"), turnout, tracks
+        )
+        rails.append(
+            LayoutRail(
+                rid,
+                str(_get(src, r, p + ".name", "name", rid)),
+                route,
+                _number(src, p + ".offset", _get(src, r, p + ".offset", "offset")),
+                segments,
+                _get(src, r, p + ".start_joins", "start_joins", None),
+                _get(src, r, p + ".end_joins", "end_joins", None),
+            )
+        )
     _check_joins(src, rails)
     return tuple(rails)
 
@@ -240,7 +276,11 @@ def _check_joins(src: str, rails: list[LayoutRail]) -> None:
                 raise _fail(src, f, f"must name another rail, got {target!r}")
             t = by_id[target]
             if not t.x_from <= x <= t.x_to:
-                raise _fail(src, f, f"joins rail {target!r} at x = {x:g} m, outside it ({t.x_from:g} to {t.x_to:g} m)")
+                raise _fail(
+                    src,
+                    f,
+                    f"joins rail {target!r} at x = {x:g} m, outside it ({t.x_from:g} to {t.x_to:g} m)",
+                )
 
 
 def _tracks(src: str, sec: Mapping[str, Any], routes) -> dict[str, Track]:
@@ -253,23 +293,39 @@ def _tracks(src: str, sec: Mapping[str, Any], routes) -> dict[str, Track]:
         route = _get(src, t, p + ".route", "route")
         if route not in routes:
             raise _fail(src, p + ".route", f"must be one of {', '.join(routes)}, got {route!r}")
-        L = _number(src, p + ".sleeper_length", _get(src, t, p + ".sleeper_length", "sleeper_length"), positive=True)
+        L = _number(
+            src,
+            p + ".sleeper_length",
+            _get(src, t, p + ".sleeper_length", "sleeper_length"),
+            positive=True,
+        )
         tracks[name] = Track(name, route, L)
     return tracks
 
 
-def _slots(src: str, sec: Mapping[str, Any], rails: tuple[LayoutRail, ...], routes,
-           route_names: tuple[str, ...] = ()) -> dict:
+def _slots(
+    src: str,
+    sec: Mapping[str, Any],
+    rails: tuple[LayoutRail, ...],
+    routes,
+    route_names: tuple[str, ...] = (),
+) -> dict:
     """Slot tables per route: keyed by the file's routes ([routes.<name>]), or by a centreline."""
     routes = tuple(route_names) + tuple(r for r in routes if r not in route_names)
     raw = _get(src, sec, "layout.slots", "slots")
     if not isinstance(raw, Mapping) or not all(isinstance(t, Mapping) for t in raw.values()):
-        raise _fail(src, "layout.slots", "must be tables [layout.slots.<route>] of slot = [{rail, x}, ...]")
+        raise _fail(
+            src, "layout.slots", "must be tables [layout.slots.<route>] of slot = [{rail, x}, ...]"
+        )
     by_id = {r.id: r for r in rails}
     out: dict[str, dict[str, tuple[SlotRange, ...]]] = {}
     for route, table in raw.items():
         if route not in routes:
-            raise _fail(src, f"layout.slots.{route}", f"names route {route!r}; routes are {', '.join(routes)}")
+            raise _fail(
+                src,
+                f"layout.slots.{route}",
+                f"names route {route!r}; routes are {', '.join(routes)}",
+            )
         out[route] = {}
         for slot, ranges in table.items():
             p = f"layout.slots.{route}.{slot}"
@@ -282,11 +338,17 @@ def _slots(src: str, sec: Mapping[str, Any], rails: tuple[LayoutRail, ...], rout
                 f = f"{p}[{i + 1}]"
                 rid = _get(src, rng, f + ".rail", "rail")
                 if rid not in by_id:
-                    raise _fail(src, f + ".rail", f"names rail {rid!r}, which is not in layout.rails")
+                    raise _fail(
+                        src, f + ".rail", f"names rail {rid!r}, which is not in layout.rails"
+                    )
                 a, b = _interval(src, f + ".x", _get(src, rng, f + ".x", "x"))
                 if a < by_id[rid].x_from - 1e-9 or b > by_id[rid].x_to + 1e-9:
-                    raise _fail(src, f + ".x", f"[{a:g}, {b:g}] is not within rail {rid!r} "
-                                f"({by_id[rid].x_from:g} to {by_id[rid].x_to:g} m)")
+                    raise _fail(
+                        src,
+                        f + ".x",
+                        f"[{a:g}, {b:g}] is not within rail {rid!r} "
+                        f"({by_id[rid].x_from:g} to {by_id[rid].x_to:g} m)",
+                    )
                 items.append(SlotRange(rid, a, b))
             out[route][slot] = tuple(items)
     return out
@@ -333,20 +395,43 @@ def load_layout(turnout: Turnout) -> Layout:
     rails = _rails(src, sec, turnout, routes, tracks)
     fits = _fits(src, sec, rails)
     b = _get(src, sec, "layout.bearers", "bearers")
-    kappa = _number(src, "layout.bearers.shear_coefficient", _get(src, b, "layout.bearers.shear_coefficient",
-                                                                "shear_coefficient"), positive=True)
+    kappa = _number(
+        src,
+        "layout.bearers.shear_coefficient",
+        _get(src, b, "layout.bearers.shear_coefficient", "shear_coefficient"),
+        positive=True,
+    )
     nu = _number(src, "layout.bearers.poisson", _get(src, b, "layout.bearers.poisson", "poisson"))
     if not 0 <= nu < 0.5:
         raise _fail(src, "layout.bearers.poisson", f"must be in [0, 0.5), got {nu:g}")
-    overhang = _number(src, "layout.bearers.min_overhang", _get(src, b, "layout.bearers.min_overhang",
-                                                              "min_overhang", 0.2))
-    return Layout(src, x0, x1, _number(src, "layout.sleeper_x0", _get(src, sec, "layout.sleeper_x0", "sleeper_x0")),
-                  routes, tracks, rails, _slots(src, sec, rails, routes, _route_names(turnout)),
-                  fits, kappa, nu, overhang)
+    overhang = _number(
+        src,
+        "layout.bearers.min_overhang",
+        _get(src, b, "layout.bearers.min_overhang", "min_overhang", 0.2),
+    )
+    return Layout(
+        src,
+        x0,
+        x1,
+        _number(src, "layout.sleeper_x0", _get(src, sec, "layout.sleeper_x0", "sleeper_x0")),
+        routes,
+        tracks,
+        rails,
+        _slots(src, sec, rails, routes, _route_names(turnout)),
+        fits,
+        kappa,
+        nu,
+        overhang,
+    )
 
 
-def plain_track_layout(rail_type: str = "stock", length: float = 6.0, rail_spacing: float = 1.5,
-                       sleeper_length: float = 2.5, sleeper_x0: float = 0.0) -> Layout:
+def plain_track_layout(
+    rail_type: str = "stock",
+    length: float = 6.0,
+    rail_spacing: float = 1.5,
+    sleeper_length: float = 2.5,
+    sleeper_x0: float = 0.0,
+) -> Layout:
     """Plain track: two straight rails of one type on sleepers of one length.
 
     Parameters
@@ -365,8 +450,20 @@ def plain_track_layout(rail_type: str = "stock", length: float = 6.0, rail_spaci
     """
     h = length / 2.0
     tracks = {TURNOUT_TRACK: Track(TURNOUT_TRACK, "through", sleeper_length)}
-    rails = tuple(LayoutRail(rid, rid, "through", y, (Segment(rail_type, -h, h),))
-                  for rid, y in (("left", rail_spacing / 2), ("right", -rail_spacing / 2)))
+    rails = tuple(
+        LayoutRail(rid, rid, "through", y, (Segment(rail_type, -h, h),))
+        for rid, y in (("left", rail_spacing / 2), ("right", -rail_spacing / 2))
+    )
     slots = {"through": {"r1": (SlotRange("right", -h, h),), "r4": (SlotRange("left", -h, h),)}}
     fits = {"K_sw": FitRange("right", -h, h), "K_sh": FitRange("right", -h, h)}
-    return Layout("plain track", -h, h, sleeper_x0, {"through": Route("through", 0.0)}, tracks, rails, slots, fits)
+    return Layout(
+        "plain track",
+        -h,
+        h,
+        sleeper_x0,
+        {"through": Route("through", 0.0)},
+        tracks,
+        rails,
+        slots,
+        fits,
+    )

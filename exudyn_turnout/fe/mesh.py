@@ -23,16 +23,17 @@ Plane-independent geometry (the vertical and lateral models share it):
   one), elements no longer than ``sleeper_element_length``;
 - a rail pad joins each rail node above a sleeper to the sleeper node below it.
 """
+
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Mapping, Sequence
 
 import numpy as np
 
-from exudyn_turnout.inputs.turnout import Turnout, TurnoutFileError
 from exudyn_turnout.fe.layout import Layout, LayoutRail
+from exudyn_turnout.inputs.turnout import Turnout, TurnoutFileError
 
 __all__ = ["FEOptions", "Mesh", "build_mesh"]
 
@@ -54,7 +55,9 @@ class FEOptions:
 
     def __post_init__(self):
         if not (isinstance(self.element_order, int) and 1 <= self.element_order <= 8):
-            raise ValueError(f"FEOptions.element_order must be an integer 1..8, got {self.element_order!r}")
+            raise ValueError(
+                f"FEOptions.element_order must be an integer 1..8, got {self.element_order!r}"
+            )
         for name in ("element_length", "sleeper_element_length", "absorbing_length"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"FEOptions.{name} must be > 0, got {getattr(self, name)!r}")
@@ -108,8 +111,10 @@ class Mesh:
             raise ValueError(f"x = {x:g} m is not on rail {rail_id} ({xs[0]:g} to {xs[-1]:g} m)")
         k = int(np.argmin(np.abs(xs - x)))
         if abs(xs[k] - x) > _TOL:
-            raise ValueError(f"rail {rail_id} has no node at x = {x:g} m (nearest {xs[k]:g} m); "
-                             "add the point to the mesh (build_mesh(points=...))")
+            raise ValueError(
+                f"rail {rail_id} has no node at x = {x:g} m (nearest {xs[k]:g} m); "
+                "add the point to the mesh (build_mesh(points=...))"
+            )
         return int(nodes[k])
 
 
@@ -130,9 +135,16 @@ def _subdivide(points: np.ndarray, h: float, merge: float = 1e-9) -> np.ndarray:
     return np.concatenate(out)
 
 
-def _rail_positions(layout: Layout, sleepers: np.ndarray, h: float, reach: float,
-                    points: Mapping[str, Sequence[float]]) -> dict[str, np.ndarray]:
-    forced: dict[str, list[float]] = {r.id: [float(x) for x in points.get(r.id, ())] for r in layout.rails}
+def _rail_positions(
+    layout: Layout,
+    sleepers: np.ndarray,
+    h: float,
+    reach: float,
+    points: Mapping[str, Sequence[float]],
+) -> dict[str, np.ndarray]:
+    forced: dict[str, list[float]] = {
+        r.id: [float(x) for x in points.get(r.id, ())] for r in layout.rails
+    }
     for r in layout.rails:
         if r.start_joins:
             forced[r.start_joins].append(r.x_from)
@@ -147,7 +159,9 @@ def _rail_positions(layout: Layout, sleepers: np.ndarray, h: float, reach: float
     return out
 
 
-def _rail_nodes(layout: Layout, positions: dict[str, np.ndarray]) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+def _rail_nodes(
+    layout: Layout, positions: dict[str, np.ndarray]
+) -> tuple[np.ndarray, dict[str, np.ndarray]]:
     start = np.cumsum([0] + [len(positions[r.id]) for r in layout.rails])
     ids = {r.id: np.arange(start[i], start[i + 1]) for i, r in enumerate(layout.rails)}
     xs = np.concatenate([positions[r.id] for r in layout.rails])
@@ -188,25 +202,43 @@ def _rail_elements(layout, node_x, rail_nodes, options, L_s):
     xm = node_x[elem_nodes].mean(axis=1)
     counts = np.cumsum([0] + [len(a) for a in rails])
     rail_elems = {r.id: np.arange(counts[i], counts[i + 1]) for i, r in enumerate(layout.rails)}
-    return elem_nodes, tuple(types), np.concatenate(rails), _eta(xm, layout, options, L_s), rail_elems
+    return (
+        elem_nodes,
+        tuple(types),
+        np.concatenate(rails),
+        _eta(xm, layout, options, L_s),
+        rail_elems,
+    )
 
 
-def _bearer(turnout: Turnout, layout: Layout, track, x: float, ys: np.ndarray) -> tuple[float, float]:
+def _bearer(
+    turnout: Turnout, layout: Layout, track, x: float, ys: np.ndarray
+) -> tuple[float, float]:
     """Centre (m) and length (m) of the sleeper of ``track`` at x carrying rails at ys."""
     if track.sleeper_length is None:
         L, c = turnout.sleeper.length(x), 0.5 * (ys.min() + ys.max())
     else:
         L, c = track.sleeper_length, float(layout.routes[track.route].y(x))
     if min(ys.min() - (c - L / 2), (c + L / 2) - ys.max()) < layout.min_overhang - _TOL:
-        what = "sleeper.length" if track.sleeper_length is None else f"layout.tracks.{track.name}.sleeper_length"
-        raise TurnoutFileError(f"{layout.source}: {what} = {L:g} m at x = {x:g} m is too short for the rails of "
-                               f"track {track.name!r} (y from {ys.min():.3f} to {ys.max():.3f} m, "
-                               f"overhang >= {layout.min_overhang:g} m)")
+        what = (
+            "sleeper.length"
+            if track.sleeper_length is None
+            else f"layout.tracks.{track.name}.sleeper_length"
+        )
+        raise TurnoutFileError(
+            f"{layout.source}: {what} = {L:g} m at x = {x:g} m is too short for the rails of "
+            f"track {track.name!r} (y from {ys.min():.3f} to {ys.max():.3f} m, "
+            f"overhang >= {layout.min_overhang:g} m)"
+        )
     return c, L
 
 
-def build_mesh(turnout: Turnout, layout: Layout, options: FEOptions = FEOptions(),
-               points: Mapping[str, Sequence[float]] | None = None) -> Mesh:
+def build_mesh(
+    turnout: Turnout,
+    layout: Layout,
+    options: FEOptions = FEOptions(),
+    points: Mapping[str, Sequence[float]] | None = None,
+) -> Mesh:
     """Mesh the layout (see the module docstring).
 
     Parameters
@@ -225,18 +257,37 @@ def build_mesh(turnout: Turnout, layout: Layout, options: FEOptions = FEOptions(
         r = layout.rail(rail_id)
         for x in xs:
             if not r.x_from - _TOL <= x <= r.x_to + _TOL:
-                raise ValueError(f"x = {x:g} m is not on rail {rail_id} ({r.x_from:g} to {r.x_to:g} m)")
+                raise ValueError(
+                    f"x = {x:g} m is not on rail {rail_id} ({r.x_from:g} to {r.x_to:g} m)"
+                )
     reach = options.extension + options.absorbing_length
     x_min, x_max = layout.x_start - reach, layout.x_end + reach
     L_s = turnout.sleeper.spacing
-    i0, i1 = math.ceil((x_min - layout.sleeper_x0) / L_s - 1e-9), math.floor((x_max - layout.sleeper_x0) / L_s + 1e-9)
+    i0, i1 = (
+        math.ceil((x_min - layout.sleeper_x0) / L_s - 1e-9),
+        math.floor((x_max - layout.sleeper_x0) / L_s + 1e-9),
+    )
     sleepers = layout.sleeper_x0 + L_s * np.arange(i0, i1 + 1)
     positions = _rail_positions(layout, sleepers, options.element_length, reach, points)
     node_x, rail_nodes = _rail_nodes(layout, positions)
-    elem_nodes, elem_type, elem_rail, elem_eta, rail_elems = _rail_elements(layout, node_x, rail_nodes, options, L_s)
+    elem_nodes, elem_type, elem_rail, elem_eta, rail_elems = _rail_elements(
+        layout, node_x, rail_nodes, options, L_s
+    )
     s = _sleepers(turnout, layout, options, sleepers, positions, rail_nodes, reach)
-    return Mesh(layout, options, x_min, x_max, node_x, elem_nodes, elem_type, elem_rail, elem_eta,
-                rail_nodes, rail_elems, **s)
+    return Mesh(
+        layout,
+        options,
+        x_min,
+        x_max,
+        node_x,
+        elem_nodes,
+        elem_type,
+        elem_rail,
+        elem_eta,
+        rail_nodes,
+        rail_elems,
+        **s,
+    )
 
 
 def _one_sleeper(turnout, layout, options, x, track, on, positions, rail_nodes):
@@ -245,14 +296,22 @@ def _one_sleeper(turnout, layout, options, x, track, on, positions, rail_nodes):
     index, rail type); a rail end joined to another rail's node gets no second pad."""
     ys = np.array([float(layout.rail_y(r.id, x)) for _, r in on])
     c, L = _bearer(turnout, layout, track, x, ys)
-    y_nodes = _subdivide(np.concatenate([[c - L / 2, c + L / 2], ys]), options.sleeper_element_length, merge=_MERGE_Y)
+    y_nodes = _subdivide(
+        np.concatenate([[c - L / 2, c + L / 2], ys]), options.sleeper_element_length, merge=_MERGE_Y
+    )
     pads, seen = [], set()
     for (i, r), y in zip(on, ys):
         node = int(rail_nodes[r.id][np.argmin(np.abs(positions[r.id] - x))])
         if node not in seen:
             seen.add(node)
-            pads.append((node, int(np.argmin(np.abs(y_nodes - y))), i,
-                         r.segment_at(float(np.clip(x, r.x_from, r.x_to))).rail_type))
+            pads.append(
+                (
+                    node,
+                    int(np.argmin(np.abs(y_nodes - y))),
+                    i,
+                    r.segment_at(float(np.clip(x, r.x_from, r.x_to))).rail_type,
+                )
+            )
     return c, L, y_nodes, pads
 
 
@@ -261,13 +320,22 @@ def _sleepers(turnout, layout, options, sleepers, positions, rail_nodes, reach) 
     extents = {r.id: _extended(r, layout, reach) for r in layout.rails}
     rows, y_all, elems, pads, n_nodes = [], [], [], [], 0
     for x in sleepers:
-        present = [(i, r) for i, r in enumerate(layout.rails)
-                   if extents[r.id][0] - _TOL <= x <= extents[r.id][1] + _TOL]
+        present = [
+            (i, r)
+            for i, r in enumerate(layout.rails)
+            if extents[r.id][0] - _TOL <= x <= extents[r.id][1] + _TOL
+        ]
         for track in layout.tracks.values():
-            on = [(i, r) for i, r in present if r.segment_at(float(np.clip(x, r.x_from, r.x_to))).track == track.name]
+            on = [
+                (i, r)
+                for i, r in present
+                if r.segment_at(float(np.clip(x, r.x_from, r.x_to))).track == track.name
+            ]
             if not on:
                 continue
-            c, L, y_nodes, sleeper_pads = _one_sleeper(turnout, layout, options, x, track, on, positions, rail_nodes)
+            c, L, y_nodes, sleeper_pads = _one_sleeper(
+                turnout, layout, options, x, track, on, positions, rail_nodes
+            )
             local = np.arange(len(y_nodes))
             elems.append(n_nodes + np.column_stack([local[:-1], local[1:]]))
             pads += [(node, n_nodes + j, len(rows), i, t) for node, j, i, t in sleeper_pads]
@@ -276,7 +344,16 @@ def _sleepers(turnout, layout, options, sleepers, positions, rail_nodes, reach) 
             n_nodes += len(y_nodes)
     sx, sc, sl, st = zip(*rows)
     prn, psn, psl, prl, ptp = zip(*pads)
-    return dict(sleeper_x=np.array(sx), sleeper_centre=np.array(sc), sleeper_length=np.array(sl),
-                sleeper_track=tuple(st), snode_y=np.concatenate(y_all), selem_nodes=np.concatenate(elems),
-                pad_rail_node=np.array(prn), pad_sleeper_node=np.array(psn), pad_sleeper=np.array(psl),
-                pad_rail=np.array(prl), pad_type=tuple(ptp))
+    return dict(
+        sleeper_x=np.array(sx),
+        sleeper_centre=np.array(sc),
+        sleeper_length=np.array(sl),
+        sleeper_track=tuple(st),
+        snode_y=np.concatenate(y_all),
+        selem_nodes=np.concatenate(elems),
+        pad_rail_node=np.array(prn),
+        pad_sleeper_node=np.array(psn),
+        pad_sleeper=np.array(psl),
+        pad_rail=np.array(prl),
+        pad_type=tuple(ptp),
+    )

@@ -34,6 +34,7 @@ receptance is unaffected to first order (a vertical load on a symmetric section 
 no lateral motion); the lateral one misses rail roll, which lowers the lateral stiffness
 of a real rail above ~500 Hz and is not in the paper's model either.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -41,9 +42,9 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.fe import timoshenko as tim
 from exudyn_turnout.fe.mesh import Mesh
+from exudyn_turnout.inputs.turnout import Turnout
 
 __all__ = ["DIRECTIONS", "PlaneModel", "Triplets", "rail_section", "element_nodes", "assemble"]
 
@@ -79,7 +80,9 @@ class PlaneModel:
         """DOFs of the element end nodes (rail and sleeper), without element interiors."""
         per = 2 if self.direction == "vertical" else 1
         rail = np.arange(2 * self.mesh.n_rail_nodes)
-        return np.concatenate([rail, self.sleeper_dof_offset + np.arange(per * self.mesh.n_sleeper_nodes)])
+        return np.concatenate(
+            [rail, self.sleeper_dof_offset + np.arange(per * self.mesh.n_sleeper_nodes)]
+        )
 
     def dynamic_stiffness(self, omega: float) -> sp.csc_matrix:
         """Z(omega) = K + iG + i omega D - omega^2 M (complex, CSC)."""
@@ -97,7 +100,9 @@ class PlaneModel:
         return b
 
 
-def rail_section(turnout: Turnout, type_name: str, x: np.ndarray, direction: str) -> dict[str, np.ndarray]:
+def rail_section(
+    turnout: Turnout, type_name: str, x: np.ndarray, direction: str
+) -> dict[str, np.ndarray]:
     """EI, kGA, rhoA, rhoI (SI) of a rail type at positions x, for one bending plane."""
     t = turnout.rail_types[type_name]
     x = np.asarray(x, float)
@@ -105,7 +110,12 @@ def rail_section(turnout: Turnout, type_name: str, x: np.ndarray, direction: str
     I_tab = t.I_z if direction == "vertical" else t.I_y
     I = np.interp(x, I_tab.x, I_tab.value)
     G = t.youngs_modulus / (2.0 * (1.0 + t.poisson))
-    return dict(EI=t.youngs_modulus * I, kGA=t.shear_coefficient * G * A, rhoA=t.density * A, rhoI=t.density * I)
+    return dict(
+        EI=t.youngs_modulus * I,
+        kGA=t.shear_coefficient * G * A,
+        rhoA=t.density * A,
+        rhoI=t.density * I,
+    )
 
 
 def _rail_props(turnout: Turnout, mesh: Mesh, direction: str) -> dict[str, np.ndarray]:
@@ -128,7 +138,9 @@ def element_nodes(vertex_pairs: np.ndarray, n_vertices: int, p: int) -> tuple[np
     the vertices; and the total number of nodes."""
     n = len(vertex_pairs)
     interior = n_vertices + np.arange(n * (p - 1)).reshape(n, p - 1)
-    return np.column_stack([vertex_pairs[:, 0], interior, vertex_pairs[:, 1]]), n_vertices + n * (p - 1)
+    return np.column_stack([vertex_pairs[:, 0], interior, vertex_pairs[:, 1]]), n_vertices + n * (
+        p - 1
+    )
 
 
 class Triplets:
@@ -187,27 +199,44 @@ def assemble(turnout: Turnout, mesh: Mesh, direction: str) -> PlaneModel:
     trip = Triplets(2 * n_rail + per_snode * n_sleeper)
     rp = _rail_props(turnout, mesh, direction)
     Ke = tim.beam_stiffness(p, rp["L"], rp["EI"], rp["kGA"])
-    trip.add(_beam_dofs(rail_nodes), K=Ke, G=mesh.elem_eta[:, None, None] * Ke,
-             M=tim.beam_mass(p, rp["L"], rp["rhoA"], rp["rhoI"]))
+    trip.add(
+        _beam_dofs(rail_nodes),
+        K=Ke,
+        G=mesh.elem_eta[:, None, None] * Ke,
+        M=tim.beam_mass(p, rp["L"], rp["rhoA"], rp["rhoI"]),
+    )
     _add_sleepers(trip, turnout, mesh, direction, sleeper_nodes, 2 * n_rail)
     _add_pads(trip, turnout, mesh, direction, 2 * n_rail)
     m = trip.matrices()
     return PlaneModel(direction, mesh, p, m["K"], m["G"], m["D"], m["M"], rail_nodes, 2 * n_rail)
 
 
-def _add_sleepers(trip: Triplets, turnout: Turnout, mesh: Mesh, direction: str, nodes: np.ndarray,
-                  offset: int) -> None:
+def _add_sleepers(
+    trip: Triplets, turnout: Turnout, mesh: Mesh, direction: str, nodes: np.ndarray, offset: int
+) -> None:
     s, b, lay, p = turnout.sleeper, turnout.ballast, mesh.layout, mesh.options.element_order
     L = np.diff(mesh.snode_y[mesh.selem_nodes], axis=1)[:, 0]
     if direction == "vertical":
-        kGA = lay.bearer_shear_coefficient * s.youngs_modulus / (2 * (1 + lay.bearer_poisson)) * s.area
-        trip.add(_beam_dofs(nodes, offset),
-                 K=tim.beam_stiffness(p, L, s.youngs_modulus * s.I, kGA) + tim.beam_foundation(p, L, b.s_b_z),
-                 D=tim.beam_foundation(p, L, b.d_b_z),
-                 M=tim.beam_mass(p, L, s.density * s.area, s.density * s.I))
+        kGA = (
+            lay.bearer_shear_coefficient
+            * s.youngs_modulus
+            / (2 * (1 + lay.bearer_poisson))
+            * s.area
+        )
+        trip.add(
+            _beam_dofs(nodes, offset),
+            K=tim.beam_stiffness(p, L, s.youngs_modulus * s.I, kGA)
+            + tim.beam_foundation(p, L, b.s_b_z),
+            D=tim.beam_foundation(p, L, b.d_b_z),
+            M=tim.beam_mass(p, L, s.density * s.area, s.density * s.I),
+        )
     else:
-        trip.add(offset + nodes, K=tim.bar_stiffness(p, L, s.youngs_modulus * s.area) + tim.bar_mass(p, L, b.s_b_y),
-                 D=tim.bar_mass(p, L, b.d_b_y), M=tim.bar_mass(p, L, s.density * s.area))
+        trip.add(
+            offset + nodes,
+            K=tim.bar_stiffness(p, L, s.youngs_modulus * s.area) + tim.bar_mass(p, L, b.s_b_y),
+            D=tim.bar_mass(p, L, b.d_b_y),
+            M=tim.bar_mass(p, L, s.density * s.area),
+        )
 
 
 def _add_pads(trip: Triplets, turnout: Turnout, mesh: Mesh, direction: str, offset: int) -> None:

@@ -29,6 +29,7 @@ Nothing is approximated: the result equals the direct solve of the full system t
 round-off (the tests check it). The blocks are found generically as connected
 components of the matrix graph without the kept DOFs, so any kept set works.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -40,8 +41,15 @@ from scipy.sparse.csgraph import connected_components
 
 from exudyn_turnout.fe.model import PlaneModel
 
-__all__ = ["DenseGroup", "ModalGroup", "DampedModalGroup", "CondensedSystem", "default_keep", "condense",
-           "solve_full"]
+__all__ = [
+    "DenseGroup",
+    "ModalGroup",
+    "DampedModalGroup",
+    "CondensedSystem",
+    "default_keep",
+    "condense",
+    "solve_full",
+]
 
 #: SuperLU with its default COLAMD ordering and partial pivoting. (SymmetricMode with a
 #: small pivot threshold is faster on the full matrix but returned wrong results near
@@ -122,8 +130,10 @@ class CondensedSystem:
         for g in self.groups:
             S = g.schur_terms(omega)
             flat = g.pos.ravel()
-            data = data - (np.bincount(flat, S.real.ravel(), len(data))
-                           + 1j * np.bincount(flat, S.imag.ravel(), len(data)))
+            data = data - (
+                np.bincount(flat, S.real.ravel(), len(data))
+                + 1j * np.bincount(flat, S.imag.ravel(), len(data))
+            )
         n = self.n_keep
         return sp.csc_matrix((data, self.indices, self.indptr), shape=(n, n))
 
@@ -148,8 +158,10 @@ class CondensedSystem:
             if np.linalg.norm(R) <= _RESIDUAL_TOL * np.linalg.norm(B):
                 return X
             X = X + _chunked(lu, R)
-        raise RuntimeError(f"FE solve at {omega / (2 * np.pi):g} Hz: relative residual "
-                           f"{np.linalg.norm(R) / np.linalg.norm(B):.2g} after refinement")
+        raise RuntimeError(
+            f"FE solve at {omega / (2 * np.pi):g} Hz: relative residual "
+            f"{np.linalg.norm(R) / np.linalg.norm(B):.2g} after refinement"
+        )
 
     def restrict(self, b: np.ndarray) -> np.ndarray:
         """Global vector(s) b (n_dof[, m]) on the kept DOFs; ValueError if b touches others."""
@@ -157,7 +169,9 @@ class CondensedSystem:
         mask = np.ones(b.shape[0], bool)
         mask[self.keep] = False
         if np.any(b[mask] != 0):
-            raise ValueError("the load / response vector touches DOFs that were condensed; keep them")
+            raise ValueError(
+                "the load / response vector touches DOFs that were condensed; keep them"
+            )
         return b[self.keep]
 
 
@@ -169,7 +183,9 @@ def _blocks(pattern: sp.csr_matrix, keep: np.ndarray) -> tuple[np.ndarray, np.nd
     return cond, label
 
 
-def _kept_neighbours(pattern: sp.csr_matrix, members: np.ndarray, is_kept: np.ndarray) -> np.ndarray:
+def _kept_neighbours(
+    pattern: sp.csr_matrix, members: np.ndarray, is_kept: np.ndarray
+) -> np.ndarray:
     cols = pattern[members].indices
     return np.unique(cols[is_kept[cols]])
 
@@ -178,7 +194,9 @@ def default_keep(model: PlaneModel) -> np.ndarray:
     """Rail DOFs of the nodes above the sleepers and the sleepers' vertex DOFs."""
     nodes = np.unique(model.mesh.pad_rail_node)
     sleepers = model.vertex_dofs()
-    return np.unique(np.concatenate([2 * nodes, 2 * nodes + 1, sleepers[sleepers >= model.sleeper_dof_offset]]))
+    return np.unique(
+        np.concatenate([2 * nodes, 2 * nodes + 1, sleepers[sleepers >= model.sleeper_dof_offset]])
+    )
 
 
 def condense(model: PlaneModel, keep: np.ndarray | None = None) -> CondensedSystem:
@@ -194,7 +212,9 @@ def condense(model: PlaneModel, keep: np.ndarray | None = None) -> CondensedSyst
     keep = np.unique(default_keep(model) if keep is None else np.asarray(keep, int))
     n = model.n_dof
     mats = {k: getattr(model, k).tocsr() for k in "KGDM"}
-    pattern = sp.csr_matrix((np.ones(model.K.nnz), model.K.indices, model.K.indptr), shape=(n, n)).T.tocsr()
+    pattern = sp.csr_matrix(
+        (np.ones(model.K.nnz), model.K.indices, model.K.indptr), shape=(n, n)
+    ).T.tocsr()
     is_kept = np.zeros(n, bool)
     is_kept[keep] = True
     local = np.full(n, -1)
@@ -202,7 +222,7 @@ def condense(model: PlaneModel, keep: np.ndarray | None = None) -> CondensedSyst
     cond, label = _blocks(pattern, keep)
     order = np.argsort(label, kind="stable")
     bounds = np.searchsorted(label[order], np.arange(label.max() + 2))
-    members = [cond[order[bounds[i]:bounds[i + 1]]] for i in range(len(bounds) - 1)]
+    members = [cond[order[bounds[i] : bounds[i + 1]]] for i in range(len(bounds) - 1)]
     touching = [local[_kept_neighbours(pattern, m, is_kept)] for m in members]
     kk = {k: mats[k][keep][:, keep].tocoo() for k in "KGDM"}
     rows = np.concatenate([kk["K"].row] + [np.repeat(t, len(t)) for t in touching])
@@ -211,7 +231,7 @@ def condense(model: PlaneModel, keep: np.ndarray | None = None) -> CondensedSyst
     indices = (lin % len(keep)).astype(np.int32)
     indptr = np.searchsorted(lin // len(keep), np.arange(len(keep) + 1)).astype(np.int32)
     data = _combine({k: _on_pattern(kk[k], lin, len(keep)) for k in "KGDM"})
-    groups = _groups(mats, members, keep, touching, inv[kk["K"].nnz:], len(lin))
+    groups = _groups(mats, members, keep, touching, inv[kk["K"].nnz :], len(lin))
     return CondensedSystem(model, keep, data, indices, indptr, groups)
 
 
@@ -220,8 +240,9 @@ def _chunked(lu, B: np.ndarray, chunk: int = 16) -> np.ndarray:
     faster than linearly with their number: 432 at once took 30 times longer)."""
     if B.ndim == 1:
         return lu.solve(B)
-    return np.column_stack([lu.solve(np.ascontiguousarray(B[:, i:i + chunk]))
-                            for i in range(0, B.shape[1], chunk)])
+    return np.column_stack(
+        [lu.solve(np.ascontiguousarray(B[:, i : i + chunk])) for i in range(0, B.shape[1], chunk)]
+    )
 
 
 def _combine(X: dict) -> dict:
@@ -234,7 +255,9 @@ def _on_pattern(coo: sp.coo_matrix, lin: np.ndarray, n: int) -> np.ndarray:
     return np.bincount(pos, coo.data, len(lin))
 
 
-def _groups(mats, members, keep, touching, schur_pos, n_data) -> tuple[DenseGroup | ModalGroup, ...]:
+def _groups(
+    mats, members, keep, touching, schur_pos, n_data
+) -> tuple[DenseGroup | ModalGroup, ...]:
     """Blocks of the eliminated components, batched by size and kind."""
     starts = np.cumsum([0] + [len(t) ** 2 for t in touching])
     by_size: dict[tuple[int, int], list[int]] = {}
@@ -244,7 +267,9 @@ def _groups(mats, members, keep, touching, schur_pos, n_data) -> tuple[DenseGrou
     for (mb, mk), ids in by_size.items():
         rows = np.array([members[i] for i in ids])
         kcols = np.array([keep[touching[i]] for i in ids]).reshape(len(ids), mk)
-        pos = np.array([schur_pos[starts[i]:starts[i + 1]] for i in ids]).reshape(len(ids), mk, mk)
+        pos = np.array([schur_pos[starts[i] : starts[i + 1]] for i in ids]).reshape(
+            len(ids), mk, mk
+        )
         Xbb = {k: _dense(mats[k], rows, rows) for k in "KGDM"}
         Xbk = _combine({k: _dense(mats[k], rows, kcols) for k in "KGDM"})
         eta, modal = _proportional_loss(Xbb)
@@ -252,14 +277,22 @@ def _groups(mats, members, keep, touching, schur_pos, n_data) -> tuple[DenseGrou
             groups.append(_modal_group(Xbb, Xbk, pos, eta, modal))
         rest = np.flatnonzero(~modal)
         if len(rest):
-            damped, ok = _damped_modal_group(_combine({k: v[rest] for k, v in Xbb.items()}),
-                                             {k: v[rest] for k, v in Xbk.items()}, pos[rest])
+            damped, ok = _damped_modal_group(
+                _combine({k: v[rest] for k, v in Xbb.items()}),
+                {k: v[rest] for k, v in Xbk.items()},
+                pos[rest],
+            )
             if ok.any():
                 groups.append(damped)
             if not ok.all():
                 bad = rest[~ok]
-                groups.append(DenseGroup(_combine({k: v[bad] for k, v in Xbb.items()}),
-                                         {k: v[bad] for k, v in Xbk.items()}, pos[bad]))
+                groups.append(
+                    DenseGroup(
+                        _combine({k: v[bad] for k, v in Xbb.items()}),
+                        {k: v[bad] for k, v in Xbk.items()},
+                        pos[bad],
+                    )
+                )
     return tuple(groups)
 
 
@@ -273,7 +306,9 @@ def _proportional_loss(Xbb: dict) -> tuple[np.ndarray, np.ndarray]:
     return eta, modal
 
 
-def _modal_group(Xbb: dict, Xbk: dict, pos: np.ndarray, eta: np.ndarray, sel: np.ndarray) -> ModalGroup:
+def _modal_group(
+    Xbb: dict, Xbk: dict, pos: np.ndarray, eta: np.ndarray, sel: np.ndarray
+) -> ModalGroup:
     """Eigenvectors Phi (Phi^T M Phi = I) of (K_bb, M_bb) and the projections Phi^T X_bk."""
     C = np.linalg.cholesky(Xbb["M"][sel])  # M = C C^T
     Ci = np.linalg.inv(C)
@@ -282,7 +317,9 @@ def _modal_group(Xbb: dict, Xbk: dict, pos: np.ndarray, eta: np.ndarray, sel: np
     return ModalGroup(lam, eta[sel], {k: PhiT @ v[sel] for k, v in Xbk.items()}, pos[sel])
 
 
-def _damped_modal_group(Zbb: dict, Ybk: dict, pos: np.ndarray) -> tuple[DampedModalGroup, np.ndarray]:
+def _damped_modal_group(
+    Zbb: dict, Ybk: dict, pos: np.ndarray
+) -> tuple[DampedModalGroup, np.ndarray]:
     """Quadratic modes of every block and which blocks they reproduce (checked at 0 and
     1 kHz against direct solves to 1e-9); the group holds those blocks only."""
     A, D, M = Zbb["A"], Zbb["D"].astype(complex), Zbb["M"].astype(complex)
@@ -304,7 +341,9 @@ def _damped_modal_group(Zbb: dict, Ybk: dict, pos: np.ndarray) -> tuple[DampedMo
         err = np.abs(group.schur_terms(omega) - direct).reshape(n, -1).max(axis=1)
         ok &= np.isfinite(err) & (err <= 1e-9 * np.abs(direct).reshape(n, -1).max(axis=1))
     sel = np.flatnonzero(ok)
-    return DampedModalGroup(lam[sel], c[sel], {k: v[sel] for k, v in group.Ybk.items()}, pos[sel]), ok
+    return DampedModalGroup(
+        lam[sel], c[sel], {k: v[sel] for k, v in group.Ybk.items()}, pos[sel]
+    ), ok
 
 
 def _normalisation(V: np.ndarray, lam: np.ndarray, M: np.ndarray, D: np.ndarray) -> np.ndarray:
@@ -321,7 +360,9 @@ def _dense(X: sp.csr_matrix, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
     blk = sub.row // a
     keys = (np.arange(n)[:, None] * X.shape[1] + cols).ravel()  # (block, column) -> local j
     order = np.argsort(keys)
-    at = np.clip(np.searchsorted(keys[order], blk.astype(np.int64) * X.shape[1] + sub.col), 0, len(keys) - 1)
+    at = np.clip(
+        np.searchsorted(keys[order], blk.astype(np.int64) * X.shape[1] + sub.col), 0, len(keys) - 1
+    )
     hit = keys[order][at] == blk.astype(np.int64) * X.shape[1] + sub.col
     j = order[at] % b
     out = np.zeros((n, a, b))

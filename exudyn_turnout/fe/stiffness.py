@@ -4,20 +4,21 @@ As the paper does (Section 2), the static stiffness is K = 1 / |H(1 Hz)|, the in
 point receptance at 1 Hz, at every sleeper position for every rail present there,
 vertical and lateral. One sparse factorisation per plane serves all points.
 """
+
 from __future__ import annotations
 
 import csv
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Mapping
 
 import numpy as np
 
-from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.fe.frf import point_receptances
 from exudyn_turnout.fe.layout import Layout, load_layout
 from exudyn_turnout.fe.mesh import FEOptions, build_mesh
 from exudyn_turnout.fe.model import assemble
+from exudyn_turnout.inputs.turnout import Turnout
 
 __all__ = ["StiffnessProfile", "static_stiffness_profile", "CSV_COLUMNS"]
 
@@ -46,7 +47,9 @@ class StiffnessProfile:
         """x (m), K_z, K_y (N/m) of one rail, increasing x; KeyError if it has no rows."""
         sel = np.array([r == rail_id for r in self.rail])
         if not sel.any():
-            raise KeyError(f"rail {rail_id!r} is not in the profile (rails: {', '.join(self.rails)})")
+            raise KeyError(
+                f"rail {rail_id!r} is not in the profile (rails: {', '.join(self.rails)})"
+            )
         order = np.argsort(self.x[sel])
         return self.x[sel][order], self.K_z[sel][order], self.K_y[sel][order]
 
@@ -73,8 +76,12 @@ def _points(mesh, layout: Layout) -> list[tuple[str, float]]:
     return [(layout.rails[i].id, xx) for i, xx in sorted(pts, key=lambda p: (p[1], p[0]))]
 
 
-def static_stiffness_profile(turnout: Turnout, layout: Layout | None = None, options: FEOptions = FEOptions(),
-                             frequency_hz: float = 1.0) -> StiffnessProfile:
+def static_stiffness_profile(
+    turnout: Turnout,
+    layout: Layout | None = None,
+    options: FEOptions = FEOptions(),
+    frequency_hz: float = 1.0,
+) -> StiffnessProfile:
     """Static stiffness of every rail at every sleeper of the layout, both directions.
 
     Parameters
@@ -98,6 +105,12 @@ def static_stiffness_profile(turnout: Turnout, layout: Layout | None = None, opt
         model = assemble(turnout, mesh, direction)
         K[direction] = 1.0 / np.abs(point_receptances(model, points, frequency_hz))
         n_dof[direction] = model.n_dof
-    return StiffnessProfile(np.array([p[1] for p in points]), tuple(p[0] for p in points),
-                            K["vertical"], K["lateral"], frequency_hz,
-                            {r.id: r.name for r in layout.rails}, n_dof)
+    return StiffnessProfile(
+        np.array([p[1] for p in points]),
+        tuple(p[0] for p in points),
+        K["vertical"],
+        K["lateral"],
+        frequency_hz,
+        {r.id: r.name for r in layout.rails},
+        n_dof,
+    )

@@ -23,9 +23,10 @@ of order p, U = 1/2 int EA u'^2, T = 1/2 int rhoA udot^2, foundation 1/2 int s u
 
 Every function is vectorised over n elements: arrays of shape (n,) in, (n, m, m) out.
 """
+
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 
 import numpy as np
 
@@ -71,7 +72,7 @@ def lagrange_shape_functions(p: int, xi) -> tuple[np.ndarray, np.ndarray]:
     return N, dN
 
 
-@lru_cache(maxsize=None)
+@cache
 def _rule(p: int):
     """Gauss points and weights on [0, 1] and the shape functions there."""
     g, w = np.polynomial.legendre.leggauss(p + 2)

@@ -21,13 +21,15 @@ the same x.
 Conventions: x along the through route from the switch toe, y lateral, positive to the
 left looking in +x, y = 0 on the through route's centreline.
 """
+
 from __future__ import annotations
 
 import math
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 from scipy.optimize import brentq
@@ -117,8 +119,11 @@ class TurnoutPlan:
         float
             Its x (m).
         """
-        return {"toe": self.toe_x, "crossing_point": self.crossing_point_x,
-                "nose_tip": self.nose_tip_x}[name]
+        return {
+            "toe": self.toe_x,
+            "crossing_point": self.crossing_point_x,
+            "nose_tip": self.nose_tip_x,
+        }[name]
 
 
 def _fail(src: str, field: str, problem: str) -> TurnoutFileError:
@@ -177,8 +182,10 @@ def load_centrelines(turnout: Turnout) -> dict[str, Centreline]:
         raise _fail(src, p + ".curve_end_x", f"must be > curve_start_x = {x0:g}, got {x1:g}")
     if x1 - x0 >= radius:
         raise _fail(src, p + ".curve_end_x", f"makes a curve longer than its radius ({radius:g} m)")
-    return {"through": Centreline("through", 0.0),
-            "diverging": Centreline("diverging", 1.0 if side == "left" else -1.0, radius, x0, x1)}
+    return {
+        "through": Centreline("through", 0.0),
+        "diverging": Centreline("diverging", 1.0 if side == "left" else -1.0, radius, x0, x1),
+    }
 
 
 def turnout_plan(turnout: Turnout) -> TurnoutPlan:
@@ -204,8 +211,12 @@ def turnout_plan(turnout: Turnout) -> TurnoutPlan:
     """
     src, sec = _layout_section(turnout)
     gauge = _number(src, "layout.gauge", sec.get("gauge", DEFAULT_GAUGE), positive=True)
-    width = _number(src, "layout.nose_tip_width", sec.get("nose_tip_width", DEFAULT_NOSE_TIP_WIDTH),
-                    positive=True)
+    width = _number(
+        src,
+        "layout.nose_tip_width",
+        sec.get("nose_tip_width", DEFAULT_NOSE_TIP_WIDTH),
+        positive=True,
+    )
     div = load_centrelines(turnout)["diverging"]
     s = div.side
 
@@ -216,8 +227,11 @@ def turnout_plan(turnout: Turnout) -> TurnoutPlan:
 
     x_end = _number(src, "layout.x_end", sec.get("x_end", turnout.x_max))
     if not gap(x_end) < -width:
-        raise _fail(src, "layout.diverging", f"does not cross the through route's rail before "
-                    f"x = {x_end:g} m (gauge {gauge:g} m)")
+        raise _fail(
+            src,
+            "layout.diverging",
+            f"does not cross the through route's rail before x = {x_end:g} m (gauge {gauge:g} m)",
+        )
     x_cp = float(brentq(gap, div.curve_start_x, x_end, xtol=1e-9))
     x_tip = float(brentq(lambda x: gap(x) + width, x_cp, x_end, xtol=1e-9))
     slope = abs(gap(x_cp + 1e-3) - gap(x_cp - 1e-3)) / 2e-3
@@ -252,8 +266,10 @@ def resolve_position(value: Any, plan: TurnoutPlan | None) -> float:
         return float(value)
     match = _POSITION.match(value) if isinstance(value, str) else None
     if match is None or match.group(1) not in FEATURES:
-        raise ValueError(f"must be a number or '<feature> [+-] <metres>' with a feature of "
-                         f"{', '.join(FEATURES)}, got {value!r}")
+        raise ValueError(
+            f"must be a number or '<feature> [+-] <metres>' with a feature of "
+            f"{', '.join(FEATURES)}, got {value!r}"
+        )
     if plan is None:
         raise ValueError(f"refers to {match.group(1)!r}, but the file has no [layout] to derive it")
     x = plan.feature(match.group(1))

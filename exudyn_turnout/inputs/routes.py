@@ -8,20 +8,38 @@ so that the crossing lies where the layout puts it. Load transfer between rails 
 crossing nose) is not coded anywhere: it follows from the height tables alone, through
 the Hertz springs of whichever rail stands higher under the wheel.
 """
+
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Mapping
 
 import numpy as np
 
 from exudyn_turnout.inputs.geometry import TurnoutPlan, resolve_position, turnout_plan
-from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Table1D, Turnout, TurnoutFileError, Zone, _Reader
+from exudyn_turnout.inputs.turnout import (
+    RAIL_SLOTS,
+    Table1D,
+    Turnout,
+    TurnoutFileError,
+    Zone,
+    _Reader,
+)
 
-__all__ = ["ContactPair", "Route", "load_route", "route_names", "WHEELS", "dip_angle",
-           "SpeedWarning", "cant_deficiency", "speed_warnings", "RAIL_CENTRE_DISTANCE",
-           "GRAVITY"]
+__all__ = [
+    "ContactPair",
+    "Route",
+    "load_route",
+    "route_names",
+    "WHEELS",
+    "dip_angle",
+    "SpeedWarning",
+    "cant_deficiency",
+    "speed_warnings",
+    "RAIL_CENTRE_DISTANCE",
+    "GRAVITY",
+]
 
 #: m, distance between the rail centres used to express cant (EN 13803: 1500 mm for 1435 mm gauge).
 RAIL_CENTRE_DISTANCE = 1.5
@@ -31,6 +49,7 @@ GRAVITY = 9.81
 
 class SpeedWarning(UserWarning):
     """A passage runs a route faster than the turnout file permits (a warning, not an error)."""
+
 
 #: Wheels of the wheelset and their side: +1 left (positive y), -1 right.
 WHEELS = {"left": 1, "right": -1}
@@ -64,7 +83,9 @@ class ContactPair:
         return float(np.interp(x, self.x, self.z))
 
     def x_range(self) -> tuple[float, float]:
-        ranges = [r for r in (self.flange, self.check) if r] + ([(self.x[0], self.x[-1])] if self.x else [])
+        ranges = [r for r in (self.flange, self.check) if r] + (
+            [(self.x[0], self.x[-1])] if self.x else []
+        )
         return min(r[0] for r in ranges), max(r[1] for r in ranges)
 
 
@@ -100,13 +121,17 @@ class Route:
     def zone(self, zone: Zone) -> Zone:
         """The zone with this route's rail positions."""
         from dataclasses import replace
+
         rail_y = {s: self.rail_y.get(s, y) for s, y in zone.rail_y.items()}
         return replace(zone, rail_y=rail_y)
 
     def pairs_in(self, zone: Zone) -> tuple[ContactPair, ...]:
         """Pairs whose x range overlaps the zone over a positive length (not just a boundary)."""
-        return tuple(p for p in self.pairs
-                     if min(p.x_range()[1], zone.x_end) - max(p.x_range()[0], zone.x_start) > 1e-9)
+        return tuple(
+            p
+            for p in self.pairs
+            if min(p.x_range()[1], zone.x_end) - max(p.x_range()[0], zone.x_start) > 1e-9
+        )
 
 
 def route_names(turnout: Turnout) -> tuple[str, ...]:
@@ -147,8 +172,15 @@ def _pair(r: _Reader, p: str, plan: TurnoutPlan | None) -> ContactPair:
         raise r.fail(p + ".x", f"must be increasing, got {xs}")
     if any(abs(z) > 0.05 for z in zs):
         raise r.fail(p + ".z", f"heights must be within +-0.05 m of nominal, got {zs}")
-    pair = ContactPair(str(r.get(p + ".name", f"{wheel} wheel on {rail}")), wheel, rail, tuple(xs), tuple(zs),
-                       _range(r, p + ".flange", plan), _range(r, p + ".check", plan))
+    pair = ContactPair(
+        str(r.get(p + ".name", f"{wheel} wheel on {rail}")),
+        wheel,
+        rail,
+        tuple(xs),
+        tuple(zs),
+        _range(r, p + ".flange", plan),
+        _range(r, p + ".check", plan),
+    )
     if not pair.x and not pair.check:
         raise r.fail(p, "needs a height profile (x, z) or a check range")
     return pair
@@ -157,12 +189,18 @@ def _pair(r: _Reader, p: str, plan: TurnoutPlan | None) -> ContactPair:
 def _check_active(r: _Reader, turnout: Turnout, field: str, pair: ContactPair) -> None:
     a, b = pair.x_range()
     if a < turnout.x_min - 1e-9 or b > turnout.x_max + 1e-9:
-        raise r.fail(field, f"x range {a:g}..{b:g} m is outside the turnout ({turnout.x_min:g}..{turnout.x_max:g} m)")
+        raise r.fail(
+            field,
+            f"x range {a:g}..{b:g} m is outside the turnout ({turnout.x_min:g}..{turnout.x_max:g} m)",
+        )
     for zone in turnout.zones:
         overlap = min(b, zone.x_end) - max(a, zone.x_start)
         if overlap > 1e-9 and pair.rail not in zone.active_rails:
-            raise r.fail(field, f"uses rail {pair.rail} over {max(a, zone.x_start):g}..{min(b, zone.x_end):g} m, "
-                         f"where zone {zone.index} has no such active rail")
+            raise r.fail(
+                field,
+                f"uses rail {pair.rail} over {max(a, zone.x_start):g}..{min(b, zone.x_end):g} m, "
+                f"where zone {zone.index} has no such active rail",
+            )
 
 
 def _continues(r: _Reader, field: str, turnout: Turnout) -> dict[int, dict[str, str]]:
@@ -172,10 +210,18 @@ def _continues(r: _Reader, field: str, turnout: Turnout) -> dict[int, dict[str, 
         zone = int(r.check(f + ".zone", item.get("zone") if isinstance(item, Mapping) else None))
         item = item if isinstance(item, Mapping) else {}
         if not 2 <= zone <= len(turnout.zones):
-            raise r.fail(f + ".zone", f"must be a zone after the first (2..{len(turnout.zones)}), got {zone}")
+            raise r.fail(
+                f + ".zone", f"must be a zone after the first (2..{len(turnout.zones)}), got {zone}"
+            )
         slot, src = item.get("slot"), item.get("from")
-        if slot not in turnout.zone(zone).active_rails or src not in turnout.zone(zone - 1).active_rails:
-            raise r.fail(f, f"maps {src!r} of zone {zone - 1} to {slot!r} of zone {zone}: both must be active there")
+        if (
+            slot not in turnout.zone(zone).active_rails
+            or src not in turnout.zone(zone - 1).active_rails
+        ):
+            raise r.fail(
+                f,
+                f"maps {src!r} of zone {zone - 1} to {slot!r} of zone {zone}: both must be active there",
+            )
         out.setdefault(zone, {})[slot] = src
     return out
 
@@ -191,7 +237,9 @@ def load_route(turnout: Turnout, name: str) -> Route:
     filename = turnout.source.replace("\\", "/").rsplit("/", 1)[-1]
     r = _Reader(filename, turnout.raw)
     if name not in route_names(turnout):
-        raise TurnoutFileError(f"{filename}: no route {name!r} (routes: {', '.join(route_names(turnout)) or 'none'})")
+        raise TurnoutFileError(
+            f"{filename}: no route {name!r} (routes: {', '.join(route_names(turnout)) or 'none'})"
+        )
     p = f"routes.{name}"
     raw_pairs = r.get(p + ".contacts")
     if not isinstance(raw_pairs, list) or not raw_pairs:
@@ -204,19 +252,37 @@ def load_route(turnout: Turnout, name: str) -> Route:
         _check_active(r, turnout, field, pair)
         pairs.append(pair)
     curvature = r.get(p + ".curvature", 0.0)
-    curvature = Table1D((0.0,), (float(curvature),)) if isinstance(curvature, (int, float)) else _curvature(r, p)
+    curvature = (
+        Table1D((0.0,), (float(curvature),))
+        if isinstance(curvature, (int, float))
+        else _curvature(r, p)
+    )
     rail_y = {s: r.number(f"{p}.rail_y.{s}", positive=False) for s in r.get(p + ".rail_y", {})}
     has_check = any(q.check for q in pairs)
     clearance = r.number("check_rail.clearance") if has_check else math.nan
-    flare = (r.number("check_rail.flare_length", False, 0.0), r.number("check_rail.flare_opening", False, 0.0)) \
-        if has_check else (0.0, 0.0)
+    flare = (
+        (
+            r.number("check_rail.flare_length", False, 0.0),
+            r.number("check_rail.flare_opening", False, 0.0),
+        )
+        if has_check
+        else (0.0, 0.0)
+    )
     limit_speed = r.get(p + ".permitted_speed_kmh", None)
     limit_deficiency = r.get(p + ".permitted_cant_deficiency", None)
-    return Route(name, str(r.get(p + ".description", "")), curvature, tuple(pairs), rail_y,
-                 _continues(r, p + ".continues", turnout), clearance, flare,
-                 r.number(p + ".cant", positive=False, default=0.0),
-                 None if limit_speed is None else r.number(p + ".permitted_speed_kmh"),
-                 None if limit_deficiency is None else r.number(p + ".permitted_cant_deficiency"))
+    return Route(
+        name,
+        str(r.get(p + ".description", "")),
+        curvature,
+        tuple(pairs),
+        rail_y,
+        _continues(r, p + ".continues", turnout),
+        clearance,
+        flare,
+        r.number(p + ".cant", positive=False, default=0.0),
+        None if limit_speed is None else r.number(p + ".permitted_speed_kmh"),
+        None if limit_deficiency is None else r.number(p + ".permitted_cant_deficiency"),
+    )
 
 
 def cant_deficiency(speed_kmh: float, curvature: float, cant: float = 0.0) -> float:
@@ -261,14 +327,20 @@ def speed_warnings(route: Route, speed_kmh: float, x_from: float, x_to: float) -
     """
     out = []
     if route.permitted_speed_kmh is not None and speed_kmh > route.permitted_speed_kmh + 1e-9:
-        out.append(f"route {route.name}: {speed_kmh:g} km/h is above the permitted "
-                   f"{route.permitted_speed_kmh:g} km/h of the turnout file")
+        out.append(
+            f"route {route.name}: {speed_kmh:g} km/h is above the permitted "
+            f"{route.permitted_speed_kmh:g} km/h of the turnout file"
+        )
     deficiency = cant_deficiency(speed_kmh, route.max_curvature(x_from, x_to), route.cant)
-    if route.permitted_cant_deficiency is not None \
-            and deficiency > route.permitted_cant_deficiency + 1e-9:
-        out.append(f"route {route.name}: cant deficiency {1e3 * deficiency:.0f} mm at "
-                   f"{speed_kmh:g} km/h is above the permitted "
-                   f"{1e3 * route.permitted_cant_deficiency:.0f} mm of the turnout file")
+    if (
+        route.permitted_cant_deficiency is not None
+        and deficiency > route.permitted_cant_deficiency + 1e-9
+    ):
+        out.append(
+            f"route {route.name}: cant deficiency {1e3 * deficiency:.0f} mm at "
+            f"{speed_kmh:g} km/h is above the permitted "
+            f"{1e3 * route.permitted_cant_deficiency:.0f} mm of the turnout file"
+        )
     return out
 
 
@@ -283,7 +355,9 @@ def _curvature(r: _Reader, p: str) -> Table1D:
     return Table1D(tuple(xs), tuple(r.check(f + ".value", v, positive=False) for v in vs))
 
 
-def dip_angle(route: Route, wheel: str, x_from: float, x_to: float, n: int = 20001) -> tuple[float, float, float]:
+def dip_angle(
+    route: Route, wheel: str, x_from: float, x_to: float, n: int = 20001
+) -> tuple[float, float, float]:
     """Dip of the wheel's path over the highest rail between x_from and x_to.
 
     Returns
@@ -295,7 +369,9 @@ def dip_angle(route: Route, wheel: str, x_from: float, x_to: float, n: int = 200
     """
     xs = np.linspace(x_from, x_to, n)
     pairs = [p for p in route.pairs if p.wheel == wheel and p.has_tread]
-    env = np.array([max((p.height(x) for p in pairs if p.tread_active(x)), default=-np.inf) for x in xs])
+    env = np.array(
+        [max((p.height(x) for p in pairs if p.tread_active(x)), default=-np.inf) for x in xs]
+    )
     i = int(np.argmin(env))
     h = xs[1] - xs[0]
     k = max(1, int(0.02 / h))  # slopes over 20 mm either side

@@ -9,15 +9,17 @@ another file, never a code change.
 Errors in a file raise :class:`TurnoutFileError` with one message naming the file and the
 field, e.g. ``uic60.toml: sleeper.spacing must be > 0, got -0.6``.
 """
+
 from __future__ import annotations
 
 import math
 import re
 import tomllib
+from collections.abc import Mapping
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 
@@ -73,8 +75,17 @@ X_LIMIT = 1e4
 #: <= 5 m, stiffnesses <= 1e12 N/m (per metre for the ballast), damping <= 1e10 N s/m,
 #: masses <= 1e5 kg, stiffness ratios <= 1e6, rails per sleeper 1..10.
 BOUNDS = {
-    "density": 1e5, "youngs_modulus": 1e13, "shear_coefficient": 2.0, "area": 1.0, "I": 1.0,
-    "length": 20.0, "spacing": 5.0, "stiffness": 1e12, "damping": 1e10, "mass": 1e5, "ratio": 1e6,
+    "density": 1e5,
+    "youngs_modulus": 1e13,
+    "shear_coefficient": 2.0,
+    "area": 1.0,
+    "I": 1.0,
+    "length": 20.0,
+    "spacing": 5.0,
+    "stiffness": 1e12,
+    "damping": 1e10,
+    "mass": 1e5,
+    "ratio": 1e6,
 }
 
 
@@ -113,6 +124,7 @@ class Polynomial:
 @dataclass(frozen=True)
 class RailPad:
     """Rail pad under one rail type (Table 1)."""
+
     k_z: float  #: N/m, vertical pad stiffness k_p,z
     c_z: float  #: N s/m, vertical pad damping c_p,z
     k_y: float  #: N/m, lateral pad stiffness k_p,y
@@ -143,6 +155,7 @@ class RailType:
 @dataclass(frozen=True)
 class Sleeper:
     """Sleepers (bearers) of the turnout (Table 1)."""
+
     density: float  #: kg/m^3, rho_s
     youngs_modulus: float  #: Pa, E_s
     area: float  #: m^2, A_s
@@ -159,6 +172,7 @@ class Sleeper:
 @dataclass(frozen=True)
 class Ballast:
     """Ballast per unit sleeper length (Table 1)."""
+
     s_b_z: float  #: N/m^2, vertical stiffness per unit sleeper length
     d_b_z: float  #: N s/m^2, vertical damping per unit length
     s_b_y: float  #: N/m^2, lateral stiffness per unit length
@@ -168,6 +182,7 @@ class Ballast:
 @dataclass(frozen=True)
 class ExtraLayer:
     """The third layer of the three-layer model (Section 3.1.1)."""
+
     m_0: float  #: kg, dummy mass of the third layer
     k_0_z_over_k_rt_z: float  #: k_0j,z / k_rtj,z (-)
     k_0_y_over_k_rt_y: float  #: k_0j,y / k_rtj,y (-)
@@ -286,7 +301,9 @@ class Turnout:
         Zone
         """
         if not 1 <= index <= len(self.zones):
-            raise KeyError(f"zone {index} does not exist in {self.name} (zones 1..{len(self.zones)})")
+            raise KeyError(
+                f"zone {index} does not exist in {self.name} (zones 1..{len(self.zones)})"
+            )
         return self.zones[index - 1]
 
     def zone_at(self, x: float) -> Zone:
@@ -329,7 +346,7 @@ class _Reader:
         self.data = data
         self.prefix = prefix  # fields under this dotted prefix are looked up in data itself
 
-    def sub(self, prefix: str, data: Any) -> "_Reader":
+    def sub(self, prefix: str, data: Any) -> _Reader:
         """A reader of ``data`` (e.g. one list item) whose fields are named ``prefix.field``."""
         return _Reader(self.filename, data if isinstance(data, Mapping) else {}, prefix)
 
@@ -338,7 +355,11 @@ class _Reader:
 
     def get(self, field: str, default: Any = ...) -> Any:
         node: Any = self.data
-        path = field[len(self.prefix) + 1:] if self.prefix and field.startswith(self.prefix + ".") else field
+        path = (
+            field[len(self.prefix) + 1 :]
+            if self.prefix and field.startswith(self.prefix + ".")
+            else field
+        )
         for part in path.split("."):
             if not isinstance(node, Mapping) or part not in node:
                 if default is not ...:
@@ -347,13 +368,15 @@ class _Reader:
             node = node[part]
         return node
 
-    def number(self, field: str, positive: bool = True, default: Any = ...,
-               upper: float | None = None) -> float:
+    def number(
+        self, field: str, positive: bool = True, default: Any = ..., upper: float | None = None
+    ) -> float:
         """Field ``field`` as a float (> 0 if ``positive``, <= ``upper`` if given)."""
         return self.check(field, self.get(field, default), positive, upper)
 
-    def check(self, field: str, value: Any, positive: bool = True,
-              upper: float | None = None) -> float:
+    def check(
+        self, field: str, value: Any, positive: bool = True, upper: float | None = None
+    ) -> float:
         """``value`` as a float, or an error naming ``field`` if it is not a (positive) number.
 
         ``upper``: a plausibility bound (see ``BOUNDS``); larger values are an error.
@@ -365,8 +388,9 @@ class _Reader:
         if positive and value <= 0:
             raise self.fail(field, f"must be > 0, got {value:g}")
         if upper is not None and abs(value) > upper:
-            raise self.fail(field, f"must be <= {upper:g} (physically plausible bound), "
-                                   f"got {value:g}")
+            raise self.fail(
+                field, f"must be <= {upper:g} (physically plausible bound), got {value:g}"
+            )
         return float(value)
 
     def integer(self, field: str, lo: int, hi: int, default: Any = ...) -> int:
@@ -413,8 +437,12 @@ def _rail_type(r: _Reader, name: str) -> RailType:
     p = f"rail_types.{name}"
     factor_options = (None, "Delta_z", "Delta_y")
     b = BOUNDS
-    pad_bounds = {"k_z": b["stiffness"], "c_z": b["damping"], "k_y": b["stiffness"],
-                  "c_y": b["damping"]}
+    pad_bounds = {
+        "k_z": b["stiffness"],
+        "c_z": b["damping"],
+        "k_y": b["stiffness"],
+        "c_y": b["damping"],
+    }
     poisson = r.number(p + ".poisson", positive=False)
     if not 0.0 < poisson < 0.5:
         raise r.fail(p + ".poisson", f"must be in (0, 0.5), got {poisson:g}")
@@ -479,43 +507,73 @@ def _zones(r: _Reader, rail_types: Mapping[str, RailType]) -> tuple[Zone, ...]:
             raise r.fail(p, f"has x_end = {x1:g} <= x_start = {x0:g}")
         types = zr.get(p + ".rail_types")
         if not isinstance(types, Mapping):
-            raise r.fail(p + ".rail_types", "must be a table {r1 = \"stock\", ...}")
+            raise r.fail(p + ".rail_types", 'must be a table {r1 = "stock", ...}')
         for slot, tname in types.items():
             if slot not in RAIL_SLOTS:
-                raise r.fail(f"{p}.rail_types", f"names rail slot {slot!r}; slots are {', '.join(RAIL_SLOTS)}")
+                raise r.fail(
+                    f"{p}.rail_types",
+                    f"names rail slot {slot!r}; slots are {', '.join(RAIL_SLOTS)}",
+                )
             if tname not in rail_types:
-                raise r.fail(f"{p}.rail_types.{slot}", f"names rail type {tname!r}, which is not defined")
+                raise r.fail(
+                    f"{p}.rail_types.{slot}", f"names rail type {tname!r}, which is not defined"
+                )
         active = zr.get(p + ".active_rails")
         if not isinstance(active, list) or not active:
             raise r.fail(p + ".active_rails", "must be a non-empty list of rail slots")
         for slot in active:
             if slot not in types:
-                raise r.fail(f"{p}.active_rails", f"names rail {slot!r}, which is not defined in its rail_types")
+                raise r.fail(
+                    f"{p}.active_rails",
+                    f"names rail {slot!r}, which is not defined in its rail_types",
+                )
         ballast_type = zr.choice(p + ".ballast_rail_type", tuple(rail_types))
         mass_at_x = zr.get(p + ".mass_at_x", None)
         if mass_at_x is not None:
             mass_at_x = zr.number(p + ".mass_at_x", positive=False)
         rail_y = zr.get(p + ".rail_y")
         if not isinstance(rail_y, Mapping):
-            raise r.fail(p + ".rail_y", "must be a table {r1 = y1, ...} of lateral rail positions (m)")
+            raise r.fail(
+                p + ".rail_y", "must be a table {r1 = y1, ...} of lateral rail positions (m)"
+            )
         for slot in types:
             if slot not in rail_y:
-                raise r.fail(f"{p}.rail_y.{slot}", "is missing (every rail in rail_types needs a position)")
+                raise r.fail(
+                    f"{p}.rail_y.{slot}", "is missing (every rail in rail_types needs a position)"
+                )
         rail_y = {s: zr.number(f"{p}.rail_y.{s}", positive=False) for s in types}
         ballast_y = zr.get(p + ".ballast_y")
         if not isinstance(ballast_y, list) or len(ballast_y) != 2:
-            raise r.fail(p + ".ballast_y", f"must be two lateral positions [y_tg1, y_tg2] (m), got {ballast_y!r}")
+            raise r.fail(
+                p + ".ballast_y",
+                f"must be two lateral positions [y_tg1, y_tg2] (m), got {ballast_y!r}",
+            )
         ballast_y = tuple(zr.check(f"{p}.ballast_y", y, positive=False) for y in ballast_y)
         if not abs(ballast_y[1] - ballast_y[0]) > 0:
             raise r.fail(p + ".ballast_y", "must be two different positions")
-        zones.append(Zone(i, str(zr.get(p + ".name", f"zone {i}")), x0, x1, tuple(active),
-                          dict(types), ballast_type, mass_at_x, rail_y, ballast_y,
-                          zr.number(p + ".sleeper_y", positive=False)))
+        zones.append(
+            Zone(
+                i,
+                str(zr.get(p + ".name", f"zone {i}")),
+                x0,
+                x1,
+                tuple(active),
+                dict(types),
+                ballast_type,
+                mass_at_x,
+                rail_y,
+                ballast_y,
+                zr.number(p + ".sleeper_y", positive=False),
+            )
+        )
     for a, b in zip(zones, zones[1:]):
         if abs(a.x_end - b.x_start) > 1e-9:
             kind = "overlap" if b.x_start < a.x_end else "leave a gap"
-            raise r.fail("zones", f"{a.index} and {b.index} {kind}: zone {a.index} ends at "
-                         f"{a.x_end:g} m, zone {b.index} starts at {b.x_start:g} m")
+            raise r.fail(
+                "zones",
+                f"{a.index} and {b.index} {kind}: zone {a.index} ends at "
+                f"{a.x_end:g} m, zone {b.index} starts at {b.x_start:g} m",
+            )
     return tuple(zones)
 
 
@@ -527,7 +585,10 @@ def _entry(r: _Reader, field: str) -> Entry:
     if isinstance(value, str):
         m = _FORMULA.match(value)
         if not m:
-            raise r.fail(field, f"must be a number, 'NUMBER * Delta_z', 'NUMBER * Delta_y' or [a, b], got {value!r}")
+            raise r.fail(
+                field,
+                f"must be a number, 'NUMBER * Delta_z', 'NUMBER * Delta_y' or [a, b], got {value!r}",
+            )
         return Entry(m.group(2), r.check(field, float(m.group(1))))
     if isinstance(value, list):
         if len(value) != 2:
@@ -559,15 +620,21 @@ def _published(r: _Reader, zones: tuple[Zone, ...]) -> dict[int, dict[str, Entry
 def _check_references(r: _Reader, rail_types: Mapping[str, RailType]) -> None:
     for t in rail_types.values():
         if t.equivalent_to is not None and t.equivalent_to not in rail_types:
-            raise r.fail(f"rail_types.{t.name}.equivalent_to", f"names rail type {t.equivalent_to!r}, which is not defined")
+            raise r.fail(
+                f"rail_types.{t.name}.equivalent_to",
+                f"names rail type {t.equivalent_to!r}, which is not defined",
+            )
 
 
 def _non_finite(node: Any, field: str) -> str | None:
     """Dotted name of the first NaN or infinite number in a parsed TOML tree, None if all finite."""
     if isinstance(node, float) and not math.isfinite(node):
         return field
-    items = node.items() if isinstance(node, Mapping) else (
-        ((f"[{i}]", v) for i, v in enumerate(node)) if isinstance(node, list) else ())
+    items = (
+        node.items()
+        if isinstance(node, Mapping)
+        else (((f"[{i}]", v) for i, v in enumerate(node)) if isinstance(node, list) else ())
+    )
     for key, value in items:
         name = f"{field}{key}" if key.startswith("[") else (f"{field}.{key}" if field else key)
         found = _non_finite(value, name)
@@ -604,8 +671,10 @@ def read_toml(path: Path) -> dict:
     except OSError as err:
         raise TurnoutFileError(f"{path.name}: cannot be read ({err.strerror or err})") from None
     except UnicodeDecodeError as err:
-        raise TurnoutFileError(f"{path.name}: is not UTF-8 text (byte {err.start}: "
-                               f"{err.object[err.start:err.start + 1]!r})") from None
+        raise TurnoutFileError(
+            f"{path.name}: is not UTF-8 text (byte {err.start}: "
+            f"{err.object[err.start : err.start + 1]!r})"
+        ) from None
     except tomllib.TOMLDecodeError as err:
         raise TurnoutFileError(f"{path.name}: is not valid TOML ({err})") from None
     bad = _non_finite(data, "")
@@ -629,19 +698,25 @@ def _regions(r: _Reader, x_min: float, x_max: float) -> None:
         if not b > a:
             raise r.fail(f, f"must be increasing [x_from, x_to], got [{a:g}, {b:g}]")
         if a < x_min - 1e-9 or b > x_max + 1e-9:
-            raise r.fail(f, f"[{a:g}, {b:g}] m must lie inside the turnout "
-                            f"({x_min:g}..{x_max:g} m)")
+            raise r.fail(
+                f, f"[{a:g}, {b:g}] m must lie inside the turnout ({x_min:g}..{x_max:g} m)"
+            )
 
 
-def _increasing(r: _Reader, field: str, value: Any, min_length: int = 1,
-                features: bool = False) -> list[Any]:
+def _increasing(
+    r: _Reader, field: str, value: Any, min_length: int = 1, features: bool = False
+) -> list[Any]:
     """A list of positions: numbers (finite, |x| <= X_LIMIT) and, with ``features``, plan
     expressions (strings such as ``"nose_tip + 0.5"``, resolved by :mod:`exudyn_turnout.inputs.routes`);
     consecutive numbers must increase."""
     if not isinstance(value, list) or len(value) < min_length:
         raise r.fail(field, f"must be a list of at least {min_length} positions, got {value!r}")
-    xs = [v if features and isinstance(v, str) else
-          r.check(f"{field}[{i}]", v, positive=False, upper=X_LIMIT) for i, v in enumerate(value)]
+    xs = [
+        v
+        if features and isinstance(v, str)
+        else r.check(f"{field}[{i}]", v, positive=False, upper=X_LIMIT)
+        for i, v in enumerate(value)
+    ]
     pairs = zip(xs, xs[1:])
     if any(not isinstance(a, str) and not isinstance(b, str) and b <= a for a, b in pairs):
         raise r.fail(field, f"must be increasing, got {xs}")
@@ -673,8 +748,11 @@ def _routes(r: _Reader, n_zones: int) -> None:
                 r.check(f"{p}.curvature.value[{i}]", v, positive=False, upper=1.0)
         else:
             r.check(p + ".curvature", curvature, positive=False, upper=1.0)
-        for key, upper in (("cant", 0.3), ("permitted_speed_kmh", 500.0),
-                           ("permitted_cant_deficiency", 0.5)):
+        for key, upper in (
+            ("cant", 0.3),
+            ("permitted_speed_kmh", 500.0),
+            ("permitted_cant_deficiency", 0.5),
+        ):
             if route.get(key) is not None:
                 r.check(f"{p}.{key}", route[key], positive=key != "cant", upper=upper)
         for key, y in (route.get("rail_y") or {}).items():
@@ -695,8 +773,9 @@ def _routes(r: _Reader, n_zones: int) -> None:
             if c.get("wheel") not in ("left", "right"):
                 raise r.fail(f + ".wheel", f"must be one of left, right, got {c.get('wheel')!r}")
             if c.get("rail") not in RAIL_SLOTS:
-                raise r.fail(f + ".rail", f"must be one of {', '.join(RAIL_SLOTS)}, "
-                                          f"got {c.get('rail')!r}")
+                raise r.fail(
+                    f + ".rail", f"must be one of {', '.join(RAIL_SLOTS)}, got {c.get('rail')!r}"
+                )
             if "x" in c:
                 _increasing(r, f + ".x", c["x"], 2, features=True)
                 zs = c.get("z")
@@ -760,9 +839,19 @@ def load_turnout(path: str | Path | None = None) -> Turnout:
     rail_types = {n: _rail_type(r, n) for n in names}
     _check_references(r, rail_types)
     s, b = "sleeper", BOUNDS
-    sleeper = Sleeper(*(r.number(f"{s}.{k}", upper=b[u]) for k, u in (
-        ("density", "density"), ("youngs_modulus", "youngs_modulus"), ("area", "area"), ("I", "I"),
-        ("spacing", "spacing"))), length=r.table(f"{s}.length", upper=b["length"]))
+    sleeper = Sleeper(
+        *(
+            r.number(f"{s}.{k}", upper=b[u])
+            for k, u in (
+                ("density", "density"),
+                ("youngs_modulus", "youngs_modulus"),
+                ("area", "area"),
+                ("I", "I"),
+                ("spacing", "spacing"),
+            )
+        ),
+        length=r.table(f"{s}.length", upper=b["length"]),
+    )
     ballast = Ballast(
         *(
             r.number(f"ballast.{k}", upper=b[u])
@@ -774,8 +863,16 @@ def load_turnout(path: str | Path | None = None) -> Turnout:
             )
         )
     )
-    extra = ExtraLayer(*(r.number(f"extra_layer.{k}", upper=b[u]) for k, u in (
-        ("m_0", "mass"), ("k_0_z_over_k_rt_z", "ratio"), ("k_0_y_over_k_rt_y", "ratio"))))
+    extra = ExtraLayer(
+        *(
+            r.number(f"extra_layer.{k}", upper=b[u])
+            for k, u in (
+                ("m_0", "mass"),
+                ("k_0_z_over_k_rt_z", "ratio"),
+                ("k_0_y_over_k_rt_y", "ratio"),
+            )
+        )
+    )
     zones = _zones(r, rail_types)
     name = r.get("turnout.name")
     if not isinstance(name, str) or not name.strip():

@@ -5,6 +5,7 @@ benchmark vehicle under its share of bogie and car body). The Exudyn model built
 it is :func:`exudyn_turnout.passage.vehicle.add_vehicle`; the full vehicle's file is read
 by :mod:`exudyn_turnout.inputs.vehicle_model`.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -13,8 +14,14 @@ from pathlib import Path
 
 from exudyn_turnout.inputs.turnout import _Reader, read_toml
 
-__all__ = ["Vehicle", "ContactLaw", "load_vehicle", "load_contact_law", "default_vehicle_path",
-           "GRAVITY"]
+__all__ = [
+    "Vehicle",
+    "ContactLaw",
+    "load_vehicle",
+    "load_contact_law",
+    "default_vehicle_path",
+    "GRAVITY",
+]
 
 GRAVITY = 9.81  #: m/s^2
 
@@ -87,21 +94,36 @@ def load_vehicle(path: str | Path | None = None) -> Vehicle:
     radius = r.number(f"{w}.wheel_radius", upper=2.0)
     if radius < 0.1:
         raise r.fail(f"{w}.wheel_radius", f"must be >= 0.1 m (a railway wheel), got {radius:g}")
-    contact_bounds = {"C_H": (True, 1e14), "damping": (False, c), "f11_ref": (True, 1e10),
-                      "f22_ref": (True, 1e10), "N_ref": (True, 1e10), "mu": (True, 2.0),
-                      "conicity": (True, 1.0), "flange_stiffness": (True, k),
-                      "flange_damping": (False, c), "flange_clearance": (True, 0.1)}
+    contact_bounds = {
+        "C_H": (True, 1e14),
+        "damping": (False, c),
+        "f11_ref": (True, 1e10),
+        "f22_ref": (True, 1e10),
+        "N_ref": (True, 1e10),
+        "mu": (True, 2.0),
+        "conicity": (True, 1.0),
+        "flange_stiffness": (True, k),
+        "flange_damping": (False, c),
+        "flange_clearance": (True, 0.1),
+    }
     for name, (positive, upper) in contact_bounds.items():
         r.number(f"contact.{name}", positive, upper=upper)
     return Vehicle(
-        r.number(f"{w}.mass", upper=1e6), r.number(f"{w}.roll_inertia", upper=1e7),
-        r.number(f"{w}.yaw_inertia", upper=1e7), radius,
-        r.number(f"{w}.contact_semi_spacing", upper=5.0), r.number("sprung_mass.mass", upper=1e6),
-        r.number(f"{p}.k_x", upper=k), r.number(f"{p}.k_y", upper=k), r.number(f"{p}.k_z", upper=k),
+        r.number(f"{w}.mass", upper=1e6),
+        r.number(f"{w}.roll_inertia", upper=1e7),
+        r.number(f"{w}.yaw_inertia", upper=1e7),
+        radius,
+        r.number(f"{w}.contact_semi_spacing", upper=5.0),
+        r.number("sprung_mass.mass", upper=1e6),
+        r.number(f"{p}.k_x", upper=k),
+        r.number(f"{p}.k_y", upper=k),
+        r.number(f"{p}.k_z", upper=k),
         r.number(f"{p}.c_y", positive=False, upper=c),
         r.number(f"{p}.c_z", positive=False, upper=c),
         r.number(f"{p}.semi_spacing", upper=5.0),
-        load_contact_law(data, str(path)), str(path))
+        load_contact_law(data, str(path)),
+        str(path),
+    )
 
 
 @dataclass(frozen=True)
@@ -123,7 +145,17 @@ class ContactLaw:
 def load_contact_law(data: dict, filename: str) -> ContactLaw:
     """Contact constants from the parsed ``[contact]`` table; errors name file and field."""
     r = _Reader(Path(filename).name, data)
-    names = ("C_H", "damping", "f11_ref", "f22_ref", "N_ref", "mu", "conicity", "flange_stiffness",
-             "flange_damping", "flange_clearance")
+    names = (
+        "C_H",
+        "damping",
+        "f11_ref",
+        "f22_ref",
+        "N_ref",
+        "mu",
+        "conicity",
+        "flange_stiffness",
+        "flange_damping",
+        "flange_clearance",
+    )
     positive = {"damping": False, "flange_damping": False}
     return ContactLaw(*(r.number(f"contact.{n}", positive.get(n, True)) for n in names))

@@ -19,14 +19,16 @@ source and its assumptions (which neighbours are held, which springs act in seri
 Errors in a file raise :class:`VehicleModelError` (a ``ValueError``) with one line naming
 the file and the field, e.g. ``v.toml: car_body.mass must be > 0, got -1``.
 """
+
 from __future__ import annotations
 
 import math
 import tomllib
+from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from importlib import resources
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 
@@ -263,8 +265,18 @@ def default_vehicle_model_path() -> Path:
 
 # ----------------------------------------------------------------------------------- reading
 #: Plausibility bounds (upper limits, SI) of vehicle-file quantities.
-_BOUNDS = {"mass": 1e6, "inertia": 1e7, "height": 10.0, "spacing": 5.0, "stiffness": 1e12,
-           "damping": 1e10, "x": 1e3, "rot_stiffness": 1e12, "force": 1e8, "clearance": 0.5}
+_BOUNDS = {
+    "mass": 1e6,
+    "inertia": 1e7,
+    "height": 10.0,
+    "spacing": 5.0,
+    "stiffness": 1e12,
+    "damping": 1e10,
+    "x": 1e3,
+    "rot_stiffness": 1e12,
+    "force": 1e8,
+    "clearance": 0.5,
+}
 
 
 class _Fields:
@@ -308,8 +320,9 @@ class _Fields:
         if value < 0:
             raise self.fail(field, f"must be >= 0, got {value:g}")
         if value > _BOUNDS[kind]:
-            raise self.fail(field, f"must be <= {_BOUNDS[kind]:g} (physically plausible bound), "
-                                   f"got {value:g}")
+            raise self.fail(
+                field, f"must be <= {_BOUNDS[kind]:g} (physically plausible bound), got {value:g}"
+            )
         return float(value)
 
     def number(self, field: str, kind: str, positive: bool = True) -> float:
@@ -320,8 +333,9 @@ class _Fields:
         if isinstance(value, (int, float)) and not isinstance(value, bool):
             value = [value]
         if not isinstance(value, list) or not value:
-            raise self.fail(field, "must be a number or a non-empty list of numbers, "
-                                   f"got {value!r}")
+            raise self.fail(
+                field, f"must be a number or a non-empty list of numbers, got {value!r}"
+            )
         return tuple(self.check(f"{field}[{i}]", v, kind, positive) for i, v in enumerate(value))
 
     def integer(self, field: str, lo: int, hi: int) -> int:
@@ -349,19 +363,25 @@ def _body(r: _Fields, table: str, count: int | None) -> BodyData:
     else:
         x = r.numbers(f"{table}.x", "x")
         if len(x) != count:
-            raise r.fail(f"{table}.x",
-                         f"must list {count} positions (vehicle.bogies), got {len(x)}")
-    return BodyData(r.number(f"{table}.mass", "mass"), r.number(f"{table}.roll_inertia", "inertia"),
-                    r.number(f"{table}.pitch_inertia", "inertia"),
-                    r.number(f"{table}.yaw_inertia", "inertia"),
-                    r.number(f"{table}.cog_height", "height"), x)
+            raise r.fail(
+                f"{table}.x", f"must list {count} positions (vehicle.bogies), got {len(x)}"
+            )
+    return BodyData(
+        r.number(f"{table}.mass", "mass"),
+        r.number(f"{table}.roll_inertia", "inertia"),
+        r.number(f"{table}.pitch_inertia", "inertia"),
+        r.number(f"{table}.yaw_inertia", "inertia"),
+        r.number(f"{table}.cog_height", "height"),
+        x,
+    )
 
 
 def _suspension(r: _Fields, table: str) -> SuspensionData:
     k = [r.number(f"{table}.k_{d}", "stiffness") for d in "xyz"]
     c = [r.number(f"{table}.c_{d}", "damping", positive=False) for d in "xyz"]
-    return SuspensionData(*k, *c, r.number(f"{table}.semi_spacing", "spacing"),
-                          r.number(f"{table}.height", "height"))
+    return SuspensionData(
+        *k, *c, r.number(f"{table}.semi_spacing", "spacing"), r.number(f"{table}.height", "height")
+    )
 
 
 def _bumpstop(r: _Fields) -> BumpStop:
@@ -385,16 +405,16 @@ def _wheelset(r: _Fields, n_wheelsets: int, n_bogies: int) -> WheelsetData:
         raise r.fail(f"{t}.wheel_radius", f"must be in 0.1..2 m (a railway wheel), got {radius:g}")
     x = r.numbers(f"{t}.x", "x")
     if len(x) != n_wheelsets:
-        raise r.fail(f"{t}.x",
-                     f"must list {n_wheelsets} positions (vehicle.wheelsets), got {len(x)}")
+        raise r.fail(
+            f"{t}.x", f"must list {n_wheelsets} positions (vehicle.wheelsets), got {len(x)}"
+        )
     if x[0] != 0.0 or any(b >= a for a, b in zip(x, x[1:])):
         raise r.fail(f"{t}.x", "must start at 0 (the front wheelset) and decrease strictly")
     if n_bogies:
         raw = r.get(f"{t}.bogie")
         if not isinstance(raw, list) or len(raw) != n_wheelsets:
             raise r.fail(f"{t}.bogie", f"must list one bogie number per wheelset, got {raw!r}")
-        bogie = tuple(_integer(r, f"{t}.bogie[{i}]", v, 1, n_bogies) - 1
-                      for i, v in enumerate(raw))
+        bogie = tuple(_integer(r, f"{t}.bogie[{i}]", v, 1, n_bogies) - 1 for i, v in enumerate(raw))
         for j in range(n_bogies):
             if bogie.count(j) != 2:
                 raise r.fail(f"{t}.bogie", f"must give bogie {j + 1} exactly two wheelsets")
@@ -403,11 +423,20 @@ def _wheelset(r: _Fields, n_wheelsets: int, n_bogies: int) -> WheelsetData:
     b = r.number(f"{t}.contact_semi_spacing", "spacing")
     back = r.number(f"{t}.back_to_back", "spacing")
     if back >= 2.0 * b:
-        raise r.fail(f"{t}.back_to_back", f"must be < 2 contact_semi_spacing ({2 * b:g} m), "
-                                          f"got {back:g}")
-    return WheelsetData(r.number(f"{t}.mass", "mass"), r.number(f"{t}.roll_inertia", "inertia"),
-                        r.number(f"{t}.spin_inertia", "inertia"),
-                        r.number(f"{t}.yaw_inertia", "inertia"), radius, back, b, x, bogie)
+        raise r.fail(
+            f"{t}.back_to_back", f"must be < 2 contact_semi_spacing ({2 * b:g} m), got {back:g}"
+        )
+    return WheelsetData(
+        r.number(f"{t}.mass", "mass"),
+        r.number(f"{t}.roll_inertia", "inertia"),
+        r.number(f"{t}.spin_inertia", "inertia"),
+        r.number(f"{t}.yaw_inertia", "inertia"),
+        radius,
+        back,
+        b,
+        x,
+        bogie,
+    )
 
 
 def _integer(r: _Fields, field: str, value: Any, lo: int, hi: int) -> int:
@@ -452,8 +481,14 @@ def load_vehicle_model(path: str | Path | None = None) -> VehicleModel:
     n_b = r.integer("vehicle.bogies", 0, 2)
     if n_b == 1:
         raise r.fail("vehicle.bogies", "must be 0 (single wheelsets) or 2 (car body on two bogies)")
-    full_tables = ("car_body", "bogie", "secondary_suspension", "secondary_yaw", "anti_roll",
-                   "lateral_bumpstop")
+    full_tables = (
+        "car_body",
+        "bogie",
+        "secondary_suspension",
+        "secondary_yaw",
+        "anti_roll",
+        "lateral_bumpstop",
+    )
     required, forbidden = full_tables, ("sprung_mass",)
     if not n_b:
         required, forbidden = forbidden, required
@@ -478,11 +513,24 @@ def load_vehicle_model(path: str | Path | None = None) -> VehicleModel:
     else:
         car_body = bogie = secondary = bumpstop = None
         k_yaw = k_roll = 0.0
-        sprung = SprungMass(r.number("sprung_mass.mass", "mass"),
-                            r.number("sprung_mass.height", "height"))
-    return VehicleModel(r.text("vehicle.name"), r.text("vehicle.description"),
-                        r.text("vehicle.reference"), wheelset, primary, car_body, bogie, secondary,
-                        k_yaw, k_roll, bumpstop, sprung, path.name)
+        sprung = SprungMass(
+            r.number("sprung_mass.mass", "mass"), r.number("sprung_mass.height", "height")
+        )
+    return VehicleModel(
+        r.text("vehicle.name"),
+        r.text("vehicle.description"),
+        r.text("vehicle.reference"),
+        wheelset,
+        primary,
+        car_body,
+        bogie,
+        secondary,
+        k_yaw,
+        k_roll,
+        bumpstop,
+        sprung,
+        path.name,
+    )
 
 
 def single_wheelset_share(model: VehicleModel, index: int = 0) -> VehicleModel:
@@ -507,10 +555,18 @@ def single_wheelset_share(model: VehicleModel, index: int = 0) -> VehicleModel:
         return model
     share = model.wheelset_loads()[index] / GRAVITY - model.wheelset.mass
     wheelset = replace(model.wheelset, x=(0.0,), bogie=(-1,))
-    return replace(model, name=f"{model.name}, wheelset {index + 1} with its sprung share",
-                   wheelset=wheelset, car_body=None, bogie=None, secondary=None,
-                   secondary_yaw_stiffness=0.0, anti_roll_stiffness=0.0, bumpstop=None,
-                   sprung_mass=SprungMass(share, model.primary.height))
+    return replace(
+        model,
+        name=f"{model.name}, wheelset {index + 1} with its sprung share",
+        wheelset=wheelset,
+        car_body=None,
+        bogie=None,
+        secondary=None,
+        secondary_yaw_stiffness=0.0,
+        anti_roll_stiffness=0.0,
+        bumpstop=None,
+        sprung_mass=SprungMass(share, model.primary.height),
+    )
 
 
 # -------------------------------------------------------------------------- hand calculations
@@ -533,8 +589,9 @@ def _hz(k: float, m: float) -> float:
     return math.sqrt(k / m) / (2.0 * math.pi)
 
 
-def sway_frequencies(mass: float, roll_inertia: float, k_lateral: float, lever: float,
-                     k_roll: float) -> tuple[float, float]:
+def sway_frequencies(
+    mass: float, roll_inertia: float, k_lateral: float, lever: float, k_roll: float
+) -> tuple[float, float]:
     """Coupled lateral-roll (sway) frequencies of a rigid body on springs, 2x2 (Hz).
 
     First principles (as Garg & Dukkipati, Dynamics of Railway Vehicle Systems, 1984,
@@ -562,8 +619,9 @@ def sway_frequencies(mass: float, roll_inertia: float, k_lateral: float, lever: 
     tuple of float
         (lower sway, upper sway) frequencies in Hz.
     """
-    k = np.array([[k_lateral, -k_lateral * lever],
-                  [-k_lateral * lever, k_lateral * lever**2 + k_roll]])
+    k = np.array(
+        [[k_lateral, -k_lateral * lever], [-k_lateral * lever, k_lateral * lever**2 + k_roll]]
+    )
     w2 = np.linalg.eigvalsh(k / np.sqrt(np.outer([mass, roll_inertia], [mass, roll_inertia])))
     lo, hi = np.sqrt(np.clip(w2, 0.0, None)) / (2.0 * math.pi)
     return float(lo), float(hi)
@@ -640,8 +698,10 @@ def carbody_pitch_frequency(model: VehicleModel, k_track_z: float = math.inf) ->
     _require_full(model)
     c, s = model.car_body, model.secondary
     e = s.height - c.cog_height
-    k = sum(_per_bogie_vertical(model, k_track_z) * (xb - c.x[0])**2 + 2.0 * s.k_x * e**2
-            for xb in model.bogie.x)
+    k = sum(
+        _per_bogie_vertical(model, k_track_z) * (xb - c.x[0]) ** 2 + 2.0 * s.k_x * e**2
+        for xb in model.bogie.x
+    )
     return _hz(k + c.mass * GRAVITY * e, c.pitch_inertia)
 
 
@@ -664,13 +724,18 @@ def carbody_yaw_frequency(model: VehicleModel) -> float:
     """
     _require_full(model)
     s, c = model.secondary, model.car_body
-    k = sum(2.0 * s.k_y * (xb - c.x[0])**2 + 2.0 * s.k_x * s.semi_spacing**2
-            + model.secondary_yaw_stiffness for xb in model.bogie.x)
+    k = sum(
+        2.0 * s.k_y * (xb - c.x[0]) ** 2
+        + 2.0 * s.k_x * s.semi_spacing**2
+        + model.secondary_yaw_stiffness
+        for xb in model.bogie.x
+    )
     return _hz(k, c.yaw_inertia)
 
 
-def carbody_sway_frequencies(model: VehicleModel, k_track_z: float = math.inf,
-                             bogies_held: bool = False) -> tuple[float, float]:
+def carbody_sway_frequencies(
+    model: VehicleModel, k_track_z: float = math.inf, bogies_held: bool = False
+) -> tuple[float, float]:
     """Car body lower and upper sway (coupled lateral-roll), 2x2 (Hz).
 
     :func:`sway_frequencies` with: lateral springs 2 k_y2 per bogie at the secondary
@@ -701,8 +766,13 @@ def carbody_sway_frequencies(model: VehicleModel, k_track_z: float = math.inf,
         k_lat = series(k_lat, 4.0 * p.k_y)
         k_roll = series(k_roll, 4.0 * _primary_vertical(model, k_track_z) * p.semi_spacing**2)
     e = s.height - c.cog_height
-    return sway_frequencies(c.mass, c.roll_inertia, model.n_bogies * k_lat, e,
-                            model.n_bogies * k_roll + c.mass * GRAVITY * e)
+    return sway_frequencies(
+        c.mass,
+        c.roll_inertia,
+        model.n_bogies * k_lat,
+        e,
+        model.n_bogies * k_roll + c.mass * GRAVITY * e,
+    )
 
 
 def bogie_bounce_frequency(model: VehicleModel, k_track_z: float = math.inf) -> float:
@@ -754,7 +824,7 @@ def bogie_pitch_frequency(model: VehicleModel, k_track_z: float = math.inf, j: i
     p, s, b = model.primary, model.secondary, model.bogie
     h1, h2 = p.height - b.cog_height, s.height - b.cog_height
     kz = _primary_vertical(model, k_track_z)
-    k = sum(2.0 * kz * (model.wheelset.x[i] - b.x[j])**2 for i in _wheelsets_of(model, j))
+    k = sum(2.0 * kz * (model.wheelset.x[i] - b.x[j]) ** 2 for i in _wheelsets_of(model, j))
     k += 4.0 * p.k_x * h1**2 + 2.0 * s.k_x * h2**2 + _bogie_gravity_term(model, j)
     return _hz(k, b.pitch_inertia)
 
@@ -771,8 +841,9 @@ def _bogie_gravity_term(model: VehicleModel, j: int) -> float:
     return (share + b.mass * GRAVITY) * h1 - share * h2
 
 
-def bogie_sway_frequencies(model: VehicleModel, k_track_z: float = math.inf,
-                           k_track_y: float = math.inf, j: int = 0) -> tuple[float, float]:
+def bogie_sway_frequencies(
+    model: VehicleModel, k_track_z: float = math.inf, k_track_y: float = math.inf, j: int = 0
+) -> tuple[float, float]:
     """Bogie frame lower and upper sway (coupled lateral-roll), car body held (Hz).
 
     For the Manchester bogie the lower mode is ~80 % roll (kinetic energy), the upper ~80 %
@@ -807,9 +878,13 @@ def bogie_sway_frequencies(model: VehicleModel, k_track_z: float = math.inf,
     lever = (k1 * h1 + k2 * h2) / k_lat
     # the lateral springs' own roll stiffness beyond k_lat lever^2 (two levers)
     extra = k1 * h1**2 + k2 * h2**2 - k_lat * lever**2
-    k_roll = (4.0 * _primary_vertical(model, k_track_z) * p.semi_spacing**2
-              + 2.0 * s.k_z * s.semi_spacing**2 + model.anti_roll_stiffness
-              + _bogie_gravity_term(model, j) + extra)
+    k_roll = (
+        4.0 * _primary_vertical(model, k_track_z) * p.semi_spacing**2
+        + 2.0 * s.k_z * s.semi_spacing**2
+        + model.anti_roll_stiffness
+        + _bogie_gravity_term(model, j)
+        + extra
+    )
     return sway_frequencies(b.mass, b.roll_inertia, k_lat, lever, k_roll)
 
 
@@ -832,8 +907,9 @@ def wheelset_bounce_frequency(model: VehicleModel, k_track_z: float) -> float:
     return _hz(2.0 * k_track_z + 2.0 * model.primary.k_z, model.wheelset.mass)
 
 
-def hand_frequencies(model: VehicleModel, k_track_z: float = math.inf,
-                     k_track_y: float = math.inf) -> dict[str, float]:
+def hand_frequencies(
+    model: VehicleModel, k_track_z: float = math.inf, k_track_y: float = math.inf
+) -> dict[str, float]:
     """All hand-calculated natural frequencies of a full vehicle (Hz), keyed by mode name.
 
     Keys: ``carbody_bounce``, ``carbody_pitch``, ``carbody_yaw``, ``carbody_lower_sway``,
@@ -853,13 +929,17 @@ def hand_frequencies(model: VehicleModel, k_track_z: float = math.inf,
     """
     lower, upper = carbody_sway_frequencies(model, k_track_z)
     b_lower, b_upper = bogie_sway_frequencies(model, k_track_z, k_track_y)
-    out = {"carbody_bounce": carbody_bounce_frequency(model, k_track_z),
-           "carbody_pitch": carbody_pitch_frequency(model, k_track_z),
-           "carbody_yaw": carbody_yaw_frequency(model),
-           "carbody_lower_sway": lower, "carbody_upper_sway": upper,
-           "bogie_bounce": bogie_bounce_frequency(model, k_track_z),
-           "bogie_pitch": bogie_pitch_frequency(model, k_track_z),
-           "bogie_lower_sway": b_lower, "bogie_upper_sway": b_upper}
+    out = {
+        "carbody_bounce": carbody_bounce_frequency(model, k_track_z),
+        "carbody_pitch": carbody_pitch_frequency(model, k_track_z),
+        "carbody_yaw": carbody_yaw_frequency(model),
+        "carbody_lower_sway": lower,
+        "carbody_upper_sway": upper,
+        "bogie_bounce": bogie_bounce_frequency(model, k_track_z),
+        "bogie_pitch": bogie_pitch_frequency(model, k_track_z),
+        "bogie_lower_sway": b_lower,
+        "bogie_upper_sway": b_upper,
+    }
     if math.isfinite(k_track_z):
         out["wheelset_bounce"] = wheelset_bounce_frequency(model, k_track_z)
     return out

@@ -17,16 +17,23 @@ function evaluates, at the wheelset's position x = x0 + v t, for every wheel/rai
 Every force acts on the wheelset and, with opposite sign, on the rail body it touches.
 Coordinates of the element: ``[y_w, z_w, phi, psi, y_s, z_s, y_r1, z_r1, ...]``.
 """
+
 from __future__ import annotations
 
 import math
 from bisect import bisect_right
 from dataclasses import dataclass
 
-from exudyn_turnout.wheel_rail.laws import creep_coefficient, flange_force, hertz_force, lateral_creepage, longitudinal_creepage, \
-    saturation_factor
 from exudyn_turnout.inputs.routes import ContactPair, Route
 from exudyn_turnout.inputs.vehicle import Vehicle
+from exudyn_turnout.wheel_rail.laws import (
+    creep_coefficient,
+    flange_force,
+    hertz_force,
+    lateral_creepage,
+    longitudinal_creepage,
+    saturation_factor,
+)
 
 __all__ = ["BoundPair", "PairForces", "WheelRailElement", "STATIC_LATERAL_STIFFNESS"]
 
@@ -96,7 +103,13 @@ class WheelRailElement:
         for bp in self.pairs:
             p = bp.pair
             h = _interp(p.x, p.z, x) if p.tread_active(x) else None
-            rows.append((h, bool(p.flange and p.flange[0] <= x <= p.flange[1]), self.route.check_clearance_at(p, x)))
+            rows.append(
+                (
+                    h,
+                    bool(p.flange and p.flange[0] <= x <= p.flange[1]),
+                    self.route.check_clearance_at(p, x),
+                )
+            )
         c = self.route.curvature
         return tuple(rows), _interp(c.x, c.value, x)
 
@@ -112,7 +125,9 @@ class WheelRailElement:
     def all_pair_forces(self, x: float, q, q_t) -> list[PairForces]:
         """Forces of every pair (in ``self.pairs`` order) at position x."""
         rows, kappa = self.geometry(x)
-        return [PairForces(*self._forces(bp, row, kappa, q, q_t)) for bp, row in zip(self.pairs, rows)]
+        return [
+            PairForces(*self._forces(bp, row, kappa, q, q_t)) for bp, row in zip(self.pairs, rows)
+        ]
 
     def _forces(self, bp: BoundPair, row: tuple, kappa: float, q, q_t) -> tuple:
         """(N, F_y on the rail, F_x on the wheel, delta, in contact) of one pair."""
@@ -131,12 +146,18 @@ class WheelRailElement:
                 F_x, F_y = self._creep(s, N, dy, dy_t, q[3], q_t[3], kappa)
             F_y -= s * gamma * N  # the conical tread's normal leans towards the track centre
         if flange_on:
-            F_y -= s * flange_force(s * dy - law.flange_clearance, s * dy_t, law.flange_stiffness, law.flange_damping)
+            F_y -= s * flange_force(
+                s * dy - law.flange_clearance, s * dy_t, law.flange_stiffness, law.flange_damping
+            )
         if check_clearance is not None:
-            F_y += s * flange_force(-s * dy - check_clearance, -s * dy_t, law.flange_stiffness, law.flange_damping)
+            F_y += s * flange_force(
+                -s * dy - check_clearance, -s * dy_t, law.flange_stiffness, law.flange_damping
+            )
         return N, -F_y, F_x, delta, N > 0.0
 
-    def _creep(self, s: int, N: float, dy: float, dy_t: float, psi: float, psi_t: float, kappa: float):
+    def _creep(
+        self, s: int, N: float, dy: float, dy_t: float, psi: float, psi_t: float, kappa: float
+    ):
         veh, law = self.vehicle, self.vehicle.contact
         xi_x = longitudinal_creepage(s, dy, psi_t, self.v, veh.b, veh.r0, law.conicity, kappa)
         xi_y = lateral_creepage(dy_t, psi, self.v)

@@ -81,13 +81,14 @@ solution carried along at speed v, by a second static solve 1 mm further) and th
 acceleration from the equations of motion: a wheel on uniform track then starts in its
 steady state and the force stays at the static load (tests: within 1%).
 """
+
 from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import asdict, dataclass, field, replace
-from functools import lru_cache
-from typing import Callable, Mapping, Sequence
+from functools import cache
 
 import numpy as np
 import scipy.sparse as sp
@@ -97,6 +98,9 @@ from exudyn_turnout.fe.layout import Layout, load_layout
 from exudyn_turnout.fe.mesh import FEOptions, build_mesh
 from exudyn_turnout.fe.model import PlaneModel, assemble
 from exudyn_turnout.fe.timoshenko import lagrange_shape_functions
+from exudyn_turnout.inputs.routes import WHEELS, ContactPair, Route, load_route
+from exudyn_turnout.inputs.turnout import Turnout
+from exudyn_turnout.inputs.vehicle import GRAVITY, Vehicle, load_vehicle
 from exudyn_turnout.passage.simulate import (
     PLAUSIBLE,
     PassageError,
@@ -108,9 +112,6 @@ from exudyn_turnout.passage.simulate import (
     max_time_step,
     passage_summary,
 )
-from exudyn_turnout.inputs.routes import WHEELS, ContactPair, Route, load_route
-from exudyn_turnout.inputs.turnout import Turnout
-from exudyn_turnout.inputs.vehicle import GRAVITY, Vehicle, load_vehicle
 
 __all__ = [
     "FEPassageOptions",
@@ -140,14 +141,20 @@ class FEPassageOptions:
 
     mesh: FEOptions = FEOptions()  #: FE mesh (element order and length, model-end extensions)
     loss_reference_hz: float = 1000.0  #: Hz, f_ref of the viscous equivalent G / (2 pi f_ref)
-    contact_tolerance: float = 1e-2  #: N, Newton residual of the contact forces (2e-7 of a wheel load)
+    contact_tolerance: float = (
+        1e-2  #: N, Newton residual of the contact forces (2e-7 of a wheel load)
+    )
     max_contact_iterations: int = 50  #: Newton iterations per step before giving up
 
     def __post_init__(self):
         if not (math.isfinite(self.loss_reference_hz) and self.loss_reference_hz > 0):
-            raise ValueError(f"FEPassageOptions.loss_reference_hz must be > 0, got {self.loss_reference_hz!r}")
+            raise ValueError(
+                f"FEPassageOptions.loss_reference_hz must be > 0, got {self.loss_reference_hz!r}"
+            )
         if not self.contact_tolerance > 0 or self.max_contact_iterations < 1:
-            raise ValueError("FEPassageOptions.contact_tolerance must be > 0 and max_contact_iterations >= 1")
+            raise ValueError(
+                "FEPassageOptions.contact_tolerance must be > 0 and max_contact_iterations >= 1"
+            )
 
 
 @dataclass(frozen=True)
@@ -236,7 +243,9 @@ def hht_parameters(spectral_radius: float) -> tuple[float, float, float]:
         (alpha, beta, gamma).
     """
     if not 0.5 <= spectral_radius <= 1.0:
-        raise PassageError(f"spectral radius must be in [0.5, 1] for HHT-alpha, got {spectral_radius:g}")
+        raise PassageError(
+            f"spectral radius must be in [0.5, 1] for HHT-alpha, got {spectral_radius:g}"
+        )
     alpha = (spectral_radius - 1.0) / (spectral_radius + 1.0)
     return alpha, 0.25 * (1.0 - alpha) ** 2, 0.5 - alpha
 
@@ -252,7 +261,12 @@ def _vehicle_blocks(vehicle: Vehicle) -> tuple[np.ndarray, np.ndarray, np.ndarra
     d2 = vehicle.d**2
     shape = np.array([[2.0, 0.0, -2.0], [0.0, 2.0 * d2, 0.0], [-2.0, 0.0, 2.0]])
     M = np.diag([vehicle.m_w, vehicle.J_roll, vehicle.m_s])
-    return M, vehicle.c_z * shape, vehicle.k_z * shape, np.array([-vehicle.m_w * GRAVITY, 0.0, -vehicle.m_s * GRAVITY])
+    return (
+        M,
+        vehicle.c_z * shape,
+        vehicle.k_z * shape,
+        np.array([-vehicle.m_w * GRAVITY, 0.0, -vehicle.m_s * GRAVITY]),
+    )
 
 
 def _with_vehicle(A: sp.spmatrix, block: np.ndarray) -> sp.csc_matrix:
@@ -269,8 +283,12 @@ def _rail_indices(model: PlaneModel) -> dict[str, _RailIndex]:
     return out
 
 
-def build_fe_track(turnout: Turnout, vehicle: Vehicle | None = None, layout: Layout | None = None,
-                   options: FEPassageOptions = FEPassageOptions()) -> FETrack:
+def build_fe_track(
+    turnout: Turnout,
+    vehicle: Vehicle | None = None,
+    layout: Layout | None = None,
+    options: FEPassageOptions = FEPassageOptions(),
+) -> FETrack:
     """Assemble the vertical FE model of the layout and couple the wheelset's DOFs to it.
 
     Parameters
@@ -296,8 +314,17 @@ def build_fe_track(turnout: Turnout, vehicle: Vehicle | None = None, layout: Lay
     Mv, Dv, Kv, fv = _vehicle_blocks(vehicle)
     D_track = model.D + model.G / (2.0 * math.pi * options.loss_reference_hz)
     f = np.concatenate([np.zeros(model.n_dof), fv])
-    track = FETrack(model, layout, vehicle, _with_vehicle(model.M, Mv), _with_vehicle(D_track, Dv),
-                    _with_vehicle(model.K, Kv), f, _rail_indices(model), {"assemble_s": time.perf_counter() - t0})
+    track = FETrack(
+        model,
+        layout,
+        vehicle,
+        _with_vehicle(model.M, Mv),
+        _with_vehicle(D_track, Dv),
+        _with_vehicle(model.K, Kv),
+        f,
+        _rail_indices(model),
+        {"assemble_s": time.perf_counter() - t0},
+    )
     return track
 
 
@@ -307,17 +334,21 @@ def _active(pair: ContactPair, pairs: Sequence[ContactPair], x: float) -> bool:
         return False
     if abs(x - pair.x[0]) > _X_TOL:
         return True
-    return not any(q is not pair and q.wheel == pair.wheel and q.has_tread and abs(q.x[-1] - x) <= _X_TOL
-                   for q in pairs)
+    return not any(
+        q is not pair and q.wheel == pair.wheel and q.has_tread and abs(q.x[-1] - x) <= _X_TOL
+        for q in pairs
+    )
 
 
-@lru_cache(maxsize=None)
+@cache
 def _shape_coefficients(p: int) -> np.ndarray:
     """Monomial coefficients (p + 1, p + 1) of the order-p Lagrange shape functions:
     N(xi) = [1, xi, ..., xi^p] @ C, fitted to :func:`lagrange_shape_functions` (exact: both
     are polynomials of order p; ~100 times faster to evaluate per step)."""
     xi = np.linspace(0.0, 1.0, p + 1)
-    return np.linalg.solve(np.vander(xi, p + 1, increasing=True), lagrange_shape_functions(p, xi)[0])
+    return np.linalg.solve(
+        np.vander(xi, p + 1, increasing=True), lagrange_shape_functions(p, xi)[0]
+    )
 
 
 def _shape(p: int, xi: float) -> np.ndarray:
@@ -329,8 +360,10 @@ def _element_at(index: _RailIndex, x: float, rail_id: str) -> tuple[int, float]:
     """(element, xi in [0, 1]) of the rail element containing x."""
     k = int(np.searchsorted(index.x_left, x + _X_TOL, side="right")) - 1
     if k < 0 or x > index.x_right[k] + _X_TOL:
-        raise PassageError(f"x = {x:g} m is not on FE rail {rail_id} "
-                           f"({index.x_left[0]:g} to {index.x_right[-1]:g} m)")
+        raise PassageError(
+            f"x = {x:g} m is not on FE rail {rail_id} "
+            f"({index.x_left[0]:g} to {index.x_right[-1]:g} m)"
+        )
     xi = (x - index.x_left[k]) / (index.x_right[k] - index.x_left[k])
     return int(index.elements[k]), min(max(xi, 0.0), 1.0)
 
@@ -387,9 +420,15 @@ def _load(track: FETrack, points: Sequence[ContactPoint], F: np.ndarray) -> np.n
     return f
 
 
-def solve_contacts(d0: np.ndarray, C: np.ndarray, C_H: float, F0: np.ndarray | None = None,
-                   tolerance: float = 1e-3, max_iterations: int = 50,
-                   groups: Sequence[int] | None = None) -> np.ndarray:
+def solve_contacts(
+    d0: np.ndarray,
+    C: np.ndarray,
+    C_H: float,
+    F0: np.ndarray | None = None,
+    tolerance: float = 1e-3,
+    max_iterations: int = 50,
+    groups: Sequence[int] | None = None,
+) -> np.ndarray:
     """Contact forces F (N) with F_c = C_H max(d0_c - (C F)_c, 0)^1.5 (Hertz, one-sided).
 
     Parameters
@@ -444,9 +483,15 @@ def solve_contacts(d0: np.ndarray, C: np.ndarray, C_H: float, F0: np.ndarray | N
     g = np.arange(n) if groups is None else np.unique(np.asarray(groups), return_inverse=True)[1]
     first = np.array([int(np.flatnonzero(g == k)[0]) for k in range(g.max() + 1)])
     offset, d0_p = d0 - d0[first][g], d0[first]
-    C_inv = np.linalg.inv(0.5 * (C + C.T)[np.ix_(first, first)] + _CONTACT_EPSILON * np.eye(len(first)))
-    tolerance = max(tolerance, 8.0 * np.finfo(float).eps * np.max(np.abs(d0_p)) * np.max(np.abs(C_inv)))
-    F_start = np.bincount(g, F0, len(first)) if F0 is not None and len(F0) == n else np.zeros(len(first))
+    C_inv = np.linalg.inv(
+        0.5 * (C + C.T)[np.ix_(first, first)] + _CONTACT_EPSILON * np.eye(len(first))
+    )
+    tolerance = max(
+        tolerance, 8.0 * np.finfo(float).eps * np.max(np.abs(d0_p)) * np.max(np.abs(C_inv))
+    )
+    F_start = (
+        np.bincount(g, F0, len(first)) if F0 is not None and len(F0) == n else np.zeros(len(first))
+    )
     delta = d0_p - C[np.ix_(first, first)] @ F_start
     for _ in range(max_iterations):
         pos = np.maximum(delta[g] + offset, 0.0)
@@ -457,12 +502,20 @@ def solve_contacts(d0: np.ndarray, C: np.ndarray, C_H: float, F0: np.ndarray | N
         step = -np.linalg.solve(hess, grad)
         energy = lambda d: _contact_energy(d, d0_p, C_inv, C_H, g, offset)  # noqa: E731
         delta = delta + _armijo(energy, delta, step, grad @ step) * step
-    raise ArithmeticError(f"contact forces did not converge in {max_iterations} Newton iterations "
-                          f"(residual {np.max(np.abs(grad)):.3g} N)")
+    raise ArithmeticError(
+        f"contact forces did not converge in {max_iterations} Newton iterations "
+        f"(residual {np.max(np.abs(grad)):.3g} N)"
+    )
 
 
-def _contact_energy(delta: np.ndarray, d0: np.ndarray, C_inv: np.ndarray, C_H: float, g: np.ndarray,
-                    offset: np.ndarray) -> float:
+def _contact_energy(
+    delta: np.ndarray,
+    d0: np.ndarray,
+    C_inv: np.ndarray,
+    C_H: float,
+    g: np.ndarray,
+    offset: np.ndarray,
+) -> float:
     pos = np.maximum(delta[g] + offset, 0.0)
     r = delta - d0
     return float(0.4 * C_H * np.sum(pos**2 * np.sqrt(pos)) + 0.5 * r @ C_inv @ r)
@@ -475,7 +528,9 @@ def _point_groups(points: Sequence[ContactPoint]) -> list[int]:
     return [order.index(k) for k in keys]
 
 
-def _armijo(energy: Callable[[np.ndarray], float], x: np.ndarray, step: np.ndarray, slope: float) -> float:
+def _armijo(
+    energy: Callable[[np.ndarray], float], x: np.ndarray, step: np.ndarray, slope: float
+) -> float:
     """Step length t (1, 1/2, ...) with energy(x + t step) <= energy(x) + 1e-4 t slope.
 
     A relative slack of 1e-12 lets the last Newton steps through, whose energy decrease
@@ -496,7 +551,9 @@ class _Static:
     points: tuple[ContactPoint, ...]
 
 
-def _track_compliance(track: FETrack, K_lu, points: Sequence[ContactPoint]) -> tuple[np.ndarray, np.ndarray]:
+def _track_compliance(
+    track: FETrack, K_lu, points: Sequence[ContactPoint]
+) -> tuple[np.ndarray, np.ndarray]:
     """X = K_t^-1 B (rail parts of the contact vectors) and C = B^T X."""
     B = np.zeros((track.n_track, len(points)))
     for j, p in enumerate(points):
@@ -505,8 +562,13 @@ def _track_compliance(track: FETrack, K_lu, points: Sequence[ContactPoint]) -> t
     return X, np.array([[p.shape @ X[p.dofs, j] for j in range(len(points))] for p in points])
 
 
-def static_state(track: FETrack, K_lu, points: Sequence[ContactPoint], tolerance: float = 1e-3,
-                 max_iterations: int = 100) -> _Static:
+def static_state(
+    track: FETrack,
+    K_lu,
+    points: Sequence[ContactPoint],
+    tolerance: float = 1e-3,
+    max_iterations: int = 100,
+) -> _Static:
     """Static equilibrium with Hertz contacts: vehicle weight on the track.
 
     Unknowns: wheelset heave z_w and roll phi (Newton, 2 x 2), the contact forces for
@@ -540,11 +602,18 @@ def static_state(track: FETrack, K_lu, points: Sequence[ContactPoint], tolerance
             raise PassageError(f"no rail under the {wheel} wheel for the static equilibrium")
     W, k_roll = (veh.m_w + veh.m_s) * GRAVITY, 2.0 * veh.k_z * veh.d**2
     delta_0 = (0.5 * W / veh.contact.C_H) ** (2.0 / 3.0)
-    q = np.array([min(max(h[s == w]) for w in (-1.0, 1.0)) - 2.0 * delta_0 - 0.5 * W * np.max(np.diag(C)), 0.0])
+    q = np.array(
+        [
+            min(max(h[s == w]) for w in (-1.0, 1.0)) - 2.0 * delta_0 - 0.5 * W * np.max(np.diag(C)),
+            0.0,
+        ]
+    )
     F = None
     for _ in range(max_iterations):
         d0 = h - q[0] - s * veh.b * q[1]
-        F = solve_contacts(d0, C, veh.contact.C_H, F, 1e-6 * tolerance, groups=_point_groups(points))
+        F = solve_contacts(
+            d0, C, veh.contact.C_H, F, 1e-6 * tolerance, groups=_point_groups(points)
+        )
         R = np.array([F.sum() - W, veh.b * (s @ F) - k_roll * q[1]])
         if abs(R[0]) <= tolerance and abs(R[1]) <= tolerance * veh.b:
             u = np.concatenate([-X @ F, [q[0], q[1], q[0] - veh.m_s * GRAVITY / (2.0 * veh.k_z)]])
@@ -553,10 +622,14 @@ def static_state(track: FETrack, K_lu, points: Sequence[ContactPoint], tolerance
         k = 1.5 * veh.contact.C_H * np.sqrt(delta)
         dF_dd0 = np.linalg.solve(np.eye(len(F)) + k[:, None] * C, np.diag(k))
         dd0 = np.column_stack([-np.ones_like(s), -s * veh.b])
-        J = np.array([np.ones_like(s), veh.b * s]) @ dF_dd0 @ dd0 - np.array([[0.0, 0.0], [0.0, k_roll]])
+        J = np.array([np.ones_like(s), veh.b * s]) @ dF_dd0 @ dd0 - np.array(
+            [[0.0, 0.0], [0.0, k_roll]]
+        )
         q = q - np.linalg.solve(J, R)
-    raise PassageFailure(f"static equilibrium not found in {max_iterations} iterations "
-                         f"(residual {R[0]:.3g} N, {R[1]:.3g} N m)")
+    raise PassageFailure(
+        f"static equilibrium not found in {max_iterations} iterations "
+        f"(residual {R[0]:.3g} N, {R[1]:.3g} N m)"
+    )
 
 
 class _Integrator:
@@ -576,8 +649,13 @@ class _Integrator:
         E = np.zeros((track.n_dof, 2))
         E[track.i_zw, 0] = E[track.i_phi, 1] = 1.0
         self.X_vehicle = self.lu.solve(E)
-        self.timings = {"factorise_s": time.perf_counter() - t0, "solve_s": 0.0, "influence_s": 0.0,
-                        "products_s": 0.0, "contact_s": 0.0}
+        self.timings = {
+            "factorise_s": time.perf_counter() - t0,
+            "solve_s": 0.0,
+            "influence_s": 0.0,
+            "products_s": 0.0,
+            "contact_s": 0.0,
+        }
         self._columns: dict[int, np.ndarray] = {}
         self._K, self._D = track.K.tocsr(), track.D.tocsr()  # CSR: faster products than CSC
 
@@ -594,21 +672,36 @@ class _Integrator:
     def influence(self, points: Sequence[ContactPoint]) -> np.ndarray:
         """X = A^-1 G (n_dof, n_contacts); forgets elements no longer under a wheel."""
         b = self.track.vehicle.b
-        X = np.column_stack([self._element_columns(p) @ p.shape - self.X_vehicle @ np.array([1.0, p.side * b])
-                             for p in points]) if points else np.zeros((self.track.n_dof, 0))
+        X = (
+            np.column_stack(
+                [
+                    self._element_columns(p) @ p.shape
+                    - self.X_vehicle @ np.array([1.0, p.side * b])
+                    for p in points
+                ]
+            )
+            if points
+            else np.zeros((self.track.n_dof, 0))
+        )
         used = {p.element for p in points}
         for e in [e for e in self._columns if e not in used]:
             del self._columns[e]
         return X
 
-    def step(self, state: "_State", points: tuple[ContactPoint, ...], options: FEPassageOptions) -> "_State":
+    def step(
+        self, state: _State, points: tuple[ContactPoint, ...], options: FEPassageOptions
+    ) -> _State:
         """One step to the positions of ``points``; ArithmeticError if the contacts do not converge."""
         tr, h, a, beta, gamma = self.track, self.h, self.alpha, self.beta, self.gamma
         u_p = state.u + h * state.v + h * h * (0.5 - beta) * state.a
         v_p = state.v + h * (1.0 - gamma) * state.a
         t0 = time.perf_counter()
-        r = tr.f_gravity - a * state.f_contact - self._D @ ((1.0 + a) * v_p - a * state.v) \
+        r = (
+            tr.f_gravity
+            - a * state.f_contact
+            - self._D @ ((1.0 + a) * v_p - a * state.v)
             - self._K @ ((1.0 + a) * u_p - a * state.u)
+        )
         t1 = time.perf_counter()
         a_star = self.lu.solve(r)
         t2 = time.perf_counter()
@@ -616,10 +709,19 @@ class _Integrator:
         t3 = time.perf_counter()
         c = (1.0 + a) * beta * h * h
         d0 = _gaps(tr, points, u_p + beta * h * h * a_star) + np.array([p.height for p in points])
-        F = solve_contacts(d0, c * _gaps(tr, points, X), tr.vehicle.contact.C_H, _previous_forces(state, points),
-                           options.contact_tolerance, options.max_contact_iterations, _point_groups(points))
+        F = solve_contacts(
+            d0,
+            c * _gaps(tr, points, X),
+            tr.vehicle.contact.C_H,
+            _previous_forces(state, points),
+            options.contact_tolerance,
+            options.max_contact_iterations,
+            _point_groups(points),
+        )
         acc = a_star - (1.0 + a) * (X @ F)
-        new = _State(u_p + beta * h * h * acc, v_p + gamma * h * acc, acc, _load(tr, points, F), points, F)
+        new = _State(
+            u_p + beta * h * h * acc, v_p + gamma * h * acc, acc, _load(tr, points, F), points, F
+        )
         tm = self.timings
         tm["products_s"] += t1 - t0
         tm["solve_s"] += t2 - t1
@@ -645,18 +747,25 @@ def _previous_forces(state: _State, points: Sequence[ContactPoint]) -> np.ndarra
     return np.array([last.get(id(p.pair), 0.0) for p in points])
 
 
-def _check(settings: PassageSettings, turnout: Turnout, track: FETrack, own_layout: bool) -> tuple[float, float]:
+def _check(
+    settings: PassageSettings, turnout: Turnout, track: FETrack, own_layout: bool
+) -> tuple[float, float]:
     """x range (m) of the run; PassageError naming the problem otherwise."""
     s, lay = settings, track.layout
     if not (math.isfinite(s.speed_kmh) and 0 < s.speed_kmh <= 400):
         raise PassageError(f"speed must be > 0 and <= 400 km/h, got {s.speed_kmh:g} km/h")
-    lo, hi = (max(turnout.x_min, lay.x_start), min(turnout.x_max, lay.x_end)) if own_layout else (lay.x_start,
-                                                                                                    lay.x_end)
+    lo, hi = (
+        (max(turnout.x_min, lay.x_start), min(turnout.x_max, lay.x_end))
+        if own_layout
+        else (lay.x_start, lay.x_end)
+    )
     x_a = lo if s.x_start is None else s.x_start
     x_b = hi if s.x_end is None else s.x_end
     if not (lo <= x_a < x_b <= hi):
-        raise PassageError(f"x range {x_a:g}..{x_b:g} m must lie within {lo:g}..{hi:g} m "
-                           f"({'turnout and FE layout' if own_layout else 'FE layout'}) with x_start < x_end")
+        raise PassageError(
+            f"x range {x_a:g}..{x_b:g} m must lie within {lo:g}..{hi:g} m "
+            f"({'turnout and FE layout' if own_layout else 'FE layout'}) with x_start < x_end"
+        )
     # the lightest rail of the turnout's (derived, two-layer) co-running set: the FE rail's
     # contact mass is of that order, and the limit must not depend on the run's x range
     m_rail = lightest_rail_mass(turnout, turnout.x_min, turnout.x_max, 2, "derived")
@@ -668,23 +777,34 @@ def _check(settings: PassageSettings, turnout: Turnout, track: FETrack, own_layo
             f"{m_rail:.4g} kg)"
         )
     duration = (x_b - x_a) / s.v
-    if s.output_step is not None and not (math.isfinite(s.output_step)
-                                          and s.time_step <= s.output_step <= duration):
-        raise PassageError(f"output step {s.output_step:g} s must be >= the time step "
-                           f"({s.time_step:g} s) and <= the run's duration ({duration:.4g} s)")
+    if s.output_step is not None and not (
+        math.isfinite(s.output_step) and s.time_step <= s.output_step <= duration
+    ):
+        raise PassageError(
+            f"output step {s.output_step:g} s must be >= the time step "
+            f"({s.time_step:g} s) and <= the run's duration ({duration:.4g} s)"
+        )
     return x_a, x_b
 
 
-def _start(track: FETrack, route: Route, x: float, v: float, options: FEPassageOptions) -> tuple[_State, float]:
+def _start(
+    track: FETrack, route: Route, x: float, v: float, options: FEPassageOptions
+) -> tuple[_State, float]:
     """Steady start at x: static state, convected velocity, acceleration from the equations; static time (s)."""
     t0 = time.perf_counter()
     K_lu = sla.splu(track.model.K.tocsc(), **_LU)
     st = static_state(track, K_lu, contact_points(track, route, x), options.contact_tolerance)
-    ahead = static_state(track, K_lu, contact_points(track, route, x + _START_DX), options.contact_tolerance)
+    ahead = static_state(
+        track, K_lu, contact_points(track, route, x + _START_DX), options.contact_tolerance
+    )
     vel = v * (ahead.u - st.u) / _START_DX
-    vel[track.i_zs] = 0.0  # the sprung mass (~2.6 Hz) does not follow the sleeper-passing variation (46 Hz)
+    vel[track.i_zs] = (
+        0.0  # the sprung mass (~2.6 Hz) does not follow the sleeper-passing variation (46 Hz)
+    )
     f_c = _load(track, st.points, st.F)
-    acc = sla.splu(track.M.tocsc(), **_LU).solve(track.f_gravity + f_c - track.K @ st.u - track.D @ vel)
+    acc = sla.splu(track.M.tocsc(), **_LU).solve(
+        track.f_gravity + f_c - track.K @ st.u - track.D @ vel
+    )
     return _State(st.u, vel, acc, f_c, st.points, st.F), time.perf_counter() - t0
 
 
@@ -709,29 +829,46 @@ class _Recorder:
     def add(self, t: float, x: float, state: _State) -> None:
         by_pair = {id(p.pair): F for p, F in zip(state.points, state.F)}
         u, tr = state.u, self.track
-        self.rows.append([t, x] + [by_pair.get(id(p), 0.0) for p in self.route.pairs]
-                         + [u[tr.i_zw], u[tr.i_phi], u[tr.i_zs]]
-                         + [_slot_w(tr, self.route, s, x, u) for s in self.slots])
+        self.rows.append(
+            [t, x]
+            + [by_pair.get(id(p), 0.0) for p in self.route.pairs]
+            + [u[tr.i_zw], u[tr.i_phi], u[tr.i_zs]]
+            + [_slot_w(tr, self.route, s, x, u) for s in self.slots]
+        )
 
     def columns(self) -> dict[str, np.ndarray]:
         """Columns of :func:`~exudyn_turnout.passage.simulate.simulate_passage` (lateral ones NaN: not modelled)."""
         data = np.array(self.rows)
         t, x, n = data[:, 0], data[:, 1], len(self.route.pairs)
-        forces, vehicle, w = data[:, 2:2 + n], data[:, 2 + n:5 + n], data[:, 5 + n:]
+        forces, vehicle, w = data[:, 2 : 2 + n], data[:, 2 + n : 5 + n], data[:, 5 + n :]
         nan = np.full_like(t, np.nan)
         cols: dict[str, np.ndarray] = {"t_s": t, "x_m": x}
         for wheel in ("right", "left"):
-            cols[f"Fz_{wheel}_N"] = sum((forces[:, i] for i, p in enumerate(self.route.pairs) if p.wheel == wheel),
-                                        np.zeros_like(t))
+            cols[f"Fz_{wheel}_N"] = sum(
+                (forces[:, i] for i, p in enumerate(self.route.pairs) if p.wheel == wheel),
+                np.zeros_like(t),
+            )
             cols[f"Fy_{wheel}_N"] = nan
         present = {s: np.isfinite(w[:, k]) for k, s in enumerate(self.slots)}
         for wheel, slot in dict.fromkeys((p.wheel, p.rail) for p in self.route.pairs):
-            total = sum((forces[:, i] for i, p in enumerate(self.route.pairs) if (p.wheel, p.rail) == (wheel, slot)),
-                        np.zeros_like(t))
+            total = sum(
+                (
+                    forces[:, i]
+                    for i, p in enumerate(self.route.pairs)
+                    if (p.wheel, p.rail) == (wheel, slot)
+                ),
+                np.zeros_like(t),
+            )
             cols[f"Fz_{wheel}_{slot}_N"] = np.where(present[slot], total, np.nan)
             cols[f"Fy_{wheel}_{slot}_N"] = nan
-        cols.update({"y_wheelset_m": nan, "z_wheelset_m": vehicle[:, 0], "roll_wheelset_rad": vehicle[:, 1],
-                     "yaw_wheelset_rad": nan})
+        cols.update(
+            {
+                "y_wheelset_m": nan,
+                "z_wheelset_m": vehicle[:, 0],
+                "roll_wheelset_rad": vehicle[:, 1],
+                "yaw_wheelset_rad": nan,
+            }
+        )
         for k, slot in enumerate(self.slots):
             cols[f"y_rail_{slot}_m"], cols[f"z_rail_{slot}_m"] = nan, w[:, k]
         return cols
@@ -744,10 +881,17 @@ def _static_loads(state: _State) -> dict[str, float]:
     return loads
 
 
-def simulate_fe_passage(turnout: Turnout, settings: PassageSettings = PassageSettings(),
-                        vehicle: Vehicle | None = None, options: FEPassageOptions | None = None, *,
-                        layout: Layout | None = None, route: Route | None = None, track: FETrack | None = None,
-                        progress: Callable[[float, float], None] | None = None) -> PassageResult:
+def simulate_fe_passage(
+    turnout: Turnout,
+    settings: PassageSettings = PassageSettings(),
+    vehicle: Vehicle | None = None,
+    options: FEPassageOptions | None = None,
+    *,
+    layout: Layout | None = None,
+    route: Route | None = None,
+    track: FETrack | None = None,
+    progress: Callable[[float, float], None] | None = None,
+) -> PassageResult:
     """Run the wheelset over the vertical FE track of the turnout (see the module docstring).
 
     Parameters
@@ -797,7 +941,9 @@ def simulate_fe_passage(turnout: Turnout, settings: PassageSettings = PassageSet
     columns, state0, timings = _run(track, route, settings, options, x_a, x_b, progress)
     loads = _static_loads(state0)
     check_plausible(columns, 0.5 * (loads["left"] + loads["right"]), "FE track")
-    summary = passage_summary(columns, turnout, settings, _static_loads(state0), time.perf_counter() - wall)
+    summary = passage_summary(
+        columns, turnout, settings, _static_loads(state0), time.perf_counter() - wall
+    )
     summary.update(_fe_summary(track, options, settings, timings))
     summary["settings"] = {k: v for k, v in summary["settings"].items() if k not in _NOT_FE}
     return PassageResult(replace(settings, x_start=x_a, x_end=x_b), columns, summary, (x_a,))
@@ -809,14 +955,22 @@ _NOT_FE = ("layers", "source", "track_mechanism")
 
 def _load_route(turnout: Turnout, name: str) -> Route:
     from exudyn_turnout.inputs.turnout import TurnoutFileError
+
     try:
         return load_route(turnout, name)
     except TurnoutFileError as err:
         raise PassageError(str(err)) from None
 
 
-def _run(track: FETrack, route: Route, settings: PassageSettings, options: FEPassageOptions, x_a: float,
-         x_b: float, progress: Callable | None) -> tuple[dict, _State, dict]:
+def _run(
+    track: FETrack,
+    route: Route,
+    settings: PassageSettings,
+    options: FEPassageOptions,
+    x_a: float,
+    x_b: float,
+    progress: Callable | None,
+) -> tuple[dict, _State, dict]:
     """Integrate from x_a to x_b; columns, the start state and timings."""
     v = settings.v
     n_steps = max(1, math.ceil((x_b - x_a) / v / settings.time_step - 1e-9))
@@ -837,12 +991,17 @@ def _run(track: FETrack, route: Route, settings: PassageSettings, options: FEPas
             message = f"FE passage failed at t = {t:.5f} s, x = {x:.3f} m: {err}"
             raise PassageFailure(message) from None
         if not np.isfinite(state.F).all() or not np.isfinite(state.u[track.i_zw]):
-            raise PassageFailure(f"FE passage diverged at t = {t:.5f} s, x = {x:.3f} m: "
-                                 "reduce the time step")
+            raise PassageFailure(
+                f"FE passage diverged at t = {t:.5f} s, x = {x:.3f} m: reduce the time step"
+            )
         if abs(state.u[track.i_zw]) > PLAUSIBLE["wheelset_m"] or (
-                state.F.size and np.max(state.F) > f_limit):
-            what = (f"wheelset z {state.u[track.i_zw]:.4g} m" if abs(state.u[track.i_zw])
-                    > PLAUSIBLE["wheelset_m"] else f"contact force {np.max(state.F):.4g} N")
+            state.F.size and np.max(state.F) > f_limit
+        ):
+            what = (
+                f"wheelset z {state.u[track.i_zw]:.4g} m"
+                if abs(state.u[track.i_zw]) > PLAUSIBLE["wheelset_m"]
+                else f"contact force {np.max(state.F):.4g} N"
+            )
             raise PassageFailure(
                 f"implausible run stopped at t = {t:.5f} s, x = {x:.3f} m (FE track): "
                 f"{what} is beyond the physical limit"
@@ -852,20 +1011,36 @@ def _run(track: FETrack, route: Route, settings: PassageSettings, options: FEPas
         if progress is not None and n >= due:
             due = n + max(1, n_steps // 50)
             progress(n / n_steps, x)
-    timings = dict(track.timings, **integ.timings, static_s=static_s, steps_s=time.perf_counter() - t0,
-                   n_steps=n_steps, h=h)
+    timings = dict(
+        track.timings,
+        **integ.timings,
+        static_s=static_s,
+        steps_s=time.perf_counter() - t0,
+        n_steps=n_steps,
+        h=h,
+    )
     return rec.columns(), state0, timings
 
 
-def _fe_summary(track: FETrack, options: FEPassageOptions, settings: PassageSettings,
-                timings: Mapping[str, float]) -> dict[str, object]:
+def _fe_summary(
+    track: FETrack,
+    options: FEPassageOptions,
+    settings: PassageSettings,
+    timings: Mapping[str, float],
+) -> dict[str, object]:
     alpha, beta, gamma = hht_parameters(settings.spectral_radius)
-    return {"model": "FE", "layers": None, "source": "Table 1 (FE model)",
-            "lateral": "not modelled: vertical FE plane only (Fy and y columns empty)",
-            "n_dof": track.n_dof, "n_dof_track": track.n_track,
-            "time_integration": f"HHT-alpha, alpha = {alpha:.4f} (rho_inf {settings.spectral_radius:g}), "
-                                f"beta = {beta:.4f}, gamma = {gamma:.4f}, constant matrix factorised once",
-            "time_step_s": float(timings["h"]),
-            "fe_options": asdict(options.mesh), "loss_reference_hz": options.loss_reference_hz,
-            "wall_time_parts_s": {k[:-2]: float(v) for k, v in timings.items() if k.endswith("_s")},
-            "n_steps": int(timings["n_steps"])}
+    return {
+        "model": "FE",
+        "layers": None,
+        "source": "Table 1 (FE model)",
+        "lateral": "not modelled: vertical FE plane only (Fy and y columns empty)",
+        "n_dof": track.n_dof,
+        "n_dof_track": track.n_track,
+        "time_integration": f"HHT-alpha, alpha = {alpha:.4f} (rho_inf {settings.spectral_radius:g}), "
+        f"beta = {beta:.4f}, gamma = {gamma:.4f}, constant matrix factorised once",
+        "time_step_s": float(timings["h"]),
+        "fe_options": asdict(options.mesh),
+        "loss_reference_hz": options.loss_reference_hz,
+        "wall_time_parts_s": {k[:-2]: float(v) for k, v in timings.items() if k.endswith("_s")},
+        "n_steps": int(timings["n_steps"]),
+    }

@@ -10,22 +10,23 @@ The run starts from static equilibrium at ``x_start`` and is split at the zone b
 rails, and the state of everything that continues (vehicle, sleeper, rails present in
 both zones, or a rail slot that a route says continues another) is carried over.
 """
+
 from __future__ import annotations
 
 import math
-import warnings
 import time
+import warnings
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Callable, Mapping
 
 import numpy as np
 
 from exudyn_turnout.corunning.parameters import co_running_parameters
-from exudyn_turnout.inputs.routes import SpeedWarning, speed_warnings, Route, load_route
+from exudyn_turnout.inputs.routes import Route, SpeedWarning, load_route, speed_warnings
 from exudyn_turnout.inputs.turnout import Turnout, Zone
 from exudyn_turnout.inputs.vehicle import Vehicle, load_vehicle
-from exudyn_turnout.passage.vehicle import add_vehicle
 from exudyn_turnout.passage.contact_element import BoundPair, WheelRailElement
+from exudyn_turnout.passage.vehicle import add_vehicle
 
 __all__ = [
     "PassageSettings",
@@ -71,6 +72,7 @@ PLAUSIBLE = {"wheelset_m": 0.05, "rail_m": 0.02, "force_over_static": 50.0}
 @dataclass(frozen=True)
 class PassageSettings:
     """Settings of a passage (SI units but the speed in km/h)."""
+
     route: str = "through"
     speed_kmh: float = 100.0  #: km/h
     layers: int = 3
@@ -80,7 +82,9 @@ class PassageSettings:
     time_step: float = 1e-4  #: s, converged: halving it moves the crossing peak < 0.4 %
     output_step: float | None = None  #: s, default: every time step
     spectral_radius: float = 0.8  #: generalized-alpha rho_inf
-    track_mechanism: str = "symbolic"  #: how track springs follow x: "symbolic", "python" or "constant"
+    track_mechanism: str = (
+        "symbolic"  #: how track springs follow x: "symbolic", "python" or "constant"
+    )
 
     @property
     def v(self) -> float:
@@ -95,7 +99,9 @@ class PassageResult:
     settings: PassageSettings
     columns: Mapping[str, np.ndarray]  #: "t_s", "x_m", forces (N), displacements (m, rad)
     summary: Mapping[str, object]
-    zone_starts: tuple[float, ...] = field(default_factory=tuple)  #: m, x where each run segment began
+    zone_starts: tuple[float, ...] = field(
+        default_factory=tuple
+    )  #: m, x where each run segment began
 
 
 def contact_resonance(vehicle: Vehicle, m_contact: float) -> float:
@@ -135,8 +141,9 @@ def max_time_step(vehicle: Vehicle, m_rail: float) -> float:
     return 1.0 / (10.0 * contact_resonance(vehicle, m_rail))
 
 
-def lightest_rail_mass(turnout: Turnout, x_a: float, x_b: float, layers: int = 3,
-                       source: str = "derived") -> float:
+def lightest_rail_mass(
+    turnout: Turnout, x_a: float, x_b: float, layers: int = 3, source: str = "derived"
+) -> float:
     """Lightest co-running rail mass m_r (kg) of the active rails between x_a and x_b.
 
     Evaluated from the actual parameter set (``layers``, ``source``) at both ends of each
@@ -183,14 +190,18 @@ def _check(settings: PassageSettings, turnout: Turnout, vehicle: Vehicle) -> tup
     x_a = turnout.x_min if s.x_start is None else s.x_start
     x_b = turnout.x_max if s.x_end is None else s.x_end
     if not (turnout.x_min <= x_a < x_b <= turnout.x_max):
-        raise PassageError(f"x range {x_a:g}..{x_b:g} m must lie within the turnout "
-                           f"({turnout.x_min:g}..{turnout.x_max:g} m) with x_start < x_end")
+        raise PassageError(
+            f"x range {x_a:g}..{x_b:g} m must lie within the turnout "
+            f"({turnout.x_min:g}..{turnout.x_max:g} m) with x_start < x_end"
+        )
     m_rail = lightest_rail_mass(turnout, x_a, x_b, s.layers, s.source)
     h_max = max_time_step(vehicle, m_rail)
     if not (math.isfinite(s.time_step) and 0 < s.time_step <= h_max):
-        raise PassageError(f"time step {s.time_step:g} s is too large to resolve the wheel/rail contact "
-                           f"(~{contact_resonance(vehicle, m_rail):.0f} Hz with the lightest rail, "
-                           f"{m_rail:.4g} kg): use a step <= {h_max:.2g} s")
+        raise PassageError(
+            f"time step {s.time_step:g} s is too large to resolve the wheel/rail contact "
+            f"(~{contact_resonance(vehicle, m_rail):.0f} Hz with the lightest rail, "
+            f"{m_rail:.4g} kg): use a step <= {h_max:.2g} s"
+        )
     _check_output_step(s, (x_b - x_a) / s.v)
     return x_a, x_b
 
@@ -199,8 +210,10 @@ def _check_output_step(s: PassageSettings, duration: float) -> None:
     if s.output_step is None:
         return
     if not (math.isfinite(s.output_step) and s.time_step <= s.output_step <= duration):
-        raise PassageError(f"output step {s.output_step:g} s must be >= the time step "
-                           f"({s.time_step:g} s) and <= the run's duration ({duration:.4g} s)")
+        raise PassageError(
+            f"output step {s.output_step:g} s must be >= the time step "
+            f"({s.time_step:g} s) and <= the run's duration ({duration:.4g} s)"
+        )
 
 
 def check_plausible(columns: Mapping[str, np.ndarray], static_load: float, what: str = "") -> None:
@@ -256,8 +269,13 @@ def _pair_key(wheel: str, rail: str) -> str:
     return f"{wheel}_{rail}"
 
 
-def _segment_columns(element: WheelRailElement, t: np.ndarray, q: np.ndarray, force: np.ndarray,
-                     rails: Mapping[str, int]) -> dict[str, np.ndarray]:
+def _segment_columns(
+    element: WheelRailElement,
+    t: np.ndarray,
+    q: np.ndarray,
+    force: np.ndarray,
+    rails: Mapping[str, int],
+) -> dict[str, np.ndarray]:
     """Forces and displacements of one zone's run.
 
     ``q``: stored element coordinates (samples x n); ``force``: the element's stored
@@ -275,7 +293,9 @@ def _segment_columns(element: WheelRailElement, t: np.ndarray, q: np.ndarray, fo
         cols[f"Fz_{key}_N"], cols[f"Fy_{key}_N"] = force[:, i + 1].copy(), -force[:, i]
         cols[f"Fz_{wheel_of[slot]}_N"] += cols[f"Fz_{key}_N"]
         cols[f"Fy_{wheel_of[slot]}_N"] += cols[f"Fy_{key}_N"]
-    for i, name in enumerate(("y_wheelset_m", "z_wheelset_m", "roll_wheelset_rad", "yaw_wheelset_rad")):
+    for i, name in enumerate(
+        ("y_wheelset_m", "z_wheelset_m", "roll_wheelset_rad", "yaw_wheelset_rad")
+    ):
         cols[name] = q[:, i]
     for slot, i in rails.items():
         cols[f"y_rail_{slot}_m"], cols[f"z_rail_{slot}_m"] = q[:, i], q[:, i + 1]
@@ -293,7 +313,9 @@ def _join(segments: list[dict[str, np.ndarray]]) -> dict[str, np.ndarray]:
     return out
 
 
-def _peak(cols: Mapping[str, np.ndarray], name: str, x_range: tuple[float, float], signed: bool = False) -> float:
+def _peak(
+    cols: Mapping[str, np.ndarray], name: str, x_range: tuple[float, float], signed: bool = False
+) -> float:
     x = cols["x_m"]
     sel = (x >= x_range[0]) & (x <= x_range[1])
     if not sel.any():
@@ -334,17 +356,27 @@ def _initial_guess(vehicle: Vehicle) -> tuple[float, float]:
     return z_w, z_w - 0.5 * vehicle.m_s * 9.81 / vehicle.k_z
 
 
-def _build(turnout: Turnout, route: Route, vehicle: Vehicle, zone: Zone, settings: PassageSettings,
-           x0: float, v: float) -> _ZoneSystem:
+def _build(
+    turnout: Turnout,
+    route: Route,
+    vehicle: Vehicle,
+    zone: Zone,
+    settings: PassageSettings,
+    x0: float,
+    v: float,
+) -> _ZoneSystem:
+    from dataclasses import replace
+
     import exudyn as exu
     from exudyn.itemInterface import ObjectGenericODE2, SensorBody, SensorNode
-    from dataclasses import replace
 
     from exudyn_turnout.corunning.track import add_co_running_track
 
     container = exu.SystemContainer()
     mbs = container.AddSystem()
-    params = co_running_parameters(turnout, zone=zone.index, layers=settings.layers, source=settings.source)
+    params = co_running_parameters(
+        turnout, zone=zone.index, layers=settings.layers, source=settings.source
+    )
     params = replace(params, zone=route.zone(params.zone))
     track = add_co_running_track(mbs, params, x0, v, mechanism=settings.track_mechanism)
     veh = add_vehicle(mbs, vehicle, track.ground, *_initial_guess(vehicle))
@@ -352,20 +384,48 @@ def _build(turnout: Turnout, route: Route, vehicle: Vehicle, zone: Zone, setting
     slots = [r for r in zone.active_rails if any(p.rail == r for p in pairs)]
     for r in slots:
         if len({p.wheel for p in pairs if p.rail == r}) > 1:
-            raise PassageError(f"route {route.name}: rail {r} is touched by both wheels in zone {zone.index}")
+            raise PassageError(
+                f"route {route.name}: rail {r} is touched by both wheels in zone {zone.index}"
+            )
     rails = {r: 6 + 2 * i for i, r in enumerate(slots)}
-    element = WheelRailElement(vehicle, route, [BoundPair(p, rails[p.rail], rails[p.rail] + 1) for p in pairs], x0, v)
-    nodes = [veh.wheelset_node, veh.yaw_node, veh.sprung_node] + [track.wheel_nodes[r] for r in slots]
+    element = WheelRailElement(
+        vehicle, route, [BoundPair(p, rails[p.rail], rails[p.rail] + 1) for p in pairs], x0, v
+    )
+    nodes = [veh.wheelset_node, veh.yaw_node, veh.sprung_node] + [
+        track.wheel_nodes[r] for r in slots
+    ]
     M, K = np.zeros((element.n, element.n)), np.zeros((element.n, element.n))
     M[3, 3], K[3, 3] = vehicle.J_yaw, vehicle.k_yaw
-    contact = mbs.AddObject(ObjectGenericODE2(nodeNumbers=nodes, massMatrix=M, stiffnessMatrix=K,
-                                              forceUserFunction=element))
-    force_sensor = mbs.AddSensor(SensorBody(bodyNumber=contact, storeInternal=True, writeToFile=False,
-                                            outputVariableType=exu.OutputVariableType.Force))
-    sensors = [mbs.AddSensor(SensorNode(nodeNumber=n, storeInternal=True, writeToFile=False,
-                                        outputVariableType=exu.OutputVariableType.Coordinates)) for n in nodes]
-    names = {"wheelset": veh.wheelset_node, "yaw": veh.yaw_node, "sprung": veh.sprung_node,
-             "sleeper": track.sleeper_node}
+    contact = mbs.AddObject(
+        ObjectGenericODE2(
+            nodeNumbers=nodes, massMatrix=M, stiffnessMatrix=K, forceUserFunction=element
+        )
+    )
+    force_sensor = mbs.AddSensor(
+        SensorBody(
+            bodyNumber=contact,
+            storeInternal=True,
+            writeToFile=False,
+            outputVariableType=exu.OutputVariableType.Force,
+        )
+    )
+    sensors = [
+        mbs.AddSensor(
+            SensorNode(
+                nodeNumber=n,
+                storeInternal=True,
+                writeToFile=False,
+                outputVariableType=exu.OutputVariableType.Coordinates,
+            )
+        )
+        for n in nodes
+    ]
+    names = {
+        "wheelset": veh.wheelset_node,
+        "yaw": veh.yaw_node,
+        "sprung": veh.sprung_node,
+        "sleeper": track.sleeper_node,
+    }
     names.update({f"rail_{r}": n for r, n in track.rail_nodes.items()})
     names.update({f"m0_{r}": n for r, n in track.layer_nodes.items()})
     mbs.Assemble()
@@ -374,6 +434,7 @@ def _build(turnout: Turnout, route: Route, vehicle: Vehicle, zone: Zone, setting
 
 def _node_state(system: _ZoneSystem) -> dict[str, tuple[np.ndarray, np.ndarray]]:
     import exudyn as exu
+
     data = system.mbs.systemData
     q = np.asarray(data.GetODE2Coordinates(exu.ConfigurationType.Current))
     q_t = np.asarray(data.GetODE2Coordinates_t(exu.ConfigurationType.Current))
@@ -381,7 +442,7 @@ def _node_state(system: _ZoneSystem) -> dict[str, tuple[np.ndarray, np.ndarray]]
     for name, node in system.names.items():
         i = system.mbs.GetNodeODE2Index(node)
         k = np.atleast_1d(system.mbs.GetNodeOutput(node, exu.OutputVariableType.Coordinates)).size
-        out[name] = (q[i:i + k].copy(), q_t[i:i + k].copy())
+        out[name] = (q[i : i + k].copy(), q_t[i : i + k].copy())
     return out
 
 
@@ -406,7 +467,9 @@ def _track_vector(state: dict, system: _ZoneSystem, index: int) -> dict[str, flo
     return out
 
 
-def _wheel_rail_loads(system: _ZoneSystem, state: dict, layers: int) -> dict[str, tuple[float, float]]:
+def _wheel_rail_loads(
+    system: _ZoneSystem, state: dict, layers: int
+) -> dict[str, tuple[float, float]]:
     """Total (vertical, lateral) force on each rail slot touched, from the element at ``state``."""
     q = np.concatenate([state[n][0] for n in _element_nodes(system, layers)])
     q_t = np.concatenate([state[n][1] for n in _element_nodes(system, layers)])
@@ -418,7 +481,9 @@ def _wheel_rail_loads(system: _ZoneSystem, state: dict, layers: int) -> dict[str
     return {r: (v[0], v[1]) for r, v in loads.items()}
 
 
-def _static_deflection(params, x: float, loads: Mapping[str, tuple[float, float]], layers: int) -> dict[str, float]:
+def _static_deflection(
+    params, x: float, loads: Mapping[str, tuple[float, float]], layers: int
+) -> dict[str, float]:
     """u = K^-1 f of the co-running track (by coordinate name) under the vertical wheel loads.
 
     Lateral loads are left out on purpose: the two rails' lateral deflections change in
@@ -426,6 +491,7 @@ def _static_deflection(params, x: float, loads: Mapping[str, tuple[float, float]
     conical tread that would turn into a vertical load step; lateral states carry over.
     """
     from exudyn_turnout.corunning.modal import assemble_track_matrices, wheel_dof
+
     m = assemble_track_matrices(params, x)
     f = np.zeros(len(m.dof))
     for rail, (N, _) in loads.items():
@@ -434,8 +500,14 @@ def _static_deflection(params, x: float, loads: Mapping[str, tuple[float, float]
     return dict(zip(m.dof, np.linalg.solve(m.K, f)))
 
 
-def _carry_over(state: dict, old: _ZoneSystem, new: _ZoneSystem, continues: Mapping[str, str], layers: int,
-                x: float) -> None:
+def _carry_over(
+    state: dict,
+    old: _ZoneSystem,
+    new: _ZoneSystem,
+    continues: Mapping[str, str],
+    layers: int,
+    x: float,
+) -> None:
     """Set the new zone's initial state from the old zone's final ``state``.
 
     The static part of the track's deflection is re-based: the old zone's static deflection
@@ -445,6 +517,7 @@ def _carry_over(state: dict, old: _ZoneSystem, new: _ZoneSystem, continues: Mapp
     over. A rail that appears starts with the sleeper's motion under it.
     """
     import exudyn as exu
+
     loads_old = _wheel_rail_loads(old, state, layers)
     source = {slot: continues.get(slot, slot) for slot in new.params.active_rails}
     loads_new = {slot: loads_old[src] for slot, src in source.items() if src in loads_old}
@@ -459,7 +532,9 @@ def _carry_over(state: dict, old: _ZoneSystem, new: _ZoneSystem, continues: Mapp
     for name in u_new:
         axis, _, rest = name.partition("_")
         slot = rest.rsplit("_", 1)[-1]
-        src = name.replace(slot, source[slot]) if slot in source else name  # sleeper names have no slot
+        src = (
+            name.replace(slot, source[slot]) if slot in source else name
+        )  # sleeper names have no slot
         if src in dyn:
             q_new[name], v_new[name] = u_new[name] + dyn[src], v_old[src]
         else:  # a rail that appears: the sleeper's motion under it
@@ -478,18 +553,27 @@ def _carry_over(state: dict, old: _ZoneSystem, new: _ZoneSystem, continues: Mapp
         else:
             dofs = _dof_of(name)
             values, rates = np.array([q_new[d] for d in dofs]), np.array([v_new[d] for d in dofs])
-        q[i:i + len(values)], q_t[i:i + len(values)] = values, rates
+        q[i : i + len(values)], q_t[i : i + len(values)] = values, rates
     data.SetODE2Coordinates(q, exu.ConfigurationType.Initial)
     data.SetODE2Coordinates_t(q_t, exu.ConfigurationType.Initial)
 
 
-def _vehicle_shift(old: _ZoneSystem, u_old: dict, u_new: dict, loads: Mapping, source: Mapping[str, str],
-                   layers: int) -> dict[str, np.ndarray]:
+def _vehicle_shift(
+    old: _ZoneSystem,
+    u_old: dict,
+    u_new: dict,
+    loads: Mapping,
+    source: Mapping[str, str],
+    layers: int,
+) -> dict[str, np.ndarray]:
     """Move wheelset and sprung mass with the change of static rail deflection under each wheel."""
     from exudyn_turnout.corunning.modal import wheel_dof
+
     b = old.element.vehicle.b
     dz, dy = {"left": [], "right": []}, {"left": [], "right": []}
-    new_slot = {src: slot for slot, src in source.items()}  # source holds the new zone's active slots only
+    new_slot = {
+        src: slot for slot, src in source.items()
+    }  # source holds the new zone's active slots only
     for bp in old.element.pairs:
         rail, N = bp.pair.rail, loads.get(bp.pair.rail, (0.0, 0.0))[0]
         if N <= 0.0 or rail not in new_slot:
@@ -498,7 +582,10 @@ def _vehicle_shift(old: _ZoneSystem, u_old: dict, u_new: dict, loads: Mapping, s
             a, b_ = wheel_dof(rail, axis, layers), wheel_dof(new_slot[rail], axis, layers)
             if a in u_old and b_ in u_new:
                 acc[bp.pair.wheel].append(u_new[b_] - u_old[a])
-    mean = {w: (float(np.mean(dz[w])) if dz[w] else 0.0, float(np.mean(dy[w])) if dy[w] else 0.0) for w in dz}
+    mean = {
+        w: (float(np.mean(dz[w])) if dz[w] else 0.0, float(np.mean(dy[w])) if dy[w] else 0.0)
+        for w in dz
+    }
     z, y = 0.5 * (mean["left"][0] + mean["right"][0]), 0.5 * (mean["left"][1] + mean["right"][1])
     roll = (mean["left"][0] - mean["right"][0]) / (2.0 * b)
     return {"wheelset": np.array([y, z, roll]), "yaw": np.zeros(1), "sprung": np.array([y, z])}
@@ -520,18 +607,23 @@ def _wheel_loads(system: _ZoneSystem, state: dict, layers: int) -> dict[str, flo
 
 def _solve_static(system: _ZoneSystem) -> None:
     import exudyn as exu
+
     from exudyn_turnout.corunning.track import simulation_settings
+
     sim = simulation_settings(1.0, 1.0)
     sim.staticSolver.newton.absoluteTolerance = 1e-4
     try:
         system.mbs.SolveStatic(sim, updateInitialValues=True)
     except (exu.SolverError, RuntimeError) as err:
-        raise PassageFailure(f"static equilibrium not found at x = {system.element.x0:g} m "
-                           f"(zone {system.zone.index}): {err}") from None
+        raise PassageFailure(
+            f"static equilibrium not found at x = {system.element.x0:g} m "
+            f"(zone {system.zone.index}): {err}"
+        ) from None
 
 
-def _progress_function(progress: Callable[[float, float], None], t_offset: float, total: float, x0: float,
-                       v: float) -> Callable:
+def _progress_function(
+    progress: Callable[[float, float], None], t_offset: float, total: float, x0: float, v: float
+) -> Callable:
     due = [0.0]
 
     def pre_step(mbs, t):
@@ -539,29 +631,44 @@ def _progress_function(progress: Callable[[float, float], None], t_offset: float
             due[0] = t + 0.02 * total
             progress(min((t_offset + t) / total, 1.0), x0 + v * t)
         return True
+
     return pre_step
 
 
-def _run(system: _ZoneSystem, duration: float, settings: PassageSettings, t_offset: float, total: float,
-         progress: Callable | None) -> dict[str, np.ndarray]:
+def _run(
+    system: _ZoneSystem,
+    duration: float,
+    settings: PassageSettings,
+    t_offset: float,
+    total: float,
+    progress: Callable | None,
+) -> dict[str, np.ndarray]:
     """Integrate one zone for ``duration`` s; return its columns (time shifted by t_offset)."""
     import exudyn as exu
+
     from exudyn_turnout.corunning.track import simulation_settings
+
     h = settings.time_step
-    sim = simulation_settings(duration, h, 0.999 * (settings.output_step or h))  # every step: no rounding skips
+    sim = simulation_settings(
+        duration, h, 0.999 * (settings.output_step or h)
+    )  # every step: no rounding skips
     sim.timeIntegration.numberOfSteps = max(1, int(math.ceil(duration / h - 1e-9)))
     sim.timeIntegration.generalizedAlpha.spectralRadius = settings.spectral_radius
     # 1 N residual: 2e-5 of a wheel load; peaks equal those at 1e-4 N to 0.2 N, with half the iterations
     sim.timeIntegration.newton.absoluteTolerance = NEWTON_ABSOLUTE_TOLERANCE
     el = system.element
     if progress is not None:
-        system.mbs.SetPreStepUserFunction(_progress_function(progress, t_offset, total, el.x0, el.v))
+        system.mbs.SetPreStepUserFunction(
+            _progress_function(progress, t_offset, total, el.x0, el.v)
+        )
     try:
         system.mbs.SolveDynamic(sim)
     except (exu.SolverError, RuntimeError) as err:
         t = system.mbs.systemData.GetTime()
-        raise PassageFailure(f"solver failed at t = {t_offset + t:.5f} s, x = {el.x_at(t):.3f} m "
-                           f"(zone {system.zone.index}, {system.zone.name}): {str(err).strip()}") from None
+        raise PassageFailure(
+            f"solver failed at t = {t_offset + t:.5f} s, x = {el.x_at(t):.3f} m "
+            f"(zone {system.zone.index}, {system.zone.name}): {str(err).strip()}"
+        ) from None
     stored = [system.mbs.GetSensorStoredData(sensor) for sensor in system.sensors]
     t = stored[0][:, 0]
     q = np.hstack([a[:, 1:] for a in stored])
@@ -582,8 +689,12 @@ def _zones_of_run(turnout: Turnout, x_a: float, x_b: float) -> list[Zone]:
     return [z for z in turnout.zones if min(z.x_end, x_b) - max(z.x_start, x_a) > 1e-9]
 
 
-def simulate_passage(turnout: Turnout, settings: PassageSettings = PassageSettings(), vehicle: Vehicle | None = None,
-                     progress: Callable[[float, float], None] | None = None) -> PassageResult:
+def simulate_passage(
+    turnout: Turnout,
+    settings: PassageSettings = PassageSettings(),
+    vehicle: Vehicle | None = None,
+    progress: Callable[[float, float], None] | None = None,
+) -> PassageResult:
     """Run one wheelset through the turnout on a co-running track.
 
     Parameters
@@ -622,8 +733,17 @@ def simulate_passage(turnout: Turnout, settings: PassageSettings = PassageSettin
         return _simulate(turnout, settings, vehicle, route, zones, x_a, x_b, progress, wall)
 
 
-def _simulate(turnout: Turnout, settings: PassageSettings, vehicle: Vehicle, route: Route, zones: list[Zone],
-              x_a: float, x_b: float, progress: Callable | None, wall: float) -> PassageResult:
+def _simulate(
+    turnout: Turnout,
+    settings: PassageSettings,
+    vehicle: Vehicle,
+    route: Route,
+    zones: list[Zone],
+    x_a: float,
+    x_b: float,
+    progress: Callable | None,
+    wall: float,
+) -> PassageResult:
     v = settings.v
     static = _build(turnout, route, vehicle, zones[0], settings, x_a, 0.0)
     _solve_static(static)
@@ -634,7 +754,14 @@ def _simulate(turnout: Turnout, settings: PassageSettings, vehicle: Vehicle, rou
     segments, x, t_offset, previous, total = [], x_a, 0.0, static, (x_b - x_a) / v
     for k, zone in enumerate(zones):
         system = _build(turnout, route, vehicle, zone, settings, x, v)
-        _carry_over(state, previous, system, route.continues.get(zone.index, {}) if k else {}, settings.layers, x)
+        _carry_over(
+            state,
+            previous,
+            system,
+            route.continues.get(zone.index, {}) if k else {},
+            settings.layers,
+            x,
+        )
         duration = (min(zone.x_end, x_b) - x) / v
         cols = _run(system, duration, settings, t_offset, total, progress)
         check_plausible(cols, W, f"zone {zone.index}, {zone.name}")
@@ -654,8 +781,12 @@ def _check_static(
 ) -> None:
     """Stop on an absurd static state: deflections beyond :data:`PLAUSIBLE`, or wheel loads
     that do not carry the vehicle (their sum off the weight by more than 20 %)."""
-    cols = {"t_s": np.zeros(1), "x_m": np.full(1, x), "z_wheelset_m": state["wheelset"][0][1:2],
-            "y_wheelset_m": state["wheelset"][0][0:1]}
+    cols = {
+        "t_s": np.zeros(1),
+        "x_m": np.full(1, x),
+        "z_wheelset_m": state["wheelset"][0][1:2],
+        "y_wheelset_m": state["wheelset"][0][0:1],
+    }
     for name, (q, _) in state.items():
         if name.startswith("rail_"):
             cols[f"z_{name}_m"] = q[1:2]
@@ -674,12 +805,18 @@ def _check_static(
 
 def _regions(turnout: Turnout) -> dict[str, tuple[float, float]]:
     regions = turnout.raw.get("regions", {})
-    return {name: tuple(regions.get(name, default)) for name, default in
-            (("switch", (0.0, 10.0)), ("crossing", (turnout.zones[-1].x_start, turnout.x_max)))}
+    return {
+        name: tuple(regions.get(name, default))
+        for name, default in (
+            ("switch", (0.0, 10.0)),
+            ("crossing", (turnout.zones[-1].x_start, turnout.x_max)),
+        )
+    }
 
 
-def _argpeak(cols: Mapping[str, np.ndarray], name: str, x_range: tuple[float, float],
-             signed: bool) -> tuple[float, float]:
+def _argpeak(
+    cols: Mapping[str, np.ndarray], name: str, x_range: tuple[float, float], signed: bool
+) -> tuple[float, float]:
     """(peak, x of the peak) of column ``name`` in x_range; (nan, nan) if none (or all NaN)."""
     x = cols["x_m"]
     values = np.where((x >= x_range[0]) & (x <= x_range[1]), cols[name], np.nan)
@@ -689,8 +826,9 @@ def _argpeak(cols: Mapping[str, np.ndarray], name: str, x_range: tuple[float, fl
     return float(values[i]), float(x[i])
 
 
-def _contact_peaks(columns: Mapping[str, np.ndarray], regions: Mapping[str, tuple[float, float]]
-                   ) -> dict[str, object]:
+def _contact_peaks(
+    columns: Mapping[str, np.ndarray], regions: Mapping[str, tuple[float, float]]
+) -> dict[str, object]:
     """Peaks per wheel and per contact (rail slot), and which wheel and rail carry each largest one.
 
     Keys: ``peak_<Fz|Fy>_<region>_<wheel>_<slot>_N`` (every wheel/rail pair of the run),
@@ -719,8 +857,13 @@ def _contact_peaks(columns: Mapping[str, np.ndarray], regions: Mapping[str, tupl
     return out
 
 
-def passage_summary(columns: Mapping[str, np.ndarray], turnout: Turnout, settings: PassageSettings,
-                    static_loads: Mapping[str, float], wall_time: float) -> dict[str, object]:
+def passage_summary(
+    columns: Mapping[str, np.ndarray],
+    turnout: Turnout,
+    settings: PassageSettings,
+    static_loads: Mapping[str, float],
+    wall_time: float,
+) -> dict[str, object]:
     """Peaks at the switch and crossing, per wheel and per contact, and the run's settings.
 
     ``peak_Fz_switch_N`` etc. are the right wheel's (as the paper's Figs 7, 8), ``_left``
@@ -747,11 +890,16 @@ def passage_summary(columns: Mapping[str, np.ndarray], turnout: Turnout, setting
     dict
     """
     from dataclasses import asdict
+
     regions = _regions(turnout)
-    out: dict[str, object] = {"route": settings.route, "layers": settings.layers, "source": settings.source,
-                              "speed_kmh": settings.speed_kmh,
-                              "static_wheel_load_N": float(static_loads["right"]),
-                              "static_wheel_load_left_N": float(static_loads["left"])}
+    out: dict[str, object] = {
+        "route": settings.route,
+        "layers": settings.layers,
+        "source": settings.source,
+        "speed_kmh": settings.speed_kmh,
+        "static_wheel_load_N": float(static_loads["right"]),
+        "static_wheel_load_left_N": float(static_loads["left"]),
+    }
     for wheel, suffix in (("right", ""), ("left", "_left")):
         for where, rng in regions.items():
             out[f"peak_Fz_{where}{suffix}_N"] = _peak(columns, f"Fz_{wheel}_N", rng)
@@ -764,7 +912,10 @@ def passage_summary(columns: Mapping[str, np.ndarray], turnout: Turnout, setting
     out["x_start_m"], out["x_end_m"] = float(columns["x_m"][0]), float(columns["x_m"][-1])
     out["simulated_time_s"] = float(columns["t_s"][-1] - columns["t_s"][0])
     out["wall_time_s"] = wall_time
-    out["switch_region_m"], out["crossing_region_m"] = list(regions["switch"]), list(regions["crossing"])
+    out["switch_region_m"], out["crossing_region_m"] = (
+        list(regions["switch"]),
+        list(regions["crossing"]),
+    )
     out["settings"] = asdict(settings)
     return out
 
@@ -774,11 +925,13 @@ class _QuietExudyn:
 
     def __enter__(self):
         import exudyn as exu
+
         self._saved = exu.config.suppressWarnings, exu.config.printToConsole
         exu.config.suppressWarnings, exu.config.printToConsole = True, False
 
     def __exit__(self, *exc):
         import exudyn as exu
+
         exu.config.suppressWarnings, exu.config.printToConsole = self._saved
         return False
 
@@ -866,8 +1019,9 @@ def write_passage(
     return paths
 
 
-def compare_layers(turnout: Turnout, settings: PassageSettings = PassageSettings(),
-                   vehicle: Vehicle | None = None) -> dict[int, PassageResult]:
+def compare_layers(
+    turnout: Turnout, settings: PassageSettings = PassageSettings(), vehicle: Vehicle | None = None
+) -> dict[int, PassageResult]:
     """The same passage on the two-layer and the three-layer track.
 
     Parameters
@@ -883,7 +1037,11 @@ def compare_layers(turnout: Turnout, settings: PassageSettings = PassageSettings
         {2: PassageResult, 3: PassageResult}.
     """
     from dataclasses import replace
-    return {layers: simulate_passage(turnout, replace(settings, layers=layers), vehicle) for layers in (2, 3)}
+
+    return {
+        layers: simulate_passage(turnout, replace(settings, layers=layers), vehicle)
+        for layers in (2, 3)
+    }
 
 
 def peaks_table(results: Mapping[str, PassageResult]) -> str:
@@ -901,6 +1059,9 @@ def peaks_table(results: Mapping[str, PassageResult]) -> str:
     keys = ("peak_Fz_switch_N", "peak_Fz_crossing_N", "peak_Fy_switch_N", "peak_Fy_crossing_N")
     lines = [f"{'model':<28}" + "".join(f"{k[5:-2]:>18}" for k in keys) + f"{'wall (s)':>10}"]
     for label, r in results.items():
-        lines.append(f"{label:<28}" + "".join(f"{r.summary[k] / 1e3:>18.1f}" for k in keys)
-                     + f"{r.summary['wall_time_s']:>10.2f}")
+        lines.append(
+            f"{label:<28}"
+            + "".join(f"{r.summary[k] / 1e3:>18.1f}" for k in keys)
+            + f"{r.summary['wall_time_s']:>10.2f}"
+        )
     return "\n".join(lines)

@@ -87,23 +87,39 @@ engaged) when it engages. RotVecLG was no faster than Rxyz within the noise. The
 model leaves out what the rigid one has beyond small angles: finite rotations, and the
 wheel-load preload's geometric roll term (-2 r0 Q), which the contact element supplies.
 """
+
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Callable, Mapping, Sequence
-
-import numpy as np
-import scipy.linalg
+from typing import Any
 
 import exudyn as exu
+import numpy as np
+import scipy.linalg
 from exudyn.advancedUtilities import CreateSymbolicUserFunction
-from exudyn.itemInterface import (CartesianSpringDamper, CoordinateConstraint, LoadMassProportional,
-                                  MarkerBodyMass, MarkerBodyPosition, MarkerBodyRigid,
-                                  MarkerNodeCoordinate, MarkerNodeCoordinates, MarkerNodePosition,
-                                  MassPoint, NodeGenericODE2, NodePoint, NodePointGround,
-                                  NodeRigidBodyRotVecLG, NodeRigidBodyRxyz, ObjectGenericODE2,
-                                  ObjectGround, RigidBody, RigidBodySpringDamper)
+from exudyn.itemInterface import (
+    CartesianSpringDamper,
+    CoordinateConstraint,
+    LoadMassProportional,
+    MarkerBodyMass,
+    MarkerBodyPosition,
+    MarkerBodyRigid,
+    MarkerNodeCoordinate,
+    MarkerNodeCoordinates,
+    MarkerNodePosition,
+    MassPoint,
+    NodeGenericODE2,
+    NodePoint,
+    NodePointGround,
+    NodeRigidBodyRotVecLG,
+    NodeRigidBodyRxyz,
+    ObjectGenericODE2,
+    ObjectGround,
+    RigidBody,
+    RigidBodySpringDamper,
+)
 
 from exudyn_turnout.inputs.vehicle_model import GRAVITY, BumpStop, VehicleModel
 
@@ -142,11 +158,18 @@ _WHEELSET_DOF = {"y": 0, "z": 1, "x": 2, "spin": 3, "yaw": 4, "roll": 5}
 #: ... of a sprung point (NodePoint).
 _POINT_DOF = {"y": 0, "z": 1, "x": 2}
 #: Free coordinates of each body kind in the linear representation, in node order.
-_LINEAR_DOF = {"body": ("y", "z", "roll", "pitch", "yaw"), "wheelset": ("y", "z", "roll", "yaw"),
-               "sprung": ("y", "z")}
+_LINEAR_DOF = {
+    "body": ("y", "z", "roll", "pitch", "yaw"),
+    "wheelset": ("y", "z", "roll", "yaw"),
+    "sprung": ("y", "z"),
+}
 #: Connector outputs read by :func:`connector_forces_at_reference` (those a type has).
-_FORCE_OUTPUTS = (exu.OutputVariableType.Force, exu.OutputVariableType.ForceLocal,
-                  exu.OutputVariableType.Torque, exu.OutputVariableType.TorqueLocal)
+_FORCE_OUTPUTS = (
+    exu.OutputVariableType.Force,
+    exu.OutputVariableType.ForceLocal,
+    exu.OutputVariableType.Torque,
+    exu.OutputVariableType.TorqueLocal,
+)
 _KEEPALIVE = "exudyn_turnout.passage.vehicle_builder.user_functions"  # mbs.variables key
 
 
@@ -265,9 +288,15 @@ def _point_transform(dof: Sequence[str], r: Sequence[float]) -> np.ndarray:
     """3 x n matrix: small-angle displacement (X, Y, Z) of a body point at offset r (Exudyn
     axes) from the body's coordinates ``dof``: u = t + theta x r, theta = (pitch, yaw, roll)."""
     rx, ry, rz = r
-    cols = {"y": (1.0, 0.0, 0.0), "z": (0.0, 1.0, 0.0), "x": (0.0, 0.0, 1.0),
-            "roll": (-ry, rx, 0.0), "pitch": (0.0, -rz, ry), "spin": (0.0, -rz, ry),
-            "yaw": (rz, 0.0, -rx)}
+    cols = {
+        "y": (1.0, 0.0, 0.0),
+        "z": (0.0, 1.0, 0.0),
+        "x": (0.0, 0.0, 1.0),
+        "roll": (-ry, rx, 0.0),
+        "pitch": (0.0, -rz, ry),
+        "spin": (0.0, -rz, ry),
+        "yaw": (rz, 0.0, -rx),
+    }
     return np.array([cols[d] for d in dof]).T
 
 
@@ -291,8 +320,9 @@ def _bumpstop_connector_function(stop: BumpStop, symbolic: bool) -> Callable:
     pairs = list(zip(points, increments))
     law = stop.lateral_force
 
-    def springForceUserFunction(mbs, t, itemNumber, displacement, velocity, stiffness, damping,
-                                offset):
+    def springForceUserFunction(
+        mbs, t, itemNumber, displacement, velocity, stiffness, damping, offset
+    ):
         u = displacement[0] - offset[0]
         if symbolic:
             lib = exu.symbolic
@@ -307,9 +337,16 @@ def _bumpstop_connector_function(stop: BumpStop, symbolic: bool) -> Callable:
 
 
 # ------------------------------------------------------------------------------ builders
-def add_vehicle_model(mbs: exu.MainSystem, model: VehicleModel, *, representation: str = "linear",
-                      rotation: str = "Rxyz", wheelset_spin: bool = False, bumpstop: str = "auto",
-                      gravity: bool = True) -> VehicleBuild:
+def add_vehicle_model(
+    mbs: exu.MainSystem,
+    model: VehicleModel,
+    *,
+    representation: str = "linear",
+    rotation: str = "Rxyz",
+    wheelset_spin: bool = False,
+    bumpstop: str = "auto",
+    gravity: bool = True,
+) -> VehicleBuild:
     """Add the vehicle (bodies, suspensions, bumpstops, gravity) to ``mbs``.
 
     ``"rigid"``: rigid bodies, every suspension element a 3-D spring-damper connector at its
@@ -361,12 +398,19 @@ def add_vehicle_model(mbs: exu.MainSystem, model: VehicleModel, *, representatio
     return _add_linear(mbs, model, rotation, wheelset_spin, bumpstop != "none", gravity)
 
 
-def _add_rigid(mbs: exu.MainSystem, model: VehicleModel, rotation: str, wheelset_spin: bool,
-               bumpstop: str, gravity: bool) -> VehicleBuild:
+def _add_rigid(
+    mbs: exu.MainSystem,
+    model: VehicleModel,
+    rotation: str,
+    wheelset_spin: bool,
+    bumpstop: str,
+    gravity: bool,
+) -> VehicleBuild:
     ground = int(mbs.AddObject(ObjectGround()))
     ground_node = int(mbs.AddNode(NodePointGround()))
-    ground_coordinate = int(mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=ground_node,
-                                                               coordinate=0)))
+    ground_coordinate = int(
+        mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=ground_node, coordinate=0))
+    )
     w, p = model.wheelset, model.primary
     held: list[tuple[int, int]] = []
     items: dict[str, int] = {}
@@ -374,8 +418,11 @@ def _add_rigid(mbs: exu.MainSystem, model: VehicleModel, rotation: str, wheelset
     def rigid(name, mass, inertia, ref, dof):
         node_type = NodeRigidBodyRxyz if rotation == "Rxyz" else NodeRigidBodyRotVecLG
         node = int(mbs.AddNode(node_type(referenceCoordinates=list(ref) + [0.0, 0.0, 0.0])))
-        body = int(mbs.AddObject(RigidBody(mass=mass, inertia=list(inertia) + [0.0, 0.0, 0.0],
-                                           nodeNumber=node)))
+        body = int(
+            mbs.AddObject(
+                RigidBody(mass=mass, inertia=list(inertia) + [0.0, 0.0, 0.0], nodeNumber=node)
+            )
+        )
         held.append((node, dof["x"]))
         return node, body
 
@@ -383,28 +430,52 @@ def _add_rigid(mbs: exu.MainSystem, model: VehicleModel, rotation: str, wheelset
     if model.car_body is not None:
         c = model.car_body
         ref = (0.0, c.cog_height, c.x[0])
-        node, body = rigid("car_body", c.mass, (c.pitch_inertia, c.yaw_inertia, c.roll_inertia),
-                           ref, _RIGID_DOF)
+        node, body = rigid(
+            "car_body", c.mass, (c.pitch_inertia, c.yaw_inertia, c.roll_inertia), ref, _RIGID_DOF
+        )
         car = BodyHandles("car_body", node, body, c.x[0], ref, dict(_RIGID_DOF))
         b = model.bogie
         for j, xb in enumerate(b.x):
             ref = (0.0, b.cog_height, xb)
-            node, body = rigid(f"bogie{j + 1}", b.mass,
-                               (b.pitch_inertia, b.yaw_inertia, b.roll_inertia), ref, _RIGID_DOF)
+            node, body = rigid(
+                f"bogie{j + 1}",
+                b.mass,
+                (b.pitch_inertia, b.yaw_inertia, b.roll_inertia),
+                ref,
+                _RIGID_DOF,
+            )
             bogies.append(BodyHandles(f"bogie{j + 1}", node, body, xb, ref, dict(_RIGID_DOF)))
     for i, xw in enumerate(w.x):
         ref = (0.0, w.wheel_radius, xw)
-        node, body = rigid(f"wheelset{i + 1}", w.mass,
-                           (w.spin_inertia, w.yaw_inertia, w.roll_inertia), ref, _WHEELSET_DOF)
+        node, body = rigid(
+            f"wheelset{i + 1}",
+            w.mass,
+            (w.spin_inertia, w.yaw_inertia, w.roll_inertia),
+            ref,
+            _WHEELSET_DOF,
+        )
         if not wheelset_spin:
             held.append((node, _WHEELSET_DOF["spin"]))
         local = tuple((side * w.contact_semi_spacing, -w.wheel_radius, 0.0) for side in (-1, 1))
-        markers = tuple(int(mbs.AddMarker(MarkerBodyPosition(bodyNumber=body,
-                                                             localPosition=list(q))))
-                        for q in local)
+        markers = tuple(
+            int(mbs.AddMarker(MarkerBodyPosition(bodyNumber=body, localPosition=list(q))))
+            for q in local
+        )
         centre = int(mbs.AddMarker(MarkerBodyRigid(bodyNumber=body, localPosition=[0.0, 0.0, 0.0])))
-        wheelsets.append(WheelsetHandles(i, f"wheelset{i + 1}", xw, node, body, centre, markers,
-                                         local, ref, dict(_WHEELSET_DOF)))
+        wheelsets.append(
+            WheelsetHandles(
+                i,
+                f"wheelset{i + 1}",
+                xw,
+                node,
+                body,
+                centre,
+                markers,
+                local,
+                ref,
+                dict(_WHEELSET_DOF),
+            )
+        )
         if model.sprung_mass is not None:
             ref = (0.0, model.sprung_mass.height, xw)
             node = int(mbs.AddNode(NodePoint(referenceCoordinates=list(ref))))
@@ -427,9 +498,16 @@ def _add_rigid(mbs: exu.MainSystem, model: VehicleModel, rotation: str, wheelset
                 parent = sprung[ws.index]
                 m_parent = int(mbs.AddMarker(MarkerNodePosition(nodeNumber=parent.node)))
                 offset = _offset(point, parent.reference)
-            items[f"primary_ws{ws.index + 1}_{label}"] = int(mbs.AddObject(CartesianSpringDamper(
-                markerNumbers=[m_parent, position_marker(ws, point)],
-                stiffness=[p.k_y, p.k_z, p.k_x], damping=[p.c_y, p.c_z, p.c_x], offset=offset)))
+            items[f"primary_ws{ws.index + 1}_{label}"] = int(
+                mbs.AddObject(
+                    CartesianSpringDamper(
+                        markerNumbers=[m_parent, position_marker(ws, point)],
+                        stiffness=[p.k_y, p.k_z, p.k_x],
+                        damping=[p.c_y, p.c_z, p.c_x],
+                        offset=offset,
+                    )
+                )
+            )
 
     # secondary suspension, torsion (yaw, anti-roll), bumpstop: bogie frame -> car body
     keep: list[Any] = []
@@ -438,43 +516,103 @@ def _add_rigid(mbs: exu.MainSystem, model: VehicleModel, rotation: str, wheelset
         for j, bg in enumerate(bogies):
             for side, label in ((-1.0, "right"), (1.0, "left")):
                 point = (side * s.semi_spacing, s.height, bg.x)
-                items[f"secondary_b{j + 1}_{label}"] = int(mbs.AddObject(CartesianSpringDamper(
-                    markerNumbers=[position_marker(bg, point), position_marker(car, point)],
-                    stiffness=[s.k_y, s.k_z, s.k_x], damping=[s.c_y, s.c_z, s.c_x])))
+                items[f"secondary_b{j + 1}_{label}"] = int(
+                    mbs.AddObject(
+                        CartesianSpringDamper(
+                            markerNumbers=[position_marker(bg, point), position_marker(car, point)],
+                            stiffness=[s.k_y, s.k_z, s.k_x],
+                            damping=[s.c_y, s.c_z, s.c_x],
+                        )
+                    )
+                )
             centre = (0.0, s.height, bg.x)
             k6 = np.zeros((6, 6))
             k6[4, 4] = model.secondary_yaw_stiffness  # about Y: yaw
             k6[5, 5] = model.anti_roll_stiffness  # about Z: roll
-            markers = [int(mbs.AddMarker(MarkerBodyRigid(
-                bodyNumber=h.body, localPosition=_offset(centre, h.reference)))) for h in (bg, car)]
-            items[f"torsion_b{j + 1}"] = int(mbs.AddObject(RigidBodySpringDamper(
-                markerNumbers=markers, stiffness=k6.tolist(), damping=np.zeros((6, 6)).tolist())))
+            markers = [
+                int(
+                    mbs.AddMarker(
+                        MarkerBodyRigid(
+                            bodyNumber=h.body, localPosition=_offset(centre, h.reference)
+                        )
+                    )
+                )
+                for h in (bg, car)
+            ]
+            items[f"torsion_b{j + 1}"] = int(
+                mbs.AddObject(
+                    RigidBodySpringDamper(
+                        markerNumbers=markers,
+                        stiffness=k6.tolist(),
+                        damping=np.zeros((6, 6)).tolist(),
+                    )
+                )
+            )
             if bumpstop != "none":
                 point = (0.0, model.bumpstop.height, bg.x)
-                item = int(mbs.AddObject(CartesianSpringDamper(
-                    markerNumbers=[position_marker(bg, point), position_marker(car, point)],
-                    stiffness=[0.0, 0.0, 0.0], damping=[0.0, 0.0, 0.0])))
+                item = int(
+                    mbs.AddObject(
+                        CartesianSpringDamper(
+                            markerNumbers=[position_marker(bg, point), position_marker(car, point)],
+                            stiffness=[0.0, 0.0, 0.0],
+                            damping=[0.0, 0.0, 0.0],
+                        )
+                    )
+                )
                 law = _bumpstop_connector_function(model.bumpstop, bumpstop == "symbolic")
                 if bumpstop == "symbolic":
-                    law = CreateSymbolicUserFunction(mbs, law, "springForceUserFunction",
-                                                     exu.ObjectIndex(item))
+                    law = CreateSymbolicUserFunction(
+                        mbs, law, "springForceUserFunction", exu.ObjectIndex(item)
+                    )
                 keep.append(law)
                 mbs.SetObjectParameter(item, "springForceUserFunction", law)
                 items[f"bumpstop_b{j + 1}"] = item
     if keep:
         mbs.variables.setdefault(_KEEPALIVE, []).extend(keep)
 
-    constraints = tuple(int(mbs.AddObject(CoordinateConstraint(markerNumbers=[
-        ground_coordinate, int(mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=n, coordinate=k)))])))
-        for n, k in held)
+    constraints = tuple(
+        int(
+            mbs.AddObject(
+                CoordinateConstraint(
+                    markerNumbers=[
+                        ground_coordinate,
+                        int(mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=n, coordinate=k))),
+                    ]
+                )
+            )
+        )
+        for n, k in held
+    )
     loads: tuple[int, ...] = ()
     if gravity:
         bodies = ([car] if car else []) + bogies + sprung + wheelsets
-        loads = tuple(int(mbs.AddLoad(LoadMassProportional(
-            markerNumber=int(mbs.AddMarker(MarkerBodyMass(bodyNumber=h.body))),
-            loadVector=[0.0, -GRAVITY, 0.0]))) for h in bodies)
-    return VehicleBuild(model, "rigid", rotation, ground, tuple(wheelsets), tuple(bogies), car,
-                        tuple(sprung), items, constraints, tuple(held), loads, (), tuple(keep))
+        loads = tuple(
+            int(
+                mbs.AddLoad(
+                    LoadMassProportional(
+                        markerNumber=int(mbs.AddMarker(MarkerBodyMass(bodyNumber=h.body))),
+                        loadVector=[0.0, -GRAVITY, 0.0],
+                    )
+                )
+            )
+            for h in bodies
+        )
+    return VehicleBuild(
+        model,
+        "rigid",
+        rotation,
+        ground,
+        tuple(wheelsets),
+        tuple(bogies),
+        car,
+        tuple(sprung),
+        items,
+        constraints,
+        tuple(held),
+        loads,
+        (),
+        tuple(keep),
+    )
 
 
 def _free_names(build: VehicleBuild, spin: bool) -> list[tuple[Any, str]]:
@@ -491,8 +629,14 @@ def _free_names(build: VehicleBuild, spin: bool) -> list[tuple[Any, str]]:
     return out
 
 
-def _add_linear(mbs: exu.MainSystem, model: VehicleModel, rotation: str, wheelset_spin: bool,
-                bumpstop: bool, gravity: bool) -> VehicleBuild:
+def _add_linear(
+    mbs: exu.MainSystem,
+    model: VehicleModel,
+    rotation: str,
+    wheelset_spin: bool,
+    bumpstop: bool,
+    gravity: bool,
+) -> VehicleBuild:
     # 1. the rigid model, its static equilibrium on rigid track and its linearisation there
     ref_mbs = exu.SystemContainer().AddSystem()
     rigid = _add_rigid(ref_mbs, model, rotation, wheelset_spin, "none", gravity)
@@ -515,14 +659,26 @@ def _add_linear(mbs: exu.MainSystem, model: VehicleModel, rotation: str, wheelse
     q_s = q_rigid[index]
 
     def generic_node(n):
-        return int(mbs.AddNode(NodeGenericODE2(referenceCoordinates=[0.0] * n,
-                                               initialCoordinates=[0.0] * n,
-                                               initialCoordinates_t=[0.0] * n,
-                                               numberOfODE2Coordinates=n)))
+        return int(
+            mbs.AddNode(
+                NodeGenericODE2(
+                    referenceCoordinates=[0.0] * n,
+                    initialCoordinates=[0.0] * n,
+                    initialCoordinates_t=[0.0] * n,
+                    numberOfODE2Coordinates=n,
+                )
+            )
+        )
 
     def body(h, dof):
-        return BodyHandles(h.name, generic_node(len(dof)), -1, h.x, h.reference,
-                           {dname: i for i, dname in enumerate(dof)})
+        return BodyHandles(
+            h.name,
+            generic_node(len(dof)),
+            -1,
+            h.x,
+            h.reference,
+            {dname: i for i, dname in enumerate(dof)},
+        )
 
     car = None if rigid.car_body is None else body(rigid.car_body, _LINEAR_DOF["body"])
     bogies = tuple(body(h, _LINEAR_DOF["body"]) for h in rigid.bogies)
@@ -531,13 +687,36 @@ def _add_linear(mbs: exu.MainSystem, model: VehicleModel, rotation: str, wheelse
     for h in rigid.wheelsets:
         dof = _LINEAR_DOF["wheelset"] + spin
         node = generic_node(len(dof))
-        wheelsets.append(WheelsetHandles(h.index, h.name, h.x, node, -1,
-                                         int(mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=node))),
-                                         (), h.wheel_positions, h.reference,
-                                         {dname: i for i, dname in enumerate(dof)}))
+        wheelsets.append(
+            WheelsetHandles(
+                h.index,
+                h.name,
+                h.x,
+                node,
+                -1,
+                int(mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=node))),
+                (),
+                h.wheel_positions,
+                h.reference,
+                {dname: i for i, dname in enumerate(dof)},
+            )
+        )
     ground = int(mbs.AddObject(ObjectGround()))
-    partial = VehicleBuild(model, "linear", rotation, ground, tuple(wheelsets), bogies, car,
-                           sprung, {}, (), (), (), tuple(q_s))
+    partial = VehicleBuild(
+        model,
+        "linear",
+        rotation,
+        ground,
+        tuple(wheelsets),
+        bogies,
+        car,
+        sprung,
+        {},
+        (),
+        (),
+        (),
+        tuple(q_s),
+    )
     nodes = [h.node for h in partial.bodies()]
 
     # 3. F0 = K q_s - f_wheels: the rigid model's equilibrium under its wheel loads
@@ -547,16 +726,42 @@ def _add_linear(mbs: exu.MainSystem, model: VehicleModel, rotation: str, wheelse
         dof = list(ws.dof)
         for q, r in zip(pair, ws.wheel_positions):
             t = _point_transform(dof, r)
-            f_wheels[offsets[ws.node]:offsets[ws.node] + len(dof)] += t.T @ np.array([0.0, q, 0.0])
+            f_wheels[offsets[ws.node] : offsets[ws.node] + len(dof)] += t.T @ np.array(
+                [0.0, q, 0.0]
+            )
     force = k @ q_s - f_wheels if gravity else np.zeros(len(index))
-    items = {"suspension": int(mbs.AddObject(ObjectGenericODE2(
-        nodeNumbers=nodes, massMatrix=m, stiffnessMatrix=k, dampingMatrix=d,
-        forceVector=list(force))))}
+    items = {
+        "suspension": int(
+            mbs.AddObject(
+                ObjectGenericODE2(
+                    nodeNumbers=nodes,
+                    massMatrix=m,
+                    stiffnessMatrix=k,
+                    dampingMatrix=d,
+                    forceVector=list(force),
+                )
+            )
+        )
+    }
     keep: tuple[Any, ...] = ()
     if bumpstop and car is not None:
         items["bumpstops"], keep = _add_linear_bumpstops(mbs, model, car, bogies)
-    return VehicleBuild(model, "linear", rotation, ground, tuple(wheelsets), bogies, car, sprung,
-                        items, (), (), (), tuple(q_s), keep)
+    return VehicleBuild(
+        model,
+        "linear",
+        rotation,
+        ground,
+        tuple(wheelsets),
+        bogies,
+        car,
+        sprung,
+        items,
+        (),
+        (),
+        (),
+        tuple(q_s),
+        keep,
+    )
 
 
 def _node_offsets(build: VehicleBuild) -> dict[int, int]:
@@ -568,8 +773,9 @@ def _node_offsets(build: VehicleBuild) -> dict[int, int]:
     return out
 
 
-def _add_linear_bumpstops(mbs: exu.MainSystem, model: VehicleModel, car: BodyHandles,
-                          bogies: Sequence[BodyHandles]) -> tuple[int, tuple[Any, ...]]:
+def _add_linear_bumpstops(
+    mbs: exu.MainSystem, model: VehicleModel, car: BodyHandles, bogies: Sequence[BodyHandles]
+) -> tuple[int, tuple[Any, ...]]:
     """One ObjectGenericODE2 on (car body, bogies): F = -c F_stop(c^T q) per bogie, with c^T q
     the relative lateral displacement car body - bogie at the bumpstop (small angles)."""
     stop = model.bumpstop
@@ -581,8 +787,9 @@ def _add_linear_bumpstops(mbs: exu.MainSystem, model: VehicleModel, car: BodyHan
         point = (0.0, stop.height, bg.x)
         c = np.zeros(size)
         c[:n_car] = _point_transform(list(car.dof), _offset(point, car.reference))[0]
-        c[start:start + len(bg.dof)] = -_point_transform(list(bg.dof),
-                                                         _offset(point, bg.reference))[0]
+        c[start : start + len(bg.dof)] = -_point_transform(
+            list(bg.dof), _offset(point, bg.reference)
+        )[0]
         rows.append(c)
         start += len(bg.dof)
     c_matrix = np.array(rows)
@@ -610,17 +817,26 @@ def _add_linear_bumpstops(mbs: exu.MainSystem, model: VehicleModel, car: BodyHan
         return fODE2 * (c_matrix.T * np.array([slope(v) for v in u])) @ c_matrix
 
     zero = np.zeros((size, size))
-    item = int(mbs.AddObject(ObjectGenericODE2(
-        nodeNumbers=[car.node] + [b.node for b in bogies], massMatrix=zero, stiffnessMatrix=zero,
-        dampingMatrix=zero, forceUserFunction=forceUserFunction,
-        jacobianUserFunction=jacobianUserFunction)))
+    item = int(
+        mbs.AddObject(
+            ObjectGenericODE2(
+                nodeNumbers=[car.node] + [b.node for b in bogies],
+                massMatrix=zero,
+                stiffnessMatrix=zero,
+                dampingMatrix=zero,
+                forceUserFunction=forceUserFunction,
+                jacobianUserFunction=jacobianUserFunction,
+            )
+        )
+    )
     functions = (forceUserFunction, jacobianUserFunction)
     mbs.variables.setdefault(_KEEPALIVE, []).extend(functions)
     return item, functions
 
 
-def rigid_track_support(mbs: exu.MainSystem, build: VehicleBuild,
-                        track: RigidTrack = RigidTrack()) -> TrackSupport:
+def rigid_track_support(
+    mbs: exu.MainSystem, build: VehicleBuild, track: RigidTrack = RigidTrack()
+) -> TrackSupport:
     """Put every wheel on linear springs to ground at its contact point (rigid track).
 
     Rigid representation: a ``CartesianSpringDamper`` per wheel from a ground point at the
@@ -646,11 +862,24 @@ def rigid_track_support(mbs: exu.MainSystem, build: VehicleBuild,
         items = []
         for ws in build.wheelsets:
             for marker, local in zip(ws.wheel_markers, ws.wheel_positions):
-                ground = int(mbs.AddMarker(MarkerBodyPosition(
-                    bodyNumber=build.ground, localPosition=[local[0], 0.0, ws.x])))
-                items.append(int(mbs.AddObject(CartesianSpringDamper(
-                    markerNumbers=[ground, marker], stiffness=np.diag(k3).tolist(),
-                    damping=np.diag(c3).tolist()))))
+                ground = int(
+                    mbs.AddMarker(
+                        MarkerBodyPosition(
+                            bodyNumber=build.ground, localPosition=[local[0], 0.0, ws.x]
+                        )
+                    )
+                )
+                items.append(
+                    int(
+                        mbs.AddObject(
+                            CartesianSpringDamper(
+                                markerNumbers=[ground, marker],
+                                stiffness=np.diag(k3).tolist(),
+                                damping=np.diag(c3).tolist(),
+                            )
+                        )
+                    )
+                )
         return TrackSupport(track, tuple(items), build)
     n = sum(len(ws.dof) for ws in build.wheelsets)
     k, d = np.zeros((n, n)), np.zeros((n, n))
@@ -662,9 +891,16 @@ def rigid_track_support(mbs: exu.MainSystem, build: VehicleBuild,
             k[sl, sl] += t.T @ k3 @ t
             d[sl, sl] += t.T @ c3 @ t
         start += len(ws.dof)
-    item = int(mbs.AddObject(ObjectGenericODE2(
-        nodeNumbers=[ws.node for ws in build.wheelsets], massMatrix=np.zeros((n, n)),
-        stiffnessMatrix=k, dampingMatrix=d)))
+    item = int(
+        mbs.AddObject(
+            ObjectGenericODE2(
+                nodeNumbers=[ws.node for ws in build.wheelsets],
+                massMatrix=np.zeros((n, n)),
+                stiffnessMatrix=k,
+                dampingMatrix=d,
+            )
+        )
+    )
     return TrackSupport(track, (item,), build)
 
 
@@ -689,8 +925,12 @@ def support_wheel_loads(mbs: exu.MainSystem, support: TrackSupport) -> np.ndarra
     out = []
     for ws in build.wheelsets:
         q = np.array(mbs.GetNodeOutput(ws.node, exu.OutputVariableType.Coordinates))
-        out.append([-support.track.k_z * (_point_transform(list(ws.dof), r) @ q)[1]
-                    for r in ws.wheel_positions])
+        out.append(
+            [
+                -support.track.k_z * (_point_transform(list(ws.dof), r) @ q)[1]
+                for r in ws.wheel_positions
+            ]
+        )
     return np.array(out)
 
 
@@ -848,8 +1088,7 @@ def vehicle_modes(mbs: exu.MainSystem, build: VehicleBuild) -> tuple[VehicleMode
     order = np.argsort(w2.real)
     w2, vectors = w2.real[order], vectors.real[:, order]
     n = len(keep)
-    a = np.block([[np.zeros((n, n)), np.eye(n)],
-                  [-np.linalg.solve(m, k), -np.linalg.solve(m, d)]])
+    a = np.block([[np.zeros((n, n)), np.eye(n)], [-np.linalg.solve(m, k), -np.linalg.solve(m, d)]])
     lam, psi = scipy.linalg.eig(a)
     upper = lam.imag > 1e-9
     lam, psi = lam[upper], psi[:n, upper]
@@ -867,6 +1106,15 @@ def vehicle_modes(mbs: exu.MainSystem, build: VehicleBuild) -> tuple[VehicleMode
             f_d = abs(lam[best]) / (2 * math.pi)
             zeta = -lam[best].real / abs(lam[best])
         part = {names[i]: float(energy[i]) for i in np.argsort(-energy) if energy[i] >= 0.01}
-        modes.append(VehicleMode(math.sqrt(max(w2[col], 0.0)) / (2 * math.pi), float(f_d),
-                                 float(zeta), body, direction, float(energy[top]), part))
+        modes.append(
+            VehicleMode(
+                math.sqrt(max(w2[col], 0.0)) / (2 * math.pi),
+                float(f_d),
+                float(zeta),
+                body,
+                direction,
+                float(energy[top]),
+                part,
+            )
+        )
     return tuple(modes)

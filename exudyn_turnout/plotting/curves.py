@@ -4,10 +4,11 @@ Each function takes data objects (e.g. :class:`~exudyn_turnout.receptance.Recept
 draws into given axes or a new figure, and returns ``(figure, axes)``; saving is left to
 the caller (``fig.savefig(path)``).
 """
+
 from __future__ import annotations
 
 import math
-from typing import Sequence
+from collections.abc import Sequence
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -23,8 +24,14 @@ def receptance_label(r: Receptance) -> str:
     return f"{r.model} {r.rail} {r.direction}{x}".strip()
 
 
-def plot_receptance(receptances: Receptance | Sequence[Receptance], ax=None, *, phase: bool = False,
-                    labels: Sequence[str] | None = None, title: str | None = None):
+def plot_receptance(
+    receptances: Receptance | Sequence[Receptance],
+    ax=None,
+    *,
+    phase: bool = False,
+    labels: Sequence[str] | None = None,
+    title: str | None = None,
+):
     """Log-log magnitude |H| (m/N) over frequency (Hz), optionally the phase below it.
 
     Parameters
@@ -105,7 +112,10 @@ def plot_passage_forces(results, wheel: str = "right", labels=None, title: str |
     results = list(results)
     fig, axes = plt.subplots(2, 2, figsize=(10.0, 6.4), sharex="col")
     names = list(labels) if labels is not None else [passage_label(r) for r in results]
-    regions = (("switch", results[0].summary["switch_region_m"]), ("crossing", results[0].summary["crossing_region_m"]))
+    regions = (
+        ("switch", results[0].summary["switch_region_m"]),
+        ("crossing", results[0].summary["crossing_region_m"]),
+    )
     for row, (quantity, unit) in enumerate((("Fz", "vertical"), ("Fy", "lateral"))):
         for col, (where, (x0, x1)) in enumerate(regions):
             ax = axes[row, col]
@@ -128,18 +138,30 @@ def plot_passage_forces(results, wheel: str = "right", labels=None, title: str |
 
 # --- validation report figures (exudyn_turnout.report.metrics) ---------------------------------
 
-__all__ += ["plot_receptance_agreement", "plot_force_signals", "plot_stiffness_series", "save_figure"]
+__all__ += [
+    "plot_receptance_agreement",
+    "plot_force_signals",
+    "plot_stiffness_series",
+    "save_figure",
+]
 
 
 def _style(model: str) -> dict:
     """Line style of a model in the validation report's figures (FE black, 2-layer blue dashed, 3-layer red)."""
-    styles = {"FE": dict(color="black", lw=1.6), "2-layer": dict(color="tab:blue", lw=1.1, ls="--"),
-              "3-layer": dict(color="tab:red", lw=1.1)}
+    styles = {
+        "FE": dict(color="black", lw=1.6),
+        "2-layer": dict(color="tab:blue", lw=1.1, ls="--"),
+        "3-layer": dict(color="tab:red", lw=1.1),
+    }
     return styles.get(model, {})
 
 
-def plot_receptance_agreement(panels, reference: str = "FE", agree_db: float = 3.0,
-                              range_edges: Sequence[float] = (125.0, 500.0)):
+def plot_receptance_agreement(
+    panels,
+    reference: str = "FE",
+    agree_db: float = 3.0,
+    range_edges: Sequence[float] = (125.0, 500.0),
+):
     """Receptances of several models and their level difference from a reference, side by side.
 
     Parameters
@@ -160,15 +182,26 @@ def plot_receptance_agreement(panels, reference: str = "FE", agree_db: float = 3
         2 x n: magnitude |H| (m/N) on top, difference (dB) below.
     """
     panels = list(panels)
-    fig, axes = plt.subplots(2, len(panels), figsize=(5.0 * len(panels), 6.2), sharex=True,
-                             height_ratios=(2, 1), squeeze=False)
+    fig, axes = plt.subplots(
+        2,
+        len(panels),
+        figsize=(5.0 * len(panels), 6.2),
+        sharex=True,
+        height_ratios=(2, 1),
+        squeeze=False,
+    )
     for col, (title, curves, mark) in enumerate(panels):
         top, bottom = axes[0, col], axes[1, col]
         ref = curves[reference]
         for name, r in curves.items():
             top.loglog(r.frequency_hz, r.magnitude, label=name, **_style(name))
             if name != reference:
-                bottom.semilogx(r.frequency_hz, 20 * np.log10(r.magnitude / ref.magnitude), label=name, **_style(name))
+                bottom.semilogx(
+                    r.frequency_hz,
+                    20 * np.log10(r.magnitude / ref.magnitude),
+                    label=name,
+                    **_style(name),
+                )
         bottom.axhspan(-agree_db, agree_db, color="0.85", zorder=0)
         for ax in (top, bottom):
             for f in range_edges:
@@ -233,9 +266,15 @@ def plot_stiffness_series(panels, ylabel: str = "static stiffness (MN/m)"):
     (Figure, ndarray of Axes)
     """
     panels = list(panels)
-    styles = {"points": dict(ls="none", marker=".", ms=3), "fit": dict(color="black", lw=1.6),
-              "paper": dict(color="black", lw=1.4, ls="--"), "model": dict(color="tab:red", lw=1.2, ls=":")}
-    fig, axes = plt.subplots(len(panels), 1, figsize=(9.0, 3.4 * len(panels)), sharex=True, squeeze=False)
+    styles = {
+        "points": dict(ls="none", marker=".", ms=3),
+        "fit": dict(color="black", lw=1.6),
+        "paper": dict(color="black", lw=1.4, ls="--"),
+        "model": dict(color="tab:red", lw=1.2, ls=":"),
+    }
+    fig, axes = plt.subplots(
+        len(panels), 1, figsize=(9.0, 3.4 * len(panels)), sharex=True, squeeze=False
+    )
     for ax, (title, series) in zip(axes[:, 0], panels):
         for label, x, K, kind in series:
             ax.plot(x, np.asarray(K) / 1e6, label=label, **styles.get(kind, {}))
@@ -286,21 +325,40 @@ def plot_stiffness_profile(profile, fits=None, turnout=None, axes=None):
     markers = "o^sDvx+P*<>"
     for i, rail in enumerate(profile.rails):
         x, kz, ky = profile.of(rail)
-        style = dict(ls="none", marker=markers[i % len(markers)], ms=3.5, mfc="none", mew=0.9,
-                     label=f"{rail}: {profile.rail_names.get(rail, rail)}")
+        style = dict(
+            ls="none",
+            marker=markers[i % len(markers)],
+            ms=3.5,
+            mfc="none",
+            mew=0.9,
+            label=f"{rail}: {profile.rail_names.get(rail, rail)}",
+        )
         for ax, K in zip(axes, (kz, ky)):
             ax.plot(x, K / 1e6, **style)
     if fits is not None:
         for ax, fit, eq in zip(axes, (fits.K_sw, fits.K_sh), ("Eq 10", "Eq 14")):
             xs = np.linspace(fit.x_min, fit.x_max, 200)
-            ax.plot(xs, [fit(v) / 1e6 for v in xs], color="black", lw=1.6,
-                    label=f"FE fit, {eq} analogue ({fit.rail}, R$^2$ = {fit.r_squared:.2f})")
+            ax.plot(
+                xs,
+                [fit(v) / 1e6 for v in xs],
+                color="black",
+                lw=1.6,
+                label=f"FE fit, {eq} analogue ({fit.rail}, R$^2$ = {fit.r_squared:.2f})",
+            )
     if turnout is not None:
-        spans = ((turnout.K_sw.x_min, turnout.zones[0].x_end), (turnout.K_sh.x_min, turnout.K_sh.x_max))
-        for ax, poly, (a, b), eq in zip(axes, (turnout.K_sw, turnout.K_sh), spans, ("Eq 10 (paper)", "Eq 14 (paper)")):
+        spans = (
+            (turnout.K_sw.x_min, turnout.zones[0].x_end),
+            (turnout.K_sh.x_min, turnout.K_sh.x_max),
+        )
+        for ax, poly, (a, b), eq in zip(
+            axes, (turnout.K_sw, turnout.K_sh), spans, ("Eq 10 (paper)", "Eq 14 (paper)")
+        ):
             xs = np.linspace(a, b, 200)
             ax.plot(xs, [poly(v) / 1e6 for v in xs], color="black", lw=1.4, ls="--", label=eq)
-    for ax, title in zip(axes, ("(b) vertical static stiffness 1/|H(1 Hz)|", "(c) lateral static stiffness 1/|H(1 Hz)|")):
+    for ax, title in zip(
+        axes,
+        ("(b) vertical static stiffness 1/|H(1 Hz)|", "(c) lateral static stiffness 1/|H(1 Hz)|"),
+    ):
         ax.set_title(title, fontsize="medium")
         ax.set_ylabel("stiffness (MN/m)")
         ax.grid(True, alpha=0.3)

@@ -15,10 +15,11 @@ Small pure functions on numpy arrays (no model code), used by the validation rep
   force signal along x, the RMS of what oscillates about it, the RMS difference of two
   signals on a common x grid, and :func:`max_trend_difference` of their running means.
 """
+
 from __future__ import annotations
 
 import math
-from typing import Iterable, Sequence
+from collections.abc import Iterable, Sequence
 
 import numpy as np
 import scipy.signal
@@ -95,7 +96,9 @@ def level_difference_db(H_model: np.ndarray, H_ref: np.ndarray) -> np.ndarray:
     return 20.0 * np.log10(np.abs(np.asarray(H_model)) / np.abs(np.asarray(H_ref)))
 
 
-def band_rms_db(frequency_hz: np.ndarray, diff_db: np.ndarray, centres: Iterable[float]) -> dict[float, float]:
+def band_rms_db(
+    frequency_hz: np.ndarray, diff_db: np.ndarray, centres: Iterable[float]
+) -> dict[float, float]:
     """RMS (dB) of ``diff_db`` over the frequencies inside each band; bands without a frequency are left out.
 
     Parameters
@@ -123,8 +126,9 @@ def band_rms_db(frequency_hz: np.ndarray, diff_db: np.ndarray, centres: Iterable
     return out
 
 
-def range_rms_db(band_values: dict[float, float], f_min: float, f_max: float,
-                 exclude: Sequence[float] = ()) -> float:
+def range_rms_db(
+    band_values: dict[float, float], f_min: float, f_max: float, exclude: Sequence[float] = ()
+) -> float:
     """RMS (dB) of the band values whose centre lies in [f_min, f_max] (nominal bounds).
 
     Parameters
@@ -142,8 +146,12 @@ def range_rms_db(band_values: dict[float, float], f_min: float, f_max: float,
         dB; NaN when no band is left.
     """
     wanted = third_octave_centres(f_min, f_max)
-    values = [v for c, v in band_values.items()
-              if np.any(np.isclose(c, wanted, rtol=1e-9)) and not np.any(np.isclose(c, exclude, rtol=1e-9))]
+    values = [
+        v
+        for c, v in band_values.items()
+        if np.any(np.isclose(c, wanted, rtol=1e-9))
+        and not np.any(np.isclose(c, exclude, rtol=1e-9))
+    ]
     return float(np.sqrt(np.mean(np.square(values)))) if values else math.nan
 
 
@@ -166,8 +174,9 @@ def bands_near(frequency: float, neighbours: int = 1) -> tuple[float, ...]:
     return tuple(float(10.0 ** (k / 10.0)) for k in range(n - neighbours, n + neighbours + 1))
 
 
-def peak_frequencies(frequency_hz: np.ndarray, H: np.ndarray, prominence_db: float = 1.0,
-                     n_max: int = 4) -> tuple[float, ...]:
+def peak_frequencies(
+    frequency_hz: np.ndarray, H: np.ndarray, prominence_db: float = 1.0, n_max: int = 4
+) -> tuple[float, ...]:
     """Frequencies (Hz, ascending) of the main peaks of |H|.
 
     A peak is a local maximum of 20 log10 |H| whose prominence is at least
@@ -240,7 +249,9 @@ def running_mean(x: np.ndarray, signal: np.ndarray, window: float) -> np.ndarray
     return np.where(span > 0, mean, s)
 
 
-def dynamic_rms(x: np.ndarray, signal: np.ndarray, window: float, x_range: tuple[float, float]) -> float:
+def dynamic_rms(
+    x: np.ndarray, signal: np.ndarray, window: float, x_range: tuple[float, float]
+) -> float:
     """RMS of ``signal`` minus its :func:`running_mean` over ``window`` (m), inside ``x_range``.
 
     The running mean is taken over the whole signal before cutting to ``x_range``, so the
@@ -268,8 +279,14 @@ def dynamic_rms(x: np.ndarray, signal: np.ndarray, window: float, x_range: tuple
     return float(np.sqrt(np.mean(fluct[sel] ** 2))) if sel.any() else math.nan
 
 
-def rms_difference(x_a: np.ndarray, a: np.ndarray, x_b: np.ndarray, b: np.ndarray,
-                   x_range: tuple[float, float], dx: float = 1e-3) -> float:
+def rms_difference(
+    x_a: np.ndarray,
+    a: np.ndarray,
+    x_b: np.ndarray,
+    b: np.ndarray,
+    x_range: tuple[float, float],
+    dx: float = 1e-3,
+) -> float:
     """RMS of a(x) - b(x) on a common grid of spacing ``dx`` (m) over ``x_range`` (linear interpolation).
 
     The grid covers the part of ``x_range`` that both signals span; NaN if there is none.
@@ -299,8 +316,15 @@ def rms_difference(x_a: np.ndarray, a: np.ndarray, x_b: np.ndarray, b: np.ndarra
     return float(np.sqrt(np.mean(d**2)))
 
 
-def max_trend_difference(x_a: np.ndarray, a: np.ndarray, x_b: np.ndarray, b: np.ndarray, window: float,
-                         x_range: tuple[float, float], dx: float = 1e-3) -> float:
+def max_trend_difference(
+    x_a: np.ndarray,
+    a: np.ndarray,
+    x_b: np.ndarray,
+    b: np.ndarray,
+    window: float,
+    x_range: tuple[float, float],
+    dx: float = 1e-3,
+) -> float:
     """Largest |running_mean(a) - running_mean(b)| (same unit as a, b) over the common part of ``x_range``.
 
     Each signal's running mean over ``window`` (m) is taken on its own samples, then both
@@ -353,5 +377,7 @@ def paired_median_ratio(a: Sequence[float], b: Sequence[float]) -> float:
         The sequences differ in length or are empty.
     """
     if len(a) != len(b) or not len(a):
-        raise ValueError(f"need two sequences of the same non-zero length, got {len(a)} and {len(b)}")
+        raise ValueError(
+            f"need two sequences of the same non-zero length, got {len(a)} and {len(b)}"
+        )
     return float(np.median(np.asarray(a, float) / np.asarray(b, float)))

@@ -8,6 +8,7 @@ pickle: a cache file cannot run code.
 
 The default directory is ``$XDG_CACHE_HOME/exudyn_turnout`` (``~/.cache/exudyn_turnout``).
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -15,13 +16,20 @@ import hashlib
 import importlib.util
 import json
 import os
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Iterable, Mapping
+from typing import Any
 
 import numpy as np
 
-__all__ = ["ResultCache", "default_cache_dir", "input_key", "source_fingerprint", "file_fingerprint"]
+__all__ = [
+    "ResultCache",
+    "default_cache_dir",
+    "input_key",
+    "source_fingerprint",
+    "file_fingerprint",
+]
 
 
 def default_cache_dir() -> Path:

@@ -10,13 +10,24 @@ the results.
 Verdicts: ``"holds"``, ``"does not hold here"``, or ``"not checked"`` when the data it
 needs (e.g. the FE passage) are not available in this run.
 """
+
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Callable, Mapping, Sequence
+from typing import Any
 
-__all__ = ["Criteria", "Claim", "HOLDS", "FAILS", "NOT_CHECKED", "RANGES", "evaluate_claims", "CLAIM_FUNCTIONS"]
+__all__ = [
+    "Criteria",
+    "Claim",
+    "HOLDS",
+    "FAILS",
+    "NOT_CHECKED",
+    "RANGES",
+    "evaluate_claims",
+    "CLAIM_FUNCTIONS",
+]
 
 HOLDS, FAILS, NOT_CHECKED = "holds", "does not hold here", "not checked"
 
@@ -28,20 +39,32 @@ RANGES: tuple[tuple[float, float], ...] = ((1.0, 125.0), (125.0, 500.0), (500.0,
 class Criteria:
     """Thresholds that turn metrics into verdicts (stated in the report before the results)."""
 
-    agree_db: float = 3.0  #: dB; a model "agrees" with FE in a range if its band RMS is at most this
+    agree_db: float = (
+        3.0  #: dB; a model "agrees" with FE in a range if its band RMS is at most this
+    )
     pinned_pinned_neighbours: int = 1  #: bands either side of the pinned-pinned band also left out
     peak_prominence_db: float = 1.0  #: dB; minimum prominence of a receptance "main peak"
-    peak_agree: float = 0.10  #: -; peak forces "agree" if they differ from FE by at most this fraction
+    peak_agree: float = (
+        0.10  #: -; peak forces "agree" if they differ from FE by at most this fraction
+    )
     overestimate: float = 0.05  #: -; a peak "overestimates" FE if it exceeds it by more than this
     trend_window: float = 1.0  #: m; running-mean window that defines a force's "overall trend"
     trend_agree: float = 0.10  #: -; trends agree if they differ by at most this x static wheel load
-    cost_ratio: tuple[float, float] = (1.0, 1.2)  #: -; "about 10 % more": 3-layer / 2-layer in this range
+    cost_ratio: tuple[float, float] = (
+        1.0,
+        1.2,
+    )  #: -; "about 10 % more": 3-layer / 2-layer in this range
     fe_slower: float = 10.0  #: -; "far more expensive": FE / 3-layer wall time at least this
     converged: float = 0.01  #: -; peak change when the time step is halved at most this
     static_tolerance: float = 0.005  #: -; static wheel load within this of (m_w + m_s) g / 2
-    stock_uniform: float = 0.10  #: -; "remains the same": stock-rail K_z within this of its plain-track value
+    stock_uniform: float = (
+        0.10  #: -; "remains the same": stock-rail K_z within this of its plain-track value
+    )
     much_higher: float = 1.2  #: -; "much higher" stiffness: ratio at least this
-    lateral_increase: tuple[float, float] = (1.15, 1.35)  #: -; "around 25 %": K_y end / start in this range
+    lateral_increase: tuple[float, float] = (
+        1.15,
+        1.35,
+    )  #: -; "around 25 %": K_y end / start in this range
 
 
 @dataclass(frozen=True)
@@ -82,51 +105,85 @@ def claim_two_layer_low(rec: Mapping, c: Criteria) -> Claim:
     key = _range_key(*RANGES[0])
     v = _rms(rec, "2-layer", key)
     ok = all(x <= c.agree_db for x in v.values()) if v else None
-    return Claim("R1", "receptance",
-                 "Two-layer receptance agrees with FE up to ~125 Hz, both directions, switch and crossing rail "
-                 "(Sec. 3.3)",
-                 f"band RMS of 20 log10(|H_2L|/|H_FE|) over {key} <= {c.agree_db:g} dB in all four cases",
-                 _verdict(ok), f"2-layer, {key}: " + _fmt_db(v), {"band_rms_db": v})
+    return Claim(
+        "R1",
+        "receptance",
+        "Two-layer receptance agrees with FE up to ~125 Hz, both directions, switch and crossing rail "
+        "(Sec. 3.3)",
+        f"band RMS of 20 log10(|H_2L|/|H_FE|) over {key} <= {c.agree_db:g} dB in all four cases",
+        _verdict(ok),
+        f"2-layer, {key}: " + _fmt_db(v),
+        {"band_rms_db": v},
+    )
 
 
 def claim_two_layer_high(rec: Mapping, c: Criteria) -> Claim:
     """R2: two-layer band RMS vs FE above the agreement limit somewhere in 125-2000 Hz, all cases."""
     keys = [_range_key(*r) for r in RANGES[1:]]
-    v = {name: max(cs["models"]["2-layer"]["range_rms_db"][k] for k in keys) for name, cs in _cases(rec)}
+    v = {
+        name: max(cs["models"]["2-layer"]["range_rms_db"][k] for k in keys)
+        for name, cs in _cases(rec)
+    }
     ok = all(x > c.agree_db for x in v.values()) if v else None
-    return Claim("R2", "receptance",
-                 "Two-layer receptance differs significantly from FE above 125 Hz (Sec. 3.3)",
-                 f"larger of the band RMS over 125-500 Hz and 500-2000 Hz > {c.agree_db:g} dB in all four cases",
-                 _verdict(ok), "2-layer, max over 125-2000 Hz ranges: " + _fmt_db(v), {"band_rms_db": v})
+    return Claim(
+        "R2",
+        "receptance",
+        "Two-layer receptance differs significantly from FE above 125 Hz (Sec. 3.3)",
+        f"larger of the band RMS over 125-500 Hz and 500-2000 Hz > {c.agree_db:g} dB in all four cases",
+        _verdict(ok),
+        "2-layer, max over 125-2000 Hz ranges: " + _fmt_db(v),
+        {"band_rms_db": v},
+    )
 
 
 def claim_three_layer_agrees(rec: Mapping, c: Criteria) -> Claim:
     """R3: three-layer within the agreement limit in every range, pinned-pinned bands left out."""
     keys = [_range_key(*r, excl=True) for r in RANGES]
-    v = {name: max(cs["models"]["3-layer"]["range_rms_db"][k] for k in keys) for name, cs in _cases(rec)}
+    v = {
+        name: max(cs["models"]["3-layer"]["range_rms_db"][k] for k in keys)
+        for name, cs in _cases(rec)
+    }
     ok = all(x <= c.agree_db for x in v.values()) if v else None
-    return Claim("R3", "receptance",
-                 "Three-layer receptance agrees with FE up to 2000 Hz apart from the pinned-pinned resonance "
-                 "(Sec. 3.3)",
-                 f"band RMS <= {c.agree_db:g} dB in each of 1-125, 125-500, 500-2000 Hz, the pinned-pinned band and "
-                 f"{c.pinned_pinned_neighbours} band(s) either side left out, in all four cases",
-                 _verdict(ok), "3-layer, worst range: " + _fmt_db(v), {"worst_range_rms_db": v})
+    return Claim(
+        "R3",
+        "receptance",
+        "Three-layer receptance agrees with FE up to 2000 Hz apart from the pinned-pinned resonance "
+        "(Sec. 3.3)",
+        f"band RMS <= {c.agree_db:g} dB in each of 1-125, 125-500, 500-2000 Hz, the pinned-pinned band and "
+        f"{c.pinned_pinned_neighbours} band(s) either side left out, in all four cases",
+        _verdict(ok),
+        "3-layer, worst range: " + _fmt_db(v),
+        {"worst_range_rms_db": v},
+    )
 
 
 def claim_pinned_pinned(rec: Mapping, c: Criteria) -> Claim:
     """R4: three-layer misses the pinned-pinned detail (band RMS over those bands above the limit)."""
-    v = {name: {"pinned_pinned_hz": cs["pinned_pinned_hz"], "FE_peak_hz": cs["fe_peak_near_pinned_pinned_hz"],
-                "FE_dip_hz": cs["fe_dip_near_pinned_pinned_hz"],
-                "3-layer_rms_db": cs["models"]["3-layer"]["pinned_pinned_bands_rms_db"]} for name, cs in _cases(rec)}
+    v = {
+        name: {
+            "pinned_pinned_hz": cs["pinned_pinned_hz"],
+            "FE_peak_hz": cs["fe_peak_near_pinned_pinned_hz"],
+            "FE_dip_hz": cs["fe_dip_near_pinned_pinned_hz"],
+            "3-layer_rms_db": cs["models"]["3-layer"]["pinned_pinned_bands_rms_db"],
+        }
+        for name, cs in _cases(rec)
+    }
     finite = [x["3-layer_rms_db"] for x in v.values() if math.isfinite(x["3-layer_rms_db"])]
     ok = all(x > c.agree_db for x in finite) if finite else None
-    ev = "; ".join(f"{n}: f_pp {x['pinned_pinned_hz']:.0f} Hz, 3-layer {x['3-layer_rms_db']:.1f} dB"
-                   for n, x in v.items())
-    return Claim("R4", "receptance",
-                 "The three-layer model does not capture the detail of the pinned-pinned resonance (Sec. 3.3)",
-                 f"band RMS of the 3-layer model over the pinned-pinned band and {c.pinned_pinned_neighbours} band(s) "
-                 f"either side > {c.agree_db:g} dB in all four cases (f_pp: Timoshenko beam over one sleeper bay)",
-                 _verdict(ok), ev, v)
+    ev = "; ".join(
+        f"{n}: f_pp {x['pinned_pinned_hz']:.0f} Hz, 3-layer {x['3-layer_rms_db']:.1f} dB"
+        for n, x in v.items()
+    )
+    return Claim(
+        "R4",
+        "receptance",
+        "The three-layer model does not capture the detail of the pinned-pinned resonance (Sec. 3.3)",
+        f"band RMS of the 3-layer model over the pinned-pinned band and {c.pinned_pinned_neighbours} band(s) "
+        f"either side > {c.agree_db:g} dB in all four cases (f_pp: Timoshenko beam over one sleeper bay)",
+        _verdict(ok),
+        ev,
+        v,
+    )
 
 
 def claim_three_better(rec: Mapping, c: Criteria) -> Claim:
@@ -135,10 +192,15 @@ def claim_three_better(rec: Mapping, c: Criteria) -> Claim:
     v2, v3 = _rms(rec, "2-layer", key), _rms(rec, "3-layer", key)
     ok = all(v3[n] < v2[n] for n in v2) if v2 else None
     ev = ", ".join(f"{n} {v3[n]:.1f} vs {v2[n]:.1f} dB" for n in v2)
-    return Claim("R5", "receptance",
-                 "The three-layer model approximates the FE receptance far better than the two-layer model (Sec. 3.3)",
-                 f"band RMS over {key}: 3-layer < 2-layer in all four cases",
-                 _verdict(ok), f"3-layer vs 2-layer, {key}: {ev}", {"3-layer": v3, "2-layer": v2})
+    return Claim(
+        "R5",
+        "receptance",
+        "The three-layer model approximates the FE receptance far better than the two-layer model (Sec. 3.3)",
+        f"band RMS over {key}: 3-layer < 2-layer in all four cases",
+        _verdict(ok),
+        f"3-layer vs 2-layer, {key}: {ev}",
+        {"3-layer": v3, "2-layer": v2},
+    )
 
 
 def _signals(pas: Mapping) -> list[tuple[str, str]]:
@@ -154,23 +216,36 @@ def _fe_signals(pas: Mapping) -> list[tuple[str, str]]:
     out = []
     for route, sig in _signals(pas):
         models = [_model(pas, route, m) for m in ("2-layer", "3-layer")]
-        if all(m is not None and sig in m.get("vs_FE", {}).get("peak_relative", {}) for m in models):
+        if all(
+            m is not None and sig in m.get("vs_FE", {}).get("peak_relative", {}) for m in models
+        ):
             out.append((route, sig))
     return out
 
 
 def claim_oscillates(pas: Mapping, c: Criteria) -> Claim:
     """F1: the two-layer force oscillates more (dynamic RMS) than the three-layer force."""
-    v = {f"{route} {sig}": {m: _model(pas, route, m)["dynamic_rms_N"][sig] for m in ("2-layer", "3-layer")}
-         for route, sig in _signals(pas)}
+    v = {
+        f"{route} {sig}": {
+            m: _model(pas, route, m)["dynamic_rms_N"][sig] for m in ("2-layer", "3-layer")
+        }
+        for route, sig in _signals(pas)
+    }
     finite = {k: x for k, x in v.items() if all(math.isfinite(y) for y in x.values())}
     ok = all(x["2-layer"] > x["3-layer"] for x in finite.values()) if finite else None
-    ev = ", ".join(f"{k} {x['2-layer'] / 1e3:.3f} vs {x['3-layer'] / 1e3:.3f} kN" for k, x in finite.items())
-    return Claim("F1", "contact forces",
-                 "The two-layer model's contact forces oscillate more than the three-layer model's (Sec. 4.2)",
-                 f"RMS of force minus its {c.trend_window:g} m running mean in the region: 2-layer > 3-layer "
-                 "for every plotted signal",
-                 _verdict(ok), "2-layer vs 3-layer: " + ev, v)
+    ev = ", ".join(
+        f"{k} {x['2-layer'] / 1e3:.3f} vs {x['3-layer'] / 1e3:.3f} kN" for k, x in finite.items()
+    )
+    return Claim(
+        "F1",
+        "contact forces",
+        "The two-layer model's contact forces oscillate more than the three-layer model's (Sec. 4.2)",
+        f"RMS of force minus its {c.trend_window:g} m running mean in the region: 2-layer > 3-layer "
+        "for every plotted signal",
+        _verdict(ok),
+        "2-layer vs 3-layer: " + ev,
+        v,
+    )
 
 
 def _fe_peak_rel(pas: Mapping, route: str, sig: str, model: str) -> float:
@@ -180,20 +255,38 @@ def _fe_peak_rel(pas: Mapping, route: str, sig: str, model: str) -> float:
 def claim_trend(pas: Mapping, c: Criteria) -> Claim:
     """F2: running means of the 2- and 3-layer forces within the trend limit of FE's."""
     st = "All three models agree on the overall trend of the contact forces (Sec. 4.2)"
-    crit = (f"max |difference of {c.trend_window:g} m running means| <= {c.trend_agree:.0%} of the static wheel load, "
-            "2-layer and 3-layer vs FE, every plotted signal with an FE reference")
+    crit = (
+        f"max |difference of {c.trend_window:g} m running means| <= {c.trend_agree:.0%} of the static wheel load, "
+        "2-layer and 3-layer vs FE, every plotted signal with an FE reference"
+    )
     signals = _fe_signals(pas)
     if not signals:
         return _no_fe("F2", st, crit, pas)
-    v = {f"{route} {sig} {m}": _model(pas, route, m)["vs_FE"]["trend_deviation"][sig]
-         for route, sig in signals for m in ("2-layer", "3-layer")}
+    v = {
+        f"{route} {sig} {m}": _model(pas, route, m)["vs_FE"]["trend_deviation"][sig]
+        for route, sig in signals
+        for m in ("2-layer", "3-layer")
+    }
     ok = all(x <= c.trend_agree for x in v.values())
-    return Claim("F2", "contact forces", st, crit, _verdict(ok), ", ".join(f"{k} {x:.1%}" for k, x in v.items()), v)
+    return Claim(
+        "F2",
+        "contact forces",
+        st,
+        crit,
+        _verdict(ok),
+        ", ".join(f"{k} {x:.1%}" for k, x in v.items()),
+        v,
+    )
 
 
-def _no_fe(cid: str, statement: str, criterion: str, pas: Mapping, topic: str = "contact forces") -> Claim:
-    why = ("no FE reference for these signals in this run (outside the passage's x range, or no finite FE value)"
-           if pas.get("fe_available") else f"FE passage not available: {pas.get('fe_note', 'no passage data')}")
+def _no_fe(
+    cid: str, statement: str, criterion: str, pas: Mapping, topic: str = "contact forces"
+) -> Claim:
+    why = (
+        "no FE reference for these signals in this run (outside the passage's x range, or no finite FE value)"
+        if pas.get("fe_available")
+        else f"FE passage not available: {pas.get('fe_note', 'no passage data')}"
+    )
     return Claim(cid, topic, statement, criterion, NOT_CHECKED, why, {})
 
 
@@ -206,7 +299,15 @@ def claim_switch_agrees(pas: Mapping, c: Criteria) -> Claim:
         return _no_fe("F3", st, crit, pas)
     v = {f"{route} {sig}": _fe_peak_rel(pas, route, sig, "2-layer") for route, sig in signals}
     ok = all(abs(x) <= c.peak_agree for x in v.values())
-    return Claim("F3", "contact forces", st, crit, _verdict(ok), ", ".join(f"{k} {x:+.1%}" for k, x in v.items()), v)
+    return Claim(
+        "F3",
+        "contact forces",
+        st,
+        crit,
+        _verdict(ok),
+        ", ".join(f"{k} {x:+.1%}" for k, x in v.items()),
+        v,
+    )
 
 
 def claim_overestimates(pas: Mapping, c: Criteria) -> Claim:
@@ -217,36 +318,61 @@ def claim_overestimates(pas: Mapping, c: Criteria) -> Claim:
     """
     route = pas.get("impact_route")
     st = "The two-layer model overestimates the peak impact force at the crossing (Sec. 4.2)"
-    crit = (f"{route or 'no'} route, peak Fz at the crossing: 2-layer exceeds FE by more than "
-            f"{c.overestimate:.0%}")
+    crit = (
+        f"{route or 'no'} route, peak Fz at the crossing: 2-layer exceeds FE by more than "
+        f"{c.overestimate:.0%}"
+    )
     if route is None or (route, "Fz_crossing") not in _fe_signals(pas):
         return _no_fe("F4", st, crit, pas)
     rel = _fe_peak_rel(pas, route, "Fz_crossing", "2-layer")
-    peaks = {m: _model(pas, route, m)["peaks_N"]["Fz_crossing"]
-             for m in ("2-layer", "3-layer", "FE")}
-    return Claim("F4", "contact forces", st, crit, _verdict(rel > c.overestimate),
-                 f"2-layer {peaks['2-layer'] / 1e3:.1f} kN vs FE {peaks['FE'] / 1e3:.1f} kN ({rel:+.1%}); "
-                 f"3-layer {peaks['3-layer'] / 1e3:.1f} kN", {"relative": rel, "peaks_N": peaks})
+    peaks = {
+        m: _model(pas, route, m)["peaks_N"]["Fz_crossing"] for m in ("2-layer", "3-layer", "FE")
+    }
+    return Claim(
+        "F4",
+        "contact forces",
+        st,
+        crit,
+        _verdict(rel > c.overestimate),
+        f"2-layer {peaks['2-layer'] / 1e3:.1f} kN vs FE {peaks['FE'] / 1e3:.1f} kN ({rel:+.1%}); "
+        f"3-layer {peaks['3-layer'] / 1e3:.1f} kN",
+        {"relative": rel, "peaks_N": peaks},
+    )
 
 
 def claim_three_closer(pas: Mapping, c: Criteria) -> Claim:
     """F5: three-layer force histories and crossing peaks closer to FE than the two-layer's."""
-    st = ("The three-layer model is closer to the FE reference than the two-layer model, above all at the crossing "
-          "(Sec. 4.2)")
-    crit = ("for every plotted signal with an FE reference, the RMS difference of the force history from FE's (common "
-            "x grid, in the region) is smaller for the 3-layer model, and so is |peak / peak(FE) - 1| at the crossing")
+    st = (
+        "The three-layer model is closer to the FE reference than the two-layer model, above all at the crossing "
+        "(Sec. 4.2)"
+    )
+    crit = (
+        "for every plotted signal with an FE reference, the RMS difference of the force history from FE's (common "
+        "x grid, in the region) is smaller for the 3-layer model, and so is |peak / peak(FE) - 1| at the crossing"
+    )
     signals = _fe_signals(pas)
     if not signals:
         return _no_fe("F5", st, crit, pas)
     v = {}
     for route, sig in signals:
-        v[f"{route} {sig} RMS diff"] = {m: _model(pas, route, m)["vs_FE"]["rms_difference_N"][sig]
-                                        for m in ("2-layer", "3-layer")}
+        v[f"{route} {sig} RMS diff"] = {
+            m: _model(pas, route, m)["vs_FE"]["rms_difference_N"][sig]
+            for m in ("2-layer", "3-layer")
+        }
         if sig.endswith("crossing"):
-            v[f"{route} {sig} |peak rel|"] = {m: abs(_fe_peak_rel(pas, route, sig, m)) for m in ("2-layer", "3-layer")}
+            v[f"{route} {sig} |peak rel|"] = {
+                m: abs(_fe_peak_rel(pas, route, sig, m)) for m in ("2-layer", "3-layer")
+            }
     ok = all(d["3-layer"] < d["2-layer"] for d in v.values())
-    ev = ", ".join(f"{k} " + (f"{d['3-layer']:.1%} vs {d['2-layer']:.1%}" if "peak" in k
-                              else f"{d['3-layer'] / 1e3:.2f} vs {d['2-layer'] / 1e3:.2f} kN") for k, d in v.items())
+    ev = ", ".join(
+        f"{k} "
+        + (
+            f"{d['3-layer']:.1%} vs {d['2-layer']:.1%}"
+            if "peak" in k
+            else f"{d['3-layer'] / 1e3:.2f} vs {d['2-layer'] / 1e3:.2f} kN"
+        )
+        for k, d in v.items()
+    )
     return Claim("F5", "contact forces", st, crit, _verdict(ok), "3-layer vs 2-layer: " + ev, v)
 
 
@@ -255,22 +381,32 @@ def claim_cost(cost: Mapping, c: Criteria) -> Claim:
     r = cost.get("ratio_3_over_2", {})
     lo, hi = c.cost_ratio
     ok = all(lo <= x <= hi for x in r.values()) if r else None
-    return Claim("C1", "computing cost",
-                 "The three-layer model costs about 10 % more computing time than the two-layer model (Sec. 4.2)",
-                 f"wall time 3-layer / 2-layer in [{lo:g}, {hi:g}] for each route: median over "
-                 f"{cost.get('repeats', 0)} interleaved pairs (3-layer run / the 2-layer run just before it), "
-                 "measured in the same run",
-                 _verdict(ok), ", ".join(f"{k} {x:.2f}" for k, x in r.items()), dict(r))
+    return Claim(
+        "C1",
+        "computing cost",
+        "The three-layer model costs about 10 % more computing time than the two-layer model (Sec. 4.2)",
+        f"wall time 3-layer / 2-layer in [{lo:g}, {hi:g}] for each route: median over "
+        f"{cost.get('repeats', 0)} interleaved pairs (3-layer run / the 2-layer run just before it), "
+        "measured in the same run",
+        _verdict(ok),
+        ", ".join(f"{k} {x:.2f}" for k, x in r.items()),
+        dict(r),
+    )
 
 
 def claim_dof(cost: Mapping, c: Criteria) -> Claim:
     """C2: the three-layer model has 8 more coordinates in the zone with the most rails."""
     extra = cost.get("extra_dof_per_zone", {})
     ok = max(extra.values()) == 8 if extra else None
-    return Claim("C2", "computing cost",
-                 "The three-layer model has 8 more degrees of freedom than the two-layer model (Sec. 4.2)",
-                 "3-layer minus 2-layer coordinates of the co-running model: 8 in the zone with the most rails",
-                 _verdict(ok), ", ".join(f"zone {k}: +{x}" for k, x in extra.items()), dict(extra))
+    return Claim(
+        "C2",
+        "computing cost",
+        "The three-layer model has 8 more degrees of freedom than the two-layer model (Sec. 4.2)",
+        "3-layer minus 2-layer coordinates of the co-running model: 8 in the zone with the most rails",
+        _verdict(ok),
+        ", ".join(f"zone {k}: +{x}" for k, x in extra.items()),
+        dict(extra),
+    )
 
 
 def claim_fe_slower(cost: Mapping, c: Criteria) -> Claim:
@@ -279,10 +415,25 @@ def claim_fe_slower(cost: Mapping, c: Criteria) -> Claim:
     st = "The co-running models need far less computing time than the FE track (Abstract, Sec. 1)"
     crit = f"wall time FE / 3-layer (median of its runs) >= {c.fe_slower:g} for each route"
     if not r:
-        return Claim("C3", "computing cost", st, crit, NOT_CHECKED, "FE passage not available in this run", {})
+        return Claim(
+            "C3",
+            "computing cost",
+            st,
+            crit,
+            NOT_CHECKED,
+            "FE passage not available in this run",
+            {},
+        )
     ok = all(x >= c.fe_slower for x in r.values())
-    return Claim("C3", "computing cost", st, crit, _verdict(ok), ", ".join(f"{k} {x:.1f}" for k, x in r.items()),
-                 dict(r))
+    return Claim(
+        "C3",
+        "computing cost",
+        st,
+        crit,
+        _verdict(ok),
+        ", ".join(f"{k} {x:.1f}" for k, x in r.items()),
+        dict(r),
+    )
 
 
 def _statements(st: Mapping) -> Mapping | None:
@@ -290,21 +441,37 @@ def _statements(st: Mapping) -> Mapping | None:
 
 
 def _no_profile(cid: str, statement: str, criterion: str) -> Claim:
-    return Claim(cid, "track stiffness", statement, criterion, NOT_CHECKED, "FE stiffness profile not available", {})
+    return Claim(
+        cid,
+        "track stiffness",
+        statement,
+        criterion,
+        NOT_CHECKED,
+        "FE stiffness profile not available",
+        {},
+    )
 
 
 def claim_stock_uniform(st: Mapping, c: Criteria) -> Claim:
     """S1: FE stock-rail K_z within ``stock_uniform`` of its plain-track value."""
     s = _statements(st)
     text = "The vertical stiffness of the stock rail remains the same throughout the turnout (Sec. 2, Fig. 1b)"
-    crit = (f"every stock-rail K_z within {c.stock_uniform:.0%} of its plain-track value (mean "
-            "before the switch toe)")
+    crit = (
+        f"every stock-rail K_z within {c.stock_uniform:.0%} of its plain-track value (mean "
+        "before the switch toe)"
+    )
     if s is None:
         return _no_profile("S1", text, crit)
     lo, hi = s["stock_K_z_spread"]
-    return Claim("S1", "track stiffness", text, crit, _verdict(max(-lo, hi) <= c.stock_uniform),
-                 f"{s['stock_rail']}: {lo:+.1%} to {hi:+.1%} of {s['stock_plain_K_z'] / 1e6:.1f} MN/m",
-                 {"spread": [lo, hi], "plain_K_z": s["stock_plain_K_z"]})
+    return Claim(
+        "S1",
+        "track stiffness",
+        text,
+        crit,
+        _verdict(max(-lo, hi) <= c.stock_uniform),
+        f"{s['stock_rail']}: {lo:+.1%} to {hi:+.1%} of {s['stock_plain_K_z'] / 1e6:.1f} MN/m",
+        {"spread": [lo, hi], "plain_K_z": s["stock_plain_K_z"]},
+    )
 
 
 def claim_switch_toe(st: Mapping, c: Criteria) -> Claim:
@@ -314,48 +481,78 @@ def claim_switch_toe(st: Mapping, c: Criteria) -> Claim:
     22 m", Sec. 3.1.1), in the metrics as ``switch_plateau.x_m``.
     """
     s = _statements(st)
-    text = ("The switch rail's vertical stiffness is lower than the stock rail's at the toe and increases gradually "
-            "(Sec. 2)")
+    text = (
+        "The switch rail's vertical stiffness is lower than the stock rail's at the toe and increases gradually "
+        "(Sec. 2)"
+    )
     x = s["switch_plateau"]["x_m"] if s is not None else math.nan
     where = f"{x:g} m" if math.isfinite(x) else "the end of Eq 10"
-    crit = ("K_z(switch rail, first sleeper) < K_z(stock rail, same x), and "
-            f"K_z(switch rail, {where}, the end of Eq 10) > K_z at the toe")
+    crit = (
+        "K_z(switch rail, first sleeper) < K_z(stock rail, same x), and "
+        f"K_z(switch rail, {where}, the end of Eq 10) > K_z at the toe"
+    )
     if s is None:
         return _no_profile("S2", text, crit)
     toe, plateau = s["switch_toe"], s["switch_plateau"]
     ok = toe["K_z"] < toe["stock_K_z"] and plateau["K_z"] > toe["K_z"]
-    return Claim("S2", "track stiffness", text, crit, _verdict(ok),
-                 f"toe (x = {toe['x_m']:.1f} m) {toe['K_z'] / 1e6:.1f} vs stock {toe['stock_K_z'] / 1e6:.1f} MN/m; "
-                 f"{where} {plateau['K_z'] / 1e6:.1f} MN/m",
-                 {"toe": dict(toe), "plateau": dict(plateau)})
+    return Claim(
+        "S2",
+        "track stiffness",
+        text,
+        crit,
+        _verdict(ok),
+        f"toe (x = {toe['x_m']:.1f} m) {toe['K_z'] / 1e6:.1f} vs stock {toe['stock_K_z'] / 1e6:.1f} MN/m; "
+        f"{where} {plateau['K_z'] / 1e6:.1f} MN/m",
+        {"toe": dict(toe), "plateau": dict(plateau)},
+    )
 
 
 def claim_crossing_stiff(st: Mapping, c: Criteria) -> Claim:
     """S3: FE crossing K_z at least ``much_higher`` times the stock rail's in the crossing panel."""
     s = _statements(st)
     text = "The vertical stiffness at the crossing nose (crossing panel) is much higher (Sec. 2)"
-    crit = f"mean K_z of the crossing over the stock rail's in the crossing panel >= {c.much_higher:g}"
+    crit = (
+        f"mean K_z of the crossing over the stock rail's in the crossing panel >= {c.much_higher:g}"
+    )
     if s is None:
         return _no_profile("S3", text, crit)
     r = s["crossing_over_stock_K_z"]
     lo, hi = s["crossing_x_range_m"]
-    return Claim("S3", "track stiffness", text, crit, _verdict(r >= c.much_higher),
-                 f"{r:.2f} over {lo:g}-{hi:g} m", {"ratio": r})
+    return Claim(
+        "S3",
+        "track stiffness",
+        text,
+        crit,
+        _verdict(r >= c.much_higher),
+        f"{r:.2f} over {lo:g}-{hi:g} m",
+        {"ratio": r},
+    )
 
 
 def claim_lateral_increase(st: Mapping, c: Criteria) -> Claim:
     """S4: FE K_y end / start of the turnout within ``lateral_increase``, stock and switch rails."""
     s = _statements(st)
-    text = ("Lateral stiffness increases from the switch toe to the end of the turnout by around 25 %, all rails "
-            "(Sec. 2)")
+    text = (
+        "Lateral stiffness increases from the switch toe to the end of the turnout by around 25 %, all rails "
+        "(Sec. 2)"
+    )
     lo, hi = c.lateral_increase
-    crit = (f"K_y at the end of the turnout (last sleeper of the crossing panel) over K_y at the first sleeper "
-            f"from the toe in [{lo:g}, {hi:g}] for the stock and switch rails")
+    crit = (
+        f"K_y at the end of the turnout (last sleeper of the crossing panel) over K_y at the first sleeper "
+        f"from the toe in [{lo:g}, {hi:g}] for the stock and switch rails"
+    )
     if s is None:
         return _no_profile("S4", text, crit)
     v = s["lateral_end_over_start"]
-    return Claim("S4", "track stiffness", text, crit, _verdict(all(lo <= x <= hi for x in v.values())),
-                 ", ".join(f"{k} {x:.2f}" for k, x in v.items()), dict(v))
+    return Claim(
+        "S4",
+        "track stiffness",
+        text,
+        crit,
+        _verdict(all(lo <= x <= hi for x in v.values())),
+        ", ".join(f"{k} {x:.2f}" for k, x in v.items()),
+        dict(v),
+    )
 
 
 def claim_check_lateral(st: Mapping, c: Criteria) -> Claim:
@@ -366,24 +563,45 @@ def claim_check_lateral(st: Mapping, c: Criteria) -> Claim:
     if s is None or not s["check_over_running_K_y"]:
         return _no_profile("S5", text, crit)
     v = s["check_over_running_K_y"]
-    return Claim("S5", "track stiffness", text, crit, _verdict(all(x >= c.much_higher for x in v.values())),
-                 ", ".join(f"{k} {x:.2f}" for k, x in v.items()), dict(v))
+    return Claim(
+        "S5",
+        "track stiffness",
+        text,
+        crit,
+        _verdict(all(x >= c.much_higher for x in v.values())),
+        ", ".join(f"{k} {x:.2f}" for k, x in v.items()),
+        dict(v),
+    )
 
 
 #: (metrics key, claim function) in report order.
 CLAIM_FUNCTIONS: tuple[tuple[str, Callable[[Mapping, Criteria], Claim]], ...] = (
-    ("stiffness", claim_stock_uniform), ("stiffness", claim_switch_toe), ("stiffness", claim_crossing_stiff),
-    ("stiffness", claim_lateral_increase), ("stiffness", claim_check_lateral),
-    ("receptance", claim_two_layer_low), ("receptance", claim_two_layer_high),
-    ("receptance", claim_three_layer_agrees), ("receptance", claim_pinned_pinned),
-    ("receptance", claim_three_better), ("passage", claim_oscillates), ("passage", claim_trend),
-    ("passage", claim_switch_agrees), ("passage", claim_overestimates), ("passage", claim_three_closer),
-    ("cost", claim_cost), ("cost", claim_dof), ("cost", claim_fe_slower),
+    ("stiffness", claim_stock_uniform),
+    ("stiffness", claim_switch_toe),
+    ("stiffness", claim_crossing_stiff),
+    ("stiffness", claim_lateral_increase),
+    ("stiffness", claim_check_lateral),
+    ("receptance", claim_two_layer_low),
+    ("receptance", claim_two_layer_high),
+    ("receptance", claim_three_layer_agrees),
+    ("receptance", claim_pinned_pinned),
+    ("receptance", claim_three_better),
+    ("passage", claim_oscillates),
+    ("passage", claim_trend),
+    ("passage", claim_switch_agrees),
+    ("passage", claim_overestimates),
+    ("passage", claim_three_closer),
+    ("cost", claim_cost),
+    ("cost", claim_dof),
+    ("cost", claim_fe_slower),
 )
 
 
-def evaluate_claims(metrics: Mapping[str, Mapping], criteria: Criteria = Criteria(),
-                    functions: Sequence = CLAIM_FUNCTIONS) -> list[Claim]:
+def evaluate_claims(
+    metrics: Mapping[str, Mapping],
+    criteria: Criteria = Criteria(),
+    functions: Sequence = CLAIM_FUNCTIONS,
+) -> list[Claim]:
     """Every claim's verdict from the report metrics ("stiffness", "receptance", "passage", "cost").
 
     Parameters

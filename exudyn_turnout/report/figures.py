@@ -5,14 +5,22 @@ each figure it has data for into the output directory; it returns name -> file n
 (relative to that directory) for the Markdown to embed. Matplotlib stays inside
 :mod:`~exudyn_turnout.plotting.curves`.
 """
+
 from __future__ import annotations
 
+from collections.abc import Mapping
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 
-__all__ = ["write_figures", "receptance_panels", "force_panels", "crossing_window", "stiffness_panels"]
+__all__ = [
+    "write_figures",
+    "receptance_panels",
+    "force_panels",
+    "crossing_window",
+    "stiffness_panels",
+]
 
 #: m, before / after the wheel's dip shown in a crossing panel when the report has no settings.
 _DEFAULT_CROSSING_WINDOW = (0.8, 2.2)
@@ -31,8 +39,11 @@ def receptance_panels(report, direction: str) -> list[tuple[str, Mapping, float]
     list of (str, dict, float)
     """
     cases = report.metrics["receptance"]["cases"]
-    return [(f"{case} at x = {c['x_m']:.2f} m", report.receptances[case], c["pinned_pinned_hz"])
-            for case, c in cases.items() if c["direction"] == direction]
+    return [
+        (f"{case} at x = {c['x_m']:.2f} m", report.receptances[case], c["pinned_pinned_hz"])
+        for case, c in cases.items()
+        if c["direction"] == direction
+    ]
 
 
 def crossing_window(report) -> tuple[float, float]:
@@ -79,11 +90,15 @@ def force_panels(report, route: str) -> list[tuple[str, Mapping, str, tuple[floa
         x0, x1 = max(x0, lo), min(x1, hi)
         if x1 > x0:
             what = "vertical" if quantity == "Fz" else "lateral"
-            title = (f"{route}, {p['speeds_kmh'][route]:g} km/h: {what} force, {wheel} wheel, "
-                     f"{region}")
+            title = (
+                f"{route}, {p['speeds_kmh'][route]:g} km/h: {what} force, {wheel} wheel, {region}"
+            )
             column = f"{quantity}_{wheel}_N"
-            results = {m: r for m, r in report.passages[route].items()
-                       if column in r.columns and np.isfinite(r.columns[column]).any()}
+            results = {
+                m: r
+                for m, r in report.passages[route].items()
+                if column in r.columns and np.isfinite(r.columns[column]).any()
+            }
             panels.append((title, results, column, (x0, x1)))
     return panels
 
@@ -102,14 +117,21 @@ def write_figures(report, out_dir: str | Path, dpi: int = 100) -> dict[str, str]
     dict
         Figure name -> file name.
     """
-    from exudyn_turnout.plotting.curves import plot_force_signals, plot_receptance_agreement, save_figure
+    from exudyn_turnout.plotting.curves import (
+        plot_force_signals,
+        plot_receptance_agreement,
+        save_figure,
+    )
+
     out, files = Path(out_dir), {}
     agree = report.config.criteria.agree_db
     for direction in ("vertical", "lateral"):
         panels = receptance_panels(report, direction)
         if panels:
             fig, _ = plot_receptance_agreement(panels, agree_db=agree)
-            files[f"receptance_{direction}"] = _save(fig, out, f"receptance_{direction}.png", dpi, save_figure)
+            files[f"receptance_{direction}"] = _save(
+                fig, out, f"receptance_{direction}.png", dpi, save_figure
+            )
     for route in report.passages:
         panels = force_panels(report, route)
         if panels:
@@ -141,15 +163,33 @@ def stiffness_panels(report) -> list[tuple[str, list]]:
     data, paper = report.stiffness, report.metrics["stiffness"]["paper"]
     profile, fits = data["profile"], data["fits"]
     panels = []
-    for direction, fit, eq, idx in (("vertical", fits.K_sw, ("Eq 10 K_sw", "K_sw_N_per_m"), 1),
-                                    ("lateral", fits.K_sh, ("Eq 14 K_sh", "K_sh_N_per_m"), 2)):
-        series = [(f"FE {rail}", profile.of(rail)[0], profile.of(rail)[idx], "points") for rail in profile.rails]
+    for direction, fit, eq, idx in (
+        ("vertical", fits.K_sw, ("Eq 10 K_sw", "K_sw_N_per_m"), 1),
+        ("lateral", fits.K_sh, ("Eq 14 K_sh", "K_sh_N_per_m"), 2),
+    ):
+        series = [
+            (f"FE {rail}", profile.of(rail)[0], profile.of(rail)[idx], "points")
+            for rail in profile.rails
+        ]
         xf = [fit.x_min + (fit.x_max - fit.x_min) * k / 50 for k in range(51)]
-        series.append((f"fit of FE {fit.rail} ({fit.x_min:g}-{fit.x_max:g} m)", xf, [fit(x) for x in xf], "fit"))
+        series.append(
+            (
+                f"fit of FE {fit.rail} ({fit.x_min:g}-{fit.x_max:g} m)",
+                xf,
+                [fit(x) for x in xf],
+                "fit",
+            )
+        )
         series.append((f"paper {eq[0]}", paper["x_m"], paper[eq[1]], "paper"))
         slot = report.metrics["stiffness"].get("co_running_slot", "r2")
-        series.append((f"2-layer co-running {slot}, 1/|H(1 Hz)|", data["co_running_x"],
-                       data["co_running"][direction], "model"))
+        series.append(
+            (
+                f"2-layer co-running {slot}, 1/|H(1 Hz)|",
+                data["co_running_x"],
+                data["co_running"][direction],
+                "model",
+            )
+        )
         panels.append((f"{direction} static stiffness 1/|H(1 Hz)|", series))
     return panels
 
@@ -159,5 +199,6 @@ def _stiffness_figure(report, out: Path, dpi: int) -> dict[str, str]:
     if not report.stiffness:
         return {}
     from exudyn_turnout.plotting.curves import plot_stiffness_series, save_figure
+
     fig, _ = plot_stiffness_series(stiffness_panels(report))
     return {"stiffness": _save(fig, out, "stiffness.png", dpi, save_figure)}

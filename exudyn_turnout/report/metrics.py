@@ -21,6 +21,7 @@ FE results (receptances, static stiffness profile, FE passage) are cached on dis
 computes them. Parts of the FE reference that are not in the package yet are reported as
 "not available".
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -28,26 +29,40 @@ import importlib
 import math
 import sys
 import time
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 
-from exudyn_turnout.report import agreement as ag
-from exudyn_turnout.report.claims import RANGES, Claim, Criteria, evaluate_claims
 from exudyn_turnout.corunning.comparison import TOLERANCE, compare_with_table2
-from exudyn_turnout.fe.mesh import FEOptions
 from exudyn_turnout.corunning.modal import co_running_receptance, dof_names
 from exudyn_turnout.corunning.parameters import reference_support
-from exudyn_turnout.passage.simulate import PassageResult, PassageSettings, simulate_passage
-from exudyn_turnout.receptance import Receptance, log_frequencies
-from exudyn_turnout.report.settings import (FORCES, REGIONS, ReportSettings, check_rails, quick_passage_x,
-                              report_settings, stock_rails)
-from exudyn_turnout.report.cache import ResultCache, default_cache_dir, file_fingerprint, input_key, source_fingerprint
+from exudyn_turnout.fe.mesh import FEOptions
 from exudyn_turnout.inputs.routes import dip_angle, load_route
 from exudyn_turnout.inputs.turnout import Turnout, load_turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
+from exudyn_turnout.passage.simulate import PassageResult, PassageSettings, simulate_passage
+from exudyn_turnout.receptance import Receptance, log_frequencies
+from exudyn_turnout.report import agreement as ag
+from exudyn_turnout.report.cache import (
+    ResultCache,
+    default_cache_dir,
+    file_fingerprint,
+    input_key,
+    source_fingerprint,
+)
+from exudyn_turnout.report.claims import RANGES, Claim, Criteria, evaluate_claims
+from exudyn_turnout.report.settings import (
+    FORCES,
+    REGIONS,
+    ReportSettings,
+    check_rails,
+    quick_passage_x,
+    report_settings,
+    stock_rails,
+)
 
 __all__ = [
     "ReportConfig",
@@ -64,8 +79,14 @@ __all__ = [
 
 #: Modules whose source is part of the cache key of FE results.
 _FE_CODE = ("exudyn_turnout.fe", "exudyn_turnout.inputs.turnout", "exudyn_turnout.receptance")
-_FE_PASSAGE_CODE = _FE_CODE + ("exudyn_turnout.passage.fe_track", "exudyn_turnout.passage.simulate", "exudyn_turnout.passage.contact_element",
-                               "exudyn_turnout.inputs.vehicle", "exudyn_turnout.wheel_rail.laws", "exudyn_turnout.inputs.routes")
+_FE_PASSAGE_CODE = _FE_CODE + (
+    "exudyn_turnout.passage.fe_track",
+    "exudyn_turnout.passage.simulate",
+    "exudyn_turnout.passage.contact_element",
+    "exudyn_turnout.inputs.vehicle",
+    "exudyn_turnout.wheel_rail.laws",
+    "exudyn_turnout.inputs.routes",
+)
 
 
 @dataclass(frozen=True)
@@ -114,17 +135,28 @@ def report_config(quick: bool = False, cache_dir: str | Path | None = "default")
         Unresolved: speeds and the quick window come from the turnout
         (:func:`resolve_config`).
     """
-    cache = str(default_cache_dir()) if cache_dir == "default" else (None if cache_dir is None else str(cache_dir))
+    cache = (
+        str(default_cache_dir())
+        if cache_dir == "default"
+        else (None if cache_dir is None else str(cache_dir))
+    )
     if not quick:
         return ReportConfig(cache_dir=cache)
-    coarse = FEOptions(element_order=2, element_length=0.6, sleeper_element_length=1.0, extension=6.0,
-                       absorbing_length=6.0)
-    return ReportConfig(quick=True, n_frequencies=48, fe_options=coarse, timing_repeats=1,
-                        cache_dir=cache)
+    coarse = FEOptions(
+        element_order=2,
+        element_length=0.6,
+        sleeper_element_length=1.0,
+        extension=6.0,
+        absorbing_length=6.0,
+    )
+    return ReportConfig(
+        quick=True, n_frequencies=48, fe_options=coarse, timing_repeats=1, cache_dir=cache
+    )
 
 
-def resolve_config(config: ReportConfig, settings: ReportSettings,
-                   turnout: Turnout | None = None) -> ReportConfig:
+def resolve_config(
+    config: ReportConfig, settings: ReportSettings, turnout: Turnout | None = None
+) -> ReportConfig:
     """``config`` with the turnout's speeds and, for a quick report, its quick passage window.
 
     Speeds not given in ``config`` are the turnout's ``[report]`` speeds; a quick report
@@ -151,14 +183,17 @@ def resolve_config(config: ReportConfig, settings: ReportSettings,
     speeds = dict(settings.speeds_kmh)
     for route, v in config.speeds_kmh or ():
         if route not in speeds:
-            raise ValueError(f"report speed given for route {route!r}, which the report does "
-                             f"not run ({', '.join(speeds)})")
+            raise ValueError(
+                f"report speed given for route {route!r}, which the report does "
+                f"not run ({', '.join(speeds)})"
+            )
         speeds[route] = float(v)
     x = config.passage_x
     if x is None and config.quick:
         x = quick_passage_x(turnout or load_turnout(), settings)
-    return replace(config, speeds_kmh=tuple(speeds.items()),
-                   passage_x=None if x is None else tuple(x))
+    return replace(
+        config, speeds_kmh=tuple(speeds.items()), passage_x=None if x is None else tuple(x)
+    )
 
 
 @dataclass(frozen=True)
@@ -168,8 +203,12 @@ class Report:
     config: ReportConfig  #: resolved (:func:`resolve_config`)
     metrics: Mapping[str, Any]  #: every number in report.md, SI units
     claims: tuple[Claim, ...]
-    receptances: Mapping[str, Mapping[str, Receptance]] = field(default_factory=dict)  #: case -> model -> curve
-    passages: Mapping[str, Mapping[str, PassageResult]] = field(default_factory=dict)  #: route -> model -> run
+    receptances: Mapping[str, Mapping[str, Receptance]] = field(
+        default_factory=dict
+    )  #: case -> model -> curve
+    passages: Mapping[str, Mapping[str, PassageResult]] = field(
+        default_factory=dict
+    )  #: route -> model -> run
     stiffness: Any = None  #: dict with the FE "profile", its "fits" and the co-running r2 static stiffness; or None
     settings: ReportSettings | None = None  #: the turnout's report settings
 
@@ -180,15 +219,33 @@ def _log(message: str) -> None:
 
 # --- 1 parameters ---------------------------------------------------------------------
 
+
 def parameters_metrics(turnout: Turnout) -> dict[str, Any]:
     """Derived vs published Table 2 (values at each zone's middle, SI), with ratio and explanation."""
     rows = compare_with_table2(turnout)
-    table = [{"zone": r.zone, "name": r.name, "derived": r.derived, "published": r.published,
-              "published_text": r.published_text, "as_printed": r.as_printed, "ratio_min": r.ratio_min,
-              "ratio_max": r.ratio_max, "reproduced": r.reproduced, "explanation": r.explanation,
-              "reading_value": r.reading_value} for r in rows]
-    out = {"tolerance": TOLERANCE, "rows": table, "reproduced": sum(r.reproduced for r in rows),
-           "entries": len(rows), "published_zones": sorted(turnout.published)}
+    table = [
+        {
+            "zone": r.zone,
+            "name": r.name,
+            "derived": r.derived,
+            "published": r.published,
+            "published_text": r.published_text,
+            "as_printed": r.as_printed,
+            "ratio_min": r.ratio_min,
+            "ratio_max": r.ratio_max,
+            "reproduced": r.reproduced,
+            "explanation": r.explanation,
+            "reading_value": r.reading_value,
+        }
+        for r in rows
+    ]
+    out = {
+        "tolerance": TOLERANCE,
+        "rows": table,
+        "reproduced": sum(r.reproduced for r in rows),
+        "entries": len(rows),
+        "published_zones": sorted(turnout.published),
+    }
     if not rows:  # no published set to compare with: the derived set, zone by zone
         out["derived"] = {str(z.index): _derived_at_middle(turnout, z.index) for z in turnout.zones}
     return out
@@ -198,12 +255,14 @@ def _derived_at_middle(turnout: Turnout, zone: int) -> dict[str, float]:
     """The derived 3-layer co-running entries of a zone at its middle (SI units)."""
     from exudyn_turnout.corunning.parameters import co_running_parameters
     from exudyn_turnout.inputs.turnout import PARAMETER_NAMES
+
     z = turnout.zone(zone)
     values = co_running_parameters(turnout, zone=zone, layers=3).at(0.5 * (z.x_start + z.x_end))
     return {n: float(values[n]) for n in PARAMETER_NAMES if n in values}
 
 
 # --- 2 stiffness along the turnout ----------------------------------------------------
+
 
 def _fingerprint(turnout: Turnout) -> str:
     path = Path(str(turnout.source))
@@ -213,51 +272,100 @@ def _fingerprint(turnout: Turnout) -> str:
 def paper_stiffness_profiles(turnout: Turnout, x: np.ndarray) -> dict[str, list[float]]:
     """Eqs 10 and 14 of the turnout file (N/m) at x, and the stock rail's Eq 2 values K_st (N/m)."""
     ref = reference_support(turnout)
-    return {"x_m": [float(v) for v in x], "K_sw_N_per_m": [turnout.K_sw(float(v)) for v in x],
-            "K_sh_N_per_m": [turnout.K_sh(float(v)) for v in x], "K_st_z_N_per_m": ref.K_st_z,
-            "K_st_y_N_per_m": ref.K_st_y}
+    return {
+        "x_m": [float(v) for v in x],
+        "K_sw_N_per_m": [turnout.K_sw(float(v)) for v in x],
+        "K_sh_N_per_m": [turnout.K_sh(float(v)) for v in x],
+        "K_st_z_N_per_m": ref.K_st_z,
+        "K_st_y_N_per_m": ref.K_st_y,
+    }
 
 
 def _cached_stiffness(turnout: Turnout, config: ReportConfig, cache: ResultCache):
     """FE static stiffness profile (computed or from the cache) and where it came from."""
     from exudyn_turnout.fe.stiffness import StiffnessProfile, static_stiffness_profile
-    key = input_key("fe_stiffness", _fingerprint(turnout), source_fingerprint(_FE_CODE), config.fe_options)
+
+    key = input_key(
+        "fe_stiffness", _fingerprint(turnout), source_fingerprint(_FE_CODE), config.fe_options
+    )
     hit = cache.load(key)
     if hit is not None:
         a, meta = hit
-        profile = StiffnessProfile(a["x"], tuple(meta["rail"]), a["K_z"], a["K_y"], meta["frequency_hz"],
-                                   meta["rail_names"], meta["n_dof"])
-        return profile, {"cached": True, "wall_time_s": meta["wall_time_s"], "computed": meta["computed"]}
+        profile = StiffnessProfile(
+            a["x"],
+            tuple(meta["rail"]),
+            a["K_z"],
+            a["K_y"],
+            meta["frequency_hz"],
+            meta["rail_names"],
+            meta["n_dof"],
+        )
+        return profile, {
+            "cached": True,
+            "wall_time_s": meta["wall_time_s"],
+            "computed": meta["computed"],
+        }
     t0 = time.perf_counter()
     profile = static_stiffness_profile(turnout, options=config.fe_options)
-    info = {"cached": False, "wall_time_s": time.perf_counter() - t0, "computed": time.strftime("%Y-%m-%d %H:%M")}
-    cache.save(key, {"x": profile.x, "K_z": profile.K_z, "K_y": profile.K_y},
-               {"rail": list(profile.rail), "frequency_hz": profile.frequency_hz,
-                "rail_names": dict(profile.rail_names), "n_dof": dict(profile.n_dof), **info})
+    info = {
+        "cached": False,
+        "wall_time_s": time.perf_counter() - t0,
+        "computed": time.strftime("%Y-%m-%d %H:%M"),
+    }
+    cache.save(
+        key,
+        {"x": profile.x, "K_z": profile.K_z, "K_y": profile.K_y},
+        {
+            "rail": list(profile.rail),
+            "frequency_hz": profile.frequency_hz,
+            "rail_names": dict(profile.rail_names),
+            "n_dof": dict(profile.n_dof),
+            **info,
+        },
+    )
     return profile, info
 
 
 def _fit_metrics(fit, paper) -> dict[str, Any]:
     xs = np.linspace(fit.x_min, fit.x_max, 3)
-    return {"rail": fit.rail, "coefficients": list(fit.coefficients), "x_range_m": [fit.x_min, fit.x_max],
-            "r_squared": fit.r_squared, "n_points": fit.n_points,
-            "paper_coefficients": list(paper.coefficients),
-            "at_x": [{"x_m": float(x), "fit_N_per_m": fit(float(x)), "paper_N_per_m": paper(float(x)),
-                      "ratio": fit(float(x)) / paper(float(x))} for x in xs]}
+    return {
+        "rail": fit.rail,
+        "coefficients": list(fit.coefficients),
+        "x_range_m": [fit.x_min, fit.x_max],
+        "r_squared": fit.r_squared,
+        "n_points": fit.n_points,
+        "paper_coefficients": list(paper.coefficients),
+        "at_x": [
+            {
+                "x_m": float(x),
+                "fit_N_per_m": fit(float(x)),
+                "paper_N_per_m": paper(float(x)),
+                "ratio": fit(float(x)) / paper(float(x)),
+            }
+            for x in xs
+        ],
+    }
 
 
 def _rail_metrics(profile) -> dict[str, Any]:
     out = {}
     for rail in profile.rails:
         xs, kz, ky = profile.of(rail)
-        out[rail] = {"name": profile.rail_names.get(rail, rail), "x_range_m": [float(xs[0]), float(xs[-1])],
-                     "K_z_min": float(kz.min()), "K_z_max": float(kz.max()), "K_y_min": float(ky.min()),
-                     "K_y_max": float(ky.max()), "n_sleepers": len(xs)}
+        out[rail] = {
+            "name": profile.rail_names.get(rail, rail),
+            "x_range_m": [float(xs[0]), float(xs[-1])],
+            "K_z_min": float(kz.min()),
+            "K_z_max": float(kz.max()),
+            "K_y_min": float(ky.min()),
+            "K_y_max": float(ky.max()),
+            "n_sleepers": len(xs),
+        }
     return out
 
 
-def stiffness_statements(profile, turnout: Turnout, settings: ReportSettings | None = None,
-                         layout=None) -> dict[str, Any]:
+def stiffness_statements(
+    profile, turnout: Turnout, settings: ReportSettings | None = None, layout=None
+) -> dict[str, Any]:
     """The numbers behind the paper's Section 2 statements on Fig. 1(b,c), from the FE profile.
 
     Stock rails: spread of K_z relative to the plain-track value (mean before the toe); switch
@@ -285,6 +393,7 @@ def stiffness_statements(profile, turnout: Turnout, settings: ReportSettings | N
         JSON-ready numbers (N/m, m, ratios).
     """
     from exudyn_turnout.fe.layout import load_layout
+
     settings = settings or report_settings(turnout)
     layout = layout or load_layout(turnout)
     refs = turnout.raw.get("layout", {}).get("reference_rails", {})
@@ -301,17 +410,27 @@ def stiffness_statements(profile, turnout: Turnout, settings: ReportSettings | N
     rails = dict.fromkeys([stock] + [r for r in profile.rails if r in stocks] + [switch])
     lateral = {r: _end_over_start(profile, r, x1, toe) for r in rails}
     checks = [r for r in profile.rails if r in set(check_rails(settings, layout, turnout))]
-    check_ratio = {r: float(np.mean(profile.of(r)[2]) / np.interp(np.mean(profile.of(r)[0]), xw, kyw)) for r in checks}
+    check_ratio = {
+        r: float(np.mean(profile.of(r)[2]) / np.interp(np.mean(profile.of(r)[0]), xw, kyw))
+        for r in checks
+    }
     x_sw = settings.switch_claim_x
-    return {"stock_rail": stock, "switch_rail": switch, "stock_plain_K_z": plain,
-            "stock_K_z_spread": [float(kz.min() / plain - 1), float(kz.max() / plain - 1)],
-            "switch_toe": {"x_m": float(xw[0]), "K_z": float(kzw[0]), "stock_K_z": stock_at(xw[0])},
-            "switch_plateau": {"x_m": x_sw, "K_z": float(np.interp(x_sw, xw, kzw)),
-                               "stock_K_z": stock_at(x_sw)},
-            "crossing_over_stock_K_z": float(kzw[in_cross].mean()
-                                             / kz[(xs >= x0) & (xs <= x1)].mean()),
-            "crossing_x_range_m": [x0, x1],
-            "lateral_end_over_start": lateral, "check_over_running_K_y": check_ratio}
+    return {
+        "stock_rail": stock,
+        "switch_rail": switch,
+        "stock_plain_K_z": plain,
+        "stock_K_z_spread": [float(kz.min() / plain - 1), float(kz.max() / plain - 1)],
+        "switch_toe": {"x_m": float(xw[0]), "K_z": float(kzw[0]), "stock_K_z": stock_at(xw[0])},
+        "switch_plateau": {
+            "x_m": x_sw,
+            "K_z": float(np.interp(x_sw, xw, kzw)),
+            "stock_K_z": stock_at(x_sw),
+        },
+        "crossing_over_stock_K_z": float(kzw[in_cross].mean() / kz[(xs >= x0) & (xs <= x1)].mean()),
+        "crossing_x_range_m": [x0, x1],
+        "lateral_end_over_start": lateral,
+        "check_over_running_K_y": check_ratio,
+    }
 
 
 def _toe_x(layout) -> float:
@@ -334,12 +453,16 @@ def _co_running_static(turnout: Turnout, xs: np.ndarray, slot: str) -> dict[str,
 
     def k(d: str, x: float) -> float:
         return co_running_receptance(turnout, 2, slot, d, x=x, frequencies=f).static_stiffness
-    return {d: [k(d, float(x)) for x in xs]
-            for d in ("vertical", "lateral")}
+
+    return {d: [k(d, float(x)) for x in xs] for d in ("vertical", "lateral")}
 
 
-def stiffness_section(turnout: Turnout, config: ReportConfig, cache: ResultCache,
-                      settings: ReportSettings | None = None) -> tuple[dict[str, Any], Any]:
+def stiffness_section(
+    turnout: Turnout,
+    config: ReportConfig,
+    cache: ResultCache,
+    settings: ReportSettings | None = None,
+) -> tuple[dict[str, Any], Any]:
     """FE static stiffness along the turnout with its fits, and the paper's Eqs 10, 14.
 
     Returns (metrics, plot data); the co-running comparison uses ``report.receptance_slot``
@@ -347,10 +470,14 @@ def stiffness_section(turnout: Turnout, config: ReportConfig, cache: ResultCache
     """
     settings = settings or report_settings(turnout)
     x = np.linspace(turnout.x_min, turnout.x_max, 131)
-    out: dict[str, Any] = {"paper": paper_stiffness_profiles(turnout, x), "available": False,
-                           "reference_rail_type": settings.reference_rail_type}
+    out: dict[str, Any] = {
+        "paper": paper_stiffness_profiles(turnout, x),
+        "available": False,
+        "reference_rail_type": settings.reference_rail_type,
+    }
     try:
         from exudyn_turnout.fe.fits import fit_turnout_profiles
+
         profile, info = _cached_stiffness(turnout, config, cache)
     except ImportError as err:
         out["note"] = f"FE static stiffness profile not available in this version ({err})"
@@ -361,21 +488,47 @@ def stiffness_section(turnout: Turnout, config: ReportConfig, cache: ResultCache
     zones = [z for z in turnout.zones if slot in z.active_rails]
     xw = xw[xw <= max(z.x_end for z in zones)]
     co = _co_running_static(turnout, xw, slot)
-    ratio = {d: [c / k for c, k in zip(co[d], profile.of(fits.K_sw.rail)[1 if d == "vertical" else 2][:len(xw)])]
-             for d in co}
-    out.update({"available": True, "fe": info, "fe_n_dof": dict(profile.n_dof), "rails": _rail_metrics(profile),
-                "fits": {"K_sw": _fit_metrics(fits.K_sw, turnout.K_sw), "K_sh": _fit_metrics(fits.K_sh, turnout.K_sh)},
-                "statements": stiffness_statements(profile, turnout, settings),
-                "co_running_over_FE": {d: [float(min(v)), float(max(v))] for d, v in ratio.items()},
-                "co_running_slot": slot, "co_running_zones": [z.index for z in zones]})
-    _log(f"stiffness profile: FE {info['wall_time_s']:.1f} s" + (" (cached)" if info["cached"] else ""))
+    ratio = {
+        d: [
+            c / k
+            for c, k in zip(
+                co[d], profile.of(fits.K_sw.rail)[1 if d == "vertical" else 2][: len(xw)]
+            )
+        ]
+        for d in co
+    }
+    out.update(
+        {
+            "available": True,
+            "fe": info,
+            "fe_n_dof": dict(profile.n_dof),
+            "rails": _rail_metrics(profile),
+            "fits": {
+                "K_sw": _fit_metrics(fits.K_sw, turnout.K_sw),
+                "K_sh": _fit_metrics(fits.K_sh, turnout.K_sh),
+            },
+            "statements": stiffness_statements(profile, turnout, settings),
+            "co_running_over_FE": {d: [float(min(v)), float(max(v))] for d, v in ratio.items()},
+            "co_running_slot": slot,
+            "co_running_zones": [z.index for z in zones],
+        }
+    )
+    _log(
+        f"stiffness profile: FE {info['wall_time_s']:.1f} s"
+        + (" (cached)" if info["cached"] else "")
+    )
     return out, {"profile": profile, "fits": fits, "co_running_x": xw, "co_running": co}
 
 
 # --- 3 receptance ---------------------------------------------------------------------
 
-def receptance_positions(turnout: Turnout, route: str | None = None, wheel: str | None = None,
-                         settings: ReportSettings | None = None) -> dict[str, tuple[str, float]]:
+
+def receptance_positions(
+    turnout: Turnout,
+    route: str | None = None,
+    wheel: str | None = None,
+    settings: ReportSettings | None = None,
+) -> dict[str, tuple[str, float]]:
     """Where the receptances are taken: label -> (rail slot, x in m).
 
     The switch rail where the wheel's load passes from the stock rail to the switch blade,
@@ -400,8 +553,10 @@ def receptance_positions(turnout: Turnout, route: str | None = None, wheel: str 
     settings = settings or report_settings(turnout)
     r = load_route(turnout, route or settings.receptance_route)
     wheel = wheel or settings.receptance_wheel
-    return {label: (settings.receptance_slot, dip_angle(r, wheel, *settings.regions[where])[0])
-            for label, where in (("switch rail", "switch"), ("crossing rail", "crossing"))}
+    return {
+        label: (settings.receptance_slot, dip_angle(r, wheel, *settings.regions[where])[0])
+        for label, where in (("switch rail", "switch"), ("crossing rail", "crossing"))
+    }
 
 
 def pinned_pinned_frequency(turnout: Turnout, rail_type: str, x: float, direction: str) -> float:
@@ -425,25 +580,54 @@ def pinned_pinned_frequency(turnout: Turnout, rail_type: str, x: float, directio
     """
     from exudyn_turnout.fe.analytic import simply_supported_timoshenko_frequency
     from exudyn_turnout.fe.model import rail_section
-    s = {k: float(np.ravel(v)[0]) for k, v in rail_section(turnout, rail_type, np.array([x]), direction).items()}
-    return simply_supported_timoshenko_frequency(turnout.sleeper.spacing, s["EI"], s["kGA"], s["rhoA"], s["rhoI"])
+
+    s = {
+        k: float(np.ravel(v)[0])
+        for k, v in rail_section(turnout, rail_type, np.array([x]), direction).items()
+    }
+    return simply_supported_timoshenko_frequency(
+        turnout.sleeper.spacing, s["EI"], s["kGA"], s["rhoA"], s["rhoI"]
+    )
 
 
-def _cached_fe_receptance(turnout: Turnout, rail: str, direction: str, x: float, config: ReportConfig,
-                          cache: ResultCache, fe_slots: str) -> tuple[Receptance, dict[str, Any]]:
+def _cached_fe_receptance(
+    turnout: Turnout,
+    rail: str,
+    direction: str,
+    x: float,
+    config: ReportConfig,
+    cache: ResultCache,
+    fe_slots: str,
+) -> tuple[Receptance, dict[str, Any]]:
     """FE receptance of co-running ``rail`` at x, the FE rail from ``[layout.slots.<fe_slots>]``."""
     from exudyn_turnout.fe.frf import fe_receptance
+
     f = config.frequencies
-    key = input_key("fe_receptance", _fingerprint(turnout), source_fingerprint(_FE_CODE), rail, direction, x, f,
-                    config.fe_options, fe_slots)
+    key = input_key(
+        "fe_receptance",
+        _fingerprint(turnout),
+        source_fingerprint(_FE_CODE),
+        rail,
+        direction,
+        x,
+        f,
+        config.fe_options,
+        fe_slots,
+    )
     hit = cache.load(key)
     if hit is not None:
         arrays, meta = hit
-        return (Receptance(arrays["f"], arrays["H"], rail, direction, x, "FE", meta["metadata"]),
-                {"cached": True, "wall_time_s": meta["wall_time_s"], "computed": meta["computed"]})
+        return (
+            Receptance(arrays["f"], arrays["H"], rail, direction, x, "FE", meta["metadata"]),
+            {"cached": True, "wall_time_s": meta["wall_time_s"], "computed": meta["computed"]},
+        )
     t0 = time.perf_counter()
     r = fe_receptance(turnout, rail, direction, x, f, route=fe_slots, options=config.fe_options)
-    info = {"cached": False, "wall_time_s": time.perf_counter() - t0, "computed": time.strftime("%Y-%m-%d %H:%M")}
+    info = {
+        "cached": False,
+        "wall_time_s": time.perf_counter() - t0,
+        "computed": time.strftime("%Y-%m-%d %H:%M"),
+    }
     cache.save(key, {"f": r.frequency_hz, "H": r.H}, {"metadata": dict(r.metadata), **info})
     return r, info
 
@@ -454,7 +638,9 @@ def _peak_near(peaks: tuple[float, ...], f0: float) -> float | None:
     return min(near, key=lambda p: abs(math.log10(p / f0))) if near else None
 
 
-def receptance_case_metrics(curves: Mapping[str, Receptance], f_pp: float, criteria: Criteria) -> dict[str, Any]:
+def receptance_case_metrics(
+    curves: Mapping[str, Receptance], f_pp: float, criteria: Criteria
+) -> dict[str, Any]:
     """Band RMS of each co-running model against FE, main peaks, static stiffness, pinned-pinned bands.
 
     Parameters
@@ -479,39 +665,79 @@ def receptance_case_metrics(curves: Mapping[str, Receptance], f_pp: float, crite
     models: dict[str, Any] = {}
     for m in ("2-layer", "3-layer"):
         bands = ag.band_rms_db(f, ag.level_difference_db(curves[m].H, fe.H), centres)
-        ranges = {f"{lo:g}-{hi:g} Hz": ag.range_rms_db(bands, lo, hi) for lo, hi in RANGES + ((1.0, 2000.0),)}
-        ranges.update({f"{lo:g}-{hi:g} Hz excl. pinned-pinned": ag.range_rms_db(bands, lo, hi, excluded)
-                       for lo, hi in RANGES + ((1.0, 2000.0),)})
-        models[m] = {"range_rms_db": ranges, "band_rms_db": {f"{c:.4g}": v for c, v in bands.items()}}
+        ranges = {
+            f"{lo:g}-{hi:g} Hz": ag.range_rms_db(bands, lo, hi)
+            for lo, hi in RANGES + ((1.0, 2000.0),)
+        }
+        ranges.update(
+            {
+                f"{lo:g}-{hi:g} Hz excl. pinned-pinned": ag.range_rms_db(bands, lo, hi, excluded)
+                for lo, hi in RANGES + ((1.0, 2000.0),)
+            }
+        )
+        models[m] = {
+            "range_rms_db": ranges,
+            "band_rms_db": {f"{c:.4g}": v for c, v in bands.items()},
+        }
     for m, r in curves.items():
-        models.setdefault(m, {}).update({"peaks_hz": list(peaks[m]), "static_stiffness_N_per_m": r.static_stiffness,
-                                         "static_stiffness_ratio_to_FE": r.static_stiffness / fe.static_stiffness})
+        models.setdefault(m, {}).update(
+            {
+                "peaks_hz": list(peaks[m]),
+                "static_stiffness_N_per_m": r.static_stiffness,
+                "static_stiffness_ratio_to_FE": r.static_stiffness / fe.static_stiffness,
+            }
+        )
     for m in ("2-layer", "3-layer"):
         bands = {float(k): v for k, v in models[m]["band_rms_db"].items()}
         near = [v for c, v in bands.items() if np.any(np.isclose(c, excluded, rtol=1e-3))]
-        models[m]["pinned_pinned_bands_rms_db"] = float(np.sqrt(np.mean(np.square(near)))) if near else math.nan
+        models[m]["pinned_pinned_bands_rms_db"] = (
+            float(np.sqrt(np.mean(np.square(near)))) if near else math.nan
+        )
     all_peaks = ag.peak_frequencies(f, fe.H, criteria.peak_prominence_db, n_max=len(f))
     all_dips = ag.peak_frequencies(f, 1.0 / fe.H, criteria.peak_prominence_db, n_max=len(f))
-    return {"pinned_pinned_hz": f_pp, "excluded_bands_hz": list(excluded), "models": models,
-            "fe_peak_near_pinned_pinned_hz": _peak_near(all_peaks, f_pp),
-            "fe_dip_near_pinned_pinned_hz": _peak_near(all_dips, f_pp)}
+    return {
+        "pinned_pinned_hz": f_pp,
+        "excluded_bands_hz": list(excluded),
+        "models": models,
+        "fe_peak_near_pinned_pinned_hz": _peak_near(all_peaks, f_pp),
+        "fe_dip_near_pinned_pinned_hz": _peak_near(all_dips, f_pp),
+    }
 
 
-def _receptance_case(turnout: Turnout, rail: str, x: float, direction: str, config: ReportConfig,
-                     cache: ResultCache,
-                     fe_slots: str) -> tuple[dict[str, Any], dict[str, Receptance]]:
+def _receptance_case(
+    turnout: Turnout,
+    rail: str,
+    x: float,
+    direction: str,
+    config: ReportConfig,
+    cache: ResultCache,
+    fe_slots: str,
+) -> tuple[dict[str, Any], dict[str, Receptance]]:
     f = config.frequencies
     t0 = time.perf_counter()
-    curves = {f"{n}-layer": co_running_receptance(turnout, n, rail, direction, x=x, frequencies=f) for n in (2, 3)}
+    curves = {
+        f"{n}-layer": co_running_receptance(turnout, n, rail, direction, x=x, frequencies=f)
+        for n in (2, 3)
+    }
     co_wall = (time.perf_counter() - t0) / 2
     curves["FE"], info = _cached_fe_receptance(turnout, rail, direction, x, config, cache, fe_slots)
     zone = turnout.zone_at(x)
     rail_type = zone.rail_types[rail]
     f_pp = pinned_pinned_frequency(turnout, rail_type, x, direction)
     m = receptance_case_metrics(curves, f_pp, config.criteria)
-    m.update({"rail": rail, "direction": direction, "x_m": x, "zone": zone.index, "rail_type": rail_type,
-              "distance_to_sleeper_m": _distance_to_sleeper(turnout, x), "fe": info, "co_running_wall_time_s": co_wall,
-              "fe_n_dof": curves["FE"].metadata.get("n_dof")})
+    m.update(
+        {
+            "rail": rail,
+            "direction": direction,
+            "x_m": x,
+            "zone": zone.index,
+            "rail_type": rail_type,
+            "distance_to_sleeper_m": _distance_to_sleeper(turnout, x),
+            "fe": info,
+            "co_running_wall_time_s": co_wall,
+            "fe_n_dof": curves["FE"].metadata.get("n_dof"),
+        }
+    )
     return m, curves
 
 
@@ -523,43 +749,66 @@ def _distance_to_sleeper(turnout: Turnout, x: float) -> float:
     return float(min(d, s - d))
 
 
-def receptance_section(turnout: Turnout, config: ReportConfig, cache: ResultCache,
-                       settings: ReportSettings | None = None) -> tuple[dict, dict]:
+def receptance_section(
+    turnout: Turnout,
+    config: ReportConfig,
+    cache: ResultCache,
+    settings: ReportSettings | None = None,
+) -> tuple[dict, dict]:
     """All four receptance cases (switch/crossing rail x vertical/lateral): (metrics, curves).
 
     Positions from :func:`receptance_positions`; the FE rail from the receptance route's
     ``[layout.slots]`` table (its ``fe_slots`` in the turnout's ``[report]``).
     """
     settings = settings or report_settings(turnout)
-    fe_slots = next((r.fe_slots for r in settings.routes if r.name == settings.receptance_route),
-                    settings.receptance_route)
-    metrics: dict[str, Any] = {"positions": {}, "cases": {}, "frequencies": {"n": config.n_frequencies,
-                                                                         "f_min_hz": config.f_min,
-                                                                         "f_max_hz": config.f_max},
-                               "route": settings.receptance_route,
-                               "wheel": settings.receptance_wheel}
+    fe_slots = next(
+        (r.fe_slots for r in settings.routes if r.name == settings.receptance_route),
+        settings.receptance_route,
+    )
+    metrics: dict[str, Any] = {
+        "positions": {},
+        "cases": {},
+        "frequencies": {
+            "n": config.n_frequencies,
+            "f_min_hz": config.f_min,
+            "f_max_hz": config.f_max,
+        },
+        "route": settings.receptance_route,
+        "wheel": settings.receptance_wheel,
+    }
     curves: dict[str, dict[str, Receptance]] = {}
     for label, (rail, x) in receptance_positions(turnout, settings=settings).items():
         metrics["positions"][label] = {"rail": rail, "x_m": x}
         for direction in ("vertical", "lateral"):
             case = f"{label}, {direction}"
-            metrics["cases"][case], curves[case] = _receptance_case(turnout, rail, x, direction,
-                                                                    config, cache, fe_slots)
-            _log(f"receptance {case}: FE {metrics['cases'][case]['fe']['wall_time_s']:.1f} s"
-                 + (" (cached)" if metrics["cases"][case]["fe"]["cached"] else ""))
+            metrics["cases"][case], curves[case] = _receptance_case(
+                turnout, rail, x, direction, config, cache, fe_slots
+            )
+            _log(
+                f"receptance {case}: FE {metrics['cases'][case]['fe']['wall_time_s']:.1f} s"
+                + (" (cached)" if metrics["cases"][case]["fe"]["cached"] else "")
+            )
     return metrics, curves
 
 
 # --- 4 contact forces -----------------------------------------------------------------
 
+
 def _settings(turnout: Turnout, config: ReportConfig, route: str, layers: int) -> PassageSettings:
     x = config.passage_x or (turnout.x_min, turnout.x_max)
-    return PassageSettings(route=route, layers=layers, speed_kmh=dict(config.speeds_kmh)[route], x_start=x[0],
-                           x_end=x[1], time_step=config.time_step)
+    return PassageSettings(
+        route=route,
+        layers=layers,
+        speed_kmh=dict(config.speeds_kmh)[route],
+        x_start=x[0],
+        x_end=x[1],
+        time_step=config.time_step,
+    )
 
 
-def _timed_co_running(turnout: Turnout, config: ReportConfig,
-                      route: str) -> tuple[dict[str, PassageResult], dict[str, list[float]]]:
+def _timed_co_running(
+    turnout: Turnout, config: ReportConfig, route: str
+) -> tuple[dict[str, PassageResult], dict[str, list[float]]]:
     """2- and 3-layer passages, each run ``timing_repeats`` times interleaved: the run with the best
     wall time per model, and every run's wall time (s)."""
     best: dict[str, PassageResult] = {}
@@ -591,28 +840,46 @@ def _fe_passage_options(module, config: ReportConfig):
     return None if options is None else options(mesh=config.fe_options)
 
 
-def _cached_fe_passage(turnout: Turnout, settings: PassageSettings, module, config: ReportConfig,
-                       cache: ResultCache,
-                       fe_slots: str | None = None) -> tuple[PassageResult, dict[str, Any]]:
+def _cached_fe_passage(
+    turnout: Turnout,
+    settings: PassageSettings,
+    module,
+    config: ReportConfig,
+    cache: ResultCache,
+    fe_slots: str | None = None,
+) -> tuple[PassageResult, dict[str, Any]]:
     """FE passage (computed or from the cache); ``fe_slots``: the route's ``[layout.slots]`` key."""
     options = _fe_passage_options(module, config)
     fe_slots = fe_slots or settings.route
     parts = () if fe_slots == settings.route else (fe_slots,)
-    key = input_key("fe_passage", _fingerprint(turnout), source_fingerprint(_FE_PASSAGE_CODE),
-                    settings, options, *parts)
+    key = input_key(
+        "fe_passage",
+        _fingerprint(turnout),
+        source_fingerprint(_FE_PASSAGE_CODE),
+        settings,
+        options,
+        *parts,
+    )
     hit = cache.load(key)
     if hit is not None:
         arrays, meta = hit
-        result = PassageResult(settings, {k: np.asarray(v) for k, v in arrays.items()}, meta["summary"],
-                               tuple(meta["zone_starts"]))
+        result = PassageResult(
+            settings,
+            {k: np.asarray(v) for k, v in arrays.items()},
+            meta["summary"],
+            tuple(meta["zone_starts"]),
+        )
         return result, {"cached": True, "computed": meta["computed"]}
     kwargs = {} if options is None else {"options": options}
     if fe_slots != settings.route:  # the route's pairs under the name of its FE slot table
         kwargs["route"] = replace(load_route(turnout, settings.route), name=fe_slots)
     result = module.simulate_fe_passage(turnout, settings, **kwargs)
     info = {"cached": False, "computed": time.strftime("%Y-%m-%d %H:%M")}
-    cache.save(key, dict(result.columns), {"summary": dict(result.summary), "zone_starts": list(result.zone_starts),
-                                           **info})
+    cache.save(
+        key,
+        dict(result.columns),
+        {"summary": dict(result.summary), "zone_starts": list(result.zone_starts), **info},
+    )
     return result, info
 
 
@@ -630,9 +897,15 @@ def _peak_key(q: str, where: str, wheel: str) -> str:
     return f"peak_{q}_{where}_N" if wheel == "right" else f"peak_{q}_{where}_{wheel}_N"
 
 
-def passage_model_metrics(result: PassageResult, signals, regions: Mapping[str, tuple[float, float]],
-                          criteria: Criteria, static_load: float,
-                          reference: PassageResult | None = None, wheel: str = "right") -> dict:
+def passage_model_metrics(
+    result: PassageResult,
+    signals,
+    regions: Mapping[str, tuple[float, float]],
+    criteria: Criteria,
+    static_load: float,
+    reference: PassageResult | None = None,
+    wheel: str = "right",
+) -> dict:
     """Peaks, oscillation (dynamic RMS) and, given the FE ``reference``, the differences from it.
 
     Parameters
@@ -658,13 +931,20 @@ def passage_model_metrics(result: PassageResult, signals, regions: Mapping[str, 
     """
     s, c, w = result.summary, result.columns, criteria.trend_window
     out: dict[str, Any] = {
-        "peaks_N": {_signal_key(q, r): _number(s, _peak_key(q, r, wheel))
-                    for q in FORCES for r in REGIONS},
-        "dynamic_rms_N": {_signal_key(q, r): ag.dynamic_rms(c["x_m"], c[_column(q, wheel)], w,
-                                                             regions[r])
-                          if _column(q, wheel) in c else math.nan for q, r in signals},
-        "contact_losses": int(s.get("contact_losses", -1)), "static_wheel_load_N": _number(s, "static_wheel_load_N"),
-        "wall_time_s": _number(s, "wall_time_s"), "simulated_time_s": _number(s, "simulated_time_s")}
+        "peaks_N": {
+            _signal_key(q, r): _number(s, _peak_key(q, r, wheel)) for q in FORCES for r in REGIONS
+        },
+        "dynamic_rms_N": {
+            _signal_key(q, r): ag.dynamic_rms(c["x_m"], c[_column(q, wheel)], w, regions[r])
+            if _column(q, wheel) in c
+            else math.nan
+            for q, r in signals
+        },
+        "contact_losses": int(s.get("contact_losses", -1)),
+        "static_wheel_load_N": _number(s, "static_wheel_load_N"),
+        "wall_time_s": _number(s, "wall_time_s"),
+        "simulated_time_s": _number(s, "simulated_time_s"),
+    }
     if reference is not None:
         out["vs_FE"] = _vs_reference(result, reference, signals, regions, w, static_load, wheel)
     return out
@@ -676,23 +956,39 @@ def _number(summary: Mapping[str, Any], key: str) -> float:
     return math.nan if v is None else float(v)
 
 
-def _vs_reference(result, reference, signals, regions, window, static_load,
-                  wheel: str = "right") -> dict[str, Any]:
+def _vs_reference(
+    result, reference, signals, regions, window, static_load, wheel: str = "right"
+) -> dict[str, Any]:
     """Differences from the reference for the signals the reference has (a finite peak and the column)."""
     c, rc, rs = result.columns, reference.columns, reference.summary
-    pairs = [(_signal_key(q, r), _column(q, wheel), regions[r], _peak_key(q, r, wheel))
-             for q, r in signals
-             if _column(q, wheel) in rc and math.isfinite(_number(rs, _peak_key(q, r, wheel)))]
+    pairs = [
+        (_signal_key(q, r), _column(q, wheel), regions[r], _peak_key(q, r, wheel))
+        for q, r in signals
+        if _column(q, wheel) in rc and math.isfinite(_number(rs, _peak_key(q, r, wheel)))
+    ]
     return {
-        "peak_relative": {k: ag.relative_difference(float(result.summary[p]), float(rs[p])) for k, _, _, p in pairs},
-        "rms_difference_N": {k: ag.rms_difference(c["x_m"], c[col], rc["x_m"], rc[col], rng)
-                             for k, col, rng, _ in pairs},
-        "trend_deviation": {k: ag.max_trend_difference(c["x_m"], c[col], rc["x_m"], rc[col], window, rng) / static_load
-                            for k, col, rng, _ in pairs}}
+        "peak_relative": {
+            k: ag.relative_difference(float(result.summary[p]), float(rs[p]))
+            for k, _, _, p in pairs
+        },
+        "rms_difference_N": {
+            k: ag.rms_difference(c["x_m"], c[col], rc["x_m"], rc[col], rng)
+            for k, col, rng, _ in pairs
+        },
+        "trend_deviation": {
+            k: ag.max_trend_difference(c["x_m"], c[col], rc["x_m"], rc[col], window, rng)
+            / static_load
+            for k, col, rng, _ in pairs
+        },
+    }
 
 
-def passage_section(turnout: Turnout, config: ReportConfig, cache: ResultCache,
-                    settings: ReportSettings | None = None) -> tuple[dict, dict]:
+def passage_section(
+    turnout: Turnout,
+    config: ReportConfig,
+    cache: ResultCache,
+    settings: ReportSettings | None = None,
+) -> tuple[dict, dict]:
     """Every report route, 2-layer, 3-layer and (if available) FE: (metrics, route -> model -> run).
 
     Parameters
@@ -712,17 +1008,26 @@ def passage_section(turnout: Turnout, config: ReportConfig, cache: ResultCache,
         JSON-ready metrics, and route -> model ("2-layer", "3-layer", "FE") -> PassageResult.
     """
     settings = settings or report_settings(turnout)
-    module, why = _fe_passage_module() if config.fe_passage else (None, "FE passage switched off in this report")
+    module, why = (
+        _fe_passage_module()
+        if config.fe_passage
+        else (None, "FE passage switched off in this report")
+    )
     regions = dict(settings.regions)
     static = load_vehicle().static_wheel_load
-    metrics: dict[str, Any] = {"speeds_kmh": dict(config.speeds_kmh), "regions_m": regions, "routes": {},
-                               "steady_lateral_acceleration_m_s2": _lateral_acceleration(turnout, config),
-                               "radius_m": {r.name: r.radius for r in settings.routes},
-                               "speeds_note": settings.speeds_note,
-                               "impact_route": settings.impact_route,
-                               "fe_available": module is not None, "fe_note": why,
-                               "wheel": {r.name: r.wheel for r in settings.routes},
-                               "x_range_m": list(config.passage_x or (turnout.x_min, turnout.x_max))}
+    metrics: dict[str, Any] = {
+        "speeds_kmh": dict(config.speeds_kmh),
+        "regions_m": regions,
+        "routes": {},
+        "steady_lateral_acceleration_m_s2": _lateral_acceleration(turnout, config),
+        "radius_m": {r.name: r.radius for r in settings.routes},
+        "speeds_note": settings.speeds_note,
+        "impact_route": settings.impact_route,
+        "fe_available": module is not None,
+        "fe_note": why,
+        "wheel": {r.name: r.wheel for r in settings.routes},
+        "x_range_m": list(config.passage_x or (turnout.x_min, turnout.x_max)),
+    }
     results: dict[str, dict[str, PassageResult]] = {}
     for rr in settings.routes:
         route, signals = rr.name, rr.signals
@@ -730,20 +1035,30 @@ def passage_section(turnout: Turnout, config: ReportConfig, cache: ResultCache,
         fe_info = None
         if module is not None:
             fe_settings = _settings(turnout, config, route, 3)
-            fe_result, fe_info = _run_fe_passage(turnout, fe_settings, module, config, cache,
-                                                 rr.fe_slots)
+            fe_result, fe_info = _run_fe_passage(
+                turnout, fe_settings, module, config, cache, rr.fe_slots
+            )
             if fe_result is not None:
                 results[route]["FE"] = fe_result
         ref = results[route].get("FE")
-        models = {m: passage_model_metrics(res, signals, regions, config.criteria, static,
-                                           ref if m != "FE" else None, rr.wheel)
-                  for m, res in results[route].items()}
-        metrics["routes"][route] = {"signals": [_signal_key(q, r) for q, r in signals], "fe": fe_info, "models": models,
-                                    "wheel": rr.wheel,
-                                    "fe_compared": list(models["2-layer"].get("vs_FE", {}).get("peak_relative", {})),
-                                    "co_running_wall_times_s": walls}
-        _log(f"passages {route}: "
-             + ", ".join(f"{m} {r.summary['wall_time_s']:.1f} s" for m, r in results[route].items()))
+        models = {
+            m: passage_model_metrics(
+                res, signals, regions, config.criteria, static, ref if m != "FE" else None, rr.wheel
+            )
+            for m, res in results[route].items()
+        }
+        metrics["routes"][route] = {
+            "signals": [_signal_key(q, r) for q, r in signals],
+            "fe": fe_info,
+            "models": models,
+            "wheel": rr.wheel,
+            "fe_compared": list(models["2-layer"].get("vs_FE", {}).get("peak_relative", {})),
+            "co_running_wall_times_s": walls,
+        }
+        _log(
+            f"passages {route}: "
+            + ", ".join(f"{m} {r.summary['wall_time_s']:.1f} s" for m, r in results[route].items())
+        )
     return metrics, results
 
 
@@ -766,8 +1081,14 @@ def _run_fe_passage(turnout, settings, module, config, cache, fe_slots=None):
 
 # --- 5 computing cost, 6 checks -------------------------------------------------------
 
-def cost_metrics(turnout: Turnout, passages: Mapping[str, Mapping[str, PassageResult]], receptance: Mapping,
-                 passage_metrics: Mapping, config: ReportConfig) -> dict[str, Any]:
+
+def cost_metrics(
+    turnout: Turnout,
+    passages: Mapping[str, Mapping[str, PassageResult]],
+    receptance: Mapping,
+    passage_metrics: Mapping,
+    config: ReportConfig,
+) -> dict[str, Any]:
     """Wall times measured in this run, ratios, coordinates per zone, receptance times.
 
     The 3-layer / 2-layer ratio is the median over the interleaved repeats of (3-layer run /
@@ -775,26 +1096,51 @@ def cost_metrics(turnout: Turnout, passages: Mapping[str, Mapping[str, PassageRe
     machine, so the ratio is robust to load that changes during the report. Best and median
     wall times per model are reported beside it. FE / 3-layer uses the 3-layer median.
     """
-    wall = {route: {m: float(r.summary["wall_time_s"]) for m, r in res.items()} for route, res in passages.items()}
+    wall = {
+        route: {m: float(r.summary["wall_time_s"]) for m, r in res.items()}
+        for route, res in passages.items()
+    }
     runs = {route: rt["co_running_wall_times_s"] for route, rt in passage_metrics["routes"].items()}
     median = {route: {m: float(np.median(v)) for m, v in w.items()} for route, w in runs.items()}
-    dof = {str(z.index): {f"{n}-layer": len(dof_names(z.active_rails, n)) for n in (2, 3)} for z in turnout.zones}
-    out = {"repeats": config.timing_repeats, "wall_time_s": wall, "median_wall_time_s": median,
-           "simulated_time_s": {route: float(res["3-layer"].summary["simulated_time_s"])
-                                for route, res in passages.items()},
-           "ratio_3_over_2": {route: ag.paired_median_ratio(w["3-layer"], w["2-layer"]) for route, w in runs.items()},
-           "best_ratio_3_over_2": {route: w["3-layer"] / w["2-layer"] for route, w in wall.items()},
-           "ratio_FE_over_3": {route: w["FE"] / median[route]["3-layer"] for route, w in wall.items() if "FE" in w},
-           "dof_per_zone": dof, "extra_dof_per_zone": {z: d["3-layer"] - d["2-layer"] for z, d in dof.items()},
-           "receptance_wall_time_s": {case: {"co-running": c["co_running_wall_time_s"], "FE": c["fe"]["wall_time_s"],
-                                             "FE_cached": c["fe"]["cached"]}
-                                      for case, c in receptance["cases"].items()}}
+    dof = {
+        str(z.index): {f"{n}-layer": len(dof_names(z.active_rails, n)) for n in (2, 3)}
+        for z in turnout.zones
+    }
+    out = {
+        "repeats": config.timing_repeats,
+        "wall_time_s": wall,
+        "median_wall_time_s": median,
+        "simulated_time_s": {
+            route: float(res["3-layer"].summary["simulated_time_s"])
+            for route, res in passages.items()
+        },
+        "ratio_3_over_2": {
+            route: ag.paired_median_ratio(w["3-layer"], w["2-layer"]) for route, w in runs.items()
+        },
+        "best_ratio_3_over_2": {route: w["3-layer"] / w["2-layer"] for route, w in wall.items()},
+        "ratio_FE_over_3": {
+            route: w["FE"] / median[route]["3-layer"] for route, w in wall.items() if "FE" in w
+        },
+        "dof_per_zone": dof,
+        "extra_dof_per_zone": {z: d["3-layer"] - d["2-layer"] for z, d in dof.items()},
+        "receptance_wall_time_s": {
+            case: {
+                "co-running": c["co_running_wall_time_s"],
+                "FE": c["fe"]["wall_time_s"],
+                "FE_cached": c["fe"]["cached"],
+            }
+            for case, c in receptance["cases"].items()
+        },
+    }
     return out
 
 
-def convergence_metrics(turnout: Turnout, passages: Mapping[str, Mapping[str, PassageResult]],
-                        config: ReportConfig,
-                        settings: ReportSettings | None = None) -> dict[str, Any]:
+def convergence_metrics(
+    turnout: Turnout,
+    passages: Mapping[str, Mapping[str, PassageResult]],
+    config: ReportConfig,
+    settings: ReportSettings | None = None,
+) -> dict[str, Any]:
     """Peak forces of the co-running passages at the report's time step and at half of it.
 
     Parameters
@@ -813,27 +1159,47 @@ def convergence_metrics(turnout: Turnout, passages: Mapping[str, Mapping[str, Pa
         Per run and signal the peaks at h and h/2 and their relative change.
     """
     settings = settings or report_settings(turnout)
-    out: dict[str, Any] = {"time_step_s": config.time_step, "half_step_s": 0.5 * config.time_step, "runs": {}}
+    out: dict[str, Any] = {
+        "time_step_s": config.time_step,
+        "half_step_s": 0.5 * config.time_step,
+        "runs": {},
+    }
     for rr in settings.routes:
         route = rr.name
         for layers in (2, 3):
-            base = passages[route][f"{layers}-layer"]  # the report's run, same settings but the step
-            half = simulate_passage(turnout, replace(base.settings, time_step=0.5 * config.time_step))
+            base = passages[route][
+                f"{layers}-layer"
+            ]  # the report's run, same settings but the step
+            half = simulate_passage(
+                turnout, replace(base.settings, time_step=0.5 * config.time_step)
+            )
             peaks = {}
             for q, r in rr.signals:
                 k = _peak_key(q, r, rr.wheel)
                 a, b = float(base.summary[k]), float(half.summary[k])
-                peaks[_signal_key(q, r)] = {"h_N": a, "h_half_N": b, "relative_change": ag.relative_difference(b, a)}
+                peaks[_signal_key(q, r)] = {
+                    "h_N": a,
+                    "h_half_N": b,
+                    "relative_change": ag.relative_difference(b, a),
+                }
             out["runs"][f"{route}, {layers}-layer"] = peaks
-    worst = [abs(p["relative_change"]) for run in out["runs"].values() for p in run.values()
-             if math.isfinite(p["relative_change"])]
+    worst = [
+        abs(p["relative_change"])
+        for run in out["runs"].values()
+        for p in run.values()
+        if math.isfinite(p["relative_change"])
+    ]
     out["max_relative_change"] = max(worst) if worst else math.nan
     out["converged"] = out["max_relative_change"] <= config.criteria.converged if worst else None
     return out
 
 
-def static_checks(turnout: Turnout, passages: Mapping[str, Mapping[str, PassageResult]], receptance: Mapping,
-                  criteria: Criteria) -> dict[str, Any]:
+def static_checks(
+    turnout: Turnout,
+    passages: Mapping[str, Mapping[str, PassageResult]],
+    receptance: Mapping,
+    criteria: Criteria,
+) -> dict[str, Any]:
     """Static wheel loads at the start of every passage vs (m_w + m_s) g / 2; co-running vs FE static stiffness.
 
     The criterion is on the mean of the two wheels (vertical equilibrium of the vehicle);
@@ -843,26 +1209,51 @@ def static_checks(turnout: Turnout, passages: Mapping[str, Mapping[str, PassageR
     loads = {}
     for route, res in passages.items():
         for m, r in res.items():
-            right, left = float(r.summary["static_wheel_load_N"]), float(r.summary["static_wheel_load_left_N"])
-            loads[f"{route}, {m}"] = {"right_N": right, "left_N": left, "mean_N": 0.5 * (right + left),
-                                      "right_relative": ag.relative_difference(right, v.static_wheel_load),
-                                      "left_relative": ag.relative_difference(left, v.static_wheel_load),
-                                      "mean_relative": ag.relative_difference(0.5 * (right + left),
-                                                                              v.static_wheel_load)}
+            right, left = (
+                float(r.summary["static_wheel_load_N"]),
+                float(r.summary["static_wheel_load_left_N"]),
+            )
+            loads[f"{route}, {m}"] = {
+                "right_N": right,
+                "left_N": left,
+                "mean_N": 0.5 * (right + left),
+                "right_relative": ag.relative_difference(right, v.static_wheel_load),
+                "left_relative": ag.relative_difference(left, v.static_wheel_load),
+                "mean_relative": ag.relative_difference(0.5 * (right + left), v.static_wheel_load),
+            }
     ok = all(abs(x["mean_relative"]) <= criteria.static_tolerance for x in loads.values())
-    stiff = {case: {m: c["models"][m]["static_stiffness_ratio_to_FE"] for m in ("2-layer", "3-layer")}
-             for case, c in receptance["cases"].items()}
-    starts = {route: next(iter(res.values())).settings.x_start for route, res in passages.items() if res}
-    rail_y = {route: {k: float(y) for k, y in load_route(turnout, route).zone(turnout.zone_at(x)).rail_y.items()}
-              for route, x in starts.items()}
-    return {"m_w_kg": v.m_w, "m_s_kg": v.m_s, "expected_static_wheel_load_N": v.static_wheel_load,
-            "static_wheel_load": loads, "static_wheel_load_ok": ok, "start_x_m": starts, "start_rail_y_m": rail_y,
-            "max_split_relative": max((max(abs(x["right_relative"]), abs(x["left_relative"])) for x in loads.values()),
-                                      default=math.nan),
-            "static_stiffness_ratio_to_FE": stiff}
+    stiff = {
+        case: {m: c["models"][m]["static_stiffness_ratio_to_FE"] for m in ("2-layer", "3-layer")}
+        for case, c in receptance["cases"].items()
+    }
+    starts = {
+        route: next(iter(res.values())).settings.x_start for route, res in passages.items() if res
+    }
+    rail_y = {
+        route: {
+            k: float(y)
+            for k, y in load_route(turnout, route).zone(turnout.zone_at(x)).rail_y.items()
+        }
+        for route, x in starts.items()
+    }
+    return {
+        "m_w_kg": v.m_w,
+        "m_s_kg": v.m_s,
+        "expected_static_wheel_load_N": v.static_wheel_load,
+        "static_wheel_load": loads,
+        "static_wheel_load_ok": ok,
+        "start_x_m": starts,
+        "start_rail_y_m": rail_y,
+        "max_split_relative": max(
+            (max(abs(x["right_relative"]), abs(x["left_relative"])) for x in loads.values()),
+            default=math.nan,
+        ),
+        "static_stiffness_ratio_to_FE": stiff,
+    }
 
 
 # --- the report -----------------------------------------------------------------------
+
 
 def build_report(turnout: Turnout | None = None, config: ReportConfig = ReportConfig()) -> Report:
     """Compute every section's numbers and evaluate the claims (no files written).
@@ -885,16 +1276,20 @@ def build_report(turnout: Turnout | None = None, config: ReportConfig = ReportCo
     config = resolve_config(config, settings, turnout)
     cache = ResultCache(None if config.cache_dir is None else Path(config.cache_dir))
     # file name and content hash, no path of the machine that ran it
-    metrics: dict[str, Any] = {"turnout": turnout.name,
-                               "turnout_file": Path(str(turnout.source)).name,
-                               "turnout_sha256": _fingerprint(turnout),
-                               "config": _config_metrics(config),
-                               "criteria": dataclasses.asdict(config.criteria)}
+    metrics: dict[str, Any] = {
+        "turnout": turnout.name,
+        "turnout_file": Path(str(turnout.source)).name,
+        "turnout_sha256": _fingerprint(turnout),
+        "config": _config_metrics(config),
+        "criteria": dataclasses.asdict(config.criteria),
+    }
     metrics["parameters"] = parameters_metrics(turnout)
     metrics["stiffness"], profile = stiffness_section(turnout, config, cache, settings)
     metrics["receptance"], curves = receptance_section(turnout, config, cache, settings)
     metrics["passage"], passages = passage_section(turnout, config, cache, settings)
-    metrics["cost"] = cost_metrics(turnout, passages, metrics["receptance"], metrics["passage"], config)
+    metrics["cost"] = cost_metrics(
+        turnout, passages, metrics["receptance"], metrics["passage"], config
+    )
     metrics["convergence"] = convergence_metrics(turnout, passages, config, settings)
     metrics["checks"] = static_checks(turnout, passages, metrics["receptance"], config.criteria)
     claims = tuple(evaluate_claims(metrics, config.criteria))
@@ -909,11 +1304,13 @@ def _config_metrics(config: ReportConfig) -> dict[str, Any]:
     d["speeds_kmh"] = dict(config.speeds_kmh or ())
     home = str(Path.home())
     if d["cache_dir"] and d["cache_dir"].startswith(home + "/"):  # no home path in metrics.json
-        d["cache_dir"] = "~" + d["cache_dir"][len(home):]
+        d["cache_dir"] = "~" + d["cache_dir"][len(home) :]
     return d
 
 
-def write_report(out_dir: str | Path, config: ReportConfig = ReportConfig(), turnout: Turnout | None = None) -> Report:
+def write_report(
+    out_dir: str | Path, config: ReportConfig = ReportConfig(), turnout: Turnout | None = None
+) -> Report:
     """Build the report and write ``report.md``, its PNG figures and ``metrics.json`` into out_dir.
 
     Parameters
@@ -930,8 +1327,9 @@ def write_report(out_dir: str | Path, config: ReportConfig = ReportConfig(), tur
     Report
         The built report (``metrics`` as written).
     """
-    from exudyn_turnout.report.markdown import render_markdown, to_json
     from exudyn_turnout.report.figures import write_figures
+    from exudyn_turnout.report.markdown import render_markdown, to_json
+
     t0 = time.perf_counter()
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

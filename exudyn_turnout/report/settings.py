@@ -50,9 +50,10 @@ route's radius (1 / its largest ``|curvature|``).
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 from exudyn_turnout.inputs.routes import WHEELS, dip_angle, load_route, route_names
 from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Turnout, TurnoutFileError, _Reader
@@ -397,8 +398,10 @@ def quick_passage_x(turnout: Turnout, settings: ReportSettings) -> tuple[float, 
         return settings.quick_passage_x
     route = load_route(turnout, settings.receptance_route)
     x_dip = dip_angle(route, settings.receptance_wheel, *settings.regions["crossing"])[0]
-    return (max(turnout.x_min, math.floor(10.0 * (x_dip - _QUICK_HALF_WIDTH)) / 10.0),
-            min(turnout.x_max, math.ceil(10.0 * (x_dip + _QUICK_HALF_WIDTH)) / 10.0))
+    return (
+        max(turnout.x_min, math.floor(10.0 * (x_dip - _QUICK_HALF_WIDTH)) / 10.0),
+        min(turnout.x_max, math.ceil(10.0 * (x_dip + _QUICK_HALF_WIDTH)) / 10.0),
+    )
 
 
 def _check_ids(

@@ -52,6 +52,7 @@ traction distribution (for wear maps) at ~100 times the cost; not needed here.
 
 Sign convention: forces on the wheel, opposing the creepages (Kalker's convention).
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -124,7 +125,7 @@ def kalker_coefficients(a, b, poisson: float = 0.28) -> KalkerCoefficients:
     nu = float(np.clip(poisson, 0.0, 0.5))
     values = []
     for block in range(4):
-        columns = table[:, 3 * block:3 * block + 3]
+        columns = table[:, 3 * block : 3 * block + 3]
         per_nu = [np.interp(axis, _KALKER_AXIS, columns[:, j]) for j in range(3)]
         values.append(_interp_poisson(nu, per_nu))
     return KalkerCoefficients(*values)
@@ -146,10 +147,19 @@ class CreepForces:
     lateral: np.ndarray  #: N, in the contact plane, across the rolling direction
 
 
-def polach_creep_forces(creep_longitudinal, creep_lateral, spin, a, b, normal_force,
-                        friction, shear_modulus: float = 8.1e10, poisson: float = 0.28,
-                        reduction_adhesion: float = 1.0, reduction_slip: float = 1.0
-                        ) -> CreepForces:
+def polach_creep_forces(
+    creep_longitudinal,
+    creep_lateral,
+    spin,
+    a,
+    b,
+    normal_force,
+    friction,
+    shear_modulus: float = 8.1e10,
+    poisson: float = 0.28,
+    reduction_adhesion: float = 1.0,
+    reduction_slip: float = 1.0,
+) -> CreepForces:
     """Creep forces by Polach's method (1999, with 2005's reduction factors).
 
     Parameters
@@ -192,22 +202,21 @@ def polach_creep_forces(creep_longitudinal, creep_lateral, spin, a, b, normal_fo
     s = np.hypot(xi, eta)
     s_c = np.hypot(xi, eta_c)
     safe_s = np.where(s > 0.0, s, 1.0)
-    c_jj = np.where(s > 0.0, np.hypot(coeff.c11 * xi / safe_s, coeff.c22 * eta / safe_s),
-                    coeff.c11)
+    c_jj = np.where(s > 0.0, np.hypot(coeff.c11 * xi / safe_s, coeff.c22 * eta / safe_s), coeff.c11)
     eps = np.pi * shear_modulus * a * b * c_jj * s / (4.0 * q_mu)
     ka_eps = reduction_adhesion * eps
-    force = 2.0 * q_mu / np.pi * (ka_eps / (1.0 + ka_eps ** 2)
-                                  + np.arctan(reduction_slip * eps))
+    force = 2.0 * q_mu / np.pi * (ka_eps / (1.0 + ka_eps**2) + np.arctan(reduction_slip * eps))
     fx = -force * np.where(s > 0.0, xi / safe_s, 0.0)
     fy = -force * np.where(s > 0.0, eta / safe_s, 0.0)
     # lateral force of spin (Polach 1999, Eqs 18-21)
     growth = 1.0 + 6.3 * (1.0 - np.exp(-a / b))
     eps_m = (8.0 / 3.0) * shear_modulus * b * np.sqrt(a * b) / q_mu * coeff.c23 * eta_c / growth
-    delta = (eps_m ** 2 - 1.0) / (eps_m ** 2 + 1.0)
-    k_m = (np.abs(eps_m) * (delta ** 3 / 3.0 - delta ** 2 / 2.0 + 1.0 / 6.0)
-           - np.sqrt(np.maximum(1.0 - delta ** 2, 0.0) ** 3) / 3.0)
+    delta = (eps_m**2 - 1.0) / (eps_m**2 + 1.0)
+    k_m = (
+        np.abs(eps_m) * (delta**3 / 3.0 - delta**2 / 2.0 + 1.0 / 6.0)
+        - np.sqrt(np.maximum(1.0 - delta**2, 0.0) ** 3) / 3.0
+    )
     safe_sc = np.where(s_c > 0.0, s_c, 1.0)
     fy_spin = np.where(s_c > 0.0, (9.0 / 16.0) * a * q_mu * k_m * growth * phi / safe_sc, 0.0)
     fy = fy + fy_spin
-    return CreepForces(longitudinal=np.where(loaded, fx, 0.0),
-                       lateral=np.where(loaded, fy, 0.0))
+    return CreepForces(longitudinal=np.where(loaded, fx, 0.0), lateral=np.where(loaded, fy, 0.0))

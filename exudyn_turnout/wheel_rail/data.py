@@ -3,6 +3,7 @@
 See ``exudyn_turnout/data/wheel_rail/NOTICE.md`` for the licence notice and the origin of
 every file.
 """
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -11,10 +12,21 @@ import numpy as np
 
 from exudyn_turnout.wheel_rail.geometry import WheelGrid, WheelsetSetup, grid_wheel
 from exudyn_turnout.wheel_rail.profiles import Profile, read_simpack_profile
-from exudyn_turnout.wheel_rail.sections import SectionGrid, lateral_grid, place_rail, plain_rail_sections
+from exudyn_turnout.wheel_rail.sections import (
+    SectionGrid,
+    lateral_grid,
+    place_rail,
+    plain_rail_sections,
+)
 
-__all__ = ["data_dir", "profile_path", "reference_output_path", "s1002_wheel",
-           "uic60_rail", "standard_track"]
+__all__ = [
+    "data_dir",
+    "profile_path",
+    "reference_output_path",
+    "s1002_wheel",
+    "uic60_rail",
+    "standard_track",
+]
 
 
 def data_dir() -> Path:
@@ -92,12 +104,12 @@ def uic60_rail(setup: WheelsetSetup = WheelsetSetup()) -> Profile:
     """
     profile = read_simpack_profile(profile_path("MBench_UIC60_v3.prr"))
     extra = float(np.tan(np.arctan(setup.inclination) - np.arctan(1.0 / 40.0)))
-    return place_rail(profile, gauge=setup.gauge, inclination=extra,
-                      gauge_depth=setup.gauge_depth)
+    return place_rail(profile, gauge=setup.gauge, inclination=extra, gauge_depth=setup.gauge_depth)
 
 
-def standard_track(setup: WheelsetSetup = WheelsetSetup(),
-                   x: np.ndarray | None = None) -> SectionGrid:
+def standard_track(
+    setup: WheelsetSetup = WheelsetSetup(), x: np.ndarray | None = None
+) -> SectionGrid:
     """Plain UIC60 track sections (one rail, side coordinates) for the S1002 wheel.
 
     Parameters

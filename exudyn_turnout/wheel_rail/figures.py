@@ -5,6 +5,7 @@
 - :func:`plot_sections`: rail sections at chosen x with the wheel in contact;
 - :func:`plot_wheel_path`: the dip the wheel's path sees across a crossing.
 """
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -20,8 +21,10 @@ __all__ = ["plot_contact_band", "plot_sections", "plot_wheel_path"]
 
 def _pyplot():
     import matplotlib
+
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
+
     return plt
 
 
@@ -43,8 +46,12 @@ def plot_contact_band(result: WheelsetContact, path: str | Path) -> Path:
     figure, axes = plt.subplots(3, 1, figsize=(7, 8), sharex=True)
     y_mm = result.y * 1e3
     axes[0].plot(y_mm, result.s_left * 1e3, ".", label="left wheel, on wheel")
-    axes[0].plot(y_mm, (result.y_rail_left - np.median(result.y_rail_left)) * 1e3, ".",
-                 label="left wheel, on rail (from its centre contact)")
+    axes[0].plot(
+        y_mm,
+        (result.y_rail_left - np.median(result.y_rail_left)) * 1e3,
+        ".",
+        label="left wheel, on rail (from its centre contact)",
+    )
     axes[0].set_ylabel("contact position (mm)")
     axes[0].legend(fontsize=8)
     axes[1].plot(y_mm, result.delta_r * 1e3)
@@ -63,8 +70,15 @@ def plot_contact_band(result: WheelsetContact, path: str | Path) -> Path:
     return path
 
 
-def plot_sections(sections: SectionGrid, positions: list, wheel: WheelGrid, taping_line: float,
-                  path: str | Path, shift: float = 0.0, lifts: list | None = None) -> Path:
+def plot_sections(
+    sections: SectionGrid,
+    positions: list,
+    wheel: WheelGrid,
+    taping_line: float,
+    path: str | Path,
+    shift: float = 0.0,
+    lifts: list | None = None,
+) -> Path:
     """Rail sections at chosen x with the wheel drawn at its contact height.
 
     Parameters
@@ -90,8 +104,9 @@ def plot_sections(sections: SectionGrid, positions: list, wheel: WheelGrid, tapi
     Path
     """
     plt = _pyplot()
-    figure, axes = plt.subplots(len(positions), 1, figsize=(7, 2.2 * len(positions)),
-                                sharex=True, squeeze=False)
+    figure, axes = plt.subplots(
+        len(positions), 1, figsize=(7, 2.2 * len(positions)), sharex=True, squeeze=False
+    )
     for k, x in enumerate(positions):
         axis = axes[k][0]
         rail = section_at(sections, x)

@@ -34,6 +34,7 @@ wheel, the right field side for the right one), height and roll (left side up po
 position, EN 15302's rolling-radius difference and :func:`equivalent_conicity` (regression)
 or :func:`equivalent_conicity_klingel` (integration of the kinematic motion) follow.
 """
+
 from __future__ import annotations
 
 import math
@@ -144,8 +145,9 @@ def _derivatives(z: np.ndarray, step: float, window: float) -> tuple[np.ndarray,
     return slope, second
 
 
-def grid_wheel(profile: Profile, step: float = 1e-4, nominal_radius: float = 0.46,
-               window: float = 1.5e-3) -> WheelGrid:
+def grid_wheel(
+    profile: Profile, step: float = 1e-4, nominal_radius: float = 0.46, window: float = 1.5e-3
+) -> WheelGrid:
     """Grid a wheel profile and compute its slope and lateral curvature.
 
     Parameters
@@ -164,12 +166,12 @@ def grid_wheel(profile: Profile, step: float = 1e-4, nominal_radius: float = 0.4
     WheelGrid
     """
     s = np.round(np.min(profile.y) / step) * step + step * np.arange(
-        int((np.max(profile.y) - np.min(profile.y)) / step) + 1)
+        int((np.max(profile.y) - np.min(profile.y)) / step) + 1
+    )
     z = surface_on_grid(profile, s)
     slope, second = _derivatives(z, step, window)
-    curvature = second / (1.0 + slope ** 2) ** 1.5
-    return WheelGrid(s=s, z=z, slope=slope, curvature=curvature,
-                     nominal_radius=nominal_radius)
+    curvature = second / (1.0 + slope**2) ** 1.5
+    return WheelGrid(s=s, z=z, slope=slope, curvature=curvature, nominal_radius=nominal_radius)
 
 
 def surface_derivatives(sections: SectionGrid, window: float = 1.5e-3) -> SurfaceDerivatives:
@@ -192,13 +194,18 @@ def surface_derivatives(sections: SectionGrid, window: float = 1.5e-3) -> Surfac
     for row in np.atleast_2d(sections.z):
         slope, second = _derivatives(row, step, window)
         slopes.append(slope)
-        curvatures.append(-second / (1.0 + slope ** 2) ** 1.5)
+        curvatures.append(-second / (1.0 + slope**2) ** 1.5)
     return SurfaceDerivatives(slope=np.array(slopes), curvature=np.array(curvatures))
 
 
-def wheel_heights_on_grid(wheel: WheelGrid, y_grid: np.ndarray, taping_line: float,
-                          shift: float = 0.0, lift: float = 0.0, roll: float = 0.0
-                          ) -> tuple[np.ndarray, np.ndarray]:
+def wheel_heights_on_grid(
+    wheel: WheelGrid,
+    y_grid: np.ndarray,
+    taping_line: float,
+    shift: float = 0.0,
+    lift: float = 0.0,
+    roll: float = 0.0,
+) -> tuple[np.ndarray, np.ndarray]:
     """Wheel surface height and its lateral coordinate at every rail grid point.
 
     Parameters
@@ -247,7 +254,7 @@ def _merge_minima(g: np.ndarray, minima: list, prominence: float) -> list[int]:
         separate = True
         for j in kept:
             lo, hi = (i, j) if i < j else (j, i)
-            if np.max(g[lo:hi + 1]) - g[i] < prominence:
+            if np.max(g[lo : hi + 1]) - g[i] < prominence:
                 separate = False
                 break
         if separate:
@@ -263,8 +270,10 @@ def _batch_local_minima(gap: np.ndarray, prominence: float) -> list[list[int]]:
     result: list[list[int]] = [[] for _ in range(gap.shape[0])]
     for row, col in zip(rows.tolist(), (cols + 1).tolist()):
         result[row].append(col)
-    return [(_merge_minima(g[r], found, prominence) if len(found) > 1 else found)
-            for r, found in enumerate(result)]
+    return [
+        (_merge_minima(g[r], found, prominence) if len(found) > 1 else found)
+        for r, found in enumerate(result)
+    ]
 
 
 def _refine(gap: np.ndarray, i: int) -> tuple[float, float]:
@@ -329,8 +338,13 @@ class PreparedWheel:
     directions: tuple
 
 
-def prepare_rail(rail_z: np.ndarray, rail_slope: np.ndarray, rail_curvature: np.ndarray,
-                 y_grid: np.ndarray, directions: tuple = (FLANGE_DIRECTION,)) -> PreparedRail:
+def prepare_rail(
+    rail_z: np.ndarray,
+    rail_slope: np.ndarray,
+    rail_curvature: np.ndarray,
+    y_grid: np.ndarray,
+    directions: tuple = (FLANGE_DIRECTION,),
+) -> PreparedRail:
     """Precompute a rail section's surface in each extra search direction.
 
     Parameters
@@ -361,21 +375,26 @@ def prepare_rail(rail_z: np.ndarray, rail_slope: np.ndarray, rail_curvature: np.
         for v, w in rotated:
             surface = np.fmax(surface, _envelope(v, w, v_grid, upper=True))
         slope, second = _derivatives(surface, step, CURVATURE_WINDOW)
-        curvature = -second / (1.0 + slope ** 2) ** 1.5
+        curvature = -second / (1.0 + slope**2) ** 1.5
         prepared.append((theta, v_grid, surface, np.nan_to_num(slope), curvature))
-    return PreparedRail(y=y_grid, z=rail_z, slope=rail_slope, curvature=rail_curvature,
-                        directions=tuple(prepared))
+    return PreparedRail(
+        y=y_grid, z=rail_z, slope=rail_slope, curvature=rail_curvature, directions=tuple(prepared)
+    )
 
 
-def _with_side_faces(y: np.ndarray, z: np.ndarray, depth: float = 0.03
-                     ) -> tuple[np.ndarray, np.ndarray]:
+def _with_side_faces(
+    y: np.ndarray, z: np.ndarray, depth: float = 0.03
+) -> tuple[np.ndarray, np.ndarray]:
     """A rail run with vertical faces ``depth`` deep at both ends (the grid drops them)."""
-    return (np.concatenate(([y[0]], y, [y[-1]])),
-            np.concatenate(([z[0] - depth], z, [z[-1] - depth])))
+    return (
+        np.concatenate(([y[0]], y, [y[-1]])),
+        np.concatenate(([z[0] - depth], z, [z[-1] - depth])),
+    )
 
 
-def prepare_wheel(wheel: WheelGrid, taping_line: float, roll: float = 0.0,
-                  directions: tuple = (FLANGE_DIRECTION,)) -> PreparedWheel:
+def prepare_wheel(
+    wheel: WheelGrid, taping_line: float, roll: float = 0.0, directions: tuple = (FLANGE_DIRECTION,)
+) -> PreparedWheel:
     """Precompute a wheel's surface (at a roll angle) in each extra search direction.
 
     Parameters
@@ -411,9 +430,15 @@ def prepare_wheel(wheel: WheelGrid, taping_line: float, roll: float = 0.0,
         lower = _envelope(v, w, v_grid, upper=False)
         s_at = np.interp(v_grid, *_increasing(v, face_s))
         slope, second = _derivatives(lower, step, CURVATURE_WINDOW)
-        prepared.append((theta, v_grid, lower, s_at, second / (1.0 + slope ** 2) ** 1.5))
-    return PreparedWheel(wheel=wheel, y=y_points, z=z_points, s=s_points,
-                         surface_z=wheel.z[finite], directions=tuple(prepared))
+        prepared.append((theta, v_grid, lower, s_at, second / (1.0 + slope**2) ** 1.5))
+    return PreparedWheel(
+        wheel=wheel,
+        y=y_points,
+        z=z_points,
+        s=s_points,
+        surface_z=wheel.z[finite],
+        directions=tuple(prepared),
+    )
 
 
 def _increasing(v: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -421,8 +446,9 @@ def _increasing(v: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarr
     return v[order], values[order]
 
 
-def _vertical_minima(rail: PreparedRail, wheel: PreparedWheel, shifts: np.ndarray,
-                     lift: float, prominence: float) -> list[list]:
+def _vertical_minima(
+    rail: PreparedRail, wheel: PreparedWheel, shifts: np.ndarray, lift: float, prominence: float
+) -> list[list]:
     y_grid = rail.y
     step = float(y_grid[1] - y_grid[0])
     local = y_grid[None, :] - shifts[:, None]
@@ -443,21 +469,31 @@ def _vertical_minima(rail: PreparedRail, wheel: PreparedWheel, shifts: np.ndarra
             wheel_slope = float(wheel.wheel.slope[k])
             rail_slope = float(rail.slope[i])
             rail_slope = rail_slope if math.isfinite(rail_slope) else 0.0
-            slope = 0.5 * (rail_slope + wheel_slope) if math.isfinite(wheel_slope) \
-                else rail_slope
+            slope = 0.5 * (rail_slope + wheel_slope) if math.isfinite(wheel_slope) else rail_slope
             angle = math.atan(slope)
-            found.append((y, float(np.interp(y, y_grid, rail.z)), s, value * math.cos(angle),
-                          angle, 0.0, float(rail.curvature[i]),
-                          float(wheel.wheel.curvature[k])))
+            found.append(
+                (
+                    y,
+                    float(np.interp(y, y_grid, rail.z)),
+                    s,
+                    value * math.cos(angle),
+                    angle,
+                    0.0,
+                    float(rail.curvature[i]),
+                    float(wheel.wheel.curvature[k]),
+                )
+            )
         results.append(found)
     return results
 
 
-def _directional_minima(rail: PreparedRail, wheel: PreparedWheel, shifts: np.ndarray,
-                        lift: float, prominence: float) -> list[list]:
+def _directional_minima(
+    rail: PreparedRail, wheel: PreparedWheel, shifts: np.ndarray, lift: float, prominence: float
+) -> list[list]:
     results: list[list] = [[] for _ in range(len(shifts))]
-    for (theta, v_grid, rail_w, rail_dw, rail_k), (_t, wheel_v, wheel_w, wheel_s, wheel_k) \
-            in zip(rail.directions, wheel.directions):
+    for (theta, v_grid, rail_w, rail_dw, rail_k), (_t, wheel_v, wheel_w, wheel_s, wheel_k) in zip(
+        rail.directions, wheel.directions
+    ):
         c, s = math.cos(theta), math.sin(theta)
         dv = shifts * c + lift * s
         dw = -shifts * s + lift * c
@@ -476,16 +512,24 @@ def _directional_minima(rail: PreparedRail, wheel: PreparedWheel, shifts: np.nda
                 offset, value = _refine(gap[row], i)
                 v = float(v_grid[i] + offset * step)
                 w_rail = float(np.interp(v, v_grid, rail_w_filled))
-                results[row].append((c * v - s * w_rail, s * v + c * w_rail,
-                                     float(np.interp(v - dv[row], wheel_v, wheel_s)),
-                                     value * math.cos(angle - theta), angle, theta,
-                                     float(rail_k[i]),
-                                     float(np.interp(v - dv[row], wheel_v, wheel_k))))
+                results[row].append(
+                    (
+                        c * v - s * w_rail,
+                        s * v + c * w_rail,
+                        float(np.interp(v - dv[row], wheel_v, wheel_s)),
+                        value * math.cos(angle - theta),
+                        angle,
+                        theta,
+                        float(rail_k[i]),
+                        float(np.interp(v - dv[row], wheel_v, wheel_k)),
+                    )
+                )
     return results
 
 
-def _candidates_from(raw: list, rail: PreparedRail, wheel: PreparedWheel,
-                     max_candidates: int, max_gap: float) -> Candidates:
+def _candidates_from(
+    raw: list, rail: PreparedRail, wheel: PreparedWheel, max_candidates: int, max_gap: float
+) -> Candidates:
     unique: list = []
     for item in sorted(raw, key=lambda c: abs(c[4] - c[5])):
         if all(abs(item[0] - other[0]) > 1.5e-3 for other in unique):
@@ -503,9 +547,15 @@ def _candidates_from(raw: list, rail: PreparedRail, wheel: PreparedWheel,
     return Candidates(*(table[:, k].copy() for k in range(8)))
 
 
-def search_candidates_batch(rail: PreparedRail, wheel: PreparedWheel, shifts,
-                            lift: float = 0.0, max_candidates: int = 3,
-                            prominence: float = 5e-5, max_gap: float = 0.01) -> list:
+def search_candidates_batch(
+    rail: PreparedRail,
+    wheel: PreparedWheel,
+    shifts,
+    lift: float = 0.0,
+    max_candidates: int = 3,
+    prominence: float = 5e-5,
+    max_gap: float = 0.01,
+) -> list:
     """:func:`search_candidates` for many lateral shifts at once (vectorised gaps).
 
     Parameters
@@ -525,13 +575,21 @@ def search_candidates_batch(rail: PreparedRail, wheel: PreparedWheel, shifts,
     shifts = np.atleast_1d(np.asarray(shifts, float))
     vertical = _vertical_minima(rail, wheel, shifts, lift, prominence)
     directional = _directional_minima(rail, wheel, shifts, lift, prominence)
-    return [_candidates_from(a + b, rail, wheel, max_candidates, max_gap)
-            for a, b in zip(vertical, directional)]
+    return [
+        _candidates_from(a + b, rail, wheel, max_candidates, max_gap)
+        for a, b in zip(vertical, directional)
+    ]
 
 
-def search_candidates(rail: PreparedRail, wheel: PreparedWheel, shift: float = 0.0,
-                      lift: float = 0.0, max_candidates: int = 3, prominence: float = 5e-5,
-                      max_gap: float = 0.01) -> Candidates:
+def search_candidates(
+    rail: PreparedRail,
+    wheel: PreparedWheel,
+    shift: float = 0.0,
+    lift: float = 0.0,
+    max_candidates: int = 3,
+    prominence: float = 5e-5,
+    max_gap: float = 0.01,
+) -> Candidates:
     """Candidate contact points of a prepared wheel on a prepared rail section.
 
     Parameters
@@ -549,16 +607,26 @@ def search_candidates(rail: PreparedRail, wheel: PreparedWheel, shift: float = 0
     -------
     Candidates
     """
-    return search_candidates_batch(rail, wheel, [shift], lift, max_candidates, prominence,
-                                   max_gap)[0]
+    return search_candidates_batch(rail, wheel, [shift], lift, max_candidates, prominence, max_gap)[
+        0
+    ]
 
 
-def find_candidates(rail_z: np.ndarray, rail_slope: np.ndarray, rail_curvature: np.ndarray,
-                    y_grid: np.ndarray, wheel: WheelGrid, taping_line: float,
-                    shift: float = 0.0, lift: float = 0.0, roll: float = 0.0,
-                    max_candidates: int = 3, prominence: float = 5e-5,
-                    max_gap: float = 0.01, directions: tuple = (FLANGE_DIRECTION,)
-                    ) -> Candidates:
+def find_candidates(
+    rail_z: np.ndarray,
+    rail_slope: np.ndarray,
+    rail_curvature: np.ndarray,
+    y_grid: np.ndarray,
+    wheel: WheelGrid,
+    taping_line: float,
+    shift: float = 0.0,
+    lift: float = 0.0,
+    roll: float = 0.0,
+    max_candidates: int = 3,
+    prominence: float = 5e-5,
+    max_gap: float = 0.01,
+    directions: tuple = (FLANGE_DIRECTION,),
+) -> Candidates:
     """Candidate contact points of a wheel on one rail section, smallest normal gap first.
 
     The gap is searched vertically (tread, flange root, any point near touching) and along
@@ -599,8 +667,9 @@ def find_candidates(rail_z: np.ndarray, rail_slope: np.ndarray, rail_curvature: 
     return search_candidates(rail, prepared, shift, lift, max_candidates, prominence, max_gap)
 
 
-def _wheel_points(wheel: WheelGrid, taping_line: float, shift: float, lift: float,
-                  roll: float) -> tuple[np.ndarray, np.ndarray]:
+def _wheel_points(
+    wheel: WheelGrid, taping_line: float, shift: float, lift: float, roll: float
+) -> tuple[np.ndarray, np.ndarray]:
     r0 = wheel.nominal_radius
     y_points = taping_line + wheel.s
     z_points = wheel.z - r0
@@ -638,9 +707,16 @@ class WheelsetContact:
         return self.radius_left - self.radius_right
 
 
-def solve_wheelset(y_values: np.ndarray, wheel: WheelGrid, left_rail: tuple,
-                   right_rail: tuple, setup: WheelsetSetup, iterations: int = 8,
-                   max_candidates: int = 3, max_gap: float = 0.005) -> WheelsetContact:
+def solve_wheelset(
+    y_values: np.ndarray,
+    wheel: WheelGrid,
+    left_rail: tuple,
+    right_rail: tuple,
+    setup: WheelsetSetup,
+    iterations: int = 8,
+    max_candidates: int = 3,
+    max_gap: float = 0.005,
+) -> WheelsetContact:
     """Roll and height of a rigid wheelset touching both rails, for each lateral displacement.
 
     Parameters
@@ -667,24 +743,72 @@ def solve_wheelset(y_values: np.ndarray, wheel: WheelGrid, left_rail: tuple,
     """
     taping = setup.taping_line
     lever = taping
-    results = {key: [] for key in ("roll", "lift", "radius_left", "radius_right", "angle_left",
-                                   "angle_right", "s_left", "s_right", "y_rail_left",
-                                   "y_rail_right", "candidates_left", "candidates_right")}
+    results = {
+        key: []
+        for key in (
+            "roll",
+            "lift",
+            "radius_left",
+            "radius_right",
+            "angle_left",
+            "angle_right",
+            "s_left",
+            "s_right",
+            "y_rail_left",
+            "y_rail_right",
+            "candidates_left",
+            "candidates_right",
+        )
+    }
     for y in np.asarray(y_values, float):
         roll = 0.0
         for _ in range(iterations):
-            gap_left = _vertical_gap(find_candidates(*left_rail, wheel, taping, shift=y,
-                                                     roll=roll, max_candidates=1, max_gap=1.0,
-                                                     directions=()))
-            gap_right = _vertical_gap(find_candidates(*right_rail, wheel, taping, shift=-y,
-                                                      roll=-roll, max_candidates=1,
-                                                      max_gap=1.0, directions=()))
+            gap_left = _vertical_gap(
+                find_candidates(
+                    *left_rail,
+                    wheel,
+                    taping,
+                    shift=y,
+                    roll=roll,
+                    max_candidates=1,
+                    max_gap=1.0,
+                    directions=(),
+                )
+            )
+            gap_right = _vertical_gap(
+                find_candidates(
+                    *right_rail,
+                    wheel,
+                    taping,
+                    shift=-y,
+                    roll=-roll,
+                    max_candidates=1,
+                    max_gap=1.0,
+                    directions=(),
+                )
+            )
             roll -= (gap_left - gap_right) / (2.0 * lever)
         lift = -0.5 * (gap_left + gap_right)
-        left = find_candidates(*left_rail, wheel, taping, shift=y, lift=lift, roll=roll,
-                               max_candidates=max_candidates, max_gap=max_gap)
-        right = find_candidates(*right_rail, wheel, taping, shift=-y, lift=lift, roll=-roll,
-                                max_candidates=max_candidates, max_gap=max_gap)
+        left = find_candidates(
+            *left_rail,
+            wheel,
+            taping,
+            shift=y,
+            lift=lift,
+            roll=roll,
+            max_candidates=max_candidates,
+            max_gap=max_gap,
+        )
+        right = find_candidates(
+            *right_rail,
+            wheel,
+            taping,
+            shift=-y,
+            lift=lift,
+            roll=-roll,
+            max_candidates=max_candidates,
+            max_gap=max_gap,
+        )
         results["roll"].append(roll)
         results["lift"].append(lift)
         for side, found in (("left", left), ("right", right)):
@@ -693,8 +817,9 @@ def solve_wheelset(y_values: np.ndarray, wheel: WheelGrid, left_rail: tuple,
             results[f"s_{side}"].append(found.s_wheel[0])
             results[f"y_rail_{side}"].append(found.y_rail[0])
             results[f"candidates_{side}"].append(found)
-    arrays = {k: (tuple(v) if k.startswith("candidates") else np.asarray(v))
-              for k, v in results.items()}
+    arrays = {
+        k: (tuple(v) if k.startswith("candidates") else np.asarray(v)) for k, v in results.items()
+    }
     return WheelsetContact(y=np.asarray(y_values, float), **arrays)
 
 
@@ -714,13 +839,12 @@ def rail_row(sections: SectionGrid, derivatives: SurfaceDerivatives, index: int 
     -------
     tuple
     """
-    return (sections.z[index], derivatives.slope[index], derivatives.curvature[index],
-            sections.y)
+    return (sections.z[index], derivatives.slope[index], derivatives.curvature[index], sections.y)
 
 
-
-def equivalent_conicity(y: np.ndarray, delta_r: np.ndarray, amplitude: float,
-                        samples: int = 2000) -> float:
+def equivalent_conicity(
+    y: np.ndarray, delta_r: np.ndarray, amplitude: float, samples: int = 2000
+) -> float:
     """Equivalent conicity by EN 15302's linear regression of the Delta r function.
 
     The wheelset moves sinusoidally, ``y = amplitude sin(theta)``, sampled uniformly in time
@@ -761,8 +885,9 @@ def equivalent_conicity(y: np.ndarray, delta_r: np.ndarray, amplitude: float,
     return float(np.sum(dr * motion) / (2.0 * np.sum(motion * motion)))
 
 
-def equivalent_conicity_klingel(y: np.ndarray, delta_r: np.ndarray, amplitude: float,
-                                samples: int = 2000, refine: int = 20) -> float:
+def equivalent_conicity_klingel(
+    y: np.ndarray, delta_r: np.ndarray, amplitude: float, samples: int = 2000, refine: int = 20
+) -> float:
     """Equivalent conicity from the wavelength of the kinematic motion (EN 15302, Annex B).
 
     The wheelset's kinematic (Klingel) motion obeys ``y'' = -Delta r(y) / (2 e r0)``; its
@@ -812,17 +937,20 @@ def equivalent_conicity_klingel(y: np.ndarray, delta_r: np.ndarray, amplitude: f
     delta_r = np.asarray(delta_r, float)
     fine = np.linspace(y[0], y[-1], refine * (len(y) - 1) + 1)
     values = np.interp(fine, y, delta_r)
-    running = np.concatenate(([0.0], np.cumsum(0.5 * (values[1:] + values[:-1])
-                                               * np.diff(fine))))
+    running = np.concatenate(([0.0], np.cumsum(0.5 * (values[1:] + values[:-1]) * np.diff(fine))))
 
     def window(centre: float) -> float:
-        return float(np.interp(centre + amplitude, fine, running)
-                     - np.interp(centre - amplitude, fine, running))
+        return float(
+            np.interp(centre + amplitude, fine, running)
+            - np.interp(centre - amplitude, fine, running)
+        )
 
     low, high = y[0] + amplitude, y[-1] - amplitude
     if not low < high or not window(low) < 0.0 < window(high):
-        raise ValueError(f"a motion of amplitude {amplitude} does not fit into y = "
-                         f"[{y[0]}, {y[-1]}] with Delta r changing sign over it")
+        raise ValueError(
+            f"a motion of amplitude {amplitude} does not fit into y = "
+            f"[{y[0]}, {y[-1]}] with Delta r changing sign over it"
+        )
     for _ in range(100):  # bisection: the window integral increases with the centre
         middle = 0.5 * (low + high)
         if window(middle) < 0.0:
@@ -832,11 +960,11 @@ def equivalent_conicity_klingel(y: np.ndarray, delta_r: np.ndarray, amplitude: f
     centre = 0.5 * (low + high)
     theta = np.pi * (np.arange(samples) + 0.5) / samples
     position = centre - amplitude * np.cos(theta)
-    remaining = np.interp(centre + amplitude, fine, running) - np.interp(position, fine,
-                                                                         running)
+    remaining = np.interp(centre + amplitude, fine, running) - np.interp(position, fine, running)
     integral = np.sum(amplitude * np.sin(theta) / np.sqrt(np.maximum(remaining, 1e-300)))
     integral *= np.pi / samples
     return float((np.pi / integral) ** 2)
+
 
 def flange_angle(wheel: WheelGrid, s_range: tuple = (-0.065, -0.020)) -> float:
     """Largest contact angle on the flange flank of a wheel (the flange angle).

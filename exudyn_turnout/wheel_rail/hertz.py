@@ -19,6 +19,7 @@ so that ``F = C_H delta^1.5`` with
 flange root on the gauge corner) are outside Hertz theory; :func:`curvature_sums` floors
 both sums at a small positive value and says so.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -49,8 +50,12 @@ class HertzContact:
     constant: np.ndarray  #: N/m^1.5, C_H of F = C_H delta^1.5
 
 
-def effective_modulus(young: float = 2.1e11, poisson: float = 0.3,
-                      young_2: float | None = None, poisson_2: float | None = None) -> float:
+def effective_modulus(
+    young: float = 2.1e11,
+    poisson: float = 0.3,
+    young_2: float | None = None,
+    poisson_2: float | None = None,
+) -> float:
     """Contact modulus E* of two elastic bodies.
 
     Parameters
@@ -67,11 +72,10 @@ def effective_modulus(young: float = 2.1e11, poisson: float = 0.3,
     """
     young_2 = young if young_2 is None else young_2
     poisson_2 = poisson if poisson_2 is None else poisson_2
-    return 1.0 / ((1.0 - poisson ** 2) / young + (1.0 - poisson_2 ** 2) / young_2)
+    return 1.0 / ((1.0 - poisson**2) / young + (1.0 - poisson_2**2) / young_2)
 
 
-def curvature_sums(radius, angle, curvature_wheel, curvature_rail,
-                   rail_longitudinal_curvature=0.0):
+def curvature_sums(radius, angle, curvature_wheel, curvature_rail, rail_longitudinal_curvature=0.0):
     """Relative curvatures A (rolling) and B (lateral) of a wheel/rail contact point.
 
     Parameters
@@ -92,8 +96,10 @@ def curvature_sums(radius, angle, curvature_wheel, curvature_rail,
         1/m, half the curvature sums, floored at ``MIN_CURVATURE_SUM`` (a flat wheel face
         against a check rail has A = 0; conformal points B <= 0).
     """
-    a_sum = np.maximum(0.5 * (np.cos(angle) / np.asarray(radius, float)
-                              + rail_longitudinal_curvature), MIN_CURVATURE_SUM)
+    a_sum = np.maximum(
+        0.5 * (np.cos(angle) / np.asarray(radius, float) + rail_longitudinal_curvature),
+        MIN_CURVATURE_SUM,
+    )
     b_sum = 0.5 * (np.asarray(curvature_wheel, float) + np.asarray(curvature_rail, float))
     return a_sum, np.maximum(np.nan_to_num(b_sum, nan=MIN_CURVATURE_SUM), MIN_CURVATURE_SUM)
 

@@ -5,6 +5,7 @@ The constants come from the vehicle file's ``[contact]`` table
 iteration, so they avoid numpy for scalars). Sign conventions: track frame x forward,
 y to the left, z up; a wheel's side s = +1 (left) or -1 (right).
 """
+
 from __future__ import annotations
 
 import math
@@ -49,8 +50,9 @@ def saturation_factor(F: float, mu_N: float) -> float:
     return (u - u * u / 3.0 + u**3 / 27.0) / u
 
 
-def longitudinal_creepage(side: int, y: float, psi_t: float, v: float, b: float, r0: float,
-                          gamma: float, curvature: float) -> float:
+def longitudinal_creepage(
+    side: int, y: float, psi_t: float, v: float, b: float, r0: float, gamma: float, curvature: float
+) -> float:
     """xi_x of wheel ``side``: -s (gamma y / r0 + b psi_t / v + b kappa).
 
     The contact point's forward slip over the rail divided by v for a conical wheelset

@@ -35,6 +35,7 @@ Placing a rail in the track therefore never relies on the reference point:
 :func:`exudyn_turnout.wheel_rail.sections.place_rail` puts its top at z = 0 and its gauge
 point (14 mm below the top, EN 15302) at the given distance from the track centre.
 """
+
 from __future__ import annotations
 
 import math
@@ -171,13 +172,17 @@ def _apply_simpack_options(points: np.ndarray, spline: dict, path: Path) -> np.n
     if angle != 0.0:
         c, s = math.cos(angle), math.sin(angle)
         y, z = c * y - s * z, s * y + c * z
-    y_min, y_max = (_option(spline, k, 1.0 if k.endswith("min") else 0.0, path)
-                    for k in ("bound.y.min", "bound.y.max"))
+    y_min, y_max = (
+        _option(spline, k, 1.0 if k.endswith("min") else 0.0, path)
+        for k in ("bound.y.min", "bound.y.max")
+    )
     if y_min < y_max:
         keep = (y >= y_min) & (y <= y_max)
         y, z = y[keep], z[keep]
-    z_min, z_max = (_option(spline, k, 1.0 if k.endswith("min") else 0.0, path)
-                    for k in ("bound.z.min", "bound.z.max"))
+    z_min, z_max = (
+        _option(spline, k, 1.0 if k.endswith("min") else 0.0, path)
+        for k in ("bound.z.min", "bound.z.max")
+    )
     if z_min < z_max:
         z = np.clip(z, z_min, z_max)
     if int(_option(spline, "mirror.y", 0, path)) == 1:
@@ -229,8 +234,13 @@ def read_simpack_profile(path: str | Path) -> Profile:
     if kind_code.strip() not in kinds:
         raise _fail(path, f"header type = {kind_code!r} (0 rail or 1 wheel expected)")
     points = _checked(_apply_simpack_options(points, spline, path), path)
-    return Profile(y=points[:, 0], z=-points[:, 1], kind=kinds[kind_code.strip()],
-                   source=str(path), comment=spline.get("comment", ""))
+    return Profile(
+        y=points[:, 0],
+        z=-points[:, 1],
+        kind=kinds[kind_code.strip()],
+        source=str(path),
+        comment=spline.get("comment", ""),
+    )
 
 
 def read_plain_profile(path: str | Path, kind: str = "rail", length_unit: str = "auto") -> Profile:
@@ -305,8 +315,9 @@ def read_profile(path: str | Path, kind: str = "rail", length_unit: str = "auto"
 
 def _slices_header(lines: list[tuple[int, str]], path: Path) -> tuple[float, float, int, int, int]:
     if len(lines) < 4:
-        raise _fail(path, "header needs 4 lines: U_OFFSET U_SCALE, NSLC, NFEAT NKINK NACCEL, "
-                          "U_INTPOL")
+        raise _fail(
+            path, "header needs 4 lines: U_OFFSET U_SCALE, NSLC, NFEAT NKINK NACCEL, U_INTPOL"
+        )
     try:
         first = lines[0][1].split()
         offset, scale = float(first[0]), float(first[1])
@@ -375,8 +386,7 @@ def read_slices(path: str | Path, length_unit: str = "auto") -> SliceSet:
     profiles = []
     for name in names:
         try:
-            profiles.append(read_profile(path.parent / name, kind="rail",
-                                         length_unit=length_unit))
+            profiles.append(read_profile(path.parent / name, kind="rail", length_unit=length_unit))
         except ProfileFormatError as err:
             raise _fail(path, f"slice '{name}': {err}") from None
     del n_extra

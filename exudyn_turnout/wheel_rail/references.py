@@ -9,6 +9,7 @@ rail with y towards the field side; :class:`ReferenceCase` converts to this pack
 conventions (metres, z up).  :func:`geometry_at_reference` evaluates our undeformed-distance
 geometry at the same wheel position.
 """
+
 from __future__ import annotations
 
 import re
@@ -21,8 +22,13 @@ from exudyn_turnout.wheel_rail.geometry import WheelGrid, find_candidates, surfa
 from exudyn_turnout.wheel_rail.profiles import ProfileFormatError, read_slices
 from exudyn_turnout.wheel_rail.sections import lateral_grid, slice_sections, wheel_envelope
 
-__all__ = ["ReferenceCase", "read_reference_output", "GeometryResult", "geometry_at_reference",
-           "compare_all"]
+__all__ = [
+    "ReferenceCase",
+    "read_reference_output",
+    "GeometryResult",
+    "geometry_at_reference",
+    "compare_all",
+]
 
 _MM = 1e-3
 
@@ -90,12 +96,22 @@ def read_reference_output(path: str | Path) -> list[ReferenceCase]:
             current["approach"] = _numbers(lines[i + 1])[3]
             if all(k in current for k in ("position", "xcp_tr", "xcp_w", "forces")):
                 pos, tr, wh = current["position"], current["xcp_tr"], current["xcp_w"]
-                cases.append(ReferenceCase(
-                    source=str(path), case=current["case"], rail_file=rail, s=pos[0] * _MM,
-                    y=pos[1] * _MM, wheel_height=-pos[2] * _MM, x_contact=tr[0] * _MM,
-                    y_contact_rail=tr[4] * _MM, z_contact_rail=-tr[5] * _MM,
-                    y_contact_wheel=wh[1] * _MM, approach=current["approach"] * _MM,
-                    normal_force=current["forces"][0]))
+                cases.append(
+                    ReferenceCase(
+                        source=str(path),
+                        case=current["case"],
+                        rail_file=rail,
+                        s=pos[0] * _MM,
+                        y=pos[1] * _MM,
+                        wheel_height=-pos[2] * _MM,
+                        x_contact=tr[0] * _MM,
+                        y_contact_rail=tr[4] * _MM,
+                        z_contact_rail=-tr[5] * _MM,
+                        y_contact_wheel=wh[1] * _MM,
+                        approach=current["approach"] * _MM,
+                        normal_force=current["forces"][0],
+                    )
+                )
     if not cases:
         raise ProfileFormatError(f"{path.name}: no complete CONTACT case found")
     return cases
@@ -113,9 +129,14 @@ class GeometryResult:
     angle: float  #: rad, contact angle
 
 
-def geometry_at_reference(case: ReferenceCase, wheel: WheelGrid, profiles_dir: str | Path,
-                          envelope_step: float = 2.5e-4, reach: float = 0.1,
-                          nominal_radius: float = 0.46) -> GeometryResult:
+def geometry_at_reference(
+    case: ReferenceCase,
+    wheel: WheelGrid,
+    profiles_dir: str | Path,
+    envelope_step: float = 2.5e-4,
+    reach: float = 0.1,
+    nominal_radius: float = 0.46,
+) -> GeometryResult:
     """Evaluate our geometry at the wheel position of a CONTACT case.
 
     CONTACT places the rail profile at RAILY0 = 750 mm and the wheel profile origin at
@@ -146,19 +167,31 @@ def geometry_at_reference(case: ReferenceCase, wheel: WheelGrid, profiles_dir: s
     slices = read_slices(Path(profiles_dir) / Path(case.rail_file).name)
     grid = lateral_grid(-0.08, 0.30, wheel.s[1] - wheel.s[0])
     sections = slice_sections(slices, grid)
-    enveloped = wheel_envelope(sections, np.array([case.s]), nominal_radius, reach=reach,
-                               step=envelope_step)
+    enveloped = wheel_envelope(
+        sections, np.array([case.s]), nominal_radius, reach=reach, step=envelope_step
+    )
     derivatives = surface_derivatives(enveloped)
-    found = find_candidates(enveloped.z[0], derivatives.slope[0], derivatives.curvature[0],
-                            grid, wheel, 0.0, shift=case.y, lift=case.wheel_height,
-                            max_candidates=1)
+    found = find_candidates(
+        enveloped.z[0],
+        derivatives.slope[0],
+        derivatives.curvature[0],
+        grid,
+        wheel,
+        0.0,
+        shift=case.y,
+        lift=case.wheel_height,
+        max_candidates=1,
+    )
     index = int(round((found.y_rail[0] - grid[0]) / (grid[1] - grid[0])))
     dx = float(enveloped.x_offset[0, index])
-    return GeometryResult(x_contact=dx, y_contact_rail=float(found.y_rail[0]),
-                          z_contact_rail=float(found.z_rail[0]) + dx * dx / (2 * nominal_radius),
-                          y_contact_wheel=float(found.s_wheel[0]), approach=-float(found.gap[0]),
-                          angle=float(found.angle[0]))
-
+    return GeometryResult(
+        x_contact=dx,
+        y_contact_rail=float(found.y_rail[0]),
+        z_contact_rail=float(found.z_rail[0]) + dx * dx / (2 * nominal_radius),
+        y_contact_wheel=float(found.s_wheel[0]),
+        approach=-float(found.gap[0]),
+        angle=float(found.angle[0]),
+    )
 
 
 def compare_all(wheel: WheelGrid, data_folder: str | Path) -> list[tuple]:
@@ -183,4 +216,3 @@ def compare_all(wheel: WheelGrid, data_folder: str | Path) -> list[tuple]:
             ours = geometry_at_reference(case, wheel, folder / "profiles")
             rows.append((f"{name}#{case.case}", case, ours))
     return rows
-

@@ -21,6 +21,7 @@ Sections come from
 feels: ``max over dx of z(x + dx, y) - dx^2 / (2 r)``, so a nose rising ahead of the wheel
 is met before the wheel centre is over it (CONTACT's 3-D contact search does the same).
 """
+
 from __future__ import annotations
 
 import math
@@ -87,16 +88,20 @@ def _monotone_runs(y: np.ndarray) -> list[slice]:
     nonzero = np.flatnonzero(direction)
     if nonzero.size == 0:
         return [slice(0, len(y))]
-    filled = direction[nonzero[np.maximum(np.searchsorted(nonzero, np.arange(len(direction)),
-                                                          side="right") - 1, 0)]]
+    filled = direction[
+        nonzero[
+            np.maximum(np.searchsorted(nonzero, np.arange(len(direction)), side="right") - 1, 0)
+        ]
+    ]
     changes = np.flatnonzero(filled[1:] != filled[:-1]) + 1
     starts = np.concatenate(([0], changes))
     ends = np.concatenate((changes, [len(direction)])) + 1
     return [slice(int(a), int(b)) for a, b in zip(starts, ends)]
 
 
-def surface_on_grid(profile: Profile, y_grid: np.ndarray, y_offset: float = 0.0,
-                    z_offset: float = 0.0) -> np.ndarray:
+def surface_on_grid(
+    profile: Profile, y_grid: np.ndarray, y_offset: float = 0.0, z_offset: float = 0.0
+) -> np.ndarray:
     """Surface of a profile on a lateral grid: the upper envelope for a rail, lower for a wheel.
 
     Parameters
@@ -175,15 +180,17 @@ def gauge_point(profile: Profile, depth: float = 0.014) -> float:
     crossing = np.flatnonzero(z0 * z1 <= 0.0)
     crossing = crossing[np.abs(z1[crossing] - z0[crossing]) > 0.0]
     if crossing.size == 0:
-        raise ValueError(f"{profile.source or 'profile'}: does not reach {depth * 1e3:.1f} mm "
-                         "below its top")
+        raise ValueError(
+            f"{profile.source or 'profile'}: does not reach {depth * 1e3:.1f} mm below its top"
+        )
     t = -z0[crossing] / (z1[crossing] - z0[crossing])
     y_cross = profile.y[crossing] + t * (profile.y[crossing + 1] - profile.y[crossing])
     return float(np.min(y_cross))
 
 
-def place_rail(profile: Profile, gauge: float = 1.435, inclination: float = 0.0,
-               gauge_depth: float = 0.014) -> Profile:
+def place_rail(
+    profile: Profile, gauge: float = 1.435, inclination: float = 0.0, gauge_depth: float = 0.014
+) -> Profile:
     """Put a rail profile into side coordinates: top at z = 0, gauge point at ``gauge / 2``.
 
     Independent of the file's reference point (the Manchester benchmark's UIC60 is referenced
@@ -212,8 +219,9 @@ def place_rail(profile: Profile, gauge: float = 1.435, inclination: float = 0.0,
     return replace(inclined, y=inclined.y + shift)
 
 
-def plain_rail_sections(profile: Profile, x: np.ndarray, y_grid: np.ndarray,
-                        name: str = "plain rail") -> SectionGrid:
+def plain_rail_sections(
+    profile: Profile, x: np.ndarray, y_grid: np.ndarray, name: str = "plain rail"
+) -> SectionGrid:
     """The same (placed) profile at every x.
 
     Parameters
@@ -232,12 +240,16 @@ def plain_rail_sections(profile: Profile, x: np.ndarray, y_grid: np.ndarray,
     SectionGrid
     """
     heights = surface_on_grid(profile, y_grid)
-    return SectionGrid(x=np.asarray(x, float), y=y_grid, z=np.tile(heights, (len(x), 1)),
-                       name=name)
+    return SectionGrid(x=np.asarray(x, float), y=y_grid, z=np.tile(heights, (len(x), 1)), name=name)
 
 
-def slice_sections(slices: SliceSet, y_grid: np.ndarray, y_offset: float = 0.0,
-                   z_offset: float = 0.0, name: str = "") -> SectionGrid:
+def slice_sections(
+    slices: SliceSet,
+    y_grid: np.ndarray,
+    y_offset: float = 0.0,
+    z_offset: float = 0.0,
+    name: str = "",
+) -> SectionGrid:
     """Sections at the slice positions of a CONTACT slice set, gridded.
 
     Parameters
@@ -256,8 +268,7 @@ def slice_sections(slices: SliceSet, y_grid: np.ndarray, y_offset: float = 0.0,
     SectionGrid
         x = the slice positions u.
     """
-    heights = np.array([surface_on_grid(p, y_grid, y_offset, z_offset)
-                        for p in slices.profiles])
+    heights = np.array([surface_on_grid(p, y_grid, y_offset, z_offset) for p in slices.profiles])
     return SectionGrid(x=slices.u.copy(), y=y_grid, z=heights, name=name or slices.source)
 
 
@@ -311,8 +322,13 @@ def sections_at(sections: SectionGrid, x: np.ndarray) -> np.ndarray:
     return np.where(t == 0.0, sections.z[i], np.where(t == 1.0, sections.z[i + 1], blend))
 
 
-def wheel_envelope(sections: SectionGrid, x: np.ndarray, wheel_radius: float,
-                   reach: float = 0.12, step: float = 0.002) -> SectionGrid:
+def wheel_envelope(
+    sections: SectionGrid,
+    x: np.ndarray,
+    wheel_radius: float,
+    reach: float = 0.12,
+    step: float = 0.002,
+) -> SectionGrid:
     """What a rigid wheel of radius r feels at x: ``max_dx z(x + dx, y) - dx^2 / (2 r)``.
 
     Parameters
@@ -344,9 +360,13 @@ def wheel_envelope(sections: SectionGrid, x: np.ndarray, wheel_radius: float,
         best[better] = candidate[better]
         where[better] = dx
     best[np.isneginf(best)] = np.nan
-    return SectionGrid(x=np.asarray(x, float), y=sections.y, z=best,
-                       name=f"{sections.name} (wheel envelope r = {wheel_radius} m)",
-                       x_offset=where)
+    return SectionGrid(
+        x=np.asarray(x, float),
+        y=sections.y,
+        z=best,
+        name=f"{sections.name} (wheel envelope r = {wheel_radius} m)",
+        x_offset=where,
+    )
 
 
 @dataclass(frozen=True)
@@ -409,8 +429,9 @@ def _shifted_heights(base: Profile, y_grid: np.ndarray, shift: float) -> np.ndar
     return surface_on_grid(base, y_grid, y_offset=shift)
 
 
-def switch_sections(design: SwitchDesign, base: Profile, x: np.ndarray,
-                    y_grid: np.ndarray, gauge: float = 1.435) -> dict[str, SectionGrid]:
+def switch_sections(
+    design: SwitchDesign, base: Profile, x: np.ndarray, y_grid: np.ndarray, gauge: float = 1.435
+) -> dict[str, SectionGrid]:
     """Stock rail and switch blade sections from design parameters (through route).
 
     Parameters
@@ -448,12 +469,15 @@ def switch_sections(design: SwitchDesign, base: Profile, x: np.ndarray,
             blade[y_grid > half + width] = np.nan
             blade -= lowering
         heights["blade"].append(blade)
-    return {key: SectionGrid(x=np.asarray(x, float), y=y_grid, z=np.array(value),
-                             name=f"switch {key}") for key, value in heights.items()}
+    return {
+        key: SectionGrid(x=np.asarray(x, float), y=y_grid, z=np.array(value), name=f"switch {key}")
+        for key, value in heights.items()
+    }
 
 
-def crossing_sections(design: CrossingDesign, base: Profile, x: np.ndarray,
-                      y_grid: np.ndarray, gauge: float = 1.435) -> dict[str, SectionGrid]:
+def crossing_sections(
+    design: CrossingDesign, base: Profile, x: np.ndarray, y_grid: np.ndarray, gauge: float = 1.435
+) -> dict[str, SectionGrid]:
     """Wing rail and crossing nose sections from design parameters (through route).
 
     Parameters
@@ -495,8 +519,13 @@ def crossing_sections(design: CrossingDesign, base: Profile, x: np.ndarray,
         distance = np.minimum(from_gauge, half_head)
         nose = np.interp(half + distance, y_grid, base_heights)
         nose[from_gauge < -0.02] = np.nan
-        lowering = design.tip_lowering * max(0.0, 1.0 - (xi - design.nose_tip)
-                                             / design.lowering_length)
+        lowering = design.tip_lowering * max(
+            0.0, 1.0 - (xi - design.nose_tip) / design.lowering_length
+        )
         heights["nose"].append(nose - lowering)
-    return {key: SectionGrid(x=np.asarray(x, float), y=y_grid, z=np.array(value),
-                             name=f"crossing {key}") for key, value in heights.items()}
+    return {
+        key: SectionGrid(
+            x=np.asarray(x, float), y=y_grid, z=np.array(value), name=f"crossing {key}"
+        )
+        for key, value in heights.items()
+    }

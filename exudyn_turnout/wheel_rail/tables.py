@@ -18,6 +18,7 @@ Tables are cached as ``.npz`` under a directory (default ``$XDG_CACHE_HOME/exudy
 or ``~/.cache/exudyn_turnout``, never the working directory) keyed by a SHA-256 of every
 input.
 """
+
 from __future__ import annotations
 
 import hashlib
@@ -28,8 +29,14 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_turnout.wheel_rail.geometry import (FLANGE_DIRECTION, WheelGrid, prepare_rail, prepare_wheel,
-                       search_candidates_batch, surface_derivatives)
+from exudyn_turnout.wheel_rail.geometry import (
+    FLANGE_DIRECTION,
+    WheelGrid,
+    prepare_rail,
+    prepare_wheel,
+    search_candidates_batch,
+    surface_derivatives,
+)
 from exudyn_turnout.wheel_rail.hertz import curvature_sums, effective_modulus, hertz_constant
 from exudyn_turnout.wheel_rail.sections import SectionGrid
 
@@ -47,8 +54,18 @@ __all__ = [
 ]
 
 _FORMAT_VERSION = "wheel_rail-table-8"
-_FIELDS = ("gap", "y_rail", "z_rail", "s_wheel", "angle", "radius", "curvature_rail",
-           "curvature_wheel", "hertz_constant", "x_offset")
+_FIELDS = (
+    "gap",
+    "y_rail",
+    "z_rail",
+    "s_wheel",
+    "angle",
+    "radius",
+    "curvature_rail",
+    "curvature_wheel",
+    "hertz_constant",
+    "x_offset",
+)
 _SIN = len(_FIELDS)  # stored after the public fields: sin(angle) and cos(angle), for the
 _COS = _SIN + 1  # gap's first-order change with shift and lift
 _EMPTY_GAP = 1.0  # m, gap of an empty candidate slot
@@ -127,8 +144,9 @@ def default_cache_dir() -> Path:
     return Path(base) / "exudyn_turnout" / "wheel_rail"
 
 
-def table_key(wheel: WheelGrid, sections: SectionGrid, taping_line: float,
-              settings: TableSettings) -> str:
+def table_key(
+    wheel: WheelGrid, sections: SectionGrid, taping_line: float, settings: TableSettings
+) -> str:
     """SHA-256 of every input of a table.
 
     Parameters
@@ -148,8 +166,14 @@ def table_key(wheel: WheelGrid, sections: SectionGrid, taping_line: float,
         Hex digest.
     """
     digest = hashlib.sha256(_FORMAT_VERSION.encode())
-    for array in (wheel.s, wheel.z, sections.x, sections.y, sections.z,
-                  sections.x_offset if sections.x_offset is not None else np.zeros(0)):
+    for array in (
+        wheel.s,
+        wheel.z,
+        sections.x,
+        sections.y,
+        sections.z,
+        sections.x_offset if sections.x_offset is not None else np.zeros(0),
+    ):
         digest.update(np.ascontiguousarray(array, dtype=float).tobytes())
     digest.update(repr((wheel.nominal_radius, taping_line, settings)).encode())
     return digest.hexdigest()
@@ -162,8 +186,8 @@ def _blendable_cells(values: np.ndarray) -> np.ndarray:
     base_valid, base_y = valid[:-1, :-1], y_rail[:-1, :-1]
     ok_inner = np.ones(base_valid.shape[:2], dtype=bool)
     for di, dj in ((1, 0), (0, 1), (1, 1)):
-        other_valid = valid[di:valid.shape[0] - 1 + di, dj:valid.shape[1] - 1 + dj]
-        other_y = y_rail[di:valid.shape[0] - 1 + di, dj:valid.shape[1] - 1 + dj]
+        other_valid = valid[di : valid.shape[0] - 1 + di, dj : valid.shape[1] - 1 + dj]
+        other_y = y_rail[di : valid.shape[0] - 1 + di, dj : valid.shape[1] - 1 + dj]
         same = np.all(other_valid == base_valid, axis=-1)
         close = np.all(np.abs(other_y - base_y) < _CONSISTENT_DISTANCE, axis=-1)
         ok_inner &= same & close
@@ -171,9 +195,13 @@ def _blendable_cells(values: np.ndarray) -> np.ndarray:
     return ok
 
 
-def _build_values(wheel: WheelGrid, sections: SectionGrid, taping_line: float,
-                  settings: TableSettings, shifts: np.ndarray
-                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _build_values(
+    wheel: WheelGrid,
+    sections: SectionGrid,
+    taping_line: float,
+    settings: TableSettings,
+    shifts: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     derivatives = surface_derivatives(sections)
     n_c = settings.max_candidates
     values = np.zeros((len(sections.x), len(shifts), n_c, len(_FIELDS) + 2))
@@ -182,39 +210,63 @@ def _build_values(wheel: WheelGrid, sections: SectionGrid, taping_line: float,
     step = float(sections.y[1] - sections.y[0])
     prepared_wheel = prepare_wheel(wheel, taping_line, 0.0, settings.directions)
     for i in range(len(sections.x)):
-        rail = prepare_rail(sections.z[i], derivatives.slope[i], derivatives.curvature[i],
-                            sections.y, settings.directions)
-        batch = search_candidates_batch(rail, prepared_wheel, shifts, max_candidates=n_c,
-                                        prominence=settings.prominence,
-                                        max_gap=settings.max_gap)
+        rail = prepare_rail(
+            sections.z[i],
+            derivatives.slope[i],
+            derivatives.curvature[i],
+            sections.y,
+            settings.directions,
+        )
+        batch = search_candidates_batch(
+            rail,
+            prepared_wheel,
+            shifts,
+            max_candidates=n_c,
+            prominence=settings.prominence,
+            max_gap=settings.max_gap,
+        )
         for j, found in enumerate(batch):
             n = len(found.gap)
             count[i, j] = n
             if n == 0:
                 continue
             if sections.x_offset is not None:
-                index = np.clip(np.round((found.y_rail - sections.y[0]) / step).astype(int),
-                                0, len(sections.y) - 1)
+                index = np.clip(
+                    np.round((found.y_rail - sections.y[0]) / step).astype(int),
+                    0,
+                    len(sections.y) - 1,
+                )
                 x_offset = sections.x_offset[i, index]
             else:
                 x_offset = np.zeros(n)
             order = np.argsort(found.y_rail)  # slots ordered from gauge to field side
-            columns = (found.gap, found.y_rail, found.z_rail, found.s_wheel, found.angle,
-                       found.radius, np.nan_to_num(found.curvature_rail),
-                       np.nan_to_num(found.curvature_wheel), np.zeros(n), x_offset,
-                       np.sin(found.angle), np.cos(found.angle))
+            columns = (
+                found.gap,
+                found.y_rail,
+                found.z_rail,
+                found.s_wheel,
+                found.angle,
+                found.radius,
+                np.nan_to_num(found.curvature_rail),
+                np.nan_to_num(found.curvature_wheel),
+                np.zeros(n),
+                x_offset,
+                np.sin(found.angle),
+                np.cos(found.angle),
+            )
             for k, column in enumerate(columns):
                 values[i, j, :n, k] = np.asarray(column, float)[order]
     valid = count[..., None] > np.arange(n_c)
-    a_sum, b_sum = curvature_sums(values[valid][:, 5], values[valid][:, 4],
-                                  values[valid][:, 7], values[valid][:, 6])
-    values[..., 8][valid] = hertz_constant(a_sum, b_sum,
-                                           effective_modulus(settings.young, settings.poisson))
+    a_sum, b_sum = curvature_sums(
+        values[valid][:, 5], values[valid][:, 4], values[valid][:, 7], values[valid][:, 6]
+    )
+    values[..., 8][valid] = hertz_constant(
+        a_sum, b_sum, effective_modulus(settings.young, settings.poisson)
+    )
     return values, count, _blendable_cells(values)
 
 
-def cell_coefficients(values: np.ndarray, blendable: np.ndarray,
-                      shifts: np.ndarray) -> np.ndarray:
+def cell_coefficients(values: np.ndarray, blendable: np.ndarray, shifts: np.ndarray) -> np.ndarray:
     """Per-cell interpolation coefficients of a table (what :func:`lookup_values` uses).
 
     Parameters
@@ -245,10 +297,14 @@ def cell_coefficients(values: np.ndarray, blendable: np.ndarray,
     return np.where(ok, bilinear, nearest)
 
 
-def build_contact_table(wheel: WheelGrid, sections: SectionGrid, taping_line: float,
-                        settings: TableSettings = TableSettings(),
-                        cache_dir: str | Path | None = None, use_cache: bool = True
-                        ) -> ContactTable:
+def build_contact_table(
+    wheel: WheelGrid,
+    sections: SectionGrid,
+    taping_line: float,
+    settings: TableSettings = TableSettings(),
+    cache_dir: str | Path | None = None,
+    use_cache: bool = True,
+) -> ContactTable:
     """Build (or load from the cache) the contact table of one wheel on one rail body.
 
     Parameters
@@ -272,30 +328,42 @@ def build_contact_table(wheel: WheelGrid, sections: SectionGrid, taping_line: fl
     ContactTable
     """
     shifts = settings.shift_min + settings.shift_step * np.arange(
-        int(round((settings.shift_max - settings.shift_min) / settings.shift_step)) + 1)
+        int(round((settings.shift_max - settings.shift_min) / settings.shift_step)) + 1
+    )
     key = table_key(wheel, sections, taping_line, settings)
     path = Path(cache_dir or default_cache_dir()) / f"contact_table_{key[:24]}.npz"
     if use_cache and path.exists():
         with np.load(path) as data:
-            return ContactTable(x=data["x"], shift=data["shift"], values=data["values"],
-                                count=data["count"], blendable=data["blendable"],
-                                coefficients=cell_coefficients(data["values"],
-                                                               data["blendable"],
-                                                               data["shift"]),
-                                key=key, build_seconds=0.0)
+            return ContactTable(
+                x=data["x"],
+                shift=data["shift"],
+                values=data["values"],
+                count=data["count"],
+                blendable=data["blendable"],
+                coefficients=cell_coefficients(data["values"], data["blendable"], data["shift"]),
+                key=key,
+                build_seconds=0.0,
+            )
     start = time.perf_counter()
     values, count, blendable = _build_values(wheel, sections, taping_line, settings, shifts)
     elapsed = time.perf_counter() - start
     if use_cache:
         path.parent.mkdir(parents=True, exist_ok=True)
         temporary = path.with_suffix(".tmp.npz")
-        np.savez(temporary, x=sections.x, shift=shifts, values=values, count=count,
-                 blendable=blendable)
+        np.savez(
+            temporary, x=sections.x, shift=shifts, values=values, count=count, blendable=blendable
+        )
         os.replace(temporary, path)
-    return ContactTable(x=np.asarray(sections.x, float), shift=shifts, values=values,
-                        count=count, blendable=blendable,
-                        coefficients=cell_coefficients(values, blendable, shifts), key=key,
-                        build_seconds=elapsed)
+    return ContactTable(
+        x=np.asarray(sections.x, float),
+        shift=shifts,
+        values=values,
+        count=count,
+        blendable=blendable,
+        coefficients=cell_coefficients(values, blendable, shifts),
+        key=key,
+        build_seconds=elapsed,
+    )
 
 
 def lookup(table: ContactTable, x, shift, lift=0.0) -> ContactLookup:
@@ -323,12 +391,18 @@ def lookup(table: ContactTable, x, shift, lift=0.0) -> ContactLookup:
     valid = gap < 0.5 * _EMPTY_GAP
     angle = values[..., index["angle"]]
     penetration = np.where(valid, np.maximum(-gap, 0.0), 0.0)
-    return ContactLookup(gap=gap, penetration=penetration, y_rail=values[..., index["y_rail"]],
-                         z_rail=values[..., index["z_rail"]],
-                         s_wheel=values[..., index["s_wheel"]], angle=angle,
-                         radius=values[..., index["radius"]],
-                         hertz_constant=values[..., index["hertz_constant"]],
-                         x_offset=values[..., index["x_offset"]], valid=valid)
+    return ContactLookup(
+        gap=gap,
+        penetration=penetration,
+        y_rail=values[..., index["y_rail"]],
+        z_rail=values[..., index["z_rail"]],
+        s_wheel=values[..., index["s_wheel"]],
+        angle=angle,
+        radius=values[..., index["radius"]],
+        hertz_constant=values[..., index["hertz_constant"]],
+        x_offset=values[..., index["x_offset"]],
+        valid=valid,
+    )
 
 
 def lookup_values(table: ContactTable, x, shift, lift=0.0) -> np.ndarray:

@@ -9,6 +9,7 @@ depression of the path between the two rails: its depth below the straight line 
 path's levels before and after, and its angle, the sum of the largest falling and rising
 slopes (the "2 alpha" of dip-angle crossing assessments).
 """
+
 from __future__ import annotations
 
 import math
@@ -16,8 +17,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from exudyn_turnout.wheel_rail.geometry import WheelGrid, prepare_rail, prepare_wheel, search_candidates, \
-    surface_derivatives
+from exudyn_turnout.wheel_rail.geometry import (
+    WheelGrid,
+    prepare_rail,
+    prepare_wheel,
+    search_candidates,
+    surface_derivatives,
+)
 from exudyn_turnout.wheel_rail.sections import SectionGrid
 
 __all__ = ["WheelPath", "DipSummary", "rail_runs", "wheel_path", "dip_summary"]
@@ -69,8 +75,13 @@ def rail_runs(heights: np.ndarray, threshold: float) -> list[slice]:
     return [slice(int(a), int(b)) for a, b in zip(edges[::2], edges[1::2])]
 
 
-def wheel_path(sections: SectionGrid, wheel: WheelGrid, taping_line: float, shift: float,
-               head_threshold: float = -0.010) -> WheelPath:
+def wheel_path(
+    sections: SectionGrid,
+    wheel: WheelGrid,
+    taping_line: float,
+    shift: float,
+    head_threshold: float = -0.010,
+) -> WheelPath:
     """Rigid-contact path of a wheel over (wheel-enveloped) sections with one or two rails.
 
     Parameters
@@ -97,12 +108,18 @@ def wheel_path(sections: SectionGrid, wheel: WheelGrid, taping_line: float, shif
     out = {k: [] for k in ("height", "y_rail", "x_offset", "carrier", "second_gap")}
     prepared = prepare_wheel(wheel, taping_line, 0.0, directions=())
     for i in range(len(sections.x)):
-        rail = prepare_rail(sections.z[i], derivatives.slope[i], derivatives.curvature[i],
-                            sections.y, directions=())
+        rail = prepare_rail(
+            sections.z[i], derivatives.slope[i], derivatives.curvature[i], sections.y, directions=()
+        )
         found = search_candidates(rail, prepared, shift=shift, max_candidates=3, max_gap=0.02)
         if len(found.gap) == 0:
-            for key, value in (("height", np.nan), ("y_rail", np.nan), ("x_offset", np.nan),
-                               ("carrier", -1), ("second_gap", np.nan)):
+            for key, value in (
+                ("height", np.nan),
+                ("y_rail", np.nan),
+                ("x_offset", np.nan),
+                ("carrier", -1),
+                ("second_gap", np.nan),
+            ):
                 out[key].append(value)
             continue
         touching = int(np.argmin(found.gap / np.cos(found.angle)))
@@ -111,17 +128,24 @@ def wheel_path(sections: SectionGrid, wheel: WheelGrid, taping_line: float, shif
         runs = rail_runs(sections.z[i], head_threshold)
         run_of = [k for k, run in enumerate(runs) if run.start <= index < run.stop]
         carrier = 0 if (len(runs) >= 2 and run_of and run_of[0] == 0) else 1
-        others = [found.gap[k] for k in range(len(found.gap)) if k != touching
-                  and _run_index(runs, sections.y, found.y_rail[k], step) != (run_of or [-1])[0]]
+        others = [
+            found.gap[k]
+            for k in range(len(found.gap))
+            if k != touching
+            and _run_index(runs, sections.y, found.y_rail[k], step) != (run_of or [-1])[0]
+        ]
         out["height"].append(-float(found.gap[touching] / math.cos(found.angle[touching])))
         out["y_rail"].append(y)
-        out["x_offset"].append(float(sections.x_offset[i, index])
-                               if sections.x_offset is not None else 0.0)
+        out["x_offset"].append(
+            float(sections.x_offset[i, index]) if sections.x_offset is not None else 0.0
+        )
         out["carrier"].append(carrier)
         out["second_gap"].append(min(others) if others else np.nan)
-    return WheelPath(x=sections.x.copy(), shift=shift,
-                     **{k: np.asarray(v, dtype=int if k == "carrier" else float)
-                        for k, v in out.items()})
+    return WheelPath(
+        x=sections.x.copy(),
+        shift=shift,
+        **{k: np.asarray(v, dtype=int if k == "carrier" else float) for k, v in out.items()},
+    )
 
 
 def _run_index(runs: list[slice], y_grid: np.ndarray, y: float, step: float) -> int:
@@ -156,10 +180,15 @@ def dip_summary(path: WheelPath) -> DipSummary:
     below = chord - h
     deepest = int(np.argmax(below))
     slope = np.gradient(h, x)
-    falling = float(np.max(-slope[:deepest + 1])) if deepest > 0 else 0.0
+    falling = float(np.max(-slope[: deepest + 1])) if deepest > 0 else 0.0
     rising = float(np.max(slope[deepest:])) if deepest < len(x) - 1 else 0.0
     falling, rising = max(falling, 0.0), max(rising, 0.0)
-    return DipSummary(shift=path.shift, transfer_x=transfer, depth=float(below[deepest]),
-                      depth_x=float(x[deepest]), falling_slope=math.atan(falling),
-                      rising_slope=math.atan(rising),
-                      dip_angle=math.atan(falling) + math.atan(rising))
+    return DipSummary(
+        shift=path.shift,
+        transfer_x=transfer,
+        depth=float(below[deepest]),
+        depth_x=float(x[deepest]),
+        falling_slope=math.atan(falling),
+        rising_slope=math.atan(rising),
+        dip_angle=math.atan(falling) + math.atan(rising),
+    )
