@@ -4,10 +4,36 @@ Implements Shih, Ambur & Dixon, "Developing a detailed multi-body dynamic model 
 turnout based on its finite element model", Vehicle System Dynamics 61(3) 725-738 (2023),
 doi 10.1080/00423114.2021.1981952.
 
-Modules: :mod:`~exudyn_turnout.inputs.turnout` (turnout file), :mod:`~exudyn_turnout.corunning.equations`
-(Eqs 1-19), :mod:`~exudyn_turnout.corunning.parameters` (co-running parameter sets),
-:mod:`~exudyn_turnout.corunning.comparison` (derived vs published Table 2), :mod:`~exudyn_turnout.cli.main`.
+The pipeline, one sub-package per stage::
+
+    inputs/      turnout file, plan geometry, routes, vehicle files
+    wheel_rail/  wheel and rail profiles, contact geometry, Hertz, creep
+    corunning/   Eqs 1-19 -> co-running parameters -> linear model, Exudyn track
+    fe/          the FE reference of the turnout (receptance, static stiffness)
+    passage/     a vehicle through the turnout on a 2-layer, 3-layer or FE track
+    report/      2-layer vs 3-layer vs FE against the paper's claims
+    cli/         the exudyn-turnout command
+    plotting/    figures of results and of the model
+
+The front door::
+
+    import exudyn_turnout as et
+
+    turnout = et.load_turnout()                       # the packaged UIC60-760-1:15
+    params = et.co_running_parameters(turnout, zone=2, layers=3)
+    h = et.co_running_receptance(turnout, 3, "r2", "vertical", x=47.2)
+    result = et.simulate_passage(turnout, et.PassageSettings(route="through"),
+                                 track="3-layer")
+    result.plot(); h.plot()
+
+Names that need Exudyn, scipy's FE solvers or matplotlib are imported on first use, so
+``import exudyn_turnout`` stays light.
 """
+
+from __future__ import annotations
+
+import importlib
+from typing import Any
 
 from exudyn_turnout.corunning.parameters import (
     CoRunningParameters,
@@ -16,18 +42,68 @@ from exudyn_turnout.corunning.parameters import (
     delta_y,
     delta_z,
 )
-from exudyn_turnout.inputs.turnout import PARAMETER_NAMES, Turnout, TurnoutFileError, load_turnout
+from exudyn_turnout.inputs.geometry import TurnoutPlan, turnout_plan
+from exudyn_turnout.inputs.routes import Route, load_route
+from exudyn_turnout.inputs.turnout import (
+    PARAMETER_NAMES,
+    Turnout,
+    TurnoutFileError,
+    load_turnout,
+)
+from exudyn_turnout.inputs.vehicle import Vehicle, load_vehicle
+from exudyn_turnout.receptance import Receptance, log_frequencies
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
+
+#: Names imported on first use: name -> module.
+_LAZY = {
+    "co_running_receptance": "exudyn_turnout.corunning.modal",
+    "co_running_modes": "exudyn_turnout.corunning.modal",
+    "fe_receptance": "exudyn_turnout.fe.frf",
+    "FEOptions": "exudyn_turnout.fe.mesh",
+    "simulate_passage": "exudyn_turnout.passage.simulate",
+    "PassageSettings": "exudyn_turnout.passage.simulate",
+    "PassageResult": "exudyn_turnout.passage.simulate",
+    "PassageError": "exudyn_turnout.passage.simulate",
+    "TRACKS": "exudyn_turnout.passage.simulate",
+    "FEPassageOptions": "exudyn_turnout.passage.fe_track",
+    "plot_receptance": "exudyn_turnout.plotting.curves",
+    "plot_passage_forces": "exudyn_turnout.plotting.curves",
+    "draw_cross_section": "exudyn_turnout.plotting.model",
+    "animate_passage": "exudyn_turnout.plotting.model",
+}
 
 __all__ = [
+    "__version__",
     "CoRunningParameters",
+    "PARAMETER_NAMES",
     "Readings",
+    "Receptance",
+    "Route",
+    "Turnout",
+    "TurnoutFileError",
+    "TurnoutPlan",
+    "Vehicle",
     "co_running_parameters",
     "delta_y",
     "delta_z",
-    "PARAMETER_NAMES",
-    "Turnout",
-    "TurnoutFileError",
+    "load_route",
     "load_turnout",
+    "load_vehicle",
+    "log_frequencies",
+    "turnout_plan",
+    *_LAZY,
 ]
+
+
+def __getattr__(name: str) -> Any:
+    """Import the names of :data:`_LAZY` on first use (PEP 562)."""
+    if name in _LAZY:
+        value = getattr(importlib.import_module(_LAZY[name]), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'exudyn_turnout' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))

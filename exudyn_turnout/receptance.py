@@ -21,7 +21,25 @@ DIRECTIONS = ("vertical", "lateral")
 
 
 def log_frequencies(f_min: float = 1.0, f_max: float = 2000.0, n: int = 400) -> np.ndarray:
-    """n logarithmically spaced frequencies (Hz) from f_min to f_max; ValueError if invalid."""
+    """n logarithmically spaced frequencies (Hz) from f_min to f_max.
+
+    Parameters
+    ----------
+    f_min, f_max : float
+        First and last frequency (Hz), 0 < f_min < f_max.
+    n : int
+        Number of frequencies (>= 2).
+
+    Returns
+    -------
+    numpy.ndarray
+        The frequencies (Hz).
+
+    Raises
+    ------
+    ValueError
+        Invalid range or count (the message names the values).
+    """
     if not (0 < f_min < f_max) or not np.isfinite(f_max):
         raise ValueError(f"need 0 < fmin < fmax, got fmin = {f_min:g} Hz, fmax = {f_max:g} Hz")
     if n < 2:
@@ -29,9 +47,14 @@ def log_frequencies(f_min: float = 1.0, f_max: float = 2000.0, n: int = 400) -> 
     return np.geomspace(f_min, f_max, int(n))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Receptance:
-    """Point receptance of one rail (m/N) over frequency."""
+    """Point receptance of one rail (m/N) over frequency.
+
+    Compute functions (:func:`~exudyn_turnout.corunning.modal.co_running_receptance`,
+    :func:`~exudyn_turnout.fe.frf.fe_receptance`) return this data object; :meth:`plot`
+    draws it (delegating to :mod:`exudyn_turnout.plotting`), :meth:`save` writes its CSV.
+    """
 
     frequency_hz: np.ndarray  #: Hz, increasing
     H: np.ndarray  #: m/N, complex displacement / force
@@ -51,8 +74,53 @@ class Receptance:
         """1 / |H| at the lowest frequency (N/m); the paper takes it at 1 Hz."""
         return float(1.0 / abs(self.H[0]))
 
+    def plot(self, ax=None, *, phase: bool = False, title: str | None = None):
+        """Log-log |H| over frequency (and the phase below it, if asked).
+
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Axes to draw into (two for ``phase=True``); default: a new figure.
+        phase : bool
+            Draw the phase too.
+        title : str, optional
+            Axes title.
+
+        Returns
+        -------
+        (figure, axes)
+            From :func:`exudyn_turnout.plotting.plot_receptance`.
+        """
+        from exudyn_turnout.plotting.curves import plot_receptance
+
+        return plot_receptance(self, ax, phase=phase, title=title)
+
+    def save(self, path: str | Path) -> None:
+        """Write the CSV (``frequency_hz,real,imag,magnitude``, m/N); same as :meth:`to_csv`.
+
+        Parameters
+        ----------
+        path : str or Path
+            The CSV file.
+        """
+        self.to_csv(path)
+
+    def __repr__(self) -> str:
+        f = self.frequency_hz
+        return (
+            f"Receptance({self.model}, {self.rail} {self.direction} at x = {self.x:g} m, "
+            f"{len(f)} frequencies {f[0]:g}-{f[-1]:g} Hz, "
+            f"static stiffness {self.static_stiffness / 1e6:.1f} MN/m)"
+        )
+
     def to_csv(self, path: str | Path) -> None:
-        """Write ``frequency_hz,real,imag,magnitude`` (m/N), one row per frequency."""
+        """Write ``frequency_hz,real,imag,magnitude`` (m/N), one row per frequency.
+
+        Parameters
+        ----------
+        path : str or Path
+            The CSV file.
+        """
         with open(path, "w", newline="", encoding="utf-8") as fh:
             w = csv.writer(fh)
             w.writerow(CSV_COLUMNS)
@@ -68,6 +136,22 @@ class Receptance:
         x: float = float("nan"),
         model: str = "",
     ) -> Receptance:
-        """Read a file written by :meth:`to_csv`."""
+        """Read a file written by :meth:`to_csv`.
+
+        Parameters
+        ----------
+        path : str or Path
+            The CSV file (``frequency_hz,real,imag,magnitude``).
+        rail, direction : str
+            Rail slot and direction to record (the CSV does not hold them).
+        x : float
+            Position (m) to record.
+        model : str
+            Model name to record.
+
+        Returns
+        -------
+        Receptance
+        """
         data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
         return cls(data[:, 0], data[:, 1] + 1j * data[:, 2], rail, direction, x, model)

@@ -20,6 +20,7 @@ import sys
 import warnings
 from collections.abc import Sequence
 from pathlib import Path
+from typing import NoReturn
 
 from exudyn_turnout.corunning.parameters import SOURCES, CoRunningParameters, co_running_parameters
 from exudyn_turnout.inputs.turnout import Turnout, TurnoutFileError, load_turnout
@@ -171,7 +172,7 @@ def check_out_file(path: str, option: str = "--out") -> Path:
 
 
 class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> None:  # one line, exit 2 (argparse prints usage too)
+    def error(self, message: str) -> NoReturn:  # one line, exit 2 (argparse: usage too)
         raise UsageError(f"{self.prog}: {message}")
 
 
@@ -504,6 +505,7 @@ _COMMAND_MODULES: tuple[str, ...] = (
     "exudyn_turnout.cli.passage",
     "exudyn_turnout.cli.validate",
     "exudyn_turnout.cli.fe",
+    "exudyn_turnout.cli.draw",
 )
 
 

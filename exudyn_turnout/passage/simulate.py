@@ -2,8 +2,9 @@
 
 The wheelset (:mod:`~exudyn_turnout.inputs.vehicle`) runs at constant speed along a route
 (:mod:`~exudyn_turnout.inputs.routes`) over a two- or three-layer co-running track
-(:mod:`~exudyn_turnout.corunning.track`) whose position-dependent stiffness and damping follow the
-wheelset's x, coupled by the penalty wheel/rail contact of :mod:`~exudyn_turnout.passage.contact_element`.
+(:mod:`~exudyn_turnout.corunning.track`) whose position-dependent stiffness and damping
+follow the wheelset's x, coupled by the penalty wheel/rail contact of
+:mod:`~exudyn_turnout.passage.contact_element`.
 
 The run starts from static equilibrium at ``x_start`` and is split at the zone boundaries
 (Table 3): in each zone a new Exudyn system is built with that zone's masses and active
@@ -17,11 +18,12 @@ import math
 import time
 import warnings
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
 
-from exudyn_turnout.corunning.parameters import co_running_parameters
+from exudyn_turnout.corunning.parameters import CoRunningParameters, co_running_parameters
 from exudyn_turnout.inputs.routes import Route, SpeedWarning, load_route, speed_warnings
 from exudyn_turnout.inputs.turnout import Turnout, Zone
 from exudyn_turnout.inputs.vehicle import Vehicle, load_vehicle
@@ -29,6 +31,7 @@ from exudyn_turnout.passage.contact_element import BoundPair, WheelRailElement
 from exudyn_turnout.passage.vehicle import add_vehicle
 
 __all__ = [
+    "TRACKS",
     "PassageSettings",
     "PassageResult",
     "PassageError",
@@ -92,16 +95,96 @@ class PassageSettings:
         return self.speed_kmh / 3.6
 
 
-@dataclass(frozen=True)
+#: Track models of :func:`simulate_passage`.
+TRACKS = ("2-layer", "3-layer", "fe")
+
+
+@dataclass(frozen=True, repr=False)
 class PassageResult:
-    """Time histories and peaks of a passage (SI units, see :func:`simulate_passage`)."""
+    """Time histories and peaks of a passage (SI units, see :func:`simulate_passage`).
+
+    Compute returns this data object; :meth:`plot` draws it (delegating to
+    :mod:`exudyn_turnout.plotting`), :meth:`save` writes it, :meth:`peaks` lists its peaks.
+    """
 
     settings: PassageSettings
     columns: Mapping[str, np.ndarray]  #: "t_s", "x_m", forces (N), displacements (m, rad)
     summary: Mapping[str, object]
-    zone_starts: tuple[float, ...] = field(
-        default_factory=tuple
-    )  #: m, x where each run segment began
+    #: m, x where each run segment began
+    zone_starts: tuple[float, ...] = field(default_factory=tuple)
+
+    @property
+    def model(self) -> str:
+        """The track model: ``"2-layer"``, ``"3-layer"`` or ``"FE"``."""
+        return str(self.summary.get("model", f"{self.settings.layers}-layer"))
+
+    def peaks(self) -> dict[str, float]:
+        """Peak forces (N) of the summary: per region, per wheel and per contact.
+
+        Returns
+        -------
+        dict
+            ``peak_<Fz|Fy>_<region>[_<wheel>[_<rail>]]_N`` -> N (NaN where a region or a
+            contact is not in the run). ``Fz`` peaks are maxima, ``Fy`` the largest
+            magnitude with its sign.
+        """
+        out = {}
+        for key, value in self.summary.items():
+            if key.startswith("peak_") and isinstance(value, (int, float)):
+                out[key] = float(value)
+            elif key.startswith("peak_") and value is None:
+                out[key] = math.nan
+        return out
+
+    def plot(self, wheel: str | None = None, title: str | None = None):
+        """Contact forces against x at the switch and at the crossing (Figs 7, 8 layout).
+
+        Parameters
+        ----------
+        wheel : {"right", "left"}, optional
+            Default: the right wheel, as the paper's figures.
+        title : str, optional
+            Figure title.
+
+        Returns
+        -------
+        (figure, axes)
+            From :func:`exudyn_turnout.plotting.plot_passage_forces`.
+        """
+        from exudyn_turnout.plotting.curves import plot_passage_forces
+
+        return plot_passage_forces([self], wheel=wheel or "right", title=title)
+
+    def save(self, directory, format: str = "csv") -> dict[str, str]:  # noqa: A002
+        """Write the time series (``timeseries.csv`` or ``.npz``) and ``summary.json``.
+
+        Parameters
+        ----------
+        directory : str or Path
+            Output directory (created if missing).
+        format : {"csv", "npz"}
+            Format of the time series.
+
+        Returns
+        -------
+        dict
+            Paths of the files written, by kind.
+        """
+        return write_passage(self, directory, fmt=format)
+
+    def __repr__(self) -> str:
+        s = self.settings
+        x = self.columns["x_m"]
+        crossing = self.summary.get("peak_Fz_crossing_N")
+        peak = (
+            f", peak Fz crossing {crossing / 1e3:.1f} kN"
+            if isinstance(crossing, (int, float)) and math.isfinite(crossing)
+            else ""
+        )
+        return (
+            f"PassageResult({self.model}, route {s.route!r}, {s.speed_kmh:g} km/h, "
+            f"x {x[0]:g} to {x[-1]:g} m, {len(x)} samples{peak})"
+        )
 
 
 def contact_resonance(vehicle: Vehicle, m_contact: float) -> float:
@@ -334,14 +417,14 @@ def _contact_losses(fz: np.ndarray) -> int:
 class _ZoneSystem:
     """One zone's Exudyn system and what the passage needs of it."""
 
-    container: object
-    mbs: object
+    container: Any  #: exudyn.SystemContainer
+    mbs: Any  #: exudyn.MainSystem
     zone: Zone
     element: WheelRailElement
     names: dict  #: node name ("wheelset", "yaw", "sprung", "sleeper", "rail_r1", "m0_r1") -> node
     rails: dict  #: rail slot touched by a wheel -> index of its y in the element
     sensors: list  #: sensors of the coordinates of the element's nodes, in element order
-    params: object  #: CoRunningParameters of the zone, with the route's cross-section
+    params: CoRunningParameters  #: the zone's set, with the route's cross-section
     force_sensor: int  #: stores the contact element's generalised forces every step
 
     @property
@@ -450,7 +533,7 @@ _NODE_DOF = {"sleeper": ("y_t", "z_t", "phi_t")}
 
 
 def _dof_of(name: str) -> tuple[str, ...]:
-    """Coordinate names (exudyn_turnout.corunning.modal) of a track node name ("rail_r1", "m0_r1", "sleeper")."""
+    """Coordinate names (corunning.modal) of a track node ("rail_r1", "m0_r1", "sleeper")."""
     if name in _NODE_DOF:
         return _NODE_DOF[name]
     kind, _, slot = name.partition("_")
@@ -459,7 +542,7 @@ def _dof_of(name: str) -> tuple[str, ...]:
 
 def _track_vector(state: dict, system: _ZoneSystem, index: int) -> dict[str, float]:
     """Track coordinates (index 0) or velocities (1) of ``state`` by coordinate name."""
-    out = {}
+    out: dict[str, float] = {}
     for name in system.names:
         if name in ("wheelset", "yaw", "sprung"):
             continue
@@ -570,7 +653,8 @@ def _vehicle_shift(
     from exudyn_turnout.corunning.modal import wheel_dof
 
     b = old.element.vehicle.b
-    dz, dy = {"left": [], "right": []}, {"left": [], "right": []}
+    dz: dict[str, list[float]] = {"left": [], "right": []}
+    dy: dict[str, list[float]] = {"left": [], "right": []}
     new_slot = {
         src: slot for slot, src in source.items()
     }  # source holds the new zone's active slots only
@@ -654,7 +738,8 @@ def _run(
     )  # every step: no rounding skips
     sim.timeIntegration.numberOfSteps = max(1, int(math.ceil(duration / h - 1e-9)))
     sim.timeIntegration.generalizedAlpha.spectralRadius = settings.spectral_radius
-    # 1 N residual: 2e-5 of a wheel load; peaks equal those at 1e-4 N to 0.2 N, with half the iterations
+    # 1 N residual: 2e-5 of a wheel load; peaks equal those at 1e-4 N to 0.2 N, with half
+    # the iterations
     sim.timeIntegration.newton.absoluteTolerance = NEWTON_ABSOLUTE_TOLERANCE
     el = system.element
     if progress is not None:
@@ -694,18 +779,31 @@ def simulate_passage(
     settings: PassageSettings = PassageSettings(),
     vehicle: Vehicle | None = None,
     progress: Callable[[float, float], None] | None = None,
+    *,
+    track: str | None = None,
+    fe_options=None,
 ) -> PassageResult:
-    """Run one wheelset through the turnout on a co-running track.
+    """Run the vehicle through the turnout on a co-running track or on the FE track.
+
+    One entry point whatever the track: ``track="2-layer"`` or ``"3-layer"`` (the paper's
+    co-running models, Figs 2, 3) or ``"fe"`` (the FE reference,
+    :func:`~exudyn_turnout.passage.fe_track.simulate_fe_passage`, vertical only for now).
 
     Parameters
     ----------
     turnout : Turnout
+        From :func:`~exudyn_turnout.inputs.turnout.load_turnout`.
     settings : PassageSettings
-        Route, speed, layers, parameter source, x range, time step.
+        The scenario: route, speed, x range, time step, output step; for the co-running
+        tracks also the parameter source and the spring mechanism.
     vehicle : Vehicle, optional
         Default: the packaged Manchester benchmark wheelset.
     progress : callable(fraction, x), optional
         Called about every 2 % of the run.
+    track : {"2-layer", "3-layer", "fe"}, optional
+        Default: ``settings.layers`` layers of co-running track.
+    fe_options : FEPassageOptions, optional
+        Mesh and solver options of the FE track (``track="fe"`` only).
 
     Returns
     -------
@@ -722,6 +820,14 @@ def simulate_passage(
     PassageError
         Bad settings (one line naming the problem) or a solver failure (time and position).
     """
+    if track is not None and track not in TRACKS:
+        raise PassageError(f"track must be one of {', '.join(TRACKS)}, got {track!r}")
+    if track == "fe":
+        from exudyn_turnout.passage.fe_track import simulate_fe_passage
+
+        return simulate_fe_passage(turnout, settings, vehicle, fe_options, progress=progress)
+    if track is not None:
+        settings = replace(settings, layers=int(track[0]))
     vehicle = vehicle or load_vehicle()
     x_a, x_b = _check(settings, turnout, vehicle)
     route = load_route(turnout, settings.route)
@@ -851,9 +957,9 @@ def _contact_peaks(
                 out[f"peak_{q}_{where}_{wheel}_{slot}_N"] = value
                 if math.isfinite(value) and (best is None or abs(value) > abs(best[0])):
                     best = (value, wheel, slot, x)
-            best = best or (math.nan, None, None, math.nan)
-            out[f"max_{q}_{where}_N"], out[f"max_{q}_{where}_wheel"] = best[0], best[1]
-            out[f"max_{q}_{where}_rail"], out[f"max_{q}_{where}_x_m"] = best[2], best[3]
+            value, wheel_of, rail_of, x_of = best or (math.nan, None, None, math.nan)
+            out[f"max_{q}_{where}_N"], out[f"max_{q}_{where}_wheel"] = value, wheel_of
+            out[f"max_{q}_{where}_rail"], out[f"max_{q}_{where}_x_m"] = rail_of, x_of
     return out
 
 
@@ -1002,7 +1108,8 @@ def write_passage(
                     w.writerow(["" if not math.isfinite(v) else f"{v:.9g}" for v in row])
         else:
             arrays = {n: np.asarray(result.columns[n], dtype=float) for n in names}
-            np.savez(series, summary=np.array(summary_text), **arrays)
+            arrays["summary"] = np.array(summary_text)
+            np.savez(series, **arrays)  # type: ignore[arg-type]  # numpy's stub: **kwds
         (tmp / "summary.json").write_text(summary_text + "\n", encoding="utf-8")
         files = [series.name]
         if figure is not None:
@@ -1061,7 +1168,7 @@ def peaks_table(results: Mapping[str, PassageResult]) -> str:
     for label, r in results.items():
         lines.append(
             f"{label:<28}"
-            + "".join(f"{r.summary[k] / 1e3:>18.1f}" for k in keys)
-            + f"{r.summary['wall_time_s']:>10.2f}"
+            + "".join(f"{float(r.summary[k]) / 1e3:>18.1f}" for k in keys)  # type: ignore[arg-type]
+            + f"{float(r.summary['wall_time_s']):>10.2f}"  # type: ignore[arg-type]
         )
     return "\n".join(lines)
