@@ -1,12 +1,12 @@
-"""Benchmark: contact-geometry table build and the vectorised lookup (issue 12).
+"""Benchmark: contact-geometry table build and the vectorised lookup.
 
 Run: ``python benchmarks/bench_contact_geometry.py [--repeat N] [--quick]``.  Prints one
 table: the build time of each table (no cache; wall and CPU time, which differ when other
 jobs share the machine), the time to load it back from the disk
 cache, and the lookup time per call for a step's batch of contacts (4 = two wheels on two
 rails each; 8; 100) and per contact.  Tables are cached in a temporary folder that is
-removed afterwards.  Target (issue 12): build "a few seconds, cached"; lookup "a few
-microseconds" per contact, since a passage makes ~25 000 steps with ~3 calls each.
+removed afterwards.  Targets: a build of a few seconds, then cached; a lookup of a few
+microseconds per contact, since a passage makes ~25 000 steps with ~3 calls each.
 """
 
 from __future__ import annotations
@@ -14,6 +14,7 @@ from __future__ import annotations
 import argparse
 import tempfile
 import time
+from functools import partial
 
 import numpy as np
 
@@ -76,8 +77,8 @@ def main() -> None:
             table = build_contact_table(wheel, sections, taping_line, settings, cache_dir=cache)
             cpu = time.process_time() - cpu
             load = best_of(
-                lambda: build_contact_table(
-                    wheel, sections, taping_line, settings, cache_dir=cache
+                partial(
+                    build_contact_table, wheel, sections, taping_line, settings, cache_dir=cache
                 ),
                 3,
             )
@@ -87,7 +88,7 @@ def main() -> None:
                 shift = rng.uniform(-0.008, 0.008, n)
                 lift = rng.uniform(-4e-4, 0.0, n)
                 per_call.append(
-                    best_of(lambda: lookup_values(table, x, shift, lift), args.repeat) * 1e6
+                    best_of(partial(lookup_values, table, x, shift, lift), args.repeat) * 1e6
                 )
             nodes = table.values.shape[0] * table.values.shape[1]
             print(

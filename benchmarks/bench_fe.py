@@ -8,7 +8,7 @@ UIC60-760-1:15 turnout with the default FE options:
   lateral, n log-spaced frequencies 1-2000 Hz: wall and CPU time, split into the block
   elimination (Schur complement), the sparse LU and the solve with its residual check;
 - the static stiffness profile of every rail at every sleeper, both planes;
-- the peak memory of the process (ru_maxrss). Targets (issue 4): receptance <= 10 s,
+- the peak memory of the process (ru_maxrss). Targets: receptance <= 10 s,
   < 2 GB; profile <= 60 s. The timings are of this one run on this machine.
 """
 
@@ -113,8 +113,8 @@ def main(argv=None) -> None:
     rows += [
         (
             "static stiffness profile, both planes",
-            f"{prof.wall:.2f} s wall, {prof.cpu:.2f} s CPU, "
-            f"{len(profile.x)} rail positions, {len(profile.rails)} rails",
+            f"{prof.wall:.2f} s wall, {prof.cpu:.2f} s CPU, {len(profile.x)} rail positions, "
+            f"{len(profile.rails)} rails",
         )
     ]
     rows += [

@@ -50,20 +50,23 @@ def main(argv=None):
     fe_wall = time.perf_counter() - t0
     sim = fe.summary["simulated_time_s"]
     print(
-        f"{'passage (through, 100 km/h, -5..60 m, h = 1e-4 s)':<52}{'wall s':>9}{'wall/sim s':>12}{'DOFs':>8}"
+        f"{'passage (through, 100 km/h, -5..60 m, h = 1e-4 s)':<52}{'wall s':>9}"
+        f"{'wall/sim s':>12}{'DOFs':>8}"
     )
     print(
         f"{'3-layer co-running (Exudyn)':<52}{co.summary['wall_time_s']:>9.2f}"
         f"{co.summary['wall_time_s'] / sim:>12.2f}{'21-25':>8}"
     )
     print(
-        f"{'FE track (numpy/scipy, HHT-alpha)':<52}{fe_wall:>9.1f}{fe_wall / sim:>12.1f}{fe.summary['n_dof']:>8}"
+        f"{'FE track (numpy/scipy, HHT-alpha)':<52}{fe_wall:>9.1f}{fe_wall / sim:>12.1f}"
+        f"{fe.summary['n_dof']:>8}"
     )
     print(f"{'ratio FE / 3-layer':<52}{fe_wall / co.summary['wall_time_s']:>9.0f}")
     parts = fe.summary["wall_time_parts_s"]
     steps = fe.summary["n_steps"]
     print(
-        f"\nFE passage: {steps} steps, {1e3 * parts['steps'] / steps:.2f} ms per step; where the time goes:"
+        f"\nFE passage: {steps} steps, {1e3 * parts['steps'] / steps:.2f} ms per step; where the "
+        "time goes:"
     )
     accounted = 0.0
     for key, text in PARTS:
@@ -71,8 +74,8 @@ def main(argv=None):
         print(f"  {key:<10}{parts[key]:>8.1f} s {100 * parts[key] / fe_wall:>5.1f} %  {text}")
     rest = fe_wall - accounted
     print(
-        f"  {'rest':<10}{rest:>8.1f} s {100 * rest / fe_wall:>5.1f} %  Python per step: contact geometry, "
-        "state update, recording"
+        f"  {'rest':<10}{rest:>8.1f} s {100 * rest / fe_wall:>5.1f} %  Python per step: contact "
+        "geometry, state update, recording"
     )
 
 

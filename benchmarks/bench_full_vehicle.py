@@ -85,8 +85,8 @@ def main(argv=None):
     ]
     steps = int(round(args.time / args.step))
     print(
-        f"vehicle alone on rigid-track springs, h = {args.step:g} s, {steps} steps, "
-        f"best of {args.repeat}"
+        f"vehicle alone on rigid-track springs, h = {args.step:g} s, {steps} steps, best of "
+        f"{args.repeat}"
     )
     print(
         f"{'case':<44}{'ODE2':>6}{'Newton/step':>12}{'wall s':>9}{'us/step':>9}{'x real time':>13}"

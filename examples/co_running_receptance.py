@@ -36,13 +36,14 @@ def eigenfrequency_table(
 ) -> str:
     """Text table: the first undamped eigenfrequencies and the oscillating damped modes."""
     lines = [
-        f"{'case':<28}{'model':<9}first undamped eigenfrequencies (Hz) | oscillating modes, damped (Hz)"
+        f"{'case':<28}{'model':<9}"
+        "first undamped eigenfrequencies (Hz) | oscillating modes, damped (Hz)"
     ]
     for name, x in cases.items():
         for layers in (2, 3):
-            md = co_running_modes(turnout, layers, x=x, source=source)
-            f_d, _ = md.damped()
-            undamped = " ".join(f"{f:6.1f}" for f in md.frequency_hz[:count])
+            modes = co_running_modes(turnout, layers, x=x, source=source)
+            f_d, _ = modes.damped()
+            undamped = " ".join(f"{f:6.1f}" for f in modes.frequency_hz[:count])
             damped = " ".join(f"{f:6.1f}" for f in f_d[:count])
             lines.append(f"{name + f' (x = {x:.1f} m)':<28}{layers}-layer  {undamped} | {damped}")
     return "\n".join(lines)
@@ -69,12 +70,12 @@ def plot_direction(
             )
             for layers in (2, 3)
         ]
-        for r in curves:
-            r.to_csv(out_dir / f"{name.replace(' ', '_')}_{direction}_{r.model}.csv")
+        for curve in curves:
+            curve.to_csv(out_dir / f"{name.replace(' ', '_')}_{direction}_{curve.model}.csv")
         plot_receptance(
             curves,
             ax=ax,
-            labels=[r.model for r in curves],
+            labels=[curve.model for curve in curves],
             title=f"({letter}) {name}, x = {x:.1f} m, {direction}",
         )
     fig.tight_layout()
@@ -105,7 +106,9 @@ def main(
     print(f"{turnout.name}, {source} parameters")
     print(eigenfrequency_table(turnout, cases, source))
     frequencies = log_frequencies(1.0, 2000.0, 600)
-    return [plot_direction(turnout, cases, d, source, frequencies, out) for d in FIGURES]
+    return [
+        plot_direction(turnout, cases, direction, source, frequencies, out) for direction in FIGURES
+    ]
 
 
 if __name__ == "__main__":

@@ -17,7 +17,14 @@ def run(out_dir, route="through", speed_kmh=100.0, x_start=None, x_end=None):
     turnout = load_turnout()
     settings = PassageSettings(route=route, speed_kmh=speed_kmh, x_start=x_start, x_end=x_end)
     results = compare_layers(turnout, settings)
-    print(peaks_table({f"{n}-layer, {route}, {speed_kmh:g} km/h": r for n, r in results.items()}))
+    print(
+        peaks_table(
+            {
+                f"{layers}-layer, {route}, {speed_kmh:g} km/h": result
+                for layers, result in results.items()
+            }
+        )
+    )
     fig, _ = plot_passage_forces(
         results.values(), title=f"{turnout.name}, {route} route, {speed_kmh:g} km/h"
     )

@@ -84,16 +84,17 @@ def file_record(path: str | Path | None) -> dict[str, str] | None:
     Returns
     -------
     dict or None
-        Its name (no directory) and the SHA-256 of its bytes ("unreadable" if it cannot be read).
+        Its name (no directory) and the SHA-256 of its bytes ("unreadable" if it cannot be
+        read).
     """
     if path is None:
         return None
-    p = Path(str(path))
+    file = Path(str(path))
     try:
-        digest = hashlib.sha256(p.read_bytes()).hexdigest()
+        digest = hashlib.sha256(file.read_bytes()).hexdigest()
     except OSError:
         digest = "unreadable"
-    return {"name": p.name, "sha256": digest}
+    return {"name": file.name, "sha256": digest}
 
 
 def reduce_argv(argv: Sequence[str]) -> list[str]:
@@ -109,6 +110,7 @@ def reduce_argv(argv: Sequence[str]) -> list[str]:
     Returns
     -------
     list of str
+        The arguments, absolute paths (also after ``--option=``) replaced by their names.
     """
     out = []
     for arg in argv:
@@ -209,9 +211,10 @@ def sidecar_path(path: str | Path) -> Path:
     Returns
     -------
     Path
+        The sidecar file's path (in the output file's directory).
     """
-    p = Path(path)
-    return p.with_name(p.stem + ".meta.json")
+    output = Path(path)
+    return output.with_name(output.stem + ".meta.json")
 
 
 def write_json(path: str | Path, data: Mapping[str, Any]) -> None:
@@ -224,11 +227,11 @@ def write_json(path: str | Path, data: Mapping[str, Any]) -> None:
     data : mapping
         JSON-ready content.
     """
-    p = Path(path)
-    tmp = p.with_name(f".{p.name}.{os.getpid()}.tmp")
+    target = Path(path)
+    tmp = target.with_name(f".{target.name}.{os.getpid()}.tmp")
     try:
         tmp.write_text(json.dumps(round_floats(data), indent=1) + "\n", encoding="utf-8")
-        os.replace(tmp, p)
+        os.replace(tmp, target)
     finally:
         if tmp.exists():
             tmp.unlink()

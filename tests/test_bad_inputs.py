@@ -419,7 +419,7 @@ def test_bad_input_one_line_exit_2(tmp_path, capsys, what, argv, which, edit, fr
 
 
 def test_table_size():
-    """The closing note of issue 10 reports this count (plus the exit-3 and pipe cases below)."""
+    """The table covers at least 45 bad inputs (besides the exit-3 and pipe cases below)."""
     assert len(CASES) >= 45
 
 

@@ -91,8 +91,8 @@ def test_frf_imports_neither_exudyn_nor_matplotlib(tmp_path):
     """The receptance is numpy/scipy only; matplotlib only with --plot (fast start)."""
     code = (
         "import sys; from exudyn_turnout.cli.main import main; "
-        f"rc = main(['frf', '--layers', '3', '--rail', 'r2', '--direction', 'lateral', '--zone', '1', "
-        f"'--out', r'{tmp_path / 'h.csv'}']); "
+        "rc = main(['frf', '--layers', '3', '--rail', 'r2', '--direction', 'lateral', "
+        f"'--zone', '1', '--out', r'{tmp_path / 'h.csv'}']); "
         "print(rc, 'exudyn' in sys.modules, 'matplotlib' in sys.modules)"
     )
     out = subprocess.run(

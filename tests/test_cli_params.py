@@ -77,7 +77,7 @@ def test_bad_input_one_line_exit_2(capsys, argv, fragment):
 
 
 def test_fe_fitted_profiles(capsys):
-    """--profiles fe-fit: Delta_z(x) = K_sw,fit(x) / K_st with the FE fit (fe/fits.py) in place of Eq 10."""
+    """--profiles fe-fit: Delta_z(x) = K_sw,fit(x) / K_st, the FE fit (fe/fits.py) for Eq 10."""
     from exudyn_turnout.corunning.parameters import reference_support
     from exudyn_turnout.fe.fits import fit_turnout_profiles
     from exudyn_turnout.fe.stiffness import static_stiffness_profile

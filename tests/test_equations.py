@@ -66,7 +66,10 @@ def test_stock_rail_static_stiffness_is_about_6_4e7(turnout):
 
 
 def test_eq2_hand_values():
-    """k_b = 20e6 * 2.5 / 2 = 25e6 N/m (Eq 4); k_s = 120e6 * 25e6 / (0.6 * 145e6) = 34.483e6 N/m^2."""
+    """k_b = 20e6 * 2.5 / 2 = 25e6 N/m (Eq 4).
+
+    k_s = 120e6 * 25e6 / (0.6 * 145e6) = 34.483e6 N/m^2 (Eq 2).
+    """
     k_s = eq.continuous_support_stiffness(120e6, 25e6, 0.6)
     assert k_s == pytest.approx(34.4828e6, rel=1e-5)
     assert eq.static_track_stiffness(207e9 * 3.03e-5, k_s) == pytest.approx(6.3694e7, rel=1e-4)
@@ -114,7 +117,10 @@ def test_crossing_rail_reproduces_table2_only_with_reciprocal_eq5(turnout):
 
 
 def test_eq12_textbook_shear_modulus_value():
-    """c_0 = 2 A sqrt(0.4 G rho), G = 207e9 / 2.6 = 79.6 GPa: 2 * 0.0076668 * sqrt(0.4 * 79.6e9 * 7850)."""
+    """c_0 = 2 A sqrt(0.4 G rho), G = 207e9 / 2.6 = 79.6 GPa.
+
+    Hand value: 2 * 0.0076668 * sqrt(0.4 * 79.6e9 * 7850).
+    """
     G = eq.shear_modulus(207e9, 0.3)
     assert G == pytest.approx(79.615e9, rel=1e-4)
     assert eq.extra_layer_damping(0.0076668, G, 7850) == pytest.approx(

@@ -1,8 +1,8 @@
 """examples/co_running_receptance.py runs into a temporary directory (layout of Figs 5, 6).
 
-Checks that both figures and the eight CSVs (2 rails x 2 directions x 2 models) are written and that the printed
-table lists both models at both positions; the numbers themselves are tested in
-test_receptance.py.
+Checks that both figures and the eight CSVs (2 rails x 2 directions x 2 models) are written
+and that the printed table lists both models at both positions; the numbers themselves are
+tested in test_receptance.py.
 """
 
 import importlib.util

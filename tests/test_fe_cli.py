@@ -1,7 +1,7 @@
 """``exudyn-turnout fe frf`` and ``fe stiffness``: CSV columns, bad input -> one line, exit 2.
 
-Reference: issue 4 (CLI and CSV columns); the receptance CSV columns are those of the
-co-running receptance (exudyn_turnout.receptance.CSV_COLUMNS).
+Reference: the receptance CSV columns are those of the co-running receptance
+(exudyn_turnout.receptance.CSV_COLUMNS).
 """
 
 import csv

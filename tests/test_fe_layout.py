@@ -7,7 +7,8 @@ Reference values and their sources:
   rail-centre crossing point (inside the crossing panel 44.29-51.52 m); the right rail
   (radius R - 0.75) is at -0.816 m at 10 m and -2.253 m at 47.749 m;
 - the file's [[zones]] rail_y (cross-sections of the co-running model: zone 1 r1 = -0.75
-  m where the wheel runs on it, checked at 3 m before the load transfer; zone 2 r1 = -2.25 m, r2 = -0.75 m, r3 = 0.68 m, r4 = 0.75 m, sleeper_y = -0.75 m)
+  m where the wheel runs on it, checked at 3 m before the load transfer; zone 2
+  r1 = -2.25 m, r2 = -0.75 m, r3 = 0.68 m, r4 = 0.75 m, sleeper_y = -0.75 m)
   and rail_types per slot (Table 3): the layout must agree with them;
 - sleeper length table of the file (2.5 m plain track, 4.06 m crossing panel, Table 1).
 """
@@ -56,10 +57,13 @@ def test_slots_agree_with_zones(turnout, layout, zone_index, x):
 
 def test_bearers_follow_the_sleeper_table(turnout, layout):
     mesh = build_mesh(turnout, layout)
-    at = lambda x: int(
-        np.argmin(np.abs(mesh.sleeper_x - x) + (np.array(mesh.sleeper_track) != "turnout"))
-    )  # noqa: E731
-    plain, crossing = at(-3.0), at(47.7)
+    not_bearer = np.array(mesh.sleeper_track) != "turnout"
+
+    def bearer_near(x):
+        """Index of the turnout bearer nearest to x (other tracks' sleepers penalised)."""
+        return int(np.argmin(np.abs(mesh.sleeper_x - x) + not_bearer))
+
+    plain, crossing = bearer_near(-3.0), bearer_near(47.7)
     assert mesh.sleeper_length[plain] == pytest.approx(2.5) and mesh.sleeper_centre[
         plain
     ] == pytest.approx(0.0)

@@ -1,4 +1,4 @@
-"""Wheelset passage over the FE track (issue 6 checks), on a short plain-track model.
+"""Wheelset passage over the FE track, on a short plain-track model.
 
 Reference values and their sources:
 - static wheel load W = (m_w + m_s) g / 2 of the Manchester benchmark wheelset
@@ -39,7 +39,8 @@ from exudyn_turnout.passage.fe_track import (
 from exudyn_turnout.passage.simulate import PassageError, PassageSettings
 
 W = (1813 + 32000 / 4 + 2615 / 2) * 9.81 / 2
-#: 8 m of plain track (sleepers at x = 0 +- i 0.6 m) + 4 m undamped + 4 m absorbing ends: ~3600 DOFs.
+#: 8 m of plain track (sleepers at x = 0 +- i 0.6 m) + 4 m undamped + 4 m absorbing ends:
+#: ~3600 DOFs.
 MESH = FEOptions(extension=4.0, absorbing_length=4.0)
 
 
@@ -174,7 +175,8 @@ def test_model_ends_do_not_matter(turnout, plain_track):
 def jenkins_p2(P0, two_alpha, v, M_u, M_t, K_t, C_t):
     """Jenkins et al. (1974) P2 force (N) after a dip of total angle 2 alpha (rad) at speed v (m/s).
 
-    P2 = P0 + 2 alpha v sqrt(M_u / (M_u + M_t)) (1 - C_t pi / (4 sqrt(K_t (M_u + M_t)))) sqrt(K_t M_u)
+    P2 = P0 + 2 alpha v sqrt(M_u / (M_u + M_t))
+              (1 - C_t pi / (4 sqrt(K_t (M_u + M_t)))) sqrt(K_t M_u)
 
     M_u unsprung mass per wheel; M_t, K_t, C_t the equivalent track mass, stiffness and
     damping per wheel. Assumptions: a two-mass model (wheel, lumped track on K_t, C_t)

@@ -1,9 +1,9 @@
-"""The Manchester benchmark vehicle 1 as data and in Exudyn (issue 13, groundwork).
+"""The Manchester benchmark vehicle 1 as data and in Exudyn (the full vehicle's groundwork).
 
 Sources of the reference numbers:
 
-- static wheel load 44 482 kg x 9.81 / 8 = 54.55 kN on level track: the data sheet
-  (shared/data/manchester_vehicle.md, from Iwnicki (ed.) 1998, VSD 30(3-4) 295-313);
+- static wheel load 44 482 kg x 9.81 / 8 = 54.55 kN on level track: the benchmark's data
+  (Iwnicki (ed.) 1998, VSD 30(3-4) 295-313, as in ``data/manchester_vehicle.toml``);
 - single wheelset: (1813 + 9307.5) kg x 9.81 / 2, the package's single-wheelset model
   (README "simulate": wheelset 1813 kg with 9307.5 kg of bogie and car body);
 - natural frequencies: the hand calculations of ``vehicle_model`` (first principles,
@@ -93,10 +93,11 @@ def model():
     return load_vehicle_model()
 
 
-def _system(model, track=RigidTrack(), **options):
+def _system(model, track=None, **options):
+    """The vehicle on rigid-track supports (default :class:`RigidTrack`), assembled."""
     mbs = exu.SystemContainer().AddSystem()
     build = add_vehicle_model(mbs, model, **options)
-    support = rigid_track_support(mbs, build, track)
+    support = rigid_track_support(mbs, build, track if track is not None else RigidTrack())
     mbs.Assemble()
     return mbs, build, support
 

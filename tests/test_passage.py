@@ -1,4 +1,4 @@
-"""Wheelset passage on the co-running track (issue 5 checks).
+"""Wheelset passage on the co-running track: static state, curving, impact, convergence.
 
 Reference values and their sources:
 - static wheel load (m_w + m_s) g / 2 with the Manchester benchmark's masses
@@ -6,7 +6,7 @@ Reference values and their sources:
 - static rail deflection u = K^-1 f, K the co-running model's stiffness matrix assembled
   by hand from the parameter set (exudyn_turnout.corunning.modal), f the two wheel loads;
 - steady curving: the lateral forces on the rails balance (m_w + m_s) v^2 / R (R = 760 m,
-  no cant; paper Section 4, SPEC.md);
+  no cant; paper Section 4);
 - P2-type crossing impact forces grow with speed (Jenkins et al. 1974, Railway Engineering
   Journal 3(1)); time-step convergence is checked against the run with half the step.
 """
@@ -197,8 +197,8 @@ def test_cli_simulate_writes_files(tmp_path, capsys):
 
 
 def _five_zone_file(tmp_path):
-    """The packaged turnout with zone 1 split into three zones (masses from Eqs 17, 18 at each zone's
-    middle via mass_at_x) and no published Table 2 (which has three zones)."""
+    """The packaged turnout with zone 1 split into three zones (masses from Eqs 17, 18 at each
+    zone's middle via mass_at_x) and no published Table 2 (which has three zones)."""
     from exudyn_turnout.inputs.turnout import default_turnout_path
 
     lines, out, skip = default_turnout_path().read_text(encoding="utf-8").splitlines(), [], False
@@ -234,7 +234,8 @@ def _five_zone_file(tmp_path):
 
 
 def test_more_zones_than_three(tmp_path):
-    """The paper's future work: more zones, masses per zone from Eqs 17, 18 (Delta at the zone middle)."""
+    """The paper's future work: more zones, masses per zone from Eqs 17, 18 (Delta at the zone
+    middle)."""
     from exudyn_turnout.inputs.turnout import load_turnout
 
     turnout = load_turnout(_five_zone_file(tmp_path))

@@ -1,4 +1,4 @@
-"""Outputs say how they were made (issue 10, item 6) and what the user sees (item 7).
+"""Outputs say how they were made (provenance) and show the user what was run.
 
 summary.json carries versions, input files by name with SHA-256, every setting, the
 command line without absolute paths and the date; two runs with different options

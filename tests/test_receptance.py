@@ -6,8 +6,8 @@ an independent statement of linear vibration theory about this model,
   rail 1/k_rt plus the point compliance of the sleeper on its two ballast springs;
 - the extra layer sits in series (k_0 || c_0 between rail and m_0, paper Fig. 3);
 - above the rail-on-pad resonance a mass dominates (|H| -> 1/(m_r w^2)), while in the
-  three-layer model the dashpot c_0 (Eq 12) dominates up to many kHz (|H| -> 1/(c_0 w)),
-as stated in issue 3. Parameters: the packaged turnout, derived set (Eqs 1-19).
+  three-layer model the dashpot c_0 (Eq 12) dominates up to many kHz (|H| -> 1/(c_0 w)).
+Parameters: the packaged turnout, derived set (Eqs 1-19).
 """
 
 import math

@@ -1,4 +1,4 @@
-"""Validation report (issue 7): metric functions against hand-computed values, claims, cache, quick report.
+"""Validation report: metric functions against hand-computed values, claims, cache, quick report.
 
 References:
 - one-third-octave bands, base 10 (IEC 61260-1): centres 10^(n/10) Hz, edges centre * 10^(+-1/20);
@@ -40,7 +40,9 @@ def test_band_rms_of_a_constant_ratio_is_its_level():
 
 
 def test_band_rms_by_hand():
-    """Band 100 Hz holds 95 and 105 Hz (diffs 3, -4 dB): sqrt((9 + 16)/2); 1000 Hz holds 1000 Hz (2 dB)."""
+    """Band 100 Hz holds 95 and 105 Hz (diffs 3, -4 dB): sqrt((9 + 16)/2).
+
+    Band 1000 Hz holds 1000 Hz (2 dB)."""
     bands = ag.band_rms_db(
         [95.0, 105.0, 1000.0], [3.0, -4.0, 2.0], ag.third_octave_centres(1, 2000)
     )
@@ -78,7 +80,8 @@ def test_running_mean_dynamic_rms_and_differences():
     assert ag.rms_difference(x, line + 0.5, x, line, (2.0, 8.0)) == pytest.approx(0.5)
     assert ag.max_trend_difference(x, wave, x, wave - 0.25, 1.0, (2.0, 8.0)) == pytest.approx(0.25)
     assert ag.relative_difference(110.0, 100.0) == pytest.approx(0.1)
-    # a load that doubles both times after the first pair leaves the paired median at the true ratio 1.1
+    # a load that doubles both times after the first pair leaves the paired median at the true ratio
+    # 1.1
     assert ag.paired_median_ratio([1.1, 2.2, 2.2], [1.0, 2.0, 2.0]) == pytest.approx(1.1)
     with pytest.raises(ValueError):
         ag.paired_median_ratio([1.0], [])
@@ -170,7 +173,7 @@ def _leaves(value):
 
 
 def _numeric_cells(markdown: str):
-    """Table cells that are numbers (or comma-separated numbers), with a decimal point or exponent."""
+    """Table cells that are numbers (or comma-separated numbers) with a point or exponent."""
     for line in markdown.splitlines():
         if not line.startswith("| ") or set(line) <= set("|-"):
             continue
@@ -220,7 +223,29 @@ def test_quick_report_writes_its_files(quick_report):
     ):
         assert section in metrics
     assert {c["verdict"] for c in metrics["claims"]} <= {HOLDS, FAILS, NOT_CHECKED}
-    assert all(c["id"] in md for c in metrics["claims"]) and "## Closing note" in md
+    assert all(c["id"] in md for c in metrics["claims"]) and "## Summary" in md
+
+
+def test_report_opens_with_the_summary_and_ends_with_the_appendix(quick_report):
+    """Top-down: title, a one-screen summary (every claim's verdict, headline numbers and
+    figures), the sections, and the long parameter table last as an appendix."""
+    _, out = quick_report
+    md = (out / "report.md").read_text()
+    headings = [line for line in md.splitlines() if line.startswith("## ")]
+    assert headings[0] == "## Summary"
+    assert headings[-1].startswith("## Appendix A Parameters")
+    assert sum(h.startswith("## Appendix") for h in headings) == 1
+    summary = md.split("## Summary")[1].split("\n## ")[0]
+    claims = json.loads((out / "metrics.json").read_text())["claims"]
+    rows = [line for line in summary.splitlines() if line.startswith("| ") and "---" not in line]
+    assert [r.split(" | ")[0].strip("| ") for r in rows[1:]] == [c["id"] for c in claims]
+    assert "Headline numbers" in summary and "Headline figures" in summary
+    assert "(receptance_vertical.png)" in summary
+    # one screen: the title line, the summary's few paragraphs, one row per claim
+    assert len(summary.strip().splitlines()) <= len(claims) + 20
+    # the static stiffness of the co-running models over FE's is stated with the receptance
+    receptance = md.split("## 2 Receptance")[1].split("\n## ")[0]
+    assert "Static stiffness against FE" in receptance and "K / K_FE" in receptance
 
 
 def test_every_number_in_the_tables_is_in_metrics(quick_report):
@@ -237,7 +262,9 @@ def test_every_number_in_the_tables_is_in_metrics(quick_report):
 
 
 def test_tables_keep_their_columns(quick_report):
-    """Every row of a Markdown table has its header's number of cells ("|" inside a cell is escaped)."""
+    """Every row of a Markdown table has its header's number of cells.
+
+    A "|" inside a cell is escaped."""
     _, out = quick_report
     columns = None
     for line in (out / "report.md").read_text().splitlines():

@@ -5,7 +5,7 @@ Reference values:
   3 mrad + 6 mrad = 9 mrad, meeting point where -3e-3 (d + 0.2) = -3e-3 + 6e-3 d, d the
   distance after the nose tip: d = 0.2667 m, depth 1.4 mm (hand solution of the two lines
   in the file); the nose tip from the plan (tests/test_geometry.py: 46.898 m);
-- Hertz: F = C_H delta^1.5 (SPEC.md, Johnson, Contact Mechanics, 1985, ch. 4);
+- Hertz: F = C_H delta^1.5 (Johnson, Contact Mechanics, 1985, ch. 4);
 - Johnson-Vermeulen saturation (Johnson & Vermeulen 1964): F_sat = mu N (u - u^2/3 + u^3/27),
   u < 3; equals mu N from u = 3 on;
 - steady curving of a conical wheelset (Wickens, Fundamentals of Rail Vehicle Dynamics,

@@ -1,6 +1,6 @@
 """A second, materially different turnout (data/ew54_190_1_9.toml) through every command.
 
-Issue 10, item 4: another turnout is another file, for every command. The EW 54E1-190-1:9
+Another turnout is another file, for every command. The EW 54E1-190-1:9
 file differs from the packaged UIC60-760-1:15 in rail section, sleepers (timber, 0.65 m),
 pads, ballast, geometry (R = 190 m, 1:9, ~34 m), four zones, rail-type names (no
 "stock", "switch", "crossing"), route names (main / branch) and report settings. Quick
@@ -289,12 +289,12 @@ def test_validate_quick(tmp_path, capsys):
     verdicts = {c["id"]: c["verdict"] for c in m["claims"]}
     assert verdicts["F4"] != "not checked" and verdicts["S2"] != "not checked"
     md = (out / "report.md").read_text()
-    # no published set: section 1 lists the derived set per zone, each cell from metrics.json
+    # no published set: appendix A lists the derived set per zone, each cell from metrics.json
     derived = m["parameters"]["derived"]
     assert m["parameters"]["entries"] == 0 and list(derived) == ["1", "2", "3", "4"]
     rows = [
         line
-        for line in md.split("## 1 Parameters")[1].split("## 2")[0].splitlines()
+        for line in md.split("## Appendix A Parameters")[1].split("\n## ")[0].splitlines()
         if line.startswith("| `")
     ]
     assert len(rows) == len(derived["3"])

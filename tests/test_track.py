@@ -1,6 +1,6 @@
 """Exudyn co-running track builder (exudyn_turnout.corunning.track), headless and quiet.
 
-References: the cross-section of SPEC.md section 3 (paper Figs 2, 3) assembled by hand in
+References: the co-running cross-section of the paper (Section 3, Figs 2, 3) assembled by hand in
 exudyn_turnout.corunning.modal.assemble_track_matrices; the active rails of the paper's Table 3
 (zone 1: r1 r2 r4; zone 2: r1-r4; zone 3: r1 r4); Eqs 10, 11, 14, 15 through
 CoRunningParameters.at. Every simulation runs in tmp_path as working directory, and the
@@ -18,11 +18,11 @@ from exudyn.itemInterface import LoadForceVector, MassPoint2D, NodePoint2D, Sens
 
 from exudyn_turnout.corunning.modal import assemble_track_matrices  # noqa: E402
 from exudyn_turnout.corunning.parameters import co_running_parameters, delta_y, delta_z  # noqa: E402
-from exudyn_turnout.corunning.track import (
+from exudyn_turnout.corunning.track import (  # noqa: E402
     MECHANISMS,
     EntryLaw,
     add_co_running_track,
-    linearized_matrices,  # noqa: E402
+    linearized_matrices,
     simulation_settings,
 )
 from exudyn_turnout.inputs.turnout import Polynomial  # noqa: E402

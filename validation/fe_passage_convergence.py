@@ -48,8 +48,9 @@ def table(rows: dict[str, dict[str, float]], reference: str) -> str:
     ref = rows[reference]
     for case, p in rows.items():
         lines.append(
-            f"| {case} | {p['switch'] / 1e3:.2f} | {100 * (p['switch'] / ref['switch'] - 1):+.2f} % | "
-            f"{p['crossing'] / 1e3:.2f} | {100 * (p['crossing'] / ref['crossing'] - 1):+.2f} % |"
+            f"| {case} | {p['switch'] / 1e3:.2f} | {100 * (p['switch'] / ref['switch'] - 1):+.2f} "
+            f"% | {p['crossing'] / 1e3:.2f} | {100 * (p['crossing'] / ref['crossing'] - 1):+.2f} % "
+            "|"
         )
     return "\n".join(lines)
 
@@ -95,7 +96,7 @@ def main(argv=None):
     print(table(rows, list(rows)[-1]))
     diff, W = ends_study(turnout)
     print(
-        f"\nmodel ends: x -5 to -1 m, extension 12 m vs 24 m: largest force difference "
+        "\nmodel ends: x -5 to -1 m, extension 12 m vs 24 m: largest force difference "
         f"{100 * diff:.3f} % of the static load {W / 1e3:.1f} kN"
     )
 

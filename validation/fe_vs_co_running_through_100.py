@@ -34,7 +34,8 @@ def peak_table(results) -> str:
     keys = (("switch", "peak_Fz_switch_N"), ("crossing", "peak_Fz_crossing_N"))
     fe = results["FE"].summary
     lines = [
-        "| model | static (kN) | peak Fz switch (kN) | vs FE | peak Fz crossing (kN) | vs FE | wall (s) |",
+        "| model | static (kN) | peak Fz switch (kN) | vs FE | peak Fz crossing (kN) | vs FE | "
+        "wall (s) |",
         "|---|---|---|---|---|---|---|",
     ]
     for name, r in results.items():
@@ -61,8 +62,9 @@ def main(argv=None):
         write_passage(r, out / f"through_100_{name}")
     x, depth, two_alpha = dip_angle(load_route(turnout, "through"), "right", 46.0, 48.5)
     print(
-        f"through route, 100 km/h, right wheel; crossing dip at x = {x:.2f} m, depth {1e3 * depth:.2f} mm, "
-        f"2 alpha = {1e3 * two_alpha:.1f} mrad; FE: {results['FE'].summary['n_dof']} DOFs\n"
+        f"through route, 100 km/h, right wheel; crossing dip at x = {x:.2f} m, depth "
+        f"{1e3 * depth:.2f} mm, 2 alpha = {1e3 * two_alpha:.1f} mrad; FE: "
+        f"{results['FE'].summary['n_dof']} DOFs\n"
     )
     print(peak_table(results))
     ratio = results["FE"].summary["wall_time_s"] / results["3-layer"].summary["wall_time_s"]

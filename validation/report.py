@@ -1,7 +1,7 @@
-"""Validation report: ``python validation/report.py [--out DIR] [--quick] [--cache DIR | --no-cache]``.
+"""Validation report, the same as ``exudyn-turnout validate``.
 
-The same as ``exudyn-turnout validate``; the default output is ``validation/report/``
-(the committed copy of the full report).
+Usage: ``python validation/report.py [--out DIR] [--quick] [--cache DIR | --no-cache]``;
+the default output is ``validation/report/`` (the committed copy of the full report).
 """
 
 import sys

@@ -5,7 +5,8 @@
 The same as ``exudyn-turnout validate --turnout exudyn_turnout/data/ew54_190_1_9.toml``:
 the whole pipeline (parameters, FE stiffness, receptances, 2-layer / 3-layer / FE passages
 on the file's routes ``main`` and ``branch``, cost, convergence, claims) on a turnout that
-differs from the packaged one in every property a file can change (issue 10, item 4).
+differs from the packaged one in every property a file can change (another turnout is
+another file, for every command).
 Default output: ``validation/second_turnout/`` (the committed copy, the full report: ~17
 min on 2 shared cores, most of it the FE passages over the whole turnout; ``--quick``
 takes ~30 s).

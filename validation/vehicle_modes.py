@@ -129,8 +129,8 @@ def markdown(track: RigidTrack) -> str:
         h = hand[key]
         out.append(
             f"| {key} | {h:.3f} | {lin.frequency_hz:.3f} | {rig.frequency_hz:.3f} | "
-            f"{100 * (lin.frequency_hz / h - 1):+.1f} | {100 * tol:.0f} | "
-            f"{lin.damping_ratio:.3f} | {why} |"
+            f"{100 * (lin.frequency_hz / h - 1):+.1f} | {100 * tol:.0f} | {lin.damping_ratio:.3f} "
+            f"| {why} |"
         )
     stiff = replace(model, primary=replace(model.primary, k_x=1e11, k_y=1e11, k_z=1e11))
     held = RigidTrack(k_z=1e11, k_y=1e11)
@@ -166,16 +166,15 @@ def markdown(track: RigidTrack) -> str:
         "",
         "## All modes (linear representation; rigid in the last column)",
         "",
-        "| # | f Hz | damped f_n Hz | damping ratio | dominant body | direction | share | "
-        "next participations | rigid f Hz |",
+        "| # | f Hz | damped f_n Hz | damping ratio | dominant body | direction | share | next "
+        "participations | rigid f Hz |",
         "|---|---|---|---|---|---|---|---|---|",
     ]
     for i, (m, r) in enumerate(zip(linear, rigid), 1):
         others = ", ".join(f"{k} {v:.2f}" for k, v in list(m.participation.items())[1:4])
         out.append(
-            f"| {i} | {m.frequency_hz:.3f} | {m.damped_frequency_hz:.3f} | "
-            f"{m.damping_ratio:.3f} | {m.body} | {m.direction} | {m.share:.2f} | "
-            f"{others} | {r.frequency_hz:.3f} |"
+            f"| {i} | {m.frequency_hz:.3f} | {m.damped_frequency_hz:.3f} | {m.damping_ratio:.3f} | "
+            f"{m.body} | {m.direction} | {m.share:.2f} | {others} | {r.frequency_hz:.3f} |"
         )
     return "\n".join(out) + "\n"
 

@@ -27,8 +27,8 @@ from exudyn_turnout.receptance import DIRECTIONS, log_frequencies
 __all__ = ["build"]
 
 
-def _turnout_option(p: argparse.ArgumentParser) -> None:
-    p.add_argument(
+def _turnout_option(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
         "--turnout",
         metavar="FILE",
         help="turnout file with a [layout] section (default: packaged UIC60-760-1:15)",
@@ -59,36 +59,39 @@ def _cmd_frf(args: argparse.Namespace) -> int:
     route = route_from_args(args, turnout)
     layout = load_layout(turnout)
     try:
-        f = log_frequencies(args.fmin, args.fmax, args.n)
+        frequencies = log_frequencies(args.fmin, args.fmax, args.n)
         t0 = time.perf_counter()
-        r = fe_receptance(turnout, args.rail, args.direction, args.x, f, route=route, layout=layout)
+        receptance = fe_receptance(
+            turnout, args.rail, args.direction, args.x, frequencies, route=route, layout=layout
+        )
     except ValueError as err:
         raise UsageError(str(err)) from None
-    write_output(args.out, r.to_csv)
+    write_output(args.out, receptance.to_csv)
     settings = {
         "model": "FE",
         "rail": args.rail,
-        "rail_id": r.metadata["rail_id"],
+        "rail_id": receptance.metadata["rail_id"],
         "direction": args.direction,
         "x_m": args.x,
         "route": route,
         "fmin_hz": args.fmin,
         "fmax_hz": args.fmax,
         "n": args.n,
-        "n_dof": r.metadata["n_dof"],
+        "n_dof": receptance.metadata["n_dof"],
     }
     write_sidecar(args.out, provenance(settings, turnout=turnout, argv=getattr(args, "argv", None)))
+    rail_id, n_dof = receptance.metadata["rail_id"], receptance.metadata["n_dof"]
     print(
-        f"FE receptance {args.rail} ({r.metadata['rail_id']}) {args.direction} at x = {args.x:g} m: "
-        f"{len(f)} frequencies {args.fmin:g}-{args.fmax:g} Hz, {r.metadata['n_dof']} DOFs, "
-        f"{time.perf_counter() - t0:.1f} s; static stiffness 1/|H({f[0]:g} Hz)| = {r.static_stiffness:.4g} N/m "
-        f"-> {args.out}"
+        f"FE receptance {args.rail} ({rail_id}) {args.direction} at x = {args.x:g} m: "
+        f"{len(frequencies)} frequencies {args.fmin:g}-{args.fmax:g} Hz, {n_dof} DOFs, "
+        f"{time.perf_counter() - t0:.1f} s; static stiffness "
+        f"1/|H({frequencies[0]:g} Hz)| = {receptance.static_stiffness:.4g} N/m -> {args.out}"
     )
     if args.plot:
         from exudyn_turnout.plotting.curves import plot_receptance
 
         fig, _ = plot_receptance(
-            r, title=f"FE {args.rail} ({r.metadata['rail_id']}) {args.direction}, x = {args.x:g} m"
+            receptance, title=f"FE {args.rail} ({rail_id}) {args.direction}, x = {args.x:g} m"
         )
         _save_plot(fig, args.plot)
     return 0
@@ -125,7 +128,8 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
     }
     write_sidecar(args.out, provenance(settings, turnout=turnout, argv=getattr(args, "argv", None)))
     print(
-        f"FE static stiffness 1/|H(1 Hz)|: {len(profile.x)} rail positions, {len(profile.rails)} rails, "
+        f"FE static stiffness 1/|H(1 Hz)|: {len(profile.x)} rail positions, "
+        f"{len(profile.rails)} rails, "
         f"DOFs {profile.n_dof['vertical']} vertical / {profile.n_dof['lateral']} lateral, "
         f"{time.perf_counter() - t0:.1f} s -> {args.out}"
     )
@@ -140,8 +144,8 @@ def _cmd_stiffness(args: argparse.Namespace) -> int:
             f"{c:.4g} x^{i}" if i else f"{c:.4g}" for i, c in enumerate(paper.coefficients)
         )
         print(
-            f"{name} ({fit.direction}, rail {fit.rail}, {fit.x_min:g}-{fit.x_max:g} m): {terms} N/m, "
-            f"R^2 = {fit.r_squared:.3f}; paper {eq}: {paper_terms}"
+            f"{name} ({fit.direction}, rail {fit.rail}, {fit.x_min:g}-{fit.x_max:g} m): "
+            f"{terms} N/m, R^2 = {fit.r_squared:.3f}; paper {eq}: {paper_terms}"
         )
     if args.plot:
         from exudyn_turnout.plotting.curves import plot_stiffness_profile
@@ -157,6 +161,8 @@ def build(sub: argparse._SubParsersAction) -> None:
     Parameters
     ----------
     sub : argparse._SubParsersAction
+        The subcommand parsers of ``exudyn-turnout``; ``fe`` with its subcommands ``frf``,
+        ``stiffness`` and ``simulate`` is added to them.
     """
     fe = sub.add_parser(
         "fe",
@@ -165,42 +171,44 @@ def build(sub: argparse._SubParsersAction) -> None:
         "the turnout layout of the file's [layout] section.",
     )
     fe_sub = fe.add_subparsers(dest="fe_command", required=True, parser_class=type(fe))
-    p = fe_sub.add_parser(
+    frf_parser = fe_sub.add_parser(
         "frf", help="point receptance of a rail at x (direct frequency-domain solve)"
     )
-    p.add_argument(
+    frf_parser.add_argument(
         "--rail",
         required=True,
         metavar="RAIL",
         help="co-running slot r1|r2|r3|r4 (layout.slots of the route) or a layout rail id",
     )
-    p.add_argument("--direction", required=True, choices=DIRECTIONS)
-    p.add_argument(
+    frf_parser.add_argument("--direction", required=True, choices=DIRECTIONS)
+    frf_parser.add_argument(
         "--x", required=True, type=number, metavar="METRES", help="position from the switch toe (m)"
     )
-    p.add_argument(
+    frf_parser.add_argument(
         "--route",
         metavar="NAME",
         help="route of the turnout file: which slot mapping (default: through, or the first route)",
     )
-    p.add_argument("--fmin", type=number, default=1.0, help="lowest frequency (Hz, default 1)")
-    p.add_argument(
+    frf_parser.add_argument(
+        "--fmin", type=number, default=1.0, help="lowest frequency (Hz, default 1)"
+    )
+    frf_parser.add_argument(
         "--fmax", type=number, default=2000.0, help="highest frequency (Hz, default 2000)"
     )
-    p.add_argument(
+    frf_parser.add_argument(
         "--n", type=int, default=400, help="number of log-spaced frequencies (default 400)"
     )
-    p.add_argument("--out", required=True, metavar="FILE.csv")
-    p.add_argument("--plot", metavar="FILE.png")
-    _turnout_option(p)
-    p.set_defaults(run=_cmd_frf)
-    s = fe_sub.add_parser(
+    frf_parser.add_argument("--out", required=True, metavar="FILE.csv")
+    frf_parser.add_argument("--plot", metavar="FILE.png")
+    _turnout_option(frf_parser)
+    frf_parser.set_defaults(run=_cmd_frf)
+    stiffness_parser = fe_sub.add_parser(
         "stiffness",
         help="static stiffness 1/|H(1 Hz)| at every sleeper, every rail "
         "(paper Fig. 1(b,c)) and the Eq 10 / 14 analogue fits",
     )
-    s.add_argument("--out", required=True, metavar="FILE.csv")
-    s.add_argument("--plot", metavar="FILE.png")
-    _turnout_option(s)
-    s.set_defaults(run=_cmd_stiffness)
+    stiffness_parser.add_argument("--out", required=True, metavar="FILE.csv")
+    stiffness_parser.add_argument("--plot", metavar="FILE.png")
+    _turnout_option(stiffness_parser)
+    stiffness_parser.set_defaults(run=_cmd_stiffness)
     add_simulate(fe_sub)

@@ -8,14 +8,19 @@ import; matplotlib is imported only to draw ``forces.png``.
 from __future__ import annotations
 
 import argparse
+from typing import TYPE_CHECKING
 
 from exudyn_turnout.cli.main import UsageError, check_out_dir, number
 from exudyn_turnout.cli.passage import add_passage_options, route_from_args, run_passage_command
 
+if TYPE_CHECKING:
+    from exudyn_turnout.passage.fe_track import FEPassageOptions
+
 __all__ = ["add_simulate"]
 
 
-def _options(args: argparse.Namespace):
+def _options(args: argparse.Namespace) -> FEPassageOptions:
+    """FE passage options from ``--element-length``; a bad value is exit 2."""
     from exudyn_turnout.fe.mesh import FEOptions
     from exudyn_turnout.passage.fe_track import FEPassageOptions
 
@@ -74,8 +79,9 @@ def add_simulate(fe_sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     Returns
     -------
     argparse.ArgumentParser
+        The ``simulate`` parser.
     """
-    p = fe_sub.add_parser(
+    parser = fe_sub.add_parser(
         "simulate",
         help="wheelset passage over the FE turnout track (vertical)",
         description="Run one wheelset (Manchester benchmark, vertical part) over the vertical FE "
@@ -84,30 +90,30 @@ def add_simulate(fe_sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         "forces.png (the columns of `exudyn-turnout simulate`; lateral columns "
         "empty) into --out.",
     )
-    p.add_argument(
+    parser.add_argument(
         "--turnout",
         metavar="FILE",
         help="turnout file with a [layout] section (default: packaged UIC60-760-1:15)",
     )
-    p.add_argument(
+    parser.add_argument(
         "--route",
         metavar="NAME",
         help="route of the turnout file (default: through, or the file's first route)",
     )
-    p.add_argument(
+    parser.add_argument(
         "--time-step",
         type=number,
         default=1e-4,
         metavar="S",
         help="s (default 1e-4: halving it moves the crossing peak < 2 %%)",
     )
-    p.add_argument(
+    parser.add_argument(
         "--element-length",
         type=number,
         default=0.2,
         metavar="M",
         help="longest rail element (m), order 4 (default 0.2)",
     )
-    add_passage_options(p)
-    p.set_defaults(run=_run)
-    return p
+    add_passage_options(parser)
+    parser.set_defaults(run=_run)
+    return parser

@@ -54,7 +54,9 @@ def route_from_args(args: argparse.Namespace, turnout) -> str:
     Parameters
     ----------
     args : argparse.Namespace
+        Parsed options; ``route`` (None: not given) is used.
     turnout : Turnout
+        The turnout whose ``[routes.<name>]`` sections are the choices.
 
     Returns
     -------
@@ -106,12 +108,12 @@ def _clear_outputs(out: Path) -> None:
             raise UsageError(f"--out {out}: cannot replace {name}: {err.strerror or err}") from None
 
 
-def _peak_text(s: dict, where: str) -> str:
+def _peak_text(summary: dict, where: str) -> str:
     """ "140.2 kN at the crossing (left wheel on r2, x = 45.79 m)" from the summary's max_* keys."""
-    value = s.get(f"max_Fz_{where}_N", s.get(f"peak_Fz_{where}_N"))
+    value = summary.get(f"max_Fz_{where}_N", summary.get(f"peak_Fz_{where}_N"))
     value = float("nan") if value is None else value
     text = f"{kilonewtons(value)} at the {where}"
-    wheel, rail, x = (s.get(f"max_Fz_{where}_{k}") for k in ("wheel", "rail", "x_m"))
+    wheel, rail, x = (summary.get(f"max_Fz_{where}_{key}") for key in ("wheel", "rail", "x_m"))
     if wheel and rail and x is not None:
         text += f" ({wheel} wheel on {rail}, x = {x:.2f} m)"
     return text
@@ -139,6 +141,7 @@ def run_passage_command(
     args : argparse.Namespace
         ``out``, ``format``, ``no_plot`` and ``argv`` are used.
     simulate : callable(progress) -> PassageResult
+        Runs the passage; ``progress`` is the progress bar's callback (or None).
     title : str
         Title of forces.png.
     what : str
@@ -191,16 +194,17 @@ def run_passage_command(
         paths = write_passage(result, out, fmt=args.format, provenance=record, figure=figure)
     except OSError as err:
         raise UsageError(f"--out {args.out}: cannot write: {err.strerror or err}") from None
-    s = result.summary
-    if "n_dof" in s:
-        what = f"{what.rstrip(', ')} ({s['n_dof']} DOFs), "
+    summary = result.summary
+    if "n_dof" in summary:
+        what = f"{what.rstrip(', ')} ({summary['n_dof']} DOFs), "
     print(
         f"wrote {paths['timeseries']}, {paths['summary']}: "
-        f"{what}peak Fz {_peak_text(s, 'switch')}, "
-        f"{_peak_text(s, 'crossing')}; static {kilonewtons(s['static_wheel_load_N'])} right, "
-        f"{kilonewtons(s['static_wheel_load_left_N'])} left; "
-        f"{s['simulated_time_s']:.2f} s simulated "
-        f"in {s['wall_time_s']:.1f} s"
+        f"{what}peak Fz {_peak_text(summary, 'switch')}, "
+        f"{_peak_text(summary, 'crossing')}; "
+        f"static {kilonewtons(summary['static_wheel_load_N'])} right, "
+        f"{kilonewtons(summary['static_wheel_load_left_N'])} left; "
+        f"{summary['simulated_time_s']:.2f} s simulated "
+        f"in {summary['wall_time_s']:.1f} s"
     )
     return 0
 
@@ -211,6 +215,7 @@ def add_passage_options(p: argparse.ArgumentParser) -> None:
     Parameters
     ----------
     p : argparse.ArgumentParser
+        The command's parser; the options are added to it.
     """
     p.add_argument(
         "--vehicle",
@@ -246,23 +251,24 @@ def build(sub: argparse._SubParsersAction) -> None:
     Parameters
     ----------
     sub : argparse._SubParsersAction
+        The subcommand parsers of ``exudyn-turnout``; ``simulate`` is added to them.
     """
-    p = sub.add_parser(
+    parser = sub.add_parser(
         "simulate",
         help="wheelset passage on the co-running track",
-        description="Run one wheelset (Manchester benchmark) through the turnout on a 2- or 3-layer "
-        "co-running track with penalty wheel/rail contact; write timeseries.csv, "
+        description="Run one wheelset (Manchester benchmark) through the turnout on a 2- or "
+        "3-layer co-running track with penalty wheel/rail contact; write timeseries.csv, "
         "summary.json and forces.png into --out.",
     )
-    add_turnout_options(p)
-    p.add_argument("--layers", type=int, choices=(2, 3), default=3)
-    p.add_argument(
+    add_turnout_options(parser)
+    parser.add_argument("--layers", type=int, choices=(2, 3), default=3)
+    parser.add_argument(
         "--route",
         metavar="NAME",
         help="route of the turnout file (default: through, or the file's first route)",
     )
-    p.add_argument(
+    parser.add_argument(
         "--time-step", type=number, default=1e-4, metavar="S", help="s (default 1e-4, converged)"
     )
-    add_passage_options(p)
-    p.set_defaults(run=_run)
+    add_passage_options(parser)
+    parser.set_defaults(run=_run)

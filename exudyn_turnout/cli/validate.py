@@ -1,4 +1,8 @@
-"""``exudyn-turnout validate``: the validation report (2-layer vs 3-layer vs FE, every claim of the paper)."""
+"""``exudyn-turnout validate``: the validation report.
+
+2-layer vs 3-layer co-running track vs the FE reference, and a verdict on every claim of the
+paper.
+"""
 
 from __future__ import annotations
 
@@ -26,12 +30,13 @@ def _run(args: argparse.Namespace) -> int:
     except OSError as err:
         raise UsageError(f"validate: cannot write the report: {err}") from None
     _add_provenance(args, turnout, cache)
-    verdicts = {}
-    for c in report.claims:
-        verdicts[c.verdict] = verdicts.get(c.verdict, 0) + 1
+    verdicts: dict[str, int] = {}  # verdict -> number of claims
+    for claim in report.claims:
+        verdicts[claim.verdict] = verdicts.get(claim.verdict, 0) + 1
+    wall_time = report.metrics["report_wall_time_s"]
     print(
-        f"wrote {args.out}/report.md, metrics.json and figures in {report.metrics['report_wall_time_s']:.0f} s; "
-        "claims: " + ", ".join(f"{n} {v}" for v, n in verdicts.items())
+        f"wrote {args.out}/report.md, metrics.json and figures in {wall_time:.0f} s; "
+        "claims: " + ", ".join(f"{count} {verdict}" for verdict, count in verdicts.items())
     )
     return 0
 
@@ -76,25 +81,28 @@ def build(sub: argparse._SubParsersAction) -> None:
     Parameters
     ----------
     sub : argparse._SubParsersAction
+        The subcommand parsers of ``exudyn-turnout``; ``validate`` is added to them.
     """
-    p = sub.add_parser(
+    parser = sub.add_parser(
         "validate",
         help="validation report: 2-layer vs 3-layer vs FE reference",
-        description="Write DIR/report.md, its PNG figures and DIR/metrics.json: parameters vs Table 2, "
-        "track stiffness, receptance, contact forces, computing cost and checks, with a "
-        "verdict on every claim of the paper.",
+        description="Write DIR/report.md, its PNG figures and DIR/metrics.json: "
+        "parameters vs Table 2, track stiffness, receptance, contact forces, computing cost "
+        "and checks, with a verdict on every claim of the paper.",
     )
-    p.add_argument(
+    parser.add_argument(
         "--turnout", metavar="FILE", help="turnout file (default: packaged UIC60-760-1:15)"
     )
-    p.add_argument("--out", required=True, metavar="DIR", help="output directory")
-    p.add_argument(
+    parser.add_argument("--out", required=True, metavar="DIR", help="output directory")
+    parser.add_argument(
         "--quick",
         action="store_true",
         help="reduced report for CI (coarse FE, few frequencies, short runs)",
     )
-    p.add_argument(
+    parser.add_argument(
         "--cache", metavar="DIR", help="FE result cache (default: ~/.cache/exudyn_turnout)"
     )
-    p.add_argument("--no-cache", action="store_true", help="compute every FE result in this run")
-    p.set_defaults(run=_run)
+    parser.add_argument(
+        "--no-cache", action="store_true", help="compute every FE result in this run"
+    )
+    parser.set_defaults(run=_run)

@@ -30,6 +30,12 @@ TOLERANCE = 0.02
 
 @dataclass(frozen=True)
 class ComparisonRow:
+    """One entry of Table 2 in one zone: as printed, derived and published, with the reason.
+
+    Values are SI and taken at the zone middle; the ratios cover the zone start, middle and
+    end. ``explanation`` is empty when both computed values reproduce Table 2.
+    """
+
     zone: int
     name: str
     as_printed: float  #: SI, equations as printed, at the zone middle
@@ -38,15 +44,17 @@ class ComparisonRow:
     published_text: str  #: Table 2 as printed ("369e6 * Delta_z", "448e6 - 453e6")
     ratio_min: float  #: derived / published, minimum over zone start, middle, end
     ratio_max: float  #: derived / published, maximum over the same points
-    explanation: str
+    explanation: str  #: why the entry differs from Table 2 (empty when it does not)
     reading_value: float | None  #: SI, what the explanation's reading gives (zone middle)
 
     @property
     def reproduced(self) -> bool:
+        """True when derived / published is within :data:`TOLERANCE` of 1 over the zone."""
         return max(abs(self.ratio_min - 1), abs(self.ratio_max - 1)) <= TOLERANCE
 
     @property
     def reading_ratio(self) -> float | None:
+        """Explanation's reading value / published (-), None when there is no such value."""
         return None if self.reading_value is None else self.reading_value / self.published
 
 
@@ -76,8 +84,9 @@ def _check_rail_inactive(c: _Context):
     if c.name != "k_03_y" or "r3" in zone.active_rails:
         return None
     return (
-        "Check rail not active in this zone (Table 3). Table 2 prints 5 k_rt1,y (the stock rail's) here, "
-        "although its own k_rt3,y is 215e6 in every zone and 5 x 215e6 = 1075e6 in zone 2.",
+        "Check rail not active in this zone (Table 3). Table 2 prints 5 k_rt1,y (the stock "
+        "rail's) here, although its own k_rt3,y is 215e6 in every zone and 5 x 215e6 = 1075e6 "
+        "in zone 2.",
         5.0 * c.sets["derived"]["k_rt1_y"],
     )
 
@@ -93,14 +102,15 @@ def _plateau_factor(c: _Context) -> float:
 def _switch_plateau_zone3(c: _Context):
     if c.name not in _PLATEAU or "r2" in c.turnout.zone(c.zone).active_rails:
         return None
-    f = _plateau_factor(c)
+    factor = _plateau_factor(c)
     stock = c.name.replace("2_z", "1_z").replace("tg1", "tg2")
     return (
-        f"Table 2 carries the switch rail's value past the crossing: stock value x {f:.3f} "
-        f"(the factor is fixed by k_rt2,z = 448e6 and reproduces the other r2/tg1 entries; it is Delta_z of "
-        f"Eq 11 near x = 21 m; the Eq 10 plateau Delta_z(22 m) = 1.237 gives them within 2.5 %). "
-        "Derived gives plain track. r2 is not active here; the tg1 ballast spring is.",
-        f * c.sets["derived"][stock],
+        f"Table 2 carries the switch rail's value past the crossing: stock value x {factor:.3f} "
+        "(the factor is fixed by k_rt2,z = 448e6 and reproduces the other r2/tg1 entries; it is "
+        "Delta_z of Eq 11 near x = 21 m; the Eq 10 plateau Delta_z(22 m) = 1.237 gives them "
+        "within 2.5 %). Derived gives plain track. r2 is not active here; the tg1 ballast "
+        "spring is.",
+        factor * c.sets["derived"][stock],
     )
 
 
@@ -108,39 +118,41 @@ def _crossing_ramp(c: _Context):
     entry = c.turnout.published[c.zone][c.name]
     if entry.kind != "ramp" or c.name not in _PLATEAU:
         return None
-    f = _plateau_factor(c)
+    factor = _plateau_factor(c)
     stock = c.name.replace("2_z", "1_z").replace("tg1", "tg2")
-    start = f * c.sets["derived"][stock]
+    start = factor * c.sets["derived"][stock]
     return (
-        f"Table 2's range runs from the switch rail's plateau (stock x {f:.3f}, see zone 3) to the crossing-nose "
-        f"value; derived gives the crossing-nose value (Eq 3 with the reciprocal of Eq 5) over the whole zone. "
-        f"Reading value: linear from that plateau to the derived crossing-nose value, at the zone middle.",
+        f"Table 2's range runs from the switch rail's plateau (stock x {factor:.3f}, see zone 3) "
+        "to the crossing-nose value; derived gives the crossing-nose value (Eq 3 with the "
+        "reciprocal of Eq 5) over the whole zone. Reading value: linear from that plateau to "
+        "the derived crossing-nose value, at the zone middle.",
         0.5 * (start + c.sets["derived"][c.name]),
     )
 
 
 def _as_printed(c: _Context):
     """Entries that reproduce only under the package's readings, not as printed."""
-    n, zone = c.name, c.turnout.zone(c.zone)
-    if n.startswith("m_r") or (n == "m_t" and zone.ballast_rail_type != "crossing"):
+    name, zone = c.name, c.turnout.zone(c.zone)
+    if name.startswith("m_r") or (name == "m_t" and zone.ballast_rail_type != "crossing"):
         what = (
             "Eq 16 as printed (A rho L_eff,r / L_s) has the unit kg/m; read as A rho L_eff,r"
-            if n.startswith("m_r")
-            else "Eq 18 as printed uses the whole sleeper; read with the rail's share L_t/n (n = 2, as Eq 4) and "
-            "Delta_y = 1 (masses constant per zone)"
+            if name.startswith("m_r")
+            else "Eq 18 as printed uses the whole sleeper; read with the rail's share L_t/n "
+            "(n = 2, as Eq 4) and Delta_y = 1 (masses constant per zone)"
         )
-        if n == "m_r2" and zone.rail_types.get("r2") == "crossing":
+        if name == "m_r2" and zone.rail_types.get("r2") == "crossing":
             what += "; and Eq 5 read as its reciprocal (L_t beta / 2)"
-        return what, c.sets["derived"][n]
-    if n == "J_t":
-        return "follows m_t (Eq 18/19 readings); h_t = sqrt(12 I_s / A_s) = 0.221 m", c.sets[
-            "derived"
-        ][n]
+        return what, c.sets["derived"][name]
+    if name == "J_t":
+        return (
+            "follows m_t (Eq 18/19 readings); h_t = sqrt(12 I_s / A_s) = 0.221 m",
+            c.sets["derived"][name],
+        )
     if zone.ballast_rail_type == "crossing" or zone.rail_types.get("r2") == "crossing":
         return (
-            "Eq 5 as printed, 2/(L_t beta) = 0.561, gives this; Table 2 reproduces with its reciprocal "
-            "L_t beta / 2 = 1.783 (both dimensionless)",
-            c.sets["derived"][n],
+            "Eq 5 as printed, 2/(L_t beta) = 0.561, gives this; Table 2 reproduces with its "
+            "reciprocal L_t beta / 2 = 1.783 (both dimensionless)",
+            c.sets["derived"][name],
         )
     return None
 
@@ -165,31 +177,37 @@ def _explain(c: _Context, derived_ok: bool, printed_ok: bool) -> tuple[str, floa
 
 def _zone_values(turnout: Turnout, zone: int) -> list[dict[str, dict[str, float]]]:
     """Values of the four sets at the zone start, middle and end."""
-    z = turnout.zone(zone)
+    zone_data = turnout.zone(zone)
     sets = {
-        key: co_running_parameters(turnout, zone=zone, source=src, readings=rd)
-        for key, src, rd in (
+        key: co_running_parameters(turnout, zone=zone, source=source, readings=readings)
+        for key, source, readings in (
             ("printed", "derived", AS_PRINTED),
             ("derived", "derived", DEFAULT_READINGS),
             ("published", "published", DEFAULT_READINGS),
             ("table2", "derived", TABLE2_READINGS),
         )
     }
+    start, end = zone_data.x_start, zone_data.x_end
     return [
-        {k: v.at(x) for k, v in sets.items()}
-        for x in (z.x_start, 0.5 * (z.x_start + z.x_end), z.x_end)
+        {key: parameters.at(x) for key, parameters in sets.items()}
+        for x in (start, 0.5 * (start + end), end)
     ]
+
+
+def _within_tolerance(ratios: list[float]) -> bool:
+    return max(abs(r - 1) for r in ratios) <= TOLERANCE
 
 
 def _row(
     turnout: Turnout, zone: int, name: str, at: list[dict[str, dict[str, float]]]
 ) -> ComparisonRow:
-    ratios = [v["derived"][name] / v["published"][name] for v in at]
-    printed_ratios = [v["printed"][name] / v["published"][name] for v in at]
+    ratios = [values["derived"][name] / values["published"][name] for values in at]
+    printed_ratios = [values["printed"][name] / values["published"][name] for values in at]
     mid = at[1]
-    c = _Context(turnout, zone, name, mid)
-    ok = lambda rs: max(abs(r - 1) for r in rs) <= TOLERANCE  # noqa: E731
-    text, reading_value = _explain(c, ok(ratios), ok(printed_ratios))
+    context = _Context(turnout, zone, name, mid)
+    text, reading_value = _explain(
+        context, _within_tolerance(ratios), _within_tolerance(printed_ratios)
+    )
     return ComparisonRow(
         zone,
         name,
@@ -205,7 +223,18 @@ def _row(
 
 
 def compare_with_table2(turnout: Turnout) -> list[ComparisonRow]:
-    """One row per zone and Table 2 entry (three-layer names), in Table 2 order."""
+    """Compare the derived and as-printed parameter sets with Table 2, entry by entry.
+
+    Parameters
+    ----------
+    turnout : Turnout
+        A turnout whose file holds the published Table 2 (``turnout.published``).
+
+    Returns
+    -------
+    list of ComparisonRow
+        One row per zone and Table 2 entry (three-layer names), in Table 2 order.
+    """
     rows = []
     for zone in sorted(turnout.published):
         at = _zone_values(turnout, zone)
@@ -218,36 +247,52 @@ def _fmt(v: float | None) -> str:
 
 
 def comparison_markdown(rows: list[ComparisonRow], turnout: Turnout) -> str:
-    """The comparison as a Markdown document (values at each zone's middle, SI units)."""
+    """The comparison as a Markdown document (values at each zone's middle, SI units).
+
+    Parameters
+    ----------
+    rows : list of ComparisonRow
+        From :func:`compare_with_table2`.
+    turnout : Turnout
+        The turnout compared; its name heads the document.
+
+    Returns
+    -------
+    str
+        The Markdown text: a heading, the legend, the counts and one table row per entry.
+    """
+    n_derived = sum(row.reproduced for row in rows)
+    n_printed = sum(abs(row.as_printed / row.published - 1) <= TOLERANCE for row in rows)
     head = [
         f"# Derived vs published co-running parameters: {turnout.name}",
         "",
         "Generated by `python validation/make_parameter_table.py` from "
         "`exudyn_turnout.corunning.comparison.compare_with_table2`; do not edit by hand.",
         "",
-        "Values in SI units at the middle of each zone; Delta-dependent entries evaluated there. "
-        "*as printed*: Eqs 1-19 literally; *derived*: the package's default readings "
-        "(`exudyn_turnout.corunning.parameters.DEFAULT_READINGS`); *published*: the paper's Table 2. "
-        "*ratio*: derived/published, min-max over the zone start, middle and end. "
+        "Values in SI units at the middle of each zone; Delta-dependent entries evaluated "
+        "there. *as printed*: Eqs 1-19 literally; *derived*: the package's default readings "
+        "(`exudyn_turnout.corunning.parameters.DEFAULT_READINGS`); *published*: the paper's "
+        "Table 2. *ratio*: derived/published, min-max over the zone start, middle and end. "
         f"An entry is reproduced when the ratio is within {TOLERANCE:.0%} of 1. "
         "*reading value*: what the reading named in the explanation gives.",
         "",
-        f"Reproduced by the derived set: {sum(r.reproduced for r in rows)} of {len(rows)} entries; "
-        f"as printed: {sum(abs(r.as_printed / r.published - 1) <= TOLERANCE for r in rows)} of {len(rows)} "
-        "(at the zone middle).",
+        f"Reproduced by the derived set: {n_derived} of {len(rows)} entries; "
+        f"as printed: {n_printed} of {len(rows)} (at the zone middle).",
         "",
-        "| zone | entry | as printed | derived | published | Table 2 | ratio | reading value | explanation |",
+        "| zone | entry | as printed | derived | published | Table 2 | ratio | reading value "
+        "| explanation |",
         "|---|---|---|---|---|---|---|---|---|",
     ]
     body = []
-    for r in rows:
+    for row in rows:
         ratio = (
-            f"{r.ratio_min:.3f}"
-            if abs(r.ratio_max - r.ratio_min) < 5e-4
-            else f"{r.ratio_min:.3f}-{r.ratio_max:.3f}"
+            f"{row.ratio_min:.3f}"
+            if abs(row.ratio_max - row.ratio_min) < 5e-4
+            else f"{row.ratio_min:.3f}-{row.ratio_max:.3f}"
         )
         body.append(
-            f"| {r.zone} | `{r.name}` | {_fmt(r.as_printed)} | {_fmt(r.derived)} | {_fmt(r.published)} | "
-            f"{r.published_text} | {ratio} | {_fmt(r.reading_value)} | {r.explanation} |"
+            f"| {row.zone} | `{row.name}` | {_fmt(row.as_printed)} | {_fmt(row.derived)} "
+            f"| {_fmt(row.published)} | {row.published_text} | {ratio} "
+            f"| {_fmt(row.reading_value)} | {row.explanation} |"
         )
     return "\n".join(head + body) + "\n"

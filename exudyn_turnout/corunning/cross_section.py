@@ -42,15 +42,15 @@ def cross_section_springs(params: CoRunningParameters) -> list[CrossSectionSprin
         its pad and, for three layers, its extra layer.
     """
     zone, out = params.zone, []
-    for j, y_b in zip((1, 2), zone.ballast_y):
+    for ballast, y_b in zip((1, 2), zone.ballast_y):
         out.append(
             CrossSectionSpring(
-                f"ballast_z{j}",
+                f"ballast_z{ballast}",
                 y_b - zone.sleeper_y,
                 y_b,
                 (),
-                (None, f"k_tg{j}_z"),
-                (None, f"c_tg{j}_z"),
+                (None, f"k_tg{ballast}_z"),
+                (None, f"c_tg{ballast}_z"),
             )
         )
     out.append(

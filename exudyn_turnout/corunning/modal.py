@@ -65,7 +65,23 @@ class TrackMatrices:
     dof: tuple[str, ...]  #: coordinate names, see the module docstring
 
     def index(self, name: str) -> int:
-        """Position of coordinate ``name``; KeyError naming the coordinates otherwise."""
+        """Position of a coordinate in the matrices.
+
+        Parameters
+        ----------
+        name : str
+            Coordinate name, e.g. ``"z_r1"`` (see the module docstring).
+
+        Returns
+        -------
+        int
+            Row/column index of the coordinate.
+
+        Raises
+        ------
+        KeyError
+            The model has no such coordinate; the message lists those it has.
+        """
         if name not in self.dof:
             raise KeyError(
                 f"no coordinate {name!r} in this model (coordinates: {' '.join(self.dof)})"
@@ -88,11 +104,17 @@ class Modes:
     frequency_hz: np.ndarray  #: Hz, ascending
     damping_ratio: np.ndarray  #: -, per undamped mode
     shapes: np.ndarray  #: columns, mass-normalised (phi^T M phi = 1)
-    dof: tuple[str, ...]
+    dof: tuple[str, ...]  #: coordinate names, the rows of ``shapes``
     eigenvalues: np.ndarray  #: 1/s, complex, of the damped system, 2n values
 
     def dominant_dof(self) -> tuple[str, ...]:
-        """Per mode, the coordinate holding most of its kinetic energy."""
+        """Per mode, the coordinate holding most of its kinetic energy.
+
+        Returns
+        -------
+        tuple of str
+            One coordinate name per undamped mode, in the order of ``frequency_hz``.
+        """
         return tuple(
             self.dof[i] for i in np.argmax(self.shapes**2 * self._mass_diag[:, None], axis=0)
         )
@@ -104,24 +126,68 @@ class Modes:
         return np.diag(inv.T @ inv)
 
     def damped(self) -> tuple[np.ndarray, np.ndarray]:
-        """Natural frequency |lambda| / 2 pi (Hz) and damping ratio -Re(lambda) / |lambda| of
-        the oscillating modes of the damped system (eigenvalues with Im > 0), ascending."""
-        lam = self.eigenvalues[self.eigenvalues.imag > 1e-9 * np.abs(self.eigenvalues)]
+        """Frequencies and damping ratios of the oscillating modes of the damped system.
+
+        The oscillating modes are the eigenvalues lambda with Im > 0, in ascending |lambda|.
+
+        Returns
+        -------
+        frequency_hz : numpy.ndarray
+            Natural frequency |lambda| / 2 pi (Hz).
+        damping_ratio : numpy.ndarray
+            Damping ratio -Re(lambda) / |lambda| (-).
+        """
+        oscillating = self.eigenvalues.imag > 1e-9 * np.abs(self.eigenvalues)
+        lam = self.eigenvalues[oscillating]
         lam = lam[np.argsort(np.abs(lam))]
         return np.abs(lam) / (2 * math.pi), -lam.real / np.abs(lam)
 
 
 def dof_names(active_rails: Sequence[str], layers: int) -> tuple[str, ...]:
-    """Coordinate names of the co-running model, in the order of its system matrices."""
-    rails = [r for r in RAIL_SLOTS if r in active_rails]
-    names = ["y_t", "z_t", "phi_t"] + [f"{a}_{r}" for r in rails for a in ("y", "z")]
+    """Coordinate names of the co-running model, in the order of its system matrices.
+
+    Parameters
+    ----------
+    active_rails : sequence of str
+        Rail slots in contact in the zone (``"r1"``...); ordered by slot whatever the order
+        given.
+    layers : {2, 3}
+        Two-layer or three-layer model (the latter adds the m_0 coordinates).
+
+    Returns
+    -------
+    tuple of str
+        Sleeper coordinates, then the rails', then the m_0 layer's (see the module docstring).
+    """
+    rails = [rail for rail in RAIL_SLOTS if rail in active_rails]
+    names = ["y_t", "z_t", "phi_t"] + [f"{axis}_{rail}" for rail in rails for axis in ("y", "z")]
     if layers == 3:
-        names += [f"{a}_m0_{r}" for r in rails for a in ("y", "z")]
+        names += [f"{axis}_m0_{rail}" for rail in rails for axis in ("y", "z")]
     return tuple(names)
 
 
 def wheel_dof(rail: str, direction: str, layers: int) -> str:
-    """Coordinate a wheel loads: the rail mass (two layers) or the m_0 above it (three layers)."""
+    """Coordinate a wheel loads: the rail mass (two layers) or the m_0 above it (three layers).
+
+    Parameters
+    ----------
+    rail : str
+        Rail slot, ``"r1"`` to ``"r4"``.
+    direction : {"vertical", "lateral"}
+        Direction of the load.
+    layers : {2, 3}
+        Two-layer or three-layer model.
+
+    Returns
+    -------
+    str
+        Coordinate name, e.g. ``"z_m0_r2"``.
+
+    Raises
+    ------
+    ValueError
+        For an unknown direction.
+    """
     if direction not in DIRECTIONS:
         raise ValueError(f"direction must be one of {', '.join(DIRECTIONS)}, got {direction!r}")
     axis = _DIRECTION_AXIS[direction]
@@ -129,7 +195,18 @@ def wheel_dof(rail: str, direction: str, layers: int) -> str:
 
 
 def zone_position(zone: Zone) -> float:
-    """The position (m) that stands for a zone when no x is given: its midpoint."""
+    """The position that stands for a zone when no x is given: its midpoint.
+
+    Parameters
+    ----------
+    zone : Zone
+        A zone of the turnout (Table 3).
+
+    Returns
+    -------
+    float
+        Midpoint of the zone, from the switch toe (m).
+    """
     return 0.5 * (zone.x_start + zone.x_end)
 
 
@@ -140,8 +217,20 @@ def assemble_track_matrices(params: CoRunningParameters, x: float) -> TrackMatri
     extension of the spring per unit coordinate (a lever arm a = y - sleeper_y on the
     sleeper's roll). Positions come from ``params.zone`` (``rail_y``, ``ballast_y``,
     ``sleeper_y``).
+
+    Parameters
+    ----------
+    params : CoRunningParameters
+        Parameter set of the zone containing x.
+    x : float
+        Position from the switch toe (m) at which position-dependent entries are taken.
+
+    Returns
+    -------
+    TrackMatrices
+        M, K, D and the coordinate names (:func:`dof_names`).
     """
-    v, zone = params.at(x), params.zone
+    values, zone = params.at(x), params.zone
     dof = dof_names(params.active_rails, params.layers)
     idx = {name: i for i, name in enumerate(dof)}
     n = len(dof)
@@ -154,35 +243,64 @@ def assemble_track_matrices(params: CoRunningParameters, x: float) -> TrackMatri
         K[:] += k * np.outer(vec, vec)
         D[:] += c * np.outer(vec, vec)
 
-    M[0, 0] = M[1, 1] = v["m_t"]
-    M[2, 2] = v["J_t"]
-    for j, y_b in zip((1, 2), zone.ballast_y):
-        spring({"z_t": 1.0, "phi_t": y_b - zone.sleeper_y}, v[f"k_tg{j}_z"], v[f"c_tg{j}_z"])
-    spring({"y_t": 1.0}, v["k_tg_y"], v["c_tg_y"])
+    M[0, 0] = M[1, 1] = values["m_t"]
+    M[2, 2] = values["J_t"]
+    for ballast, y_b in zip((1, 2), zone.ballast_y):
+        spring(
+            {"z_t": 1.0, "phi_t": y_b - zone.sleeper_y},
+            values[f"k_tg{ballast}_z"],
+            values[f"c_tg{ballast}_z"],
+        )
+    spring({"y_t": 1.0}, values["k_tg_y"], values["c_tg_y"])
     for rail in dof_rails(dof):
         j, a = rail[1:], zone.rail_y[rail] - zone.sleeper_y
-        M[idx[f"y_{rail}"], idx[f"y_{rail}"]] = M[idx[f"z_{rail}"], idx[f"z_{rail}"]] = v[f"m_r{j}"]
-        spring({f"z_{rail}": 1.0, "z_t": -1.0, "phi_t": -a}, v[f"k_rt{j}_z"], v[f"c_rt{j}_z"])
-        spring({f"y_{rail}": 1.0, "y_t": -1.0}, v[f"k_rt{j}_y"], v[f"c_rt{j}_y"])
+        i_y, i_z = idx[f"y_{rail}"], idx[f"z_{rail}"]
+        M[i_y, i_y] = M[i_z, i_z] = values[f"m_r{j}"]
+        spring(
+            {f"z_{rail}": 1.0, "z_t": -1.0, "phi_t": -a}, values[f"k_rt{j}_z"], values[f"c_rt{j}_z"]
+        )
+        spring({f"y_{rail}": 1.0, "y_t": -1.0}, values[f"k_rt{j}_y"], values[f"c_rt{j}_y"])
         if params.layers == 3:
             for axis in ("y", "z"):
-                i0 = idx[f"{axis}_m0_{rail}"]
-                M[i0, i0] = v["m_0"]
+                i_m0 = idx[f"{axis}_m0_{rail}"]
+                M[i_m0, i_m0] = values["m_0"]
                 spring(
                     {f"{axis}_m0_{rail}": 1.0, f"{axis}_{rail}": -1.0},
-                    v[f"k_0{j}_{axis}"],
-                    v[f"c_0{j}_{axis}"],
+                    values[f"k_0{j}_{axis}"],
+                    values[f"c_0{j}_{axis}"],
                 )
     return TrackMatrices(M, K, D, dof)
 
 
 def dof_rails(dof: Sequence[str]) -> tuple[str, ...]:
-    """Rail slots that have coordinates in ``dof``, in slot order."""
-    return tuple(r for r in RAIL_SLOTS if f"z_{r}" in dof)
+    """Rail slots that have coordinates in a list of coordinate names, in slot order.
+
+    Parameters
+    ----------
+    dof : sequence of str
+        Coordinate names, e.g. :attr:`TrackMatrices.dof`.
+
+    Returns
+    -------
+    tuple of str
+        The rail slots (``"r1"``...) with a ``z_<slot>`` coordinate.
+    """
+    return tuple(rail for rail in RAIL_SLOTS if f"z_{rail}" in dof)
 
 
 def modes(matrices: TrackMatrices) -> Modes:
-    """Undamped eigenfrequencies, modal damping ratios and damped eigenvalues."""
+    """Undamped eigenfrequencies, modal damping ratios and damped eigenvalues.
+
+    Parameters
+    ----------
+    matrices : TrackMatrices
+        M, K, D of a linear track model.
+
+    Returns
+    -------
+    Modes
+        The eigen-analysis; see :class:`Modes` for the definitions.
+    """
     M, K, D = matrices.M, matrices.K, matrices.D
     w2, phi = scipy.linalg.eigh(K, M)
     w = np.sqrt(np.clip(w2, 0.0, None))
@@ -208,6 +326,7 @@ def receptance_from_matrices(
     Parameters
     ----------
     matrices : TrackMatrices
+        M, K, D of the model.
     dof : str
         Coordinate name (force and displacement there), e.g. ``"z_m0_r2"``.
     frequency_hz : array_like
@@ -216,24 +335,34 @@ def receptance_from_matrices(
         ``modal``: eigen-decomposition of the first-order system once, then a sum over
         its 2n modes (fast; falls back to ``direct`` if the eigenvectors are nearly
         dependent). ``direct``: one complex linear solve per frequency.
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex receptance (m/N), one value per frequency.
+
+    Raises
+    ------
+    ValueError
+        For an unknown method.
     """
     if method not in ("modal", "direct"):
         raise ValueError(f"method must be 'modal' or 'direct', got {method!r}")
-    i, f = matrices.index(dof), np.asarray(frequency_hz, dtype=float)
-    s = 2j * math.pi * f
+    i_dof, frequency = matrices.index(dof), np.asarray(frequency_hz, dtype=float)
+    s = 2j * math.pi * frequency
     if method == "modal":
-        H = _modal_receptance(matrices, i, s)
+        H = _modal_receptance(matrices, i_dof, s)
         if H is not None:
             return H
     M, K, D = matrices.M, matrices.K, matrices.D
     Z = K[None, :, :] + s[:, None, None] ** 2 * M[None, :, :] + s[:, None, None] * D[None, :, :]
-    rhs = np.zeros((len(f), M.shape[0], 1), dtype=complex)
-    rhs[:, i, 0] = 1.0
-    return np.linalg.solve(Z, rhs)[:, i, 0]
+    rhs = np.zeros((len(frequency), M.shape[0], 1), dtype=complex)
+    rhs[:, i_dof, 0] = 1.0
+    return np.linalg.solve(Z, rhs)[:, i_dof, 0]
 
 
 def _modal_receptance(matrices: TrackMatrices, i: int, s: np.ndarray) -> np.ndarray | None:
-    """H(s) = sum_k c_k b_k / (s - lambda_k) with A = V diag(lambda) V^-1; None if V is singular."""
+    """H(s) = sum_k c_k b_k / (s - lambda_k), A = V diag(lambda) V^-1; None if V is singular."""
     M, n = matrices.M, matrices.M.shape[0]
     lam, V = scipy.linalg.eig(_state_matrix(M, matrices.K, matrices.D))
     if np.linalg.cond(V) > 1e10:
@@ -252,7 +381,35 @@ def co_running_parameters_at(
     source: str = "derived",
     readings: Readings = DEFAULT_READINGS,
 ) -> tuple[CoRunningParameters, float]:
-    """The parameter set and the position used for ``x`` or ``zone`` (its midpoint)."""
+    """The parameter set and the position used for ``x`` or ``zone`` (its midpoint).
+
+    Parameters
+    ----------
+    turnout : Turnout
+        The turnout.
+    layers : {2, 3}
+        Two-layer (Fig. 2) or three-layer (Fig. 3) model.
+    x : float, optional
+        Position from the switch toe (m). Give ``x`` or ``zone``.
+    zone : int, optional
+        1-based zone index (Table 3); its midpoint is used.
+    source : {"derived", "published"}
+        Eqs 1-19 on Table 1, or the paper's Table 2.
+    readings : Readings
+        Readings of the ambiguous equations, for ``source="derived"``.
+
+    Returns
+    -------
+    params : CoRunningParameters
+        Parameter set of the zone.
+    x : float
+        ``x`` itself, or the midpoint of ``zone`` (m).
+
+    Raises
+    ------
+    ValueError
+        Neither or both of ``x`` and ``zone`` given.
+    """
     if (x is None) == (zone is None):
         raise ValueError("give exactly one of x or zone")
     params = co_running_parameters(
@@ -277,18 +434,23 @@ def co_running_receptance(
     Parameters
     ----------
     turnout : Turnout
+        The turnout.
     layers : {2, 3}
         Two-layer (force on the rail mass) or three-layer model (force on the m_0 above it).
     rail : {"r1", "r2", "r3", "r4"}
         Must be active at the position (Table 3); ValueError otherwise.
     direction : {"vertical", "lateral"}
+        Direction of force and displacement.
     x : float, optional
         Position from the switch toe (m). Give ``x`` or ``zone``.
     zone : int, optional
         1-based zone; the receptance is taken at the zone's midpoint.
     source : {"derived", "published"}
+        Eqs 1-19 on Table 1, or the paper's Table 2.
     frequencies : array_like, optional
         Hz; default 400 log-spaced from 1 to 2000 Hz.
+    readings : Readings
+        Readings of the ambiguous equations, for ``source="derived"``.
 
     Returns
     -------
@@ -300,24 +462,24 @@ def co_running_receptance(
     """
     params, x_at = co_running_parameters_at(turnout, layers, x, zone, source, readings)
     _check_rail(params, rail, x)
-    f = log_frequencies() if frequencies is None else np.asarray(frequencies, dtype=float)
+    frequency = log_frequencies() if frequencies is None else np.asarray(frequencies, float)
     matrices = assemble_track_matrices(params, x_at)
     dof = wheel_dof(rail, direction, layers)
-    md = modes(matrices)
-    f_d, zeta_d = md.damped()
-    meta = {
+    modal = modes(matrices)
+    damped_frequency, damped_ratio = modal.damped()
+    metadata = {
         "zone": params.zone.index,
         "source": source,
         "layers": layers,
         "dof": dof,
         "turnout": turnout.name,
-        "eigenfrequencies_hz": tuple(md.frequency_hz.tolist()),
-        "damping_ratios": tuple(md.damping_ratio.tolist()),
-        "damped_frequencies_hz": tuple(f_d.tolist()),
-        "damped_damping_ratios": tuple(zeta_d.tolist()),
+        "eigenfrequencies_hz": tuple(modal.frequency_hz.tolist()),
+        "damping_ratios": tuple(modal.damping_ratio.tolist()),
+        "damped_frequencies_hz": tuple(damped_frequency.tolist()),
+        "damped_damping_ratios": tuple(damped_ratio.tolist()),
     }
-    H = receptance_from_matrices(matrices, dof, f)
-    return Receptance(f, H, rail, direction, x_at, f"{layers}-layer", meta)
+    H = receptance_from_matrices(matrices, dof, frequency)
+    return Receptance(frequency, H, rail, direction, x_at, f"{layers}-layer", metadata)
 
 
 def co_running_modes(
@@ -328,7 +490,28 @@ def co_running_modes(
     source: str = "derived",
     readings: Readings = DEFAULT_READINGS,
 ) -> Modes:
-    """Eigen-analysis of the co-running model at x (or at a zone's midpoint)."""
+    """Eigen-analysis of the co-running model at x (or at a zone's midpoint).
+
+    Parameters
+    ----------
+    turnout : Turnout
+        The turnout.
+    layers : {2, 3}
+        Two-layer (Fig. 2) or three-layer (Fig. 3) model.
+    x : float, optional
+        Position from the switch toe (m). Give ``x`` or ``zone``.
+    zone : int, optional
+        1-based zone index (Table 3); its midpoint is used.
+    source : {"derived", "published"}
+        Eqs 1-19 on Table 1, or the paper's Table 2.
+    readings : Readings
+        Readings of the ambiguous equations, for ``source="derived"``.
+
+    Returns
+    -------
+    Modes
+        Eigenfrequencies, damping ratios and shapes of the cross-section.
+    """
     params, x_at = co_running_parameters_at(turnout, layers, x, zone, source, readings)
     return modes(assemble_track_matrices(params, x_at))
 
@@ -337,9 +520,9 @@ def _check_rail(params: CoRunningParameters, rail: str, x: float | None) -> None
     if rail not in RAIL_SLOTS:
         raise ValueError(f"rail must be one of {', '.join(RAIL_SLOTS)}, got {rail!r}")
     if rail not in params.active_rails:
-        z = params.zone
-        where = f"in zone {z.index} (" if x is None else f"at x = {x:g} m (zone {z.index}, "
+        zone = params.zone
+        where = f"in zone {zone.index} (" if x is None else f"at x = {x:g} m (zone {zone.index}, "
         raise ValueError(
-            f"rail {rail} is not active {where}{z.name}, {z.x_start:g} m to {z.x_end:g} m; "
-            f"active rails: {' '.join(z.active_rails)})"
+            f"rail {rail} is not active {where}{zone.name}, {zone.x_start:g} m to "
+            f"{zone.x_end:g} m; active rails: {' '.join(zone.active_rails)})"
         )

@@ -109,26 +109,42 @@ def rail_support(
 
     A rail type with ``equivalent_to`` (the switch rail) takes the values of that type
     (Section 3.1.1); its Delta factor is applied by :func:`co_running_parameters`.
+
+    Parameters
+    ----------
+    turnout : Turnout
+        The turnout (Table 1 properties of rails, pads, sleepers and ballast).
+    type_name : str
+        Name of a rail type of the turnout file (``"stock"``, ``"switch"``, ``"crossing"``...).
+    readings : Readings
+        Readings of the ambiguous equations (Eq 5 is the one used here).
+
+    Returns
+    -------
+    RailSupport
+        Equivalent ballast, support stiffness, static stiffness and effective lengths of the
+        rail type in both directions.
     """
     rail = turnout.rail_types[type_name]
     if rail.equivalent_to:
         rail = turnout.rail_types[rail.equivalent_to]
     L_t, n = rail.sleeper_length, rail.rails_per_sleeper  # Table 1 column of this rail type
-    sl, bl, L_s = turnout.sleeper, turnout.ballast, turnout.sleeper.spacing
-    L_eff_s = eq.sleeper_effective_length(L_t, bl.s_b_z, sl.youngs_modulus * sl.I, readings.eq5)
+    sleeper, ballast, L_s = turnout.sleeper, turnout.ballast, turnout.sleeper.spacing
+    EI_s = sleeper.youngs_modulus * sleeper.I
+    L_eff_s = eq.sleeper_effective_length(L_t, ballast.s_b_z, EI_s, readings.eq5)
     if rail.support == "middle":
         k_b_z, c_b_z = (
-            eq.ballast_stiffness_middle(bl.s_b_z, L_eff_s),
-            eq.ballast_stiffness_middle(bl.d_b_z, L_eff_s),
+            eq.ballast_stiffness_middle(ballast.s_b_z, L_eff_s),
+            eq.ballast_stiffness_middle(ballast.d_b_z, L_eff_s),
         )
     else:
         k_b_z, c_b_z = (
-            eq.ballast_stiffness_edge(bl.s_b_z, L_t, n),
-            eq.ballast_stiffness_edge(bl.d_b_z, L_t, n),
+            eq.ballast_stiffness_edge(ballast.s_b_z, L_t, n),
+            eq.ballast_stiffness_edge(ballast.d_b_z, L_t, n),
         )
     k_b_y, c_b_y = (
-        eq.lateral_ballast_stiffness(bl.s_b_y, L_t),
-        eq.lateral_ballast_stiffness(bl.d_b_y, L_t),
+        eq.lateral_ballast_stiffness(ballast.s_b_y, L_t),
+        eq.lateral_ballast_stiffness(ballast.d_b_y, L_t),
     )
     E = rail.youngs_modulus
     k_s_z = eq.continuous_support_stiffness(rail.pad.k_z, k_b_z, L_s)
@@ -153,8 +169,24 @@ def rail_support(
 
 
 def reference_rail_type(turnout: Turnout) -> str:
-    """Name of the plain-track rail type (``[turnout] reference_rail_type``, default "stock")."""
-    name = str(turnout.raw.get("turnout", {}).get("reference_rail_type", "stock"))
+    """Name of the plain-track rail type (``[turnout] reference_rail_type``, default "stock").
+
+    Parameters
+    ----------
+    turnout : Turnout
+        The turnout whose file names the reference rail type.
+
+    Returns
+    -------
+    str
+        A key of ``turnout.rail_types``.
+
+    Raises
+    ------
+    ValueError
+        The file names a rail type it does not define.
+    """
+    name = turnout.reference_rail_type
     if name not in turnout.rail_types:
         raise ValueError(
             f"{Path(turnout.source).name}: turnout.reference_rail_type {name!r} is not "
@@ -164,7 +196,18 @@ def reference_rail_type(turnout: Turnout) -> str:
 
 
 def reference_support(turnout: Turnout) -> RailSupport:
-    """Support of the reference (plain-track) rail: K_st,z and K_st,y of Eqs 11 and 15."""
+    """Support of the reference (plain-track) rail: K_st,z and K_st,y of Eqs 11 and 15.
+
+    Parameters
+    ----------
+    turnout : Turnout
+        The turnout.
+
+    Returns
+    -------
+    RailSupport
+        :func:`rail_support` of :func:`reference_rail_type` under the default readings.
+    """
     return rail_support(turnout, reference_rail_type(turnout))
 
 
@@ -192,6 +235,18 @@ def delta_z(turnout: Turnout, x: float) -> float:
     """Eq 11: Delta_z(x) = K_sw(x) / K_st,z, K_sw from Eq 10, K_st,z of the reference rail (Eq 2).
 
     Plain track (1) ahead of the toe: see :func:`_support_factor`.
+
+    Parameters
+    ----------
+    turnout : Turnout
+        The turnout, with the switch rail's vertical stiffness fit K_sw (Eq 10).
+    x : float
+        Position from the switch toe (m).
+
+    Returns
+    -------
+    float
+        Vertical stiffness ratio Delta_z (-).
     """
     return _support_factor(turnout.K_sw, reference_support(turnout).K_st_z, x)
 
@@ -200,6 +255,18 @@ def delta_y(turnout: Turnout, x: float) -> float:
     """Eq 15: Delta_y(x) = K_sh(x) / K_st,y, K_sh from Eq 14, K_st,y of the reference rail (Eq 2).
 
     Plain track (1) ahead of the toe: see :func:`_support_factor`.
+
+    Parameters
+    ----------
+    turnout : Turnout
+        The turnout, with the switch rail head's lateral stiffness fit K_sh (Eq 14).
+    x : float
+        Position from the switch toe (m).
+
+    Returns
+    -------
+    float
+        Lateral stiffness ratio Delta_y (-).
     """
     return _support_factor(turnout.K_sh, reference_support(turnout).K_st_y, x)
 
@@ -222,23 +289,55 @@ class CoRunningParameters:
 
     @property
     def active_rails(self) -> tuple[str, ...]:
+        """Rail slots (``"r1"``...) in contact with a wheel in this zone (Table 3)."""
         return self.zone.active_rails
 
     def at(self, x: float) -> dict[str, float]:
-        """All entries, the constants and ``Delta_z``, ``Delta_y`` evaluated at x (m)."""
+        """All entries, the constants and ``Delta_z``, ``Delta_y`` evaluated at a position.
+
+        Parameters
+        ----------
+        x : float
+            Position from the switch toe (m), inside the zone.
+
+        Returns
+        -------
+        dict of str to float
+            Parameter name to value (SI units).
+
+        Raises
+        ------
+        ValueError
+            x is outside the zone.
+        """
         if not self.zone.contains(x):
             raise ValueError(
                 f"x = {x:g} m is outside zone {self.zone.index} "
                 f"({self.zone.x_start:g} m to {self.zone.x_end:g} m)"
             )
-        dz, dy = delta_z(self.turnout, x), delta_y(self.turnout, x)
-        s = (x - self.zone.x_start) / (self.zone.x_end - self.zone.x_start)
-        out = {name: e.value(dz, dy, s) for name, e in self.entries.items()}
+        Delta_z, Delta_y = delta_z(self.turnout, x), delta_y(self.turnout, x)
+        zone_fraction = (x - self.zone.x_start) / (self.zone.x_end - self.zone.x_start)
+        out = {
+            name: entry.value(Delta_z, Delta_y, zone_fraction)
+            for name, entry in self.entries.items()
+        }
         out.update(self.constants)
-        out.update(Delta_z=dz, Delta_y=dy)
+        out.update(Delta_z=Delta_z, Delta_y=Delta_y)
         return out
 
     def depends_on_x(self, name: str) -> bool:
+        """Whether an entry varies with position within the zone.
+
+        Parameters
+        ----------
+        name : str
+            Parameter name, a key of ``entries``.
+
+        Returns
+        -------
+        bool
+            True for Delta_z, Delta_y and ramp entries, False for constants.
+        """
         return self.entries[name].kind != "const"
 
 
@@ -249,62 +348,96 @@ def _factor(kind: str | None, coefficient: float) -> Entry:
 def _rail_entries(turnout: Turnout, zone: Zone, slot: str, readings: Readings) -> dict[str, Entry]:
     j = slot[1:]
     rail_type = turnout.rail_types[zone.rail_types[slot]]
-    sup = rail_support(turnout, rail_type.name, readings)
-    base, L_s, x = sup.rail_type, turnout.sleeper.spacing, zone.mass_at_x
-    fz, fy = rail_type.vertical_factor, rail_type.lateral_factor
-    k_rt_z = eq.pad_stiffness(base.pad.k_z, sup.L_eff_r_z, L_s)
-    k_rt_y = eq.pad_stiffness(base.pad.k_y, sup.L_eff_r_y, L_s)
+    support = rail_support(turnout, rail_type.name, readings)
+    base, L_s, x = support.rail_type, turnout.sleeper.spacing, zone.mass_at_x
+    factor_z, factor_y = rail_type.vertical_factor, rail_type.lateral_factor
+    k_rt_z = eq.pad_stiffness(base.pad.k_z, support.L_eff_r_z, L_s)
+    k_rt_y = eq.pad_stiffness(base.pad.k_y, support.L_eff_r_y, L_s)
     G = eq.shear_modulus(base.youngs_modulus, base.poisson, readings.eq12_shear_modulus)
     c_0 = eq.extra_layer_damping(_section(base, "area"), G, base.density, base.shear_coefficient)
     m_r = eq.rail_mass(
-        _section(base, "area"), base.density, sup.L_eff_r_z, L_s, readings.eq16_rail_mass
+        _section(base, "area"), base.density, support.L_eff_r_z, L_s, readings.eq16_rail_mass
     )
-    if fz and x is not None:  # Eq 17 at the zone's mass position
+    if factor_z and x is not None:  # Eq 17 at the zone's mass position
         m_r = eq.switch_rail_mass(
             _section(base, "area"),
             base.density,
-            sup.L_eff_r_z,
+            support.L_eff_r_z,
             delta_z(turnout, x),
             L_s,
             readings.eq16_rail_mass,
         )
     layer = turnout.extra_layer
     return {
-        f"k_rt{j}_z": _factor(fz, k_rt_z),
-        f"c_rt{j}_z": _factor(fz, eq.pad_damping(base.pad.c_z, sup.L_eff_r_z, L_s)),
-        f"k_0{j}_z": _factor(fz, layer.k_0_z_over_k_rt_z * k_rt_z),
+        f"k_rt{j}_z": _factor(factor_z, k_rt_z),
+        f"c_rt{j}_z": _factor(factor_z, eq.pad_damping(base.pad.c_z, support.L_eff_r_z, L_s)),
+        f"k_0{j}_z": _factor(factor_z, layer.k_0_z_over_k_rt_z * k_rt_z),
         f"c_0{j}_z": Entry("const", c_0),
-        f"k_rt{j}_y": _factor(fy, k_rt_y),
-        f"c_rt{j}_y": _factor(fy, eq.pad_damping(base.pad.c_y, sup.L_eff_r_y, L_s)),
-        f"k_0{j}_y": _factor(fy, layer.k_0_y_over_k_rt_y * k_rt_y),
+        f"k_rt{j}_y": _factor(factor_y, k_rt_y),
+        f"c_rt{j}_y": _factor(factor_y, eq.pad_damping(base.pad.c_y, support.L_eff_r_y, L_s)),
+        f"k_0{j}_y": _factor(factor_y, layer.k_0_y_over_k_rt_y * k_rt_y),
         f"c_0{j}_y": Entry("const", c_0),
         f"m_r{j}": Entry("const", m_r),
     }
 
 
 def _sleeper_entries(turnout: Turnout, zone: Zone, readings: Readings) -> dict[str, Entry]:
-    g_type = turnout.rail_types[zone.ballast_rail_type]
-    g = rail_support(turnout, g_type.name, readings)
+    # the rail type that governs k_tg1, k_tg_y, m_t and J_t (Zone.ballast_rail_type)
+    governing_type = turnout.rail_types[zone.ballast_rail_type]
+    governing = rail_support(turnout, governing_type.name, readings)
     other_type = zone.rail_types.get("r4", reference_rail_type(turnout))
     other = rail_support(turnout, other_type, readings)
-    sl, L_s, x = turnout.sleeper, turnout.sleeper.spacing, zone.mass_at_x
-    if g.rail_type.support == "middle":
-        m_t = eq.crossing_sleeper_mass(sl.area, sl.density, g.L_eff_s, g.L_eff_r_z, L_s)
+    sleeper, L_s, x = turnout.sleeper, turnout.sleeper.spacing, zone.mass_at_x
+    if governing.rail_type.support == "middle":
+        m_t = eq.crossing_sleeper_mass(
+            sleeper.area,
+            sleeper.density,
+            governing.L_eff_s,
+            governing.L_eff_r_z,
+            L_s,
+        )
     else:
-        n = g.rail_type.rails_per_sleeper if readings.eq18_sleeper_share == "per_rail" else 1
-        d_y = delta_y(turnout, x) if (g_type.lateral_factor and x is not None) else 1.0
-        m_t = eq.sleeper_mass(sl.area, sl.density, g.L_t, g.L_eff_r_z, d_y, L_s, n)
-    fz, fy = g_type.vertical_factor, g_type.lateral_factor
+        n = (
+            governing.rail_type.rails_per_sleeper
+            if readings.eq18_sleeper_share == "per_rail"
+            else 1
+        )
+        d_y = delta_y(turnout, x) if (governing_type.lateral_factor and x is not None) else 1.0
+        m_t = eq.sleeper_mass(
+            sleeper.area,
+            sleeper.density,
+            governing.L_t,
+            governing.L_eff_r_z,
+            d_y,
+            L_s,
+            n,
+        )
+    factor_z, factor_y = governing_type.vertical_factor, governing_type.lateral_factor
     return {
-        "k_tg1_z": _factor(fz, eq.ballast_spring_stiffness(g.k_b_z, g.L_eff_r_z, L_s)),
-        "c_tg1_z": _factor(fz, eq.ballast_spring_damping(g.c_b_z, g.L_eff_r_z, L_s)),
+        "k_tg1_z": _factor(
+            factor_z,
+            eq.ballast_spring_stiffness(governing.k_b_z, governing.L_eff_r_z, L_s),
+        ),
+        "c_tg1_z": _factor(
+            factor_z,
+            eq.ballast_spring_damping(governing.c_b_z, governing.L_eff_r_z, L_s),
+        ),
         "k_tg2_z": Entry("const", eq.ballast_spring_stiffness(other.k_b_z, other.L_eff_r_z, L_s)),
         "c_tg2_z": Entry("const", eq.ballast_spring_damping(other.c_b_z, other.L_eff_r_z, L_s)),
-        "k_tg_y": _factor(fy, eq.ballast_spring_stiffness(g.k_b_y, g.L_eff_r_y, L_s)),
-        "c_tg_y": _factor(fy, eq.ballast_spring_damping(g.c_b_y, g.L_eff_r_y, L_s)),
+        "k_tg_y": _factor(
+            factor_y,
+            eq.ballast_spring_stiffness(governing.k_b_y, governing.L_eff_r_y, L_s),
+        ),
+        "c_tg_y": _factor(
+            factor_y,
+            eq.ballast_spring_damping(governing.c_b_y, governing.L_eff_r_y, L_s),
+        ),
         "m_0": Entry("const", turnout.extra_layer.m_0),
         "m_t": Entry("const", m_t),
-        "J_t": Entry("const", eq.sleeper_roll_inertia(m_t, g.rail_type.sleeper_length, sl.height)),
+        "J_t": Entry(
+            "const",
+            eq.sleeper_roll_inertia(m_t, governing.rail_type.sleeper_length, sleeper.height),
+        ),
     }
 
 
@@ -316,14 +449,14 @@ def _derived(
         if slot in zone.rail_types:
             entries.update(_rail_entries(turnout, zone, slot, readings))
     entries.update(_sleeper_entries(turnout, zone, readings))
-    ref = reference_support(turnout)
-    g = rail_support(turnout, zone.ballast_rail_type, readings)
+    reference = reference_support(turnout)
+    governing = rail_support(turnout, zone.ballast_rail_type, readings)
     constants = {
-        "K_st_z": ref.K_st_z,
-        "K_st_y": ref.K_st_y,
-        "L_eff_r_z": ref.L_eff_r_z,
-        "L_eff_r_y": ref.L_eff_r_y,
-        "L_eff_s": g.L_eff_s,
+        "K_st_z": reference.K_st_z,
+        "K_st_y": reference.K_st_y,
+        "L_eff_r_z": reference.L_eff_r_z,
+        "L_eff_r_y": reference.L_eff_r_y,
+        "L_eff_s": governing.L_eff_s,
     }
     ordered = {n: entries[n] for n in PARAMETER_NAMES if n in entries}
     return ordered, constants
@@ -365,13 +498,22 @@ def co_running_parameters(
         raise ValueError(f"layers must be 2 or 3, got {layers}")
     if source not in SOURCES:
         raise ValueError(f"source must be one of {', '.join(SOURCES)}, got {source!r}")
-    z = turnout.zone(zone) if zone is not None else turnout.zone_at(float(x))
-    if source == "published":
-        if z.index not in turnout.published:
-            raise ValueError(f"{turnout.source}: no published parameters for zone {z.index}")
-        entries, constants = dict(turnout.published[z.index]), {}
+    if zone is not None:
+        zone_data = turnout.zone(zone)
     else:
-        entries, constants = _derived(turnout, z, readings)
+        assert x is not None  # exactly one of zone and x, checked above
+        zone_data = turnout.zone_at(float(x))
+    constants: dict[str, float]
+    if source == "published":
+        if zone_data.index not in turnout.published:
+            raise ValueError(
+                f"{turnout.source}: no published parameters for zone {zone_data.index}"
+            )
+        entries, constants = dict(turnout.published[zone_data.index]), {}
+    else:
+        entries, constants = _derived(turnout, zone_data, readings)
     if layers == 2:
-        entries = {n: e for n, e in entries.items() if not n.startswith(_EXTRA_LAYER)}
-    return CoRunningParameters(turnout, z, layers, source, entries, constants)
+        entries = {
+            name: entry for name, entry in entries.items() if not name.startswith(_EXTRA_LAYER)
+        }
+    return CoRunningParameters(turnout, zone_data, layers, source, entries, constants)

@@ -67,42 +67,84 @@ class EntryLaw:
 
     @classmethod
     def of(cls, params: CoRunningParameters) -> EntryLaw:
-        t, z = params.turnout, params.zone
-        ref = reference_support(t)  # Delta = K(x) / K_st (Eqs 11, 15)
-        return cls(t.K_sw, t.K_sh, 1.0 / ref.K_st_z, 1.0 / ref.K_st_y, z.x_start, z.x_end)
+        """The laws of a parameter set's zone.
+
+        Parameters
+        ----------
+        params : CoRunningParameters
+            Parameter set whose turnout gives the fits K_sw, K_sh (Eqs 10, 14) and whose zone
+            gives the range of Table 2's ramps.
+
+        Returns
+        -------
+        EntryLaw
+            The laws, with K_st of the reference rail (Eqs 11, 15) inverted.
+        """
+        turnout, zone = params.turnout, params.zone
+        reference = reference_support(turnout)  # Delta = K(x) / K_st (Eqs 11, 15)
+        return cls(
+            turnout.K_sw,
+            turnout.K_sh,
+            1.0 / reference.K_st_z,
+            1.0 / reference.K_st_y,
+            zone.x_start,
+            zone.x_end,
+        )
 
     def value(self, entry: Entry, x: Any, lib: Any = None) -> Any:
-        """Entry at x; ``lib`` provides ``min``/``max`` (default: Python's, or ``exudyn.symbolic``)."""
+        """An entry's value at a position.
+
+        Parameters
+        ----------
+        entry : Entry
+            A parameter entry (``const``, ``Delta_z``, ``Delta_y`` or ``ramp``).
+        x : float or exudyn.symbolic.Real
+            Wheelset position from the switch toe (m), a number or a symbolic expression.
+        lib : module, optional
+            Provides ``min`` and ``max``: None for Python's builtins, ``exudyn.symbolic``
+            for a symbolic x.
+
+        Returns
+        -------
+        float or exudyn.symbolic.Real
+            The entry's value (SI units), of the same kind as x.
+        """
         lo, hi = (min, max) if lib is None else (lib.min, lib.max)
         if entry.kind == "Delta_z":
             return entry.a * _support_factor(self.K_sw, self.inv_K_st_z, x, lo, hi)
         if entry.kind == "Delta_y":
             return entry.a * _support_factor(self.K_sh, self.inv_K_st_y, x, lo, hi)
         if entry.kind == "ramp":
-            s = lo(hi((x - self.x_start) * (1.0 / (self.x_end - self.x_start)), 0.0), 1.0)
-            return entry.a + (entry.b - entry.a) * s
+            zone_fraction = lo(
+                hi((x - self.x_start) * (1.0 / (self.x_end - self.x_start)), 0.0), 1.0
+            )
+            return entry.a + (entry.b - entry.a) * zone_fraction
         return entry.a
 
 
-def _support_factor(p: Polynomial, inv_K_st: float, x: Any, lo: Callable, hi: Callable) -> Any:
+def _support_factor(
+    profile: Polynomial, inv_K_st: float, x: Any, lo: Callable, hi: Callable
+) -> Any:
     """Delta(x) of Eqs 11, 15 with plain track ahead of the toe, with min/max only.
 
-    Equals :func:`exudyn_turnout.corunning.parameters.delta_z` / ``delta_y``: with the blend weight
-    w = clamp((x - plain_track_end) / (x_min - plain_track_end), 0, 1), Delta is
+    Equals :func:`exudyn_turnout.corunning.parameters.delta_z` / ``delta_y``: with the blend
+    weight w = clamp((x - plain_track_end) / (x_min - plain_track_end), 0, 1), Delta is
     (1 - w) + w K(x) / K_st (K held at its end values outside [x_min, x_max]).
     """
-    ratio = inv_K_st * _horner(p, x, lo, hi)
-    if p.plain_track_end is None:
+    ratio = inv_K_st * _horner(profile, x, lo, hi)
+    plain_end = profile.plain_track_end
+    if plain_end is None:
         return ratio
-    w = lo(hi((x - p.plain_track_end) * (1.0 / (p.x_min - p.plain_track_end)), 0.0), 1.0)
+    w = lo(hi((x - plain_end) * (1.0 / (profile.x_min - plain_end)), 0.0), 1.0)
     return (1.0 - w) + w * ratio
 
 
-def _horner(p: Polynomial, x: Any, lo: Callable, hi: Callable) -> Any:
-    xc = lo(hi(x, p.x_min), p.x_max)
-    acc: Any = p.coefficients[-1]
-    for c in reversed(p.coefficients[:-1]):
-        acc = acc * xc + c
+def _horner(profile: Polynomial, x: Any, lo: Callable, hi: Callable) -> Any:
+    """The polynomial at x clamped to its range, by Horner's scheme (min/max, + and * only)."""
+    x_clamped = lo(hi(x, profile.x_min), profile.x_max)
+    acc: Any = profile.coefficients[-1]
+    for coefficient in reversed(profile.coefficients[:-1]):
+        acc = acc * x_clamped + coefficient
     return acc
 
 
@@ -122,18 +164,18 @@ class TrackHandles:
     v: float  #: m/s, speed (x = x0 + v t unless x_coordinate is given)
     mechanism: str  #: one of MECHANISMS
     dof: tuple[str, ...]  #: coordinate names (exudyn_turnout.corunning.modal order)
-    ground: int
-    sleeper_node: int
-    sleeper_body: int
-    rail_nodes: Mapping[str, int]
-    rail_bodies: Mapping[str, int]
-    rail_markers: Mapping[str, int]
+    ground: int  #: ground object
+    sleeper_node: int  #: NodeRigidBody2D of the sleeper (y_t, z_t, phi_t)
+    sleeper_body: int  #: RigidBody2D of the sleeper
+    rail_nodes: Mapping[str, int]  #: NodePoint2D per active rail (y_rj, z_rj)
+    rail_bodies: Mapping[str, int]  #: MassPoint2D per active rail
+    rail_markers: Mapping[str, int]  #: MarkerNodePosition per active rail
     layer_nodes: Mapping[str, int]  #: m_0 nodes (three layers; empty for two)
-    layer_bodies: Mapping[str, int]
-    layer_markers: Mapping[str, int]
-    wheel_markers: Mapping[str, int]
-    connectors: Mapping[str, int]
-    position_dependent: tuple[str, ...]
+    layer_bodies: Mapping[str, int]  #: m_0 mass points
+    layer_markers: Mapping[str, int]  #: m_0 markers
+    wheel_markers: Mapping[str, int]  #: per rail, the marker a wheel attaches to
+    connectors: Mapping[str, int]  #: CartesianSpringDamper objects by spring name
+    position_dependent: tuple[str, ...]  #: names of the connectors that follow x
     x_coordinate: tuple[int, int] | None = None  #: (node, local index) carrying q, x = x0 + q
     _position: list = field(default_factory=lambda: [math.nan], repr=False)  # x read at step start
     _symbol: Any = field(default=None, repr=False)  # exudyn.symbolic.Real holding that x
@@ -144,14 +186,35 @@ class TrackHandles:
         return self.layer_nodes if self.params.layers == 3 else self.rail_nodes
 
     def coordinate_indices(self, mbs: exu.MainSystem) -> dict[str, int]:
-        """Global ODE2 index of every track coordinate (after ``mbs.Assemble()``)."""
-        pairs = [(self.sleeper_node, k) for k in range(3)]
+        """Global ODE2 index of every track coordinate.
+
+        Parameters
+        ----------
+        mbs : exudyn.MainSystem
+            The system the track was added to, after ``mbs.Assemble()``.
+
+        Returns
+        -------
+        dict of str to int
+            Coordinate name (``handles.dof``) to its index in the system's ODE2 coordinates.
+        """
+        pairs = [(self.sleeper_node, local) for local in range(3)]
         for nodes in (self.rail_nodes, self.layer_nodes):
-            pairs += [(nodes[r], k) for r in RAIL_SLOTS if r in nodes for k in (0, 1)]
-        return {name: mbs.GetNodeODE2Index(n) + k for name, (n, k) in zip(self.dof, pairs)}
+            pairs += [
+                (nodes[rail], local) for rail in RAIL_SLOTS if rail in nodes for local in (0, 1)
+            ]
+        return {
+            name: mbs.GetNodeODE2Index(node) + local for name, (node, local) in zip(self.dof, pairs)
+        }
 
     def update_position(self, mbs: exu.MainSystem) -> None:
-        """Read x = x0 + q from ``x_coordinate`` into the user functions (call at step start)."""
+        """Read x = x0 + q from ``x_coordinate`` into the user functions (call at step start).
+
+        Parameters
+        ----------
+        mbs : exudyn.MainSystem
+            The system the track was added to.
+        """
         if self.x_coordinate is None:
             return
         node, index = self.x_coordinate
@@ -202,6 +265,7 @@ def add_co_running_track(
     Parameters
     ----------
     mbs : exudyn.MainSystem
+        The system to add the track to.
     params : CoRunningParameters
         From :func:`~exudyn_turnout.corunning.parameters.co_running_parameters` (2 or 3 layers).
     x0 : float
@@ -227,6 +291,12 @@ def add_co_running_track(
     Returns
     -------
     TrackHandles
+        Exudyn indices of the nodes, bodies, markers and connectors added.
+
+    Raises
+    ------
+    ValueError
+        For an unknown mechanism, or x0 outside the zone.
     """
     if mechanism not in MECHANISMS:
         raise ValueError(f"mechanism must be one of {', '.join(MECHANISMS)}, got {mechanism!r}")
@@ -234,7 +304,8 @@ def add_co_running_track(
     items = _add_bodies(mbs, params, values)
     position: list = [float(x0)]
     symbol = (
-        exu.symbolic.Real(f"x_track_{id(position)}", float(x0))
+        # exudyn's stub does not declare the symbolic submodule (it exists at run time)
+        exu.symbolic.Real(f"x_track_{id(position)}", float(x0))  # type: ignore[attr-defined]
         if (x_coordinate is not None and mechanism == "symbolic")
         else None
     )
@@ -271,10 +342,11 @@ def _add_springs(
     connectors, dependent = {}, []
     keep = mbs.variables.setdefault(_KEEPALIVE, [])  # symbolic functions must outlive the run
     for spring in cross_section_springs(params):
-        connectors[spring.name] = co = _add_spring(mbs, items, spring, values)
-        entries = [params.entries[n] if n else None for n in spring.k + spring.c]
-        if mechanism != "constant" and any(e is not None and e.kind != "const" for e in entries):
-            keep.append(_attach_user_function(mbs, co, law, entries, mechanism, x_of))
+        connectors[spring.name] = connector = _add_spring(mbs, items, spring, values)
+        entries = [params.entries[name] if name else None for name in spring.k + spring.c]
+        varies = any(entry is not None and entry.kind != "const" for entry in entries)
+        if mechanism != "constant" and varies:
+            keep.append(_attach_user_function(mbs, connector, law, entries, mechanism, x_of))
             dependent.append(spring.name)
     return connectors, tuple(dependent)
 
@@ -351,9 +423,13 @@ def _add_spring(
         markers.append(
             items["layer_markers"][end[3:]] if end.startswith("m0_") else items["rail_markers"][end]
         )
-    k = [values[n] if n else 0.0 for n in spring.k] + [0.0]
-    c = [values[n] if n else 0.0 for n in spring.c] + [0.0]
-    return int(mbs.AddObject(CartesianSpringDamper(markerNumbers=markers, stiffness=k, damping=c)))
+    stiffness = [values[name] if name else 0.0 for name in spring.k] + [0.0]
+    damping = [values[name] if name else 0.0 for name in spring.c] + [0.0]
+    return int(
+        mbs.AddObject(
+            CartesianSpringDamper(markerNumbers=markers, stiffness=stiffness, damping=damping)
+        )
+    )
 
 
 def _position_functions(x0: float, v: float, x_coordinate, cell: list, symbol) -> Callable:
@@ -373,8 +449,12 @@ def _attach_user_function(
     mechanism: str,
     x_of: Callable,
 ) -> Any:
-    """Make a connector's stiffness and damping follow x; returns a symbolic function to keep alive."""
-    lib = exu.symbolic if mechanism == "symbolic" else None
+    """Make a connector's stiffness and damping follow x.
+
+    Returns the symbolic user function, which must be kept alive, or None (Python one).
+    """
+    # exudyn's stub does not declare the symbolic submodule (it exists at run time)
+    lib = exu.symbolic if mechanism == "symbolic" else None  # type: ignore[attr-defined]
     ky, kz, cy, cz = entries
 
     def value(entry: Entry | None, x: Any) -> Any:
@@ -393,8 +473,10 @@ def _attach_user_function(
     if mechanism == "python":
         mbs.SetObjectParameter(connector, "springForceUserFunction", springForceUserFunction)
         return None
+    # exudyn's stub imports ObjectIndex without re-exporting it (it is public at run time)
+    object_index = exu.ObjectIndex(connector)  # type: ignore[attr-defined]
     symbolic = CreateSymbolicUserFunction(
-        mbs, springForceUserFunction, "springForceUserFunction", exu.ObjectIndex(connector)
+        mbs, springForceUserFunction, "springForceUserFunction", object_index
     )
     mbs.SetObjectParameter(connector, "springForceUserFunction", symbolic)
     return symbolic
@@ -406,11 +488,25 @@ def linearized_matrices(mbs: exu.MainSystem, handles: TrackHandles) -> TrackMatr
     Rows and columns are the track's coordinates in ``handles.dof`` order (other items of
     ``mbs`` are left out). Assembles ``mbs`` if needed. User-function springs are
     linearised by Exudyn with finite differences, at the current time (x = x0 + v t).
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+        The system holding the track.
+    handles : TrackHandles
+        From :func:`add_co_running_track` on ``mbs``.
+
+    Returns
+    -------
+    TrackMatrices
+        M (kg), K (N/m), D (N s/m) restricted to the track's coordinates.
     """
     M, K, D = mbs.ComputeLinearizedSystem(simulation_settings(1.0, 1.0))
     index = handles.coordinate_indices(mbs)
-    sel = [index[name] for name in handles.dof]
-    return TrackMatrices(M[sel][:, sel], K[sel][:, sel], D[sel][:, sel], handles.dof)
+    selected = [index[name] for name in handles.dof]
+    return TrackMatrices(
+        M[selected][:, selected], K[selected][:, selected], D[selected][:, selected], handles.dof
+    )
 
 
 def simulation_settings(
@@ -419,19 +515,34 @@ def simulation_settings(
     sensor_period: float | None = None,
     newton_absolute_tolerance: float = 1e-4,
 ) -> exu.SimulationSettings:
-    """Headless, quiet settings: no console output, no solution files, sensors stored every step.
+    """Headless, quiet settings: no console output, no solution files, sensors every step.
 
-    ``newton_absolute_tolerance`` (N per coordinate) replaces Exudyn's 1e-10, which lies
-    below the round-off of residuals made of 1e8 N/m springs and 1e5 N wheel loads: once
-    the track comes to rest Newton would fail and cut the step. Also set
-    ``exudyn.config.printToConsole = False`` to silence Exudyn's own messages.
+    Also set ``exudyn.config.printToConsole = False`` to silence Exudyn's own messages.
+
+    Parameters
+    ----------
+    end_time : float
+        Simulated time (s).
+    step_size : float
+        Time step (s); the number of steps is end_time / step_size rounded (at least 1).
+    sensor_period : float, optional
+        Period at which sensors store values (s); default every step.
+    newton_absolute_tolerance : float
+        Newton residual tolerance (N per coordinate). Replaces Exudyn's 1e-10, which lies
+        below the round-off of residuals made of 1e8 N/m springs and 1e5 N wheel loads:
+        once the track comes to rest Newton would fail and cut the step.
+
+    Returns
+    -------
+    exudyn.SimulationSettings
+        Settings for ``mbs.SolveDynamic`` and ``ComputeLinearizedSystem``.
     """
-    s = exu.SimulationSettings()
-    s.timeIntegration.newton.absoluteTolerance = newton_absolute_tolerance
-    s.timeIntegration.endTime = end_time
-    s.timeIntegration.numberOfSteps = max(1, int(round(end_time / step_size)))
-    s.timeIntegration.verboseMode = 0
-    s.staticSolver.verboseMode = 0
-    s.solution.file.write = False
-    s.solution.sensors.writePeriod = step_size if sensor_period is None else sensor_period
-    return s
+    settings = exu.SimulationSettings()
+    settings.timeIntegration.newton.absoluteTolerance = newton_absolute_tolerance
+    settings.timeIntegration.endTime = end_time
+    settings.timeIntegration.numberOfSteps = max(1, int(round(end_time / step_size)))
+    settings.timeIntegration.verboseMode = 0
+    settings.staticSolver.verboseMode = 0
+    settings.solution.file.write = False
+    settings.solution.sensors.writePeriod = step_size if sensor_period is None else sensor_period
+    return settings

@@ -49,6 +49,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 __all__ = [
     "two_layer_support",
@@ -58,7 +59,9 @@ __all__ = [
 ]
 
 
-def two_layer_support(omega, k_p, c_p, m_s, k_b, c_b, L_s):
+def two_layer_support(
+    omega: ArrayLike, k_p: float, c_p: float, m_s: float, k_b: float, c_b: float, L_s: float
+) -> np.ndarray:
     """Complex support stiffness per unit length s(omega) of Eq (1) (N/m^2).
 
     Parameters
@@ -73,6 +76,11 @@ def two_layer_support(omega, k_p, c_p, m_s, k_b, c_b, L_s):
         Ballast stiffness (N/m) and damping (N s/m) per rail and support.
     L_s : float
         Support spacing (m).
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex s(omega) (N/m^2), one value per frequency.
     """
     omega = np.asarray(omega, float)
     kp = (k_p + 1j * omega * c_p) / L_s
@@ -80,7 +88,9 @@ def two_layer_support(omega, k_p, c_p, m_s, k_b, c_b, L_s):
     return kp * kb / (kp + kb)
 
 
-def infinite_timoshenko_receptance(omega, EI, kGA, rhoA, rhoI, s):
+def infinite_timoshenko_receptance(
+    omega: ArrayLike, EI: float, kGA: float, rhoA: float, rhoI: float, s: ArrayLike
+) -> np.ndarray:
     """Point receptance (m/N) of an infinite Timoshenko beam on a Winkler support s.
 
     Parameters
@@ -113,8 +123,31 @@ def infinite_timoshenko_receptance(omega, EI, kGA, rhoA, rhoI, s):
     return A1 * (1.0 - r1 / r2)
 
 
-def simply_supported_timoshenko_frequency(L, EI, kGA, rhoA, rhoI, n=1):
-    """Flexural eigenfrequency (Hz) of mode n of a simply supported Timoshenko beam, Eq (5)."""
+def simply_supported_timoshenko_frequency(
+    L: float, EI: float, kGA: float, rhoA: float, rhoI: float, n: int = 1
+) -> float:
+    """Flexural eigenfrequency of mode n of a simply supported Timoshenko beam, Eq (5).
+
+    Parameters
+    ----------
+    L : float
+        Span between the pinned supports (m).
+    EI : float
+        Bending stiffness (N m^2).
+    kGA : float
+        Shear stiffness kappa G A (N).
+    rhoA : float
+        Mass per unit length (kg/m).
+    rhoI : float
+        Rotary inertia per unit length (kg m).
+    n : int
+        Mode number (half-waves over the span).
+
+    Returns
+    -------
+    float
+        The lower (flexural) root of Eq (5), in Hz.
+    """
     k = n * math.pi / L
     a = rhoA * rhoI
     b = -(rhoA * (EI * k**2 + kGA) + rhoI * kGA * k**2)
@@ -124,6 +157,23 @@ def simply_supported_timoshenko_frequency(L, EI, kGA, rhoA, rhoI, n=1):
     return math.sqrt(w2) / (2 * math.pi)
 
 
-def simply_supported_euler_frequency(L, EI, rhoA, n=1):
-    """Euler-Bernoulli counterpart (Hz): (n pi / L)^2 sqrt(EI / rhoA) / (2 pi)."""
+def simply_supported_euler_frequency(L: float, EI: float, rhoA: float, n: int = 1) -> float:
+    """Euler-Bernoulli counterpart of Eq (5): (n pi / L)^2 sqrt(EI / rhoA) / (2 pi).
+
+    Parameters
+    ----------
+    L : float
+        Span between the pinned supports (m).
+    EI : float
+        Bending stiffness (N m^2).
+    rhoA : float
+        Mass per unit length (kg/m).
+    n : int
+        Mode number (half-waves over the span).
+
+    Returns
+    -------
+    float
+        Eigenfrequency of mode n (Hz).
+    """
     return (n * math.pi / L) ** 2 * math.sqrt(EI / rhoA) / (2 * math.pi)

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse.linalg as sla
+from numpy.typing import ArrayLike
 
 from exudyn_turnout.fe import timoshenko as tim
 from exudyn_turnout.fe.mesh import FEOptions
@@ -23,6 +24,9 @@ from exudyn_turnout.fe.model import Triplets, rail_section
 from exudyn_turnout.inputs.turnout import Turnout
 
 __all__ = ["ContinuousSupport", "smeared_support", "continuous_beam_receptance"]
+
+#: Default options of :func:`continuous_beam_receptance`: no rail damping, as the closed form.
+_CLOSED_FORM_OPTIONS = FEOptions(rail_loss_factor=0.0)
 
 
 @dataclass(frozen=True)
@@ -48,64 +52,86 @@ def smeared_support(
 
     Vertical: the rail's share of the sleeper, L_t / n (Eq 4), for its mass and ballast;
     lateral: the whole sleeper (Eq 13). L_t and n are the rail type's Table 1 values.
+
+    Parameters
+    ----------
+    turnout : Turnout
+        Table 1 properties of pads, sleeper and ballast.
+    rail_type : str
+        Rail type whose pads, sleeper length and rails per sleeper are used.
+    direction : {"vertical", "lateral"}
+        Which pad and ballast properties.
+
+    Returns
+    -------
+    ContinuousSupport
+        The layers per unit rail length.
     """
-    t, s, b = turnout.rail_types[rail_type], turnout.sleeper, turnout.ballast
-    L_s = s.spacing
+    rail, sleeper, ballast = turnout.rail_types[rail_type], turnout.sleeper, turnout.ballast
+    L_s = sleeper.spacing
     if direction == "vertical":
-        share = t.sleeper_length / t.rails_per_sleeper
+        share = rail.sleeper_length / rail.rails_per_sleeper
         return ContinuousSupport(
-            t.pad.k_z / L_s,
-            t.pad.c_z / L_s,
-            s.density * s.area * share / L_s,
-            b.s_b_z * share / L_s,
-            b.d_b_z * share / L_s,
+            rail.pad.k_z / L_s,
+            rail.pad.c_z / L_s,
+            sleeper.density * sleeper.area * share / L_s,
+            ballast.s_b_z * share / L_s,
+            ballast.d_b_z * share / L_s,
         )
-    L_t = t.sleeper_length
+    L_t = rail.sleeper_length
     return ContinuousSupport(
-        t.pad.k_y / L_s,
-        t.pad.c_y / L_s,
-        s.density * s.area * L_t / L_s,
-        b.s_b_y * L_t / L_s,
-        b.d_b_y * L_t / L_s,
+        rail.pad.k_y / L_s,
+        rail.pad.c_y / L_s,
+        sleeper.density * sleeper.area * L_t / L_s,
+        ballast.s_b_y * L_t / L_s,
+        ballast.d_b_y * L_t / L_s,
     )
 
 
 def _model(section: dict, support: ContinuousSupport, length: float, options: FEOptions):
     """K + iG, D, M (CSC) and the DOF of w at x = 0 of the beam on the layers."""
     p, reach = options.element_order, length / 2 + options.absorbing_length
-    n_el = 2 * int(np.ceil(reach / options.element_length))
-    x = np.linspace(-reach, reach, n_el + 1)
+    n_elements = 2 * int(np.ceil(reach / options.element_length))
+    x = np.linspace(-reach, reach, n_elements + 1)
     L = np.diff(x)
     depth = np.clip(
         (np.abs(0.5 * (x[:-1] + x[1:])) - length / 2) / options.absorbing_length, 0.0, 1.0
     )
     eta = options.rail_loss_factor + options.eta_max * depth**2
-    nodes = np.arange(n_el * p + 1)
-    elem = np.stack([nodes[i * p : i * p + p + 1] for i in range(n_el)])
-    beam = np.stack([2 * elem, 2 * elem + 1], axis=-1).reshape(n_el, -1)  # (w, psi) per node
-    layer = 2 * len(nodes) + elem  # sleeper-layer u per node
-    trip = Triplets(3 * len(nodes))
+    nodes = np.arange(n_elements * p + 1)
+    elements = np.stack([nodes[i * p : i * p + p + 1] for i in range(n_elements)])
+    # (w, psi) per node
+    beam = np.stack([2 * elements, 2 * elements + 1], axis=-1).reshape(n_elements, -1)
+    layer = 2 * len(nodes) + elements  # sleeper-layer u per node
+    triplets = Triplets(3 * len(nodes))
     K = tim.beam_stiffness(p, L, section["EI"], section["kGA"])
-    trip.add(
-        beam, K=K, G=eta[:, None, None] * K, M=tim.beam_mass(p, L, section["rhoA"], section["rhoI"])
-    )
-    N = lambda q: tim.bar_mass(p, L, q)  # noqa: E731  int q N N^T, the layers' Gram matrix
+    M = tim.beam_mass(p, L, section["rhoA"], section["rhoI"])
+    triplets.add(beam, K=K, G=eta[:, None, None] * K, M=M)
+
+    def gram(q: float) -> np.ndarray:
+        """int q N N^T over each element, the layers' Gram matrix."""
+        return tim.bar_mass(p, L, q)
+
+    def pad(q: float) -> np.ndarray:
+        """int q (w - u)^2 over each element: a layer between the rail's w and u."""
+        return np.block([[gram(q), -gram(q)], [-gram(q), gram(q)]])
+
     both = np.concatenate([beam[:, 0::2], layer], axis=1)  # w and u DOFs of each element
-    pad = lambda q: np.block([[N(q), -N(q)], [-N(q), N(q)]])  # noqa: E731  int q (w - u)^2
-    trip.add(both, K=pad(support.k_p), D=pad(support.c_p))
-    trip.add(layer, K=N(support.k_b), D=N(support.c_b), M=N(support.m_s))
-    m = trip.matrices()
-    return m["K"] + 1j * m["G"], m["D"], m["M"], 2 * (n_el // 2) * p
+    triplets.add(both, K=pad(support.k_p), D=pad(support.c_p))
+    triplets.add(layer, K=gram(support.k_b), D=gram(support.c_b), M=gram(support.m_s))
+    matrices = triplets.matrices()
+    centre_dof = 2 * (n_elements // 2) * p
+    return matrices["K"] + 1j * matrices["G"], matrices["D"], matrices["M"], centre_dof
 
 
 def continuous_beam_receptance(
     turnout: Turnout,
     support: ContinuousSupport,
-    frequencies,
+    frequencies: ArrayLike,
     rail_type: str = "stock",
     direction: str = "vertical",
     length: float = 40.0,
-    options: FEOptions = FEOptions(rail_loss_factor=0.0),
+    options: FEOptions = _CLOSED_FORM_OPTIONS,
     section: dict | None = None,
 ) -> np.ndarray:
     """Point receptance (m/N, complex) at the middle of the smeared-support beam.
@@ -118,6 +144,10 @@ def continuous_beam_receptance(
         From :func:`smeared_support` or built by hand.
     frequencies : array_like
         Hz; 0 gives the static compliance.
+    rail_type : str
+        Rail type whose section is used (Table 1), unless ``section`` is given.
+    direction : {"vertical", "lateral"}
+        Bending plane of the rail section.
     length : float
         m, undamped length of beam before the absorbing ends.
     options : FEOptions
@@ -125,16 +155,21 @@ def continuous_beam_receptance(
         as in the closed form.
     section : dict, optional
         EI, kGA, rhoA, rhoI (SI) overriding the rail type's.
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex receptance (m/N), one value per frequency.
     """
     section = section or {
-        k: float(np.ravel(v)[0])
-        for k, v in rail_section(turnout, rail_type, np.array([0.0]), direction).items()
+        name: float(np.ravel(value)[0])
+        for name, value in rail_section(turnout, rail_type, np.array([0.0]), direction).items()
     }
     A, D, M, dof = _model(section, support, length, options)
     out = []
-    for f in np.asarray(frequencies, float):
-        w = 2 * np.pi * f
-        b = np.zeros(A.shape[0], complex)
-        b[dof] = 1.0
-        out.append(sla.splu((A + 1j * w * D - w**2 * M).tocsc()).solve(b)[dof])
+    for frequency in np.asarray(frequencies, float):
+        omega = 2 * np.pi * frequency
+        force = np.zeros(A.shape[0], complex)
+        force[dof] = 1.0
+        out.append(sla.splu((A + 1j * omega * D - omega**2 * M).tocsc()).solve(force)[dof])
     return np.array(out)

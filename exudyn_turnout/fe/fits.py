@@ -17,6 +17,7 @@ import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from exudyn_turnout.fe.layout import Layout, load_layout
 from exudyn_turnout.fe.stiffness import StiffnessProfile
@@ -46,7 +47,10 @@ class PolynomialFit:
 
     @property
     def polynomial(self) -> Polynomial:
-        """As the turnout's :class:`~exudyn_turnout.inputs.turnout.Polynomial` (held outside the range)."""
+        """As the turnout's :class:`~exudyn_turnout.inputs.turnout.Polynomial`.
+
+        Held at its end values outside the fitted range.
+        """
         return Polynomial(self.coefficients, self.x_min, self.x_max)
 
     def __call__(self, x: float) -> float:
@@ -55,32 +59,81 @@ class PolynomialFit:
 
 @dataclass(frozen=True)
 class TurnoutFits:
+    """The two fits that replace the paper's Eqs 10 and 14 in a turnout."""
+
     K_sw: PolynomialFit  #: Eq 10 analogue (vertical, quadratic)
     K_sh: PolynomialFit  #: Eq 14 analogue (lateral, linear)
 
 
-def fit_polynomial(x, y, degree: int) -> tuple[tuple[float, ...], float]:
-    """Least-squares coefficients (ascending powers) and R^2 of a polynomial y(x)."""
+def fit_polynomial(x: ArrayLike, y: ArrayLike, degree: int) -> tuple[tuple[float, ...], float]:
+    """Least-squares coefficients (ascending powers) and R^2 of a polynomial y(x).
+
+    Parameters
+    ----------
+    x : array_like
+        Abscissae (m).
+    y : array_like
+        Values to fit (any unit, e.g. N/m).
+    degree : int
+        Polynomial degree; needs more than ``degree`` points.
+
+    Returns
+    -------
+    coefficients : tuple of float
+        Coefficients of x^0, x^1, ... (unit of y per m^k).
+    r_squared : float
+        Coefficient of determination (-); 1 for constant y.
+
+    Raises
+    ------
+    ValueError
+        Too few points for the degree.
+    """
     x, y = np.asarray(x, float), np.asarray(y, float)
     if len(x) <= degree:
         raise ValueError(f"need more than {degree} points for a degree-{degree} fit, got {len(x)}")
-    c = np.polynomial.polynomial.polyfit(x, y, degree)
-    residual = y - np.polynomial.polynomial.polyval(x, c)
+    coefficients = np.polynomial.polynomial.polyfit(x, y, degree)
+    residual = y - np.polynomial.polynomial.polyval(x, coefficients)
     ss_tot = float(np.sum((y - y.mean()) ** 2))
-    r2 = 1.0 - float(np.sum(residual**2)) / ss_tot if ss_tot > 0 else 1.0
-    return tuple(float(v) for v in c), r2
+    r_squared = 1.0 - float(np.sum(residual**2)) / ss_tot if ss_tot > 0 else 1.0
+    return tuple(float(value) for value in coefficients), r_squared
 
 
 def fit_profile(
     profile: StiffnessProfile, rail: str, direction: str, degree: int, x_min: float, x_max: float
 ) -> PolynomialFit:
-    """Fit one rail's vertical or lateral stiffness over [x_min, x_max] (m)."""
-    xs, kz, ky = profile.of(rail)
-    sel = (xs >= x_min) & (xs <= x_max)
-    K = (kz if direction == "vertical" else ky)[sel]
-    coefficients, r2 = fit_polynomial(xs[sel], K, degree)
+    """Fit one rail's vertical or lateral static stiffness over [x_min, x_max].
+
+    Parameters
+    ----------
+    profile : StiffnessProfile
+        FE static stiffness at every sleeper.
+    rail : str
+        Layout rail id.
+    direction : {"vertical", "lateral"}
+        Which stiffness to fit.
+    degree : int
+        Polynomial degree (2 for Eq 10, 1 for Eq 14).
+    x_min, x_max : float
+        Fitted range of x (m); the sleepers inside it are used.
+
+    Returns
+    -------
+    PolynomialFit
+        The fit with its range, R^2 and number of sleepers.
+    """
+    x_sleepers, K_z, K_y = profile.of(rail)
+    selected = (x_sleepers >= x_min) & (x_sleepers <= x_max)
+    K = (K_z if direction == "vertical" else K_y)[selected]
+    coefficients, r_squared = fit_polynomial(x_sleepers[selected], K, degree)
     return PolynomialFit(
-        rail, direction, coefficients, float(x_min), float(x_max), r2, int(sel.sum())
+        rail,
+        direction,
+        coefficients,
+        float(x_min),
+        float(x_max),
+        r_squared,
+        int(selected.sum()),
     )
 
 
@@ -92,19 +145,40 @@ def fit_turnout_profiles(
     Parameters
     ----------
     profile : StiffnessProfile
+        FE static stiffness at every sleeper, from
+        :func:`~exudyn_turnout.fe.stiffness.static_stiffness_profile`.
     turnout : Turnout
+        The turnout the profile was computed for.
     layout : Layout, optional
         Default :func:`~exudyn_turnout.fe.layout.load_layout` of the turnout; its
         ``fits`` name the rail and x range of each fit.
+
+    Returns
+    -------
+    TurnoutFits
+        The Eq 10 and Eq 14 analogues.
     """
     layout = layout or load_layout(turnout)
-    sw, sh = layout.fits["K_sw"], layout.fits["K_sh"]
+    vertical, lateral = layout.fits["K_sw"], layout.fits["K_sh"]
     return TurnoutFits(
-        fit_profile(profile, sw.rail, "vertical", 2, sw.x_min, sw.x_max),
-        fit_profile(profile, sh.rail, "lateral", 1, sh.x_min, sh.x_max),
+        fit_profile(profile, vertical.rail, "vertical", 2, vertical.x_min, vertical.x_max),
+        fit_profile(profile, lateral.rail, "lateral", 1, lateral.x_min, lateral.x_max),
     )
 
 
 def with_fitted_profiles(turnout: Turnout, fits: TurnoutFits) -> Turnout:
-    """The turnout with K_sw and K_sh replaced by the fitted polynomials."""
+    """The turnout with K_sw and K_sh replaced by the fitted polynomials.
+
+    Parameters
+    ----------
+    turnout : Turnout
+        The turnout; not modified.
+    fits : TurnoutFits
+        From :func:`fit_turnout_profiles`.
+
+    Returns
+    -------
+    Turnout
+        A copy whose Delta_z, Delta_y (Eqs 11, 15) follow the FE instead of the paper.
+    """
     return dataclasses.replace(turnout, K_sw=fits.K_sw.polynomial, K_sh=fits.K_sh.polynomial)

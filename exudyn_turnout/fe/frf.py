@@ -10,9 +10,11 @@ of the co-running models, so the curves compare directly.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import asdict
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from exudyn_turnout.fe.layout import Layout, load_layout
 from exudyn_turnout.fe.mesh import FEOptions, build_mesh
@@ -23,58 +25,124 @@ from exudyn_turnout.receptance import Receptance, log_frequencies
 
 __all__ = ["sweep", "sweep_points", "point_receptances", "resolve_rail", "fe_receptance"]
 
+_DEFAULT_OPTIONS = FEOptions()
 
-def sweep(model: PlaneModel, rail_id: str, x: float, frequencies) -> np.ndarray:
-    """Point receptance H (m/N, complex) of rail ``rail_id`` at x over ``frequencies`` (Hz).
 
-    x must be a rail node (build the mesh with ``points={rail_id: [x]}``).
+def sweep(model: PlaneModel, rail_id: str, x: float, frequencies: ArrayLike) -> np.ndarray:
+    """Point receptance of one rail node over a range of frequencies.
+
+    Parameters
+    ----------
+    model : PlaneModel
+        The assembled vertical or lateral model.
+    rail_id : str
+        Layout rail id.
+    x : float
+        Position from the switch toe (m); must be a rail node (build the mesh with
+        ``points={rail_id: [x]}``).
+    frequencies : array_like
+        Frequencies (Hz).
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex receptance H (m/N), one value per frequency.
     """
     return sweep_points(model, [(rail_id, x)], frequencies)[:, 0]
 
 
-def sweep_points(model: PlaneModel, points, frequencies) -> np.ndarray:
-    """Point receptances (m/N, complex), shape (n_frequencies, n_points), of (rail_id, x)
-    nodes, one factorisation per frequency for all points."""
-    B = np.column_stack([model.point_vector(r, x) for r, x in points])
+def sweep_points(
+    model: PlaneModel, points: Sequence[tuple[str, float]], frequencies: ArrayLike
+) -> np.ndarray:
+    """Point receptances of many rail nodes, one factorisation per frequency for all points.
+
+    Parameters
+    ----------
+    model : PlaneModel
+        The assembled vertical or lateral model.
+    points : sequence of (str, float)
+        Rail ids and positions (m) of rail nodes.
+    frequencies : array_like
+        Frequencies (Hz).
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex receptances (m/N), shape (n_frequencies, n_points).
+    """
+    B = np.column_stack([model.point_vector(rail_id, x) for rail_id, x in points])
     system = condense(model, np.union1d(default_keep(model), np.nonzero(B.any(axis=1))[0]))
     B = system.restrict(B).astype(complex)
     return np.array(
         [
-            np.einsum("ij,ij->j", B, system.solve(2 * np.pi * f, B))
-            for f in np.asarray(frequencies, float)
+            np.einsum("ij,ij->j", B, system.solve(2 * np.pi * frequency, B))
+            for frequency in np.asarray(frequencies, float)
         ]
     )
 
 
-def point_receptances(model: PlaneModel, points, frequency_hz: float) -> np.ndarray:
+def point_receptances(
+    model: PlaneModel, points: Sequence[tuple[str, float]], frequency_hz: float
+) -> np.ndarray:
     """Point receptances (m/N, complex) at many (rail_id, x) nodes, one factorisation.
 
     Parameters
     ----------
     model : PlaneModel
+        The assembled vertical or lateral model.
     points : sequence of (str, float)
         Rail ids and positions (m) of rail nodes.
     frequency_hz : float
+        Frequency (Hz).
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex receptance (m/N) of each point.
     """
-    B = np.column_stack([model.point_vector(r, x) for r, x in points])
+    B = np.column_stack([model.point_vector(rail_id, x) for rail_id, x in points])
     system = condense(model, np.union1d(default_keep(model), np.nonzero(B.any(axis=1))[0]))
     B = system.restrict(B).astype(complex)
     return np.einsum("ij,ij->j", B, system.solve(2 * np.pi * frequency_hz, B))
 
 
 def resolve_rail(layout: Layout, rail: str, x: float, route: str = "through") -> str:
-    """Layout rail id of a co-running slot (r1..r4) or rail id at x; ValueError otherwise."""
+    """Layout rail id of a co-running slot (r1..r4), or a layout rail id checked at x.
+
+    Parameters
+    ----------
+    layout : Layout
+        The turnout layout.
+    rail : str
+        Co-running slot ``"r1"``..``"r4"`` or a layout rail id.
+    x : float
+        Position from the switch toe (m).
+    route : {"through", "diverging"}
+        Slot mapping to use for a slot.
+
+    Returns
+    -------
+    str
+        The layout rail id.
+
+    Raises
+    ------
+    ValueError
+        Unknown rail, or the rail is not present at x.
+    """
     if rail in RAIL_SLOTS:
         return layout.slot_rail(rail, x, route)
-    r = layout.rail(rail) if rail in {q.id for q in layout.rails} else None
-    if r is None:
+    rail_ids = [layout_rail.id for layout_rail in layout.rails]
+    if rail not in rail_ids:
         raise ValueError(
             f"rail must be one of {', '.join(RAIL_SLOTS)} or a layout rail "
-            f"({', '.join(q.id for q in layout.rails)}), got {rail!r}"
+            f"({', '.join(rail_ids)}), got {rail!r}"
         )
-    if not r.x_from <= x <= r.x_to:
+    found = layout.rail(rail)
+    if not found.x_from <= x <= found.x_to:
         raise ValueError(
-            f"rail {rail} is not present at x = {x:g} m (it runs from {r.x_from:g} to {r.x_to:g} m)"
+            f"rail {rail} is not present at x = {x:g} m "
+            f"(it runs from {found.x_from:g} to {found.x_to:g} m)"
         )
     return rail
 
@@ -84,9 +152,9 @@ def fe_receptance(
     rail: str,
     direction: str,
     x: float,
-    frequencies=None,
+    frequencies: ArrayLike | None = None,
     route: str = "through",
-    options: FEOptions = FEOptions(),
+    options: FEOptions = _DEFAULT_OPTIONS,
     layout: Layout | None = None,
 ) -> Receptance:
     """Point receptance of the FE turnout model at one rail position.
@@ -99,6 +167,7 @@ def fe_receptance(
         Co-running slot "r1".."r4" (mapped to a rail by ``layout.slots``) or a layout
         rail id such as "straight".
     direction : {"vertical", "lateral"}
+        Bending plane: the vertical or the lateral model.
     x : float
         Position from the switch toe (m).
     frequencies : array_like, optional
@@ -106,6 +175,7 @@ def fe_receptance(
     route : {"through", "diverging"}
         Slot mapping to use.
     options : FEOptions
+        Discretisation, rail damping and model ends.
     layout : Layout, optional
         Default :func:`~exudyn_turnout.fe.layout.load_layout` of the turnout.
 
@@ -121,10 +191,15 @@ def fe_receptance(
     """
     layout = layout or load_layout(turnout)
     rail_id = resolve_rail(layout, rail, float(x), route)
-    f = log_frequencies() if frequencies is None else np.asarray(frequencies, float)
+    frequency = log_frequencies() if frequencies is None else np.asarray(frequencies, float)
     model = assemble(
         turnout, build_mesh(turnout, layout, options, points={rail_id: [float(x)]}), direction
     )
-    H = sweep(model, rail_id, float(x), f)
-    meta = {"rail_id": rail_id, "route": route, "n_dof": model.n_dof, "options": asdict(options)}
-    return Receptance(f, H, rail, direction, float(x), "FE", meta)
+    H = sweep(model, rail_id, float(x), frequency)
+    metadata = {
+        "rail_id": rail_id,
+        "route": route,
+        "n_dof": model.n_dof,
+        "options": asdict(options),
+    }
+    return Receptance(frequency, H, rail, direction, float(x), "FE", metadata)

@@ -22,6 +22,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from numpy.typing import ArrayLike
+
 from exudyn_turnout.inputs.geometry import Centreline, load_centrelines
 from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Turnout, TurnoutFileError
 
@@ -64,23 +66,41 @@ class LayoutRail:
     name: str  #: description
     route: str  #: route name
     offset: float  #: m, lateral offset from the route centreline (left positive)
-    segments: tuple[Segment, ...]
+    segments: tuple[Segment, ...]  #: in increasing x, each starting where the last ends
     start_joins: str | None = None  #: rail whose node the first node is
     end_joins: str | None = None  #: rail whose node the last node is
 
     @property
     def x_from(self) -> float:
+        """Where the rail starts (m): the first segment's start."""
         return self.segments[0].x_from
 
     @property
     def x_to(self) -> float:
+        """Where the rail ends (m): the last segment's end."""
         return self.segments[-1].x_to
 
     def segment_at(self, x: float) -> Segment:
-        """The segment containing x (the later one on a boundary)."""
-        for seg in reversed(self.segments):
-            if seg.x_from <= x <= seg.x_to:
-                return seg
+        """The segment containing a position (the later one on a boundary).
+
+        Parameters
+        ----------
+        x : float
+            Position from the switch toe (m).
+
+        Returns
+        -------
+        Segment
+            The segment with x_from <= x <= x_to.
+
+        Raises
+        ------
+        ValueError
+            x is not on the rail.
+        """
+        for segment in reversed(self.segments):
+            if segment.x_from <= x <= segment.x_to:
+                return segment
         raise ValueError(
             f"x = {x:g} m is not on rail {self.id} ({self.x_from:g} m to {self.x_to:g} m)"
         )
@@ -90,13 +110,15 @@ class LayoutRail:
 class Track:
     """Sleepers of a track: turnout bearers (length None: from the sleeper table) or own."""
 
-    name: str
+    name: str  #: key in Layout.tracks
     route: str  #: centreline of own sleepers
     sleeper_length: float | None  #: m; None: ``[sleeper].length(x)``, centred between the rails
 
 
 @dataclass(frozen=True)
 class SlotRange:
+    """The rail that fills a co-running slot (r1..r4) over an x range."""
+
     rail: str  #: rail id
     x_from: float  #: m
     x_to: float  #: m
@@ -119,30 +141,80 @@ class Layout:
     x_start: float  #: m, first x of the turnout proper
     x_end: float  #: m, last x
     sleeper_x0: float  #: m, a sleeper at sleeper_x0 + i L_s
-    routes: Mapping[str, Route]
-    tracks: Mapping[str, Track]
-    rails: tuple[LayoutRail, ...]
+    routes: Mapping[str, Route]  #: centrelines by name
+    tracks: Mapping[str, Track]  #: tracks by name, the turnout's bearers included
+    rails: tuple[LayoutRail, ...]  #: every rail of the model
     slots: Mapping[str, Mapping[str, tuple[SlotRange, ...]]]  #: route -> slot -> ranges
     fits: Mapping[str, FitRange]  #: "K_sw" (Eq 10 analogue), "K_sh" (Eq 14 analogue)
     bearer_shear_coefficient: float = 5.0 / 6.0  #: kappa of the sleeper (-)
     bearer_poisson: float = 0.2  #: nu of the sleeper concrete (-)
-    min_overhang: float = 0.2  #: m
+    min_overhang: float = 0.2  #: m, bearer length beyond the outermost rail it carries
 
     def rail(self, rail_id: str) -> LayoutRail:
-        for r in self.rails:
-            if r.id == rail_id:
-                return r
-        raise KeyError(
-            f"rail {rail_id!r} is not in the layout (rails: {', '.join(r.id for r in self.rails)})"
-        )
+        """A rail by its id.
 
-    def rail_y(self, rail_id: str, x):
-        """Lateral position (m) of a rail at x."""
-        r = self.rail(rail_id)
-        return self.routes[r.route].y(x, r.offset)
+        Parameters
+        ----------
+        rail_id : str
+            Layout rail id, e.g. ``"straight"``.
+
+        Returns
+        -------
+        LayoutRail
+            The rail.
+
+        Raises
+        ------
+        KeyError
+            No rail has that id; the message lists the ids.
+        """
+        for layout_rail in self.rails:
+            if layout_rail.id == rail_id:
+                return layout_rail
+        rail_ids = ", ".join(layout_rail.id for layout_rail in self.rails)
+        raise KeyError(f"rail {rail_id!r} is not in the layout (rails: {rail_ids})")
+
+    def rail_y(self, rail_id: str, x: ArrayLike) -> Any:
+        """Lateral position of a rail.
+
+        Parameters
+        ----------
+        rail_id : str
+            Layout rail id.
+        x : float or array_like
+            Position(s) from the switch toe (m).
+
+        Returns
+        -------
+        float or numpy.ndarray
+            Lateral position y (m, left positive), of the shape of x.
+        """
+        layout_rail = self.rail(rail_id)
+        return self.routes[layout_rail.route].y(x, layout_rail.offset)
 
     def slot_rail(self, slot: str, x: float, route: str = "through") -> str:
-        """Id of the rail in co-running slot ``slot`` at x; ValueError naming where it is."""
+        """Id of the rail in a co-running slot at a position.
+
+        Parameters
+        ----------
+        slot : str
+            Co-running rail slot, ``"r1"`` to ``"r4"``.
+        x : float
+            Position from the switch toe (m), inside the layout.
+        route : str
+            Route whose slot table is used (``"through"``, ``"diverging"``...).
+
+        Returns
+        -------
+        str
+            Layout rail id.
+
+        Raises
+        ------
+        ValueError
+            Unknown route, x outside the layout, or no rail in the slot at x (the message
+            says where the slot has a rail).
+        """
         if route not in self.slots:
             raise ValueError(f"route must be one of {', '.join(self.slots)}, got {route!r}")
         if not self.x_start <= x <= self.x_end:
@@ -151,9 +223,9 @@ class Layout:
                 f"({self.x_start:g} m to {self.x_end:g} m)"
             )
         ranges = self.slots[route].get(slot, ())
-        for rng in ranges:
-            if rng.x_from <= x <= rng.x_to:
-                return rng.rail
+        for slot_range in ranges:
+            if slot_range.x_from <= x <= slot_range.x_to:
+                return slot_range.rail
         where = ", ".join(f"{r.x_from:g} to {r.x_to:g} m" for r in ranges) or "nowhere"
         raise ValueError(
             f"rail {slot} is not present at x = {x:g} m on the {route} route (it is at {where})"
@@ -198,32 +270,32 @@ def _segments(
 ) -> tuple[Segment, ...]:
     if not isinstance(raw, list) or not raw:
         raise _fail(src, p, "must be a non-empty list of {type = ..., x = [x_from, x_to]}")
-    out = []
-    for i, s in enumerate(raw):
-        f = f"{p}[{i + 1}]"
-        rtype = _get(src, s, f + ".type", "type")
-        if rtype not in turnout.rail_types:
+    out: list[Segment] = []
+    for i, spec in enumerate(raw):
+        field = f"{p}[{i + 1}]"
+        rail_type = _get(src, spec, field + ".type", "type")
+        if rail_type not in turnout.rail_types:
             raise _fail(
                 src,
-                f + ".type",
-                f"names rail type {rtype!r}, which is not defined "
+                field + ".type",
+                f"names rail type {rail_type!r}, which is not defined "
                 f"(types: {', '.join(turnout.rail_types)})",
             )
-        a, b = _interval(src, f + ".x", _get(src, s, f + ".x", "x"))
-        track = _get(src, s, f + ".track", "track", TURNOUT_TRACK)
+        x_from, x_to = _interval(src, field + ".x", _get(src, spec, field + ".x", "x"))
+        track = _get(src, spec, field + ".track", "track", TURNOUT_TRACK)
         if track not in tracks:
             raise _fail(
                 src,
-                f + ".track",
+                field + ".track",
                 f"names track {track!r}, which is not defined (tracks: {', '.join(tracks)})",
             )
-        if out and abs(out[-1].x_to - a) > 1e-9:
+        if out and abs(out[-1].x_to - x_from) > 1e-9:
             raise _fail(
                 src,
-                f + ".x",
-                f"must start where the previous segment ends ({out[-1].x_to:g} m), got {a:g}",
+                field + ".x",
+                f"must start where the previous segment ends ({out[-1].x_to:g} m), got {x_from:g}",
             )
-        out.append(Segment(rtype, a, b, track))
+        out.append(Segment(rail_type, x_from, x_to, track))
     return tuple(out)
 
 
@@ -265,21 +337,22 @@ def _rails(
 
 
 def _check_joins(src: str, rails: list[LayoutRail]) -> None:
-    by_id = {r.id: r for r in rails}
-    for i, r in enumerate(rails):
-        for key, x in (("start_joins", r.x_from), ("end_joins", r.x_to)):
-            target = getattr(r, key)
+    by_id = {rail.id: rail for rail in rails}
+    for i, rail in enumerate(rails):
+        for key, x in (("start_joins", rail.x_from), ("end_joins", rail.x_to)):
+            target = getattr(rail, key)
             if target is None:
                 continue
-            f = f"layout.rails[{i + 1}].{key}"
-            if target not in by_id or target == r.id:
-                raise _fail(src, f, f"must name another rail, got {target!r}")
-            t = by_id[target]
-            if not t.x_from <= x <= t.x_to:
+            field = f"layout.rails[{i + 1}].{key}"
+            if target not in by_id or target == rail.id:
+                raise _fail(src, field, f"must name another rail, got {target!r}")
+            joined = by_id[target]
+            if not joined.x_from <= x <= joined.x_to:
                 raise _fail(
                     src,
-                    f,
-                    f"joins rail {target!r} at x = {x:g} m, outside it ({t.x_from:g} to {t.x_to:g} m)",
+                    field,
+                    f"joins rail {target!r} at x = {x:g} m, outside it "
+                    f"({joined.x_from:g} to {joined.x_to:g} m)",
                 )
 
 
@@ -310,7 +383,7 @@ def _slots(
     routes,
     route_names: tuple[str, ...] = (),
 ) -> dict:
-    """Slot tables per route: keyed by the file's routes ([routes.<name>]), or by a centreline."""
+    """Slot tables per route, keyed by the file's routes ([routes.<name>]) or a centreline."""
     routes = tuple(route_names) + tuple(r for r in routes if r not in route_names)
     raw = _get(src, sec, "layout.slots", "slots")
     if not isinstance(raw, Mapping) or not all(isinstance(t, Mapping) for t in raw.values()):
@@ -376,6 +449,16 @@ def _fits(src: str, sec: Mapping[str, Any], rails: tuple[LayoutRail, ...]) -> di
 
 def load_layout(turnout: Turnout) -> Layout:
     """The ``[layout]`` section of a turnout file as a :class:`Layout`.
+
+    Parameters
+    ----------
+    turnout : Turnout
+        A turnout loaded from a file with a ``[layout]`` section.
+
+    Returns
+    -------
+    Layout
+        Routes, tracks, rails, slot tables and fit ranges of the FE model.
 
     Raises
     ------
@@ -447,19 +530,29 @@ def plain_track_layout(
         m, length of every sleeper.
     sleeper_x0 : float
         m, a sleeper at x = sleeper_x0 + i L_s (x = 0 above a sleeper by default).
+
+    Returns
+    -------
+    Layout
+        Rails ``"left"`` (slot r4) and ``"right"`` (slot r1) on the through route.
     """
-    h = length / 2.0
+    half = length / 2.0
     tracks = {TURNOUT_TRACK: Track(TURNOUT_TRACK, "through", sleeper_length)}
     rails = tuple(
-        LayoutRail(rid, rid, "through", y, (Segment(rail_type, -h, h),))
-        for rid, y in (("left", rail_spacing / 2), ("right", -rail_spacing / 2))
+        LayoutRail(rail_id, rail_id, "through", y, (Segment(rail_type, -half, half),))
+        for rail_id, y in (("left", rail_spacing / 2), ("right", -rail_spacing / 2))
     )
-    slots = {"through": {"r1": (SlotRange("right", -h, h),), "r4": (SlotRange("left", -h, h),)}}
-    fits = {"K_sw": FitRange("right", -h, h), "K_sh": FitRange("right", -h, h)}
+    slots = {
+        "through": {
+            "r1": (SlotRange("right", -half, half),),
+            "r4": (SlotRange("left", -half, half),),
+        }
+    }
+    fits = {"K_sw": FitRange("right", -half, half), "K_sh": FitRange("right", -half, half)}
     return Layout(
         "plain track",
-        -h,
-        h,
+        -half,
+        half,
         sleeper_x0,
         {"through": Route("through", 0.0)},
         tracks,

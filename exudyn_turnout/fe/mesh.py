@@ -94,28 +94,49 @@ class Mesh:
 
     @property
     def n_rail_nodes(self) -> int:
+        """Number of rail vertex nodes (all rails)."""
         return len(self.node_x)
 
     @property
     def n_sleeper_nodes(self) -> int:
+        """Number of sleeper vertex nodes (all sleepers)."""
         return len(self.snode_y)
 
     def node_at(self, rail_id: str, x: float) -> int:
-        """Rail vertex node of rail ``rail_id`` at x; ValueError if there is none.
+        """Rail vertex node of a rail at a position.
 
         Give the position to :func:`build_mesh` (``points``) to have a node there.
+
+        Parameters
+        ----------
+        rail_id : str
+            Layout rail id.
+        x : float
+            Position from the switch toe (m).
+
+        Returns
+        -------
+        int
+            Index of the rail node (into ``node_x``).
+
+        Raises
+        ------
+        ValueError
+            x is not on the rail, or the rail has no node there.
         """
         nodes = self.rail_nodes[rail_id]
-        xs = self.node_x[nodes]
-        if not xs[0] - _TOL <= x <= xs[-1] + _TOL:
-            raise ValueError(f"x = {x:g} m is not on rail {rail_id} ({xs[0]:g} to {xs[-1]:g} m)")
-        k = int(np.argmin(np.abs(xs - x)))
-        if abs(xs[k] - x) > _TOL:
+        x_nodes = self.node_x[nodes]
+        if not x_nodes[0] - _TOL <= x <= x_nodes[-1] + _TOL:
             raise ValueError(
-                f"rail {rail_id} has no node at x = {x:g} m (nearest {xs[k]:g} m); "
+                f"x = {x:g} m is not on rail {rail_id} ({x_nodes[0]:g} to {x_nodes[-1]:g} m)"
+            )
+        nearest = int(np.argmin(np.abs(x_nodes - x)))
+        if abs(x_nodes[nearest] - x) > _TOL:
+            raise ValueError(
+                f"rail {rail_id} has no node at x = {x:g} m (nearest {x_nodes[nearest]:g} m); "
                 "add the point to the mesh (build_mesh(points=...))"
             )
-        return int(nodes[k])
+        return int(nodes[nearest])
 
 
 def _extended(rail: LayoutRail, layout: Layout, reach: float) -> tuple[float, float]:
@@ -248,17 +269,28 @@ def build_mesh(
     layout : Layout
         From :func:`~exudyn_turnout.fe.layout.load_layout` or ``plain_track_layout``.
     options : FEOptions
+        Element order and lengths, extensions and absorbing ends, rail loss factor.
     points : mapping rail id -> positions (m), optional
         Extra rail nodes, e.g. where a receptance is wanted: a point load must sit on a
         node (under it the shear force jumps, which no element polynomial represents).
+
+    Returns
+    -------
+    Mesh
+        Rail and sleeper nodes and elements, and the pads joining them.
+
+    Raises
+    ------
+    ValueError
+        A point is not on its rail.
     """
     points = points or {}
-    for rail_id, xs in points.items():
-        r = layout.rail(rail_id)
-        for x in xs:
-            if not r.x_from - _TOL <= x <= r.x_to + _TOL:
+    for rail_id, x_points in points.items():
+        rail = layout.rail(rail_id)
+        for x in x_points:
+            if not rail.x_from - _TOL <= x <= rail.x_to + _TOL:
                 raise ValueError(
-                    f"x = {x:g} m is not on rail {rail_id} ({r.x_from:g} to {r.x_to:g} m)"
+                    f"x = {x:g} m is not on rail {rail_id} ({rail.x_from:g} to {rail.x_to:g} m)"
                 )
     reach = options.extension + options.absorbing_length
     x_min, x_max = layout.x_start - reach, layout.x_end + reach
@@ -318,7 +350,11 @@ def _one_sleeper(turnout, layout, options, x, track, on, positions, rail_nodes):
 def _sleepers(turnout, layout, options, sleepers, positions, rail_nodes, reach) -> dict:
     """Sleeper and pad fields of :class:`Mesh` for every sleeper position and track."""
     extents = {r.id: _extended(r, layout, reach) for r in layout.rails}
-    rows, y_all, elems, pads, n_nodes = [], [], [], [], 0
+    rows: list[tuple[float, float, float, str]] = []  # x, centre, length, track per sleeper
+    y_all: list[np.ndarray] = []
+    elems: list[np.ndarray] = []
+    pads: list[tuple[int, int, int, int, str]] = []
+    n_nodes = 0
     for x in sleepers:
         present = [
             (i, r)

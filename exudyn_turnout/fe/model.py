@@ -63,7 +63,7 @@ class PlaneModel:
     """
 
     direction: str  #: "vertical" or "lateral"
-    mesh: Mesh
+    mesh: Mesh  #: the geometry the matrices were assembled on
     order: int  #: element order p
     K: sp.csc_matrix  #: N/m, stiffness
     G: sp.csc_matrix  #: N/m, structural loss (rail loss factor, absorbing ends)
@@ -74,26 +74,55 @@ class PlaneModel:
 
     @property
     def n_dof(self) -> int:
+        """Number of degrees of freedom of the model."""
         return self.K.shape[0]
 
     def vertex_dofs(self) -> np.ndarray:
-        """DOFs of the element end nodes (rail and sleeper), without element interiors."""
-        per = 2 if self.direction == "vertical" else 1
+        """DOFs of the element end nodes (rail and sleeper), without element interiors.
+
+        Returns
+        -------
+        numpy.ndarray
+            DOF indices: every rail vertex DOF, then every sleeper vertex DOF.
+        """
+        per_sleeper_node = 2 if self.direction == "vertical" else 1
         rail = np.arange(2 * self.mesh.n_rail_nodes)
-        return np.concatenate(
-            [rail, self.sleeper_dof_offset + np.arange(per * self.mesh.n_sleeper_nodes)]
-        )
+        sleeper = self.sleeper_dof_offset + np.arange(per_sleeper_node * self.mesh.n_sleeper_nodes)
+        return np.concatenate([rail, sleeper])
 
     def dynamic_stiffness(self, omega: float) -> sp.csc_matrix:
-        """Z(omega) = K + iG + i omega D - omega^2 M (complex, CSC)."""
+        """Dynamic stiffness Z(omega) = K + iG + i omega D - omega^2 M.
+
+        Parameters
+        ----------
+        omega : float
+            Circular frequency (rad/s).
+
+        Returns
+        -------
+        scipy.sparse.csc_matrix
+            Complex Z (N/m), on the shared sparsity pattern.
+        """
         data = self.K.data + 1j * (self.G.data + omega * self.D.data) - omega**2 * self.M.data
         return sp.csc_matrix((data, self.K.indices, self.K.indptr), shape=self.K.shape)
 
     def point_vector(self, rail_id: str, x: float) -> np.ndarray:
         """b (n_dof,) with w(x) = b . q: the unit vector of the rail node at x.
 
-        Also the load vector of a unit point force there. x must be a node (see
-        :meth:`~exudyn_turnout.fe.mesh.Mesh.node_at`).
+        Also the load vector of a unit point force there.
+
+        Parameters
+        ----------
+        rail_id : str
+            Layout rail id.
+        x : float
+            Position from the switch toe (m); must be a node (see
+            :meth:`~exudyn_turnout.fe.mesh.Mesh.node_at`).
+
+        Returns
+        -------
+        numpy.ndarray
+            b, 1 at the rail node's deflection DOF, 0 elsewhere.
         """
         b = np.zeros(self.n_dof)
         b[2 * self.mesh.node_at(rail_id, x)] = 1.0
@@ -103,70 +132,122 @@ class PlaneModel:
 def rail_section(
     turnout: Turnout, type_name: str, x: np.ndarray, direction: str
 ) -> dict[str, np.ndarray]:
-    """EI, kGA, rhoA, rhoI (SI) of a rail type at positions x, for one bending plane."""
-    t = turnout.rail_types[type_name]
+    """Section properties of a rail type at positions x, for one bending plane.
+
+    Parameters
+    ----------
+    turnout : Turnout
+        Table 1 rail types.
+    type_name : str
+        Rail type name.
+    x : numpy.ndarray
+        Positions from the switch toe (m); the type's tables are interpolated there.
+    direction : {"vertical", "lateral"}
+        Bending plane: I_z for vertical, I_y for lateral.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        ``EI`` (N m^2), ``kGA`` (N), ``rhoA`` (kg/m), ``rhoI`` (kg m), each of the shape of x.
+    """
+    rail = turnout.rail_types[type_name]
     x = np.asarray(x, float)
-    A = np.interp(x, t.area.x, t.area.value)
-    I_tab = t.I_z if direction == "vertical" else t.I_y
-    I = np.interp(x, I_tab.x, I_tab.value)
-    G = t.youngs_modulus / (2.0 * (1.0 + t.poisson))
+    A = np.interp(x, rail.area.x, rail.area.value)
+    I_table = rail.I_z if direction == "vertical" else rail.I_y
+    I = np.interp(x, I_table.x, I_table.value)
+    G = rail.youngs_modulus / (2.0 * (1.0 + rail.poisson))
     return dict(
-        EI=t.youngs_modulus * I,
-        kGA=t.shear_coefficient * G * A,
-        rhoA=t.density * A,
-        rhoI=t.density * I,
+        EI=rail.youngs_modulus * I,
+        kGA=rail.shear_coefficient * G * A,
+        rhoA=rail.density * A,
+        rhoI=rail.density * I,
     )
 
 
 def _rail_props(turnout: Turnout, mesh: Mesh, direction: str) -> dict[str, np.ndarray]:
     """Element lengths (n,) and sections at the quadrature points (n, p + 2)."""
-    x1 = mesh.node_x[mesh.elem_nodes[:, 0]]
-    L = mesh.node_x[mesh.elem_nodes[:, 1]] - x1
-    xg = x1[:, None] + L[:, None] * tim.gauss_points(mesh.options.element_order)[None, :]
+    x_start = mesh.node_x[mesh.elem_nodes[:, 0]]
+    L = mesh.node_x[mesh.elem_nodes[:, 1]] - x_start
+    x_gauss = x_start[:, None] + L[:, None] * tim.gauss_points(mesh.options.element_order)[None, :]
     types = np.array(mesh.elem_type)
-    out = {k: np.empty(xg.shape) for k in ("EI", "kGA", "rhoA", "rhoI")}
+    out = {quantity: np.empty(x_gauss.shape) for quantity in ("EI", "kGA", "rhoA", "rhoI")}
     for name in set(mesh.elem_type):
-        sel = types == name
-        for k, v in rail_section(turnout, name, xg[sel], direction).items():
-            out[k][sel] = v
+        selected = types == name
+        section = rail_section(turnout, name, x_gauss[selected], direction)
+        for quantity, values in section.items():
+            out[quantity][selected] = values
     out["L"] = L
     return out
 
 
 def element_nodes(vertex_pairs: np.ndarray, n_vertices: int, p: int) -> tuple[np.ndarray, int]:
-    """Nodes (n, p + 1) of order-p elements on vertex pairs, interior nodes numbered after
-    the vertices; and the total number of nodes."""
-    n = len(vertex_pairs)
-    interior = n_vertices + np.arange(n * (p - 1)).reshape(n, p - 1)
-    return np.column_stack([vertex_pairs[:, 0], interior, vertex_pairs[:, 1]]), n_vertices + n * (
-        p - 1
-    )
+    """Nodes of order-p elements on vertex pairs, interior nodes numbered after the vertices.
+
+    Parameters
+    ----------
+    vertex_pairs : numpy.ndarray
+        (n, 2) end (vertex) nodes of each element.
+    n_vertices : int
+        Number of vertex nodes; interior nodes are numbered from it on.
+    p : int
+        Element order (p - 1 interior nodes per element).
+
+    Returns
+    -------
+    nodes : numpy.ndarray
+        (n, p + 1) nodes of each element, in order along it.
+    n_nodes : int
+        Total number of nodes, vertices and interiors.
+    """
+    n_elements = len(vertex_pairs)
+    interior = n_vertices + np.arange(n_elements * (p - 1)).reshape(n_elements, p - 1)
+    nodes = np.column_stack([vertex_pairs[:, 0], interior, vertex_pairs[:, 1]])
+    return nodes, n_vertices + n_elements * (p - 1)
 
 
 class Triplets:
     """COO triplets of K, G, D, M collected on one shared pattern."""
 
     def __init__(self, n: int):
-        self.n, self.rows, self.cols, self.vals = n, [], [], {k: [] for k in "KGDM"}
+        self.n = n  #: matrix size (number of DOFs)
+        self.rows: list[np.ndarray] = []
+        self.cols: list[np.ndarray] = []
+        self.vals: dict[str, list[np.ndarray]] = {name: [] for name in "KGDM"}
 
     def add(self, dofs: np.ndarray, **blocks: np.ndarray) -> None:
-        """Element blocks (n_el, m, m) on DOFs (n_el, m) for any of K, G, D, M."""
+        """Add element blocks for any of K, G, D, M.
+
+        Parameters
+        ----------
+        dofs : numpy.ndarray
+            (n_el, m) global DOFs of each element.
+        **blocks : numpy.ndarray
+            ``K``, ``G``, ``D`` and/or ``M``: (n_el, m, m) element matrices; the missing
+            ones add zeros, so that all four keep one pattern.
+        """
         m = dofs.shape[1]
         self.rows.append(np.repeat(dofs, m, axis=1).ravel())
         self.cols.append(np.tile(dofs, (1, m)).ravel())
         size = dofs.shape[0] * m * m
-        for k in "KGDM":
-            self.vals[k].append(blocks[k].ravel() if k in blocks else np.zeros(size))
+        for name in "KGDM":
+            self.vals[name].append(blocks[name].ravel() if name in blocks else np.zeros(size))
 
     def matrices(self) -> dict[str, sp.csc_matrix]:
+        """The summed matrices on their shared sparsity pattern.
+
+        Returns
+        -------
+        dict of str to scipy.sparse.csc_matrix
+            ``K``, ``G``, ``D``, ``M``, n x n, duplicate entries summed.
+        """
         rows, cols, n = np.concatenate(self.rows), np.concatenate(self.cols), self.n
-        lin, inv = np.unique(cols.astype(np.int64) * n + rows, return_inverse=True)
-        indices, col = (lin % n).astype(np.int32), lin // n
+        linear, inverse = np.unique(cols.astype(np.int64) * n + rows, return_inverse=True)
+        indices, col = (linear % n).astype(np.int32), linear // n
         indptr = np.searchsorted(col, np.arange(n + 1)).astype(np.int32)
         out = {}
-        for k, v in self.vals.items():
-            data = np.bincount(inv, weights=np.concatenate(v), minlength=len(lin))
-            out[k] = sp.csc_matrix((data, indices, indptr), shape=(n, n))
+        for name, values in self.vals.items():
+            data = np.bincount(inverse, weights=np.concatenate(values), minlength=len(linear))
+            out[name] = sp.csc_matrix((data, indices, indptr), shape=(n, n))
         return out
 
 
@@ -189,6 +270,17 @@ def assemble(turnout: Turnout, mesh: Mesh, direction: str) -> PlaneModel:
     mesh : Mesh
         From :func:`~exudyn_turnout.fe.mesh.build_mesh`.
     direction : {"vertical", "lateral"}
+        Bending plane.
+
+    Returns
+    -------
+    PlaneModel
+        K, G, D, M and the DOF map.
+
+    Raises
+    ------
+    ValueError
+        For an unknown direction.
     """
     if direction not in DIRECTIONS:
         raise ValueError(f"direction must be one of {', '.join(DIRECTIONS)}, got {direction!r}")
@@ -196,54 +288,68 @@ def assemble(turnout: Turnout, mesh: Mesh, direction: str) -> PlaneModel:
     rail_nodes, n_rail = element_nodes(mesh.elem_nodes, mesh.n_rail_nodes, p)
     sleeper_nodes, n_sleeper = element_nodes(mesh.selem_nodes, mesh.n_sleeper_nodes, p)
     per_snode = 2 if direction == "vertical" else 1
-    trip = Triplets(2 * n_rail + per_snode * n_sleeper)
-    rp = _rail_props(turnout, mesh, direction)
-    Ke = tim.beam_stiffness(p, rp["L"], rp["EI"], rp["kGA"])
-    trip.add(
+    triplets = Triplets(2 * n_rail + per_snode * n_sleeper)
+    rail = _rail_props(turnout, mesh, direction)
+    K_elements = tim.beam_stiffness(p, rail["L"], rail["EI"], rail["kGA"])
+    triplets.add(
         _beam_dofs(rail_nodes),
-        K=Ke,
-        G=mesh.elem_eta[:, None, None] * Ke,
-        M=tim.beam_mass(p, rp["L"], rp["rhoA"], rp["rhoI"]),
+        K=K_elements,
+        G=mesh.elem_eta[:, None, None] * K_elements,
+        M=tim.beam_mass(p, rail["L"], rail["rhoA"], rail["rhoI"]),
     )
-    _add_sleepers(trip, turnout, mesh, direction, sleeper_nodes, 2 * n_rail)
-    _add_pads(trip, turnout, mesh, direction, 2 * n_rail)
-    m = trip.matrices()
-    return PlaneModel(direction, mesh, p, m["K"], m["G"], m["D"], m["M"], rail_nodes, 2 * n_rail)
+    _add_sleepers(triplets, turnout, mesh, direction, sleeper_nodes, 2 * n_rail)
+    _add_pads(triplets, turnout, mesh, direction, 2 * n_rail)
+    matrices = triplets.matrices()
+    return PlaneModel(
+        direction,
+        mesh,
+        p,
+        matrices["K"],
+        matrices["G"],
+        matrices["D"],
+        matrices["M"],
+        rail_nodes,
+        2 * n_rail,
+    )
 
 
 def _add_sleepers(
-    trip: Triplets, turnout: Turnout, mesh: Mesh, direction: str, nodes: np.ndarray, offset: int
+    triplets: Triplets, turnout: Turnout, mesh: Mesh, direction: str, nodes: np.ndarray, offset: int
 ) -> None:
-    s, b, lay, p = turnout.sleeper, turnout.ballast, mesh.layout, mesh.options.element_order
+    sleeper, ballast = turnout.sleeper, turnout.ballast
+    layout, p = mesh.layout, mesh.options.element_order
     L = np.diff(mesh.snode_y[mesh.selem_nodes], axis=1)[:, 0]
     if direction == "vertical":
         kGA = (
-            lay.bearer_shear_coefficient
-            * s.youngs_modulus
-            / (2 * (1 + lay.bearer_poisson))
-            * s.area
+            layout.bearer_shear_coefficient
+            * sleeper.youngs_modulus
+            / (2 * (1 + layout.bearer_poisson))
+            * sleeper.area
         )
-        trip.add(
+        triplets.add(
             _beam_dofs(nodes, offset),
-            K=tim.beam_stiffness(p, L, s.youngs_modulus * s.I, kGA)
-            + tim.beam_foundation(p, L, b.s_b_z),
-            D=tim.beam_foundation(p, L, b.d_b_z),
-            M=tim.beam_mass(p, L, s.density * s.area, s.density * s.I),
+            K=tim.beam_stiffness(p, L, sleeper.youngs_modulus * sleeper.I, kGA)
+            + tim.beam_foundation(p, L, ballast.s_b_z),
+            D=tim.beam_foundation(p, L, ballast.d_b_z),
+            M=tim.beam_mass(p, L, sleeper.density * sleeper.area, sleeper.density * sleeper.I),
         )
     else:
-        trip.add(
+        triplets.add(
             offset + nodes,
-            K=tim.bar_stiffness(p, L, s.youngs_modulus * s.area) + tim.bar_mass(p, L, b.s_b_y),
-            D=tim.bar_mass(p, L, b.d_b_y),
-            M=tim.bar_mass(p, L, s.density * s.area),
+            K=tim.bar_stiffness(p, L, sleeper.youngs_modulus * sleeper.area)
+            + tim.bar_mass(p, L, ballast.s_b_y),
+            D=tim.bar_mass(p, L, ballast.d_b_y),
+            M=tim.bar_mass(p, L, sleeper.density * sleeper.area),
         )
 
 
-def _add_pads(trip: Triplets, turnout: Turnout, mesh: Mesh, direction: str, offset: int) -> None:
-    pads = [turnout.rail_types[t].pad for t in mesh.pad_type]
+def _add_pads(
+    triplets: Triplets, turnout: Turnout, mesh: Mesh, direction: str, offset: int
+) -> None:
+    pads = [turnout.rail_types[rail_type].pad for rail_type in mesh.pad_type]
     vertical = direction == "vertical"
-    k = np.array([p.k_z if vertical else p.k_y for p in pads])
-    c = np.array([p.c_z if vertical else p.c_y for p in pads])
+    k = np.array([pad.k_z if vertical else pad.k_y for pad in pads])
+    c = np.array([pad.c_z if vertical else pad.c_y for pad in pads])
     snode_dof = offset + (2 if vertical else 1) * mesh.pad_sleeper_node
     dofs = np.column_stack([2 * mesh.pad_rail_node, snode_dof])
-    trip.add(dofs, K=_spring(k), D=_spring(c))
+    triplets.add(dofs, K=_spring(k), D=_spring(c))

@@ -72,14 +72,25 @@ class DenseGroup:
     pos: np.ndarray  #: (n, m_k, m_k) positions of the Schur terms in the kept data array
 
     def schur_terms(self, omega: float) -> np.ndarray:
-        """Z_kb Z_bb^-1 Z_bk of every block, (n, m_k, m_k)."""
+        """Z_kb Z_bb^-1 Z_bk of every block: what its elimination subtracts from Z_kk.
+
+        Parameters
+        ----------
+        omega : float
+            Circular frequency (rad/s).
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex Schur terms (N/m), shape (n, m_k, m_k).
+        """
         Zbk = _z(self.Xbk, omega)
         return np.swapaxes(Zbk, 1, 2) @ np.linalg.solve(_z(self.Xbb, omega), Zbk)
 
 
 @dataclass(frozen=True)
 class ModalGroup:
-    """Blocks with Z_bb = (1 + i eta) K_bb - omega^2 M_bb, in the modal basis of (K_bb, M_bb)."""
+    """Blocks with Z_bb = (1 + i eta) K_bb - omega^2 M_bb, in the modal basis of K_bb, M_bb."""
 
     lam: np.ndarray  #: (n, m_b) eigenvalues lambda (rad^2/s^2)
     eta: np.ndarray  #: (n,) loss factor of each block
@@ -87,10 +98,21 @@ class ModalGroup:
     pos: np.ndarray  #: (n, m_k, m_k) positions of the Schur terms in the kept data array
 
     def schur_terms(self, omega: float) -> np.ndarray:
-        """Z_kb Z_bb^-1 Z_bk of every block, (n, m_k, m_k)."""
+        """Z_kb Z_bb^-1 Z_bk of every block: what its elimination subtracts from Z_kk.
+
+        Parameters
+        ----------
+        omega : float
+            Circular frequency (rad/s).
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex Schur terms (N/m), shape (n, m_k, m_k).
+        """
         Y = _z(self.Ybk, omega)
-        d = (1.0 + 1j * self.eta)[:, None] * self.lam - omega**2
-        return np.swapaxes(Y, 1, 2) @ (Y / d[:, :, None])
+        modal_stiffness = (1.0 + 1j * self.eta)[:, None] * self.lam - omega**2
+        return np.swapaxes(Y, 1, 2) @ (Y / modal_stiffness[:, :, None])
 
 
 @dataclass(frozen=True)
@@ -103,33 +125,56 @@ class DampedModalGroup:
     pos: np.ndarray  #: (n, m_k, m_k)
 
     def schur_terms(self, omega: float) -> np.ndarray:
-        """Z_kb Z_bb^-1 Z_bk of every block, (n, m_k, m_k)."""
+        """Z_kb Z_bb^-1 Z_bk of every block: what its elimination subtracts from Z_kk.
+
+        Parameters
+        ----------
+        omega : float
+            Circular frequency (rad/s).
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex Schur terms (N/m), shape (n, m_k, m_k).
+        """
         Y = _z(self.Ybk, omega)
-        d = self.c * (1j * omega - self.lam)
-        return np.swapaxes(Y, 1, 2) @ (Y / d[:, :, None])
+        modal_stiffness = self.c * (1j * omega - self.lam)
+        return np.swapaxes(Y, 1, 2) @ (Y / modal_stiffness[:, :, None])
 
 
 @dataclass(frozen=True)
 class CondensedSystem:
     """A plane model condensed onto the DOFs ``keep`` (see the module docstring)."""
 
-    model: PlaneModel
+    model: PlaneModel  #: the full model
     keep: np.ndarray  #: kept global DOFs, increasing
     data: dict  #: "A" = K + iG, "D", "M" -> data of Z_kk on the kept pattern
     indices: np.ndarray  #: CSC pattern of S (row indices)
     indptr: np.ndarray  #: CSC pattern of S (column pointers)
-    groups: tuple[DenseGroup | ModalGroup | DampedModalGroup, ...]
+    groups: tuple[DenseGroup | ModalGroup | DampedModalGroup, ...]  #: the eliminated blocks
 
     @property
     def n_keep(self) -> int:
+        """Number of kept DOFs, the size of S."""
         return len(self.keep)
 
     def schur(self, omega: float) -> sp.csc_matrix:
-        """S(omega) on the kept DOFs (complex CSC)."""
+        """The condensed dynamic stiffness S(omega) on the kept DOFs.
+
+        Parameters
+        ----------
+        omega : float
+            Circular frequency (rad/s).
+
+        Returns
+        -------
+        scipy.sparse.csc_matrix
+            Complex S (N/m), n_keep x n_keep.
+        """
         data = _z(self.data, omega)
-        for g in self.groups:
-            S = g.schur_terms(omega)
-            flat = g.pos.ravel()
+        for group in self.groups:
+            S = group.schur_terms(omega)
+            flat = group.pos.ravel()
             data = data - (
                 np.bincount(flat, S.real.ravel(), len(data))
                 + 1j * np.bincount(flat, S.imag.ravel(), len(data))
@@ -137,12 +182,35 @@ class CondensedSystem:
         n = self.n_keep
         return sp.csc_matrix((data, self.indices, self.indptr), shape=(n, n))
 
-    def factor(self, omega: float):
-        """Sparse LU of S(omega) (a SuperLU object with ``.solve``)."""
+    def factor(self, omega: float) -> sla.SuperLU:
+        """Sparse LU factorisation of S(omega).
+
+        Parameters
+        ----------
+        omega : float
+            Circular frequency (rad/s).
+
+        Returns
+        -------
+        scipy.sparse.linalg.SuperLU
+            The factorisation; its ``.solve`` solves S X = B.
+        """
         return sla.splu(self.schur(omega), **_LU_OPTIONS)
 
     def solve(self, omega: float, B: np.ndarray) -> np.ndarray:
-        """X with S(omega) X = B on the kept DOFs, residual checked (up to two refinement steps).
+        """X with S(omega) X = B on the kept DOFs, residual checked (two refinement steps).
+
+        Parameters
+        ----------
+        omega : float
+            Circular frequency (rad/s).
+        B : numpy.ndarray
+            Right-hand side(s) on the kept DOFs, (n_keep,) or (n_keep, m): forces (N).
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex displacements X (m), of the shape of B.
 
         Raises
         ------
@@ -164,7 +232,23 @@ class CondensedSystem:
         )
 
     def restrict(self, b: np.ndarray) -> np.ndarray:
-        """Global vector(s) b (n_dof[, m]) on the kept DOFs; ValueError if b touches others."""
+        """Global vector(s) restricted to the kept DOFs.
+
+        Parameters
+        ----------
+        b : numpy.ndarray
+            Vector(s) over all DOFs of the model, (n_dof,) or (n_dof, m).
+
+        Returns
+        -------
+        numpy.ndarray
+            The rows of the kept DOFs, (n_keep,) or (n_keep, m).
+
+        Raises
+        ------
+        ValueError
+            b is non-zero on a condensed DOF.
+        """
         b = np.asarray(b)
         mask = np.ones(b.shape[0], bool)
         mask[self.keep] = False
@@ -178,9 +262,9 @@ class CondensedSystem:
 def _blocks(pattern: sp.csr_matrix, keep: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Condensed DOFs and their component label (connected blocks without the kept DOFs)."""
     n = pattern.shape[0]
-    cond = np.setdiff1d(np.arange(n), keep)
-    _, label = connected_components(pattern[cond][:, cond], directed=False)
-    return cond, label
+    condensed = np.setdiff1d(np.arange(n), keep)
+    _, label = connected_components(pattern[condensed][:, condensed], directed=False)
+    return condensed, label
 
 
 def _kept_neighbours(
@@ -191,7 +275,18 @@ def _kept_neighbours(
 
 
 def default_keep(model: PlaneModel) -> np.ndarray:
-    """Rail DOFs of the nodes above the sleepers and the sleepers' vertex DOFs."""
+    """Rail DOFs of the nodes above the sleepers and the sleepers' vertex DOFs.
+
+    Parameters
+    ----------
+    model : PlaneModel
+        The model to condense.
+
+    Returns
+    -------
+    numpy.ndarray
+        Global DOF indices, increasing.
+    """
     nodes = np.unique(model.mesh.pad_rail_node)
     sleepers = model.vertex_dofs()
     return np.unique(
@@ -205,13 +300,19 @@ def condense(model: PlaneModel, keep: np.ndarray | None = None) -> CondensedSyst
     Parameters
     ----------
     model : PlaneModel
+        The full model of one plane.
     keep : array of int, optional
         Global DOFs to keep (loads and responses must lie on them); default
         :func:`default_keep`.
+
+    Returns
+    -------
+    CondensedSystem
+        The kept pattern and the eliminated blocks, ready for a solve at any frequency.
     """
     keep = np.unique(default_keep(model) if keep is None else np.asarray(keep, int))
     n = model.n_dof
-    mats = {k: getattr(model, k).tocsr() for k in "KGDM"}
+    matrices = {k: getattr(model, k).tocsr() for k in "KGDM"}
     pattern = sp.csr_matrix(
         (np.ones(model.K.nnz), model.K.indices, model.K.indptr), shape=(n, n)
     ).T.tocsr()
@@ -219,25 +320,28 @@ def condense(model: PlaneModel, keep: np.ndarray | None = None) -> CondensedSyst
     is_kept[keep] = True
     local = np.full(n, -1)
     local[keep] = np.arange(len(keep))
-    cond, label = _blocks(pattern, keep)
+    condensed, label = _blocks(pattern, keep)
     order = np.argsort(label, kind="stable")
     bounds = np.searchsorted(label[order], np.arange(label.max() + 2))
-    members = [cond[order[bounds[i] : bounds[i + 1]]] for i in range(len(bounds) - 1)]
+    members = [condensed[order[bounds[i] : bounds[i + 1]]] for i in range(len(bounds) - 1)]
     touching = [local[_kept_neighbours(pattern, m, is_kept)] for m in members]
-    kk = {k: mats[k][keep][:, keep].tocoo() for k in "KGDM"}
-    rows = np.concatenate([kk["K"].row] + [np.repeat(t, len(t)) for t in touching])
-    cols = np.concatenate([kk["K"].col] + [np.tile(t, len(t)) for t in touching])
-    lin, inv = np.unique(cols.astype(np.int64) * len(keep) + rows, return_inverse=True)
-    indices = (lin % len(keep)).astype(np.int32)
-    indptr = np.searchsorted(lin // len(keep), np.arange(len(keep) + 1)).astype(np.int32)
-    data = _combine({k: _on_pattern(kk[k], lin, len(keep)) for k in "KGDM"})
-    groups = _groups(mats, members, keep, touching, inv[kk["K"].nnz :], len(lin))
+    kept = {k: matrices[k][keep][:, keep].tocoo() for k in "KGDM"}
+    rows = np.concatenate([kept["K"].row] + [np.repeat(t, len(t)) for t in touching])
+    cols = np.concatenate([kept["K"].col] + [np.tile(t, len(t)) for t in touching])
+    linear, inverse = np.unique(cols.astype(np.int64) * len(keep) + rows, return_inverse=True)
+    indices = (linear % len(keep)).astype(np.int32)
+    indptr = np.searchsorted(linear // len(keep), np.arange(len(keep) + 1)).astype(np.int32)
+    data = _combine({k: _on_pattern(kept[k], linear, len(keep)) for k in "KGDM"})
+    groups = _groups(matrices, members, keep, touching, inverse[kept["K"].nnz :], len(linear))
     return CondensedSystem(model, keep, data, indices, indptr, groups)
 
 
 def _chunked(lu, B: np.ndarray, chunk: int = 16) -> np.ndarray:
-    """lu.solve on at most ``chunk`` right-hand sides at a time (SuperLU's solve time grows
-    faster than linearly with their number: 432 at once took 30 times longer)."""
+    """lu.solve on at most ``chunk`` right-hand sides at a time.
+
+    SuperLU's solve time grows faster than linearly with their number: 432 at once took 30
+    times longer.
+    """
     if B.ndim == 1:
         return lu.solve(B)
     return np.column_stack(
@@ -250,28 +354,28 @@ def _combine(X: dict) -> dict:
     return {"A": X["K"] + 1j * X["G"], "D": X["D"], "M": X["M"]}
 
 
-def _on_pattern(coo: sp.coo_matrix, lin: np.ndarray, n: int) -> np.ndarray:
-    pos = np.searchsorted(lin, coo.col.astype(np.int64) * n + coo.row)
-    return np.bincount(pos, coo.data, len(lin))
+def _on_pattern(coo: sp.coo_matrix, linear: np.ndarray, n: int) -> np.ndarray:
+    pos = np.searchsorted(linear, coo.col.astype(np.int64) * n + coo.row)
+    return np.bincount(pos, coo.data, len(linear))
 
 
 def _groups(
-    mats, members, keep, touching, schur_pos, n_data
-) -> tuple[DenseGroup | ModalGroup, ...]:
+    matrices, members, keep, touching, schur_pos, n_data
+) -> tuple[DenseGroup | ModalGroup | DampedModalGroup, ...]:
     """Blocks of the eliminated components, batched by size and kind."""
     starts = np.cumsum([0] + [len(t) ** 2 for t in touching])
     by_size: dict[tuple[int, int], list[int]] = {}
     for i, (m, t) in enumerate(zip(members, touching)):
         by_size.setdefault((len(m), len(t)), []).append(i)
-    groups = []
-    for (mb, mk), ids in by_size.items():
+    groups: list[DenseGroup | ModalGroup | DampedModalGroup] = []
+    for (_, mk), ids in by_size.items():
         rows = np.array([members[i] for i in ids])
         kcols = np.array([keep[touching[i]] for i in ids]).reshape(len(ids), mk)
         pos = np.array([schur_pos[starts[i] : starts[i + 1]] for i in ids]).reshape(
             len(ids), mk, mk
         )
-        Xbb = {k: _dense(mats[k], rows, rows) for k in "KGDM"}
-        Xbk = _combine({k: _dense(mats[k], rows, kcols) for k in "KGDM"})
+        Xbb = {k: _dense(matrices[k], rows, rows) for k in "KGDM"}
+        Xbk = _combine({k: _dense(matrices[k], rows, kcols) for k in "KGDM"})
         eta, modal = _proportional_loss(Xbb)
         if modal.any():
             groups.append(_modal_group(Xbb, Xbk, pos, eta, modal))
@@ -320,8 +424,10 @@ def _modal_group(
 def _damped_modal_group(
     Zbb: dict, Ybk: dict, pos: np.ndarray
 ) -> tuple[DampedModalGroup, np.ndarray]:
-    """Quadratic modes of every block and which blocks they reproduce (checked at 0 and
-    1 kHz against direct solves to 1e-9); the group holds those blocks only."""
+    """Quadratic modes of every block and which blocks they reproduce.
+
+    Checked at 0 and 1 kHz against direct solves to 1e-9; the group holds those blocks only.
+    """
     A, D, M = Zbb["A"], Zbb["D"].astype(complex), Zbb["M"].astype(complex)
     n, m, _ = A.shape
     Minv = np.linalg.inv(M)
@@ -371,5 +477,20 @@ def _dense(X: sp.csr_matrix, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
 
 
 def solve_full(model: PlaneModel, omega: float, B: np.ndarray) -> np.ndarray:
-    """Direct sparse solve of the full system Z(omega) X = B (reference, slower)."""
+    """Direct sparse solve of the full system Z(omega) X = B (reference, slower).
+
+    Parameters
+    ----------
+    model : PlaneModel
+        The full model of one plane.
+    omega : float
+        Circular frequency (rad/s).
+    B : numpy.ndarray
+        Right-hand side(s) over all DOFs (N).
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex displacements X (m), of the shape of B.
+    """
     return sla.splu(model.dynamic_stiffness(omega), **_LU_OPTIONS).solve(np.asarray(B, complex))

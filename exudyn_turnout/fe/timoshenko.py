@@ -29,6 +29,7 @@ from __future__ import annotations
 from functools import cache
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 __all__ = [
     "lagrange_shape_functions",
@@ -41,7 +42,7 @@ __all__ = [
 ]
 
 
-def lagrange_shape_functions(p: int, xi) -> tuple[np.ndarray, np.ndarray]:
+def lagrange_shape_functions(p: int, xi: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Lagrange polynomials of order p on nodes 0, 1/p, ..., 1 and their d/dxi.
 
     Parameters
@@ -54,6 +55,7 @@ def lagrange_shape_functions(p: int, xi) -> tuple[np.ndarray, np.ndarray]:
     Returns
     -------
     N, dN : ndarray, shape (m, p + 1)
+        Shape function values and their derivatives with respect to xi, per position.
     """
     xi = np.atleast_1d(np.asarray(xi, float))
     nodes = np.linspace(0.0, 1.0, p + 1)
@@ -85,21 +87,44 @@ def _beam_operators(p: int):
     """Per Gauss point, the rows mapping element DOFs to w, psi, dw/dxi, dpsi/dxi."""
     w, N, dN = _rule(p)
     zero = np.zeros_like(N)
-    inter = lambda a, b: np.stack([a, b], axis=-1).reshape(len(w), -1)  # noqa: E731 node-major
-    return w, inter(N, zero), inter(zero, N), inter(dN, zero), inter(zero, dN)
+
+    def interleave(w_part: np.ndarray, psi_part: np.ndarray) -> np.ndarray:
+        """Rows over the element DOFs in node-major order (w, psi per node)."""
+        return np.stack([w_part, psi_part], axis=-1).reshape(len(w), -1)
+
+    return (
+        w,
+        interleave(N, zero),
+        interleave(zero, N),
+        interleave(dN, zero),
+        interleave(zero, dN),
+    )
 
 
 def gauss_points(p: int) -> np.ndarray:
-    """Quadrature points (xi in [0, 1]) of order-p elements, where coefficients given per
-    point (shape (n, p + 2)) are evaluated: a section varying along x is then integrated
-    as exactly as the quadrature allows, not held constant per element."""
+    """Quadrature points of order-p elements, where per-point coefficients are evaluated.
+
+    Coefficients given per point (shape (n, p + 2)) are evaluated there: a section varying
+    along x is then integrated as exactly as the quadrature allows, not held constant per
+    element.
+
+    Parameters
+    ----------
+    p : int
+        Element order; the rule has p + 2 Gauss-Legendre points.
+
+    Returns
+    -------
+    numpy.ndarray
+        The p + 2 points, xi in [0, 1] along the element.
+    """
     return 0.5 * (np.polynomial.legendre.leggauss(p + 2)[0] + 1.0)
 
 
 def _per_point(p: int, L: np.ndarray, coef) -> np.ndarray:
     """A coefficient (scalar, (n,) or (n, p + 2)) as an array (n, p + 2)."""
-    c = np.asarray(coef, float)
-    return np.broadcast_to(c[:, None] if c.ndim == 1 else c, (len(L), p + 2))
+    values = np.asarray(coef, float)
+    return np.broadcast_to(values[:, None] if values.ndim == 1 else values, (len(L), p + 2))
 
 
 def _integrate(p: int, L, coef, A, B) -> np.ndarray:
@@ -108,7 +133,7 @@ def _integrate(p: int, L, coef, A, B) -> np.ndarray:
     return np.einsum("g,ng,gi,gj->nij", _rule(p)[0], _per_point(p, L, coef) * L[:, None], A, B)
 
 
-def beam_stiffness(p: int, L, EI, kGA) -> np.ndarray:
+def beam_stiffness(p: int, L: ArrayLike, EI: ArrayLike, kGA: ArrayLike) -> np.ndarray:
     """Timoshenko beam stiffness matrices, shape (n, 2(p+1), 2(p+1)).
 
     Parameters
@@ -120,6 +145,11 @@ def beam_stiffness(p: int, L, EI, kGA) -> np.ndarray:
     EI, kGA : array_like, shape (n,) or (n, p + 2)
         Bending stiffness (N m^2) and shear stiffness kappa G A (N), per element or at the
         points of :func:`gauss_points`.
+
+    Returns
+    -------
+    numpy.ndarray
+        Element stiffness matrices (N/m, N, N m), DOFs (w, psi) node-major.
     """
     L = np.atleast_1d(np.asarray(L, float))
     _, _, Psi, dW, dPsi = _beam_operators(p)  # d/dx = (d/dxi) / L
@@ -130,27 +160,87 @@ def beam_stiffness(p: int, L, EI, kGA) -> np.ndarray:
     return bend + w_w - w_psi - np.swapaxes(w_psi, 1, 2) + _integrate(p, L, kGA, Psi, Psi)
 
 
-def beam_mass(p: int, L, rhoA, rhoI) -> np.ndarray:
-    """Consistent mass matrices with rotary inertia (rhoA kg/m, rhoI kg m), (n, m, m);
-    coefficients per element or per point as in :func:`beam_stiffness`."""
+def beam_mass(p: int, L: ArrayLike, rhoA: ArrayLike, rhoI: ArrayLike) -> np.ndarray:
+    """Consistent mass matrices of the Timoshenko beam, with rotary inertia.
+
+    Parameters
+    ----------
+    p : int
+        Element order.
+    L : array_like, shape (n,)
+        Element lengths (m).
+    rhoA, rhoI : array_like, shape (n,) or (n, p + 2)
+        Mass (kg/m) and rotary inertia (kg m) per unit length, per element or at the
+        points of :func:`gauss_points`.
+
+    Returns
+    -------
+    numpy.ndarray
+        Element mass matrices, shape (n, 2(p+1), 2(p+1)).
+    """
     _, W, Psi, _, _ = _beam_operators(p)
     return _integrate(p, L, rhoA, W, W) + _integrate(p, L, rhoI, Psi, Psi)
 
 
-def beam_foundation(p: int, L, s) -> np.ndarray:
-    """Matrix of a Winkler layer under the beam, s in N/m^2 (or N s/m^2), (n, m, m)."""
+def beam_foundation(p: int, L: ArrayLike, s: ArrayLike) -> np.ndarray:
+    """Matrix of a Winkler layer under the beam, acting on the deflection w only.
+
+    Parameters
+    ----------
+    p : int
+        Element order.
+    L : array_like, shape (n,)
+        Element lengths (m).
+    s : array_like, shape (n,) or (n, p + 2)
+        Layer stiffness (N/m^2) or damping (N s/m^2) per unit length.
+
+    Returns
+    -------
+    numpy.ndarray
+        Element matrices, shape (n, 2(p+1), 2(p+1)), DOFs (w, psi) node-major.
+    """
     _, W, _, _, _ = _beam_operators(p)
     return _integrate(p, L, s, W, W)
 
 
-def bar_stiffness(p: int, L, EA) -> np.ndarray:
-    """Axial bar stiffness matrices int EA u'^2 (N/m), shape (n, p+1, p+1)."""
+def bar_stiffness(p: int, L: ArrayLike, EA: ArrayLike) -> np.ndarray:
+    """Axial bar stiffness matrices int EA u'^2.
+
+    Parameters
+    ----------
+    p : int
+        Element order.
+    L : array_like, shape (n,)
+        Element lengths (m).
+    EA : array_like, shape (n,)
+        Axial stiffness (N).
+
+    Returns
+    -------
+    numpy.ndarray
+        Element stiffness matrices (N/m), shape (n, p+1, p+1).
+    """
     L = np.atleast_1d(np.asarray(L, float))
     _, _, dN = _rule(p)
     return _integrate(p, L, np.asarray(EA, float) / L**2, dN, dN)
 
 
-def bar_mass(p: int, L, q) -> np.ndarray:
-    """Bar matrix int q u^2 for a line density q: rhoA (kg/m) or a foundation s (N/m^2)."""
+def bar_mass(p: int, L: ArrayLike, q: ArrayLike) -> np.ndarray:
+    """Bar matrix int q u^2 for a line density q: rhoA (kg/m) or a foundation s (N/m^2).
+
+    Parameters
+    ----------
+    p : int
+        Element order.
+    L : array_like, shape (n,)
+        Element lengths (m).
+    q : array_like, shape (n,) or (n, p + 2)
+        Line density: mass (kg/m), stiffness (N/m^2) or damping (N s/m^2) per unit length.
+
+    Returns
+    -------
+    numpy.ndarray
+        Element matrices, shape (n, p+1, p+1), in the unit of q times m.
+    """
     _, N, _ = _rule(p)
     return _integrate(p, L, q, N, N)

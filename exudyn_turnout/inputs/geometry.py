@@ -59,7 +59,7 @@ FEATURES = ("toe", "crossing_point", "nose_tip")
 class Centreline:
     """A route centreline: straight, or straight - circular curve - straight tangent."""
 
-    name: str
+    name: str  #: route name, "through" or "diverging"
     side: float  #: -1 curve to the right, +1 to the left, 0 straight
     radius: float = math.inf  #: m, R of the curve
     curve_start_x: float = math.inf  #: m, where the curve leaves y = 0 tangentially
@@ -166,25 +166,29 @@ def load_centrelines(turnout: Turnout) -> dict[str, Centreline]:
     """
     src, sec = _layout_section(turnout)
     p = "layout.diverging"
-    d = sec.get("diverging")
-    if not isinstance(d, Mapping):
+    diverging = sec.get("diverging")
+    if not isinstance(diverging, Mapping):
         raise _fail(src, p, "is missing")
     for key in ("side", "radius", "curve_start_x", "curve_end_x"):
-        if key not in d:
+        if key not in diverging:
             raise _fail(src, f"{p}.{key}", "is missing")
-    side = d["side"]
+    side = diverging["side"]
     if side not in ("left", "right"):
         raise _fail(src, p + ".side", f"must be one of left, right, got {side!r}")
-    radius = _number(src, p + ".radius", d["radius"], positive=True)
-    x0 = _number(src, p + ".curve_start_x", d["curve_start_x"])
-    x1 = _number(src, p + ".curve_end_x", d["curve_end_x"])
-    if not x1 > x0:
-        raise _fail(src, p + ".curve_end_x", f"must be > curve_start_x = {x0:g}, got {x1:g}")
-    if x1 - x0 >= radius:
+    radius = _number(src, p + ".radius", diverging["radius"], positive=True)
+    x_start = _number(src, p + ".curve_start_x", diverging["curve_start_x"])
+    x_end = _number(src, p + ".curve_end_x", diverging["curve_end_x"])
+    if not x_end > x_start:
+        raise _fail(
+            src, p + ".curve_end_x", f"must be > curve_start_x = {x_start:g}, got {x_end:g}"
+        )
+    if x_end - x_start >= radius:
         raise _fail(src, p + ".curve_end_x", f"makes a curve longer than its radius ({radius:g} m)")
     return {
         "through": Centreline("through", 0.0),
-        "diverging": Centreline("diverging", 1.0 if side == "left" else -1.0, radius, x0, x1),
+        "diverging": Centreline(
+            "diverging", 1.0 if side == "left" else -1.0, radius, x_start, x_end
+        ),
     }
 
 
@@ -202,6 +206,8 @@ def turnout_plan(turnout: Turnout) -> TurnoutPlan:
     Returns
     -------
     TurnoutPlan
+        Toe, crossing point and nose tip along x (m), the crossing angle 1:N, gauge and
+        nose tip width.
 
     Raises
     ------
@@ -217,13 +223,13 @@ def turnout_plan(turnout: Turnout) -> TurnoutPlan:
         sec.get("nose_tip_width", DEFAULT_NOSE_TIP_WIDTH),
         positive=True,
     )
-    div = load_centrelines(turnout)["diverging"]
-    s = div.side
+    diverging = load_centrelines(turnout)["diverging"]
+    s = diverging.side
 
     def gap(x: float) -> float:
         # the outer-of-curve gauge line of the diverging route, measured from the through
         # route's inner-of-curve gauge line towards the curve's inside: g at the toe
-        return -s * (div.y(x, -s * gauge / 2.0) - s * gauge / 2.0)
+        return -s * (diverging.y(x, -s * gauge / 2.0) - s * gauge / 2.0)
 
     x_end = _number(src, "layout.x_end", sec.get("x_end", turnout.x_max))
     if not gap(x_end) < -width:
@@ -232,10 +238,10 @@ def turnout_plan(turnout: Turnout) -> TurnoutPlan:
             "layout.diverging",
             f"does not cross the through route's rail before x = {x_end:g} m (gauge {gauge:g} m)",
         )
-    x_cp = float(brentq(gap, div.curve_start_x, x_end, xtol=1e-9))
+    x_cp = float(brentq(gap, diverging.curve_start_x, x_end, xtol=1e-9))
     x_tip = float(brentq(lambda x: gap(x) + width, x_cp, x_end, xtol=1e-9))
     slope = abs(gap(x_cp + 1e-3) - gap(x_cp - 1e-3)) / 2e-3
-    return TurnoutPlan(div.curve_start_x, x_cp, x_tip, 1.0 / slope, gauge, width)
+    return TurnoutPlan(diverging.curve_start_x, x_cp, x_tip, 1.0 / slope, gauge, width)
 
 
 _POSITION = re.compile(r"^\s*([a-z_]+)\s*(?:([+-])\s*([0-9.]+(?:[eE][+-]?[0-9]+)?))?\s*$")

@@ -3,10 +3,11 @@
 A route (``through``, ``diverging``) is read from the turnout file's ``[routes.<name>]``
 section (see the file's comments for the format and the reasoning behind the default
 profiles). Positions in a route (profile x, flange and check ranges) are numbers (m) or
-features of the turnout's plan (:mod:`exudyn_turnout.inputs.geometry`), e.g. ``"nose_tip + 0.5"``,
-so that the crossing lies where the layout puts it. Load transfer between rails (stock rail to switch blade, wing rail to
-crossing nose) is not coded anywhere: it follows from the height tables alone, through
-the Hertz springs of whichever rail stands higher under the wheel.
+features of the turnout's plan (:mod:`exudyn_turnout.inputs.geometry`), e.g.
+``"nose_tip + 0.5"``, so that the crossing lies where the layout puts it. Load transfer
+between rails (stock rail to switch blade, wing rail to crossing nose) is not coded
+anywhere: it follows from the height tables alone, through the Hertz springs of whichever
+rail stands higher under the wheel.
 """
 
 from __future__ import annotations
@@ -41,7 +42,8 @@ __all__ = [
     "GRAVITY",
 ]
 
-#: m, distance between the rail centres used to express cant (EN 13803: 1500 mm for 1435 mm gauge).
+#: m, distance between the rail centres used to express cant (EN 13803: 1500 mm for
+#: 1435 mm gauge).
 RAIL_CENTRE_DISTANCE = 1.5
 #: m/s^2
 GRAVITY = 9.81
@@ -59,7 +61,7 @@ WHEELS = {"left": 1, "right": -1}
 class ContactPair:
     """A wheel and a rail it can touch, with the rail height profile seen by the wheel."""
 
-    name: str
+    name: str  #: description, e.g. "left wheel on r1"
     wheel: str  #: "left" or "right"
     rail: str  #: rail slot r1..r4
     x: tuple[float, ...]  #: m, profile abscissae (empty: no vertical contact)
@@ -69,20 +71,52 @@ class ContactPair:
 
     @property
     def side(self) -> int:
+        """Side of the wheel: +1 left (positive y), -1 right."""
         return WHEELS[self.wheel]
 
     @property
     def has_tread(self) -> bool:
+        """Whether the pair has a height profile (vertical tread contact somewhere)."""
         return bool(self.x)
 
     def tread_active(self, x: float) -> bool:
+        """Whether the wheel's tread can touch the rail at a position.
+
+        Parameters
+        ----------
+        x : float
+            Wheel position from the switch toe (m).
+
+        Returns
+        -------
+        bool
+            True inside the height profile's x range.
+        """
         return self.has_tread and self.x[0] <= x <= self.x[-1]
 
     def height(self, x: float) -> float:
-        """Rail height (m) at x, linear between the table's points."""
+        """Rail height at a position, linear between the table's points.
+
+        Parameters
+        ----------
+        x : float
+            Position from the switch toe (m).
+
+        Returns
+        -------
+        float
+            Rail height relative to nominal (m), held at the end values outside the table.
+        """
         return float(np.interp(x, self.x, self.z))
 
     def x_range(self) -> tuple[float, float]:
+        """The x range over which the wheel can touch the rail at all.
+
+        Returns
+        -------
+        tuple of float
+            (x_from, x_to) in m: the union of the height profile, flange and check ranges.
+        """
         ranges = [r for r in (self.flange, self.check) if r] + (
             [(self.x[0], self.x[-1])] if self.x else []
         )
@@ -91,10 +125,12 @@ class ContactPair:
 
 @dataclass(frozen=True)
 class Route:
-    name: str
-    description: str
+    """A route through the turnout: its curve, the wheel/rail pairs and the speed limits."""
+
+    name: str  #: key of ``[routes.<name>]``, e.g. "through"
+    description: str  #: free text from the file
     curvature: Table1D  #: 1/m, positive for a curve to the left
-    pairs: tuple[ContactPair, ...]
+    pairs: tuple[ContactPair, ...]  #: every wheel/rail pair the route can bring into contact
     rail_y: Mapping[str, float]  #: m, overrides of the zones' rail positions for this route
     continues: Mapping[int, Mapping[str, str]]  #: zone -> {new slot: slot it continues}
     check_clearance: float  #: m, nominal check-rail clearance
@@ -104,12 +140,36 @@ class Route:
     permitted_cant_deficiency: float | None = None  #: m, the file's limit; None: none
 
     def max_curvature(self, x_from: float, x_to: float) -> float:
-        """Largest |1/R| (1/m) of the route between x_from and x_to (table points and ends)."""
-        xs = [x_from, x_to] + [x for x in self.curvature.x if x_from <= x <= x_to]
-        return max(abs(self.curvature(x)) for x in xs)
+        """Largest curvature of the route over an x range (table points and ends).
+
+        Parameters
+        ----------
+        x_from, x_to : float
+            The range (m).
+
+        Returns
+        -------
+        float
+            Largest |1/R| (1/m).
+        """
+        x_points = [x_from, x_to] + [x for x in self.curvature.x if x_from <= x <= x_to]
+        return max(abs(self.curvature(x)) for x in x_points)
 
     def check_clearance_at(self, pair: ContactPair, x: float) -> float | None:
-        """Check-rail clearance (m) at x, opened at the flared ends; None outside the check rail."""
+        """Check-rail clearance at a position, opened at the flared ends.
+
+        Parameters
+        ----------
+        pair : ContactPair
+            A pair with a check range.
+        x : float
+            Position from the switch toe (m).
+
+        Returns
+        -------
+        float or None
+            Clearance (m); None outside the pair's check range.
+        """
         if not pair.check or not pair.check[0] <= x <= pair.check[1]:
             return None
         length, opening = self.check_flare
@@ -119,22 +179,56 @@ class Route:
         return self.check_clearance + opening * max(0.0, 1.0 - into)
 
     def zone(self, zone: Zone) -> Zone:
-        """The zone with this route's rail positions."""
+        """The zone with this route's rail positions.
+
+        Parameters
+        ----------
+        zone : Zone
+            A zone of the turnout (Table 3).
+
+        Returns
+        -------
+        Zone
+            A copy whose ``rail_y`` carries the route's overrides.
+        """
         from dataclasses import replace
 
-        rail_y = {s: self.rail_y.get(s, y) for s, y in zone.rail_y.items()}
+        rail_y = {slot: self.rail_y.get(slot, y) for slot, y in zone.rail_y.items()}
         return replace(zone, rail_y=rail_y)
 
     def pairs_in(self, zone: Zone) -> tuple[ContactPair, ...]:
-        """Pairs whose x range overlaps the zone over a positive length (not just a boundary)."""
+        """Pairs whose x range overlaps a zone over a positive length (not just a boundary).
+
+        Parameters
+        ----------
+        zone : Zone
+            A zone of the turnout.
+
+        Returns
+        -------
+        tuple of ContactPair
+            The pairs, in the route's order.
+        """
         return tuple(
-            p
-            for p in self.pairs
-            if min(p.x_range()[1], zone.x_end) - max(p.x_range()[0], zone.x_start) > 1e-9
+            pair
+            for pair in self.pairs
+            if min(pair.x_range()[1], zone.x_end) - max(pair.x_range()[0], zone.x_start) > 1e-9
         )
 
 
 def route_names(turnout: Turnout) -> tuple[str, ...]:
+    """Names of the routes the turnout file defines.
+
+    Parameters
+    ----------
+    turnout : Turnout
+        The turnout.
+
+    Returns
+    -------
+    tuple of str
+        The ``[routes.<name>]`` keys, in file order (empty when there are none).
+    """
     return tuple(turnout.raw.get("routes", {}))
 
 
@@ -154,10 +248,10 @@ def _range(r: _Reader, field: str, plan: TurnoutPlan | None) -> tuple[float, flo
         return None
     if not isinstance(value, list) or len(value) != 2:
         raise r.fail(field, f"must be [x_from, x_to], got {value!r}")
-    a, b = (_x(r, field, v, plan) for v in value)
-    if not b > a:
-        raise r.fail(field, f"range is inverted: {a:g} >= {b:g}")
-    return a, b
+    x_from, x_to = (_x(r, field, v, plan) for v in value)
+    if not x_to > x_from:
+        raise r.fail(field, f"range is inverted: {x_from:g} >= {x_to:g}")
+    return x_from, x_to
 
 
 def _pair(r: _Reader, p: str, plan: TurnoutPlan | None) -> ContactPair:
@@ -187,18 +281,19 @@ def _pair(r: _Reader, p: str, plan: TurnoutPlan | None) -> ContactPair:
 
 
 def _check_active(r: _Reader, turnout: Turnout, field: str, pair: ContactPair) -> None:
-    a, b = pair.x_range()
-    if a < turnout.x_min - 1e-9 or b > turnout.x_max + 1e-9:
+    x_from, x_to = pair.x_range()
+    if x_from < turnout.x_min - 1e-9 or x_to > turnout.x_max + 1e-9:
         raise r.fail(
             field,
-            f"x range {a:g}..{b:g} m is outside the turnout ({turnout.x_min:g}..{turnout.x_max:g} m)",
+            f"x range {x_from:g}..{x_to:g} m is outside the turnout "
+            f"({turnout.x_min:g}..{turnout.x_max:g} m)",
         )
     for zone in turnout.zones:
-        overlap = min(b, zone.x_end) - max(a, zone.x_start)
-        if overlap > 1e-9 and pair.rail not in zone.active_rails:
+        start, end = max(x_from, zone.x_start), min(x_to, zone.x_end)
+        if end - start > 1e-9 and pair.rail not in zone.active_rails:
             raise r.fail(
                 field,
-                f"uses rail {pair.rail} over {max(a, zone.x_start):g}..{min(b, zone.x_end):g} m, "
+                f"uses rail {pair.rail} over {start:g}..{end:g} m, "
                 f"where zone {zone.index} has no such active rail",
             )
 
@@ -206,28 +301,44 @@ def _check_active(r: _Reader, turnout: Turnout, field: str, pair: ContactPair) -
 def _continues(r: _Reader, field: str, turnout: Turnout) -> dict[int, dict[str, str]]:
     out: dict[int, dict[str, str]] = {}
     for i, item in enumerate(r.get(field, []) or []):
-        f = f"{field}[{i}]"
-        zone = int(r.check(f + ".zone", item.get("zone") if isinstance(item, Mapping) else None))
+        item_field = f"{field}[{i}]"
+        zone = int(
+            r.check(item_field + ".zone", item.get("zone") if isinstance(item, Mapping) else None)
+        )
         item = item if isinstance(item, Mapping) else {}
         if not 2 <= zone <= len(turnout.zones):
             raise r.fail(
-                f + ".zone", f"must be a zone after the first (2..{len(turnout.zones)}), got {zone}"
+                item_field + ".zone",
+                f"must be a zone after the first (2..{len(turnout.zones)}), got {zone}",
             )
-        slot, src = item.get("slot"), item.get("from")
+        slot, previous_slot = item.get("slot"), item.get("from")
         if (
             slot not in turnout.zone(zone).active_rails
-            or src not in turnout.zone(zone - 1).active_rails
+            or previous_slot not in turnout.zone(zone - 1).active_rails
         ):
             raise r.fail(
-                f,
-                f"maps {src!r} of zone {zone - 1} to {slot!r} of zone {zone}: both must be active there",
+                item_field,
+                f"maps {previous_slot!r} of zone {zone - 1} to {slot!r} of zone {zone}: "
+                "both must be active there",
             )
-        out.setdefault(zone, {})[slot] = src
+        out.setdefault(zone, {})[slot] = previous_slot
     return out
 
 
 def load_route(turnout: Turnout, name: str) -> Route:
     """The route ``name`` of the turnout file, validated.
+
+    Parameters
+    ----------
+    turnout : Turnout
+        The turnout whose file defines ``[routes.<name>]``.
+    name : str
+        Route name, e.g. ``"through"`` or ``"diverging"``.
+
+    Returns
+    -------
+    Route
+        Contact pairs, curvature, check-rail clearance, cant and speed limits.
 
     Raises
     ------
@@ -315,6 +426,7 @@ def speed_warnings(route: Route, speed_kmh: float, x_from: float, x_to: float) -
     Parameters
     ----------
     route : Route
+        The route run.
     speed_kmh : float
         The passage's speed (km/h).
     x_from, x_to : float
@@ -360,6 +472,17 @@ def dip_angle(
 ) -> tuple[float, float, float]:
     """Dip of the wheel's path over the highest rail between x_from and x_to.
 
+    Parameters
+    ----------
+    route : Route
+        The route.
+    wheel : {"left", "right"}
+        The wheel whose path is taken.
+    x_from, x_to : float
+        The x range searched (m).
+    n : int
+        Number of sample points over the range.
+
     Returns
     -------
     (x_dip, depth, two_alpha)
@@ -368,13 +491,16 @@ def dip_angle(
         before that point (the angle Jenkins' P2 formula takes).
     """
     xs = np.linspace(x_from, x_to, n)
-    pairs = [p for p in route.pairs if p.wheel == wheel and p.has_tread]
-    env = np.array(
-        [max((p.height(x) for p in pairs if p.tread_active(x)), default=-np.inf) for x in xs]
+    pairs = [pair for pair in route.pairs if pair.wheel == wheel and pair.has_tread]
+    envelope = np.array(
+        [
+            max((pair.height(x) for pair in pairs if pair.tread_active(x)), default=-np.inf)
+            for x in xs
+        ]
     )
-    i = int(np.argmin(env))
-    h = xs[1] - xs[0]
-    k = max(1, int(0.02 / h))  # slopes over 20 mm either side
-    before = (env[i] - env[max(i - k, 0)]) / (xs[i] - xs[max(i - k, 0)])
-    after = (env[min(i + k, n - 1)] - env[i]) / (xs[min(i + k, n - 1)] - xs[i])
-    return float(xs[i]), float(-env[i]), float(after - before)
+    i = int(np.argmin(envelope))
+    spacing = xs[1] - xs[0]
+    k = max(1, int(0.02 / spacing))  # slopes over 20 mm either side
+    before = (envelope[i] - envelope[max(i - k, 0)]) / (xs[i] - xs[max(i - k, 0)])
+    after = (envelope[min(i + k, n - 1)] - envelope[i]) / (xs[min(i + k, n - 1)] - xs[i])
+    return float(xs[i]), float(-envelope[i]), float(after - before)

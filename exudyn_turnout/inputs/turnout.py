@@ -16,7 +16,7 @@ import math
 import re
 import tomllib
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -117,8 +117,8 @@ class Polynomial:
     plain_track_end: float | None = None
 
     def __call__(self, x: float) -> float:
-        xc = min(max(x, self.x_min), self.x_max)
-        return float(sum(c * xc**i for i, c in enumerate(self.coefficients)))
+        x_clamped = min(max(x, self.x_min), self.x_max)
+        return float(sum(c * x_clamped**i for i, c in enumerate(self.coefficients)))
 
 
 @dataclass(frozen=True)
@@ -135,7 +135,7 @@ class RailPad:
 class RailType:
     """One column of the paper's Table 1 (rail and the pad under it)."""
 
-    name: str
+    name: str  #: key in Turnout.rail_types, e.g. "stock"
     density: float  #: kg/m^3, rho_r
     youngs_modulus: float  #: Pa, E_r
     shear_coefficient: float  #: kappa (-)
@@ -146,7 +146,7 @@ class RailType:
     sleeper_length: float  #: m, L_t of Table 1 for this rail type
     support: str  #: "edge" (Eq 4) or "middle" (Eq 3) of the sleeper
     rails_per_sleeper: int  #: n in Eq 4
-    pad: RailPad
+    pad: RailPad  #: the pad under this rail type
     vertical_factor: str | None  #: "Delta_z" or None
     lateral_factor: str | None  #: "Delta_y" or None
     equivalent_to: str | None  #: rail type whose co-running values this one scales
@@ -193,10 +193,10 @@ class Zone:
     """A simulation zone (Table 3): masses constant, active rails fixed."""
 
     index: int  #: 1-based
-    name: str
+    name: str  #: description, e.g. "switch panel"
     x_start: float  #: m
     x_end: float  #: m
-    active_rails: tuple[str, ...]
+    active_rails: tuple[str, ...]  #: rail slots a wheel can load in this zone (Table 3)
     rail_types: Mapping[str, str]  #: slot -> rail type name
     ballast_rail_type: str  #: rail type governing k_tg1, k_tg_y, m_t, J_t
     mass_at_x: float | None  #: m; masses from Eqs 17/18 at this x, None: Delta = 1
@@ -205,15 +205,17 @@ class Zone:
     sleeper_y: float  #: m, lateral position of the sleeper's centre of mass
 
     def contains(self, x: float) -> bool:
-        """True if x (m) lies in the zone, ends included.
+        """True if x lies in the zone, ends included.
 
         Parameters
         ----------
         x : float
+            Position from the switch toe (m).
 
         Returns
         -------
         bool
+            x_start <= x <= x_end.
         """
         return self.x_start <= x <= self.x_end
 
@@ -239,6 +241,8 @@ class Entry:
         Returns
         -------
         float
+            The entry's value (SI): a, a Delta_z, a Delta_y, or a + (b - a) s with s
+            clamped to [0, 1].
         """
         if self.kind == "Delta_z":
             return self.a * delta_z
@@ -254,6 +258,7 @@ class Entry:
         Returns
         -------
         str
+            The coefficient or range in 4 significant digits, with its Delta factor.
         """
         if self.kind in ("Delta_z", "Delta_y"):
             return f"{self.a:.4g} * {self.kind}"
@@ -266,18 +271,23 @@ class Entry:
 class Turnout:
     """A turnout definition in SI units (see the module docstring)."""
 
-    name: str
-    description: str
+    name: str  #: short name from the file, e.g. "UIC60-760-1:15"
+    description: str  #: free text from the file
     source: str  #: file the definition was read from
-    rail_types: Mapping[str, RailType]
-    sleeper: Sleeper
-    ballast: Ballast
+    rail_types: Mapping[str, RailType]  #: Table 1 columns by name
+    sleeper: Sleeper  #: Table 1 sleeper properties
+    ballast: Ballast  #: Table 1 ballast properties
     K_sw: Polynomial  #: Eq 10, switch-rail vertical support stiffness (N/m)
     K_sh: Polynomial  #: Eq 14, lateral support stiffness (N/m)
-    extra_layer: ExtraLayer
-    zones: tuple[Zone, ...]
+    extra_layer: ExtraLayer  #: m_0 and the k_0 ratios of the three-layer model
+    zones: tuple[Zone, ...]  #: Table 3, contiguous, in increasing x
     published: Mapping[int, Mapping[str, Entry]]  #: zone index -> Table 2 entries
     raw: Mapping[str, Any]  #: the parsed file, for sections later modules read
+    #: the plain-track rail type: its K_st (Eq 2) is Eqs 11 and 15's denominator
+    reference_rail_type: str = "stock"
+    #: m, where peaks "at the switch" / "at the crossing" are taken: name -> (x_from, x_to);
+    #: defaults: switch 0-10 m from the toe, crossing the last zone that is not plain track
+    regions: Mapping[str, tuple[float, float]] = field(default_factory=dict)
 
     @property
     def x_min(self) -> float:
@@ -295,10 +305,12 @@ class Turnout:
         Parameters
         ----------
         index : int
+            1-based zone index (Table 3).
 
         Returns
         -------
         Zone
+            The zone.
         """
         if not 1 <= index <= len(self.zones):
             raise KeyError(
@@ -312,15 +324,17 @@ class Turnout:
         Parameters
         ----------
         x : float
-            m.
+            Position from the switch toe (m).
 
         Returns
         -------
         Zone
+            The zone containing x.
         """
         if not self.x_min <= x <= self.x_max:
             raise ValueError(
-                f"x = {x:g} m is outside the turnout {self.name} ({self.x_min:g} m to {self.x_max:g} m)"
+                f"x = {x:g} m is outside the turnout {self.name} "
+                f"({self.x_min:g} m to {self.x_max:g} m)"
             )
         for zone in reversed(self.zones):
             if zone.contains(x):
@@ -334,6 +348,7 @@ def default_turnout_path() -> Path:
     Returns
     -------
     Path
+        ``data/uic60_760_1_15.toml`` inside the installed package.
     """
     return Path(str(resources.files("exudyn_turnout") / "data" / "uic60_760_1_15.toml"))
 
@@ -587,7 +602,8 @@ def _entry(r: _Reader, field: str) -> Entry:
         if not m:
             raise r.fail(
                 field,
-                f"must be a number, 'NUMBER * Delta_z', 'NUMBER * Delta_y' or [a, b], got {value!r}",
+                "must be a number, 'NUMBER * Delta_z', 'NUMBER * Delta_y' or [a, b], "
+                f"got {value!r}",
             )
         return Entry(m.group(2), r.check(field, float(m.group(1))))
     if isinstance(value, list):
@@ -662,6 +678,8 @@ def read_toml(path: Path) -> dict:
     Raises
     ------
     TurnoutFileError
+        The file cannot be read, is not UTF-8, is not valid TOML, or holds a NaN or
+        infinite number (the message names the file, and the field for the last).
     """
     path = Path(path)
     try:
@@ -683,11 +701,17 @@ def read_toml(path: Path) -> dict:
     return data
 
 
-def _regions(r: _Reader, x_min: float, x_max: float) -> None:
-    """``[regions]``: each value two increasing numbers [x_from, x_to] inside the turnout."""
+def _regions(r: _Reader, zones: tuple[Zone, ...]) -> dict[str, tuple[float, float]]:
+    """``[regions]``: each value two increasing numbers [x_from, x_to] inside the turnout.
+
+    Defaults where the file gives none: ``switch`` 0-10 m from the toe, ``crossing`` the
+    last zone (the packaged files give both).
+    """
+    x_min, x_max = zones[0].x_start, zones[-1].x_end
+    out = {"switch": (0.0, min(10.0, x_max)), "crossing": (zones[-1].x_start, x_max)}
     regions = r.get("regions", None)
     if regions is None:
-        return
+        return out
     if not isinstance(regions, Mapping):
         raise r.fail("regions", "must be a table of name = [x_from, x_to]")
     for name, value in regions.items():
@@ -701,14 +725,29 @@ def _regions(r: _Reader, x_min: float, x_max: float) -> None:
             raise r.fail(
                 f, f"[{a:g}, {b:g}] m must lie inside the turnout ({x_min:g}..{x_max:g} m)"
             )
+        out[str(name)] = (a, b)
+    return out
+
+
+def _reference_rail_type(r: _Reader, rail_types: Mapping[str, RailType]) -> str:
+    """``[turnout] reference_rail_type`` (default "stock"), a rail type of the file."""
+    name = r.get("turnout.reference_rail_type", "stock")
+    if name not in rail_types:
+        raise r.fail(
+            "turnout.reference_rail_type",
+            f"must be a rail type of the file ({', '.join(rail_types)}), got {name!r}",
+        )
+    return str(name)
 
 
 def _increasing(
     r: _Reader, field: str, value: Any, min_length: int = 1, features: bool = False
 ) -> list[Any]:
-    """A list of positions: numbers (finite, |x| <= X_LIMIT) and, with ``features``, plan
-    expressions (strings such as ``"nose_tip + 0.5"``, resolved by :mod:`exudyn_turnout.inputs.routes`);
-    consecutive numbers must increase."""
+    """A list of positions; consecutive numbers must increase.
+
+    Positions are numbers (finite, |x| <= X_LIMIT) and, with ``features``, plan expressions
+    (strings such as ``"nose_tip + 0.5"``, resolved by :mod:`exudyn_turnout.inputs.routes`).
+    """
     if not isinstance(value, list) or len(value) < min_length:
         raise r.fail(field, f"must be a list of at least {min_length} positions, got {value!r}")
     xs = [
@@ -840,16 +879,11 @@ def load_turnout(path: str | Path | None = None) -> Turnout:
     _check_references(r, rail_types)
     s, b = "sleeper", BOUNDS
     sleeper = Sleeper(
-        *(
-            r.number(f"{s}.{k}", upper=b[u])
-            for k, u in (
-                ("density", "density"),
-                ("youngs_modulus", "youngs_modulus"),
-                ("area", "area"),
-                ("I", "I"),
-                ("spacing", "spacing"),
-            )
-        ),
+        density=r.number(f"{s}.density", upper=b["density"]),
+        youngs_modulus=r.number(f"{s}.youngs_modulus", upper=b["youngs_modulus"]),
+        area=r.number(f"{s}.area", upper=b["area"]),
+        I=r.number(f"{s}.I", upper=b["I"]),
+        spacing=r.number(f"{s}.spacing", upper=b["spacing"]),
         length=r.table(f"{s}.length", upper=b["length"]),
     )
     ballast = Ballast(
@@ -877,7 +911,8 @@ def load_turnout(path: str | Path | None = None) -> Turnout:
     name = r.get("turnout.name")
     if not isinstance(name, str) or not name.strip():
         raise r.fail("turnout.name", f"must be a non-empty string, got {name!r}")
-    _regions(r, zones[0].x_start, zones[-1].x_end)
+    regions = _regions(r, zones)
+    reference = _reference_rail_type(r, rail_types)
     _routes(r, len(zones))
     _check_rail(r)
     _layout_numbers(r)
@@ -894,4 +929,6 @@ def load_turnout(path: str | Path | None = None) -> Turnout:
         zones=zones,
         published=_published(r, zones),
         raw=data,
+        reference_rail_type=reference,
+        regions=regions,
     )

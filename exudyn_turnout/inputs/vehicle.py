@@ -28,20 +28,25 @@ GRAVITY = 9.81  #: m/s^2
 
 @dataclass(frozen=True)
 class Vehicle:
+    """The single wheelset with its sprung share, primary suspension and contact constants.
+
+    Read from a vehicle file by :func:`load_vehicle`; SI units.
+    """
+
     m_w: float  #: kg, wheelset mass
-    J_roll: float  #: kg m^2
-    J_yaw: float  #: kg m^2
+    J_roll: float  #: kg m^2, wheelset roll inertia
+    J_yaw: float  #: kg m^2, wheelset yaw inertia
     r0: float  #: m, nominal rolling radius
     b: float  #: m, lateral semi-distance of the contact points
     m_s: float  #: kg, sprung mass carried by this wheelset
     k_x: float  #: N/m, primary longitudinal stiffness per axlebox
     k_y: float  #: N/m, primary lateral stiffness per axlebox
     k_z: float  #: N/m, primary vertical stiffness per axlebox
-    c_y: float  #: N s/m
-    c_z: float  #: N s/m
+    c_y: float  #: N s/m, primary lateral damping per axlebox
+    c_z: float  #: N s/m, primary vertical damping per axlebox
     d: float  #: m, lateral semi-spacing of the axleboxes
-    contact: ContactLaw
-    source: str
+    contact: ContactLaw  #: the file's ``[contact]`` table
+    source: str  #: path of the file read
 
     @property
     def static_wheel_load(self) -> float:
@@ -60,6 +65,13 @@ class Vehicle:
 
 
 def default_vehicle_path() -> Path:
+    """Path of the packaged Manchester benchmark wheelset file.
+
+    Returns
+    -------
+    Path
+        ``data/manchester_wheelset.toml`` inside the installed package.
+    """
     return Path(str(resources.files("exudyn_turnout") / "data" / "manchester_wheelset.toml"))
 
 
@@ -79,6 +91,7 @@ def load_vehicle(path: str | Path | None = None) -> Vehicle:
     Returns
     -------
     Vehicle
+        The validated wheelset, suspension and contact constants.
 
     Raises
     ------
@@ -89,21 +102,21 @@ def load_vehicle(path: str | Path | None = None) -> Vehicle:
     path = Path(path) if path is not None else default_vehicle_path()
     data = read_toml(path)
     r = _Reader(path.name, data)
-    w, p = "wheelset", "primary_suspension"
-    k, c = 1e12, 1e10
+    w, p = "wheelset", "primary_suspension"  # table names
+    k_max, c_max = 1e12, 1e10  # N/m, N s/m: plausibility bounds
     radius = r.number(f"{w}.wheel_radius", upper=2.0)
     if radius < 0.1:
         raise r.fail(f"{w}.wheel_radius", f"must be >= 0.1 m (a railway wheel), got {radius:g}")
     contact_bounds = {
         "C_H": (True, 1e14),
-        "damping": (False, c),
+        "damping": (False, c_max),
         "f11_ref": (True, 1e10),
         "f22_ref": (True, 1e10),
         "N_ref": (True, 1e10),
         "mu": (True, 2.0),
         "conicity": (True, 1.0),
-        "flange_stiffness": (True, k),
-        "flange_damping": (False, c),
+        "flange_stiffness": (True, k_max),
+        "flange_damping": (False, c_max),
         "flange_clearance": (True, 0.1),
     }
     for name, (positive, upper) in contact_bounds.items():
@@ -115,11 +128,11 @@ def load_vehicle(path: str | Path | None = None) -> Vehicle:
         radius,
         r.number(f"{w}.contact_semi_spacing", upper=5.0),
         r.number("sprung_mass.mass", upper=1e6),
-        r.number(f"{p}.k_x", upper=k),
-        r.number(f"{p}.k_y", upper=k),
-        r.number(f"{p}.k_z", upper=k),
-        r.number(f"{p}.c_y", positive=False, upper=c),
-        r.number(f"{p}.c_z", positive=False, upper=c),
+        r.number(f"{p}.k_x", upper=k_max),
+        r.number(f"{p}.k_y", upper=k_max),
+        r.number(f"{p}.k_z", upper=k_max),
+        r.number(f"{p}.c_y", positive=False, upper=c_max),
+        r.number(f"{p}.c_z", positive=False, upper=c_max),
         r.number(f"{p}.semi_spacing", upper=5.0),
         load_contact_law(data, str(path)),
         str(path),
@@ -143,7 +156,25 @@ class ContactLaw:
 
 
 def load_contact_law(data: dict, filename: str) -> ContactLaw:
-    """Contact constants from the parsed ``[contact]`` table; errors name file and field."""
+    """Contact constants from the parsed ``[contact]`` table; errors name file and field.
+
+    Parameters
+    ----------
+    data : dict
+        The parsed vehicle file (its ``contact`` table is read).
+    filename : str
+        Path of the file, for messages.
+
+    Returns
+    -------
+    ContactLaw
+        Hertz, creep, friction and flange constants.
+
+    Raises
+    ------
+    TurnoutFileError
+        A field is missing or not a valid number.
+    """
     r = _Reader(Path(filename).name, data)
     names = (
         "C_H",
@@ -158,4 +189,4 @@ def load_contact_law(data: dict, filename: str) -> ContactLaw:
         "flange_clearance",
     )
     positive = {"damping": False, "flange_damping": False}
-    return ContactLaw(*(r.number(f"contact.{n}", positive.get(n, True)) for n in names))
+    return ContactLaw(*(r.number(f"contact.{name}", positive.get(name, True)) for name in names))

@@ -221,20 +221,20 @@ class VehicleModel:
         tuple of float
             One load per wheelset (N), in the order of ``wheelset.x``.
         """
-        w = self.wheelset
-        loads = [w.mass * GRAVITY] * self.n_wheelsets
+        wheelset = self.wheelset
+        loads = [wheelset.mass * GRAVITY] * self.n_wheelsets
         if self.sprung_mass is not None:
-            return tuple(q + self.sprung_mass.mass * GRAVITY for q in loads)
-        body, bogie = self.car_body, self.bogie
-        xb = bogie.x
-        xc = body.x[0]
-        shares = ((xc - xb[1]) / (xb[0] - xb[1]), (xb[0] - xc) / (xb[0] - xb[1]))
+            return tuple(load + self.sprung_mass.mass * GRAVITY for load in loads)
+        body, bogie, _ = _full_vehicle_parts(self)
+        x_bogies = bogie.x
+        x_body = body.x[0]
+        shares = _car_body_shares(x_body, x_bogies)
         for j, share in enumerate(shares):
-            q = share * body.mass * GRAVITY + bogie.mass * GRAVITY
-            mine = [i for i, b in enumerate(w.bogie) if b == j]
-            x0, x1 = w.x[mine[0]], w.x[mine[1]]
-            loads[mine[0]] += q * (xb[j] - x1) / (x0 - x1)
-            loads[mine[1]] += q * (x0 - xb[j]) / (x0 - x1)
+            bogie_load = share * body.mass * GRAVITY + bogie.mass * GRAVITY
+            mine = [i for i, b in enumerate(wheelset.bogie) if b == j]
+            x0, x1 = wheelset.x[mine[0]], wheelset.x[mine[1]]
+            loads[mine[0]] += bogie_load * (x_bogies[j] - x1) / (x0 - x1)
+            loads[mine[1]] += bogie_load * (x0 - x_bogies[j]) / (x0 - x1)
         return tuple(loads)
 
     def static_wheel_loads(self) -> tuple[float, ...]:
@@ -253,12 +253,32 @@ class VehicleModel:
         return self.total_mass * GRAVITY / (2 * self.n_wheelsets)
 
 
+def _full_vehicle_parts(model: VehicleModel) -> tuple[BodyData, BodyData, SuspensionData]:
+    """The car body, the bogie kind and the secondary suspension of a full vehicle.
+
+    Raises
+    ------
+    ValueError
+        The model is a single-wheelset layout (no car body, bogies or secondary suspension).
+    """
+    if model.car_body is None or model.bogie is None or model.secondary is None:
+        raise ValueError(f"{model.name}: has no car body and bogies (single-wheelset layout)")
+    return model.car_body, model.bogie, model.secondary
+
+
+def _car_body_shares(x_body: float, x_bogies: tuple[float, ...]) -> tuple[float, float]:
+    """Shares of the car body's weight on bogie 1 and bogie 2 (lever rule, sum 1)."""
+    span = x_bogies[0] - x_bogies[1]
+    return (x_body - x_bogies[1]) / span, (x_bogies[0] - x_body) / span
+
+
 def default_vehicle_model_path() -> Path:
     """Path of the packaged Manchester benchmark vehicle 1 file.
 
     Returns
     -------
     Path
+        ``data/manchester_vehicle.toml`` inside the installed package.
     """
     return Path(str(resources.files("exudyn_turnout") / "data" / "manchester_vehicle.toml"))
 
@@ -357,80 +377,100 @@ def _read(path: Path) -> dict:
         raise VehicleModelError(f"{path.name}: is not valid TOML ({exc})") from None
 
 
-def _body(r: _Fields, table: str, count: int | None) -> BodyData:
+def _body(reader: _Fields, table: str, count: int | None) -> BodyData:
+    x: tuple[float, ...]
     if count is None:  # the car body: one position
-        x = (r.number(f"{table}.x", "x"),)
+        x = (reader.number(f"{table}.x", "x"),)
     else:
-        x = r.numbers(f"{table}.x", "x")
+        x = reader.numbers(f"{table}.x", "x")
         if len(x) != count:
-            raise r.fail(
+            raise reader.fail(
                 f"{table}.x", f"must list {count} positions (vehicle.bogies), got {len(x)}"
             )
     return BodyData(
-        r.number(f"{table}.mass", "mass"),
-        r.number(f"{table}.roll_inertia", "inertia"),
-        r.number(f"{table}.pitch_inertia", "inertia"),
-        r.number(f"{table}.yaw_inertia", "inertia"),
-        r.number(f"{table}.cog_height", "height"),
+        reader.number(f"{table}.mass", "mass"),
+        reader.number(f"{table}.roll_inertia", "inertia"),
+        reader.number(f"{table}.pitch_inertia", "inertia"),
+        reader.number(f"{table}.yaw_inertia", "inertia"),
+        reader.number(f"{table}.cog_height", "height"),
         x,
     )
 
 
-def _suspension(r: _Fields, table: str) -> SuspensionData:
-    k = [r.number(f"{table}.k_{d}", "stiffness") for d in "xyz"]
-    c = [r.number(f"{table}.c_{d}", "damping", positive=False) for d in "xyz"]
+def _suspension(reader: _Fields, table: str) -> SuspensionData:
     return SuspensionData(
-        *k, *c, r.number(f"{table}.semi_spacing", "spacing"), r.number(f"{table}.height", "height")
+        k_x=reader.number(f"{table}.k_x", "stiffness"),
+        k_y=reader.number(f"{table}.k_y", "stiffness"),
+        k_z=reader.number(f"{table}.k_z", "stiffness"),
+        c_x=reader.number(f"{table}.c_x", "damping", positive=False),
+        c_y=reader.number(f"{table}.c_y", "damping", positive=False),
+        c_z=reader.number(f"{table}.c_z", "damping", positive=False),
+        semi_spacing=reader.number(f"{table}.semi_spacing", "spacing"),
+        height=reader.number(f"{table}.height", "height"),
     )
 
 
-def _bumpstop(r: _Fields) -> BumpStop:
-    t = "lateral_bumpstop"
-    clearance = r.number(f"{t}.clearance", "clearance")
-    u = r.numbers(f"{t}.displacement", "clearance")
-    f = r.numbers(f"{t}.force", "force", positive=False)
+def _bumpstop(reader: _Fields) -> BumpStop:
+    table = "lateral_bumpstop"
+    clearance = reader.number(f"{table}.clearance", "clearance")
+    u = reader.numbers(f"{table}.displacement", "clearance")
+    f = reader.numbers(f"{table}.force", "force", positive=False)
     if len(f) != len(u):
-        raise r.fail(f"{t}.force", f"must have one value per displacement ({len(u)}), got {len(f)}")
+        raise reader.fail(
+            f"{table}.force", f"must have one value per displacement ({len(u)}), got {len(f)}"
+        )
     if u[0] <= clearance or any(b <= a for a, b in zip(u, u[1:])):
-        raise r.fail(f"{t}.displacement", "must increase strictly and start beyond the clearance")
+        raise reader.fail(
+            f"{table}.displacement", "must increase strictly and start beyond the clearance"
+        )
     if any(b < a for a, b in zip(f, f[1:])):
-        raise r.fail(f"{t}.force", "must not decrease")
-    return BumpStop(clearance, r.number(f"{t}.height", "height"), u, f)
+        raise reader.fail(f"{table}.force", "must not decrease")
+    return BumpStop(clearance, reader.number(f"{table}.height", "height"), u, f)
 
 
-def _wheelset(r: _Fields, n_wheelsets: int, n_bogies: int) -> WheelsetData:
-    t = "wheelset"
-    radius = r.number(f"{t}.wheel_radius", "height")
+def _wheelset(reader: _Fields, n_wheelsets: int, n_bogies: int) -> WheelsetData:
+    table = "wheelset"
+    radius = reader.number(f"{table}.wheel_radius", "height")
     if not 0.1 <= radius <= 2.0:
-        raise r.fail(f"{t}.wheel_radius", f"must be in 0.1..2 m (a railway wheel), got {radius:g}")
-    x = r.numbers(f"{t}.x", "x")
+        raise reader.fail(
+            f"{table}.wheel_radius", f"must be in 0.1..2 m (a railway wheel), got {radius:g}"
+        )
+    x = reader.numbers(f"{table}.x", "x")
     if len(x) != n_wheelsets:
-        raise r.fail(
-            f"{t}.x", f"must list {n_wheelsets} positions (vehicle.wheelsets), got {len(x)}"
+        raise reader.fail(
+            f"{table}.x", f"must list {n_wheelsets} positions (vehicle.wheelsets), got {len(x)}"
         )
     if x[0] != 0.0 or any(b >= a for a, b in zip(x, x[1:])):
-        raise r.fail(f"{t}.x", "must start at 0 (the front wheelset) and decrease strictly")
+        raise reader.fail(
+            f"{table}.x", "must start at 0 (the front wheelset) and decrease strictly"
+        )
     if n_bogies:
-        raw = r.get(f"{t}.bogie")
+        raw = reader.get(f"{table}.bogie")
         if not isinstance(raw, list) or len(raw) != n_wheelsets:
-            raise r.fail(f"{t}.bogie", f"must list one bogie number per wheelset, got {raw!r}")
-        bogie = tuple(_integer(r, f"{t}.bogie[{i}]", v, 1, n_bogies) - 1 for i, v in enumerate(raw))
+            raise reader.fail(
+                f"{table}.bogie", f"must list one bogie number per wheelset, got {raw!r}"
+            )
+        bogie = tuple(
+            _integer(reader, f"{table}.bogie[{i}]", v, 1, n_bogies) - 1 for i, v in enumerate(raw)
+        )
         for j in range(n_bogies):
             if bogie.count(j) != 2:
-                raise r.fail(f"{t}.bogie", f"must give bogie {j + 1} exactly two wheelsets")
+                raise reader.fail(
+                    f"{table}.bogie", f"must give bogie {j + 1} exactly two wheelsets"
+                )
     else:
         bogie = (-1,) * n_wheelsets
-    b = r.number(f"{t}.contact_semi_spacing", "spacing")
-    back = r.number(f"{t}.back_to_back", "spacing")
+    b = reader.number(f"{table}.contact_semi_spacing", "spacing")
+    back = reader.number(f"{table}.back_to_back", "spacing")
     if back >= 2.0 * b:
-        raise r.fail(
-            f"{t}.back_to_back", f"must be < 2 contact_semi_spacing ({2 * b:g} m), got {back:g}"
+        raise reader.fail(
+            f"{table}.back_to_back", f"must be < 2 contact_semi_spacing ({2 * b:g} m), got {back:g}"
         )
     return WheelsetData(
-        r.number(f"{t}.mass", "mass"),
-        r.number(f"{t}.roll_inertia", "inertia"),
-        r.number(f"{t}.spin_inertia", "inertia"),
-        r.number(f"{t}.yaw_inertia", "inertia"),
+        reader.number(f"{table}.mass", "mass"),
+        reader.number(f"{table}.roll_inertia", "inertia"),
+        reader.number(f"{table}.spin_inertia", "inertia"),
+        reader.number(f"{table}.yaw_inertia", "inertia"),
         radius,
         back,
         b,
@@ -439,11 +479,11 @@ def _wheelset(r: _Fields, n_wheelsets: int, n_bogies: int) -> WheelsetData:
     )
 
 
-def _integer(r: _Fields, field: str, value: Any, lo: int, hi: int) -> int:
+def _integer(reader: _Fields, field: str, value: Any, lo: int, hi: int) -> int:
     if isinstance(value, bool) or not isinstance(value, int):
-        raise r.fail(field, f"must be an integer, got {value!r}")
+        raise reader.fail(field, f"must be an integer, got {value!r}")
     if not lo <= value <= hi:
-        raise r.fail(field, f"must be in {lo}..{hi}, got {value}")
+        raise reader.fail(field, f"must be in {lo}..{hi}, got {value}")
     return int(value)
 
 
@@ -468,6 +508,7 @@ def load_vehicle_model(path: str | Path | None = None) -> VehicleModel:
     Returns
     -------
     VehicleModel
+        The validated content; ``source`` is the file's name.
 
     Raises
     ------
@@ -476,12 +517,14 @@ def load_vehicle_model(path: str | Path | None = None) -> VehicleModel:
         one line naming the file and the field.
     """
     path = Path(path) if path is not None else default_vehicle_model_path()
-    r = _Fields(path.name, _read(path))
-    n_w = r.integer("vehicle.wheelsets", 1, 16)
-    n_b = r.integer("vehicle.bogies", 0, 2)
-    if n_b == 1:
-        raise r.fail("vehicle.bogies", "must be 0 (single wheelsets) or 2 (car body on two bogies)")
-    full_tables = (
+    reader = _Fields(path.name, _read(path))
+    n_wheelsets = reader.integer("vehicle.wheelsets", 1, 16)
+    n_bogies = reader.integer("vehicle.bogies", 0, 2)
+    if n_bogies == 1:
+        raise reader.fail(
+            "vehicle.bogies", "must be 0 (single wheelsets) or 2 (car body on two bogies)"
+        )
+    full_tables: tuple[str, ...] = (
         "car_body",
         "bogie",
         "secondary_suspension",
@@ -489,37 +532,45 @@ def load_vehicle_model(path: str | Path | None = None) -> VehicleModel:
         "anti_roll",
         "lateral_bumpstop",
     )
-    required, forbidden = full_tables, ("sprung_mass",)
-    if not n_b:
+    single_tables: tuple[str, ...] = ("sprung_mass",)
+    required, forbidden = full_tables, single_tables
+    if not n_bogies:
         required, forbidden = forbidden, required
     for table in required:
-        if not r.has(table):
-            raise r.fail(f"[{table}]", f"is missing (vehicle.bogies = {n_b})")
+        if not reader.has(table):
+            raise reader.fail(f"[{table}]", f"is missing (vehicle.bogies = {n_bogies})")
     for table in forbidden:
-        if r.has(table):
-            raise r.fail(f"[{table}]", f"must be absent (vehicle.bogies = {n_b})")
-    wheelset = _wheelset(r, n_w, n_b)
-    primary = _suspension(r, "primary_suspension")
-    if n_b:
-        if n_w != 2 * n_b:
-            raise r.fail("vehicle.wheelsets", f"must be 2 per bogie ({2 * n_b}), got {n_w}")
-        car_body, bogie = _body(r, "car_body", None), _body(r, "bogie", n_b)
+        if reader.has(table):
+            raise reader.fail(f"[{table}]", f"must be absent (vehicle.bogies = {n_bogies})")
+    wheelset = _wheelset(reader, n_wheelsets, n_bogies)
+    primary = _suspension(reader, "primary_suspension")
+    car_body: BodyData | None
+    bogie: BodyData | None
+    secondary: SuspensionData | None
+    bumpstop: BumpStop | None
+    sprung: SprungMass | None
+    if n_bogies:
+        if n_wheelsets != 2 * n_bogies:
+            raise reader.fail(
+                "vehicle.wheelsets", f"must be 2 per bogie ({2 * n_bogies}), got {n_wheelsets}"
+            )
+        car_body, bogie = _body(reader, "car_body", None), _body(reader, "bogie", n_bogies)
         if not bogie.x[0] > car_body.x[0] > bogie.x[1]:
-            raise r.fail("car_body.x", "must lie between the bogie centres")
-        secondary = _suspension(r, "secondary_suspension")
-        k_yaw = r.number("secondary_yaw.stiffness", "rot_stiffness", positive=False)
-        k_roll = r.number("anti_roll.stiffness", "rot_stiffness", positive=False)
-        bumpstop, sprung = _bumpstop(r), None
+            raise reader.fail("car_body.x", "must lie between the bogie centres")
+        secondary = _suspension(reader, "secondary_suspension")
+        k_yaw = reader.number("secondary_yaw.stiffness", "rot_stiffness", positive=False)
+        k_roll = reader.number("anti_roll.stiffness", "rot_stiffness", positive=False)
+        bumpstop, sprung = _bumpstop(reader), None
     else:
         car_body = bogie = secondary = bumpstop = None
         k_yaw = k_roll = 0.0
         sprung = SprungMass(
-            r.number("sprung_mass.mass", "mass"), r.number("sprung_mass.height", "height")
+            reader.number("sprung_mass.mass", "mass"), reader.number("sprung_mass.height", "height")
         )
     return VehicleModel(
-        r.text("vehicle.name"),
-        r.text("vehicle.description"),
-        r.text("vehicle.reference"),
+        reader.text("vehicle.name"),
+        reader.text("vehicle.description"),
+        reader.text("vehicle.reference"),
         wheelset,
         primary,
         car_body,
@@ -550,6 +601,8 @@ def single_wheelset_share(model: VehicleModel, index: int = 0) -> VehicleModel:
     Returns
     -------
     VehicleModel
+        One wheelset at x = 0 with a ``sprung_mass`` and no car body, bogies, secondary
+        suspension or bumpstop.
     """
     if model.sprung_mass is not None:
         return model
@@ -581,6 +634,7 @@ def series(*stiffnesses: float) -> float:
     Returns
     -------
     float
+        The series stiffness (same unit as the inputs).
     """
     return 1.0 / sum(1.0 / k for k in stiffnesses)
 
@@ -639,12 +693,8 @@ def _primary_vertical(model: VehicleModel, k_track_z: float) -> float:
 def _per_bogie_vertical(model: VehicleModel, k_track_z: float) -> float:
     """Vertical stiffness (N/m) under the car body at one bogie: secondary in series with the
     bogie's four axlebox springs (each in series with its track spring); bogie mass neglected."""
-    return series(2.0 * model.secondary.k_z, 4.0 * _primary_vertical(model, k_track_z))
-
-
-def _require_full(model: VehicleModel) -> None:
-    if model.car_body is None:
-        raise ValueError(f"{model.name}: has no car body and bogies (single-wheelset layout)")
+    _, _, secondary = _full_vehicle_parts(model)
+    return series(2.0 * secondary.k_z, 4.0 * _primary_vertical(model, k_track_z))
 
 
 def carbody_bounce_frequency(model: VehicleModel, k_track_z: float = math.inf) -> float:
@@ -669,8 +719,8 @@ def carbody_bounce_frequency(model: VehicleModel, k_track_z: float = math.inf) -
     float
         Hz.
     """
-    _require_full(model)
-    return _hz(model.n_bogies * _per_bogie_vertical(model, k_track_z), model.car_body.mass)
+    car_body, _, _ = _full_vehicle_parts(model)
+    return _hz(model.n_bogies * _per_bogie_vertical(model, k_track_z), car_body.mass)
 
 
 def carbody_pitch_frequency(model: VehicleModel, k_track_z: float = math.inf) -> float:
@@ -695,14 +745,14 @@ def carbody_pitch_frequency(model: VehicleModel, k_track_z: float = math.inf) ->
     float
         Hz.
     """
-    _require_full(model)
-    c, s = model.car_body, model.secondary
-    e = s.height - c.cog_height
+    car_body, bogie, secondary = _full_vehicle_parts(model)
+    e = secondary.height - car_body.cog_height
     k = sum(
-        _per_bogie_vertical(model, k_track_z) * (xb - c.x[0]) ** 2 + 2.0 * s.k_x * e**2
-        for xb in model.bogie.x
+        _per_bogie_vertical(model, k_track_z) * (x_bogie - car_body.x[0]) ** 2
+        + 2.0 * secondary.k_x * e**2
+        for x_bogie in bogie.x
     )
-    return _hz(k + c.mass * GRAVITY * e, c.pitch_inertia)
+    return _hz(k + car_body.mass * GRAVITY * e, car_body.pitch_inertia)
 
 
 def carbody_yaw_frequency(model: VehicleModel) -> float:
@@ -722,15 +772,14 @@ def carbody_yaw_frequency(model: VehicleModel) -> float:
     float
         Hz.
     """
-    _require_full(model)
-    s, c = model.secondary, model.car_body
+    car_body, bogie, secondary = _full_vehicle_parts(model)
     k = sum(
-        2.0 * s.k_y * (xb - c.x[0]) ** 2
-        + 2.0 * s.k_x * s.semi_spacing**2
+        2.0 * secondary.k_y * (x_bogie - car_body.x[0]) ** 2
+        + 2.0 * secondary.k_x * secondary.semi_spacing**2
         + model.secondary_yaw_stiffness
-        for xb in model.bogie.x
+        for x_bogie in bogie.x
     )
-    return _hz(k, c.yaw_inertia)
+    return _hz(k, car_body.yaw_inertia)
 
 
 def carbody_sway_frequencies(
@@ -758,20 +807,20 @@ def carbody_sway_frequencies(
     tuple of float
         (lower, upper) in Hz.
     """
-    _require_full(model)
-    s, p, c = model.secondary, model.primary, model.car_body
-    k_lat = 2.0 * s.k_y
-    k_roll = 2.0 * s.k_z * s.semi_spacing**2 + model.anti_roll_stiffness
+    car_body, _, secondary = _full_vehicle_parts(model)
+    primary = model.primary
+    k_lat = 2.0 * secondary.k_y
+    k_roll = 2.0 * secondary.k_z * secondary.semi_spacing**2 + model.anti_roll_stiffness
     if not bogies_held:
-        k_lat = series(k_lat, 4.0 * p.k_y)
-        k_roll = series(k_roll, 4.0 * _primary_vertical(model, k_track_z) * p.semi_spacing**2)
-    e = s.height - c.cog_height
+        k_lat = series(k_lat, 4.0 * primary.k_y)
+        k_roll = series(k_roll, 4.0 * _primary_vertical(model, k_track_z) * primary.semi_spacing**2)
+    e = secondary.height - car_body.cog_height
     return sway_frequencies(
-        c.mass,
-        c.roll_inertia,
+        car_body.mass,
+        car_body.roll_inertia,
         model.n_bogies * k_lat,
         e,
-        model.n_bogies * k_roll + c.mass * GRAVITY * e,
+        model.n_bogies * k_roll + car_body.mass * GRAVITY * e,
     )
 
 
@@ -793,9 +842,9 @@ def bogie_bounce_frequency(model: VehicleModel, k_track_z: float = math.inf) -> 
     float
         Hz.
     """
-    _require_full(model)
-    k = 4.0 * _primary_vertical(model, k_track_z) + 2.0 * model.secondary.k_z
-    return _hz(k, model.bogie.mass)
+    _, bogie, secondary = _full_vehicle_parts(model)
+    k = 4.0 * _primary_vertical(model, k_track_z) + 2.0 * secondary.k_z
+    return _hz(k, bogie.mass)
 
 
 def bogie_pitch_frequency(model: VehicleModel, k_track_z: float = math.inf, j: int = 0) -> float:
@@ -820,25 +869,24 @@ def bogie_pitch_frequency(model: VehicleModel, k_track_z: float = math.inf, j: i
     float
         Hz.
     """
-    _require_full(model)
-    p, s, b = model.primary, model.secondary, model.bogie
-    h1, h2 = p.height - b.cog_height, s.height - b.cog_height
+    _, bogie, secondary = _full_vehicle_parts(model)
+    primary = model.primary
+    h1, h2 = primary.height - bogie.cog_height, secondary.height - bogie.cog_height
     kz = _primary_vertical(model, k_track_z)
-    k = sum(2.0 * kz * (model.wheelset.x[i] - b.x[j]) ** 2 for i in _wheelsets_of(model, j))
-    k += 4.0 * p.k_x * h1**2 + 2.0 * s.k_x * h2**2 + _bogie_gravity_term(model, j)
-    return _hz(k, b.pitch_inertia)
+    k = sum(2.0 * kz * (model.wheelset.x[i] - bogie.x[j]) ** 2 for i in _wheelsets_of(model, j))
+    k += 4.0 * primary.k_x * h1**2 + 2.0 * secondary.k_x * h2**2 + _bogie_gravity_term(model, j)
+    return _hz(k, bogie.pitch_inertia)
 
 
 def _bogie_gravity_term(model: VehicleModel, j: int) -> float:
     """sum_i F_i h_i (N m/rad) of the preloaded vertical springs on bogie j: primary forces up
     at h1, secondary forces down at h2 (relative to the bogie CoG): the geometric stiffness
     of rotating a body under vertical point loads (first principles)."""
-    b, c = model.bogie, model.car_body
-    xb, xc = b.x, c.x[0]
-    share = ((xc - xb[1]) / (xb[0] - xb[1]), (xb[0] - xc) / (xb[0] - xb[1]))[j] * c.mass * GRAVITY
-    h1 = model.primary.height - b.cog_height
-    h2 = model.secondary.height - b.cog_height
-    return (share + b.mass * GRAVITY) * h1 - share * h2
+    car_body, bogie, secondary = _full_vehicle_parts(model)
+    share = _car_body_shares(car_body.x[0], bogie.x)[j] * car_body.mass * GRAVITY
+    h1 = model.primary.height - bogie.cog_height
+    h2 = secondary.height - bogie.cog_height
+    return (share + bogie.mass * GRAVITY) * h1 - share * h2
 
 
 def bogie_sway_frequencies(
@@ -869,23 +917,23 @@ def bogie_sway_frequencies(
     tuple of float
         (lower, upper) in Hz.
     """
-    _require_full(model)
-    p, s, b = model.primary, model.secondary, model.bogie
-    h1, h2 = p.height - b.cog_height, s.height - b.cog_height
-    k1 = 2.0 * series(2.0 * p.k_y, 2.0 * k_track_y)  # two wheelsets
-    k2 = 2.0 * s.k_y
+    _, bogie, secondary = _full_vehicle_parts(model)
+    primary = model.primary
+    h1, h2 = primary.height - bogie.cog_height, secondary.height - bogie.cog_height
+    k1 = 2.0 * series(2.0 * primary.k_y, 2.0 * k_track_y)  # two wheelsets
+    k2 = 2.0 * secondary.k_y
     k_lat = k1 + k2
     lever = (k1 * h1 + k2 * h2) / k_lat
     # the lateral springs' own roll stiffness beyond k_lat lever^2 (two levers)
     extra = k1 * h1**2 + k2 * h2**2 - k_lat * lever**2
     k_roll = (
-        4.0 * _primary_vertical(model, k_track_z) * p.semi_spacing**2
-        + 2.0 * s.k_z * s.semi_spacing**2
+        4.0 * _primary_vertical(model, k_track_z) * primary.semi_spacing**2
+        + 2.0 * secondary.k_z * secondary.semi_spacing**2
         + model.anti_roll_stiffness
         + _bogie_gravity_term(model, j)
         + extra
     )
-    return sway_frequencies(b.mass, b.roll_inertia, k_lat, lever, k_roll)
+    return sway_frequencies(bogie.mass, bogie.roll_inertia, k_lat, lever, k_roll)
 
 
 def wheelset_bounce_frequency(model: VehicleModel, k_track_z: float) -> float:
@@ -896,6 +944,7 @@ def wheelset_bounce_frequency(model: VehicleModel, k_track_z: float) -> float:
     Parameters
     ----------
     model : VehicleModel
+        Any vehicle (full or single-wheelset); its wheelset and primary suspension are used.
     k_track_z : float
         N/m, vertical support stiffness under each wheel.
 
@@ -926,6 +975,7 @@ def hand_frequencies(
     Returns
     -------
     dict of str to float
+        Mode name -> frequency (Hz).
     """
     lower, upper = carbody_sway_frequencies(model, k_track_z)
     b_lower, b_upper = bogie_sway_frequencies(model, k_track_z, k_track_y)

@@ -46,7 +46,7 @@ STATIC_LATERAL_STIFFNESS = 1e7
 class BoundPair:
     """A contact pair bound to the element's coordinates."""
 
-    pair: ContactPair
+    pair: ContactPair  #: the route's wheel/rail pair (side, rail height profile, flange)
     i_y: int  #: index of the rail body's lateral coordinate in the element
     i_z: int  #: index of its vertical coordinate
 
@@ -59,10 +59,11 @@ class PairForces:
     F_y: float  #: lateral force on the rail, positive to the left
     F_x: float  #: longitudinal creep force on the wheel
     delta: float  #: m, normal penetration (negative: separated)
-    in_contact: bool
+    in_contact: bool  #: True while the normal force is positive
 
 
 def _interp(xs: tuple, zs: tuple, x: float) -> float:
+    """Piecewise-linear interpolation of the table (xs, zs) at x, constant beyond its ends."""
     i = bisect_right(xs, x)
     if i <= 0:
         return zs[0]
@@ -78,7 +79,9 @@ class WheelRailElement:
     Parameters
     ----------
     vehicle : Vehicle
+        Wheelset geometry (b, r0), masses for the curving load and the contact law.
     route : Route
+        The route: its curvature and check-rail clearances.
     pairs : sequence of BoundPair
         The route's pairs in this zone, bound to rail coordinates of the element.
     x0 : float
@@ -95,23 +98,48 @@ class WheelRailElement:
         self._geometry: tuple = ()
 
     def x_at(self, t: float) -> float:
+        """Position of the wheelset along the route at time t: x0 + v t.
+
+        Parameters
+        ----------
+        t : float
+            s, simulation time.
+
+        Returns
+        -------
+        float
+            m, position along the route.
+        """
         return self.x0 + self.v * t
 
     def geometry(self, x: float) -> tuple:
-        """Per pair at x: (rail height or None off the tread, flange on, check clearance or None); curvature."""
+        """Track geometry the pairs see at position x, and the route's curvature there.
+
+        Parameters
+        ----------
+        x : float
+            m, position along the route.
+
+        Returns
+        -------
+        tuple
+            ``(rows, kappa)``: one row per pair (in ``self.pairs`` order),
+            ``(rail height in m or None off the tread, flange contact possible,
+            check-rail clearance in m or None)``; ``kappa`` the curvature (1/m).
+        """
         rows = []
-        for bp in self.pairs:
-            p = bp.pair
-            h = _interp(p.x, p.z, x) if p.tread_active(x) else None
+        for bound in self.pairs:
+            pair = bound.pair
+            rail_height = _interp(pair.x, pair.z, x) if pair.tread_active(x) else None
             rows.append(
                 (
-                    h,
-                    bool(p.flange and p.flange[0] <= x <= p.flange[1]),
-                    self.route.check_clearance_at(p, x),
+                    rail_height,
+                    bool(pair.flange and pair.flange[0] <= x <= pair.flange[1]),
+                    self.route.check_clearance_at(pair, x),
                 )
             )
-        c = self.route.curvature
-        return tuple(rows), _interp(c.x, c.value, x)
+        curvature = self.route.curvature
+        return tuple(rows), _interp(curvature.x, curvature.value, x)
 
     def _geometry_at(self, t: float) -> tuple:
         if t != self._cached_t:  # Newton iterations of one step share t
@@ -119,11 +147,39 @@ class WheelRailElement:
         return self._geometry
 
     def pair_forces(self, bp: BoundPair, x: float, q, q_t) -> PairForces:
-        """Forces of one pair at position x for element coordinates q, q_t."""
+        """Forces of one pair at position x for element coordinates q, q_t.
+
+        Parameters
+        ----------
+        bp : BoundPair
+            One of ``self.pairs``.
+        x : float
+            m, position of the wheelset along the route.
+        q, q_t : sequence of float
+            Element coordinates (m, rad) and velocities, in the order of the module docstring.
+
+        Returns
+        -------
+        PairForces
+            Normal, lateral and longitudinal force, penetration and contact state.
+        """
         return self.all_pair_forces(x, q, q_t)[self.pairs.index(bp)]
 
     def all_pair_forces(self, x: float, q, q_t) -> list[PairForces]:
-        """Forces of every pair (in ``self.pairs`` order) at position x."""
+        """Forces of every pair (in ``self.pairs`` order) at position x.
+
+        Parameters
+        ----------
+        x : float
+            m, position of the wheelset along the route.
+        q, q_t : sequence of float
+            Element coordinates (m, rad) and velocities, in the order of the module docstring.
+
+        Returns
+        -------
+        list of PairForces
+            One per pair, in ``self.pairs`` order.
+        """
         rows, kappa = self.geometry(x)
         return [
             PairForces(*self._forces(bp, row, kappa, q, q_t)) for bp, row in zip(self.pairs, rows)
@@ -131,8 +187,8 @@ class WheelRailElement:
 
     def _forces(self, bp: BoundPair, row: tuple, kappa: float, q, q_t) -> tuple:
         """(N, F_y on the rail, F_x on the wheel, delta, in contact) of one pair."""
-        veh, law = self.vehicle, self.vehicle.contact
-        s, b, gamma = bp.pair.side, veh.b, law.conicity
+        law = self.vehicle.contact
+        s, b, gamma = bp.pair.side, self.vehicle.b, law.conicity
         height, flange_on, check_clearance = row
         dy, dy_t = q[0] - q[bp.i_y], q_t[0] - q_t[bp.i_y]
         N = F_y = F_x = 0.0
@@ -157,34 +213,37 @@ class WheelRailElement:
 
     def _creep(
         self, s: int, N: float, dy: float, dy_t: float, psi: float, psi_t: float, kappa: float
-    ):
-        veh, law = self.vehicle, self.vehicle.contact
-        xi_x = longitudinal_creepage(s, dy, psi_t, self.v, veh.b, veh.r0, law.conicity, kappa)
+    ) -> tuple[float, float]:
+        """Saturated creep forces (F_x, F_y) on the wheel of side s (N)."""
+        vehicle, law = self.vehicle, self.vehicle.contact
+        xi_x = longitudinal_creepage(
+            s, dy, psi_t, self.v, vehicle.b, vehicle.r0, law.conicity, kappa
+        )
         xi_y = lateral_creepage(dy_t, psi, self.v)
         F_x = -creep_coefficient(law.f11_ref, N, law.N_ref) * xi_x
         F_y = -creep_coefficient(law.f22_ref, N, law.N_ref) * xi_y
-        k = saturation_factor(math.hypot(F_x, F_y), law.mu * N)
-        return k * F_x, k * F_y
+        saturation = saturation_factor(math.hypot(F_x, F_y), law.mu * N)
+        return saturation * F_x, saturation * F_y
 
     def __call__(self, mbs, t, item_number, q, q_t):
         """Exudyn ``forceUserFunction``: generalised forces on the element's coordinates."""
         rows, kappa = self._geometry_at(t)
-        f = [0.0] * self.n
-        b, r0 = self.vehicle.b, self.vehicle.r0
+        forces = [0.0] * self.n
+        vehicle = self.vehicle
+        b, r0 = vehicle.b, vehicle.r0
         for bp, row in zip(self.pairs, rows):
             N, F_y, F_x = self._forces(bp, row, kappa, q, q_t)[:3]
             s = bp.pair.side
-            f[0] -= F_y
-            f[1] += N
-            f[2] += s * b * N - r0 * F_y
-            f[3] -= s * b * F_x
-            f[bp.i_y] += F_y
-            f[bp.i_z] -= N
-        veh = self.vehicle
+            forces[0] -= F_y
+            forces[1] += N
+            forces[2] += s * b * N - r0 * F_y
+            forces[3] -= s * b * F_x
+            forces[bp.i_y] += F_y
+            forces[bp.i_z] -= N
         if self.v > 0.0:
             a_y = self.v**2 * kappa
-            f[0] -= veh.m_w * a_y
-            f[4] -= veh.m_s * a_y
+            forces[0] -= vehicle.m_w * a_y
+            forces[4] -= vehicle.m_s * a_y
         else:
-            f[0] -= STATIC_LATERAL_STIFFNESS * q[0]
-        return f
+            forces[0] -= STATIC_LATERAL_STIFFNESS * q[0]
+        return forces

@@ -89,6 +89,7 @@ import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import asdict, dataclass, field, replace
 from functools import cache
+from typing import cast
 
 import numpy as np
 import scipy.sparse as sp
@@ -306,6 +307,8 @@ def build_fe_track(
     Returns
     -------
     FETrack
+        Track and wheelset matrices (M, D with the loss G / omega_ref, K), weight vector
+        and the rails' element index; ``timings`` holds the assembly wall time.
     """
     vehicle = vehicle or load_vehicle()
     layout = layout or load_layout(turnout)
@@ -329,14 +332,20 @@ def build_fe_track(
 
 
 def _active(pair: ContactPair, pairs: Sequence[ContactPair], x: float) -> bool:
-    """Tread contact of the pair at x; a table end shared with the next pair of the wheel belongs to this pair."""
+    """Tread contact of the pair at x.
+
+    A table end shared with the next pair of the same wheel belongs to this pair.
+    """
     if not pair.tread_active(x):
         return False
     if abs(x - pair.x[0]) > _X_TOL:
         return True
     return not any(
-        q is not pair and q.wheel == pair.wheel and q.has_tread and abs(q.x[-1] - x) <= _X_TOL
-        for q in pairs
+        other is not pair
+        and other.wheel == pair.wheel
+        and other.has_tread
+        and abs(other.x[-1] - x) <= _X_TOL
+        for other in pairs
     )
 
 
@@ -374,13 +383,16 @@ def contact_points(track: FETrack, route: Route, x: float) -> tuple[ContactPoint
     Parameters
     ----------
     track : FETrack
+        From :func:`build_fe_track`: the layout and the FE rails' elements.
     route : Route
+        The contact pairs (slots, height tables) of the route.
     x : float
         m, wheelset position.
 
     Returns
     -------
     tuple of ContactPoint
+        The active pairs, in ``route.pairs`` order, each with its rail element and N(xi).
 
     Raises
     ------
@@ -405,7 +417,10 @@ def contact_points(track: FETrack, route: Route, x: float) -> tuple[ContactPoint
 def _gaps(track: FETrack, points: Sequence[ContactPoint], Y: np.ndarray) -> np.ndarray:
     """G^T Y: the penetration part g_c . y of each contact for vector(s) Y (n_dof[, m])."""
     b = track.vehicle.b
-    rows = [p.shape @ Y[p.dofs] - Y[track.i_zw] - p.side * b * Y[track.i_phi] for p in points]
+    rows = [
+        point.shape @ Y[point.dofs] - Y[track.i_zw] - point.side * b * Y[track.i_phi]
+        for point in points
+    ]
     return np.array(rows) if rows else np.zeros((0,) + Y.shape[1:])
 
 
@@ -413,10 +428,10 @@ def _load(track: FETrack, points: Sequence[ContactPoint], F: np.ndarray) -> np.n
     """Generalised contact force -G F (n_dof,)."""
     f = np.zeros(track.n_dof)
     b = track.vehicle.b
-    for p, Fc in zip(points, F):
-        np.add.at(f, p.dofs, -p.shape * Fc)
+    for point, Fc in zip(points, F):
+        np.add.at(f, point.dofs, -point.shape * Fc)
         f[track.i_zw] += Fc
-        f[track.i_phi] += p.side * b * Fc
+        f[track.i_phi] += point.side * b * Fc
     return f
 
 
@@ -468,7 +483,8 @@ def solve_contacts(
     The points' penetrations delta minimise the strictly convex, twice continuously
     differentiable energy::
 
-        Pi(delta) = sum_c 2/5 C_H max(delta_g(c) + o_c, 0)^2.5 + 1/2 (delta - d0)^T C~^-1 (delta - d0)
+        Pi(delta) = sum_c 2/5 C_H max(delta_g(c) + o_c, 0)^2.5
+                    + 1/2 (delta - d0)^T C~^-1 (delta - d0)
 
     (Hertz springs at offsets o_c within their point g(c), plus the points' compliance
     C~ = C + epsilon I, epsilon = 1e-16 m/N = 1e-7 of the Hertz compliance at the static
@@ -579,6 +595,7 @@ def static_state(
     Parameters
     ----------
     track : FETrack
+        From :func:`build_fe_track`: matrices, weight vector and wheelset.
     K_lu : SuperLU
         Factorisation of the track stiffness (``track.K`` without the vehicle DOFs).
     points : sequence of ContactPoint
@@ -593,15 +610,15 @@ def static_state(
     _Static
         Displacements, contact points and forces of the static state.
     """
-    veh = track.vehicle
+    vehicle = track.vehicle
     X, C = _track_compliance(track, K_lu, points)
-    s = np.array([p.side for p in points], float)
-    h = np.array([p.height for p in points])
+    s = np.array([point.side for point in points], float)
+    h = np.array([point.height for point in points])
     for wheel in ("left", "right"):
-        if not any(p.pair.wheel == wheel for p in points):
+        if not any(point.pair.wheel == wheel for point in points):
             raise PassageError(f"no rail under the {wheel} wheel for the static equilibrium")
-    W, k_roll = (veh.m_w + veh.m_s) * GRAVITY, 2.0 * veh.k_z * veh.d**2
-    delta_0 = (0.5 * W / veh.contact.C_H) ** (2.0 / 3.0)
+    W, k_roll = (vehicle.m_w + vehicle.m_s) * GRAVITY, 2.0 * vehicle.k_z * vehicle.d**2
+    delta_0 = (0.5 * W / vehicle.contact.C_H) ** (2.0 / 3.0)
     q = np.array(
         [
             min(max(h[s == w]) for w in (-1.0, 1.0)) - 2.0 * delta_0 - 0.5 * W * np.max(np.diag(C)),
@@ -610,19 +627,21 @@ def static_state(
     )
     F = None
     for _ in range(max_iterations):
-        d0 = h - q[0] - s * veh.b * q[1]
+        d0 = h - q[0] - s * vehicle.b * q[1]
         F = solve_contacts(
-            d0, C, veh.contact.C_H, F, 1e-6 * tolerance, groups=_point_groups(points)
+            d0, C, vehicle.contact.C_H, F, 1e-6 * tolerance, groups=_point_groups(points)
         )
-        R = np.array([F.sum() - W, veh.b * (s @ F) - k_roll * q[1]])
-        if abs(R[0]) <= tolerance and abs(R[1]) <= tolerance * veh.b:
-            u = np.concatenate([-X @ F, [q[0], q[1], q[0] - veh.m_s * GRAVITY / (2.0 * veh.k_z)]])
+        R = np.array([F.sum() - W, vehicle.b * (s @ F) - k_roll * q[1]])
+        if abs(R[0]) <= tolerance and abs(R[1]) <= tolerance * vehicle.b:
+            u = np.concatenate(
+                [-X @ F, [q[0], q[1], q[0] - vehicle.m_s * GRAVITY / (2.0 * vehicle.k_z)]]
+            )
             return _Static(u, F, tuple(points))
         delta = np.maximum(d0 - C @ F, 0.0)
-        k = 1.5 * veh.contact.C_H * np.sqrt(delta)
+        k = 1.5 * vehicle.contact.C_H * np.sqrt(delta)
         dF_dd0 = np.linalg.solve(np.eye(len(F)) + k[:, None] * C, np.diag(k))
-        dd0 = np.column_stack([-np.ones_like(s), -s * veh.b])
-        J = np.array([np.ones_like(s), veh.b * s]) @ dF_dd0 @ dd0 - np.array(
+        dd0 = np.column_stack([-np.ones_like(s), -s * vehicle.b])
+        J = np.array([np.ones_like(s), vehicle.b * s]) @ dF_dd0 @ dd0 - np.array(
             [[0.0, 0.0], [0.0, k_roll]]
         )
         q = q - np.linalg.solve(J, R)
@@ -659,13 +678,13 @@ class _Integrator:
         self._columns: dict[int, np.ndarray] = {}
         self._K, self._D = track.K.tocsr(), track.D.tocsr()  # CSR: faster products than CSC
 
-    def _element_columns(self, p: ContactPoint) -> np.ndarray:
-        cols = self._columns.get(p.element)
+    def _element_columns(self, point: ContactPoint) -> np.ndarray:
+        cols = self._columns.get(point.element)
         if cols is None:
             t0 = time.perf_counter()
-            E = np.zeros((self.track.n_dof, len(p.dofs)))
-            E[p.dofs, np.arange(len(p.dofs))] = 1.0
-            cols = self._columns[p.element] = self.lu.solve(E)
+            E = np.zeros((self.track.n_dof, len(point.dofs)))
+            E[point.dofs, np.arange(len(point.dofs))] = 1.0
+            cols = self._columns[point.element] = self.lu.solve(E)
             self.timings["influence_s"] += time.perf_counter() - t0
         return cols
 
@@ -675,29 +694,32 @@ class _Integrator:
         X = (
             np.column_stack(
                 [
-                    self._element_columns(p) @ p.shape
-                    - self.X_vehicle @ np.array([1.0, p.side * b])
-                    for p in points
+                    self._element_columns(point) @ point.shape
+                    - self.X_vehicle @ np.array([1.0, point.side * b])
+                    for point in points
                 ]
             )
             if points
             else np.zeros((self.track.n_dof, 0))
         )
-        used = {p.element for p in points}
-        for e in [e for e in self._columns if e not in used]:
-            del self._columns[e]
+        used = {point.element for point in points}
+        for element in [element for element in self._columns if element not in used]:
+            del self._columns[element]
         return X
 
     def step(
         self, state: _State, points: tuple[ContactPoint, ...], options: FEPassageOptions
     ) -> _State:
-        """One step to the positions of ``points``; ArithmeticError if the contacts do not converge."""
-        tr, h, a, beta, gamma = self.track, self.h, self.alpha, self.beta, self.gamma
+        """One step to the positions of ``points``.
+
+        Raises ArithmeticError if the contact forces do not converge.
+        """
+        track, h, a, beta, gamma = self.track, self.h, self.alpha, self.beta, self.gamma
         u_p = state.u + h * state.v + h * h * (0.5 - beta) * state.a
         v_p = state.v + h * (1.0 - gamma) * state.a
         t0 = time.perf_counter()
         r = (
-            tr.f_gravity
+            track.f_gravity
             - a * state.f_contact
             - self._D @ ((1.0 + a) * v_p - a * state.v)
             - self._K @ ((1.0 + a) * u_p - a * state.u)
@@ -708,11 +730,13 @@ class _Integrator:
         X = self.influence(points)
         t3 = time.perf_counter()
         c = (1.0 + a) * beta * h * h
-        d0 = _gaps(tr, points, u_p + beta * h * h * a_star) + np.array([p.height for p in points])
+        d0 = _gaps(track, points, u_p + beta * h * h * a_star) + np.array(
+            [point.height for point in points]
+        )
         F = solve_contacts(
             d0,
-            c * _gaps(tr, points, X),
-            tr.vehicle.contact.C_H,
+            c * _gaps(track, points, X),
+            track.vehicle.contact.C_H,
             _previous_forces(state, points),
             options.contact_tolerance,
             options.max_contact_iterations,
@@ -720,12 +744,12 @@ class _Integrator:
         )
         acc = a_star - (1.0 + a) * (X @ F)
         new = _State(
-            u_p + beta * h * h * acc, v_p + gamma * h * acc, acc, _load(tr, points, F), points, F
+            u_p + beta * h * h * acc, v_p + gamma * h * acc, acc, _load(track, points, F), points, F
         )
-        tm = self.timings
-        tm["products_s"] += t1 - t0
-        tm["solve_s"] += t2 - t1
-        tm["contact_s"] += time.perf_counter() - t3
+        timings = self.timings
+        timings["products_s"] += t1 - t0
+        timings["solve_s"] += t2 - t1
+        timings["contact_s"] += time.perf_counter() - t3
         return new
 
 
@@ -790,7 +814,10 @@ def _check(
 def _start(
     track: FETrack, route: Route, x: float, v: float, options: FEPassageOptions
 ) -> tuple[_State, float]:
-    """Steady start at x: static state, convected velocity, acceleration from the equations; static time (s)."""
+    """Steady start at x: static state, convected velocity, acceleration from the equations.
+
+    Returns the start state and the wall time (s) of the static solves.
+    """
     t0 = time.perf_counter()
     K_lu = sla.splu(track.model.K.tocsc(), **_LU)
     st = static_state(track, K_lu, contact_points(track, route, x), options.contact_tolerance)
@@ -837,7 +864,10 @@ class _Recorder:
         )
 
     def columns(self) -> dict[str, np.ndarray]:
-        """Columns of :func:`~exudyn_turnout.passage.simulate.simulate_passage` (lateral ones NaN: not modelled)."""
+        """Columns of :func:`~exudyn_turnout.passage.simulate.simulate_passage`.
+
+        The lateral ones are NaN: the FE passage is vertical only.
+        """
         data = np.array(self.rows)
         t, x, n = data[:, 0], data[:, 1], len(self.route.pairs)
         forces, vehicle, w = data[:, 2 : 2 + n], data[:, 2 + n : 5 + n], data[:, 5 + n :]
@@ -874,16 +904,20 @@ class _Recorder:
         return cols
 
 
+#: Default settings of :func:`simulate_fe_passage` (frozen: safe to share).
+_DEFAULT_SETTINGS = PassageSettings()
+
+
 def _static_loads(state: _State) -> dict[str, float]:
     loads = {"left": 0.0, "right": 0.0}
-    for p, F in zip(state.points, state.F):
-        loads[p.pair.wheel] += float(F)
+    for point, force in zip(state.points, state.F):
+        loads[point.pair.wheel] += float(force)
     return loads
 
 
 def simulate_fe_passage(
     turnout: Turnout,
-    settings: PassageSettings = PassageSettings(),
+    settings: PassageSettings = _DEFAULT_SETTINGS,
     vehicle: Vehicle | None = None,
     options: FEPassageOptions | None = None,
     *,
@@ -945,7 +979,9 @@ def simulate_fe_passage(
         columns, turnout, settings, _static_loads(state0), time.perf_counter() - wall
     )
     summary.update(_fe_summary(track, options, settings, timings))
-    summary["settings"] = {k: v for k, v in summary["settings"].items() if k not in _NOT_FE}
+    # passage_summary's "settings" is dataclasses.asdict(settings)
+    all_settings = cast(dict[str, object], summary["settings"])
+    summary["settings"] = {k: v for k, v in all_settings.items() if k not in _NOT_FE}
     return PassageResult(replace(settings, x_start=x_a, x_end=x_b), columns, summary, (x_a,))
 
 
@@ -976,17 +1012,17 @@ def _run(
     n_steps = max(1, math.ceil((x_b - x_a) / v / settings.time_step - 1e-9))
     h = (x_b - x_a) / v / n_steps
     every = max(1, round((settings.output_step or h) / h))
-    integ = _Integrator(track, h, settings.spectral_radius)
+    integrator = _Integrator(track, h, settings.spectral_radius)
     state, static_s = _start(track, route, x_a, v, options)
-    state0, rec, due = state, _Recorder(track, route), 0
+    state0, recorder, due = state, _Recorder(track, route), 0
     # per contact, against the whole weight (generous; the wheel check follows the run)
     f_limit = PLAUSIBLE["force_over_static"] * max(float(np.sum(state.F)), 1.0)
-    rec.add(0.0, x_a, state)
+    recorder.add(0.0, x_a, state)
     t0 = time.perf_counter()
     for n in range(1, n_steps + 1):
         t, x = n * h, x_a + v * n * h if n < n_steps else x_b
         try:
-            state = integ.step(state, contact_points(track, route, x), options)
+            state = integrator.step(state, contact_points(track, route, x), options)
         except ArithmeticError as err:
             message = f"FE passage failed at t = {t:.5f} s, x = {x:.3f} m: {err}"
             raise PassageFailure(message) from None
@@ -1007,19 +1043,19 @@ def _run(
                 f"{what} is beyond the physical limit"
             )
         if n % every == 0 or n == n_steps:
-            rec.add(t, x, state)
+            recorder.add(t, x, state)
         if progress is not None and n >= due:
             due = n + max(1, n_steps // 50)
             progress(n / n_steps, x)
     timings = dict(
         track.timings,
-        **integ.timings,
+        **integrator.timings,
         static_s=static_s,
         steps_s=time.perf_counter() - t0,
         n_steps=n_steps,
         h=h,
     )
-    return rec.columns(), state0, timings
+    return recorder.columns(), state0, timings
 
 
 def _fe_summary(
@@ -1036,8 +1072,10 @@ def _fe_summary(
         "lateral": "not modelled: vertical FE plane only (Fy and y columns empty)",
         "n_dof": track.n_dof,
         "n_dof_track": track.n_track,
-        "time_integration": f"HHT-alpha, alpha = {alpha:.4f} (rho_inf {settings.spectral_radius:g}), "
-        f"beta = {beta:.4f}, gamma = {gamma:.4f}, constant matrix factorised once",
+        "time_integration": (
+            f"HHT-alpha, alpha = {alpha:.4f} (rho_inf {settings.spectral_radius:g}), "
+            f"beta = {beta:.4f}, gamma = {gamma:.4f}, constant matrix factorised once"
+        ),
         "time_step_s": float(timings["h"]),
         "fe_options": asdict(options.mesh),
         "loss_reference_hz": options.loss_reference_hz,

@@ -910,14 +910,8 @@ def _check_static(
 
 
 def _regions(turnout: Turnout) -> dict[str, tuple[float, float]]:
-    regions = turnout.raw.get("regions", {})
-    return {
-        name: tuple(regions.get(name, default))
-        for name, default in (
-            ("switch", (0.0, 10.0)),
-            ("crossing", (turnout.zones[-1].x_start, turnout.x_max)),
-        )
-    }
+    """Regions of the turnout file where peaks are taken (``switch``, ``crossing``)."""
+    return {name: turnout.regions[name] for name in ("switch", "crossing")}
 
 
 def _argpeak(

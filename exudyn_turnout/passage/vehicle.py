@@ -28,11 +28,11 @@ class VehicleHandles:
     """Exudyn indices of the vehicle items."""
 
     wheelset_node: int  #: NodeRigidBody2D (y, z, roll)
-    wheelset_body: int
+    wheelset_body: int  #: ObjectRigidBody2D of the wheelset
     sprung_node: int  #: NodePoint2D (y, z)
-    sprung_body: int
+    sprung_body: int  #: ObjectMassPoint2D of the sprung mass
     yaw_node: int  #: NodeGenericODE2, one coordinate; its inertia sits in the contact element
-    gravity_loads: tuple[int, ...]
+    gravity_loads: tuple[int, ...]  #: LoadMassProportional on (wheelset, sprung mass)
 
 
 def add_vehicle(
@@ -43,29 +43,36 @@ def add_vehicle(
     Parameters
     ----------
     mbs : exudyn.MainSystem
+        System to add to (not yet assembled).
     vehicle : Vehicle
+        Masses, inertias and primary suspension of the single-wheelset model.
     ground_body : int
         Unused for now (the sprung mass is free); kept so a car body can be attached later.
     z_w0, z_s0 : float
         Initial vertical displacements (m) of wheelset and sprung mass (a guess for the
         static solver: the Hertz springs need closed contact to have stiffness).
+
+    Returns
+    -------
+    VehicleHandles
+        Exudyn indices of the nodes, bodies and gravity loads added.
     """
     from exudyn import itemInterface as ii
 
     del ground_body
-    n_w = mbs.AddNode(
+    wheelset_node = mbs.AddNode(
         ii.NodeRigidBody2D(
             referenceCoordinates=[0.0, 0.0, 0.0], initialCoordinates=[0.0, z_w0, 0.0]
         )
     )
-    o_w = mbs.AddObject(
-        ii.ObjectRigidBody2D(mass=vehicle.m_w, inertia=vehicle.J_roll, nodeNumber=n_w)
+    wheelset_body = mbs.AddObject(
+        ii.ObjectRigidBody2D(mass=vehicle.m_w, inertia=vehicle.J_roll, nodeNumber=wheelset_node)
     )
-    n_s = mbs.AddNode(
+    sprung_node = mbs.AddNode(
         ii.NodePoint2D(referenceCoordinates=[0.0, 0.0], initialCoordinates=[0.0, z_s0])
     )
-    o_s = mbs.AddObject(ii.ObjectMassPoint2D(mass=vehicle.m_s, nodeNumber=n_s))
-    n_yaw = mbs.AddNode(
+    sprung_body = mbs.AddObject(ii.ObjectMassPoint2D(mass=vehicle.m_s, nodeNumber=sprung_node))
+    yaw_node = mbs.AddNode(
         ii.NodeGenericODE2(
             referenceCoordinates=[0.0],
             initialCoordinates=[0.0],
@@ -73,18 +80,20 @@ def add_vehicle(
             numberOfODE2Coordinates=1,
         )
     )
-    m_s = mbs.AddMarker(ii.MarkerNodePosition(nodeNumber=n_s))
+    sprung_marker = mbs.AddMarker(ii.MarkerNodePosition(nodeNumber=sprung_node))
     for side in (1.0, -1.0):
         # Force-free at rest: the axlebox marker sits at y = side * d, the sprung point at
         # y = 0, so the spring's unstretched offset is p_sprung - p_box = (-side * d, 0).
         # Without it each spring would carry k_y d of lateral tension, which acts on the
         # wheelset as a roll stiffness of -2 k_y d^2 instead of the intended +2 k_z d^2.
-        m_box = mbs.AddMarker(
-            ii.MarkerBodyPosition(bodyNumber=o_w, localPosition=[side * vehicle.d, 0.0, 0.0])
+        axlebox_marker = mbs.AddMarker(
+            ii.MarkerBodyPosition(
+                bodyNumber=wheelset_body, localPosition=[side * vehicle.d, 0.0, 0.0]
+            )
         )
         mbs.AddObject(
             ii.CartesianSpringDamper(
-                markerNumbers=[m_box, m_s],
+                markerNumbers=[axlebox_marker, sprung_marker],
                 stiffness=[vehicle.k_y, vehicle.k_z, 0.0],
                 damping=[vehicle.c_y, vehicle.c_z, 0.0],
                 offset=[-side * vehicle.d, 0.0, 0.0],
@@ -93,10 +102,10 @@ def add_vehicle(
     loads = tuple(
         mbs.AddLoad(
             ii.LoadMassProportional(
-                markerNumber=mbs.AddMarker(ii.MarkerBodyMass(bodyNumber=o)),
+                markerNumber=mbs.AddMarker(ii.MarkerBodyMass(bodyNumber=body)),
                 loadVector=[0.0, -GRAVITY, 0.0],
             )
         )
-        for o in (o_w, o_s)
+        for body in (wheelset_body, sprung_body)
     )
-    return VehicleHandles(n_w, o_w, n_s, o_s, n_yaw, loads)
+    return VehicleHandles(wheelset_node, wheelset_body, sprung_node, sprung_body, yaw_node, loads)

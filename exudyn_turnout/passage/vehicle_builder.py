@@ -1,12 +1,13 @@
 """The vehicle of a :class:`~exudyn_turnout.inputs.vehicle_model.VehicleModel` in Exudyn.
 
-Axes (compatible with the co-running track, ``track.py``, and ``vehicle.py``): Exudyn X =
-lateral y (positive left), Y = vertical z (up), Z = longitudinal x (forward); (y, z, x) is
-right-handed. Rotation about Z = roll (positive lifts the left wheel), about X = pitch (for
-a wheelset: spin), about Y = yaw. Heights are above the rail top: a body's reference
-position is (0, CoG height, x), its reference rotation zero; the vehicle reference (x = 0)
-is the front wheelset. The vehicle runs at constant speed in a moving frame: no body has a
-longitudinal coordinate (rigid representation: it is held by a coordinate constraint).
+Axes (compatible with the co-running track, ``corunning/track.py``, and the single wheelset
+of ``passage/vehicle.py``): Exudyn X = lateral y (positive left), Y = vertical z (up), Z =
+longitudinal x (forward); (y, z, x) is right-handed. Rotation about Z = roll (positive lifts
+the left wheel), about X = pitch (for a wheelset: spin), about Y = yaw. Heights are above
+the rail top: a body's reference position is (0, CoG height, x), its reference rotation
+zero; the vehicle reference (x = 0) is the front wheelset. The vehicle runs at constant
+speed in a moving frame: no body has a longitudinal coordinate (rigid representation: it is
+held by a coordinate constraint).
 
 ::
 
@@ -41,7 +42,7 @@ longitudinal coordinate (rigid representation: it is held by a coordinate constr
                                                                  k_y, k_z to ground at *)
 
 A single-wheelset model (``bogies = 0``) is one wheelset under a point mass (its sprung
-share) on the same primary springs, the point free in y, z (as ``vehicle.py``).
+share) on the same primary springs, the point free in y, z (as ``passage/vehicle.py``).
 
 Two representations (``add_vehicle_model(..., representation=...)``):
 
@@ -78,14 +79,15 @@ case                                                            ODE2    us per s
 1 wheelset + sprung point, rigid Rxyz                              9     40 - 49
 =============================================================  =======  ============
 
-The rigid model spends ~75 % in Exudyn's ODE2 right-hand side (~75 us per evaluation for
-24 connectors on rigid-body markers, measured with ``show.computationTime``); a full
-Newton Jacobian costs ~0.6 ms. The issue's budget (4 wheelsets with their co-running
-tracks at <= 1x real time, i.e. ~100 us per step in all) rules it out for passages; the
-linear model costs ~20 us per step plus the bumpstop's Python call (~10 us free, ~20 us
-engaged) when it engages. RotVecLG was no faster than Rxyz within the noise. The linear
-model leaves out what the rigid one has beyond small angles: finite rotations, and the
-wheel-load preload's geometric roll term (-2 r0 Q), which the contact element supplies.
+The rigid model spends ~75 % in Exudyn's ODE2 right-hand side (~75 us per evaluation for 24
+connectors on rigid-body markers, measured with ``show.computationTime``); a full Newton
+Jacobian costs ~0.6 ms. The runtime requirement for a full-vehicle passage (4 wheelsets with
+their co-running tracks at <= 1x real time, i.e. ~100 us per step in all) rules it out for
+passages; the linear model costs ~20 us per step plus the bumpstop's Python call (~10 us
+free, ~20 us engaged) when it engages. RotVecLG was no faster than Rxyz within the noise.
+The linear model leaves out what the rigid one has beyond small angles: finite rotations,
+and the wheel-load preload's geometric roll term (-2 r0 Q), which the contact element
+supplies.
 """
 
 from __future__ import annotations
@@ -121,7 +123,12 @@ from exudyn.itemInterface import (
     RigidBodySpringDamper,
 )
 
-from exudyn_turnout.inputs.vehicle_model import GRAVITY, BumpStop, VehicleModel
+from exudyn_turnout.inputs.vehicle_model import (
+    GRAVITY,
+    BumpStop,
+    VehicleModel,
+    _full_vehicle_parts,
+)
 
 __all__ = [
     "REPRESENTATIONS",
@@ -256,6 +263,7 @@ class VehicleBuild:
         Returns
         -------
         tuple of BodyHandles or WheelsetHandles
+            The handles, the car body first (if any), the wheelsets last.
         """
         out: list = [] if self.car_body is None else [self.car_body]
         return tuple(out + list(self.bogies) + list(self.sprung) + list(self.wheelsets))
@@ -298,6 +306,13 @@ def _point_transform(dof: Sequence[str], r: Sequence[float]) -> np.ndarray:
         "yaw": (rz, 0.0, -rx),
     }
     return np.array([cols[d] for d in dof]).T
+
+
+def _bumpstop_of(model: VehicleModel) -> BumpStop:
+    """The model's lateral bumpstop; ValueError if it has none."""
+    if model.bumpstop is None:
+        raise ValueError(f"{model.name}: has no lateral bumpstop (use bumpstop='none')")
+    return model.bumpstop
 
 
 def _offset(point: Sequence[float], reference: Sequence[float]) -> list[float]:
@@ -365,6 +380,7 @@ def add_vehicle_model(
     Parameters
     ----------
     mbs : exudyn.MainSystem
+        System to add to (not yet assembled).
     model : VehicleModel
         A full vehicle or a single-wheelset model.
     representation : str
@@ -383,6 +399,7 @@ def add_vehicle_model(
     Returns
     -------
     VehicleBuild
+        Handles of the nodes, bodies, markers and items added.
     """
     if representation not in REPRESENTATIONS:
         raise ValueError(f"representation must be one of {REPRESENTATIONS}, got {representation!r}")
@@ -411,7 +428,7 @@ def _add_rigid(
     ground_coordinate = int(
         mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=ground_node, coordinate=0))
     )
-    w, p = model.wheelset, model.primary
+    wheelset_data, primary = model.wheelset, model.primary
     held: list[tuple[int, int]] = []
     items: dict[str, int] = {}
 
@@ -426,37 +443,46 @@ def _add_rigid(
         held.append((node, dof["x"]))
         return node, body
 
-    car, bogies, sprung, wheelsets = None, [], [], []
+    car: BodyHandles | None = None
+    bogies: list[BodyHandles] = []
+    sprung: list[BodyHandles] = []
+    wheelsets: list[WheelsetHandles] = []
     if model.car_body is not None:
-        c = model.car_body
-        ref = (0.0, c.cog_height, c.x[0])
+        car_body, bogie_kind, _ = _full_vehicle_parts(model)
+        ref = (0.0, car_body.cog_height, car_body.x[0])
         node, body = rigid(
-            "car_body", c.mass, (c.pitch_inertia, c.yaw_inertia, c.roll_inertia), ref, _RIGID_DOF
+            "car_body",
+            car_body.mass,
+            (car_body.pitch_inertia, car_body.yaw_inertia, car_body.roll_inertia),
+            ref,
+            _RIGID_DOF,
         )
-        car = BodyHandles("car_body", node, body, c.x[0], ref, dict(_RIGID_DOF))
-        b = model.bogie
-        for j, xb in enumerate(b.x):
-            ref = (0.0, b.cog_height, xb)
+        car = BodyHandles("car_body", node, body, car_body.x[0], ref, dict(_RIGID_DOF))
+        for j, x_bogie in enumerate(bogie_kind.x):
+            ref = (0.0, bogie_kind.cog_height, x_bogie)
             node, body = rigid(
                 f"bogie{j + 1}",
-                b.mass,
-                (b.pitch_inertia, b.yaw_inertia, b.roll_inertia),
+                bogie_kind.mass,
+                (bogie_kind.pitch_inertia, bogie_kind.yaw_inertia, bogie_kind.roll_inertia),
                 ref,
                 _RIGID_DOF,
             )
-            bogies.append(BodyHandles(f"bogie{j + 1}", node, body, xb, ref, dict(_RIGID_DOF)))
-    for i, xw in enumerate(w.x):
-        ref = (0.0, w.wheel_radius, xw)
+            bogies.append(BodyHandles(f"bogie{j + 1}", node, body, x_bogie, ref, dict(_RIGID_DOF)))
+    for i, x_wheelset in enumerate(wheelset_data.x):
+        ref = (0.0, wheelset_data.wheel_radius, x_wheelset)
         node, body = rigid(
             f"wheelset{i + 1}",
-            w.mass,
-            (w.spin_inertia, w.yaw_inertia, w.roll_inertia),
+            wheelset_data.mass,
+            (wheelset_data.spin_inertia, wheelset_data.yaw_inertia, wheelset_data.roll_inertia),
             ref,
             _WHEELSET_DOF,
         )
         if not wheelset_spin:
             held.append((node, _WHEELSET_DOF["spin"]))
-        local = tuple((side * w.contact_semi_spacing, -w.wheel_radius, 0.0) for side in (-1, 1))
+        local = tuple(
+            (side * wheelset_data.contact_semi_spacing, -wheelset_data.wheel_radius, 0.0)
+            for side in (-1, 1)
+        )
         markers = tuple(
             int(mbs.AddMarker(MarkerBodyPosition(bodyNumber=body, localPosition=list(q))))
             for q in local
@@ -466,7 +492,7 @@ def _add_rigid(
             WheelsetHandles(
                 i,
                 f"wheelset{i + 1}",
-                xw,
+                x_wheelset,
                 node,
                 body,
                 centre,
@@ -477,10 +503,12 @@ def _add_rigid(
             )
         )
         if model.sprung_mass is not None:
-            ref = (0.0, model.sprung_mass.height, xw)
+            ref = (0.0, model.sprung_mass.height, x_wheelset)
             node = int(mbs.AddNode(NodePoint(referenceCoordinates=list(ref))))
             body = int(mbs.AddObject(MassPoint(mass=model.sprung_mass.mass, nodeNumber=node)))
-            sprung.append(BodyHandles(f"sprung{i + 1}", node, body, xw, ref, dict(_POINT_DOF)))
+            sprung.append(
+                BodyHandles(f"sprung{i + 1}", node, body, x_wheelset, ref, dict(_POINT_DOF))
+            )
             held.append((node, _POINT_DOF["x"]))
 
     def position_marker(handles, point):
@@ -489,9 +517,9 @@ def _add_rigid(
 
     # primary suspension, per axlebox: bogie frame (or the sprung point) -> wheelset
     for ws in wheelsets:
-        j = w.bogie[ws.index]
+        j = wheelset_data.bogie[ws.index]
         for side, label in ((-1.0, "right"), (1.0, "left")):
-            point = (side * p.semi_spacing, p.height, ws.x)
+            point = (side * primary.semi_spacing, primary.height, ws.x)
             if j >= 0:
                 m_parent, offset = position_marker(bogies[j], point), [0.0, 0.0, 0.0]
             else:  # the sprung point: its marker is at the point, the offset makes it force-free
@@ -502,8 +530,8 @@ def _add_rigid(
                 mbs.AddObject(
                     CartesianSpringDamper(
                         markerNumbers=[m_parent, position_marker(ws, point)],
-                        stiffness=[p.k_y, p.k_z, p.k_x],
-                        damping=[p.c_y, p.c_z, p.c_x],
+                        stiffness=[primary.k_y, primary.k_z, primary.k_x],
+                        damping=[primary.c_y, primary.c_z, primary.c_x],
                         offset=offset,
                     )
                 )
@@ -512,57 +540,67 @@ def _add_rigid(
     # secondary suspension, torsion (yaw, anti-roll), bumpstop: bogie frame -> car body
     keep: list[Any] = []
     if car is not None:
-        s = model.secondary
-        for j, bg in enumerate(bogies):
+        _, _, secondary = _full_vehicle_parts(model)
+        for j, bogie in enumerate(bogies):
             for side, label in ((-1.0, "right"), (1.0, "left")):
-                point = (side * s.semi_spacing, s.height, bg.x)
+                point = (side * secondary.semi_spacing, secondary.height, bogie.x)
                 items[f"secondary_b{j + 1}_{label}"] = int(
                     mbs.AddObject(
                         CartesianSpringDamper(
-                            markerNumbers=[position_marker(bg, point), position_marker(car, point)],
-                            stiffness=[s.k_y, s.k_z, s.k_x],
-                            damping=[s.c_y, s.c_z, s.c_x],
+                            markerNumbers=[
+                                position_marker(bogie, point),
+                                position_marker(car, point),
+                            ],
+                            stiffness=[secondary.k_y, secondary.k_z, secondary.k_x],
+                            damping=[secondary.c_y, secondary.c_z, secondary.c_x],
                         )
                     )
                 )
-            centre = (0.0, s.height, bg.x)
+            torsion_centre = (0.0, secondary.height, bogie.x)
             k6 = np.zeros((6, 6))
             k6[4, 4] = model.secondary_yaw_stiffness  # about Y: yaw
             k6[5, 5] = model.anti_roll_stiffness  # about Z: roll
-            markers = [
+            torsion_markers = [
                 int(
                     mbs.AddMarker(
                         MarkerBodyRigid(
-                            bodyNumber=h.body, localPosition=_offset(centre, h.reference)
+                            bodyNumber=handles.body,
+                            localPosition=_offset(torsion_centre, handles.reference),
                         )
                     )
                 )
-                for h in (bg, car)
+                for handles in (bogie, car)
             ]
             items[f"torsion_b{j + 1}"] = int(
                 mbs.AddObject(
                     RigidBodySpringDamper(
-                        markerNumbers=markers,
+                        markerNumbers=torsion_markers,
                         stiffness=k6.tolist(),
                         damping=np.zeros((6, 6)).tolist(),
                     )
                 )
             )
             if bumpstop != "none":
-                point = (0.0, model.bumpstop.height, bg.x)
+                stop = _bumpstop_of(model)
+                point = (0.0, stop.height, bogie.x)
                 item = int(
                     mbs.AddObject(
                         CartesianSpringDamper(
-                            markerNumbers=[position_marker(bg, point), position_marker(car, point)],
+                            markerNumbers=[
+                                position_marker(bogie, point),
+                                position_marker(car, point),
+                            ],
                             stiffness=[0.0, 0.0, 0.0],
                             damping=[0.0, 0.0, 0.0],
                         )
                     )
                 )
-                law = _bumpstop_connector_function(model.bumpstop, bumpstop == "symbolic")
+                law = _bumpstop_connector_function(stop, bumpstop == "symbolic")
                 if bumpstop == "symbolic":
+                    # exudyn's stub imports ObjectIndex without re-exporting it; it exists
+                    object_index = exu.ObjectIndex(item)  # type: ignore[attr-defined]
                     law = CreateSymbolicUserFunction(
-                        mbs, law, "springForceUserFunction", exu.ObjectIndex(item)
+                        mbs, law, "springForceUserFunction", object_index
                     )
                 keep.append(law)
                 mbs.SetObjectParameter(item, "springForceUserFunction", law)
@@ -590,12 +628,12 @@ def _add_rigid(
             int(
                 mbs.AddLoad(
                     LoadMassProportional(
-                        markerNumber=int(mbs.AddMarker(MarkerBodyMass(bodyNumber=h.body))),
+                        markerNumber=int(mbs.AddMarker(MarkerBodyMass(bodyNumber=handles.body))),
                         loadVector=[0.0, -GRAVITY, 0.0],
                     )
                 )
             )
-            for h in bodies
+            for handles in bodies
         )
     return VehicleBuild(
         model,
@@ -618,14 +656,14 @@ def _add_rigid(
 def _free_names(build: VehicleBuild, spin: bool) -> list[tuple[Any, str]]:
     """(body, coordinate name) of the linear representation's coordinates, in node order."""
     out = []
-    for h in build.bodies():
-        if isinstance(h, WheelsetHandles):
+    for handles in build.bodies():
+        if isinstance(handles, WheelsetHandles):
             names = _LINEAR_DOF["wheelset"] + (("spin",) if spin else ())
-        elif h.name.startswith("sprung"):
+        elif handles.name.startswith("sprung"):
             names = _LINEAR_DOF["sprung"]
         else:
             names = _LINEAR_DOF["body"]
-        out += [(h, d) for d in names]
+        out += [(handles, name) for name in names]
     return out
 
 
@@ -653,7 +691,9 @@ def _add_linear(
     # 2. the same bodies as generic nodes of their free coordinates
     spin = ("spin",) if wheelset_spin else ()
     names = _free_names(rigid, wheelset_spin)
-    index = [ref_mbs.GetNodeODE2Index(h.node) + h.dof[dname] for h, dname in names]
+    index = [
+        ref_mbs.GetNodeODE2Index(handles.node) + handles.dof[dname] for handles, dname in names
+    ]
     assert not held.intersection(index)
     m, k, d = (np.asarray(a)[np.ix_(index, index)] for a in (m, k, d))
     q_s = q_rigid[index]
@@ -670,34 +710,34 @@ def _add_linear(
             )
         )
 
-    def body(h, dof):
+    def body(handles, dof):
         return BodyHandles(
-            h.name,
+            handles.name,
             generic_node(len(dof)),
             -1,
-            h.x,
-            h.reference,
+            handles.x,
+            handles.reference,
             {dname: i for i, dname in enumerate(dof)},
         )
 
     car = None if rigid.car_body is None else body(rigid.car_body, _LINEAR_DOF["body"])
-    bogies = tuple(body(h, _LINEAR_DOF["body"]) for h in rigid.bogies)
-    sprung = tuple(body(h, _LINEAR_DOF["sprung"]) for h in rigid.sprung)
+    bogies = tuple(body(handles, _LINEAR_DOF["body"]) for handles in rigid.bogies)
+    sprung = tuple(body(handles, _LINEAR_DOF["sprung"]) for handles in rigid.sprung)
     wheelsets = []
-    for h in rigid.wheelsets:
+    for handles in rigid.wheelsets:
         dof = _LINEAR_DOF["wheelset"] + spin
         node = generic_node(len(dof))
         wheelsets.append(
             WheelsetHandles(
-                h.index,
-                h.name,
-                h.x,
+                handles.index,
+                handles.name,
+                handles.x,
                 node,
                 -1,
                 int(mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=node))),
                 (),
-                h.wheel_positions,
-                h.reference,
+                handles.wheel_positions,
+                handles.reference,
                 {dname: i for i, dname in enumerate(dof)},
             )
         )
@@ -717,17 +757,18 @@ def _add_linear(
         (),
         tuple(q_s),
     )
-    nodes = [h.node for h in partial.bodies()]
+    nodes = [handles.node for handles in partial.bodies()]
 
     # 3. F0 = K q_s - f_wheels: the rigid model's equilibrium under its wheel loads
     f_wheels = np.zeros(len(index))
     offsets = _node_offsets(partial)
     for ws, pair in zip(partial.wheelsets, loads):
-        dof = list(ws.dof)
-        for q, r in zip(pair, ws.wheel_positions):
-            t = _point_transform(dof, r)
-            f_wheels[offsets[ws.node] : offsets[ws.node] + len(dof)] += t.T @ np.array(
-                [0.0, q, 0.0]
+        coordinate_names = list(ws.dof)
+        for wheel_load, r in zip(pair, ws.wheel_positions):
+            t = _point_transform(coordinate_names, r)
+            start = offsets[ws.node]
+            f_wheels[start : start + len(coordinate_names)] += t.T @ np.array(
+                [0.0, wheel_load, 0.0]
             )
     force = k @ q_s - f_wheels if gravity else np.zeros(len(index))
     items = {
@@ -767,9 +808,9 @@ def _add_linear(
 def _node_offsets(build: VehicleBuild) -> dict[int, int]:
     """Linear representation: first index of each body node's coordinates in the element."""
     out, k = {}, 0
-    for h in build.bodies():
-        out[h.node] = k
-        k += len(h.dof)
+    for handles in build.bodies():
+        out[handles.node] = k
+        k += len(handles.dof)
     return out
 
 
@@ -778,20 +819,20 @@ def _add_linear_bumpstops(
 ) -> tuple[int, tuple[Any, ...]]:
     """One ObjectGenericODE2 on (car body, bogies): F = -c F_stop(c^T q) per bogie, with c^T q
     the relative lateral displacement car body - bogie at the bumpstop (small angles)."""
-    stop = model.bumpstop
+    stop = _bumpstop_of(model)
     n_car = len(car.dof)
     size = n_car + sum(len(b.dof) for b in bogies)
     rows = []
     start = n_car
-    for bg in bogies:
-        point = (0.0, stop.height, bg.x)
+    for bogie in bogies:
+        point = (0.0, stop.height, bogie.x)
         c = np.zeros(size)
         c[:n_car] = _point_transform(list(car.dof), _offset(point, car.reference))[0]
-        c[start : start + len(bg.dof)] = -_point_transform(
-            list(bg.dof), _offset(point, bg.reference)
+        c[start : start + len(bogie.dof)] = -_point_transform(
+            list(bogie.dof), _offset(point, bogie.reference)
         )[0]
         rows.append(c)
-        start += len(bg.dof)
+        start += len(bogie.dof)
     c_matrix = np.array(rows)
     # plain Python on the few non-zero entries: numpy's per-call overhead on 15-vectors was
     # ~50 us per force evaluation, this is a few us
@@ -848,13 +889,16 @@ def rigid_track_support(
     Parameters
     ----------
     mbs : exudyn.MainSystem
+        The system the vehicle was added to (not yet assembled).
     build : VehicleBuild
+        The vehicle, as returned by :func:`add_vehicle_model`.
     track : RigidTrack
         Support stiffness and damping per wheel.
 
     Returns
     -------
     TrackSupport
+        The support items, for :func:`support_wheel_loads`.
     """
     k3 = np.diag([track.k_y, track.k_z, track.k_x])
     c3 = np.diag([track.c_y, track.c_z, 0.0])
@@ -910,6 +954,7 @@ def support_wheel_loads(mbs: exu.MainSystem, support: TrackSupport) -> np.ndarra
     Parameters
     ----------
     mbs : exudyn.MainSystem
+        The assembled system holding the supports.
     support : TrackSupport
         As returned by :func:`rigid_track_support`.
 
@@ -940,6 +985,8 @@ def static_settings() -> exu.SimulationSettings:
     Returns
     -------
     exudyn.SimulationSettings
+        Verbose off, Newton relative tolerance 1e-10 and absolute 1e-6 N, one load step,
+        no solution file.
     """
     settings = exu.SimulationSettings()
     settings.staticSolver.verboseMode = 0
@@ -957,13 +1004,14 @@ def dynamic_settings(end_time: float, step: float) -> exu.SimulationSettings:
     Parameters
     ----------
     end_time : float
-        s.
+        s, end of the time integration.
     step : float
-        s, time step.
+        s, time step (also the sensors' write period).
 
     Returns
     -------
     exudyn.SimulationSettings
+        :func:`static_settings` plus the time-integration settings above.
     """
     s = static_settings()
     s.timeIntegration.endTime = end_time
@@ -984,6 +1032,7 @@ def solve_static(mbs: exu.MainSystem) -> np.ndarray:
     Parameters
     ----------
     mbs : exudyn.MainSystem
+        The assembled system; its initial values are replaced by the equilibrium.
 
     Returns
     -------
@@ -1013,6 +1062,7 @@ def connector_forces_at_reference(mbs: exu.MainSystem) -> dict[int, np.ndarray]:
     Parameters
     ----------
     mbs : exudyn.MainSystem
+        The assembled system.
 
     Returns
     -------
@@ -1021,8 +1071,8 @@ def connector_forces_at_reference(mbs: exu.MainSystem) -> dict[int, np.ndarray]:
     """
     data = mbs.systemData
     n = len(data.GetODE2Coordinates())
-    data.SetODE2Coordinates(np.zeros(n), exu.ConfigurationType.Current)
-    data.SetODE2Coordinates_t(np.zeros(n), exu.ConfigurationType.Current)
+    data.SetODE2Coordinates([0.0] * n, exu.ConfigurationType.Current)
+    data.SetODE2Coordinates_t([0.0] * n, exu.ConfigurationType.Current)
     out = {}
     for i in range(data.NumberOfObjects()):
         kind = mbs.GetObject(i)["objectType"]
@@ -1052,10 +1102,10 @@ def _linearize(mbs: exu.MainSystem) -> list[np.ndarray]:
 def _coordinate_names(mbs: exu.MainSystem, build: VehicleBuild) -> list[str]:
     n = len(mbs.systemData.GetODE2Coordinates())
     names = [""] * n
-    for h in build.bodies():
-        start = mbs.GetNodeODE2Index(h.node)
-        for dname, k in h.dof.items():
-            names[start + k] = f"{h.name}.{dname}"
+    for handles in build.bodies():
+        start = mbs.GetNodeODE2Index(handles.node)
+        for dname, k in handles.dof.items():
+            names[start + k] = f"{handles.name}.{dname}"
     return names
 
 
@@ -1071,7 +1121,9 @@ def vehicle_modes(mbs: exu.MainSystem, build: VehicleBuild) -> tuple[VehicleMode
     Parameters
     ----------
     mbs : exudyn.MainSystem
+        The assembled system holding the vehicle alone (e.g. on :func:`rigid_track_support`).
     build : VehicleBuild
+        The vehicle, as returned by :func:`add_vehicle_model`: names the coordinates.
 
     Returns
     -------

@@ -1,4 +1,4 @@
-"""Plots of computed results (the only module that imports matplotlib).
+"""Plots of computed results: receptances, passage forces, stiffness along the turnout.
 
 Each function takes data objects (e.g. :class:`~exudyn_turnout.receptance.Receptance`),
 draws into given axes or a new figure, and returns ``(figure, axes)``; saving is left to
@@ -15,13 +15,34 @@ import numpy as np
 
 from exudyn_turnout.receptance import Receptance
 
-__all__ = ["receptance_label", "plot_receptance", "passage_label", "plot_passage_forces"]
+__all__ = [
+    "receptance_label",
+    "plot_receptance",
+    "passage_label",
+    "plot_passage_forces",
+    "plot_receptance_agreement",
+    "plot_force_signals",
+    "plot_stiffness_series",
+    "save_figure",
+    "plot_stiffness_profile",
+]
 
 
 def receptance_label(r: Receptance) -> str:
-    """Legend text of a receptance: model, rail, direction and position."""
-    x = "" if math.isnan(r.x) else f" at x = {r.x:g} m"
-    return f"{r.model} {r.rail} {r.direction}{x}".strip()
+    """Legend text of a receptance: model, rail, direction and position.
+
+    Parameters
+    ----------
+    r : Receptance
+        The curve to name.
+
+    Returns
+    -------
+    str
+        E.g. ``"3-layer r2 vertical at x = 45.8 m"`` (no position if ``r.x`` is NaN).
+    """
+    position = "" if math.isnan(r.x) else f" at x = {r.x:g} m"
+    return f"{r.model} {r.rail} {r.direction}{position}".strip()
 
 
 def plot_receptance(
@@ -45,18 +66,20 @@ def plot_receptance(
     labels : sequence of str, optional
         Legend entries; default :func:`receptance_label`.
     title : str, optional
+        Title of the magnitude axes.
 
     Returns
     -------
     (Figure, tuple of Axes)
+        The figure and its (magnitude[, phase]) axes.
     """
     curves = [receptances] if isinstance(receptances, Receptance) else list(receptances)
     axes = _axes(ax, phase)
     names = list(labels) if labels is not None else [receptance_label(r) for r in curves]
-    for r, name in zip(curves, names):
-        axes[0].loglog(r.frequency_hz, r.magnitude, label=name)
+    for curve, name in zip(curves, names):
+        axes[0].loglog(curve.frequency_hz, curve.magnitude, label=name)
         if phase:
-            axes[1].semilogx(r.frequency_hz, np.degrees(np.angle(r.H)), label=name)
+            axes[1].semilogx(curve.frequency_hz, np.degrees(np.angle(curve.H)), label=name)
     axes[0].set_ylabel("receptance |H| (m/N)")
     axes[0].grid(True, which="both", alpha=0.3)
     if curves:
@@ -85,12 +108,23 @@ def _axes(ax, phase: bool) -> tuple:
 
 
 def passage_label(result) -> str:
-    """Legend text of a passage: layers (or model), parameter source and speed."""
-    s = result.settings
-    model = result.summary.get("model", f"{s.layers}-layer")
+    """Legend text of a passage: layers (or model), parameter source and speed.
+
+    Parameters
+    ----------
+    result : PassageResult
+        The run to name (its settings and ``summary["model"]``).
+
+    Returns
+    -------
+    str
+        E.g. ``"3-layer, derived, 100 km/h"`` or ``"FE, 100 km/h"``.
+    """
+    settings = result.settings
+    model = result.summary.get("model", f"{settings.layers}-layer")
     if model == "FE":  # the FE track takes Table 1 directly: no parameter source
-        return f"FE, {s.speed_kmh:g} km/h"
-    return f"{model}, {s.source}, {s.speed_kmh:g} km/h"
+        return f"FE, {settings.speed_kmh:g} km/h"
+    return f"{model}, {settings.source}, {settings.speed_kmh:g} km/h"
 
 
 def plot_passage_forces(results, wheel: str = "right", labels=None, title: str | None = None):
@@ -101,7 +135,11 @@ def plot_passage_forces(results, wheel: str = "right", labels=None, title: str |
     results : sequence of PassageResult
         Runs to overlay (e.g. 2-layer, 3-layer, FE reference).
     wheel : {"right", "left"}
+        Which wheel's forces (columns ``Fz_<wheel>_N``, ``Fy_<wheel>_N``).
     labels : sequence of str, optional
+        Legend entries; default :func:`passage_label`.
+    title : str, optional
+        Title of the figure.
 
     Returns
     -------
@@ -119,10 +157,10 @@ def plot_passage_forces(results, wheel: str = "right", labels=None, title: str |
     for row, (quantity, unit) in enumerate((("Fz", "vertical"), ("Fy", "lateral"))):
         for col, (where, (x0, x1)) in enumerate(regions):
             ax = axes[row, col]
-            for r, name in zip(results, names):
-                x, f = r.columns["x_m"], r.columns[f"{quantity}_{wheel}_N"]
+            for result, name in zip(results, names):
+                x, force = result.columns["x_m"], result.columns[f"{quantity}_{wheel}_N"]
                 sel = (x >= x0) & (x <= x1)
-                ax.plot(x[sel], f[sel] / 1e3, label=name, lw=1.0)
+                ax.plot(x[sel], force[sel] / 1e3, label=name, lw=1.0)
             ax.grid(True, alpha=0.3)
             ax.set_title(f"{unit} force, {wheel} wheel, {where}", fontsize="medium")
             if col == 0:
@@ -138,16 +176,12 @@ def plot_passage_forces(results, wheel: str = "right", labels=None, title: str |
 
 # --- validation report figures (exudyn_turnout.report.metrics) ---------------------------------
 
-__all__ += [
-    "plot_receptance_agreement",
-    "plot_force_signals",
-    "plot_stiffness_series",
-    "save_figure",
-]
-
 
 def _style(model: str) -> dict:
-    """Line style of a model in the validation report's figures (FE black, 2-layer blue dashed, 3-layer red)."""
+    """Line style of a model in the validation report's figures.
+
+    FE black, 2-layer blue dashed, 3-layer red.
+    """
     styles = {
         "FE": dict(color="black", lw=1.6),
         "2-layer": dict(color="tab:blue", lw=1.1, ls="--"),
@@ -193,19 +227,19 @@ def plot_receptance_agreement(
     for col, (title, curves, mark) in enumerate(panels):
         top, bottom = axes[0, col], axes[1, col]
         ref = curves[reference]
-        for name, r in curves.items():
-            top.loglog(r.frequency_hz, r.magnitude, label=name, **_style(name))
+        for name, curve in curves.items():
+            top.loglog(curve.frequency_hz, curve.magnitude, label=name, **_style(name))
             if name != reference:
                 bottom.semilogx(
-                    r.frequency_hz,
-                    20 * np.log10(r.magnitude / ref.magnitude),
+                    curve.frequency_hz,
+                    20 * np.log10(curve.magnitude / ref.magnitude),
                     label=name,
                     **_style(name),
                 )
         bottom.axhspan(-agree_db, agree_db, color="0.85", zorder=0)
         for ax in (top, bottom):
-            for f in range_edges:
-                ax.axvline(f, color="0.6", lw=0.6)
+            for edge in range_edges:
+                ax.axvline(edge, color="0.6", lw=0.6)
             if mark is not None:
                 ax.axvline(mark, color="tab:green", ls=":", lw=1.2)
             ax.grid(True, which="both", alpha=0.3)
@@ -228,18 +262,20 @@ def plot_force_signals(panels, ylabel: str = "force on rail (kN)"):
         Per panel: title, model name -> PassageResult, column name (e.g. "Fz_right_N")
         and the x range (m) to show.
     ylabel : str
+        Label of the y axis (the forces are drawn in kN).
 
     Returns
     -------
     (Figure, ndarray of Axes)
+        One row of panels.
     """
     panels = list(panels)
     fig, axes = plt.subplots(1, len(panels), figsize=(5.0 * len(panels), 3.6), squeeze=False)
     for ax, (title, results, column, (x0, x1)) in zip(axes[0], panels):
-        for name, r in results.items():
-            x, f = r.columns["x_m"], r.columns[column]
+        for name, result in results.items():
+            x, force = result.columns["x_m"], result.columns[column]
             sel = (x >= x0) & (x <= x1)
-            ax.plot(x[sel], f[sel] / 1e3, label=name, **_style(name))
+            ax.plot(x[sel], force[sel] / 1e3, label=name, **_style(name))
         ax.set_xlim(x0, x1)
         ax.set_title(title, fontsize="medium")
         ax.set_xlabel("x from switch toe (m)")
@@ -260,10 +296,12 @@ def plot_stiffness_series(panels, ylabel: str = "static stiffness (MN/m)"):
         kind "points" (markers, e.g. FE values at the sleepers), "fit", "paper" or "model"
         (lines: solid, dashed, dotted).
     ylabel : str
+        Label of every panel's y axis (the stiffness is drawn in MN/m).
 
     Returns
     -------
     (Figure, ndarray of Axes)
+        One column of panels.
     """
     panels = list(panels)
     styles = {
@@ -288,14 +326,22 @@ def plot_stiffness_series(panels, ylabel: str = "static stiffness (MN/m)"):
 
 
 def save_figure(fig, path, dpi: int = 100) -> None:
-    """Save a figure to ``path`` (format from the suffix) and close it."""
+    """Save a figure to ``path`` (format from the suffix) and close it.
+
+    Parameters
+    ----------
+    fig : matplotlib Figure
+        The figure; closed afterwards.
+    path : str or Path
+        File to write; the suffix (e.g. ``.png``) sets the format.
+    dpi : int
+        Resolution (dots per inch) of raster formats.
+    """
     fig.savefig(path, dpi=dpi)
     plt.close(fig)
 
 
 # --- FE static stiffness along the turnout (exudyn_turnout.fe) ----------------------------
-
-__all__ += ["plot_stiffness_profile"]
 
 
 def plot_stiffness_profile(profile, fits=None, turnout=None, axes=None):
@@ -318,6 +364,7 @@ def plot_stiffness_profile(profile, fits=None, turnout=None, axes=None):
     Returns
     -------
     (Figure, tuple of Axes)
+        The figure and its (vertical, lateral) axes.
     """
     if axes is None:
         _, pair = plt.subplots(2, 1, figsize=(12.0, 8.0), sharex=True)
@@ -350,10 +397,10 @@ def plot_stiffness_profile(profile, fits=None, turnout=None, axes=None):
             (turnout.K_sw.x_min, turnout.zones[0].x_end),
             (turnout.K_sh.x_min, turnout.K_sh.x_max),
         )
-        for ax, poly, (a, b), eq in zip(
+        for ax, poly, (x_from, x_to), eq in zip(
             axes, (turnout.K_sw, turnout.K_sh), spans, ("Eq 10 (paper)", "Eq 14 (paper)")
         ):
-            xs = np.linspace(a, b, 200)
+            xs = np.linspace(x_from, x_to, 200)
             ax.plot(xs, [poly(v) / 1e6 for v in xs], color="black", lw=1.4, ls="--", label=eq)
     for ax, title in zip(
         axes,

@@ -127,6 +127,7 @@ class Contact:
     name : str
         The route's contact pair name.
     wheel : {"left", "right"}
+        The wheel of the pair.
     rail : str
         Rail slot.
     body : str
@@ -156,18 +157,25 @@ class CrossSection:
     turnout : str
         Turnout name.
     zone : int
-        1-based zone index; ``zone_name`` its name.
+        1-based zone index.
     zone_name : str
+        The zone's name in the turnout file.
     x : float
         Position (m).
     layers : {2, 3}
+        Track model: rail on sleeper (2) or with the m_0 layer (3).
     source : {"derived", "published"}
+        Parameter set: derived from Table 1 (Eqs 1-19) or the paper's Table 2.
     route : str or None
         Route whose rail positions are used; None: the zone's.
     bodies : tuple of Body
+        Ground, sleeper, rails (and m_0 layers), with a vehicle also wheelset and sprung mass.
     springs : tuple of SpringDamper
+        The track's connectors, one item per connector and direction.
     suspension : tuple of SpringDamper
+        The vehicle's primary springs (empty without a vehicle).
     contacts : tuple of Contact
+        Tread contacts active at x (empty without a vehicle).
     spread_rails : tuple of str
         Rails drawn away from their model y (closer than ``min_gap``).
     min_gap : float
@@ -176,15 +184,15 @@ class CrossSection:
 
     turnout: str  #: turnout name
     zone: int  #: 1-based zone index
-    zone_name: str
+    zone_name: str  #: the zone's name in the turnout file
     x: float  #: m, position of the cross-section
     layers: int  #: 2 or 3
     source: str  #: "derived" or "published"
     route: str | None  #: route name whose rail positions are used; None: the zone's
-    bodies: tuple[Body, ...]
-    springs: tuple[SpringDamper, ...]
-    suspension: tuple[SpringDamper, ...]
-    contacts: tuple[Contact, ...]
+    bodies: tuple[Body, ...]  #: ground, sleeper, rails, m_0 layers (, wheelset, sprung mass)
+    springs: tuple[SpringDamper, ...]  #: the track's connectors, per direction
+    suspension: tuple[SpringDamper, ...]  #: the vehicle's primary springs
+    contacts: tuple[Contact, ...]  #: tread contacts active at x
     spread_rails: tuple[str, ...]  #: rails drawn away from their model y (closer than min_gap)
     min_gap: float  #: m, smallest drawn distance between rails
 
@@ -199,18 +207,18 @@ class CrossSection:
         Returns
         -------
         Body
+            The first body of that name; KeyError if there is none.
         """
-        for b in self.bodies:
-            if b.name == name:
-                return b
-        raise KeyError(
-            f"no body {name!r} in the cross-section ({', '.join(b.name for b in self.bodies)})"
-        )
+        for body in self.bodies:
+            if body.name == name:
+                return body
+        names = ", ".join(body.name for body in self.bodies)
+        raise KeyError(f"no body {name!r} in the cross-section ({names})")
 
     @property
     def connectors(self) -> tuple[str, ...]:
         """Names of the track's spring-damper connectors, in the builder's order."""
-        return tuple(dict.fromkeys(s.name for s in self.springs))
+        return tuple(dict.fromkeys(spring.name for spring in self.springs))
 
 
 @dataclass(frozen=True)
@@ -289,11 +297,13 @@ def entry_symbol(name: str) -> str:
     Parameters
     ----------
     name : str
-        Entry name of :data:`~exudyn_turnout.inputs.turnout.PARAMETER_NAMES` (or a vehicle's ``k_z``).
+        Entry name of :data:`~exudyn_turnout.inputs.turnout.PARAMETER_NAMES` (or a
+        vehicle's ``k_z``).
 
     Returns
     -------
     str
+        Matplotlib mathtext, the part after the first ``_`` as subscript.
     """
     head, _, tail = name.partition("_")
     return f"${head}_{{{tail.replace('_', ',')}}}$" if tail else f"${head}$"
@@ -310,6 +320,7 @@ def format_stiffness(k: float) -> str:
     Returns
     -------
     str
+        The value and its unit.
     """
     return f"{_three_digits(k / 1e6)} MN/m"
 
@@ -325,6 +336,7 @@ def format_damping(c: float) -> str:
     Returns
     -------
     str
+        The value and its unit.
     """
     return f"{_three_digits(c / 1e3)} kN s/m"
 
@@ -345,6 +357,7 @@ def spring_label(spring: SpringDamper) -> str:
     Returns
     -------
     str
+        Matplotlib mathtext: stiffness symbol and value, damping value.
     """
     stiffness, damping = format_stiffness(spring.k), format_damping(spring.c)
     return f"{entry_symbol(spring.k_name)} = {stiffness}, $c$ = {damping}"
@@ -375,7 +388,8 @@ def cross_section_geometry(
     Parameters
     ----------
     params : CoRunningParameters
-        Parameter set of the zone (:func:`~exudyn_turnout.corunning.parameters.co_running_parameters`).
+        Parameter set of the zone
+        (:func:`~exudyn_turnout.corunning.parameters.co_running_parameters`).
     x : float
         Position (m) in the zone.
     route : Route or str, optional
@@ -389,6 +403,7 @@ def cross_section_geometry(
     Returns
     -------
     CrossSection
+        Bodies, spring-dampers and contacts with their drawn positions and values at x.
     """
     from dataclasses import replace
 
@@ -754,6 +769,7 @@ def draw_cross_section(
     Returns
     -------
     matplotlib Axes
+        The axes drawn into.
     """
     import matplotlib.pyplot as plt
     from matplotlib.patches import Rectangle
@@ -1012,6 +1028,7 @@ def passage_frames(n_samples: int, every: int | None = None, max_frames: int = 1
     Returns
     -------
     numpy.ndarray of int
+        Increasing indices into the passage's output samples, starting at 0.
     """
     if n_samples < 1:
         raise ValueError("a passage without samples cannot be animated")
@@ -1178,36 +1195,37 @@ def animate_passage(
     for poly in outline:
         ax.add_patch(Polygon(poly, closed=True, fill=False, ec="0.6", ls="--", lw=0.8))
     wheel_parts = [
-        ax.add_patch(Polygon(poly, closed=True, fc="#b0b0b0", ec="0.2", lw=0.9, zorder=3))
-        for poly in outline
+        Polygon(poly, closed=True, fc="#b0b0b0", ec="0.2", lw=0.9, zorder=3) for poly in outline
     ]
-    rails = {
-        r: (
-            ax.add_patch(
-                Polygon(_rail_outline(0.0, 0.0), closed=True, fill=False, ec="0.6", ls="--", lw=0.8)
-            ),
-            ax.add_patch(
-                Polygon(
-                    _rail_outline(0.0, 0.0), closed=True, fc="#8fa9c9", ec="0.2", lw=0.9, zorder=2
-                )
-            ),
+    for part in wheel_parts:
+        ax.add_patch(part)
+    rails = {}  # slot -> (unloaded outline, moved outline, label)
+    for r in slots:
+        nominal = Polygon(
+            _rail_outline(0.0, 0.0), closed=True, fill=False, ec="0.6", ls="--", lw=0.8
+        )
+        moved = Polygon(
+            _rail_outline(0.0, 0.0), closed=True, fc="#8fa9c9", ec="0.2", lw=0.9, zorder=2
+        )
+        ax.add_patch(nominal)
+        ax.add_patch(moved)
+        rails[r] = (
+            nominal,
+            moved,
             ax.text(0.0, -0.5, r, ha="center", va="top", fontsize=8, color="0.3"),
         )
-        for r in slots
-    }
     arrows = {}
     for wheel, r in forces:
-        arrow = ax.add_patch(
-            FancyArrowPatch(
-                (0, 0),
-                (0, 0),
-                arrowstyle="-|>",
-                mutation_scale=11,
-                color="tab:red",
-                lw=1.6,
-                zorder=5,
-            )
+        arrow = FancyArrowPatch(
+            (0, 0),
+            (0, 0),
+            arrowstyle="-|>",
+            mutation_scale=11,
+            color="tab:red",
+            lw=1.6,
+            zorder=5,
         )
+        ax.add_patch(arrow)
         text = ax.text(
             0,
             0,
@@ -1248,8 +1266,10 @@ def animate_passage(
         color="0.3",
     )
     title = ax.set_title("", fontsize=9, family="monospace")
-    s = result.settings
-    head = f"{turnout.name}, {route.name} route, {s.layers}-layer, {s.speed_kmh:g} km/h"
+    settings = result.settings
+    head = (
+        f"{turnout.name}, {route.name} route, {settings.layers}-layer, {settings.speed_kmh:g} km/h"
+    )
 
     def top_of(r: str, x: float) -> float:
         heights = [p.height(x) for p in route.pairs if p.rail == r and p.tread_active(x)]
@@ -1273,9 +1293,8 @@ def animate_passage(
                 label.set_horizontalalignment("center")
         shown_y = sorted((zone.rail_y[r], r) for r in place)
         for (ya, ra), (yb, rb) in itertools.pairwise(shown_y):
-            if (
-                yb - ya < 0.2
-            ):  # close rails (a check rail, a blade beside its stock rail): labels apart
+            # close rails (a check rail, a blade beside its stock rail): labels apart
+            if yb - ya < 0.2:
                 rails[ra][2].set_horizontalalignment("right")
                 rails[ra][2].set_position((ya - 0.02, -0.5))
                 rails[rb][2].set_horizontalalignment("left")
@@ -1283,12 +1302,11 @@ def animate_passage(
         yw, zw, roll = (
             float(cols[n][i]) for n in ("y_wheelset_m", "z_wheelset_m", "roll_wheelset_rad")
         )
-        c, sn = math.cos(scale * roll), math.sin(scale * roll)
-        rot = np.array([[c, -sn], [sn, c]])
+        cos_roll, sin_roll = math.cos(scale * roll), math.sin(scale * roll)
+        rot = np.array([[cos_roll, -sin_roll], [sin_roll, cos_roll]])
         for poly, part in zip(outline, wheel_parts, strict=True):
-            part.set_xy(
-                poly @ rot.T + [scale * yw, scale * zw]
-            )  # roll about the contact-level centre
+            # roll about the contact-level centre
+            part.set_xy(poly @ rot.T + [scale * yw, scale * zw])
         for (wheel, r), (arrow, text) in arrows.items():
             fz, fy = float(cols[f"Fz_{wheel}_{r}_N"][i]), float(cols[f"Fy_{wheel}_{r}_N"][i])
             shown = r in place and math.hypot(fz, fy) >= 100.0
@@ -1313,7 +1331,8 @@ def animate_passage(
 
     fig.tight_layout()
     out = Path(path)
-    writer = PillowWriter(fps=fps)
+    # matplotlib's stub says int; PillowWriter only computes int(1000 / fps): a float works
+    writer = PillowWriter(fps=fps)  # type: ignore[arg-type]
     try:
         with writer.saving(fig, str(out), dpi):
             for i in frames:

@@ -99,7 +99,9 @@ def level_difference_db(H_model: np.ndarray, H_ref: np.ndarray) -> np.ndarray:
 def band_rms_db(
     frequency_hz: np.ndarray, diff_db: np.ndarray, centres: Iterable[float]
 ) -> dict[float, float]:
-    """RMS (dB) of ``diff_db`` over the frequencies inside each band; bands without a frequency are left out.
+    """RMS (dB) of ``diff_db`` over the frequencies inside each band.
+
+    Bands without a frequency are left out.
 
     Parameters
     ----------
@@ -287,7 +289,9 @@ def rms_difference(
     x_range: tuple[float, float],
     dx: float = 1e-3,
 ) -> float:
-    """RMS of a(x) - b(x) on a common grid of spacing ``dx`` (m) over ``x_range`` (linear interpolation).
+    """RMS of a(x) - b(x) on a common grid of spacing ``dx`` (m) over ``x_range``.
+
+    Both signals are interpolated linearly onto the grid.
 
     The grid covers the part of ``x_range`` that both signals span; NaN if there is none.
 
@@ -325,7 +329,9 @@ def max_trend_difference(
     x_range: tuple[float, float],
     dx: float = 1e-3,
 ) -> float:
-    """Largest |running_mean(a) - running_mean(b)| (same unit as a, b) over the common part of ``x_range``.
+    """Largest |running_mean(a) - running_mean(b)| over the common part of ``x_range``.
+
+    In the unit of a and b.
 
     Each signal's running mean over ``window`` (m) is taken on its own samples, then both
     are compared on a grid of spacing ``dx``; NaN if the signals do not overlap in the range.

@@ -169,6 +169,8 @@ class ResultCache:
         self.directory.mkdir(parents=True, exist_ok=True)
         npz, meta = self._paths(key)
         tmp = npz.with_suffix(".tmp.npz")
-        np.savez_compressed(tmp, **{k: np.asarray(v) for k, v in arrays.items()})
+        named = {name: np.asarray(value) for name, value in arrays.items()}
+        # mypy cannot rule out an array named like the keyword allow_pickle: bool
+        np.savez_compressed(tmp, **named)  # type: ignore[arg-type]
         tmp.replace(npz)
         meta.write_text(json.dumps(metadata, default=_jsonable, allow_nan=True), encoding="utf-8")

@@ -103,63 +103,64 @@ def _rms(rec: Mapping, model: str, key: str) -> dict[str, float]:
 def claim_two_layer_low(rec: Mapping, c: Criteria) -> Claim:
     """R1: two-layer band RMS vs FE over 1-125 Hz within the agreement limit, all four cases."""
     key = _range_key(*RANGES[0])
-    v = _rms(rec, "2-layer", key)
-    ok = all(x <= c.agree_db for x in v.values()) if v else None
+    measured = _rms(rec, "2-layer", key)
+    ok = all(x <= c.agree_db for x in measured.values()) if measured else None
     return Claim(
         "R1",
         "receptance",
-        "Two-layer receptance agrees with FE up to ~125 Hz, both directions, switch and crossing rail "
-        "(Sec. 3.3)",
+        "Two-layer receptance agrees with FE up to ~125 Hz, both directions, switch and crossing "
+        "rail (Sec. 3.3)",
         f"band RMS of 20 log10(|H_2L|/|H_FE|) over {key} <= {c.agree_db:g} dB in all four cases",
         _verdict(ok),
-        f"2-layer, {key}: " + _fmt_db(v),
-        {"band_rms_db": v},
+        f"2-layer, {key}: " + _fmt_db(measured),
+        {"band_rms_db": measured},
     )
 
 
 def claim_two_layer_high(rec: Mapping, c: Criteria) -> Claim:
-    """R2: two-layer band RMS vs FE above the agreement limit somewhere in 125-2000 Hz, all cases."""
+    """R2: two-layer band RMS vs FE above the agreement limit in 125-2000 Hz, all cases."""
     keys = [_range_key(*r) for r in RANGES[1:]]
-    v = {
+    measured = {
         name: max(cs["models"]["2-layer"]["range_rms_db"][k] for k in keys)
         for name, cs in _cases(rec)
     }
-    ok = all(x > c.agree_db for x in v.values()) if v else None
+    ok = all(x > c.agree_db for x in measured.values()) if measured else None
     return Claim(
         "R2",
         "receptance",
         "Two-layer receptance differs significantly from FE above 125 Hz (Sec. 3.3)",
-        f"larger of the band RMS over 125-500 Hz and 500-2000 Hz > {c.agree_db:g} dB in all four cases",
+        f"larger of the band RMS over 125-500 Hz and 500-2000 Hz > {c.agree_db:g} dB in all four "
+        "cases",
         _verdict(ok),
-        "2-layer, max over 125-2000 Hz ranges: " + _fmt_db(v),
-        {"band_rms_db": v},
+        "2-layer, max over 125-2000 Hz ranges: " + _fmt_db(measured),
+        {"band_rms_db": measured},
     )
 
 
 def claim_three_layer_agrees(rec: Mapping, c: Criteria) -> Claim:
     """R3: three-layer within the agreement limit in every range, pinned-pinned bands left out."""
     keys = [_range_key(*r, excl=True) for r in RANGES]
-    v = {
+    measured = {
         name: max(cs["models"]["3-layer"]["range_rms_db"][k] for k in keys)
         for name, cs in _cases(rec)
     }
-    ok = all(x <= c.agree_db for x in v.values()) if v else None
+    ok = all(x <= c.agree_db for x in measured.values()) if measured else None
     return Claim(
         "R3",
         "receptance",
-        "Three-layer receptance agrees with FE up to 2000 Hz apart from the pinned-pinned resonance "
-        "(Sec. 3.3)",
-        f"band RMS <= {c.agree_db:g} dB in each of 1-125, 125-500, 500-2000 Hz, the pinned-pinned band and "
-        f"{c.pinned_pinned_neighbours} band(s) either side left out, in all four cases",
+        "Three-layer receptance agrees with FE up to 2000 Hz apart from the pinned-pinned "
+        "resonance (Sec. 3.3)",
+        f"band RMS <= {c.agree_db:g} dB in each of 1-125, 125-500, 500-2000 Hz, the pinned-pinned "
+        f"band and {c.pinned_pinned_neighbours} band(s) either side left out, in all four cases",
         _verdict(ok),
-        "3-layer, worst range: " + _fmt_db(v),
-        {"worst_range_rms_db": v},
+        "3-layer, worst range: " + _fmt_db(measured),
+        {"worst_range_rms_db": measured},
     )
 
 
 def claim_pinned_pinned(rec: Mapping, c: Criteria) -> Claim:
-    """R4: three-layer misses the pinned-pinned detail (band RMS over those bands above the limit)."""
-    v = {
+    """R4: three-layer misses the pinned-pinned detail (its band RMS there above the limit)."""
+    measured = {
         name: {
             "pinned_pinned_hz": cs["pinned_pinned_hz"],
             "FE_peak_hz": cs["fe_peak_near_pinned_pinned_hz"],
@@ -168,21 +169,23 @@ def claim_pinned_pinned(rec: Mapping, c: Criteria) -> Claim:
         }
         for name, cs in _cases(rec)
     }
-    finite = [x["3-layer_rms_db"] for x in v.values() if math.isfinite(x["3-layer_rms_db"])]
+    finite = [x["3-layer_rms_db"] for x in measured.values() if math.isfinite(x["3-layer_rms_db"])]
     ok = all(x > c.agree_db for x in finite) if finite else None
-    ev = "; ".join(
+    evidence = "; ".join(
         f"{n}: f_pp {x['pinned_pinned_hz']:.0f} Hz, 3-layer {x['3-layer_rms_db']:.1f} dB"
-        for n, x in v.items()
+        for n, x in measured.items()
     )
     return Claim(
         "R4",
         "receptance",
-        "The three-layer model does not capture the detail of the pinned-pinned resonance (Sec. 3.3)",
-        f"band RMS of the 3-layer model over the pinned-pinned band and {c.pinned_pinned_neighbours} band(s) "
-        f"either side > {c.agree_db:g} dB in all four cases (f_pp: Timoshenko beam over one sleeper bay)",
+        "The three-layer model does not capture the detail of the pinned-pinned resonance (Sec. "
+        "3.3)",
+        "band RMS of the 3-layer model over the pinned-pinned band and "
+        f"{c.pinned_pinned_neighbours} band(s) either side > {c.agree_db:g} dB in all four cases "
+        "(f_pp: Timoshenko beam over one sleeper bay)",
         _verdict(ok),
-        ev,
-        v,
+        evidence,
+        measured,
     )
 
 
@@ -191,14 +194,15 @@ def claim_three_better(rec: Mapping, c: Criteria) -> Claim:
     key = _range_key(RANGES[0][0], RANGES[-1][1], excl=True)
     v2, v3 = _rms(rec, "2-layer", key), _rms(rec, "3-layer", key)
     ok = all(v3[n] < v2[n] for n in v2) if v2 else None
-    ev = ", ".join(f"{n} {v3[n]:.1f} vs {v2[n]:.1f} dB" for n in v2)
+    evidence = ", ".join(f"{n} {v3[n]:.1f} vs {v2[n]:.1f} dB" for n in v2)
     return Claim(
         "R5",
         "receptance",
-        "The three-layer model approximates the FE receptance far better than the two-layer model (Sec. 3.3)",
+        "The three-layer model approximates the FE receptance far better than the two-layer model "
+        "(Sec. 3.3)",
         f"band RMS over {key}: 3-layer < 2-layer in all four cases",
         _verdict(ok),
-        f"3-layer vs 2-layer, {key}: {ev}",
+        f"3-layer vs 2-layer, {key}: {evidence}",
         {"3-layer": v3, "2-layer": v2},
     )
 
@@ -211,8 +215,13 @@ def _model(pas: Mapping, route: str, model: str) -> Mapping | None:
     return pas["routes"][route]["models"].get(model)
 
 
+def _ran(pas: Mapping, route: str, model: str) -> Mapping:
+    """The passage metrics of a model known to have run on ``route`` (KeyError otherwise)."""
+    return pas["routes"][route]["models"][model]
+
+
 def _fe_signals(pas: Mapping) -> list[tuple[str, str]]:
-    """(route, signal) pairs with an FE reference (the FE passage may be missing or vertical-only)."""
+    """(route, signal) pairs with an FE reference (an FE passage may be absent or vertical-only)."""
     out = []
     for route, sig in _signals(pas):
         models = [_model(pas, route, m) for m in ("2-layer", "3-layer")]
@@ -225,57 +234,58 @@ def _fe_signals(pas: Mapping) -> list[tuple[str, str]]:
 
 def claim_oscillates(pas: Mapping, c: Criteria) -> Claim:
     """F1: the two-layer force oscillates more (dynamic RMS) than the three-layer force."""
-    v = {
+    measured = {
         f"{route} {sig}": {
-            m: _model(pas, route, m)["dynamic_rms_N"][sig] for m in ("2-layer", "3-layer")
+            m: _ran(pas, route, m)["dynamic_rms_N"][sig] for m in ("2-layer", "3-layer")
         }
         for route, sig in _signals(pas)
     }
-    finite = {k: x for k, x in v.items() if all(math.isfinite(y) for y in x.values())}
+    finite = {k: x for k, x in measured.items() if all(math.isfinite(y) for y in x.values())}
     ok = all(x["2-layer"] > x["3-layer"] for x in finite.values()) if finite else None
-    ev = ", ".join(
+    evidence = ", ".join(
         f"{k} {x['2-layer'] / 1e3:.3f} vs {x['3-layer'] / 1e3:.3f} kN" for k, x in finite.items()
     )
     return Claim(
         "F1",
         "contact forces",
-        "The two-layer model's contact forces oscillate more than the three-layer model's (Sec. 4.2)",
-        f"RMS of force minus its {c.trend_window:g} m running mean in the region: 2-layer > 3-layer "
-        "for every plotted signal",
+        "The two-layer model's contact forces oscillate more than the three-layer model's (Sec. "
+        "4.2)",
+        f"RMS of force minus its {c.trend_window:g} m running mean in the region: 2-layer > "
+        "3-layer for every plotted signal",
         _verdict(ok),
-        "2-layer vs 3-layer: " + ev,
-        v,
+        "2-layer vs 3-layer: " + evidence,
+        measured,
     )
 
 
 def _fe_peak_rel(pas: Mapping, route: str, sig: str, model: str) -> float:
-    return _model(pas, route, model)["vs_FE"]["peak_relative"][sig]
+    return _ran(pas, route, model)["vs_FE"]["peak_relative"][sig]
 
 
 def claim_trend(pas: Mapping, c: Criteria) -> Claim:
     """F2: running means of the 2- and 3-layer forces within the trend limit of FE's."""
     st = "All three models agree on the overall trend of the contact forces (Sec. 4.2)"
-    crit = (
-        f"max |difference of {c.trend_window:g} m running means| <= {c.trend_agree:.0%} of the static wheel load, "
-        "2-layer and 3-layer vs FE, every plotted signal with an FE reference"
+    criterion = (
+        f"max |difference of {c.trend_window:g} m running means| <= {c.trend_agree:.0%} of the "
+        "static wheel load, 2-layer and 3-layer vs FE, every plotted signal with an FE reference"
     )
     signals = _fe_signals(pas)
     if not signals:
-        return _no_fe("F2", st, crit, pas)
-    v = {
-        f"{route} {sig} {m}": _model(pas, route, m)["vs_FE"]["trend_deviation"][sig]
+        return _no_fe("F2", st, criterion, pas)
+    measured = {
+        f"{route} {sig} {m}": _ran(pas, route, m)["vs_FE"]["trend_deviation"][sig]
         for route, sig in signals
         for m in ("2-layer", "3-layer")
     }
-    ok = all(x <= c.trend_agree for x in v.values())
+    ok = all(x <= c.trend_agree for x in measured.values())
     return Claim(
         "F2",
         "contact forces",
         st,
-        crit,
+        criterion,
         _verdict(ok),
-        ", ".join(f"{k} {x:.1%}" for k, x in v.items()),
-        v,
+        ", ".join(f"{k} {x:.1%}" for k, x in measured.items()),
+        measured,
     )
 
 
@@ -283,7 +293,8 @@ def _no_fe(
     cid: str, statement: str, criterion: str, pas: Mapping, topic: str = "contact forces"
 ) -> Claim:
     why = (
-        "no FE reference for these signals in this run (outside the passage's x range, or no finite FE value)"
+        "no FE reference for these signals in this run (outside the passage's x range, or no "
+        "finite FE value)"
         if pas.get("fe_available")
         else f"FE passage not available: {pas.get('fe_note', 'no passage data')}"
     )
@@ -292,21 +303,29 @@ def _no_fe(
 
 def claim_switch_agrees(pas: Mapping, c: Criteria) -> Claim:
     """F3: two-layer switch peaks within the peak limit of FE's."""
-    st = "The two-layer model agrees with the FE reference in the switch region, both routes (Sec. 4.2)"
-    crit = f"|peak(2-layer) / peak(FE) - 1| <= {c.peak_agree:.0%} for the switch signals with an FE reference"
+    st = (
+        "The two-layer model agrees with the FE reference in the switch region, both routes (Sec. "
+        "4.2)"
+    )
+    criterion = (
+        f"|peak(2-layer) / peak(FE) - 1| <= {c.peak_agree:.0%} for the switch signals with an FE "
+        "reference"
+    )
     signals = [(r, sig) for r, sig in _fe_signals(pas) if sig.endswith("switch")]
     if not signals:
-        return _no_fe("F3", st, crit, pas)
-    v = {f"{route} {sig}": _fe_peak_rel(pas, route, sig, "2-layer") for route, sig in signals}
-    ok = all(abs(x) <= c.peak_agree for x in v.values())
+        return _no_fe("F3", st, criterion, pas)
+    measured = {
+        f"{route} {sig}": _fe_peak_rel(pas, route, sig, "2-layer") for route, sig in signals
+    }
+    ok = all(abs(x) <= c.peak_agree for x in measured.values())
     return Claim(
         "F3",
         "contact forces",
         st,
-        crit,
+        criterion,
         _verdict(ok),
-        ", ".join(f"{k} {x:+.1%}" for k, x in v.items()),
-        v,
+        ", ".join(f"{k} {x:+.1%}" for k, x in measured.items()),
+        measured,
     )
 
 
@@ -318,21 +337,19 @@ def claim_overestimates(pas: Mapping, c: Criteria) -> Claim:
     """
     route = pas.get("impact_route")
     st = "The two-layer model overestimates the peak impact force at the crossing (Sec. 4.2)"
-    crit = (
+    criterion = (
         f"{route or 'no'} route, peak Fz at the crossing: 2-layer exceeds FE by more than "
         f"{c.overestimate:.0%}"
     )
     if route is None or (route, "Fz_crossing") not in _fe_signals(pas):
-        return _no_fe("F4", st, crit, pas)
+        return _no_fe("F4", st, criterion, pas)
     rel = _fe_peak_rel(pas, route, "Fz_crossing", "2-layer")
-    peaks = {
-        m: _model(pas, route, m)["peaks_N"]["Fz_crossing"] for m in ("2-layer", "3-layer", "FE")
-    }
+    peaks = {m: _ran(pas, route, m)["peaks_N"]["Fz_crossing"] for m in ("2-layer", "3-layer", "FE")}
     return Claim(
         "F4",
         "contact forces",
         st,
-        crit,
+        criterion,
         _verdict(rel > c.overestimate),
         f"2-layer {peaks['2-layer'] / 1e3:.1f} kN vs FE {peaks['FE'] / 1e3:.1f} kN ({rel:+.1%}); "
         f"3-layer {peaks['3-layer'] / 1e3:.1f} kN",
@@ -343,37 +360,45 @@ def claim_overestimates(pas: Mapping, c: Criteria) -> Claim:
 def claim_three_closer(pas: Mapping, c: Criteria) -> Claim:
     """F5: three-layer force histories and crossing peaks closer to FE than the two-layer's."""
     st = (
-        "The three-layer model is closer to the FE reference than the two-layer model, above all at the crossing "
-        "(Sec. 4.2)"
+        "The three-layer model is closer to the FE reference than the two-layer model, above all "
+        "at the crossing (Sec. 4.2)"
     )
-    crit = (
-        "for every plotted signal with an FE reference, the RMS difference of the force history from FE's (common "
-        "x grid, in the region) is smaller for the 3-layer model, and so is |peak / peak(FE) - 1| at the crossing"
+    criterion = (
+        "for every plotted signal with an FE reference, the RMS difference of the force history "
+        "from FE's (common x grid, in the region) is smaller for the 3-layer model, and so is "
+        "|peak / peak(FE) - 1| at the crossing"
     )
     signals = _fe_signals(pas)
     if not signals:
-        return _no_fe("F5", st, crit, pas)
-    v = {}
+        return _no_fe("F5", st, criterion, pas)
+    measured = {}
     for route, sig in signals:
-        v[f"{route} {sig} RMS diff"] = {
-            m: _model(pas, route, m)["vs_FE"]["rms_difference_N"][sig]
-            for m in ("2-layer", "3-layer")
+        measured[f"{route} {sig} RMS diff"] = {
+            m: _ran(pas, route, m)["vs_FE"]["rms_difference_N"][sig] for m in ("2-layer", "3-layer")
         }
         if sig.endswith("crossing"):
-            v[f"{route} {sig} |peak rel|"] = {
+            measured[f"{route} {sig} |peak rel|"] = {
                 m: abs(_fe_peak_rel(pas, route, sig, m)) for m in ("2-layer", "3-layer")
             }
-    ok = all(d["3-layer"] < d["2-layer"] for d in v.values())
-    ev = ", ".join(
+    ok = all(d["3-layer"] < d["2-layer"] for d in measured.values())
+    evidence = ", ".join(
         f"{k} "
         + (
             f"{d['3-layer']:.1%} vs {d['2-layer']:.1%}"
             if "peak" in k
             else f"{d['3-layer'] / 1e3:.2f} vs {d['2-layer'] / 1e3:.2f} kN"
         )
-        for k, d in v.items()
+        for k, d in measured.items()
     )
-    return Claim("F5", "contact forces", st, crit, _verdict(ok), "3-layer vs 2-layer: " + ev, v)
+    return Claim(
+        "F5",
+        "contact forces",
+        st,
+        criterion,
+        _verdict(ok),
+        "3-layer vs 2-layer: " + evidence,
+        measured,
+    )
 
 
 def claim_cost(cost: Mapping, c: Criteria) -> Claim:
@@ -384,10 +409,11 @@ def claim_cost(cost: Mapping, c: Criteria) -> Claim:
     return Claim(
         "C1",
         "computing cost",
-        "The three-layer model costs about 10 % more computing time than the two-layer model (Sec. 4.2)",
+        "The three-layer model costs about 10 % more computing time than the two-layer model "
+        "(Sec. 4.2)",
         f"wall time 3-layer / 2-layer in [{lo:g}, {hi:g}] for each route: median over "
-        f"{cost.get('repeats', 0)} interleaved pairs (3-layer run / the 2-layer run just before it), "
-        "measured in the same run",
+        f"{cost.get('repeats', 0)} interleaved pairs (3-layer run / the 2-layer run just before "
+        "it), measured in the same run",
         _verdict(ok),
         ", ".join(f"{k} {x:.2f}" for k, x in r.items()),
         dict(r),
@@ -402,7 +428,8 @@ def claim_dof(cost: Mapping, c: Criteria) -> Claim:
         "C2",
         "computing cost",
         "The three-layer model has 8 more degrees of freedom than the two-layer model (Sec. 4.2)",
-        "3-layer minus 2-layer coordinates of the co-running model: 8 in the zone with the most rails",
+        "3-layer minus 2-layer coordinates of the co-running model: 8 in the zone with the most "
+        "rails",
         _verdict(ok),
         ", ".join(f"zone {k}: +{x}" for k, x in extra.items()),
         dict(extra),
@@ -413,13 +440,13 @@ def claim_fe_slower(cost: Mapping, c: Criteria) -> Claim:
     """C3: FE passage at least ``fe_slower`` times the three-layer wall time, each route."""
     r = cost.get("ratio_FE_over_3", {})
     st = "The co-running models need far less computing time than the FE track (Abstract, Sec. 1)"
-    crit = f"wall time FE / 3-layer (median of its runs) >= {c.fe_slower:g} for each route"
+    criterion = f"wall time FE / 3-layer (median of its runs) >= {c.fe_slower:g} for each route"
     if not r:
         return Claim(
             "C3",
             "computing cost",
             st,
-            crit,
+            criterion,
             NOT_CHECKED,
             "FE passage not available in this run",
             {},
@@ -429,7 +456,7 @@ def claim_fe_slower(cost: Mapping, c: Criteria) -> Claim:
         "C3",
         "computing cost",
         st,
-        crit,
+        criterion,
         _verdict(ok),
         ", ".join(f"{k} {x:.1f}" for k, x in r.items()),
         dict(r),
@@ -455,19 +482,22 @@ def _no_profile(cid: str, statement: str, criterion: str) -> Claim:
 def claim_stock_uniform(st: Mapping, c: Criteria) -> Claim:
     """S1: FE stock-rail K_z within ``stock_uniform`` of its plain-track value."""
     s = _statements(st)
-    text = "The vertical stiffness of the stock rail remains the same throughout the turnout (Sec. 2, Fig. 1b)"
-    crit = (
-        f"every stock-rail K_z within {c.stock_uniform:.0%} of its plain-track value (mean "
-        "before the switch toe)"
+    text = (
+        "The vertical stiffness of the stock rail remains the same throughout the turnout (Sec. "
+        "2, Fig. 1b)"
+    )
+    criterion = (
+        f"every stock-rail K_z within {c.stock_uniform:.0%} of its plain-track value (mean before "
+        "the switch toe)"
     )
     if s is None:
-        return _no_profile("S1", text, crit)
+        return _no_profile("S1", text, criterion)
     lo, hi = s["stock_K_z_spread"]
     return Claim(
         "S1",
         "track stiffness",
         text,
-        crit,
+        criterion,
         _verdict(max(-lo, hi) <= c.stock_uniform),
         f"{s['stock_rail']}: {lo:+.1%} to {hi:+.1%} of {s['stock_plain_K_z'] / 1e6:.1f} MN/m",
         {"spread": [lo, hi], "plain_K_z": s["stock_plain_K_z"]},
@@ -482,27 +512,27 @@ def claim_switch_toe(st: Mapping, c: Criteria) -> Claim:
     """
     s = _statements(st)
     text = (
-        "The switch rail's vertical stiffness is lower than the stock rail's at the toe and increases gradually "
-        "(Sec. 2)"
+        "The switch rail's vertical stiffness is lower than the stock rail's at the toe and "
+        "increases gradually (Sec. 2)"
     )
     x = s["switch_plateau"]["x_m"] if s is not None else math.nan
     where = f"{x:g} m" if math.isfinite(x) else "the end of Eq 10"
-    crit = (
-        "K_z(switch rail, first sleeper) < K_z(stock rail, same x), and "
-        f"K_z(switch rail, {where}, the end of Eq 10) > K_z at the toe"
+    criterion = (
+        f"K_z(switch rail, first sleeper) < K_z(stock rail, same x), and K_z(switch rail, {where}, "
+        "the end of Eq 10) > K_z at the toe"
     )
     if s is None:
-        return _no_profile("S2", text, crit)
+        return _no_profile("S2", text, criterion)
     toe, plateau = s["switch_toe"], s["switch_plateau"]
     ok = toe["K_z"] < toe["stock_K_z"] and plateau["K_z"] > toe["K_z"]
     return Claim(
         "S2",
         "track stiffness",
         text,
-        crit,
+        criterion,
         _verdict(ok),
-        f"toe (x = {toe['x_m']:.1f} m) {toe['K_z'] / 1e6:.1f} vs stock {toe['stock_K_z'] / 1e6:.1f} MN/m; "
-        f"{where} {plateau['K_z'] / 1e6:.1f} MN/m",
+        f"toe (x = {toe['x_m']:.1f} m) {toe['K_z'] / 1e6:.1f} vs stock "
+        f"{toe['stock_K_z'] / 1e6:.1f} MN/m; {where} {plateau['K_z'] / 1e6:.1f} MN/m",
         {"toe": dict(toe), "plateau": dict(plateau)},
     )
 
@@ -511,18 +541,18 @@ def claim_crossing_stiff(st: Mapping, c: Criteria) -> Claim:
     """S3: FE crossing K_z at least ``much_higher`` times the stock rail's in the crossing panel."""
     s = _statements(st)
     text = "The vertical stiffness at the crossing nose (crossing panel) is much higher (Sec. 2)"
-    crit = (
+    criterion = (
         f"mean K_z of the crossing over the stock rail's in the crossing panel >= {c.much_higher:g}"
     )
     if s is None:
-        return _no_profile("S3", text, crit)
+        return _no_profile("S3", text, criterion)
     r = s["crossing_over_stock_K_z"]
     lo, hi = s["crossing_x_range_m"]
     return Claim(
         "S3",
         "track stiffness",
         text,
-        crit,
+        criterion,
         _verdict(r >= c.much_higher),
         f"{r:.2f} over {lo:g}-{hi:g} m",
         {"ratio": r},
@@ -533,25 +563,25 @@ def claim_lateral_increase(st: Mapping, c: Criteria) -> Claim:
     """S4: FE K_y end / start of the turnout within ``lateral_increase``, stock and switch rails."""
     s = _statements(st)
     text = (
-        "Lateral stiffness increases from the switch toe to the end of the turnout by around 25 %, all rails "
-        "(Sec. 2)"
+        "Lateral stiffness increases from the switch toe to the end of the turnout by around 25 "
+        "%, all rails (Sec. 2)"
     )
     lo, hi = c.lateral_increase
-    crit = (
-        f"K_y at the end of the turnout (last sleeper of the crossing panel) over K_y at the first sleeper "
-        f"from the toe in [{lo:g}, {hi:g}] for the stock and switch rails"
+    criterion = (
+        "K_y at the end of the turnout (last sleeper of the crossing panel) over K_y at the first "
+        f"sleeper from the toe in [{lo:g}, {hi:g}] for the stock and switch rails"
     )
     if s is None:
-        return _no_profile("S4", text, crit)
-    v = s["lateral_end_over_start"]
+        return _no_profile("S4", text, criterion)
+    measured = s["lateral_end_over_start"]
     return Claim(
         "S4",
         "track stiffness",
         text,
-        crit,
-        _verdict(all(lo <= x <= hi for x in v.values())),
-        ", ".join(f"{k} {x:.2f}" for k, x in v.items()),
-        dict(v),
+        criterion,
+        _verdict(all(lo <= x <= hi for x in measured.values())),
+        ", ".join(f"{k} {x:.2f}" for k, x in measured.items()),
+        dict(measured),
     )
 
 
@@ -559,18 +589,20 @@ def claim_check_lateral(st: Mapping, c: Criteria) -> Claim:
     """S5: FE check-rail K_y at least ``much_higher`` times the running rail's."""
     s = _statements(st)
     text = "Check rails (stiff L-brackets) have a much higher lateral stiffness (Sec. 2)"
-    crit = f"mean K_y of each check rail over the running rail's at the same x >= {c.much_higher:g}"
+    criterion = (
+        f"mean K_y of each check rail over the running rail's at the same x >= {c.much_higher:g}"
+    )
     if s is None or not s["check_over_running_K_y"]:
-        return _no_profile("S5", text, crit)
-    v = s["check_over_running_K_y"]
+        return _no_profile("S5", text, criterion)
+    measured = s["check_over_running_K_y"]
     return Claim(
         "S5",
         "track stiffness",
         text,
-        crit,
-        _verdict(all(x >= c.much_higher for x in v.values())),
-        ", ".join(f"{k} {x:.2f}" for k, x in v.items()),
-        dict(v),
+        criterion,
+        _verdict(all(x >= c.much_higher for x in measured.values())),
+        ", ".join(f"{k} {x:.2f}" for k, x in measured.items()),
+        dict(measured),
     )
 
 

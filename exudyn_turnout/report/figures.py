@@ -83,7 +83,7 @@ def force_panels(report, route: str) -> list[tuple[str, Mapping, str, tuple[floa
     p = report.metrics["passage"]
     lo, hi = p["x_range_m"]
     wheel = p["routes"][route].get("wheel", "right")
-    panels = []
+    panels: list[tuple[str, Mapping, str, tuple[float, float]]] = []
     for signal in p["routes"][route]["signals"]:
         quantity, region = signal.split("_")
         x0, x1 = crossing_window(report) if region == "crossing" else p["regions_m"][region]
@@ -126,16 +126,16 @@ def write_figures(report, out_dir: str | Path, dpi: int = 100) -> dict[str, str]
     out, files = Path(out_dir), {}
     agree = report.config.criteria.agree_db
     for direction in ("vertical", "lateral"):
-        panels = receptance_panels(report, direction)
-        if panels:
-            fig, _ = plot_receptance_agreement(panels, agree_db=agree)
+        curves = receptance_panels(report, direction)
+        if curves:
+            fig, _ = plot_receptance_agreement(curves, agree_db=agree)
             files[f"receptance_{direction}"] = _save(
                 fig, out, f"receptance_{direction}.png", dpi, save_figure
             )
     for route in report.passages:
-        panels = force_panels(report, route)
-        if panels:
-            fig, _ = plot_force_signals(panels)
+        signals = force_panels(report, route)
+        if signals:
+            fig, _ = plot_force_signals(signals)
             files[f"forces_{route}"] = _save(fig, out, f"forces_{route}.png", dpi, save_figure)
     files.update(_stiffness_figure(report, out, dpi))
     return files
@@ -195,7 +195,7 @@ def stiffness_panels(report) -> list[tuple[str, list]]:
 
 
 def _stiffness_figure(report, out: Path, dpi: int) -> dict[str, str]:
-    """The FE stiffness profile figure, when the report has a profile (see report.stiffness_section)."""
+    """The FE stiffness profile figure, when the report has a profile (``report.stiffness``)."""
     if not report.stiffness:
         return {}
     from exudyn_turnout.plotting.curves import plot_stiffness_series, save_figure

@@ -6,10 +6,11 @@ histories it plots; :func:`write_report` writes ``report.md`` (rendered by
 :mod:`exudyn_turnout.report.markdown`), the PNG figures it embeds and ``metrics.json``.
 The paper's claims are judged by :mod:`exudyn_turnout.report.claims` on those metrics.
 
-Sections (the issue's numbering): 1 parameters (derived vs published Table 2), 2 track
-stiffness along the turnout (FE static stiffness, fits, Eqs 10, 14), 3 receptance
-(Figs 5, 6 analogue), 4 contact forces (Figs 7, 8 analogue), 5 computing cost, 6
-convergence and static checks.
+Sections of the report (as numbered in ``report.md``, after a summary of the verdicts):
+1 track stiffness along the turnout (FE static stiffness, fits, Eqs 10, 14), 2 receptance
+(Figs 5, 6 analogue, with the static stiffness of the co-running models against FE's),
+3 contact forces (Figs 7, 8 analogue), 4 computing cost, 5 convergence and static checks;
+appendix A: parameters (derived vs published Table 2).
 
 Everything turnout-specific (routes, speeds, wheels, plotted forces, regions, where the
 receptances are taken, the quick passage window, the stock and check rails of the FE
@@ -32,7 +33,7 @@ import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, SupportsFloat, SupportsInt, cast
 
 import numpy as np
 
@@ -192,7 +193,7 @@ def resolve_config(
     if x is None and config.quick:
         x = quick_passage_x(turnout or load_turnout(), settings)
     return replace(
-        config, speeds_kmh=tuple(speeds.items()), passage_x=None if x is None else tuple(x)
+        config, speeds_kmh=tuple(speeds.items()), passage_x=None if x is None else (x[0], x[1])
     )
 
 
@@ -201,15 +202,14 @@ class Report:
     """The report's numbers (``metrics``, JSON-ready), claims, and what its figures draw."""
 
     config: ReportConfig  #: resolved (:func:`resolve_config`)
-    metrics: Mapping[str, Any]  #: every number in report.md, SI units
+    metrics: dict[str, Any]  #: every number in report.md, SI units
     claims: tuple[Claim, ...]
-    receptances: Mapping[str, Mapping[str, Receptance]] = field(
-        default_factory=dict
-    )  #: case -> model -> curve
-    passages: Mapping[str, Mapping[str, PassageResult]] = field(
-        default_factory=dict
-    )  #: route -> model -> run
-    stiffness: Any = None  #: dict with the FE "profile", its "fits" and the co-running r2 static stiffness; or None
+    #: case -> model -> curve
+    receptances: Mapping[str, Mapping[str, Receptance]] = field(default_factory=dict)
+    #: route -> model -> run
+    passages: Mapping[str, Mapping[str, PassageResult]] = field(default_factory=dict)
+    #: dict with the FE "profile", its "fits" and the co-running r2 static stiffness; or None
+    stiffness: Any = None
     settings: ReportSettings | None = None  #: the turnout's report settings
 
 
@@ -221,7 +221,7 @@ def _log(message: str) -> None:
 
 
 def parameters_metrics(turnout: Turnout) -> dict[str, Any]:
-    """Derived vs published Table 2 (values at each zone's middle, SI), with ratio and explanation."""
+    """Derived vs published Table 2 (at each zone's middle, SI), with ratio and explanation."""
     rows = compare_with_table2(turnout)
     table = [
         {
@@ -269,7 +269,7 @@ def _fingerprint(turnout: Turnout) -> str:
     return file_fingerprint(path) if path.is_file() else input_key(dict(turnout.raw))
 
 
-def paper_stiffness_profiles(turnout: Turnout, x: np.ndarray) -> dict[str, list[float]]:
+def paper_stiffness_profiles(turnout: Turnout, x: np.ndarray) -> dict[str, list[float] | float]:
     """Eqs 10 and 14 of the turnout file (N/m) at x, and the stock rail's Eq 2 values K_st (N/m)."""
     ref = reference_support(turnout)
     return {
@@ -560,7 +560,9 @@ def receptance_positions(
 
 
 def pinned_pinned_frequency(turnout: Turnout, rail_type: str, x: float, direction: str) -> float:
-    """Pinned-pinned frequency (Hz): first mode of a simply supported Timoshenko beam of one sleeper bay.
+    """Pinned-pinned frequency (Hz).
+
+    The first mode of a simply supported Timoshenko beam of one sleeper bay.
 
     Section of ``rail_type`` at x in the bending plane of ``direction``, span = sleeper spacing.
 
@@ -641,7 +643,7 @@ def _peak_near(peaks: tuple[float, ...], f0: float) -> float | None:
 def receptance_case_metrics(
     curves: Mapping[str, Receptance], f_pp: float, criteria: Criteria
 ) -> dict[str, Any]:
-    """Band RMS of each co-running model against FE, main peaks, static stiffness, pinned-pinned bands.
+    """Band RMS of each co-running model against FE, peaks, static stiffness, pinned-pinned bands.
 
     Parameters
     ----------
@@ -799,7 +801,7 @@ def _settings(turnout: Turnout, config: ReportConfig, route: str, layers: int) -
     return PassageSettings(
         route=route,
         layers=layers,
-        speed_kmh=dict(config.speeds_kmh)[route],
+        speed_kmh=_speeds(config)[route],
         x_start=x[0],
         x_end=x[1],
         time_step=config.time_step,
@@ -817,14 +819,16 @@ def _timed_co_running(
         for layers in (2, 3):
             r = simulate_passage(turnout, _settings(turnout, config, route, layers))
             name = f"{layers}-layer"
-            walls[name].append(float(r.summary["wall_time_s"]))
-            if name not in best or r.summary["wall_time_s"] < best[name].summary["wall_time_s"]:
+            walls[name].append(_summary_float(r.summary, "wall_time_s"))
+            if name not in best or _summary_float(r.summary, "wall_time_s") < _summary_float(
+                best[name].summary, "wall_time_s"
+            ):
                 best[name] = r
     return best, walls
 
 
 def _fe_passage_module():
-    """The FE passage module if the package has one with ``simulate_fe_passage``, else (None, reason)."""
+    """The FE passage module if there is one with ``simulate_fe_passage``, else (None, reason)."""
     try:
         module = importlib.import_module("exudyn_turnout.passage.fe_track")
     except ImportError as err:
@@ -940,7 +944,7 @@ def passage_model_metrics(
             else math.nan
             for q, r in signals
         },
-        "contact_losses": int(s.get("contact_losses", -1)),
+        "contact_losses": int(cast(SupportsInt, s.get("contact_losses", -1))),
         "static_wheel_load_N": _number(s, "static_wheel_load_N"),
         "wall_time_s": _number(s, "wall_time_s"),
         "simulated_time_s": _number(s, "simulated_time_s"),
@@ -950,8 +954,19 @@ def passage_model_metrics(
     return out
 
 
+def _summary_float(summary: Mapping[str, object], key: str) -> float:
+    """summary[key] as a float: a passage summary holds numbers and text, this key a number."""
+    return float(cast(SupportsFloat, summary[key]))
+
+
+def _speeds(config: ReportConfig) -> dict[str, float]:
+    """km/h per route of a config resolved by :func:`resolve_config` (which fills them)."""
+    assert config.speeds_kmh is not None, "report config not resolved (resolve_config)"
+    return dict(config.speeds_kmh)
+
+
 def _number(summary: Mapping[str, Any], key: str) -> float:
-    """summary[key] as a float; NaN if absent or None (e.g. lateral peaks of a vertical-only model)."""
+    """summary[key] as a float; NaN if absent or None (lateral peaks of a vertical-only model)."""
     v = summary.get(key)
     return math.nan if v is None else float(v)
 
@@ -959,7 +974,7 @@ def _number(summary: Mapping[str, Any], key: str) -> float:
 def _vs_reference(
     result, reference, signals, regions, window, static_load, wheel: str = "right"
 ) -> dict[str, Any]:
-    """Differences from the reference for the signals the reference has (a finite peak and the column)."""
+    """Differences from the reference for the signals it has (a finite peak and the column)."""
     c, rc, rs = result.columns, reference.columns, reference.summary
     pairs = [
         (_signal_key(q, r), _column(q, wheel), regions[r], _peak_key(q, r, wheel))
@@ -1016,7 +1031,7 @@ def passage_section(
     regions = dict(settings.regions)
     static = load_vehicle().static_wheel_load
     metrics: dict[str, Any] = {
-        "speeds_kmh": dict(config.speeds_kmh),
+        "speeds_kmh": _speeds(config),
         "regions_m": regions,
         "routes": {},
         "steady_lateral_acceleration_m_s2": _lateral_acceleration(turnout, config),
@@ -1065,7 +1080,7 @@ def passage_section(
 def _lateral_acceleration(turnout: Turnout, config: ReportConfig) -> dict[str, float]:
     """v^2 |curvature|max (m/s^2) per route at the report's speeds (no cant)."""
     out = {}
-    for route, v in config.speeds_kmh:
+    for route, v in _speeds(config).items():
         kappa = max(abs(k) for k in load_route(turnout, route).curvature.value)
         out[route] = (v / 3.6) ** 2 * kappa
     return out
@@ -1097,7 +1112,7 @@ def cost_metrics(
     wall times per model are reported beside it. FE / 3-layer uses the 3-layer median.
     """
     wall = {
-        route: {m: float(r.summary["wall_time_s"]) for m, r in res.items()}
+        route: {m: _summary_float(r.summary, "wall_time_s") for m, r in res.items()}
         for route, res in passages.items()
     }
     runs = {route: rt["co_running_wall_times_s"] for route, rt in passage_metrics["routes"].items()}
@@ -1111,7 +1126,7 @@ def cost_metrics(
         "wall_time_s": wall,
         "median_wall_time_s": median,
         "simulated_time_s": {
-            route: float(res["3-layer"].summary["simulated_time_s"])
+            route: _summary_float(res["3-layer"].summary, "simulated_time_s")
             for route, res in passages.items()
         },
         "ratio_3_over_2": {
@@ -1176,7 +1191,7 @@ def convergence_metrics(
             peaks = {}
             for q, r in rr.signals:
                 k = _peak_key(q, r, rr.wheel)
-                a, b = float(base.summary[k]), float(half.summary[k])
+                a, b = _summary_float(base.summary, k), _summary_float(half.summary, k)
                 peaks[_signal_key(q, r)] = {
                     "h_N": a,
                     "h_half_N": b,
@@ -1200,7 +1215,9 @@ def static_checks(
     receptance: Mapping,
     criteria: Criteria,
 ) -> dict[str, Any]:
-    """Static wheel loads at the start of every passage vs (m_w + m_s) g / 2; co-running vs FE static stiffness.
+    """Static wheel loads at the start of every passage vs (m_w + m_s) g / 2.
+
+    And the co-running models' static stiffness relative to FE's.
 
     The criterion is on the mean of the two wheels (vertical equilibrium of the vehicle);
     each wheel's own difference (the split between them) is reported beside it.
@@ -1210,8 +1227,8 @@ def static_checks(
     for route, res in passages.items():
         for m, r in res.items():
             right, left = (
-                float(r.summary["static_wheel_load_N"]),
-                float(r.summary["static_wheel_load_left_N"]),
+                _summary_float(r.summary, "static_wheel_load_N"),
+                _summary_float(r.summary, "static_wheel_load_left_N"),
             )
             loads[f"{route}, {m}"] = {
                 "right_N": right,
@@ -1226,9 +1243,12 @@ def static_checks(
         case: {m: c["models"][m]["static_stiffness_ratio_to_FE"] for m in ("2-layer", "3-layer")}
         for case, c in receptance["cases"].items()
     }
-    starts = {
-        route: next(iter(res.values())).settings.x_start for route, res in passages.items() if res
-    }
+    starts: dict[str, float] = {}
+    for route, res in passages.items():
+        if res:
+            x_start = next(iter(res.values())).settings.x_start
+            assert x_start is not None  # the report's passages start at config.passage_x[0]
+            starts[route] = x_start
     rail_y = {
         route: {
             k: float(y)

@@ -94,7 +94,7 @@ _QUICK_HALF_WIDTH = 1.75  # m, half of the default quick passage window around t
 
 @dataclass(frozen=True)
 class ReportRoute:
-    """One route the report runs (section 4: contact forces)."""
+    """One route the report runs (section 3 of the report: contact forces)."""
 
     name: str  #: route of ``[routes]``
     speed_kmh: float  #: km/h
@@ -114,7 +114,7 @@ class ReportSettings:
     """The turnout-specific settings of the validation report (see the module docstring)."""
 
     source: str  #: turnout file name, for messages
-    routes: tuple[ReportRoute, ...]  #: routes run in section 4, in report order
+    routes: tuple[ReportRoute, ...]  #: routes run in section 3 (contact forces), in report order
     regions: Mapping[str, tuple[float, float]]  #: m, "switch" and "crossing" (``[regions]``)
     lateral_acceleration: float  #: m/s^2, for the default speed of curved routes
     receptance_route: str  #: route whose wheel path gives the receptance positions
@@ -231,9 +231,15 @@ def _names(r: _Reader, field: str) -> tuple[str, ...] | None:
 def _pair(
     r: _Reader, field: str, default: tuple[float, float], positive: bool
 ) -> tuple[float, float]:
+    pair = _optional_pair(r, field, positive)
+    return default if pair is None else pair
+
+
+def _optional_pair(r: _Reader, field: str, positive: bool) -> tuple[float, float] | None:
+    """Two numbers [a, b] from ``field`` (lengths >= 0 if ``positive``), None when absent."""
     value = r.get(field, None)
     if value is None:
-        return default
+        return None
     if not isinstance(value, list) or len(value) != 2:
         raise r.fail(field, f"must be two numbers [a, b], got {value!r}")
     a, b = (r.check(field, v, positive=False) for v in value)
@@ -346,7 +352,7 @@ def report_settings(turnout: Turnout) -> ReportSettings:
         else r.choice("report.receptance_wheel", tuple(WHEELS))
     )
     reg = regions(turnout)
-    quick = _pair(r, "report.quick_passage_x", None, positive=False)
+    quick = _optional_pair(r, "report.quick_passage_x", positive=False)
     if quick is not None and not turnout.x_min <= quick[0] < quick[1] <= turnout.x_max:
         raise r.fail(
             "report.quick_passage_x",

@@ -28,6 +28,10 @@ __all__ = [
     "standard_track",
 ]
 
+#: The Manchester benchmark's wheelset dimensions, the default of the loaders below
+#: (a frozen dataclass, so one shared instance is safe).
+_BENCHMARK_SETUP = WheelsetSetup()
+
 
 def data_dir() -> Path:
     """Folder of the packaged wheel/rail data.
@@ -70,13 +74,13 @@ def reference_output_path(name: str) -> Path:
     return data_dir() / "reference_outputs" / name
 
 
-def s1002_wheel(setup: WheelsetSetup = WheelsetSetup()) -> WheelGrid:
+def s1002_wheel(setup: WheelsetSetup = _BENCHMARK_SETUP) -> WheelGrid:
     """The Manchester benchmark's S1002 wheel, gridded.
 
     Parameters
     ----------
     setup : WheelsetSetup
-        Grid step and nominal radius.
+        Grid step and nominal radius (default: the benchmark's ``WheelsetSetup()``).
 
     Returns
     -------
@@ -86,7 +90,7 @@ def s1002_wheel(setup: WheelsetSetup = WheelsetSetup()) -> WheelGrid:
     return grid_wheel(profile, step=setup.grid_step, nominal_radius=setup.nominal_radius)
 
 
-def uic60_rail(setup: WheelsetSetup = WheelsetSetup()) -> Profile:
+def uic60_rail(setup: WheelsetSetup = _BENCHMARK_SETUP) -> Profile:
     """The Manchester benchmark's UIC60 rail placed in side coordinates.
 
     The file is already inclined 1:40; other inclinations rotate it by the difference, so
@@ -95,7 +99,7 @@ def uic60_rail(setup: WheelsetSetup = WheelsetSetup()) -> Profile:
     Parameters
     ----------
     setup : WheelsetSetup
-        Gauge, inclination, gauge-point depth.
+        Gauge, inclination, gauge-point depth (default: the benchmark's ``WheelsetSetup()``).
 
     Returns
     -------
@@ -108,7 +112,7 @@ def uic60_rail(setup: WheelsetSetup = WheelsetSetup()) -> Profile:
 
 
 def standard_track(
-    setup: WheelsetSetup = WheelsetSetup(), x: np.ndarray | None = None
+    setup: WheelsetSetup = _BENCHMARK_SETUP, x: np.ndarray | None = None
 ) -> SectionGrid:
     """Plain UIC60 track sections (one rail, side coordinates) for the S1002 wheel.
 

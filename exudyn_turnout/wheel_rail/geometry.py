@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from scipy.signal import savgol_filter
@@ -73,6 +74,10 @@ __all__ = [
 ]
 
 _NO_GAP = 1.0  # m, gap written where a candidate slot is empty
+
+#: One rail section for the contact solvers: heights z (m), slope dz/dy (-), curvature
+#: (1/m), all on the lateral grid y (m), in side coordinates (see :func:`rail_row`).
+RailRow = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
 
 
 @dataclass(frozen=True)
@@ -710,8 +715,8 @@ class WheelsetContact:
 def solve_wheelset(
     y_values: np.ndarray,
     wheel: WheelGrid,
-    left_rail: tuple,
-    right_rail: tuple,
+    left_rail: RailRow,
+    right_rail: RailRow,
     setup: WheelsetSetup,
     iterations: int = 8,
     max_candidates: int = 3,
@@ -743,7 +748,7 @@ def solve_wheelset(
     """
     taping = setup.taping_line
     lever = taping
-    results = {
+    results: dict[str, list[Any]] = {
         key: []
         for key in (
             "roll",
@@ -817,13 +822,28 @@ def solve_wheelset(
             results[f"s_{side}"].append(found.s_wheel[0])
             results[f"y_rail_{side}"].append(found.y_rail[0])
             results[f"candidates_{side}"].append(found)
-    arrays = {
-        k: (tuple(v) if k.startswith("candidates") else np.asarray(v)) for k, v in results.items()
-    }
-    return WheelsetContact(y=np.asarray(y_values, float), **arrays)
+
+    def column(key: str) -> np.ndarray:
+        return np.asarray(results[key])
+
+    return WheelsetContact(
+        y=np.asarray(y_values, float),
+        roll=column("roll"),
+        lift=column("lift"),
+        radius_left=column("radius_left"),
+        radius_right=column("radius_right"),
+        angle_left=column("angle_left"),
+        angle_right=column("angle_right"),
+        s_left=column("s_left"),
+        s_right=column("s_right"),
+        y_rail_left=column("y_rail_left"),
+        y_rail_right=column("y_rail_right"),
+        candidates_left=tuple(results["candidates_left"]),
+        candidates_right=tuple(results["candidates_right"]),
+    )
 
 
-def rail_row(sections: SectionGrid, derivatives: SurfaceDerivatives, index: int = 0) -> tuple:
+def rail_row(sections: SectionGrid, derivatives: SurfaceDerivatives, index: int = 0) -> RailRow:
     """The ``(heights, slope, curvature, y_grid)`` tuple of one section for the solvers.
 
     Parameters
@@ -837,7 +857,9 @@ def rail_row(sections: SectionGrid, derivatives: SurfaceDerivatives, index: int 
 
     Returns
     -------
-    tuple
+    tuple of numpy.ndarray
+        ``(heights, slope, curvature, y_grid)``: rail heights (m), slope dz/dy (-) and
+        curvature (1/m) of section ``index`` on the lateral grid ``y_grid`` (m).
     """
     return (sections.z[index], derivatives.slope[index], derivatives.curvature[index], sections.y)
 

@@ -15,6 +15,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -77,7 +78,9 @@ def read_reference_output(path: str | Path) -> list[ReferenceCase]:
         lines = path.read_text(encoding="utf-8", errors="replace").splitlines()
     except FileNotFoundError:
         raise ProfileFormatError(f"{path.name}: file not found") from None
-    cases, current, rail = [], {}, ""
+    cases: list[ReferenceCase] = []
+    current: dict[str, Any] = {}
+    rail = ""
     for i, line in enumerate(lines):
         text = line.strip()
         if text.startswith("Case"):
@@ -183,7 +186,9 @@ def geometry_at_reference(
         max_candidates=1,
     )
     index = int(round((found.y_rail[0] - grid[0]) / (grid[1] - grid[0])))
-    dx = float(enveloped.x_offset[0, index])
+    x_offset = enveloped.x_offset
+    assert x_offset is not None  # wheel_envelope records where along x each height is met
+    dx = float(x_offset[0, index])
     return GeometryResult(
         x_contact=dx,
         y_contact_rail=float(found.y_rail[0]),

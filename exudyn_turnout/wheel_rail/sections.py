@@ -456,7 +456,7 @@ def switch_sections(
         at the full head width; its top is lowered near the toe.
     """
     half = 0.5 * gauge
-    heights = {"stock": [], "blade": []}
+    heights: dict[str, list[np.ndarray]] = {"stock": [], "blade": []}
     for xi in np.asarray(x, float):
         setback = design.toe_width + design.entry_tangent * xi + xi * xi / (2 * design.radius)
         heights["stock"].append(_shifted_heights(base, y_grid, max(setback, 0.0)))
@@ -507,7 +507,7 @@ def crossing_sections(
     throat = design.nose_tip - design.crossing_number * (design.tip_width + design.flangeway)
     half_head = 0.5 * design.head_width
     base_heights = surface_on_grid(base, y_grid)
-    heights = {"wing": [], "nose": []}
+    heights: dict[str, list[np.ndarray]] = {"wing": [], "nose": []}
     for xi in np.asarray(x, float):
         flare = max(0.0, (xi - throat) * slope)
         heights["wing"].append(_shifted_heights(base, y_grid, flare))

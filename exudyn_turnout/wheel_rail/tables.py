@@ -113,7 +113,19 @@ class ContactTable:
     fields: tuple = _FIELDS  #: names of the last axis of ``values``
 
     def field(self, name: str) -> np.ndarray:
-        """(n_x, n_s, n_c) array of one field (m, rad, 1/m or N/m^1.5)."""
+        """One field of every candidate at every node.
+
+        Parameters
+        ----------
+        name : str
+            A name in :attr:`fields`, e.g. ``"gap"`` (m), ``"angle"`` (rad),
+            ``"curvature_rail"`` (1/m) or ``"hertz_constant"`` (N/m^1.5).
+
+        Returns
+        -------
+        numpy.ndarray
+            (n_x, n_s, n_c) view of ``values``: section position, lateral shift, candidate.
+        """
         return self.values[..., self.fields.index(name)]
 
 

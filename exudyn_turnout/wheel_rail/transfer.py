@@ -105,7 +105,9 @@ def wheel_path(
     """
     derivatives = surface_derivatives(sections)
     step = float(sections.y[1] - sections.y[0])
-    out = {k: [] for k in ("height", "y_rail", "x_offset", "carrier", "second_gap")}
+    out: dict[str, list[float]] = {
+        k: [] for k in ("height", "y_rail", "x_offset", "carrier", "second_gap")
+    }
     prepared = prepare_wheel(wheel, taping_line, 0.0, directions=())
     for i in range(len(sections.x)):
         rail = prepare_rail(
