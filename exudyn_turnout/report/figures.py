@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 __all__ = [
+    "write_model_figure",
     "write_figures",
     "receptance_panels",
     "force_panels",
@@ -139,6 +140,44 @@ def write_figures(report, out_dir: str | Path, dpi: int = 100) -> dict[str, str]
             files[f"forces_{route}"] = _save(fig, out, f"forces_{route}.png", dpi, save_figure)
     files.update(_stiffness_figure(report, out, dpi))
     return files
+
+
+def write_model_figure(report, turnout, out_dir: str | Path, dpi: int = 100) -> dict[str, str]:
+    """The three-layer cross-section at the crossing receptance point, as it is built.
+
+    Parameters
+    ----------
+    report : Report
+        Gives the crossing rail's receptance position and route.
+    turnout : Turnout
+        The turnout the report was computed for.
+    out_dir : str or Path
+        Directory of the report.
+    dpi : int
+        Resolution of the PNG.
+
+    Returns
+    -------
+    dict
+        ``{"model": "model_cross_section.png"}``, or empty if the report has no receptance.
+    """
+    from exudyn_turnout.corunning.parameters import co_running_parameters
+    from exudyn_turnout.inputs.routes import load_route
+    from exudyn_turnout.inputs.vehicle import load_vehicle
+    from exudyn_turnout.plotting.curves import save_figure
+    from exudyn_turnout.plotting.model import draw_cross_section
+
+    receptance = report.metrics.get("receptance") or {}
+    position = receptance.get("positions", {}).get("crossing rail")
+    if not position:
+        return {}
+    x = float(position["x_m"])
+    route = receptance.get("route")
+    params = co_running_parameters(turnout, x=x, layers=3)
+    ax = draw_cross_section(
+        params, x, route=load_route(turnout, route) if route else None, vehicle=load_vehicle()
+    )
+    return {"model": _save(ax.figure, Path(out_dir), "model_cross_section.png", dpi, save_figure)}
 
 
 def _save(fig: Any, out: Path, name: str, dpi: int, save_figure) -> str:

@@ -528,6 +528,13 @@ def _receptance(report, figures) -> list[str]:
     agree = report.metrics["criteria"]["agree_db"]
     return (
         _receptance_intro(receptance)
+        + [
+            "The three-layer model at the crossing receptance point as it is built (every "
+            "spring-damper of the Exudyn model with its value; `exudyn-turnout draw section` "
+            "draws any zone, `exudyn-turnout draw passage` animates a passage):",
+            "",
+        ]
+        + _figure(figures, "model", "co-running cross-section at the crossing")
         + _figure(figures, "receptance_vertical", "vertical receptance")
         + _figure(figures, "receptance_lateral", "lateral receptance")
         + [

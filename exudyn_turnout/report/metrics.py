@@ -1347,7 +1347,7 @@ def write_report(
     Report
         The built report (``metrics`` as written).
     """
-    from exudyn_turnout.report.figures import write_figures
+    from exudyn_turnout.report.figures import write_figures, write_model_figure
     from exudyn_turnout.report.markdown import render_markdown, to_json
 
     t0 = time.perf_counter()
@@ -1355,6 +1355,7 @@ def write_report(
     out.mkdir(parents=True, exist_ok=True)
     report = build_report(turnout, config)
     figures = write_figures(report, out)
+    figures.update(write_model_figure(report, turnout or load_turnout(), out))
     report.metrics["report_wall_time_s"] = time.perf_counter() - t0
     (out / "metrics.json").write_text(to_json(report.metrics), encoding="utf-8")
     (out / "report.md").write_text(render_markdown(report, figures), encoding="utf-8")
