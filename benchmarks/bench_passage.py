@@ -10,7 +10,8 @@ import time
 
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.passage import contact_element as wheelrail
-from exudyn_turnout.passage.simulate import PassageSettings, simulate_passage
+from exudyn_turnout.passage.results import PassageSettings
+from exudyn_turnout.passage.simulate import simulate_passage
 
 
 def _timed(turnout, settings, repeat):

@@ -30,8 +30,7 @@ FIGURE_MODULES = {
     "plotting/curves.py",
     "plotting/model.py",
     "plotting/__init__.py",
-    "report/figures.py",
-    "wheel_rail/figures.py",
+    "plotting/wheel_rail.py",
 }
 #: Top-level stages, in pipeline order; a stage may not import a later stage of this list
 #: unless listed in ALLOWED_UPWARD.

@@ -36,7 +36,7 @@ from exudyn_turnout.passage.fe_track import (
     simulate_fe_passage,
     solve_contacts,
 )
-from exudyn_turnout.passage.simulate import PassageError, PassageSettings
+from exudyn_turnout.passage.results import PassageError, PassageSettings
 
 W = (1813 + 32000 / 4 + 2615 / 2) * 9.81 / 2
 #: 8 m of plain track (sleepers at x = 0 +- i 0.6 m) + 4 m undamped + 4 m absorbing ends:

@@ -21,7 +21,8 @@ from exudyn_turnout.corunning.track import add_co_running_track
 from exudyn_turnout.inputs.routes import load_route
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
-from exudyn_turnout.passage.simulate import PassageSettings, _build
+from exudyn_turnout.passage.results import PassageSettings
+from exudyn_turnout.passage.simulate import _build
 from exudyn_turnout.passage.vehicle import add_vehicle
 
 #: Exudyn connector types that carry a force law; all the package uses are listed here.

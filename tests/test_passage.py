@@ -21,12 +21,8 @@ from exudyn_turnout.corunning.modal import assemble_track_matrices, wheel_dof
 from exudyn_turnout.corunning.parameters import co_running_parameters
 from exudyn_turnout.inputs.geometry import turnout_plan
 from exudyn_turnout.inputs.vehicle import load_vehicle
-from exudyn_turnout.passage.simulate import (
-    PassageError,
-    PassageSettings,
-    simulate_passage,
-    write_passage,
-)
+from exudyn_turnout.passage.results import PassageError, PassageSettings, write_passage
+from exudyn_turnout.passage.simulate import simulate_passage
 
 W = (1813 + 32000 / 4 + 2615 / 2) * 9.81 / 2
 

@@ -2,8 +2,8 @@
 
 import numpy as np
 
+from exudyn_turnout.plotting.wheel_rail import plot_contact_band, plot_sections, plot_wheel_path
 from exudyn_turnout.wheel_rail.data import s1002_wheel, standard_track
-from exudyn_turnout.wheel_rail.figures import plot_contact_band, plot_sections, plot_wheel_path
 from exudyn_turnout.wheel_rail.geometry import (
     WheelsetSetup,
     rail_row,

@@ -129,7 +129,7 @@ def wheelset_section(setup: WheelsetSetup, lines: list, figures: Path | None) ->
         "",
     ]
     if figures is not None:
-        from exudyn_turnout.wheel_rail.figures import plot_contact_band
+        from exudyn_turnout.plotting.wheel_rail import plot_contact_band
 
         plot_contact_band(result, figures / "contact_band_s1002_uic60.png")
 
@@ -225,7 +225,7 @@ def transfer_section(setup: WheelsetSetup, lines: list, figures: Path | None) ->
         "",
     ]
     if figures is not None:
-        from exudyn_turnout.wheel_rail.figures import plot_wheel_path
+        from exudyn_turnout.plotting.wheel_rail import plot_wheel_path
 
         plot_wheel_path(uk, figures / "wheel_path_uk_crossing.png")
 

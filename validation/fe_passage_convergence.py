@@ -23,7 +23,7 @@ import numpy as np
 from exudyn_turnout.fe.mesh import FEOptions
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.passage.fe_track import FEPassageOptions, simulate_fe_passage
-from exudyn_turnout.passage.simulate import PassageSettings
+from exudyn_turnout.passage.results import PassageSettings
 
 #: (name, x_start, x_end, summary key) of the windows (m).
 WINDOWS = (("switch", 2.0, 6.0, "peak_Fz_switch_N"), ("crossing", 44.0, 48.0, "peak_Fz_crossing_N"))

@@ -9,7 +9,8 @@ import warnings
 
 from exudyn_turnout.inputs.routes import dip_angle, load_route
 from exudyn_turnout.inputs.turnout import load_turnout
-from exudyn_turnout.passage.simulate import PassageSettings, simulate_passage
+from exudyn_turnout.passage.results import PassageSettings
+from exudyn_turnout.passage.simulate import simulate_passage
 
 
 def sweep(speeds, routes=("through", "diverging"), layers=(2, 3)):

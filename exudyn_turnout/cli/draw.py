@@ -59,7 +59,8 @@ def _run_section(args: argparse.Namespace) -> int:
 
 def _run_passage(args: argparse.Namespace) -> int:
     from exudyn_turnout.inputs.vehicle import load_vehicle
-    from exudyn_turnout.passage.simulate import PassageError, PassageSettings, simulate_passage
+    from exudyn_turnout.passage.results import PassageError, PassageSettings
+    from exudyn_turnout.passage.simulate import simulate_passage
     from exudyn_turnout.plotting.model import animate_passage
 
     out = _check_file(args.out, ".gif")

@@ -36,7 +36,7 @@ def _run(args: argparse.Namespace) -> int:
     from exudyn_turnout.inputs.turnout import load_turnout
     from exudyn_turnout.inputs.vehicle import load_vehicle
     from exudyn_turnout.passage.fe_track import simulate_fe_passage
-    from exudyn_turnout.passage.simulate import PassageSettings
+    from exudyn_turnout.passage.results import PassageSettings
 
     check_out_dir(args.out)
     turnout = load_turnout(args.turnout)

@@ -22,7 +22,8 @@ __all__ = ["build", "run_passage_command", "add_passage_options", "route_from_ar
 
 def _run(args: argparse.Namespace) -> int:
     from exudyn_turnout.inputs.vehicle import load_vehicle
-    from exudyn_turnout.passage.simulate import PassageSettings, simulate_passage
+    from exudyn_turnout.passage.results import PassageSettings
+    from exudyn_turnout.passage.simulate import simulate_passage
 
     check_out_dir(args.out)
     turnout = turnout_from_args(args)
@@ -97,7 +98,7 @@ def _checked_route(turnout, name: str) -> str:
 
 def _clear_outputs(out: Path) -> None:
     """Remove the files an earlier run left in ``out`` (so a failure leaves nothing stale)."""
-    from exudyn_turnout.passage.simulate import OUTPUT_FILES
+    from exudyn_turnout.passage.results import OUTPUT_FILES
 
     if not out.is_dir():
         return
@@ -158,7 +159,7 @@ def run_passage_command(
     """
     from dataclasses import asdict
 
-    from exudyn_turnout.passage.simulate import PassageError, PassageFailure, write_passage
+    from exudyn_turnout.passage.results import PassageError, PassageFailure, write_passage
     from exudyn_turnout.provenance import provenance
 
     out = check_out_dir(args.out)

@@ -102,17 +102,17 @@ from exudyn_turnout.fe.timoshenko import lagrange_shape_functions
 from exudyn_turnout.inputs.routes import WHEELS, ContactPair, Route, load_route
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle import GRAVITY, Vehicle, load_vehicle
-from exudyn_turnout.passage.simulate import (
+from exudyn_turnout.passage.results import (
+    DEFAULT_SETTINGS,
     PLAUSIBLE,
     PassageError,
     PassageFailure,
     PassageResult,
     PassageSettings,
     check_plausible,
-    lightest_rail_mass,
-    max_time_step,
     passage_summary,
 )
+from exudyn_turnout.passage.simulate import lightest_rail_mass, max_time_step
 
 __all__ = [
     "FEPassageOptions",
@@ -905,7 +905,6 @@ class _Recorder:
 
 
 #: Default settings of :func:`simulate_fe_passage` (frozen: safe to share).
-_DEFAULT_SETTINGS = PassageSettings()
 
 
 def _static_loads(state: _State) -> dict[str, float]:
@@ -917,7 +916,7 @@ def _static_loads(state: _State) -> dict[str, float]:
 
 def simulate_fe_passage(
     turnout: Turnout,
-    settings: PassageSettings = _DEFAULT_SETTINGS,
+    settings: PassageSettings = DEFAULT_SETTINGS,
     vehicle: Vehicle | None = None,
     options: FEPassageOptions | None = None,
     *,

@@ -1,6 +1,7 @@
-"""Figures: computed results (:mod:`.curves`) and the model itself (:mod:`.model`).
+"""Figures: computed results (:mod:`.curves`), the model itself (:mod:`.model`) and the
+wheel/rail geometry (:mod:`.wheel_rail`).
 
-The only place, with the report's figures, that imports matplotlib. Compute functions
+The only package that imports matplotlib. Compute functions
 return data objects; these functions draw them (``Receptance.plot`` and
 ``PassageResult.plot`` delegate here).
 """

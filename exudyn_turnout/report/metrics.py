@@ -44,7 +44,8 @@ from exudyn_turnout.fe.mesh import FEOptions
 from exudyn_turnout.inputs.routes import dip_angle, load_route
 from exudyn_turnout.inputs.turnout import Turnout, load_turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
-from exudyn_turnout.passage.simulate import PassageResult, PassageSettings, simulate_passage
+from exudyn_turnout.passage.results import PassageResult, PassageSettings
+from exudyn_turnout.passage.simulate import simulate_passage
 from exudyn_turnout.receptance import Receptance, log_frequencies
 from exudyn_turnout.report import agreement as ag
 from exudyn_turnout.report.cache import (

@@ -13,7 +13,7 @@ equivalent conicity, flange angle, Nadal), :mod:`.hertz` (exact Hertz ellipse, C
 :mod:`.creep` (Kalker coefficients, Polach's creep forces with spin), :mod:`.tables`
 (cached tables, vectorised lookup), :mod:`.transfer` (load transfer and dips),
 :mod:`.references` (CONTACT reference outputs), :mod:`.data` (packaged data),
-:mod:`.figures` (plots; the only module importing matplotlib, imported on demand).
+figures in :mod:`exudyn_turnout.plotting.wheel_rail` (this package never imports matplotlib).
 """
 
 from exudyn_turnout.wheel_rail.creep import (

@@ -1,4 +1,4 @@
-"""Figures of the wheel/rail geometry (the only module of this package importing matplotlib).
+"""Figures of the wheel/rail geometry of :mod:`exudyn_turnout.wheel_rail`.
 
 - :func:`plot_contact_band`: contact positions on wheel and rail against the wheelset's
   lateral displacement, or along x (the classic contact-band plot);

@@ -1,0 +1,452 @@
+"""What a passage is asked and what it gives: settings, result, peaks, summary, output files.
+
+Pure data and numpy (no Exudyn): :mod:`exudyn_turnout.passage.simulate` (co-running track)
+and :mod:`exudyn_turnout.passage.fe_track` (FE track) both fill a :class:`PassageResult`,
+summarise it with :func:`passage_summary` and write it with :func:`write_passage`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from exudyn_turnout.inputs.turnout import Turnout
+
+__all__ = [
+    "TRACKS",
+    "PLAUSIBLE",
+    "OUTPUT_FILES",
+    "PassageError",
+    "PassageFailure",
+    "PassageSettings",
+    "DEFAULT_SETTINGS",
+    "PassageResult",
+    "check_plausible",
+    "passage_summary",
+    "write_passage",
+    "peaks_table",
+]
+
+
+class PassageError(RuntimeError):
+    """Bad passage settings, or a solver failure (the message says when and where)."""
+
+
+class PassageFailure(PassageError):
+    """A run that failed, diverged or left every physical state (the CLI's exit code 3).
+
+    The message gives the time, the position and what went wrong.
+    """
+
+
+#: Plausibility limits of a passage: beyond any of them the run stops with a
+#: :class:`PassageFailure`. m: wheelset vertical and lateral displacement (a wheel 50 mm
+#: up or down has derailed or fallen through the track); m: rail deflection; -: contact
+#: force over the static wheel load.
+PLAUSIBLE = {"wheelset_m": 0.05, "rail_m": 0.02, "force_over_static": 50.0}
+
+
+@dataclass(frozen=True)
+class PassageSettings:
+    """Settings of a passage (SI units but the speed in km/h)."""
+
+    route: str = "through"
+    speed_kmh: float = 100.0  #: km/h
+    layers: int = 3
+    source: str = "derived"
+    x_start: float | None = None  #: m, default: the turnout's start
+    x_end: float | None = None  #: m, default: the turnout's end
+    time_step: float = 1e-4  #: s, converged: halving it moves the crossing peak < 0.4 %
+    output_step: float | None = None  #: s, default: every time step
+    spectral_radius: float = 0.8  #: generalized-alpha rho_inf
+    track_mechanism: str = (
+        "symbolic"  #: how track springs follow x: "symbolic", "python" or "constant"
+    )
+
+    @property
+    def v(self) -> float:
+        """Speed in m/s."""
+        return self.speed_kmh / 3.6
+
+
+#: The default scenario (frozen, so one instance serves as every function's default).
+DEFAULT_SETTINGS = PassageSettings()
+
+
+#: Track models of :func:`simulate_passage`.
+TRACKS = ("2-layer", "3-layer", "fe")
+
+
+@dataclass(frozen=True, repr=False)
+class PassageResult:
+    """Time histories and peaks of a passage (SI units, see :func:`simulate_passage`).
+
+    Compute returns this data object; :meth:`plot` draws it (delegating to
+    :mod:`exudyn_turnout.plotting`), :meth:`save` writes it, :meth:`peaks` lists its peaks.
+    """
+
+    settings: PassageSettings
+    columns: Mapping[str, np.ndarray]  #: "t_s", "x_m", forces (N), displacements (m, rad)
+    summary: Mapping[str, object]
+    #: m, x where each run segment began
+    zone_starts: tuple[float, ...] = field(default_factory=tuple)
+
+    @property
+    def model(self) -> str:
+        """The track model: ``"2-layer"``, ``"3-layer"`` or ``"FE"``."""
+        return str(self.summary.get("model", f"{self.settings.layers}-layer"))
+
+    def peaks(self) -> dict[str, float]:
+        """Peak forces (N) of the summary: per region, per wheel and per contact.
+
+        Returns
+        -------
+        dict
+            ``peak_<Fz|Fy>_<region>[_<wheel>[_<rail>]]_N`` -> N (NaN where a region or a
+            contact is not in the run). ``Fz`` peaks are maxima, ``Fy`` the largest
+            magnitude with its sign.
+        """
+        out = {}
+        for key, value in self.summary.items():
+            if key.startswith("peak_") and isinstance(value, (int, float)):
+                out[key] = float(value)
+            elif key.startswith("peak_") and value is None:
+                out[key] = math.nan
+        return out
+
+    def plot(self, wheel: str | None = None, title: str | None = None):
+        """Contact forces against x at the switch and at the crossing (Figs 7, 8 layout).
+
+        Parameters
+        ----------
+        wheel : {"right", "left"}, optional
+            Default: the right wheel, as the paper's figures.
+        title : str, optional
+            Figure title.
+
+        Returns
+        -------
+        (figure, axes)
+            From :func:`exudyn_turnout.plotting.plot_passage_forces`.
+        """
+        from exudyn_turnout.plotting.curves import plot_passage_forces
+
+        return plot_passage_forces([self], wheel=wheel or "right", title=title)
+
+    def save(self, directory, format: str = "csv") -> dict[str, str]:  # noqa: A002
+        """Write the time series (``timeseries.csv`` or ``.npz``) and ``summary.json``.
+
+        Parameters
+        ----------
+        directory : str or Path
+            Output directory (created if missing).
+        format : {"csv", "npz"}
+            Format of the time series.
+
+        Returns
+        -------
+        dict
+            Paths of the files written, by kind.
+        """
+        return write_passage(self, directory, fmt=format)
+
+    def __repr__(self) -> str:
+        s = self.settings
+        x = self.columns["x_m"]
+        crossing = self.summary.get("peak_Fz_crossing_N")
+        peak = (
+            f", peak Fz crossing {crossing / 1e3:.1f} kN"
+            if isinstance(crossing, (int, float)) and math.isfinite(crossing)
+            else ""
+        )
+        return (
+            f"PassageResult({self.model}, route {s.route!r}, {s.speed_kmh:g} km/h, "
+            f"x {x[0]:g} to {x[-1]:g} m, {len(x)} samples{peak})"
+        )
+
+
+def check_plausible(columns: Mapping[str, np.ndarray], static_load: float, what: str = "") -> None:
+    """Stop a run that left every physical state (limits in :data:`PLAUSIBLE`).
+
+    Parameters
+    ----------
+    columns : mapping
+        Columns of a passage (or of one zone's part): ``t_s``, ``x_m``, ``z_wheelset_m``,
+        ``y_wheelset_m``, ``z_rail_<slot>_m``, ``Fz_<wheel>_N``.
+    static_load : float
+        Static wheel load (N); forces above ``PLAUSIBLE["force_over_static"]`` times it stop
+        the run.
+    what : str
+        Where (e.g. "zone 2, crossing panel"), put into the message.
+
+    Raises
+    ------
+    PassageFailure
+        At the first sample beyond a limit: its time, x, the quantity and its value.
+    """
+    t, x = columns["t_s"], columns["x_m"]
+    checks = []
+    for name in ("z_wheelset_m", "y_wheelset_m"):
+        if name in columns:
+            label = "wheelset " + name[0]
+            checks.append((name, label, columns[name], PLAUSIBLE["wheelset_m"], "m"))
+    for name, values in columns.items():
+        if name.startswith("z_rail_"):
+            checks.append((name, f"rail {name[7:-2]} deflection", values, PLAUSIBLE["rail_m"], "m"))
+    limit = PLAUSIBLE["force_over_static"] * abs(static_load)
+    for wheel in ("right", "left"):
+        if f"Fz_{wheel}_N" in columns and limit > 0:
+            label = f"{wheel} wheel's normal force"
+            checks.append((wheel, label, columns[f"Fz_{wheel}_N"], limit, "N"))
+    first = None
+    for _, label, values, bound, unit in checks:
+        with np.errstate(invalid="ignore"):
+            bad = np.nonzero(np.abs(np.nan_to_num(values, nan=0.0)) > bound)[0]
+        if bad.size and (first is None or bad[0] < first[0]):
+            first = (int(bad[0]), label, float(values[bad[0]]), bound, unit)
+    if first is None:
+        return
+    i, label, value, bound, unit = first
+    where = f" ({what})" if what else ""
+    raise PassageFailure(
+        f"implausible run stopped at t = {t[i]:.5f} s, x = {x[i]:.3f} m{where}: "
+        f"{label} {value:.4g} {unit} is beyond the physical limit {bound:.4g} {unit}"
+    )
+
+
+def _peak(
+    cols: Mapping[str, np.ndarray], name: str, x_range: tuple[float, float], signed: bool = False
+) -> float:
+    x = cols["x_m"]
+    sel = (x >= x_range[0]) & (x <= x_range[1])
+    if not sel.any():
+        return math.nan
+    values = cols[name][sel]
+    return float(values[np.argmax(np.abs(values))] if signed else values.max())
+
+
+def _contact_losses(fz: np.ndarray) -> int:
+    """Number of times a wheel lost all contact (its total normal force fell to zero)."""
+    loaded = fz > 0.0
+    return int(np.count_nonzero(loaded[:-1] & ~loaded[1:]))
+
+
+def _regions(turnout: Turnout) -> dict[str, tuple[float, float]]:
+    """Regions of the turnout file where peaks are taken (``switch``, ``crossing``)."""
+    return {name: turnout.regions[name] for name in ("switch", "crossing")}
+
+
+def _argpeak(
+    cols: Mapping[str, np.ndarray], name: str, x_range: tuple[float, float], signed: bool
+) -> tuple[float, float]:
+    """(peak, x of the peak) of column ``name`` in x_range; (nan, nan) if none (or all NaN)."""
+    x = cols["x_m"]
+    values = np.where((x >= x_range[0]) & (x <= x_range[1]), cols[name], np.nan)
+    if not np.isfinite(values).any():
+        return math.nan, math.nan
+    i = int(np.nanargmax(np.abs(values)) if signed else np.nanargmax(values))
+    return float(values[i]), float(x[i])
+
+
+def _contact_peaks(
+    columns: Mapping[str, np.ndarray], regions: Mapping[str, tuple[float, float]]
+) -> dict[str, object]:
+    """Peaks per wheel and per contact (rail slot), and which wheel and rail carry each largest one.
+
+    Keys: ``peak_<Fz|Fy>_<region>_<wheel>_<slot>_N`` (every wheel/rail pair of the run),
+    ``peak_<Fz|Fy>_<region>_<wheel>_N`` (per wheel, both wheels), and for the largest
+    (|Fy| for Fy) of the region ``max_<Fz|Fy>_<region>_N``, ``_wheel``, ``_rail``, ``_x_m``.
+    """
+    out: dict[str, object] = {}
+    pairs = [n[3:-2].split("_") for n in columns if n.startswith("Fz_") and n.count("_") == 3]
+    for q, signed in (("Fz", False), ("Fy", True)):
+        for where, rng in regions.items():
+            best = None
+            for wheel in ("right", "left"):
+                peak = _argpeak(columns, f"{q}_{wheel}_N", rng, signed)[0]
+                out[f"peak_{q}_{where}_{wheel}_N"] = peak
+            for wheel, slot in pairs:
+                name = f"{q}_{wheel}_{slot}_N"
+                if name not in columns:
+                    continue
+                value, x = _argpeak(columns, name, rng, signed)
+                out[f"peak_{q}_{where}_{wheel}_{slot}_N"] = value
+                if math.isfinite(value) and (best is None or abs(value) > abs(best[0])):
+                    best = (value, wheel, slot, x)
+            value, wheel_of, rail_of, x_of = best or (math.nan, None, None, math.nan)
+            out[f"max_{q}_{where}_N"], out[f"max_{q}_{where}_wheel"] = value, wheel_of
+            out[f"max_{q}_{where}_rail"], out[f"max_{q}_{where}_x_m"] = rail_of, x_of
+    return out
+
+
+def passage_summary(
+    columns: Mapping[str, np.ndarray],
+    turnout: Turnout,
+    settings: PassageSettings,
+    static_loads: Mapping[str, float],
+    wall_time: float,
+) -> dict[str, object]:
+    """Peaks at the switch and crossing, per wheel and per contact, and the run's settings.
+
+    ``peak_Fz_switch_N`` etc. are the right wheel's (as the paper's Figs 7, 8), ``_left``
+    keys the left wheel's; per wheel ``peak_Fz_crossing_<wheel>_N``, per wheel and contact
+    (rail slot) ``peak_Fz_crossing_<wheel>_<slot>_N``, and ``max_Fz_crossing_N`` with
+    ``_wheel``, ``_rail``, ``_x_m``: which wheel and rail carry the largest force (on the
+    diverging route the left wheel meets the crossing); the same for Fy (largest |Fy|).
+
+    Parameters
+    ----------
+    columns : mapping
+        The passage's columns.
+    turnout : Turnout
+        Its ``[regions]``.
+    settings : PassageSettings
+        Stored under ``settings``.
+    static_loads : mapping
+        Static load (N) of each wheel, "left" and "right".
+    wall_time : float
+        s.
+
+    Returns
+    -------
+    dict
+    """
+    from dataclasses import asdict
+
+    regions = _regions(turnout)
+    out: dict[str, object] = {
+        "route": settings.route,
+        "layers": settings.layers,
+        "source": settings.source,
+        "speed_kmh": settings.speed_kmh,
+        "static_wheel_load_N": float(static_loads["right"]),
+        "static_wheel_load_left_N": float(static_loads["left"]),
+    }
+    for wheel, suffix in (("right", ""), ("left", "_left")):
+        for where, rng in regions.items():
+            out[f"peak_Fz_{where}{suffix}_N"] = _peak(columns, f"Fz_{wheel}_N", rng)
+            out[f"peak_Fy_{where}{suffix}_N"] = _peak(columns, f"Fy_{wheel}_N", rng, signed=True)
+    out.update(_contact_peaks(columns, regions))
+    out["contact_losses"] = sum(_contact_losses(columns[f"Fz_{w}_N"]) for w in ("right", "left"))
+    out["time_step_s"] = settings.time_step
+    h_out = settings.output_step
+    out["output_step_s"] = h_out if h_out is not None else settings.time_step
+    out["x_start_m"], out["x_end_m"] = float(columns["x_m"][0]), float(columns["x_m"][-1])
+    out["simulated_time_s"] = float(columns["t_s"][-1] - columns["t_s"][0])
+    out["wall_time_s"] = wall_time
+    out["switch_region_m"], out["crossing_region_m"] = (
+        list(regions["switch"]),
+        list(regions["crossing"]),
+    )
+    out["settings"] = asdict(settings)
+    return out
+
+
+#: Files a passage command writes into its output directory (cleared before a run).
+OUTPUT_FILES = ("timeseries.csv", "timeseries.npz", "summary.json", "forces.png")
+
+
+def write_passage(
+    result: PassageResult,
+    out_dir,
+    fmt: str = "csv",
+    provenance: Mapping | None = None,
+    figure: Callable | None = None,
+) -> dict[str, str]:
+    """Write the time series and ``summary.json`` into out_dir; return their paths.
+
+    Files are written into a temporary directory inside out_dir and moved into place
+    (``summary.json`` last), so that out_dir never holds a partial or mixed set.
+
+    Parameters
+    ----------
+    result : PassageResult
+    out_dir : str or Path
+        Created if missing.
+    fmt : {"csv", "npz"}
+        ``timeseries.csv`` (columns of a rail that is not part of a zone are empty there,
+        no NaN in the file; 9 significant digits) or ``timeseries.npz`` (one float64 array
+        per column, NaN where a rail is not part of a zone, and ``summary``: the summary
+        as a JSON string).
+    provenance : mapping, optional
+        Stored as ``summary["provenance"]`` (see :mod:`exudyn_turnout.provenance`).
+    figure : callable(directory), optional
+        Draws further files (``forces.png``) into the temporary directory before the move.
+
+    Returns
+    -------
+    dict
+        ``{"timeseries": path, "summary": path}`` (and ``"figure"`` with ``figure``).
+    """
+    import csv
+    import json
+    import os
+    import shutil
+    import tempfile
+    from pathlib import Path
+
+    from exudyn_turnout.provenance import round_floats
+
+    if fmt not in ("csv", "npz"):
+        raise ValueError(f"format must be csv or npz, got {fmt!r}")
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    summary = dict(result.summary)
+    if provenance is not None:
+        summary["provenance"] = dict(provenance)
+    summary_text = json.dumps(round_floats(summary), indent=1)
+    names = list(result.columns)
+    tmp = Path(tempfile.mkdtemp(prefix=".partial-", dir=out))
+    try:
+        series = tmp / f"timeseries.{fmt}"
+        if fmt == "csv":
+            data = np.column_stack([result.columns[n] for n in names])
+            with open(series, "w", newline="", encoding="utf-8") as fh:
+                w = csv.writer(fh)
+                w.writerow(names)
+                for row in data:
+                    w.writerow(["" if not math.isfinite(v) else f"{v:.9g}" for v in row])
+        else:
+            arrays = {n: np.asarray(result.columns[n], dtype=float) for n in names}
+            arrays["summary"] = np.array(summary_text)
+            np.savez(series, **arrays)  # type: ignore[arg-type]  # numpy's stub: **kwds
+        (tmp / "summary.json").write_text(summary_text + "\n", encoding="utf-8")
+        files = [series.name]
+        if figure is not None:
+            figure(tmp)
+            written = (series.name, "summary.json")
+            files += sorted(p.name for p in tmp.iterdir() if p.name not in written)
+        for name in files + ["summary.json"]:
+            os.replace(tmp / name, out / name)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    paths = {"timeseries": str(out / f"timeseries.{fmt}"), "summary": str(out / "summary.json")}
+    if figure is not None:
+        paths["figure"] = str(out / "forces.png")
+    return paths
+
+
+def peaks_table(results: Mapping[str, PassageResult]) -> str:
+    """Plain-text table of the right wheel's peak forces (kN) of labelled results.
+
+    Parameters
+    ----------
+    results : mapping
+        Label -> PassageResult.
+
+    Returns
+    -------
+    str
+    """
+    keys = ("peak_Fz_switch_N", "peak_Fz_crossing_N", "peak_Fy_switch_N", "peak_Fy_crossing_N")
+    lines = [f"{'model':<28}" + "".join(f"{k[5:-2]:>18}" for k in keys) + f"{'wall (s)':>10}"]
+    for label, r in results.items():
+        lines.append(
+            f"{label:<28}"
+            + "".join(f"{float(r.summary[k]) / 1e3:>18.1f}" for k in keys)  # type: ignore[arg-type]
+            + f"{float(r.summary['wall_time_s']):>10.2f}"  # type: ignore[arg-type]
+        )
+    return "\n".join(lines)
