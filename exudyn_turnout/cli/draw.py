@@ -58,6 +58,7 @@ def _run_section(args: argparse.Namespace) -> int:
 
 
 def _run_passage(args: argparse.Namespace) -> int:
+    from exudyn_turnout.cli.passage import route_from_args
     from exudyn_turnout.inputs.vehicle import load_vehicle
     from exudyn_turnout.passage.results import PassageError, PassageSettings
     from exudyn_turnout.passage.simulate import simulate_passage
@@ -67,7 +68,7 @@ def _run_passage(args: argparse.Namespace) -> int:
     turnout = turnout_from_args(args)
     vehicle = load_vehicle(args.vehicle)
     settings = PassageSettings(
-        route=args.route or "through",
+        route=route_from_args(args, turnout),
         speed_kmh=args.speed,
         layers=args.layers,
         source=args.source,
@@ -98,7 +99,9 @@ def build(sub: argparse._SubParsersAction) -> None:
     add_turnout_options(section)
     add_position_options(section)
     section.add_argument("--layers", type=int, choices=(2, 3), default=3)
-    section.add_argument("--route", help="route whose rail positions to draw (default: zone's)")
+    section.add_argument(
+        "--route", metavar="NAME", help="route whose rail positions to draw (default: zone's)"
+    )
     section.add_argument("--vehicle", metavar="FILE", help="vehicle file drawn above the track")
     section.add_argument("--no-vehicle", action="store_true", help="draw the track only")
     section.add_argument("--out", required=True, metavar="FILE.png")
@@ -107,13 +110,19 @@ def build(sub: argparse._SubParsersAction) -> None:
     passage = kinds.add_parser("passage", help="a GIF of a passage's cross-section")
     add_turnout_options(passage)
     passage.add_argument("--layers", type=int, choices=(2, 3), default=3)
-    passage.add_argument("--route", help="route (default: through)")
+    passage.add_argument(
+        "--route", metavar="NAME", help="route (default: through, or the file's first route)"
+    )
     passage.add_argument("--vehicle", metavar="FILE", help="vehicle file")
     passage.add_argument("--speed", type=number, default=100.0, metavar="KMH")
     passage.add_argument("--x-start", type=number, metavar="M")
     passage.add_argument("--x-end", type=number, metavar="M")
     passage.add_argument(
-        "--scale", type=number, default=200.0, help="displacement magnification (default 200)"
+        "--scale",
+        type=number,
+        default=200.0,
+        metavar="S",
+        help="displacement magnification (default 200)",
     )
     passage.add_argument("--out", required=True, metavar="FILE.gif")
     passage.set_defaults(run=_run_passage)
