@@ -58,23 +58,17 @@ def _run_section(args: argparse.Namespace) -> int:
 
 
 def _run_passage(args: argparse.Namespace) -> int:
-    from exudyn_turnout.cli.passage import route_from_args
+    from exudyn_turnout.cli.passage import route_from_args, settings_from_args
     from exudyn_turnout.inputs.vehicle import load_vehicle
-    from exudyn_turnout.passage.results import PassageError, PassageSettings
+    from exudyn_turnout.passage.results import PassageError
     from exudyn_turnout.passage.simulate import simulate_passage
     from exudyn_turnout.plotting.model import animate_passage
 
     out = _check_file(args.out, ".gif")
     turnout = turnout_from_args(args)
     vehicle = load_vehicle(args.vehicle)
-    settings = PassageSettings(
-        route=route_from_args(args, turnout),
-        speed_kmh=args.speed,
-        layers=args.layers,
-        source=args.source,
-        x_start=args.x_start,
-        x_end=args.x_end,
-    )
+    args.route = route_from_args(args, turnout)
+    settings = settings_from_args(args, layers=args.layers, source=args.source)
     try:
         result = simulate_passage(turnout, settings, vehicle)
     except PassageError as err:

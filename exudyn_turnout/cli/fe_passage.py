@@ -11,7 +11,12 @@ import argparse
 from typing import TYPE_CHECKING
 
 from exudyn_turnout.cli.main import UsageError, check_out_dir, number
-from exudyn_turnout.cli.passage import add_passage_options, route_from_args, run_passage_command
+from exudyn_turnout.cli.passage import (
+    add_passage_options,
+    route_from_args,
+    run_passage_command,
+    settings_from_args,
+)
 
 if TYPE_CHECKING:
     from exudyn_turnout.passage.fe_track import FEPassageOptions
@@ -36,21 +41,13 @@ def _run(args: argparse.Namespace) -> int:
     from exudyn_turnout.inputs.turnout import load_turnout
     from exudyn_turnout.inputs.vehicle import load_vehicle
     from exudyn_turnout.passage.fe_track import simulate_fe_passage
-    from exudyn_turnout.passage.results import PassageSettings
 
     check_out_dir(args.out)
     turnout = load_turnout(args.turnout)
     vehicle = load_vehicle(args.vehicle)
     args.route = route_from_args(args, turnout)
     options = _options(args)
-    settings = PassageSettings(
-        route=args.route,
-        speed_kmh=args.speed,
-        x_start=args.x_start,
-        x_end=args.x_end,
-        time_step=args.time_step,
-        output_step=args.output_step,
-    )
+    settings = settings_from_args(args)
     return run_passage_command(
         args,
         lambda bar: simulate_fe_passage(

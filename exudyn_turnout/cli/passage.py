@@ -17,28 +17,59 @@ from exudyn_turnout.cli.main import (
     turnout_from_args,
 )
 
-__all__ = ["build", "run_passage_command", "add_passage_options", "route_from_args"]
+__all__ = [
+    "build",
+    "run_passage_command",
+    "add_passage_options",
+    "route_from_args",
+    "settings_from_args",
+]
+
+
+def settings_from_args(args: argparse.Namespace, **track_options):
+    """The scenario of ``--route``, ``--speed``, ``--x-start/--x-end`` and the steps.
+
+    Shared by ``simulate``, ``fe simulate`` and ``draw passage``; options a command does not
+    have (``--time-step``, ``--output-step``) keep the defaults.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed options; ``args.route`` already checked (:func:`route_from_args`).
+    **track_options
+        Further :class:`~exudyn_turnout.passage.results.PassageSettings` fields (``layers``,
+        ``source``).
+
+    Returns
+    -------
+    PassageSettings
+    """
+    from exudyn_turnout.passage.results import DEFAULT_SETTINGS, PassageSettings
+
+    return PassageSettings(
+        route=args.route,
+        speed_kmh=args.speed,
+        x_start=args.x_start,
+        x_end=args.x_end,
+        time_step=(
+            DEFAULT_SETTINGS.time_step
+            if getattr(args, "time_step", None) is None
+            else args.time_step
+        ),
+        output_step=getattr(args, "output_step", None),
+        **track_options,
+    )
 
 
 def _run(args: argparse.Namespace) -> int:
     from exudyn_turnout.inputs.vehicle import load_vehicle
-    from exudyn_turnout.passage.results import PassageSettings
     from exudyn_turnout.passage.simulate import simulate_passage
 
     check_out_dir(args.out)
     turnout = turnout_from_args(args)
     vehicle = load_vehicle(args.vehicle)
     args.route = route_from_args(args, turnout)
-    settings = PassageSettings(
-        route=args.route,
-        speed_kmh=args.speed,
-        layers=args.layers,
-        source=args.source,
-        x_start=args.x_start,
-        x_end=args.x_end,
-        time_step=args.time_step,
-        output_step=args.output_step,
-    )
+    settings = settings_from_args(args, layers=args.layers, source=args.source)
     return run_passage_command(
         args,
         lambda bar: simulate_passage(turnout, settings, vehicle=vehicle, progress=bar),

@@ -25,7 +25,6 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from pathlib import Path
 
 from exudyn_turnout.corunning import equations as eq
 from exudyn_turnout.inputs.turnout import (
@@ -181,18 +180,8 @@ def reference_rail_type(turnout: Turnout) -> str:
     str
         A key of ``turnout.rail_types``.
 
-    Raises
-    ------
-    ValueError
-        The file names a rail type it does not define.
     """
-    name = turnout.reference_rail_type
-    if name not in turnout.rail_types:
-        raise ValueError(
-            f"{Path(turnout.source).name}: turnout.reference_rail_type {name!r} is not "
-            f"a rail type of the file ({', '.join(turnout.rail_types)})"
-        )
-    return name
+    return turnout.reference_rail_type  # validated by the loader
 
 
 def reference_support(turnout: Turnout) -> RailSupport:
