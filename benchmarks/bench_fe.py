@@ -7,6 +7,9 @@ UIC60-760-1:15 turnout with the default FE options:
 - the point receptance of slot r2 at x (the crossing rail by default), vertical and
   lateral, n log-spaced frequencies 1-2000 Hz: wall and CPU time, split into the block
   elimination (Schur complement), the sparse LU and the solve with its residual check;
+- the lateral receptance with rail torsion (60E1 roll + warping DOFs, force at the gauge
+  corner; the default of ``fe_receptance`` for the lateral plane), same point and
+  frequencies, and its cost relative to the planar lateral model;
 - the static stiffness profile of every rail at every sleeper, both planes;
 - the peak memory of the process (ru_maxrss). Targets: receptance <= 10 s,
   < 2 GB; profile <= 60 s. The timings are of this one run on this machine.
@@ -21,12 +24,13 @@ import time
 import numpy as np
 import scipy.sparse.linalg as sla
 
-from exudyn_turnout.fe.frf import sweep
+from exudyn_turnout.fe.frf import sweep, sweep_vectors
 from exudyn_turnout.fe.layout import load_layout
 from exudyn_turnout.fe.mesh import FEOptions, build_mesh
 from exudyn_turnout.fe.model import assemble
 from exudyn_turnout.fe.solver import condense, default_keep
 from exudyn_turnout.fe.stiffness import static_stiffness_profile
+from exudyn_turnout.fe.torsion import UIC60_SECTION
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.receptance import log_frequencies
 
@@ -95,6 +99,30 @@ def receptance_rows(turnout, layout, direction, x, f) -> list[tuple[str, str]]:
     return rows
 
 
+def torsion_rows(turnout, layout, x, f, planar_wall: float) -> list[tuple[str, str]]:
+    """Lateral model with rail torsion: DOFs, build and sweep time, ratio to the planar one."""
+    rail = layout.slot_rail("r2", x)
+    with Clock() as build:
+        mesh = build_mesh(turnout, layout, FEOptions(), points={rail: [x]})
+        model = assemble(turnout, mesh, "lateral", torsion=UIC60_SECTION)
+    b = model.head_vector(rail, x, UIC60_SECTION.gauge_corner_height)
+    keep = np.union1d(default_keep(model), np.nonzero(b)[0])
+    with Clock() as run:
+        sweep_vectors(model, b[:, None], f)
+    return [
+        (
+            "lateral + torsion: DOFs (full / kept after condensation)",
+            f"{model.n_dof} / {len(keep)}",
+        ),
+        ("lateral + torsion: build mesh + assemble", f"{build.wall:.2f} s"),
+        (
+            f"lateral + torsion: receptance at the gauge corner, {len(f)} freq.",
+            f"{run.wall:.2f} s wall, {run.cpu:.2f} s CPU, {1e3 * run.wall / len(f):.1f} ms/freq.",
+        ),
+        ("lateral + torsion: sweep time / planar lateral sweep", f"{run.wall / planar_wall:.2f}"),
+    ]
+
+
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--n", type=int, default=400, help="frequencies, 1-2000 Hz (default 400)")
@@ -108,6 +136,8 @@ def main(argv=None) -> None:
     rows = [("FE options", str(FEOptions()))]
     for direction in ("vertical", "lateral"):
         rows += receptance_rows(turnout, layout, direction, args.x, f)
+    planar_wall = float(next(v for k, v in rows if k.startswith("lateral: receptance")).split()[0])
+    rows += torsion_rows(turnout, layout, args.x, f, planar_wall)
     with Clock() as prof:
         profile = static_stiffness_profile(turnout, layout)
     rows += [

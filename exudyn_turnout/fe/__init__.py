@@ -13,7 +13,9 @@ do not have; this package builds our own from the same Table 1 properties:
 - :mod:`.frf`         point receptance (a :class:`~exudyn_turnout.receptance.Receptance`);
 - :mod:`.stiffness`   static stiffness at every sleeper (paper Fig. 1(b,c));
 - :mod:`.fits`        Eq 10 / Eq 14 analogues fitted to it;
-- :mod:`.continuous`  one rail on a smeared support, the check against the closed form.
+- :mod:`.continuous`  one rail on a smeared support, the check against the closed form;
+- :mod:`.torsion`     rail torsion (60E1 section data, torsion-warping elements, pad roll);
+- :mod:`.rail_head`   a contact on the rail head: load vector and displacement (passage).
 """
 
 from exudyn_turnout.fe.fits import (
@@ -25,7 +27,9 @@ from exudyn_turnout.fe.fits import (
 from exudyn_turnout.fe.frf import fe_receptance
 from exudyn_turnout.fe.layout import Layout, load_layout, plain_track_layout
 from exudyn_turnout.fe.mesh import FEOptions
+from exudyn_turnout.fe.rail_head import RailHeadPoint, rail_head_point
 from exudyn_turnout.fe.stiffness import StiffnessProfile, static_stiffness_profile
+from exudyn_turnout.fe.torsion import UIC60_SECTION, RailTorsionSection
 
 __all__ = [
     "FEOptions",
@@ -39,4 +43,8 @@ __all__ = [
     "TurnoutFits",
     "fit_turnout_profiles",
     "with_fitted_profiles",
+    "RailTorsionSection",
+    "UIC60_SECTION",
+    "RailHeadPoint",
+    "rail_head_point",
 ]

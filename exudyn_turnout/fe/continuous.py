@@ -8,10 +8,18 @@ the discrete supports of Table 1 smeared over the sleeper spacing L_s. The sleep
 u(x) is interpolated like w; its matrices are the Gram matrix of the shape functions
 times the layer values. The ends absorb: beyond ``length`` the rail's loss factor grows
 quadratically to ``eta_max`` over ``absorbing_length`` (as in the turnout model).
+
+For the torsion-aware lateral model, :func:`lateral_torsion_closed_form` evaluates the
+closed form :func:`~exudyn_turnout.fe.analytic.infinite_rail_lateral_torsion_receptance`
+with a rail type's data and its smeared lateral support, and :func:`refined_supports`
+gives a turnout whose discrete supports approach that continuous support (closer sleepers
+at the same support per unit length, rigid sleepers), on which the turnout FE itself
+(:func:`~exudyn_turnout.fe.model.assemble`) can be compared with the closed form.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -19,11 +27,22 @@ import scipy.sparse.linalg as sla
 from numpy.typing import ArrayLike
 
 from exudyn_turnout.fe import timoshenko as tim
+from exudyn_turnout.fe.analytic import (
+    infinite_rail_lateral_torsion_receptance,
+    two_layer_support,
+)
 from exudyn_turnout.fe.mesh import FEOptions
 from exudyn_turnout.fe.model import Triplets, rail_section
+from exudyn_turnout.fe.torsion import RailTorsionSection, pad_roll_stiffness
 from exudyn_turnout.inputs.turnout import Turnout
 
-__all__ = ["ContinuousSupport", "smeared_support", "continuous_beam_receptance"]
+__all__ = [
+    "ContinuousSupport",
+    "smeared_support",
+    "continuous_beam_receptance",
+    "lateral_torsion_closed_form",
+    "refined_supports",
+]
 
 #: Default options of :func:`continuous_beam_receptance`: no rail damping, as the closed form.
 _CLOSED_FORM_OPTIONS = FEOptions(rail_loss_factor=0.0)
@@ -173,3 +192,131 @@ def continuous_beam_receptance(
         force[dof] = 1.0
         out.append(sla.splu((A + 1j * omega * D - omega**2 * M).tocsc()).solve(force)[dof])
     return np.array(out)
+
+
+def lateral_torsion_closed_form(
+    turnout: Turnout,
+    section: RailTorsionSection,
+    frequencies: ArrayLike,
+    height: float,
+    rail_type: str = "stock",
+    eta: float = 0.0,
+    warping: bool | None = None,
+) -> np.ndarray:
+    """Closed-form lateral receptance of one rail type on its smeared support, with torsion.
+
+    Rail: Table 1 section of ``rail_type`` (lateral bending), torsion data of ``section``;
+    support: :func:`smeared_support` (lateral pad, whole sleeper, lateral ballast) at the
+    rail foot, the pads' roll stiffness k_z b^2 / 12 per sleeper spacing.
+
+    Parameters
+    ----------
+    turnout : Turnout
+        Table 1 properties.
+    section : RailTorsionSection
+        Torsion data and geometry.
+    frequencies : array_like
+        Hz.
+    height : float
+        Height of the lateral load and response above the shear centre (m).
+    rail_type : str
+        Rail type (section, pads).
+    eta : float
+        Rail loss factor.
+    warping : bool, optional
+        Override ``section.warping``.
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex receptance (m/N), one value per frequency.
+    """
+    rail = turnout.rail_types[rail_type]
+    lateral = {
+        name: float(np.ravel(value)[0])
+        for name, value in rail_section(turnout, rail_type, np.array([0.0]), "lateral").items()
+    }
+    E, rho = rail.youngs_modulus, rail.density
+    G = E / (2.0 * (1.0 + rail.poisson))
+    omega = 2 * np.pi * np.asarray(frequencies, float)
+    support = smeared_support(turnout, rail_type, "lateral")
+    s_y = two_layer_support(
+        omega, support.k_p, support.c_p, support.m_s, support.k_b, support.c_b, 1.0
+    )
+    k_phi = pad_roll_stiffness(rail.pad.k_z + 1j * omega * rail.pad.c_z, section.foot_width) / (
+        turnout.sleeper.spacing
+    )
+    with_warping = section.warping if warping is None else warping
+    GJ = G * section.J_t
+    return infinite_rail_lateral_torsion_receptance(
+        omega,
+        lateral["EI"],
+        lateral["kGA"],
+        lateral["rhoA"],
+        lateral["rhoI"],
+        GJ,
+        E * section.C_w if with_warping else 0.0,
+        section.warping_penalty * GJ,
+        rho * section.I_p,
+        section.centroid_offset,
+        s_y,
+        section.foot_depth,
+        k_phi,
+        height,
+        eta=eta,
+        rhoCw=rho * section.C_w,
+    )
+
+
+def refined_supports(turnout: Turnout, spacing: float, rigid_factor: float = 1e3) -> Turnout:
+    """The turnout with sleepers ``spacing`` apart and the same support per unit length.
+
+    Pads (all four values), sleeper mass and ballast per sleeper scale with
+    spacing / L_s; the sleepers' Young's modulus is multiplied by ``rigid_factor`` (the
+    smeared support of :func:`smeared_support` treats the sleeper as a rigid mass). With
+    a spacing well below the bending and torsional wavelengths the discrete FE approaches
+    the continuous support of the closed form (the pinned-pinned frequency moves up by
+    (L_s / spacing)^2).
+
+    Parameters
+    ----------
+    turnout : Turnout
+        The turnout.
+    spacing : float
+        New sleeper spacing (m).
+    rigid_factor : float
+        Factor on the sleeper's Young's modulus.
+
+    Returns
+    -------
+    Turnout
+        A modified copy.
+    """
+    scale = spacing / turnout.sleeper.spacing
+    sleeper = dataclasses.replace(
+        turnout.sleeper,
+        spacing=spacing,
+        density=turnout.sleeper.density * scale,
+        youngs_modulus=turnout.sleeper.youngs_modulus * rigid_factor,
+    )
+    ballast = dataclasses.replace(
+        turnout.ballast,
+        s_b_z=turnout.ballast.s_b_z * scale,
+        d_b_z=turnout.ballast.d_b_z * scale,
+        s_b_y=turnout.ballast.s_b_y * scale,
+        d_b_y=turnout.ballast.d_b_y * scale,
+    )
+    rail_types = {
+        name: dataclasses.replace(
+            rail,
+            pad=dataclasses.replace(
+                rail.pad,
+                k_z=rail.pad.k_z * scale,
+                c_z=rail.pad.c_z * scale,
+                k_y=rail.pad.k_y * scale,
+                c_y=rail.pad.c_y * scale,
+            ),
+        )
+        for name, rail in turnout.rail_types.items()
+    }
+    return dataclasses.replace(turnout, sleeper=sleeper, ballast=ballast, rail_types=rail_types)

@@ -20,10 +20,19 @@ from exudyn_turnout.fe.layout import Layout, load_layout
 from exudyn_turnout.fe.mesh import FEOptions, build_mesh
 from exudyn_turnout.fe.model import PlaneModel, assemble
 from exudyn_turnout.fe.solver import condense, default_keep
+from exudyn_turnout.fe.torsion import UIC60_SECTION, RailTorsionSection
 from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Turnout
 from exudyn_turnout.receptance import Receptance, log_frequencies
 
-__all__ = ["sweep", "sweep_points", "point_receptances", "resolve_rail", "fe_receptance"]
+__all__ = [
+    "sweep",
+    "sweep_points",
+    "sweep_vectors",
+    "point_receptances",
+    "resolve_rail",
+    "load_height",
+    "fe_receptance",
+]
 
 _DEFAULT_OPTIONS = FEOptions()
 
@@ -71,11 +80,34 @@ def sweep_points(
         Complex receptances (m/N), shape (n_frequencies, n_points).
     """
     B = np.column_stack([model.point_vector(rail_id, x) for rail_id, x in points])
+    return sweep_vectors(model, B, frequencies)
+
+
+def sweep_vectors(model: PlaneModel, B: np.ndarray, frequencies: ArrayLike) -> np.ndarray:
+    """Receptances b^T Z^-1 b of general load/response vectors, one factorisation per frequency.
+
+    Parameters
+    ----------
+    model : PlaneModel
+        The assembled model.
+    B : numpy.ndarray
+        (n_dof, m) vectors b, each both the load and the response (e.g.
+        :meth:`~exudyn_turnout.fe.model.PlaneModel.head_vector`); the DOFs they touch
+        are kept in the condensation.
+    frequencies : array_like
+        Frequencies (Hz).
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex receptances (m/N or per unit of b), shape (n_frequencies, m).
+    """
+    B = np.asarray(B, float).reshape(model.n_dof, -1)
     system = condense(model, np.union1d(default_keep(model), np.nonzero(B.any(axis=1))[0]))
-    B = system.restrict(B).astype(complex)
+    Bk = system.restrict(B).astype(complex)
     return np.array(
         [
-            np.einsum("ij,ij->j", B, system.solve(2 * np.pi * frequency, B))
+            np.einsum("ij,ij->j", Bk, system.solve(2 * np.pi * frequency, Bk))
             for frequency in np.asarray(frequencies, float)
         ]
     )
@@ -147,6 +179,41 @@ def resolve_rail(layout: Layout, rail: str, x: float, route: str = "through") ->
     return rail
 
 
+def load_height(section: RailTorsionSection, height: str | float) -> float:
+    """Height of a lateral load above the rail's shear centre (m).
+
+    Parameters
+    ----------
+    section : RailTorsionSection
+        Rail section.
+    height : {"head", "shear_centre"} or float
+        ``"head"``: the gauge corner (``contact_depth`` below the rail top);
+        ``"shear_centre"``: 0; a number: metres above the rail foot's underside.
+
+    Returns
+    -------
+    float
+        z above the shear centre (m).
+
+    Raises
+    ------
+    ValueError
+        An unknown name, or a height outside the rail.
+    """
+    if height == "head":
+        return section.gauge_corner_height
+    if height == "shear_centre":
+        return 0.0
+    if isinstance(height, str):
+        raise ValueError(f"height must be 'head', 'shear_centre' or metres, got {height!r}")
+    if not 0.0 <= float(height) <= section.height:
+        raise ValueError(
+            f"height must be within the rail (0 to {section.height:g} m above the foot), "
+            f"got {height!r}"
+        )
+    return float(height) - section.shear_centre_height
+
+
 def fe_receptance(
     turnout: Turnout,
     rail: str,
@@ -156,6 +223,8 @@ def fe_receptance(
     route: str = "through",
     options: FEOptions = _DEFAULT_OPTIONS,
     layout: Layout | None = None,
+    torsion: RailTorsionSection | bool = True,
+    height: str | float = "head",
 ) -> Receptance:
     """Point receptance of the FE turnout model at one rail position.
 
@@ -178,28 +247,46 @@ def fe_receptance(
         Discretisation, rail damping and model ends.
     layout : Layout, optional
         Default :func:`~exudyn_turnout.fe.layout.load_layout` of the turnout.
+    torsion : RailTorsionSection or bool
+        Lateral only: rail torsion (:mod:`~exudyn_turnout.fe.torsion`); True (default)
+        the 60E1 section :data:`~exudyn_turnout.fe.torsion.UIC60_SECTION`, False the
+        planar lateral model (force and response at the rail, no roll).
+    height : {"head", "shear_centre"} or float
+        Lateral with torsion only: where the lateral force acts and the displacement is
+        taken (:func:`load_height`); default the gauge corner of the rail head.
 
     Returns
     -------
     Receptance
-        model "FE", ``metadata`` with the rail id, the DOF count and the options.
+        model "FE", ``metadata`` with the rail id, the DOF count, the options and, for
+        the lateral plane, the torsion section and the load height above the shear centre.
 
     Raises
     ------
     ValueError
-        The rail is not present at x, or x is outside the model.
+        The rail is not present at x, x is outside the model, or a bad height.
     """
     layout = layout or load_layout(turnout)
     rail_id = resolve_rail(layout, rail, float(x), route)
     frequency = log_frequencies() if frequencies is None else np.asarray(frequencies, float)
+    section = (UIC60_SECTION if torsion is True else torsion) or None
+    if direction != "lateral":
+        section = None
+    z = load_height(section, height) if section is not None else 0.0
     model = assemble(
-        turnout, build_mesh(turnout, layout, options, points={rail_id: [float(x)]}), direction
+        turnout,
+        build_mesh(turnout, layout, options, points={rail_id: [float(x)]}),
+        direction,
+        torsion=section,
     )
-    H = sweep(model, rail_id, float(x), frequency)
+    H = sweep_vectors(model, model.head_vector(rail_id, float(x), z)[:, None], frequency)[:, 0]
     metadata = {
         "rail_id": rail_id,
         "route": route,
         "n_dof": model.n_dof,
         "options": asdict(options),
     }
+    if direction == "lateral":
+        metadata["torsion"] = asdict(section) if section is not None else None
+        metadata["height_above_shear_centre_m"] = z
     return Receptance(frequency, H, rail, direction, float(x), "FE", metadata)

@@ -38,6 +38,7 @@ __all__ = [
     "Layout",
     "load_layout",
     "plain_track_layout",
+    "single_rail_layout",
 ]
 
 #: Name of the track whose sleepers are the turnout's bearers.
@@ -551,6 +552,49 @@ def plain_track_layout(
     fits = {"K_sw": FitRange("right", -half, half), "K_sh": FitRange("right", -half, half)}
     return Layout(
         "plain track",
+        -half,
+        half,
+        sleeper_x0,
+        {"through": Route("through", 0.0)},
+        tracks,
+        rails,
+        slots,
+        fits,
+    )
+
+
+def single_rail_layout(
+    rail_type: str = "stock",
+    length: float = 6.0,
+    sleeper_length: float = 2.5,
+    sleeper_x0: float = 0.0,
+) -> Layout:
+    """One straight rail centred on sleepers of one length: the FE analogue of one rail on
+    its smeared support (each sleeper carries this rail only, as in Eq 13).
+
+    Parameters
+    ----------
+    rail_type : str
+        Rail type of the turnout's Table 1.
+    length : float
+        m, x range [-length/2, length/2] of the layout.
+    sleeper_length : float
+        m, length of every sleeper.
+    sleeper_x0 : float
+        m, a sleeper at x = sleeper_x0 + i L_s.
+
+    Returns
+    -------
+    Layout
+        Rail ``"rail"`` (slot r1) on the through route at y = 0.
+    """
+    half = length / 2.0
+    tracks = {TURNOUT_TRACK: Track(TURNOUT_TRACK, "through", sleeper_length)}
+    rails = (LayoutRail("rail", "rail", "through", 0.0, (Segment(rail_type, -half, half),)),)
+    slots = {"through": {"r1": (SlotRange("rail", -half, half),)}}
+    fits = {"K_sw": FitRange("rail", -half, half), "K_sh": FitRange("rail", -half, half)}
+    return Layout(
+        "single rail",
         -half,
         half,
         sleeper_x0,

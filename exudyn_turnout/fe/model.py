@@ -25,14 +25,25 @@ Why two planar models instead of the paper's 3-D one
 ---------------------------------------------------
 With the load at the shear centre and sections symmetric about the vertical, vertical and
 lateral bending of a rail are uncoupled. They couple only through eccentricities: the
-lateral pad force acts at the rail foot, h_t / 2 = 0.11 m above the sleeper's axis, and
-the lateral load at the rail head ~0.17 m above the shear centre rolls the rail. Table 1
-gives neither rail torsion, rail heights nor pad roll stiffness, so a coupled model would
-rest on invented data; the paper's own equivalent parameters (Eqs 1-15) treat the two
-directions separately, and so do the co-running models we compare with. The vertical
+lateral pad force acts at the rail foot, below the shear centre, and the lateral load at
+the rail head ~0.11 m above it rolls the rail. Table 1 gives neither rail torsion, rail
+heights nor pad roll stiffness; the paper's own equivalent parameters (Eqs 1-15) treat the
+two directions separately, and so do the co-running models we compare with. The vertical
 receptance is unaffected to first order (a vertical load on a symmetric section excites
-no lateral motion); the lateral one misses rail roll, which lowers the lateral stiffness
-of a real rail above ~500 Hz and is not in the paper's model either.
+no lateral motion, and the pad's vertical springs, symmetric about the shear centre,
+resist roll without heave); the planar lateral one misses rail roll, which lowers the
+lateral stiffness at the rail head above a few hundred Hz.
+
+Rail torsion (lateral plane, optional)
+--------------------------------------
+``assemble(..., torsion=RailTorsionSection())`` adds to every rail node of the lateral
+model the roll phi (and, with warping, the warping variable theta) of
+:mod:`~exudyn_turnout.fe.torsion` (60E1 data there, not from Table 1): St Venant and
+warping stiffness, roll inertia about the shear centre, the mass coupling rho A e_c of the
+centroid's offset, the rail's loss factor on all of it. The lateral pad then acts at the
+rail foot, ``foot_depth`` below the shear centre (it stretches by v + d phi - u_sleeper),
+and a roll spring k_z b^2 / 12 (damping c_z b^2 / 12) of the vertical pad joins phi to
+ground. Without ``torsion`` the lateral model is the planar one, unchanged.
 """
 
 from __future__ import annotations
@@ -41,9 +52,17 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
+from numpy.typing import ArrayLike
 
 from exudyn_turnout.fe import timoshenko as tim
 from exudyn_turnout.fe.mesh import Mesh
+from exudyn_turnout.fe.torsion import (
+    RailTorsionSection,
+    pad_roll_stiffness,
+    polar_moment_about_shear_centre,
+    torsion_mass,
+    torsion_stiffness,
+)
 from exudyn_turnout.inputs.turnout import Turnout
 
 __all__ = ["DIRECTIONS", "PlaneModel", "Triplets", "rail_section", "element_nodes", "assemble"]
@@ -59,7 +78,9 @@ class PlaneModel:
     Nodes: the mesh's rail vertex nodes first, then the interior nodes of every rail
     element (order p: p - 1 each), then the sleeper vertex and interior nodes likewise.
     A rail node has DOFs (2k, 2k + 1) = (w or v, psi); a sleeper node 2 DOFs (vertical: w,
-    rotation) or 1 (lateral: axial u) after all rail DOFs.
+    rotation) or 1 (lateral: axial u) after all rail DOFs. With torsion (lateral plane),
+    rail node k also has the roll phi at ``torsion_dof_offset + n_t k`` (and the warping
+    variable theta at the next DOF, n_t = 2) after all sleeper DOFs.
     """
 
     direction: str  #: "vertical" or "lateral"
@@ -71,6 +92,35 @@ class PlaneModel:
     M: sp.csc_matrix  #: kg, mass
     rail_elem_nodes: np.ndarray  #: (n, p + 1) nodes of each rail element, along x
     sleeper_dof_offset: int  #: first sleeper DOF (all rail DOFs come before)
+    torsion: RailTorsionSection | None = None  #: rail torsion data, None: no roll DOFs
+    torsion_dof_offset: int = -1  #: first torsion DOF (after the sleeper DOFs), -1: none
+
+    @property
+    def torsion_dofs_per_node(self) -> int:
+        """Torsion DOFs per rail node: 0 (none), 1 (phi) or 2 (phi, theta)."""
+        return 0 if self.torsion is None else self.torsion.dofs_per_node
+
+    def roll_dof(self, node: ArrayLike) -> np.ndarray:
+        """Global DOF of the roll phi of rail node(s).
+
+        Parameters
+        ----------
+        node : array_like of int
+            Rail node indices (vertex or interior).
+
+        Returns
+        -------
+        numpy.ndarray
+            DOF indices, of the shape of ``node``.
+
+        Raises
+        ------
+        ValueError
+            The model has no torsion DOFs.
+        """
+        if self.torsion is None:
+            raise ValueError("the model has no rail torsion DOFs (assemble with torsion=...)")
+        return self.torsion_dof_offset + self.torsion_dofs_per_node * np.asarray(node)
 
     @property
     def n_dof(self) -> int:
@@ -88,7 +138,9 @@ class PlaneModel:
         per_sleeper_node = 2 if self.direction == "vertical" else 1
         rail = np.arange(2 * self.mesh.n_rail_nodes)
         sleeper = self.sleeper_dof_offset + np.arange(per_sleeper_node * self.mesh.n_sleeper_nodes)
-        return np.concatenate([rail, sleeper])
+        n_t = self.torsion_dofs_per_node
+        torsion = self.torsion_dof_offset + np.arange(n_t * self.mesh.n_rail_nodes)
+        return np.concatenate([rail, sleeper, torsion if n_t else []]).astype(int)
 
     def dynamic_stiffness(self, omega: float) -> sp.csc_matrix:
         """Dynamic stiffness Z(omega) = K + iG + i omega D - omega^2 M.
@@ -126,6 +178,31 @@ class PlaneModel:
         """
         b = np.zeros(self.n_dof)
         b[2 * self.mesh.node_at(rail_id, x)] = 1.0
+        return b
+
+    def head_vector(self, rail_id: str, x: float, height: float) -> np.ndarray:
+        """b with u_y = b . q: lateral displacement at a height above the shear centre (T1).
+
+        u_y = v - z phi (also the load vector of a unit lateral force there: torque -z).
+        Without torsion DOFs it is :meth:`point_vector` (the planar model has no roll).
+
+        Parameters
+        ----------
+        rail_id : str
+            Layout rail id.
+        x : float
+            Position from the switch toe (m); must be a node.
+        height : float
+            z, height above the shear centre (m).
+
+        Returns
+        -------
+        numpy.ndarray
+            b (n_dof,).
+        """
+        b = self.point_vector(rail_id, x)
+        if self.torsion is not None:
+            b[self.roll_dof(self.mesh.node_at(rail_id, x))] = -height
         return b
 
 
@@ -260,7 +337,12 @@ def _beam_dofs(nodes: np.ndarray, offset: int = 0) -> np.ndarray:
     return offset + np.stack([2 * nodes, 2 * nodes + 1], axis=-1).reshape(len(nodes), -1)
 
 
-def assemble(turnout: Turnout, mesh: Mesh, direction: str) -> PlaneModel:
+def assemble(
+    turnout: Turnout,
+    mesh: Mesh,
+    direction: str,
+    torsion: RailTorsionSection | None = None,
+) -> PlaneModel:
     """Sparse model of one plane (see the module docstring).
 
     Parameters
@@ -271,6 +353,9 @@ def assemble(turnout: Turnout, mesh: Mesh, direction: str) -> PlaneModel:
         From :func:`~exudyn_turnout.fe.mesh.build_mesh`.
     direction : {"vertical", "lateral"}
         Bending plane.
+    torsion : RailTorsionSection, optional
+        Rail torsion data: adds the roll (and warping) DOFs to the lateral plane (see the
+        module docstring). Ignored for the vertical plane (no roll by symmetry).
 
     Returns
     -------
@@ -284,11 +369,14 @@ def assemble(turnout: Turnout, mesh: Mesh, direction: str) -> PlaneModel:
     """
     if direction not in DIRECTIONS:
         raise ValueError(f"direction must be one of {', '.join(DIRECTIONS)}, got {direction!r}")
+    torsion = torsion if direction == "lateral" else None
     p = mesh.options.element_order
     rail_nodes, n_rail = element_nodes(mesh.elem_nodes, mesh.n_rail_nodes, p)
     sleeper_nodes, n_sleeper = element_nodes(mesh.selem_nodes, mesh.n_sleeper_nodes, p)
     per_snode = 2 if direction == "vertical" else 1
-    triplets = Triplets(2 * n_rail + per_snode * n_sleeper)
+    torsion_offset = 2 * n_rail + per_snode * n_sleeper
+    n_t = 0 if torsion is None else torsion.dofs_per_node
+    triplets = Triplets(torsion_offset + n_t * n_rail)
     rail = _rail_props(turnout, mesh, direction)
     K_elements = tim.beam_stiffness(p, rail["L"], rail["EI"], rail["kGA"])
     triplets.add(
@@ -298,7 +386,11 @@ def assemble(turnout: Turnout, mesh: Mesh, direction: str) -> PlaneModel:
         M=tim.beam_mass(p, rail["L"], rail["rhoA"], rail["rhoI"]),
     )
     _add_sleepers(triplets, turnout, mesh, direction, sleeper_nodes, 2 * n_rail)
-    _add_pads(triplets, turnout, mesh, direction, 2 * n_rail)
+    if torsion is None:
+        _add_pads(triplets, turnout, mesh, direction, 2 * n_rail)
+    else:
+        _add_torsion(triplets, turnout, mesh, rail, rail_nodes, torsion, torsion_offset)
+        _add_torsion_pads(triplets, turnout, mesh, torsion, 2 * n_rail, torsion_offset)
     matrices = triplets.matrices()
     return PlaneModel(
         direction,
@@ -310,6 +402,79 @@ def assemble(turnout: Turnout, mesh: Mesh, direction: str) -> PlaneModel:
         matrices["M"],
         rail_nodes,
         2 * n_rail,
+        torsion,
+        torsion_offset if torsion is not None else -1,
+    )
+
+
+def _rail_material(turnout: Turnout, mesh: Mesh) -> dict[str, np.ndarray]:
+    """E (Pa), G (Pa), rho (kg/m^3) of each rail element's type."""
+    types = [turnout.rail_types[name] for name in mesh.elem_type]
+    E = np.array([t.youngs_modulus for t in types])
+    return dict(
+        E=E,
+        G=E / (2.0 * (1.0 + np.array([t.poisson for t in types]))),
+        rho=np.array([t.density for t in types]),
+    )
+
+
+def _add_torsion(
+    triplets: Triplets,
+    turnout: Turnout,
+    mesh: Mesh,
+    rail: dict[str, np.ndarray],
+    rail_nodes: np.ndarray,
+    section: RailTorsionSection,
+    offset: int,
+) -> None:
+    """Torsion-warping elements (T3, T4) and the mass coupling rho A e_c of each rail."""
+    p, n_t = mesh.options.element_order, section.dofs_per_node
+    material = _rail_material(turnout, mesh)
+    E, G, rho = (material[k][:, None] for k in ("E", "G", "rho"))
+    GJ = (G * section.J_t)[:, 0]
+    area = rail["rhoA"] / rho  # (n, p + 2), Table 1 area at the quadrature points
+    e_c = section.centroid_offset
+    rhoIp = rho * polar_moment_about_shear_centre(section.I_p, area, e_c)
+    K = torsion_stiffness(
+        p, rail["L"], GJ, E * section.C_w, section.warping_penalty * GJ, section.warping
+    )
+    M = torsion_mass(p, rail["L"], rhoIp, rho * section.C_w, section.warping)
+    dofs = offset + np.stack([n_t * rail_nodes + j for j in range(n_t)], axis=-1).reshape(
+        len(rail_nodes), -1
+    )
+    triplets.add(dofs, K=K, G=mesh.elem_eta[:, None, None] * K, M=M)
+    # kinetic energy - rho A e_c vdot phidot (T4): Gram matrix of the shape functions
+    coupling = tim.bar_mass(p, rail["L"], -rail["rhoA"] * e_c)
+    zeros = np.zeros_like(coupling)
+    both = np.concatenate([2 * rail_nodes, offset + n_t * rail_nodes], axis=1)
+    triplets.add(
+        both,
+        M=np.block([[zeros, coupling], [np.swapaxes(coupling, 1, 2), zeros]]),
+    )
+
+
+def _add_torsion_pads(
+    triplets: Triplets,
+    turnout: Turnout,
+    mesh: Mesh,
+    section: RailTorsionSection,
+    sleeper_offset: int,
+    offset: int,
+) -> None:
+    """Lateral pads at the rail foot (v + d phi - u) and the pads' roll springs (T5)."""
+    pads = [turnout.rail_types[rail_type].pad for rail_type in mesh.pad_type]
+    k_y, c_y = np.array([pad.k_y for pad in pads]), np.array([pad.c_y for pad in pads])
+    k_z, c_z = np.array([pad.k_z for pad in pads]), np.array([pad.c_z for pad in pads])
+    roll = offset + section.dofs_per_node * mesh.pad_rail_node
+    a = np.array([1.0, section.foot_depth, -1.0])
+    lever = a[:, None] * a[None, :]
+    dofs = np.column_stack([2 * mesh.pad_rail_node, roll, sleeper_offset + mesh.pad_sleeper_node])
+    triplets.add(dofs, K=k_y[:, None, None] * lever, D=c_y[:, None, None] * lever)
+    b = section.foot_width
+    triplets.add(
+        roll[:, None],
+        K=pad_roll_stiffness(k_z, b)[:, None, None],
+        D=pad_roll_stiffness(c_z, b)[:, None, None],
     )
 
 

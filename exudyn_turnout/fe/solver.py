@@ -277,6 +277,8 @@ def _kept_neighbours(
 def default_keep(model: PlaneModel) -> np.ndarray:
     """Rail DOFs of the nodes above the sleepers and the sleepers' vertex DOFs.
 
+    With rail torsion, also the torsion DOFs (phi, theta) of the nodes above the sleepers.
+
     Parameters
     ----------
     model : PlaneModel
@@ -288,10 +290,15 @@ def default_keep(model: PlaneModel) -> np.ndarray:
         Global DOF indices, increasing.
     """
     nodes = np.unique(model.mesh.pad_rail_node)
-    sleepers = model.vertex_dofs()
-    return np.unique(
-        np.concatenate([2 * nodes, 2 * nodes + 1, sleepers[sleepers >= model.sleeper_dof_offset]])
-    )
+    vertex = model.vertex_dofs()
+    sleepers = vertex[vertex >= model.sleeper_dof_offset]
+    if model.torsion is not None:  # torsion DOFs of the pad nodes stay, those of the bays go
+        sleepers = sleepers[sleepers < model.torsion_dof_offset]
+        roll = model.roll_dof(nodes)
+        torsion = [roll + j for j in range(model.torsion_dofs_per_node)]
+    else:
+        torsion = []
+    return np.unique(np.concatenate([2 * nodes, 2 * nodes + 1, sleepers, *torsion]))
 
 
 def condense(model: PlaneModel, keep: np.ndarray | None = None) -> CondensedSystem:
