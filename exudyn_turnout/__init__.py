@@ -53,7 +53,7 @@ from exudyn_turnout.inputs.turnout import (
 from exudyn_turnout.inputs.vehicle import Vehicle, load_vehicle
 from exudyn_turnout.receptance import Receptance, log_frequencies
 
-__version__ = "0.2.0"
+__version__ = "0.3.0"
 
 #: Names imported on first use: name -> module.
 _LAZY = {

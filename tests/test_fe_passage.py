@@ -373,7 +373,11 @@ def test_cli_writes_the_passage_files(tmp_path, turnout, capsys):
     )
     assert args.run(args) == 0
     header = (tmp_path / "timeseries.csv").read_text().splitlines()[0].split(",")
-    co = simulate_passage(turnout, PassageSettings(x_start=55.0, x_end=55.02))
+    # the FE passage has the height-table contact (vertical): the same columns as the
+    # co-running passage with that contact
+    co = simulate_passage(
+        turnout, PassageSettings(x_start=55.0, x_end=55.02, contact="height-table")
+    )
     assert set(co.columns) <= set(header)
     summary = json.loads((tmp_path / "summary.json").read_text())
     assert summary["model"] == "FE" and set(co.summary) <= set(summary)

@@ -315,7 +315,7 @@ def number(text: str) -> float:
 
 
 def add_turnout_options(p: argparse.ArgumentParser) -> None:
-    """--turnout, --source and --profiles, shared by the co-running commands.
+    """--turnout, --source, --parameters and --profiles, shared by the co-running commands.
 
     Parameters
     ----------
@@ -328,7 +328,13 @@ def add_turnout_options(p: argparse.ArgumentParser) -> None:
         "--source",
         choices=SOURCES,
         default="derived",
-        help="derived: Eqs 1-19 on Table 1; published: the paper's Table 2 (default: derived)",
+        help="derived: Eqs 1-19 on Table 1; published: the paper's Table 2; fitted: fitted "
+        "to the FE receptance, from --parameters FILE (exudyn-turnout fit) (default: derived)",
+    )
+    p.add_argument(
+        "--parameters",
+        metavar="FILE",
+        help="fitted parameter file written by exudyn-turnout fit (for --source fitted)",
     )
     p.add_argument(
         "--profiles",
@@ -342,7 +348,9 @@ def add_turnout_options(p: argparse.ArgumentParser) -> None:
 def turnout_from_args(args: argparse.Namespace) -> Turnout:
     """The turnout of ``--turnout``, with FE-fitted K_sw, K_sh if ``--profiles fe-fit``.
 
-    ``--source published`` on a file without any ``[published.zoneN]`` is an error.
+    ``--source published`` on a file without any ``[published.zoneN]`` is an error, and so
+    is ``--source fitted`` without ``--parameters FILE`` (the fitted set is read from FILE and
+    attached to the turnout, :func:`exudyn_turnout.corunning.fitted.load_fitted`).
 
     Parameters
     ----------
@@ -358,6 +366,17 @@ def turnout_from_args(args: argparse.Namespace) -> Turnout:
             f"--source published: {Path(turnout.source).name} has no published parameter "
             "set ([published.zoneN] sections); use --source derived"
         )
+    source, parameters = getattr(args, "source", "derived"), getattr(args, "parameters", None)
+    if source == "fitted" and not parameters:
+        raise UsageError(
+            "--source fitted needs --parameters FILE (a file written by exudyn-turnout fit)"
+        )
+    if parameters and source != "fitted":
+        raise UsageError(f"--parameters {parameters}: only used with --source fitted")
+    if parameters:
+        from exudyn_turnout.corunning.fitted import load_fitted
+
+        turnout = load_fitted(turnout, parameters)
     if getattr(args, "profiles", "paper") == "fe-fit":
         from exudyn_turnout.fe.fits import fit_turnout_profiles, with_fitted_profiles
         from exudyn_turnout.fe.stiffness import static_stiffness_profile
@@ -506,6 +525,8 @@ _COMMAND_MODULES: tuple[str, ...] = (
     "exudyn_turnout.cli.validate",
     "exudyn_turnout.cli.fe",
     "exudyn_turnout.cli.draw",
+    "exudyn_turnout.cli.study",
+    "exudyn_turnout.cli.fit",
 )
 
 

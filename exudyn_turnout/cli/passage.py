@@ -46,6 +46,16 @@ def settings_from_args(args: argparse.Namespace, **track_options):
     """
     from exudyn_turnout.passage.results import DEFAULT_SETTINGS, PassageSettings
 
+    for name in ("contact", "irregularity"):
+        if getattr(args, name, None) is not None and name not in track_options:
+            track_options[name] = getattr(args, name)
+    if isinstance(track_options.get("irregularity"), str):
+        from exudyn_turnout.inputs.irregularity import irregularity_from_spec
+
+        try:
+            track_options["irregularity"] = irregularity_from_spec(track_options["irregularity"])
+        except (ValueError, OSError) as err:
+            raise UsageError(f"--irregularity: {err}") from None
     return PassageSettings(
         route=args.route,
         speed_kmh=args.speed,
@@ -64,19 +74,29 @@ def settings_from_args(args: argparse.Namespace, **track_options):
 def _run(args: argparse.Namespace) -> int:
     from exudyn_turnout.inputs.vehicle import load_vehicle
     from exudyn_turnout.passage.simulate import simulate_passage
+    from exudyn_turnout.provenance import file_record
 
     check_out_dir(args.out)
     turnout = turnout_from_args(args)
     vehicle = load_vehicle(args.vehicle)
     args.route = route_from_args(args, turnout)
     settings = settings_from_args(args, layers=args.layers, source=args.source)
+    if settings.contact == "profile":  # the rail geometry, checked before anything runs
+        from exudyn_turnout.wheel_rail.turnout_sections import rail_geometry, route_segments
+
+        rail_geometry(turnout)
+        route_segments(turnout, args.route)
     return run_passage_command(
         args,
         lambda bar: simulate_passage(turnout, settings, vehicle=vehicle, progress=bar),
         f"{turnout.name}, {args.route} route, {args.speed:g} km/h",
         turnout=turnout,
         vehicle=vehicle,
-        extra_settings={"model": "co-running", "profiles": args.profiles},
+        extra_settings={
+            "model": "co-running",
+            "profiles": args.profiles,
+            "parameters": file_record(getattr(args, "parameters", None)),
+        },
     )
 
 
@@ -188,9 +208,12 @@ def run_passage_command(
     int
         Exit code 0.
     """
-    from dataclasses import asdict
-
-    from exudyn_turnout.passage.results import PassageError, PassageFailure, write_passage
+    from exudyn_turnout.passage.results import (
+        PassageError,
+        PassageFailure,
+        settings_record,
+        write_passage,
+    )
     from exudyn_turnout.provenance import provenance
 
     out = check_out_dir(args.out)
@@ -206,7 +229,10 @@ def run_passage_command(
         if bar:
             sys.stderr.write("\n")
     settings = dict(
-        extra_settings or {}, **asdict(result.settings), format=args.format, plot=not args.no_plot
+        extra_settings or {},
+        **settings_record(result.settings),
+        format=args.format,
+        plot=not args.no_plot,
     )
     if settings.get("model") == "FE":  # no layers, parameter source or track mechanism there
         not_fe = ("layers", "source", "track_mechanism")
@@ -221,6 +247,10 @@ def run_passage_command(
 
             fig, _ = plot_passage_forces([result], wheel="right", title=title)
             save_figure(fig, str(directory / "forces.png"), dpi=120)
+            if len(result.contact_points("right")["x"]):  # profile contact
+                result.plot_contact_band(
+                    directory / "contact_band.png", "right", title=f"{title}, right wheel"
+                )
 
     try:
         paths = write_passage(result, out, fmt=args.format, provenance=record, figure=figure)
@@ -274,7 +304,7 @@ def add_passage_options(p: argparse.ArgumentParser) -> None:
         help="time series as timeseries.csv (default) or timeseries.npz",
     )
     p.add_argument("--out", required=True, metavar="DIR", help="output directory")
-    p.add_argument("--no-plot", action="store_true", help="skip forces.png")
+    p.add_argument("--no-plot", action="store_true", help="skip forces.png (and contact_band.png)")
 
 
 def build(sub: argparse._SubParsersAction) -> None:
@@ -290,7 +320,7 @@ def build(sub: argparse._SubParsersAction) -> None:
         help="wheelset passage on the co-running track",
         description="Run one wheelset (Manchester benchmark) through the turnout on a 2- or "
         "3-layer co-running track with penalty wheel/rail contact; write timeseries.csv, "
-        "summary.json and forces.png into --out.",
+        "summary.json, forces.png and (profile contact) contact_band.png into --out.",
     )
     add_turnout_options(parser)
     parser.add_argument("--layers", type=int, choices=(2, 3), default=3)
@@ -301,6 +331,21 @@ def build(sub: argparse._SubParsersAction) -> None:
     )
     parser.add_argument(
         "--time-step", type=number, default=1e-4, metavar="S", help="s (default 1e-4, converged)"
+    )
+    parser.add_argument(
+        "--contact",
+        choices=("profile", "height-table"),
+        default="profile",
+        help="wheel/rail contact: profile (S1002 on the turnout's rail sections, multi-point "
+        "Hertz, Polach creep with spin; default) or height-table (rail height tables on a "
+        "conical tread with flange springs: a simplification kept for comparison)",
+    )
+    parser.add_argument(
+        "--irregularity",
+        metavar="SPEC",
+        help="track irregularity on the rails: a CSV file, psd:LEVEL,seed=N[,band=A-B], "
+        "dip:x=X,depth=D,length=L or joint:x=X,angle=TWO_ALPHA,length=L, several joined by "
+        "';' (see the README); default none",
     )
     add_passage_options(parser)
     parser.set_defaults(run=_run)

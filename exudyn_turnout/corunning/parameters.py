@@ -1,12 +1,16 @@
 """Equivalent co-running track parameters for a zone or any position x (paper Section 3).
 
-Two sources:
+Three sources:
 
 ``derived``
     computed from the turnout's Table 1 properties with Eqs 1-19
     (:mod:`exudyn_turnout.corunning.equations`) under a set of :class:`Readings`;
 ``published``
-    the paper's Table 2, as stored in the turnout file.
+    the paper's Table 2, as stored in the turnout file;
+``fitted``
+    the derived set with the entries fitted to the FE receptance
+    (:mod:`exudyn_turnout.corunning.fit`) in their place, carried by the turnout
+    (``turnout.fitted``, attached by :func:`exudyn_turnout.corunning.fitted.with_fitted`).
 
 Policy for the default readings (:data:`DEFAULT_READINGS`): where an equation as printed
 is dimensionally inconsistent or ambiguous, use the reading that reproduces Table 2 (the
@@ -53,7 +57,7 @@ __all__ = [
     "SOURCES",
 ]
 
-SOURCES = ("derived", "published")
+SOURCES = ("derived", "published", "fitted")
 _EXTRA_LAYER = ("k_0", "c_0", "m_0")
 
 
@@ -272,7 +276,7 @@ class CoRunningParameters:
     turnout: Turnout
     zone: Zone
     layers: int  #: 2 or 3
-    source: str  #: "derived" or "published"
+    source: str  #: "derived", "published" or "fitted"
     entries: Mapping[str, Entry]
     constants: Mapping[str, float] = field(default_factory=dict)
 
@@ -451,6 +455,25 @@ def _derived(
     return ordered, constants
 
 
+def _with_fitted_entries(
+    turnout: Turnout, zone: Zone, layers: int, entries: dict[str, Entry]
+) -> dict[str, Entry]:
+    """The derived entries with the zone's fitted ones in their place (``source="fitted"``)."""
+    fitted = turnout.fitted.get(zone.index)
+    if not fitted:
+        raise ValueError(
+            f"{turnout.source}: no fitted parameters for zone {zone.index} "
+            "(fit with exudyn-turnout fit, pass the file with --parameters)"
+        )
+    fitted_layers = 3 if "m_0" in fitted else 2
+    if fitted_layers != layers:
+        raise ValueError(
+            f"the fitted parameters of zone {zone.index} are for the {fitted_layers}-layer "
+            f"model, not {layers} layers"
+        )
+    return {name: fitted.get(name, entry) for name, entry in entries.items()}
+
+
 def co_running_parameters(
     turnout: Turnout,
     zone: int | None = None,
@@ -471,10 +494,13 @@ def co_running_parameters(
         Position from the switch toe (m); the zone containing it is used.
     layers : {2, 3}
         Two-layer (Fig. 2) or three-layer (Fig. 3) model; two layers drop m_0, k_0, c_0.
-    source : {"derived", "published"}
-        Eqs 1-19 on Table 1, or the paper's Table 2.
+    source : {"derived", "published", "fitted"}
+        Eqs 1-19 on Table 1, the paper's Table 2, or the derived set with the entries
+        fitted to the FE receptance in their place (``turnout.fitted``, see
+        :func:`exudyn_turnout.corunning.fitted.with_fitted`).
     readings : Readings
-        Readings of the ambiguous equations, for ``source="derived"``.
+        Readings of the ambiguous equations, for ``source="derived"`` (and the entries a
+        fitted set does not hold).
 
     Returns
     -------
@@ -501,6 +527,8 @@ def co_running_parameters(
         entries, constants = dict(turnout.published[zone_data.index]), {}
     else:
         entries, constants = _derived(turnout, zone_data, readings)
+    if source == "fitted":
+        entries = _with_fitted_entries(turnout, zone_data, layers, entries)
     if layers == 2:
         entries = {
             name: entry for name, entry in entries.items() if not name.startswith(_EXTRA_LAYER)

@@ -29,6 +29,7 @@ from exudyn.itemInterface import (
 )
 
 from exudyn_turnout.corunning.cross_section import CrossSectionSpring, cross_section_springs
+from exudyn_turnout.corunning.fitted import TableEntry
 from exudyn_turnout.corunning.modal import TrackMatrices, dof_names
 from exudyn_turnout.corunning.parameters import CoRunningParameters, reference_support
 from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Entry, Polynomial
@@ -53,9 +54,10 @@ class EntryLaw:
     """Entries of a co-running parameter set as expressions of the wheelset position x.
 
     ``value(entry, x)`` gives the same numbers as
-    :meth:`~exudyn_turnout.corunning.parameters.CoRunningParameters.at` (Eqs 10, 11, 14, 15 and
-    Table 2's ranges, linear over the zone), written with + - * and min/max only, so that
-    x may be a float (Python user functions) or an Exudyn symbolic expression.
+    :meth:`~exudyn_turnout.corunning.parameters.CoRunningParameters.at` (Eqs 10, 11, 14, 15,
+    Table 2's ranges, linear over the zone, and fitted tables, piecewise linear over it:
+    :class:`~exudyn_turnout.corunning.fitted.TableEntry`), written with + - * and min/max
+    only, so that x may be a float (Python user functions) or an Exudyn symbolic expression.
     """
 
     K_sw: Polynomial  #: Eq 10, N/m
@@ -97,7 +99,8 @@ class EntryLaw:
         Parameters
         ----------
         entry : Entry
-            A parameter entry (``const``, ``Delta_z``, ``Delta_y`` or ``ramp``).
+            A parameter entry (``const``, ``Delta_z``, ``Delta_y``, ``ramp`` or a fitted
+            ``table``, a sum of clamped ramps).
         x : float or exudyn.symbolic.Real
             Wheelset position from the switch toe (m), a number or a symbolic expression.
         lib : module, optional
@@ -119,6 +122,13 @@ class EntryLaw:
                 hi((x - self.x_start) * (1.0 / (self.x_end - self.x_start)), 0.0), 1.0
             )
             return entry.a + (entry.b - entry.a) * zone_fraction
+        if isinstance(entry, TableEntry):
+            s = (x - self.x_start) * (1.0 / (self.x_end - self.x_start))
+            v0, ramps = entry.ramps()
+            acc: Any = v0
+            for s_i, inv_ds, dv in ramps:
+                acc = acc + dv * lo(hi((s - s_i) * inv_ds, 0.0), 1.0)
+            return acc
         return entry.a
 
 

@@ -288,6 +288,9 @@ class Turnout:
     #: m, where peaks "at the switch" / "at the crossing" are taken: name -> (x_from, x_to);
     #: defaults: switch 0-10 m from the toe, crossing the last zone that is not plain track
     regions: Mapping[str, tuple[float, float]] = field(default_factory=dict)
+    #: zone index -> co-running entries fitted to the FE receptance (``source="fitted"``),
+    #: attached by :func:`exudyn_turnout.corunning.fitted.with_fitted`; empty when loaded
+    fitted: Mapping[int, Mapping[str, Entry]] = field(default_factory=dict)
 
     @property
     def x_min(self) -> float:

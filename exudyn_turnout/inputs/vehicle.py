@@ -47,6 +47,11 @@ class Vehicle:
     d: float  #: m, lateral semi-spacing of the axleboxes
     contact: ContactLaw  #: the file's ``[contact]`` table
     source: str  #: path of the file read
+    #: kg m^2, wheelset spin inertia about the axle (profile contact: spin perturbation)
+    J_spin: float | None = None
+    back_to_back: float | None = None  #: m, flange back distance (profile contact)
+    #: wheel profile file (a name in ``data/wheel_rail/profiles`` or a path; profile contact)
+    wheel_profile: str | None = None
 
     @property
     def static_wheel_load(self) -> float:
@@ -136,7 +141,38 @@ def load_vehicle(path: str | Path | None = None) -> Vehicle:
         r.number(f"{p}.semi_spacing", upper=5.0),
         load_contact_law(data, str(path)),
         str(path),
+        *_profile_fields(r, data, path),
     )
+
+
+def _profile_fields(r: _Reader, data: dict, path: Path) -> tuple:
+    """(J_spin, back_to_back, wheel_profile) of ``[wheelset]``, None where not given."""
+    w = "wheelset"
+    table = data.get(w, {})
+    spin = r.number(f"{w}.spin_inertia", upper=1e7) if "spin_inertia" in table else None
+    back = None
+    if "back_to_back" in table:
+        back = r.number(f"{w}.back_to_back", upper=5.0)
+        b = r.number(f"{w}.contact_semi_spacing", upper=5.0)
+        if not 0.5 * b < back < 2.0 * b:
+            raise r.fail(
+                f"{w}.back_to_back",
+                f"must lie between b and 4 b of contact_semi_spacing b = {b:g} m, got {back:g}",
+            )
+    profile = table.get("wheel_profile")
+    if profile is not None:
+        if not isinstance(profile, str) or not profile.strip():
+            raise r.fail(f"{w}.wheel_profile", f"must be a file name, got {profile!r}")
+        candidate = Path(profile)
+        if not candidate.is_absolute():
+            candidate = path.parent / candidate
+        packaged = resources.files("exudyn_turnout") / "data" / "wheel_rail" / "profiles"
+        if not candidate.exists() and not Path(str(packaged / profile)).exists():
+            raise r.fail(
+                f"{w}.wheel_profile",
+                f"no such profile next to the file or in the package's profiles: {profile!r}",
+            )
+    return spin, back, profile
 
 
 @dataclass(frozen=True)

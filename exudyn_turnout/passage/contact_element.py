@@ -90,8 +90,11 @@ class WheelRailElement:
         Speed (m/s); 0 for the static solve (no creep, lateral position held).
     """
 
+    n_vehicle = 6  #: vehicle coordinates at the head of the element: y_w, z_w, phi, psi, y_s, z_s
+
     def __init__(self, vehicle: Vehicle, route: Route, pairs, x0: float, v: float):
         self.vehicle, self.route, self.pairs = vehicle, route, tuple(pairs)
+        self.wheel_of = {bp.pair.rail: bp.pair.wheel for bp in self.pairs}
         self.x0, self.v = float(x0), float(v)
         self.n = 6 + 2 * len({(p.i_y, p.i_z) for p in self.pairs})
         self._cached_t = math.nan
@@ -184,6 +187,47 @@ class WheelRailElement:
         return [
             PairForces(*self._forces(bp, row, kappa, q, q_t)) for bp, row in zip(self.pairs, rows)
         ]
+
+    def rail_loads(self, x: float, q, q_t) -> dict[str, tuple[float, float]]:
+        """Total (vertical, lateral) force on each rail slot touched.
+
+        Parameters
+        ----------
+        x : float
+            m, wheelset position.
+        q, q_t : sequence of float
+            Element coordinates and velocities.
+
+        Returns
+        -------
+        dict
+            Slot -> (vertical force pressing it down, lateral force on it, positive left), N.
+        """
+        loads: dict[str, list[float]] = {}
+        for bp, pf in zip(self.pairs, self.all_pair_forces(x, q, q_t)):
+            acc = loads.setdefault(bp.pair.rail, [0.0, 0.0])
+            acc[0], acc[1] = acc[0] + pf.N, acc[1] + pf.F_y
+        return {r: (v[0], v[1]) for r, v in loads.items()}
+
+    def wheel_loads(self, x: float, q) -> dict[str, float]:
+        """Total normal force (N) on each wheel at rest (velocities zero).
+
+        Parameters
+        ----------
+        x : float
+            m, wheelset position.
+        q : sequence of float
+            Element coordinates.
+
+        Returns
+        -------
+        dict
+            "left", "right" -> N.
+        """
+        loads = {"left": 0.0, "right": 0.0}
+        for bp, pf in zip(self.pairs, self.all_pair_forces(x, q, [0.0] * len(q))):
+            loads[bp.pair.wheel] += pf.N
+        return loads
 
     def _forces(self, bp: BoundPair, row: tuple, kappa: float, q, q_t) -> tuple:
         """(N, F_y on the rail, F_x on the wheel, delta, in contact) of one pair."""

@@ -934,7 +934,9 @@ def simulate_fe_passage(
     settings : PassageSettings
         Route, speed, x range (default: the turnout's, within the FE layout), time step,
         output step and ``spectral_radius`` (rho_inf of HHT-alpha); ``layers`` and
-        ``source`` do not apply (the FE model uses Table 1 directly).
+        ``source`` do not apply (the FE model uses Table 1 directly).  The FE passage has
+        the height-table contact only (vertical); its result records
+        ``contact="height-table"`` whatever was asked, and an irregularity is refused.
     vehicle : Vehicle, optional
         Default: the packaged Manchester benchmark wheelset.
     options : FEPassageOptions, optional
@@ -965,6 +967,9 @@ def simulate_fe_passage(
         Bad settings (one line naming the problem) or a solver failure (time and position).
     """
     wall = time.perf_counter()
+    if settings.irregularity is not None:
+        raise PassageError("the FE passage has no track irregularities yet (height-table contact)")
+    settings = replace(settings, contact="height-table")  # the only contact it has
     options = options or FEPassageOptions()
     own_layout = layout is None and track is None
     if track is None:

@@ -9,13 +9,15 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
+from typing import Any
 
 import numpy as np
 
 from exudyn_turnout.inputs.turnout import Turnout
 
 __all__ = [
+    "settings_record",
     "TRACKS",
     "PLAUSIBLE",
     "OUTPUT_FILES",
@@ -65,11 +67,37 @@ class PassageSettings:
     track_mechanism: str = (
         "symbolic"  #: how track springs follow x: "symbolic", "python" or "constant"
     )
+    #: wheel/rail contact: "profile" (S1002 on the turnout's rail sections, multi-point
+    #: Hertz, Polach creep with spin) or "height-table" (the route's rail height tables on a
+    #: conical tread with flange springs: a simplification kept for comparison)
+    contact: str = "profile"
+    #: track irregularity (:class:`~exudyn_turnout.inputs.irregularity.Irregularity`) added
+    #: to the rails' heights and lateral positions; None: the design geometry
+    irregularity: Any = None
 
     @property
     def v(self) -> float:
         """Speed in m/s."""
         return self.speed_kmh / 3.6
+
+
+def settings_record(settings: PassageSettings) -> dict[str, Any]:
+    """The settings as plain data for summaries and provenance.
+
+    Parameters
+    ----------
+    settings : PassageSettings
+
+    Returns
+    -------
+    dict
+        Every field; the irregularity as its source (spec or file name), not its samples.
+    """
+    record = {f.name: getattr(settings, f.name) for f in fields(settings)}
+    irregularity = record.get("irregularity")
+    if irregularity is not None:
+        record["irregularity"] = str(getattr(irregularity, "source", "") or "given")
+    return record
 
 
 #: The default scenario (frozen, so one instance serves as every function's default).
@@ -135,6 +163,81 @@ class PassageResult:
         from exudyn_turnout.plotting.curves import plot_passage_forces
 
         return plot_passage_forces([self], wheel=wheel or "right", title=title)
+
+    def contact_points(self, wheel: str = "right") -> dict[str, np.ndarray]:
+        """Every loaded contact point of a wheel over the run (profile contact).
+
+        Parameters
+        ----------
+        wheel : {"right", "left"}
+
+        Returns
+        -------
+        dict
+            Flat arrays, one entry per (sample, contact point) carrying load: ``x`` (m),
+            ``y_rail`` (m, on the rail, side coordinates), ``s_wheel`` (m, on the wheel from
+            its taping line), ``normal`` (N), ``angle`` (rad), ``body`` (rail body label).
+            Empty for the height-table contact.
+        """
+        out: dict[str, list] = {k: [] for k in ("x", "y_rail", "s_wheel", "normal", "angle")}
+        out["body"] = []
+        x = self.columns["x_m"]
+        for name, normal in self.columns.items():
+            if not (name.startswith(f"cp_{wheel}_") and name.endswith("_N_N")):
+                continue
+            stem = name[: -len("_N_N")]
+            loaded = normal > 0.0
+            label = stem[len(f"cp_{wheel}_") :].rsplit("_", 1)[0].replace("_", " ")
+            out["x"].append(x[loaded])
+            out["y_rail"].append(self.columns[f"{stem}_y_rail_m"][loaded])
+            out["s_wheel"].append(self.columns[f"{stem}_s_wheel_m"][loaded])
+            out["normal"].append(normal[loaded])
+            out["angle"].append(self.columns[f"{stem}_angle_rad"][loaded])
+            out["body"].append(np.full(int(loaded.sum()), label, dtype=object))
+        return {
+            k: (np.concatenate(v) if v else np.zeros(0, dtype=object if k == "body" else float))
+            for k, v in out.items()
+        }
+
+    def plot_contact_band(self, path, wheel: str = "right", title: str = ""):
+        """The contact-band plot of a wheel: contact positions on rail and wheel along x.
+
+        Parameters
+        ----------
+        path : str or Path
+            PNG file to write.
+        wheel : {"right", "left"}
+        title : str
+
+        Returns
+        -------
+        Path
+            Delegates to :func:`exudyn_turnout.plotting.wheel_rail.plot_contact_band_along_x`
+            (switch and crossing regions as panels where the run covers them).
+        """
+        from exudyn_turnout.plotting.wheel_rail import plot_contact_band_along_x
+
+        points = self.contact_points(wheel)
+        if not len(points["x"]):
+            raise ValueError("no contact points: the run used the height-table contact")
+        ranges = []
+        for key in ("switch_region_m", "crossing_region_m"):
+            region = self.summary.get(key)
+            if not isinstance(region, (list, tuple)) or len(region) != 2:
+                continue
+            lo = max(float(region[0]), float(points["x"].min()))
+            hi = min(float(region[1]), float(points["x"].max()))
+            if hi > lo:
+                ranges.append((lo, hi))
+        return plot_contact_band_along_x(
+            points["x"],
+            points["y_rail"],
+            points["s_wheel"],
+            points["body"],
+            path,
+            title=title or f"{wheel} wheel",
+            x_ranges=ranges or None,
+        )
 
     def save(self, directory, format: str = "csv") -> dict[str, str]:  # noqa: A002
         """Write the time series (``timeseries.csv`` or ``.npz``) and ``summary.json``.
@@ -314,7 +417,6 @@ def passage_summary(
     -------
     dict
     """
-    from dataclasses import asdict
 
     regions = _regions(turnout)
     out: dict[str, object] = {
@@ -341,12 +443,18 @@ def passage_summary(
         list(regions["switch"]),
         list(regions["crossing"]),
     )
-    out["settings"] = asdict(settings)
+    out["settings"] = settings_record(settings)
     return out
 
 
 #: Files a passage command writes into its output directory (cleared before a run).
-OUTPUT_FILES = ("timeseries.csv", "timeseries.npz", "summary.json", "forces.png")
+OUTPUT_FILES = (
+    "timeseries.csv",
+    "timeseries.npz",
+    "summary.json",
+    "forces.png",
+    "contact_band.png",
+)
 
 
 def write_passage(

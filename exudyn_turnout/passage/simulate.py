@@ -19,7 +19,7 @@ import time
 import warnings
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -40,6 +40,9 @@ from exudyn_turnout.passage.results import (
 )
 from exudyn_turnout.passage.vehicle import add_vehicle
 
+if TYPE_CHECKING:
+    from exudyn_turnout.passage.profile_contact import RouteContact
+
 __all__ = [
     "simulate_passage",
     "compare_layers",
@@ -48,6 +51,9 @@ __all__ = [
     "lightest_rail_mass",
 ]
 
+
+#: Wheel/rail contact models of a passage (``PassageSettings.contact``).
+CONTACT_MODELS = ("profile", "height-table")
 
 #: N: Newton's absolute residual tolerance in a passage (see benchmarks/bench_passage.py).
 NEWTON_ABSOLUTE_TOLERANCE = 1.0
@@ -134,6 +140,10 @@ def lightest_rail_mass(
 
 def _check(settings: PassageSettings, turnout: Turnout, vehicle: Vehicle) -> tuple[float, float]:
     s = settings
+    if s.contact not in CONTACT_MODELS:
+        raise PassageError(f"contact must be one of {', '.join(CONTACT_MODELS)}, got {s.contact!r}")
+    if s.irregularity is not None and s.contact != "profile":
+        raise PassageError("track irregularities need the profile contact (contact='profile')")
     if not (math.isfinite(s.speed_kmh) and 0 < s.speed_kmh <= 400):
         raise PassageError(f"speed must be > 0 and <= 400 km/h, got {s.speed_kmh:g} km/h")
     x_a = turnout.x_min if s.x_start is None else s.x_start
@@ -202,6 +212,27 @@ def _segment_columns(
     return cols
 
 
+def _profile_columns(
+    element: Any, t: np.ndarray, q: np.ndarray, q_t: np.ndarray, rails: Mapping[str, int]
+) -> dict[str, np.ndarray]:
+    """Columns of one zone's run with profile contact, from stored coordinates and velocities."""
+    cols: dict[str, np.ndarray] = {"t_s": t, "x_m": element.x0 + element.v * t}
+    cols.update(element.columns(t, q, q_t))
+    for i, name in enumerate(
+        (
+            "y_wheelset_m",
+            "z_wheelset_m",
+            "roll_wheelset_rad",
+            "yaw_wheelset_rad",
+            "spin_wheelset_rad",
+        )
+    ):
+        cols[name] = q[:, i]
+    for slot, i in rails.items():
+        cols[f"y_rail_{slot}_m"], cols[f"z_rail_{slot}_m"] = q[:, i], q[:, i + 1]
+    return cols
+
+
 def _join(segments: list[dict[str, np.ndarray]]) -> dict[str, np.ndarray]:
     """Concatenate zone segments; a column missing in a segment is NaN there (rail not present)."""
     names: list[str] = []
@@ -220,12 +251,14 @@ class _ZoneSystem:
     container: Any  #: exudyn.SystemContainer
     mbs: Any  #: exudyn.MainSystem
     zone: Zone
-    element: WheelRailElement
+    element: Any  #: WheelRailElement or ProfileContactElement
     names: dict  #: node name ("wheelset", "yaw", "sprung", "sleeper", "rail_r1", "m0_r1") -> node
     rails: dict  #: rail slot touched by a wheel -> index of its y in the element
     sensors: list  #: sensors of the coordinates of the element's nodes, in element order
     params: CoRunningParameters  #: the zone's set, with the route's cross-section
-    force_sensor: int  #: stores the contact element's generalised forces every step
+    #: stores the contact element's generalised forces every step (-1: profile contact,
+    #: whose outputs come from the stored coordinates and velocities)
+    force_sensor: int
 
     @property
     def sleeper_y(self) -> float:
@@ -247,6 +280,7 @@ def _build(
     settings: PassageSettings,
     x0: float,
     v: float,
+    route_contact: RouteContact | None = None,
 ) -> _ZoneSystem:
     from dataclasses import replace
 
@@ -262,44 +296,75 @@ def _build(
     )
     params = replace(params, zone=route.zone(params.zone))
     track = add_co_running_track(mbs, params, x0, v, mechanism=settings.track_mechanism)
-    veh = add_vehicle(mbs, vehicle, track.ground, *_initial_guess(vehicle))
-    pairs = [p for p in route.pairs_in(zone) if p.rail in zone.active_rails]
-    slots = [r for r in zone.active_rails if any(p.rail == r for p in pairs)]
-    for r in slots:
-        if len({p.wheel for p in pairs if p.rail == r}) > 1:
-            raise PassageError(
-                f"route {route.name}: rail {r} is touched by both wheels in zone {zone.index}"
+    profile = route_contact is not None
+    element: Any
+    if profile:
+        assert route_contact is not None
+        try:
+            element, slots = route_contact.element(
+                vehicle, route, zone, x0, v, settings.irregularity
             )
-    rails = {r: 6 + 2 * i for i, r in enumerate(slots)}
-    element = WheelRailElement(
-        vehicle, route, [BoundPair(p, rails[p.rail], rails[p.rail] + 1) for p in pairs], x0, v
-    )
+        except ValueError as err:
+            raise PassageError(str(err)) from None
+        z_w, z_s = _initial_guess(vehicle)
+        z_touch, roll = element.touching_position(x0, -z_w / 3.0)
+        veh = add_vehicle(
+            mbs, vehicle, track.ground, z_touch, z_touch + z_s - z_w, spin=True, roll0=roll
+        )
+    else:
+        veh = add_vehicle(mbs, vehicle, track.ground, *_initial_guess(vehicle))
+        pairs = [p for p in route.pairs_in(zone) if p.rail in zone.active_rails]
+        slots = [r for r in zone.active_rails if any(p.rail == r for p in pairs)]
+        for r in slots:
+            if len({p.wheel for p in pairs if p.rail == r}) > 1:
+                raise PassageError(
+                    f"route {route.name}: rail {r} is touched by both wheels in zone {zone.index}"
+                )
+        rails_of = {r: 6 + 2 * i for i, r in enumerate(slots)}
+        element = WheelRailElement(
+            vehicle,
+            route,
+            [BoundPair(p, rails_of[p.rail], rails_of[p.rail] + 1) for p in pairs],
+            x0,
+            v,
+        )
+    rails = {r: element.n_vehicle + 2 * i for i, r in enumerate(slots)}
     nodes = [veh.wheelset_node, veh.yaw_node, veh.sprung_node] + [
         track.wheel_nodes[r] for r in slots
     ]
     M, K = np.zeros((element.n, element.n)), np.zeros((element.n, element.n))
     M[3, 3], K[3, 3] = vehicle.J_yaw, vehicle.k_yaw
+    if profile:
+        assert vehicle.J_spin is not None  # checked by RouteContact
+        M[4, 4] = vehicle.J_spin
     contact = mbs.AddObject(
         ObjectGenericODE2(
             nodeNumbers=nodes, massMatrix=M, stiffnessMatrix=K, forceUserFunction=element
         )
     )
-    force_sensor = mbs.AddSensor(
-        SensorBody(
-            bodyNumber=contact,
-            storeInternal=True,
-            writeToFile=False,
-            outputVariableType=exu.OutputVariableType.Force,
+    force_sensor = -1
+    if not profile:  # the profile element's outputs are computed from stored states
+        force_sensor = mbs.AddSensor(
+            SensorBody(
+                bodyNumber=contact,
+                storeInternal=True,
+                writeToFile=False,
+                outputVariableType=exu.OutputVariableType.Force,
+            )
         )
-    )
     sensors = [
         mbs.AddSensor(
             SensorNode(
                 nodeNumber=n,
                 storeInternal=True,
                 writeToFile=False,
-                outputVariableType=exu.OutputVariableType.Coordinates,
+                outputVariableType=kind,
             )
+        )
+        for kind in (
+            (exu.OutputVariableType.Coordinates, exu.OutputVariableType.Coordinates_t)
+            if profile
+            else (exu.OutputVariableType.Coordinates,)
         )
         for n in nodes
     ]
@@ -356,30 +421,35 @@ def _wheel_rail_loads(
     """Total (vertical, lateral) force on each rail slot touched, from the element at ``state``."""
     q = np.concatenate([state[n][0] for n in _element_nodes(system, layers)])
     q_t = np.concatenate([state[n][1] for n in _element_nodes(system, layers)])
-    el, x = system.element, system.element.x_at(system.mbs.systemData.GetTime())
-    loads: dict[str, list[float]] = {}
-    for bp, pf in zip(el.pairs, el.all_pair_forces(x, q, q_t)):
-        acc = loads.setdefault(bp.pair.rail, [0.0, 0.0])
-        acc[0], acc[1] = acc[0] + pf.N, acc[1] + pf.F_y
-    return {r: (v[0], v[1]) for r, v in loads.items()}
+    el = system.element
+    return el.rail_loads(el.x_at(system.mbs.systemData.GetTime()), q, q_t)
 
 
 def _static_deflection(
-    params, x: float, loads: Mapping[str, tuple[float, float]], layers: int
+    params,
+    x: float,
+    loads: Mapping[str, tuple[float, float]],
+    layers: int,
+    lateral: bool = False,
 ) -> dict[str, float]:
-    """u = K^-1 f of the co-running track (by coordinate name) under the vertical wheel loads.
+    """u = K^-1 f of the co-running track (by coordinate name) under the wheel loads.
 
-    Lateral loads are left out on purpose: the two rails' lateral deflections change in
-    opposite directions at a zone boundary, which a rigid wheelset cannot follow, and on a
-    conical tread that would turn into a vertical load step; lateral states carry over.
+    Vertical loads always; lateral loads only with ``lateral`` (the profile contact, whose
+    lateral forces at rest are the real N tan(gamma) of each contact point, so that the new
+    zone starts in lateral equilibrium too). For the height-table contact lateral loads are
+    left out on purpose: the two rails' lateral deflections change in opposite directions at
+    a zone boundary, which a rigid wheelset cannot follow, and on its conical tread that
+    would turn into a vertical load step; lateral states carry over.
     """
     from exudyn_turnout.corunning.modal import assemble_track_matrices, wheel_dof
 
     m = assemble_track_matrices(params, x)
     f = np.zeros(len(m.dof))
-    for rail, (N, _) in loads.items():
+    for rail, (N, F_y) in loads.items():
         if rail in params.active_rails:
             f[m.index(wheel_dof(rail, "vertical", layers))] -= N
+            if lateral:
+                f[m.index(wheel_dof(rail, "lateral", layers))] += F_y
     return dict(zip(m.dof, np.linalg.solve(m.K, f)))
 
 
@@ -404,8 +474,9 @@ def _carry_over(
     loads_old = _wheel_rail_loads(old, state, layers)
     source = {slot: continues.get(slot, slot) for slot in new.params.active_rails}
     loads_new = {slot: loads_old[src] for slot, src in source.items() if src in loads_old}
-    u_old = _static_deflection(old.params, x, loads_old, layers)
-    u_new = _static_deflection(new.params, x, loads_new, layers)
+    lateral = getattr(old.element, "running_surface_depth", 0.0) > 0.0  # profile contact
+    u_old = _static_deflection(old.params, x, loads_old, layers, lateral)
+    u_new = _static_deflection(new.params, x, loads_new, layers, lateral)
     q_old, v_old = _track_vector(state, old, 0), _track_vector(state, old, 1)
     dyn = {n: q_old[n] - u_old[n] for n in q_old}
     shift = new.sleeper_y - old.sleeper_y  # the sleeper's reference point moved with the zone
@@ -458,21 +529,25 @@ def _vehicle_shift(
     new_slot = {
         src: slot for slot, src in source.items()
     }  # source holds the new zone's active slots only
-    for bp in old.element.pairs:
-        rail, N = bp.pair.rail, loads.get(bp.pair.rail, (0.0, 0.0))[0]
+    for rail, wheel in old.element.wheel_of.items():
+        N = loads.get(rail, (0.0, 0.0))[0]
         if N <= 0.0 or rail not in new_slot:
             continue
         for axis, acc in (("vertical", dz), ("lateral", dy)):
             a, b_ = wheel_dof(rail, axis, layers), wheel_dof(new_slot[rail], axis, layers)
             if a in u_old and b_ in u_new:
-                acc[bp.pair.wheel].append(u_new[b_] - u_old[a])
+                acc[wheel].append(u_new[b_] - u_old[a])
     mean = {
         w: (float(np.mean(dz[w])) if dz[w] else 0.0, float(np.mean(dy[w])) if dy[w] else 0.0)
         for w in dz
     }
     z, y = 0.5 * (mean["left"][0] + mean["right"][0]), 0.5 * (mean["left"][1] + mean["right"][1])
     roll = (mean["left"][0] - mean["right"][0]) / (2.0 * b)
-    return {"wheelset": np.array([y, z, roll]), "yaw": np.zeros(1), "sprung": np.array([y, z])}
+    # profile contact: a roll moves the running surfaces sideways by r0 roll; move the
+    # wheelset back by as much so the wheels stay where they touch
+    y -= getattr(old.element, "running_surface_depth", 0.0) * roll
+    n_yaw = old.element.n_vehicle - 5  # yaw (and spin) coordinates
+    return {"wheelset": np.array([y, z, roll]), "yaw": np.zeros(n_yaw), "sprung": np.array([y, z])}
 
 
 def _element_nodes(system: _ZoneSystem, layers: int) -> list[str]:
@@ -483,10 +558,8 @@ def _element_nodes(system: _ZoneSystem, layers: int) -> list[str]:
 def _wheel_loads(system: _ZoneSystem, state: dict, layers: int) -> dict[str, float]:
     """Total normal force (N) on each wheel in ``state``."""
     q = np.concatenate([state[n][0] for n in _element_nodes(system, layers)])
-    el, loads = system.element, {"left": 0.0, "right": 0.0}
-    for bp, pf in zip(el.pairs, el.all_pair_forces(el.x0, q, np.zeros_like(q))):
-        loads[bp.pair.wheel] += pf.N
-    return loads
+    el = system.element
+    return el.wheel_loads(el.x0, q)
 
 
 def _solve_static(system: _ZoneSystem) -> None:
@@ -557,7 +630,10 @@ def _run(
     stored = [system.mbs.GetSensorStoredData(sensor) for sensor in system.sensors]
     t = stored[0][:, 0]
     q = np.hstack([a[:, 1:] for a in stored])
-    force = system.mbs.GetSensorStoredData(system.force_sensor)[:, 1:]
+    if int(system.force_sensor) >= 0:
+        force = system.mbs.GetSensorStoredData(system.force_sensor)[:, 1:]
+    else:
+        force = np.zeros((len(t), 1))
     finite = np.all(np.isfinite(q), axis=1) & np.all(np.isfinite(force), axis=1)
     if not finite.all():
         bad = t[~finite][0]
@@ -565,7 +641,11 @@ def _run(
             f"solution diverged at t = {t_offset + bad:.5f} s, x = {el.x_at(bad):.3f} m "
             f"(zone {system.zone.index}): reduce the time step"
         )
-    cols = _segment_columns(el, t, q, force, system.rails)
+    if int(system.force_sensor) >= 0:
+        cols = _segment_columns(el, t, q, force, system.rails)
+    else:
+        n = q.shape[1] // 2
+        cols = _profile_columns(el, t, q[:, :n], q[:, n:], system.rails)
     cols["t_s"] = t + t_offset
     return cols
 
@@ -651,7 +731,15 @@ def _simulate(
     wall: float,
 ) -> PassageResult:
     v = settings.v
-    static = _build(turnout, route, vehicle, zones[0], settings, x_a, 0.0)
+    contact = None
+    if settings.contact == "profile":
+        from exudyn_turnout.passage.profile_contact import route_contact
+
+        try:
+            contact = route_contact(turnout, route.name, vehicle)
+        except ValueError as err:
+            raise PassageError(str(err)) from None
+    static = _build(turnout, route, vehicle, zones[0], settings, x_a, 0.0, contact)
     _solve_static(static)
     state = _node_state(static)
     static_loads = _wheel_loads(static, state, settings.layers)
@@ -659,7 +747,7 @@ def _simulate(
     W = 0.5 * (static_loads["left"] + static_loads["right"])
     segments, x, t_offset, previous, total = [], x_a, 0.0, static, (x_b - x_a) / v
     for k, zone in enumerate(zones):
-        system = _build(turnout, route, vehicle, zone, settings, x, v)
+        system = _build(turnout, route, vehicle, zone, settings, x, v, contact)
         _carry_over(
             state,
             previous,

@@ -31,12 +31,19 @@ class VehicleHandles:
     wheelset_body: int  #: ObjectRigidBody2D of the wheelset
     sprung_node: int  #: NodePoint2D (y, z)
     sprung_body: int  #: ObjectMassPoint2D of the sprung mass
-    yaw_node: int  #: NodeGenericODE2, one coordinate; its inertia sits in the contact element
+    #: NodeGenericODE2: yaw (and spin perturbation); their inertia sits in the contact element
+    yaw_node: int
     gravity_loads: tuple[int, ...]  #: LoadMassProportional on (wheelset, sprung mass)
 
 
 def add_vehicle(
-    mbs, vehicle: Vehicle, ground_body: int, z_w0: float = 0.0, z_s0: float = 0.0
+    mbs,
+    vehicle: Vehicle,
+    ground_body: int,
+    z_w0: float = 0.0,
+    z_s0: float = 0.0,
+    spin: bool = False,
+    roll0: float = 0.0,
 ) -> VehicleHandles:
     """Add the wheelset, its sprung mass, the primary suspension and gravity.
 
@@ -51,6 +58,12 @@ def add_vehicle(
     z_w0, z_s0 : float
         Initial vertical displacements (m) of wheelset and sprung mass (a guess for the
         static solver: the Hertz springs need closed contact to have stiffness).
+    roll0 : float
+        rad, initial roll of the wheelset (a guess for the static solver).
+    spin : bool
+        The yaw node gets a second coordinate, the wheelset's spin perturbation beta about
+        its axle (profile contact's longitudinal creepages need it); its inertia, like the
+        yaw inertia, sits in the contact element.
 
     Returns
     -------
@@ -62,7 +75,7 @@ def add_vehicle(
     del ground_body
     wheelset_node = mbs.AddNode(
         ii.NodeRigidBody2D(
-            referenceCoordinates=[0.0, 0.0, 0.0], initialCoordinates=[0.0, z_w0, 0.0]
+            referenceCoordinates=[0.0, 0.0, 0.0], initialCoordinates=[0.0, z_w0, roll0]
         )
     )
     wheelset_body = mbs.AddObject(
@@ -72,12 +85,13 @@ def add_vehicle(
         ii.NodePoint2D(referenceCoordinates=[0.0, 0.0], initialCoordinates=[0.0, z_s0])
     )
     sprung_body = mbs.AddObject(ii.ObjectMassPoint2D(mass=vehicle.m_s, nodeNumber=sprung_node))
+    n_yaw = 2 if spin else 1
     yaw_node = mbs.AddNode(
         ii.NodeGenericODE2(
-            referenceCoordinates=[0.0],
-            initialCoordinates=[0.0],
-            initialCoordinates_t=[0.0],
-            numberOfODE2Coordinates=1,
+            referenceCoordinates=[0.0] * n_yaw,
+            initialCoordinates=[0.0] * n_yaw,
+            initialCoordinates_t=[0.0] * n_yaw,
+            numberOfODE2Coordinates=n_yaw,
         )
     )
     sprung_marker = mbs.AddMarker(ii.MarkerNodePosition(nodeNumber=sprung_node))

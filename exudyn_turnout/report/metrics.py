@@ -798,8 +798,11 @@ def receptance_section(
 
 
 def _settings(turnout: Turnout, config: ReportConfig, route: str, layers: int) -> PassageSettings:
+    """The report's co-running passage: the height-table contact, like the FE passage (which
+    has no profile contact yet), so that 2-layer, 3-layer and FE differ only in the track."""
     x = config.passage_x or (turnout.x_min, turnout.x_max)
     return PassageSettings(
+        contact="height-table",
         route=route,
         layers=layers,
         speed_kmh=_speeds(config)[route],

@@ -46,6 +46,8 @@ __all__ = [
     "CrossingDesign",
     "switch_sections",
     "crossing_sections",
+    "inclination_ramp",
+    "nose_heights",
     "lateral_grid",
 ]
 
@@ -421,8 +423,96 @@ class CrossingDesign:
     #: m, flangeway between wing rail and nose at the tip (assumed 41 mm, a common figure
     #: for standard-gauge crossings; no source at hand).
     flangeway: float = 0.041
-    #: m, head width of the full rail (72 mm, EN 13674-1).
+    #: m, head width of the full rail (72 mm, EN 13674-1); :func:`crossing_sections`
+    #: fills the nose between its legs' crowns at crown level (:func:`nose_heights`).
     head_width: float = 0.072
+    #: m, length over which the crossing's upright rail twists to the track's inclination
+    #: before the plain track that follows it (:func:`inclination_ramp`; used by
+    #: :mod:`.turnout_sections`, which ends it where the nose segment ends).  Assumed: a
+    #: crossing laid upright in 1:40 track is joined by rails twisted over a few sleeper
+    #: bays; 2 m (3-4 bays) turns a 72 mm head by 25 mrad with its edges moving 0.9 mm
+    #: vertically, 0.45 mm per metre (no source at hand for a standard length).
+    inclination_transition: float = 2.0
+
+
+def inclination_ramp(x: float, x_end: float, length: float, inclination: float) -> float:
+    """Inclination of a rail that twists from upright to ``inclination`` ending at ``x_end``.
+
+    Linear in the tangent: 0 up to ``x_end - length``, ``inclination`` from ``x_end`` on
+    (a twisted rail turns at a constant rate; the rate is the design's choice, linear is
+    the simplest that is continuous at both ends).
+
+    Parameters
+    ----------
+    x : float
+        m, position along the route.
+    x_end : float
+        m, where the rail reaches the track's inclination.
+    length : float
+        m, length of the twist (0: none, the rail stays upright and the rail that follows
+        it steps).
+    inclination : float
+        Tangent of the track's inclination (1/40).
+
+    Returns
+    -------
+    float
+        Tangent of the inclination at x.
+    """
+    if length <= 0.0:  # no twist: upright to its end, where the next rail steps
+        return 0.0
+    return inclination * min(max((x - (x_end - length)) / length, 0.0), 1.0)
+
+
+def nose_heights(
+    leg: np.ndarray,
+    y_grid: np.ndarray,
+    half_gauge: float,
+    width: float,
+    lowering: float,
+    head_width: float | None = None,
+) -> np.ndarray:
+    """A crossing nose section: two rail legs ``width`` apart, mirrored about their middle.
+
+    The through leg is ``leg`` (a full rail placed with its gauge point at ``half_gauge``)
+    up to the middle line ``half_gauge + width / 2``; beyond it, the other leg, the same
+    rail mirrored so that its gauge face is at ``half_gauge + width``.  With ``head_width``
+    the part between the two crowns (``head_width / 2`` from each gauge face) is filled at
+    crown level (a machined nose block, :func:`crossing_sections`); without it each leg
+    keeps its own head, so once the legs are apart (the mirror beyond the grid) the section
+    is ``leg`` itself, the plain rail a crossing leg continues as.  The rail is cut 20 mm
+    on the gauge side of the gauge face; the whole nose is lowered by ``lowering``.
+
+    Parameters
+    ----------
+    leg : numpy.ndarray
+        m, heights of the full rail on ``y_grid`` (NaN: no rail).
+    y_grid : numpy.ndarray
+        m, uniform lateral grid (side coordinates).
+    half_gauge : float
+        m, lateral position of the through leg's gauge point.
+    width : float
+        m, nose width between the two legs' gauge faces.
+    lowering : float
+        m, how far the nose top is below the rail's.
+    head_width : float, optional
+        m, head width: fill between the crowns (default: no fill).
+
+    Returns
+    -------
+    numpy.ndarray
+        m, heights (NaN: no rail).
+    """
+    from_gauge = np.minimum(y_grid - half_gauge, half_gauge + width - y_grid)
+    if head_width is not None:
+        distance = np.minimum(from_gauge, 0.5 * head_width)
+        nose = np.interp(half_gauge + distance, y_grid, leg)
+    else:
+        nose = leg.copy()
+        far = y_grid > half_gauge + 0.5 * width
+        nose[far] = np.interp(2.0 * half_gauge + width - y_grid[far], y_grid, leg)
+    nose[from_gauge < -0.02] = np.nan
+    return nose - lowering
 
 
 def _shifted_heights(base: Profile, y_grid: np.ndarray, shift: float) -> np.ndarray:
@@ -505,7 +595,6 @@ def crossing_sections(
     half = 0.5 * gauge
     slope = 1.0 / design.crossing_number
     throat = design.nose_tip - design.crossing_number * (design.tip_width + design.flangeway)
-    half_head = 0.5 * design.head_width
     base_heights = surface_on_grid(base, y_grid)
     heights: dict[str, list[np.ndarray]] = {"wing": [], "nose": []}
     for xi in np.asarray(x, float):
@@ -515,14 +604,12 @@ def crossing_sections(
             heights["nose"].append(np.full(y_grid.shape, np.nan))
             continue
         width = design.tip_width + (xi - design.nose_tip) * slope
-        from_gauge = np.minimum(y_grid - half, half + width - y_grid)
-        distance = np.minimum(from_gauge, half_head)
-        nose = np.interp(half + distance, y_grid, base_heights)
-        nose[from_gauge < -0.02] = np.nan
         lowering = design.tip_lowering * max(
             0.0, 1.0 - (xi - design.nose_tip) / design.lowering_length
         )
-        heights["nose"].append(nose - lowering)
+        heights["nose"].append(
+            nose_heights(base_heights, y_grid, half, width, lowering, design.head_width)
+        )
     return {
         key: SectionGrid(
             x=np.asarray(x, float), y=y_grid, z=np.array(value), name=f"crossing {key}"

@@ -24,6 +24,7 @@ from __future__ import annotations
 import hashlib
 import os
 import time
+import uuid
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -361,7 +362,8 @@ def build_contact_table(
     elapsed = time.perf_counter() - start
     if use_cache:
         path.parent.mkdir(parents=True, exist_ok=True)
-        temporary = path.with_suffix(".tmp.npz")
+        # a name of its own per writer: parallel workers may build the same table at once
+        temporary = path.with_name(f"{path.stem}.{os.getpid()}-{uuid.uuid4().hex[:8]}.tmp.npz")
         np.savez(
             temporary, x=sections.x, shift=shifts, values=values, count=count, blendable=blendable
         )

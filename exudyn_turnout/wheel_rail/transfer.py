@@ -8,6 +8,10 @@ passes from one rail to the other where that changes (both touch there).  The *d
 depression of the path between the two rails: its depth below the straight line joining the
 path's levels before and after, and its angle, the sum of the largest falling and rising
 slopes (the "2 alpha" of dip-angle crossing assessments).
+
+:func:`wheel_path` takes one set of sections that holds both rails (a CONTACT crossing
+slice set); :func:`two_rail_path` takes two rail bodies on the same x (stock rail and
+blade, wing rail and nose, as :mod:`.turnout_sections` builds them).
 """
 
 from __future__ import annotations
@@ -22,11 +26,20 @@ from exudyn_turnout.wheel_rail.geometry import (
     prepare_rail,
     prepare_wheel,
     search_candidates,
+    search_candidates_batch,
     surface_derivatives,
 )
 from exudyn_turnout.wheel_rail.sections import SectionGrid
 
-__all__ = ["WheelPath", "DipSummary", "rail_runs", "wheel_path", "dip_summary"]
+__all__ = [
+    "WheelPath",
+    "DipSummary",
+    "rail_runs",
+    "wheel_path",
+    "two_rail_path",
+    "two_rail_paths",
+    "dip_summary",
+]
 
 
 @dataclass(frozen=True, eq=False)
@@ -38,7 +51,9 @@ class WheelPath:
     height: np.ndarray  #: m, height of the wheel (its taping circle) when touching
     y_rail: np.ndarray  #: m, lateral position of the touching point on the rail
     x_offset: np.ndarray  #: m, longitudinal position of the touching point from the centre
-    carrier: np.ndarray  #: 0 = gauge-side rail (nose), 1 = field-side rail (wing), per x
+    #: per x: 0 = the rail the load passes to (nose, blade; the gauge-side head for
+    #: :func:`wheel_path`), 1 = the rail it comes from (wing rail, stock rail); -1: none
+    carrier: np.ndarray
     second_gap: np.ndarray  #: m, normal gap of the other rail's nearest candidate (NaN: none)
 
 
@@ -47,7 +62,7 @@ class DipSummary:
     """Where the load passes between two rails and the dip of the wheel's path."""
 
     shift: float  #: m, lateral shift of the wheel
-    transfer_x: float  #: m, first x where the gauge-side rail (nose) carries the wheel
+    transfer_x: float  #: m, first x where the second rail (nose, blade) carries the wheel
     depth: float  #: m, largest depth of the path below the chord of its end levels
     depth_x: float  #: m, where the path is deepest below that chord
     falling_slope: float  #: rad, steepest fall of the path before the deepest point
@@ -150,6 +165,139 @@ def wheel_path(
     )
 
 
+def _touch_heights(sections: SectionGrid, index: int, derivatives, prepared, shifts) -> list:
+    """Per shift: (height, y on the rail, x offset) of the touching candidate (-inf: none)."""
+    rail = prepare_rail(
+        sections.z[index],
+        derivatives.slope[index],
+        derivatives.curvature[index],
+        sections.y,
+        directions=(),
+    )
+    out = []
+    batch = search_candidates_batch(rail, prepared, shifts, max_candidates=3, max_gap=0.02)
+    for found in batch:
+        if len(found.gap) == 0:
+            out.append((-math.inf, math.nan, 0.0))
+            continue
+        heights = -found.gap / np.cos(found.angle)
+        best = int(np.argmax(heights))
+        y = float(found.y_rail[best])
+        offset = 0.0
+        if sections.x_offset is not None:
+            step = float(sections.y[1] - sections.y[0])
+            k = min(max(int(round((y - sections.y[0]) / step)), 0), len(sections.y) - 1)
+            offset = float(sections.x_offset[index, k])
+        out.append((float(heights[best]), y, offset))
+    return out
+
+
+def two_rail_path(
+    first: SectionGrid,
+    second: SectionGrid,
+    wheel: WheelGrid,
+    taping_line: float,
+    shift: float,
+) -> WheelPath:
+    """Rigid-contact path of a wheel over two rail bodies on the same x grid.
+
+    At every x the wheel stands on whichever body lifts it higher (``-min(vertical gap)``
+    over each body's candidates); the load passes from ``first`` to ``second`` where that
+    changes.
+
+    Parameters
+    ----------
+    first, second : SectionGrid
+        The rail the load comes from (stock rail, wing rail) and the one it passes to
+        (blade, nose), same ``x`` (enveloped sections carry ``x_offset``).
+    wheel : WheelGrid
+        Gridded wheel (same grid step).
+    taping_line : float
+        m, nominal lateral position of the taping line in the sections' frame.
+    shift : float
+        m, lateral shift of the wheel towards the field side.
+
+    Returns
+    -------
+    WheelPath
+        ``carrier`` 0 where ``second`` carries the wheel, 1 where ``first`` does, -1 where
+        neither is under it; ``second_gap`` the vertical gap of the other body there.
+
+    Raises
+    ------
+    ValueError
+        The two bodies' x grids differ.
+    """
+    return two_rail_paths(first, second, wheel, taping_line, (shift,))[0]
+
+
+def two_rail_paths(
+    first: SectionGrid,
+    second: SectionGrid,
+    wheel: WheelGrid,
+    taping_line: float,
+    shifts: tuple,
+) -> tuple:
+    """:func:`two_rail_path` for several lateral shifts (one rail preparation per x).
+
+    Parameters
+    ----------
+    first, second : SectionGrid
+        See :func:`two_rail_path`.
+    wheel : WheelGrid
+        Gridded wheel.
+    taping_line : float
+        m, nominal lateral position of the taping line.
+    shifts : tuple of float
+        m, lateral shifts of the wheel towards the field side.
+
+    Returns
+    -------
+    tuple of WheelPath
+        One per shift.
+
+    Raises
+    ------
+    ValueError
+        The two bodies' x grids differ.
+    """
+    if first.x.shape != second.x.shape or not np.allclose(first.x, second.x):
+        raise ValueError("two_rail_path: the two bodies must share their x grid")
+    prepared = prepare_wheel(wheel, taping_line, 0.0, directions=())
+    derivatives = (surface_derivatives(first), surface_derivatives(second))
+    n, m = len(first.x), len(shifts)
+    height = np.full((m, n), np.nan)
+    y_rail, x_offset, second_gap = (np.full((m, n), np.nan) for _ in range(3))
+    carrier = np.full((m, n), -1, dtype=int)
+    for i in range(n):
+        found = [
+            _touch_heights(body, i, d, prepared, np.asarray(shifts, float))
+            for body, d in zip((first, second), derivatives)
+        ]
+        for j in range(m):
+            (h1, y1, o1), (h2, y2, o2) = found[0][j], found[1][j]
+            if not (math.isfinite(h1) or math.isfinite(h2)):
+                continue
+            on_second = h2 >= h1
+            height[j, i] = h2 if on_second else h1
+            y_rail[j, i], x_offset[j, i] = (y2, o2) if on_second else (y1, o1)
+            carrier[j, i] = 0 if on_second else 1
+            other = h1 if on_second else h2
+            second_gap[j, i] = height[j, i] - other if math.isfinite(other) else math.nan
+    return tuple(
+        WheelPath(
+            x=first.x.copy(),
+            shift=float(shifts[j]),
+            height=height[j],
+            y_rail=y_rail[j],
+            x_offset=x_offset[j],
+            carrier=carrier[j],
+            second_gap=second_gap[j],
+        )
+        for j in range(m)
+    )
+
+
 def _run_index(runs: list[slice], y_grid: np.ndarray, y: float, step: float) -> int:
     index = int(round((y - y_grid[0]) / step))
     for k, run in enumerate(runs):
@@ -158,14 +306,19 @@ def _run_index(runs: list[slice], y_grid: np.ndarray, y: float, step: float) -> 
     return -1
 
 
-def dip_summary(path: WheelPath) -> DipSummary:
+def dip_summary(path: WheelPath, baseline: float = 0.0) -> DipSummary:
     """Transfer position and dip of a wheel path.
 
     Parameters
     ----------
     path : WheelPath
-        From :func:`wheel_path`, over an x range that starts on the first rail and ends on
-        the second.
+        From :func:`wheel_path` or :func:`two_rail_path`, over an x range that starts on
+        the first rail and ends on the second.
+    baseline : float
+        m, slopes are chords over this length (0: between neighbouring samples).  A path
+        over sections interpolated between x nodes is piecewise linear with kinks at the
+        nodes; a 20 mm baseline (that of :func:`exudyn_turnout.inputs.routes.dip_angle`)
+        measures the dip's slope rather than the kinks.
 
     Returns
     -------
@@ -181,7 +334,14 @@ def dip_summary(path: WheelPath) -> DipSummary:
     chord = h[0] + (h[-1] - h[0]) * (x - x[0]) / (x[-1] - x[0])
     below = chord - h
     deepest = int(np.argmax(below))
-    slope = np.gradient(h, x)
+    if baseline > 0.0:
+        half = 0.5 * baseline
+        ahead = np.interp(np.minimum(x + half, x[-1]), x, h)
+        behind = np.interp(np.maximum(x - half, x[0]), x, h)
+        span = np.minimum(x + half, x[-1]) - np.maximum(x - half, x[0])
+        slope = (ahead - behind) / np.where(span > 0.0, span, 1.0)
+    else:
+        slope = np.gradient(h, x)
     falling = float(np.max(-slope[: deepest + 1])) if deepest > 0 else 0.0
     rising = float(np.max(slope[deepest:])) if deepest < len(x) - 1 else 0.0
     falling, rising = max(falling, 0.0), max(rising, 0.0)

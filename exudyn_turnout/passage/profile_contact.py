@@ -1,0 +1,629 @@
+"""Profile wheel/rail contact of the single wheelset: an Exudyn ``ObjectGenericODE2`` force.
+
+The element couples the wheelset (y, z, roll), its yaw and spin-perturbation coordinates,
+the sprung mass (y, z; for the curving load) and the contact body of every rail slot the
+route's rail bodies follow in the current zone (the rail mass for two layers, m_0 for
+three).  Its force function evaluates, in one compiled call
+(:func:`exudyn_turnout.wheel_rail.kernel.contact_forces`), every candidate contact point of
+every rail body at the wheelset's position x = x0 + v t: normal force along the contact
+normal (one-sided Hertz with the point's own Hertz constant), creepages with spin, Polach's
+creep forces, and the resulting generalised forces on the wheelset and the rails.  The
+curving load -m v^2 kappa acts on wheelset and sprung mass (track-following frame).
+
+Coordinates of the element: ``[y_w, z_w, phi, psi, beta, y_s, z_s, y_r1, z_r1, ...]``
+(beta: spin perturbation about the axle, the wheel turning at v / r0 + beta_t).
+
+Nothing is evaluated twice: the solver calls the force function, and the outputs (forces,
+contact positions, creepages per contact point) are computed afterwards from the stored
+coordinates and velocities by the same kernel (:meth:`ProfileContactElement.columns`).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from bisect import bisect_right
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from exudyn_turnout.inputs.routes import Route
+from exudyn_turnout.inputs.vehicle import Vehicle
+from exudyn_turnout.wheel_rail.kernel import (
+    DETAIL_FIELDS,
+    PackedTables,
+    contact_forces,
+    contact_history,
+)
+
+__all__ = [
+    "RouteContact",
+    "route_contact",
+    "ProfileContactElement",
+    "STATIC_LATERAL_STIFFNESS",
+    "STATIC_SPIN_STIFFNESS",
+    "N_VEHICLE_COORDINATES",
+    "contact_columns",
+]
+
+#: N/m: holds the wheelset's lateral position in the static solve (v = 0), where creep gives
+#: no lateral stiffness; the design geometry's symmetric equilibrium has y = 0.
+STATIC_LATERAL_STIFFNESS = 1e7
+#: N m/rad: holds the spin perturbation in the static solve, where it has no stiffness.
+STATIC_SPIN_STIFFNESS = 1e6
+#: Vehicle coordinates at the head of the element: y_w, z_w, phi, psi, beta, y_s, z_s.
+N_VEHICLE_COORDINATES = 7
+
+_DETAIL = {name: k for k, name in enumerate(DETAIL_FIELDS)}
+
+
+def _interp(xs: tuple, values: tuple, x: float) -> float:
+    """Piecewise-linear table (xs, values) at x, constant beyond its ends (scalar, fast)."""
+    i = bisect_right(xs, x)
+    if i <= 0:
+        return values[0]
+    if i >= len(xs):
+        return values[-1]
+    x0, x1 = xs[i - 1], xs[i]
+    return values[i - 1] + (values[i] - values[i - 1]) * (x - x0) / (x1 - x0)
+
+
+def _slug(text: str) -> str:
+    return re.sub(r"[^a-z0-9]+", "_", text.lower()).strip("_")
+
+
+@dataclass(frozen=True)
+class _Body:
+    """A rail body bound to the element: its name, wheel, rail slot and coordinates."""
+
+    name: str
+    wheel: str  #: "left" or "right"
+    rail: str  #: co-running rail slot
+    i_y: int  #: index of the slot's lateral coordinate in the element
+    i_z: int  #: index of its vertical coordinate
+
+
+class ProfileContactElement:
+    """Force function of the profile contact element (see the module docstring).
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+        Wheelset radius, masses for the curving load, friction and normal damping.
+    route : Route
+        The route: its curvature.
+    tables : PackedTables
+        The rail bodies of this zone, bound to the element's coordinates
+        (:meth:`PackedTables.select <exudyn_turnout.wheel_rail.kernel.PackedTables>`).
+    bodies : sequence of (wheel, rail slot)
+        Per packed body, the wheel ("left"/"right") and the rail slot it follows.
+    x0 : float
+        m, position of the wheelset at t = 0.
+    v : float
+        m/s, speed; 0 for the static solve (no creep, lateral position and spin held).
+    irregularity : Irregularity, optional
+        Rail irregularities (its ``at(x)`` gives vertical left/right, lateral left/right).
+    shear_modulus : float
+        Pa, G of wheel and rail steel for the creep forces.
+    """
+
+    n_vehicle = N_VEHICLE_COORDINATES
+
+    def __init__(
+        self,
+        vehicle: Vehicle,
+        route: Route,
+        tables: PackedTables,
+        bodies: Sequence[tuple[str, str]],
+        x0: float,
+        v: float,
+        irregularity=None,
+        shear_modulus: float = 8.1e10,
+    ):
+        self.vehicle, self.route, self.tables = vehicle, route, tables
+        self.x0, self.v = float(x0), float(v)
+        self.irregularity = irregularity
+        #: m, depth of the running surfaces below the axle: a roll phi moves them by this
+        #: times phi sideways (the kernel's shift)
+        self.running_surface_depth = vehicle.r0
+        layout = tables.layout
+        self.bodies = tuple(
+            _Body(tables.names[k], wheel, rail, int(layout[k, 7]), int(layout[k, 8]))
+            for k, (wheel, rail) in enumerate(bodies)
+        )
+        slots = {(b.i_y, b.i_z) for b in self.bodies}
+        self.n = self.n_vehicle + 2 * len(slots)
+        self.wheel_of = {b.rail: b.wheel for b in self.bodies}
+        self._constants = np.array(
+            [self.v, vehicle.r0, vehicle.contact.mu, shear_modulus, vehicle.contact.damping, 0.0]
+        )
+        self._forces = np.zeros(self.n)
+        self._details = np.zeros((max(tables.n_bodies, 1) * tables.n_candidates, len(_DETAIL)))
+        self._irr = np.zeros(4)
+        self._cached_t = math.nan
+        self._kappa = 0.0
+        curvature = route.curvature
+        self._curvature_x = np.asarray(curvature.x, float)
+        self._curvature_v = np.asarray(curvature.value, float)
+        self._curvature_xs = tuple(float(a) for a in curvature.x)
+        self._curvature_vs = tuple(float(a) for a in curvature.value)
+
+    def x_at(self, t: float) -> float:
+        """Position of the wheelset along the route at time t: x0 + v t.
+
+        Parameters
+        ----------
+        t : float
+            s, simulation time.
+
+        Returns
+        -------
+        float
+            m, position along the route.
+        """
+        return self.x0 + self.v * t
+
+    def _prepare(self, x: float) -> None:
+        self._kappa = _interp(self._curvature_xs, self._curvature_vs, x)
+        self._constants[5] = self._kappa
+        if self.irregularity is not None:
+            self._irr[:] = self.irregularity.at(x)
+
+    def evaluate(self, x: float, q, q_t) -> tuple[np.ndarray, np.ndarray]:
+        """Contact forces at position x for element coordinates q, q_t.
+
+        Parameters
+        ----------
+        x : float
+            m, position of the wheelset along the route.
+        q, q_t : array_like
+            Element coordinates and velocities (module docstring order).
+
+        Returns
+        -------
+        forces : numpy.ndarray
+            Generalised contact forces on the element's coordinates (without the curving
+            load and the static holds); a copy.
+        details : numpy.ndarray
+            Per body and candidate slot, the columns of
+            :data:`~exudyn_turnout.wheel_rail.kernel.DETAIL_FIELDS`; a copy.
+        """
+        self._prepare(x)
+        self._call(x, np.asarray(q, float), np.asarray(q_t, float))
+        return self._forces.copy(), self._details.copy()
+
+    def _call(self, x: float, q: np.ndarray, q_t: np.ndarray) -> None:
+        p = self.tables
+        contact_forces(
+            x,
+            q,
+            q_t,
+            self._irr,
+            p.values,
+            p.blendable,
+            p.x,
+            p.layout,
+            p.bounds,
+            self._constants,
+            self._forces,
+            self._details,
+        )
+
+    def touching_position(self, x: float, penetration: float) -> tuple[float, float]:
+        """Wheelset height and roll at which both wheels touch their rails, pressed in.
+
+        A start for the static solver (the Hertz contacts need closed contact to have any
+        stiffness): the rigid lift at which each wheel's nearest point touches, at zero
+        lateral shift, less ``penetration``.
+
+        Parameters
+        ----------
+        x : float
+            m, wheelset position.
+        penetration : float
+            m, normal penetration to add (e.g. the static Hertz penetration).
+
+        Returns
+        -------
+        z_w, phi : float
+            m and rad: wheelset height and roll.
+        """
+        _, details = self.evaluate(x, np.zeros(self.n), np.zeros(self.n))
+        touch = {"left": -math.inf, "right": -math.inf}
+        n_c = self.tables.n_candidates
+        for k, body in enumerate(self.bodies):
+            for row in details[k * n_c : (k + 1) * n_c]:
+                if row[_DETAIL["found"]] > 0.0:
+                    lift = row[_DETAIL["delta"]] / max(math.cos(row[_DETAIL["angle"]]), 0.1)
+                    touch[body.wheel] = max(touch[body.wheel], lift)
+        left = touch["left"] if math.isfinite(touch["left"]) else 0.0
+        right = touch["right"] if math.isfinite(touch["right"]) else 0.0
+        b = self.vehicle.b
+        return 0.5 * (left + right) - penetration, (left - right) / (2.0 * b)
+
+    def rail_loads(self, x: float, q, q_t) -> dict[str, tuple[float, float]]:
+        """Total (vertical, lateral) force on each rail slot touched.
+
+        Parameters
+        ----------
+        x : float
+            m, wheelset position.
+        q, q_t : array_like
+            Element coordinates and velocities.
+
+        Returns
+        -------
+        dict
+            Slot -> (vertical force pressing it down, lateral force on it, positive left), N.
+        """
+        forces, _ = self.evaluate(x, q, q_t)
+        out: dict[str, tuple[float, float]] = {}
+        for b in self.bodies:
+            out[b.rail] = (-forces[b.i_z], forces[b.i_y])
+        return out
+
+    def wheel_loads(self, x: float, q) -> dict[str, float]:
+        """Total vertical force (N) on each wheel at rest (velocities zero).
+
+        Parameters
+        ----------
+        x : float
+            m, wheelset position.
+        q : array_like
+            Element coordinates.
+
+        Returns
+        -------
+        dict
+            "left", "right" -> N.
+        """
+        _, details = self.evaluate(x, q, np.zeros(self.n))
+        loads = {"left": 0.0, "right": 0.0}
+        n_c = self.tables.n_candidates
+        for k, b in enumerate(self.bodies):
+            loads[b.wheel] += float(details[k * n_c : (k + 1) * n_c, _DETAIL["Fz"]].sum())
+        return loads
+
+    def __call__(self, mbs, t, item_number, q, q_t):
+        """Exudyn ``forceUserFunction``: generalised forces on the element's coordinates."""
+        if t != self._cached_t:  # Newton iterations of one step share t
+            self._cached_t = t
+            self._prepare(self.x_at(t))
+        q = np.array(q, dtype=float)
+        self._call(self.x_at(t), q, np.array(q_t, dtype=float))
+        forces = self._forces
+        vehicle = self.vehicle
+        if self.v > 0.0:
+            a_y = self.v**2 * self._kappa
+            forces[0] -= vehicle.m_w * a_y
+            forces[5] -= vehicle.m_s * a_y
+        else:
+            forces[0] -= STATIC_LATERAL_STIFFNESS * q[0]
+            forces[4] -= STATIC_SPIN_STIFFNESS * q[4]
+        return forces
+
+    def columns(self, t: np.ndarray, q: np.ndarray, q_t: np.ndarray) -> dict[str, np.ndarray]:
+        """Output columns of a stored run, computed from coordinates and velocities.
+
+        Parameters
+        ----------
+        t : numpy.ndarray
+            s, (n,) times of the samples (from the zone's start).
+        q, q_t : numpy.ndarray
+            (n, element size) stored element coordinates and velocities.
+
+        Returns
+        -------
+        dict
+            Per wheel and rail slot ``Fz_<wheel>_<rail>_N``, ``Fy_<wheel>_<rail>_N`` (on the
+            rail), per wheel ``Fz_<wheel>_N``, ``Fy_<wheel>_N``, and per contact point
+            (:func:`contact_columns`).
+        """
+        n = len(t)
+        x = self.x0 + self.v * np.asarray(t, float)
+        irregularity = np.zeros((n, 4))
+        if self.irregularity is not None:
+            irregularity[:] = np.asarray(self.irregularity.at_array(x), float).T
+        p = self.tables
+        forces, details = contact_history(
+            x,
+            np.ascontiguousarray(q, float),
+            np.ascontiguousarray(q_t, float),
+            irregularity,
+            np.interp(x, self._curvature_x, self._curvature_v),
+            p.values,
+            p.blendable,
+            p.x,
+            p.layout,
+            p.bounds,
+            self._constants,
+        )
+        rails = {
+            b.rail: np.column_stack((-forces[:, b.i_z], forces[:, b.i_y])) for b in self.bodies
+        }
+        cols: dict[str, np.ndarray] = {}
+        for wheel in ("right", "left"):
+            cols[f"Fz_{wheel}_N"], cols[f"Fy_{wheel}_N"] = np.zeros(n), np.zeros(n)
+        for rail, values in rails.items():
+            wheel = self.wheel_of[rail]
+            cols[f"Fz_{wheel}_{rail}_N"], cols[f"Fy_{wheel}_{rail}_N"] = values[:, 0], values[:, 1]
+            cols[f"Fz_{wheel}_N"] = cols[f"Fz_{wheel}_N"] + values[:, 0]
+            cols[f"Fy_{wheel}_N"] = cols[f"Fy_{wheel}_N"] + values[:, 1]
+        cols.update(contact_columns(details, self.bodies, self.tables.n_candidates))
+        return cols
+
+
+@dataclass(frozen=True, eq=False)
+class RouteContact:
+    """The rail bodies of a route with their packed contact tables (built once per passage)."""
+
+    tables: PackedTables  #: every body of the route (coordinates bound per zone)
+    wheels: tuple  #: per body, "left" or "right"
+    rails: tuple  #: per body, the co-running rail slot it follows
+    build_seconds: float  #: s, time to build or load the tables
+
+    def element(
+        self,
+        vehicle: Vehicle,
+        route: Route,
+        zone,
+        x0: float,
+        v: float,
+        irregularity=None,
+    ) -> tuple[ProfileContactElement, list[str]]:
+        """The contact element of one zone: the bodies that exist in it on an active rail.
+
+        A body takes part if its rail slot is active in the zone (Table 3) and its x range
+        overlaps the zone's over a positive length: a body that ends where the zone begins
+        (the crossing nose, whose rail slot continues as another in the next zone) is left
+        out, so that its rail slot's meaning in one zone never mixes with the next's.
+
+        Parameters
+        ----------
+        vehicle : Vehicle
+        route : Route
+        zone : Zone
+            The zone (``active_rails``, ``x_start``, ``x_end``).
+        x0, v : float
+            m, m/s: start position and speed (0: static solve).
+        irregularity : Irregularity, optional
+
+        Returns
+        -------
+        element : ProfileContactElement
+        slots : list of str
+            The rail slots the element couples to, in coordinate order.
+
+        Raises
+        ------
+        ValueError
+            Both wheels would touch the same rail slot.
+        """
+        active_rails = zone.active_rails
+        bounds = self.tables.bounds
+        keep = [
+            k
+            for k, rail in enumerate(self.rails)
+            if rail in active_rails
+            and min(bounds[k, 3], zone.x_end) - max(bounds[k, 2], zone.x_start) > 1e-9
+        ]
+        slots = [r for r in active_rails if any(self.rails[k] == r for k in keep)]
+        for r in slots:
+            if len({self.wheels[k] for k in keep if self.rails[k] == r}) > 1:
+                raise ValueError(f"route {route.name}: rail {r} is touched by both wheels")
+        index = {r: N_VEHICLE_COORDINATES + 2 * i for i, r in enumerate(slots)}
+        coordinates = [(index[self.rails[k]], index[self.rails[k]] + 1) for k in keep]
+        element = ProfileContactElement(
+            vehicle,
+            route,
+            self.tables.select(keep, coordinates),
+            [(self.wheels[k], self.rails[k]) for k in keep],
+            x0,
+            v,
+            irregularity,
+        )
+        return element, slots
+
+
+class _RecentContacts:
+    """The last few routes' contact tables in memory, keyed by everything they depend on.
+
+    Building a route's sections and loading its tables from the disk cache takes seconds;
+    a study or a test suite runs many passages on the same route. Tables are read-only
+    once built, so sharing them is safe. At most ``size`` routes (~30-60 MB each) are kept.
+    """
+
+    def __init__(self, size: int = 4):
+        self.size = size
+        self.entries: dict[str, RouteContact] = {}
+
+    def get(self, key: str) -> RouteContact | None:
+        entry = self.entries.pop(key, None)
+        if entry is not None:
+            self.entries[key] = entry  # most recent last
+        return entry
+
+    def put(self, key: str, entry: RouteContact) -> None:
+        self.entries[key] = entry
+        while len(self.entries) > self.size:
+            self.entries.pop(next(iter(self.entries)))
+
+
+_RECENT = _RecentContacts()
+
+
+def _contact_key(turnout, route: str, vehicle: Vehicle, cache_dir) -> str:
+    import hashlib
+    import json
+
+    from exudyn_turnout import __version__
+
+    parts = [
+        __version__,
+        json.dumps(turnout.raw, sort_keys=True, default=str),
+        str(turnout.source),
+        route,
+        repr((vehicle.wheel_profile, vehicle.back_to_back, vehicle.r0, vehicle.source)),
+        str(cache_dir),
+    ]
+    return hashlib.sha256("\n".join(parts).encode()).hexdigest()
+
+
+def route_contact(turnout, route: str, vehicle: Vehicle, cache_dir=None) -> RouteContact:
+    """Contact tables of every rail body of a route for the vehicle's wheel profile.
+
+    Kept in memory for the last few routes (keyed by the turnout file's content, the route,
+    the wheel's profile, back-to-back and radius), built or loaded from the disk cache
+    otherwise.
+
+    Parameters
+    ----------
+    turnout : Turnout
+        With its ``[wheel_rail]`` geometry and the route's rail bodies.
+    route : str
+        Route name.
+    vehicle : Vehicle
+        Needs ``wheel_profile``, ``back_to_back`` and ``J_spin`` (profile contact).
+    cache_dir : str or Path, optional
+        Where tables are cached (default: the user's cache directory).
+
+    Returns
+    -------
+    RouteContact
+
+    Raises
+    ------
+    ValueError
+        The vehicle file lacks what profile contact needs (one line naming the field).
+    """
+    import time
+    from pathlib import Path
+
+    from exudyn_turnout.wheel_rail.data import profile_path
+    from exudyn_turnout.wheel_rail.geometry import WheelsetSetup, grid_wheel
+    from exudyn_turnout.wheel_rail.kernel import pack_tables
+    from exudyn_turnout.wheel_rail.profiles import read_profile
+    from exudyn_turnout.wheel_rail.turnout_sections import rail_geometry, route_contact_tables
+
+    key = _contact_key(turnout, route, vehicle, cache_dir)
+    recent = _RECENT.get(key)
+    if recent is not None:
+        return recent
+    name = Path(vehicle.source).name
+    for field, value in (
+        ("spin_inertia", vehicle.J_spin),
+        ("back_to_back", vehicle.back_to_back),
+        ("wheel_profile", vehicle.wheel_profile),
+    ):
+        if value is None:
+            raise ValueError(
+                f"{name}: [wheelset].{field} is needed for profile contact "
+                "(or run with contact='height-table')"
+            )
+    start = time.perf_counter()
+    geometry = rail_geometry(turnout)
+    setup = WheelsetSetup(
+        gauge=geometry.gauge,
+        back_to_back=float(vehicle.back_to_back),  # type: ignore[arg-type]
+        inclination=geometry.inclination,
+        nominal_radius=vehicle.r0,
+    )
+    profile_file = Path(str(vehicle.wheel_profile))
+    if not profile_file.is_absolute():
+        beside = Path(vehicle.source).parent / profile_file
+        profile_file = beside if beside.exists() else profile_path(str(vehicle.wheel_profile))
+    wheel = grid_wheel(
+        read_profile(profile_file, kind="wheel"),
+        step=setup.grid_step,
+        nominal_radius=setup.nominal_radius,
+    )
+    pairs = route_contact_tables(turnout, route, wheel, setup, cache_dir=cache_dir)
+    bodies = [body for body, _ in pairs]
+    packed = pack_tables(
+        [table for _, table in pairs],
+        [1 if b.wheel == "left" else -1 for b in bodies],
+        [(0, 0)] * len(bodies),
+        [(b.x_from, b.x_to) for b in bodies],
+        names=[b.name for b in bodies],
+    )
+    contact = RouteContact(
+        packed,
+        tuple(b.wheel for b in bodies),
+        tuple(b.rail for b in bodies),
+        time.perf_counter() - start,
+    )
+    _RECENT.put(key, contact)
+    return contact
+
+
+#: Per contact point outputs: column stem -> detail field (SI units in the stem's suffix).
+_POINT_COLUMNS = {
+    "N": "normal",
+    "Fx": "Fx",
+    "Ft": "Ft",
+    "y_rail": "y_rail",
+    "s_wheel": "s_wheel",
+    "angle": "angle",
+    "xi": "xi",
+    "eta": "eta",
+    "spin": "spin",
+}
+_UNITS = {
+    "N": "N",
+    "Fx": "N",
+    "Ft": "N",
+    "y_rail": "m",
+    "s_wheel": "m",
+    "angle": "rad",
+    "xi": "1",
+    "eta": "1",
+    "spin": "1pm",
+}
+
+
+def contact_columns(
+    details: np.ndarray, bodies: Sequence, n_candidates: int
+) -> Mapping[str, np.ndarray]:
+    """Per contact point columns from the kernel's detail rows over time.
+
+    Parameters
+    ----------
+    details : numpy.ndarray
+        (n, n_bodies * n_candidates, len(DETAIL_FIELDS)).
+    bodies : sequence
+        The element's bodies (``name``, ``wheel``, ``rail``).
+    n_candidates : int
+        Candidate slots per body.
+
+    Returns
+    -------
+    dict
+        ``cp_<wheel>_<rail>_<body>_<k>_<quantity>_<unit>``: normal force, creep forces,
+        position on rail and wheel, contact angle, creepages, and the wear number
+        ``Tgamma_..._N`` = |F_x xi| + |F_t eta| (N m/m).  Forces are 0 out of contact,
+        creepages NaN; positions and angle are kept while the point is found (a candidate
+        within the table's gap range), even unloaded, else NaN.  Only points that carry load
+        at some time get columns.
+    """
+    out: dict[str, np.ndarray] = {}
+    for k, body in enumerate(bodies):
+        stem = f"cp_{body.wheel}_{body.rail}_{_slug(body.name)}"
+        for c in range(n_candidates):
+            rows = details[:, k * n_candidates + c, :]
+            loaded = rows[:, _DETAIL["normal"]] > 0.0
+            if not loaded.any():
+                continue
+            found = rows[:, _DETAIL["delta"]] > -0.5
+            for name, field in _POINT_COLUMNS.items():
+                values = rows[:, _DETAIL[field]].copy()
+                if name in ("xi", "eta", "spin"):
+                    values[~loaded] = np.nan
+                elif name not in ("N", "Fx", "Ft"):  # forces are 0 out of contact
+                    values[~found] = np.nan
+                out[f"{stem}_{c}_{name}_{_UNITS[name]}"] = values
+            wear = np.abs(rows[:, _DETAIL["Fx"]] * rows[:, _DETAIL["xi"]]) + np.abs(
+                rows[:, _DETAIL["Ft"]] * rows[:, _DETAIL["eta"]]
+            )
+            out[f"{stem}_{c}_Tgamma_N"] = np.where(loaded, wear, 0.0)
+    return out

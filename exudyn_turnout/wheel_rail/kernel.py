@@ -1,0 +1,638 @@
+"""Compiled wheel/rail contact of one wheelset: every contact point of a step in one call.
+
+The tables of :mod:`.tables` hold, for each rail body a wheel can touch, the candidate
+contact points over the section position x and the wheel's lateral shift.  This module
+packs the tables of one wheelset into flat arrays and evaluates, in one numba-compiled
+call, for every body and every candidate at the current state:
+
+1. **Geometry** as :func:`.tables.lookup_values` does it (bilinear in cells whose four nodes
+   hold the same contact points, else the cell's first node with the gap carried to the
+   query's shift to first order), the normal gap carried to the wheel's lift,
+   ``gap + cos(gamma) lift``.
+2. **Normal force** along the contact normal, one-sided Hertz ``C_H delta^1.5`` with the
+   Hertz constant of the node's curvatures (exact Hertz ellipse, :mod:`.hertz`), plus an
+   optional normal damping ``c d(delta)/dt`` (never pulling).
+3. **Creepages** at the contact point from the wheelset's motion relative to the rail body
+   (derivation below) and **creep forces** by Polach's method (:func:`.creep.polach_creep_forces`,
+   the same formulas compiled), with Kalker's coefficients for the node's ellipse shape.
+4. **Generalised forces** on the wheelset (lateral, vertical, roll, yaw, spin perturbation)
+   and, opposite, on each rail body's lateral and vertical coordinate.
+
+Frames and signs.  Track frame: X forward, Y to the left, Z up.  Side s = +1 for the left
+wheel, -1 for the right.  Table quantities are in side coordinates (y from the track centre
+towards the wheel's field side, so track Y = s y).  A contact angle gamma > 0 tilts the
+normal towards the track centre: the unit normal on the wheel is
+``n = (0, -s sin(gamma), cos(gamma))`` and the lateral unit tangent
+``t = (0, cos(gamma), s sin(gamma))``, so (X, t, n) is right-handed.  The contact point
+sits at ``(x_c, Y_c, -r)`` from the wheelset centre, ``Y_c = s y_rail - y_w`` (y_rail from the
+table, y_w the wheelset's lateral displacement) and ``x_c`` the table's longitudinal offset.
+The wheel's lateral shift relative to a rail body is ``s (y_w + r0 phi - y_rail_body)``: a
+roll phi moves the running surface, r0 below the axle, sideways by r0 phi; its lift at the
+contact point is ``z_w + Y_c phi - z_rail_body``.
+
+Creepages.  In the track-following frame, which moves at v and turns at v kappa, a rail
+point at lateral Y moves backwards at v (1 - kappa Y); the wheelset turns about its axle at
+``Omega = v / r0 + beta_t`` (beta: spin perturbation), about X at the roll rate and about Z
+at the yaw rate psi_t relative to the track.  The wheel's material velocity at the contact
+minus the rail's, divided by v:
+
+- longitudinal ``xi = 1 - kappa Y_c - Omega r / v - Y_c psi_t / v``;
+- lateral, along t: ``eta = (u_Y cos(gamma) + u_Z s sin(gamma)) / v`` with
+  ``u_Y = y_w_t - y_r_t - v psi + r phi_t`` and ``u_Z = z_w_t + Y_c phi_t - z_r_t``;
+- spin, the wheelset's angular velocity along n, over v:
+  ``phi_s = (-s Omega sin(gamma) + psi_t cos(gamma)) / v``.
+
+Known approximation: the lateral component of a normal force uses the contact angle of
+the table (interpolated), whereas the tabulated gap changes with the shift by the secant
+of its nodes; where the angle changes fast with the shift (flange root: ~0.1 rad per
+0.2 mm step) the two differ by up to ~17 %, on the tread by < 2 %
+(tests/test_profile_contact.py).
+
+Left out (small here, named so a reader can judge): the longitudinal offset of a leading
+flange contact in the creepages (its vertical sliding), the rail's own roll, the wheel's
+roll relative to the rail in the contact geometry (it tilts the contact angle by phi), and
+the rail's longitudinal curvature in the Hertz constant.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numba
+import numpy as np
+
+from exudyn_turnout.wheel_rail.creep import kalker_coefficients
+from exudyn_turnout.wheel_rail.hertz import curvature_sums, ellipse_parameter
+from exudyn_turnout.wheel_rail.tables import ContactTable
+
+__all__ = [
+    "PackedTables",
+    "pack_tables",
+    "DETAIL_FIELDS",
+    "contact_forces",
+    "contact_history",
+    "polach_scalar",
+    "X_BLEND_DISTANCE",
+    "hertz_axes_per_root",
+]
+
+# Node fields of a packed table: the table's 10 fields, sin and cos of the angle, then the
+# Hertz semi-axes per sqrt(delta) and Kalker's coefficients of the node's ellipse shape.
+_GAP, _Y_RAIL, _Z_RAIL, _S_WHEEL, _ANGLE, _RADIUS = 0, 1, 2, 3, 4, 5
+_C_H, _X_OFFSET, _SIN, _COS = 8, 9, 10, 11
+_A_ROOT, _B_ROOT, _C11, _C22, _C23 = 12, 13, 14, 15, 16
+_N_FIELDS = 17
+_EMPTY = 0.5  # m, a gap this large marks an empty candidate slot (tables store 1 m)
+#: m, a candidate slot held by both x nodes of a cell whose contact positions on the rail
+#: differ by less than this is one contact point drifting along x (interpolated along x)
+X_BLEND_DISTANCE = 0.01
+_X_BLEND = X_BLEND_DISTANCE
+
+#: Columns of the per-contact detail rows written by :func:`contact_forces`.
+DETAIL_FIELDS = (
+    "body",  # index of the rail body
+    "candidate",  # candidate slot within the body
+    "normal",  # N, normal force magnitude (>= 0)
+    "Fz",  # N, vertical force on the wheel
+    "Fy",  # N, lateral force on the wheel (track Y, to the left)
+    "Fx",  # N, longitudinal creep force on the wheel
+    "Ft",  # N, lateral creep force on the wheel along the tangent t
+    "y_rail",  # m, contact position on the rail (side coordinates)
+    "z_rail",  # m, contact height on the rail
+    "s_wheel",  # m, contact position on the wheel from its taping line
+    "angle",  # rad, contact angle
+    "xi",  # longitudinal creepage
+    "eta",  # lateral creepage
+    "spin",  # 1/m, spin creepage
+    "delta",  # m, normal penetration (negative: separated)
+    "radius",  # m, rolling radius
+    "x_offset",  # m, contact point ahead of the wheel centre
+    "a",  # m, Hertz semi-axis, rolling direction
+    "b",  # m, Hertz semi-axis, lateral
+    "found",  # weight of the table nodes that hold this point (1: all; 0: not found)
+    "carried",  # weight of the table nodes at which it carries load
+)
+_N_DETAIL = len(DETAIL_FIELDS)
+
+
+@dataclass(frozen=True, eq=False)
+class PackedTables:
+    """The contact tables of one wheelset's rail bodies as flat arrays (kernel input)."""
+
+    values: np.ndarray  #: flat node values, body after body, (n_x, n_s, n_c, 17) each
+    blendable: np.ndarray  #: flat uint8 cell flags, (n_x, n_s) each
+    x: np.ndarray  #: m, section positions, body after body
+    #: per body: value offset, blend offset, x offset, n_x, n_s, n_c, side (+1 / -1),
+    #: index of the rail body's lateral coordinate, of its vertical coordinate
+    layout: np.ndarray
+    #: per body: first shift (m), shift step (m), x_from (m), x_to (m) of its existence
+    bounds: np.ndarray
+    names: tuple  #: body names, for outputs
+
+    @property
+    def n_bodies(self) -> int:
+        """Number of rail bodies."""
+        return int(self.layout.shape[0])
+
+    def select(
+        self, indices: Sequence[int], rail_coordinates: Sequence[tuple[int, int]]
+    ) -> PackedTables:
+        """Some of the bodies, bound to other coordinate indices (the arrays are shared).
+
+        Parameters
+        ----------
+        indices : sequence of int
+            Bodies to keep, in the new order.
+        rail_coordinates : sequence of (int, int)
+            Per kept body, the indices of its lateral and vertical coordinate.
+
+        Returns
+        -------
+        PackedTables
+        """
+        layout = self.layout[list(indices)].copy().reshape(-1, 9)
+        for row, (i_y, i_z) in zip(layout, rail_coordinates, strict=True):
+            row[7], row[8] = i_y, i_z
+        return PackedTables(
+            values=self.values,
+            blendable=self.blendable,
+            x=self.x,
+            layout=layout,
+            bounds=self.bounds[list(indices)].copy().reshape(-1, 4),
+            names=tuple(self.names[i] for i in indices),
+        )
+
+    @property
+    def n_candidates(self) -> int:
+        """Largest number of candidate slots of a body (rows per body in the details)."""
+        return int(self.layout[:, 5].max()) if self.layout.size else 0
+
+
+def hertz_axes_per_root(
+    a_sum: np.ndarray, b_sum: np.ndarray, modulus: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """Hertz semi-axes per square root of the penetration, ``a / sqrt(delta)``, ``b / ...``.
+
+    Johnson (1985) Eqs 4.39-4.41 (see :mod:`.hertz`): ``major^2 = delta (K - E) / (A_min e^2
+    K)`` and ``minor = major sqrt(1 - e^2)``, so both grow with ``sqrt(delta)`` and the ratio
+    per node is fixed by the curvatures alone.
+
+    Parameters
+    ----------
+    a_sum, b_sum : numpy.ndarray
+        1/m, relative curvatures in rolling and lateral direction.
+    modulus : float
+        Pa, contact modulus (unused by the shape; kept for a uniform signature).
+
+    Returns
+    -------
+    a_root, b_root : numpy.ndarray
+        m^0.5: semi-axes in rolling and lateral direction divided by ``sqrt(delta)``.
+    """
+    from scipy.special import ellipe, ellipk
+
+    del modulus
+    a_sum = np.asarray(a_sum, float)
+    b_sum = np.asarray(b_sum, float)
+    small = np.minimum(a_sum, b_sum)
+    m = ellipse_parameter(np.maximum(a_sum, b_sum) / small)
+    k, e = ellipk(m), ellipe(m)
+    ke = np.where(m > 1e-10, (k - e) / np.where(m > 1e-10, m, 1.0), np.pi / 4.0)
+    major = np.sqrt(ke / (small * k))
+    minor = major * np.sqrt(1.0 - m)
+    rolling_is_major = a_sum <= b_sum
+    return np.where(rolling_is_major, major, minor), np.where(rolling_is_major, minor, major)
+
+
+def _node_fields(table: ContactTable, modulus: float, poisson: float) -> np.ndarray:
+    """(n_x, n_s, n_c, 17) node values: the table's 12 plus Hertz and Kalker per node."""
+    base = table.values
+    out = np.zeros(base.shape[:3] + (_N_FIELDS,))
+    out[..., : base.shape[3]] = base
+    valid = base[..., _GAP] < _EMPTY
+    if np.any(valid):
+        a_sum, b_sum = curvature_sums(
+            base[..., _RADIUS][valid], base[..., _ANGLE][valid], base[..., 7][valid],
+            base[..., 6][valid],
+        )  # fmt: skip
+        a_root, b_root = hertz_axes_per_root(a_sum, b_sum, modulus)
+        out[..., _A_ROOT][valid], out[..., _B_ROOT][valid] = a_root, b_root
+        coefficients = kalker_coefficients(a_root, b_root, poisson)
+        out[..., _C11][valid] = coefficients.c11
+        out[..., _C22][valid] = coefficients.c22
+        out[..., _C23][valid] = coefficients.c23
+    return out
+
+
+def pack_tables(
+    tables: Sequence[ContactTable],
+    sides: Sequence[int],
+    rail_coordinates: Sequence[tuple[int, int]],
+    x_ranges: Sequence[tuple[float, float]],
+    names: Sequence[str] | None = None,
+    modulus: float = 2.1e11 / (2.0 * (1.0 - 0.3**2)),
+    poisson: float = 0.28,
+) -> PackedTables:
+    """Pack the tables of one wheelset's rail bodies for :func:`contact_forces`.
+
+    Parameters
+    ----------
+    tables : sequence of ContactTable
+        One table per rail body.
+    sides : sequence of int
+        +1 (left wheel) or -1 (right wheel) per body.
+    rail_coordinates : sequence of (int, int)
+        Indices of each body's lateral and vertical coordinate in the coordinate vector
+        the kernel receives.
+    x_ranges : sequence of (float, float)
+        m, where each body exists; outside it the body carries nothing.
+    names : sequence of str, optional
+        Body names for outputs.
+    modulus : float
+        Pa, contact modulus E* (default steel, E = 210 GPa, nu = 0.3).
+    poisson : float
+        Poisson's ratio for Kalker's coefficients (0.28: Kalker's tables as used by CONTACT).
+
+    Returns
+    -------
+    PackedTables
+    """
+    values, blends, xs, layout, bounds = [], [], [], [], []
+    v_off = b_off = x_off = 0
+    for table, side, (i_y, i_z), (x_from, x_to) in zip(
+        tables, sides, rail_coordinates, x_ranges, strict=True
+    ):
+        fields = _node_fields(table, modulus, poisson)
+        n_x, n_s, n_c = fields.shape[:3]
+        if n_x < 2 or n_s < 2:
+            raise ValueError("a contact table needs at least two x and two shift nodes")
+        values.append(fields.ravel())
+        blends.append(np.asarray(table.blendable, np.uint8).ravel())
+        xs.append(np.asarray(table.x, float))
+        layout.append((v_off, b_off, x_off, n_x, n_s, n_c, int(side), int(i_y), int(i_z)))
+        step = float(table.shift[1] - table.shift[0])
+        bounds.append((float(table.shift[0]), step, float(x_from), float(x_to)))
+        v_off += fields.size
+        b_off += n_x * n_s
+        x_off += n_x
+    return PackedTables(
+        values=np.concatenate(values) if values else np.zeros(0),
+        blendable=np.concatenate(blends) if blends else np.zeros(0, np.uint8),
+        x=np.concatenate(xs) if xs else np.zeros(0),
+        layout=np.array(layout, dtype=np.int64).reshape(-1, 9),
+        bounds=np.array(bounds, dtype=float).reshape(-1, 4),
+        names=tuple(names) if names is not None else tuple(f"body{i}" for i in range(len(xs))),
+    )
+
+
+@numba.njit(cache=True)
+def polach_scalar(xi, eta, phi, a, b, Q, mu, G, c11, c22, c23):  # pragma: no cover (compiled)
+    """Polach's creep forces (1999) for one contact, compiled: (F_x, F_y) on the wheel.
+
+    The formulas of :func:`.creep.polach_creep_forces` with ``k_A = k_S = 1`` (tested equal
+    to it), for scalar inputs and Kalker's coefficients given.
+
+    Parameters
+    ----------
+    xi, eta : float
+        Longitudinal and lateral creepage (-).
+    phi : float
+        1/m, spin creepage.
+    a, b : float
+        m, Hertz semi-axes in rolling and lateral direction.
+    Q : float
+        N, normal force (> 0).
+    mu : float
+        Friction coefficient.
+    G : float
+        Pa, shear modulus.
+    c11, c22, c23 : float
+        Kalker's coefficients of the ellipse.
+
+    Returns
+    -------
+    tuple of float
+        N, longitudinal and lateral creep force on the wheel.
+    """
+    if Q <= 0.0 or a <= 0.0 or b <= 0.0:
+        return 0.0, 0.0
+    q_mu = Q * mu
+    eta_spin = eta + phi * a
+    eta_c = eta_spin if abs(eta_spin) > abs(eta) else eta
+    s = math.hypot(xi, eta)
+    s_c = math.hypot(xi, eta_c)
+    fx = 0.0
+    fy = 0.0
+    if s > 0.0:
+        c_jj = math.hypot(c11 * xi / s, c22 * eta / s)
+        eps = math.pi * G * a * b * c_jj * s / (4.0 * q_mu)
+        force = 2.0 * q_mu / math.pi * (eps / (1.0 + eps * eps) + math.atan(eps))
+        fx = -force * xi / s
+        fy = -force * eta / s
+    if s_c > 0.0:
+        growth = 1.0 + 6.3 * (1.0 - math.exp(-a / b))
+        eps_m = (8.0 / 3.0) * G * b * math.sqrt(a * b) / q_mu * c23 * eta_c / growth
+        delta = (eps_m * eps_m - 1.0) / (eps_m * eps_m + 1.0)
+        k_m = (
+            abs(eps_m) * (delta**3 / 3.0 - delta * delta / 2.0 + 1.0 / 6.0)
+            - math.sqrt(max(1.0 - delta * delta, 0.0) ** 3) / 3.0
+        )
+        fy += (9.0 / 16.0) * a * q_mu * k_m * growth * phi / s_c
+    return fx, fy
+
+
+@numba.njit(cache=True)
+def _interpolate(values, v_base, n_s, n_c, c, tx, ts, blend, out):  # pragma: no cover (compiled)
+    """Interpolated fields of candidate c into ``out`` (17,); the gap is not yet carried."""
+    row = n_c * _N_FIELDS
+    plane = n_s * row
+    i00 = v_base + c * _N_FIELDS
+    if blend:
+        i10 = i00 + plane
+        i01 = i00 + row
+        i11 = i10 + row
+        for f in range(_N_FIELDS):
+            v00 = values[i00 + f]
+            v10 = values[i10 + f]
+            v01 = values[i01 + f]
+            v11 = values[i11 + f]
+            out[f] = v00 + tx * (v10 - v00) + ts * ((v01 - v00) + tx * (v11 - v10 - v01 + v00))
+    else:
+        for f in range(_N_FIELDS):
+            out[f] = values[i00 + f]
+
+
+@numba.njit(cache=True)
+def _point(
+    fields, gap, weight, s, row, i_y, i_z, q, q_t, shift_t, z_irr, omega, constants, forces, details
+):  # pragma: no cover (compiled)
+    """Forces of one contact point (node or interpolated ``fields``, normal ``gap`` at zero
+    lift), times ``weight``, added to ``forces`` and ``details[row]``; 1 if it carries load."""
+    v, mu, G, damping, kappa = (
+        constants[0], constants[2], constants[3], constants[4], constants[5]
+    )  # fmt: skip
+    sin_g, cos_g = fields[_SIN], fields[_COS]
+    norm = math.hypot(sin_g, cos_g)
+    sin_g, cos_g = sin_g / norm, cos_g / norm
+    y_w, z_w, phi, psi = q[0], q[1], q[2], q[3]
+    Y_c = s * fields[_Y_RAIL] - y_w
+    r = fields[_RADIUS]
+    lift = z_w + Y_c * phi - q[i_z] - z_irr
+    lift_t = q_t[1] + Y_c * q_t[2] - q_t[i_z]
+    delta = -(gap + cos_g * lift)
+    if details[row, 14] == -1.0:  # first corner that finds this slot
+        details[row, 14] = 0.0
+    details[row, 19] += weight
+    details[row, 7] += weight * fields[_Y_RAIL]
+    details[row, 8] += weight * fields[_Z_RAIL]
+    details[row, 9] += weight * fields[_S_WHEEL]
+    details[row, 10] += weight * math.atan2(sin_g, cos_g)
+    details[row, 14] += weight * delta
+    details[row, 15] += weight * r
+    details[row, 16] += weight * fields[_X_OFFSET]
+    if delta <= 0.0:
+        return 0
+    delta_t = -(cos_g * lift_t - sin_g * shift_t)
+    normal = fields[_C_H] * delta * math.sqrt(delta) + damping * delta_t
+    if normal <= 0.0:
+        return 0
+    root = math.sqrt(delta)
+    a = fields[_A_ROOT] * root
+    b = fields[_B_ROOT] * root
+    fx = 0.0
+    ft = 0.0
+    xi = 0.0
+    eta = 0.0
+    spin = 0.0
+    if v > 0.0:
+        psi_t = q_t[3]
+        xi = 1.0 - kappa * Y_c - omega * r / v - Y_c * psi_t / v
+        u_y = q_t[0] - q_t[i_y] - v * psi + r * q_t[2]
+        eta = (u_y * cos_g + lift_t * s * sin_g) / v
+        spin = (-s * omega * sin_g + psi_t * cos_g) / v
+        fx, ft = polach_scalar(
+            xi, eta, spin, a, b, normal, mu, G, fields[_C11], fields[_C22], fields[_C23]
+        )
+    F_Y = weight * (-s * sin_g * normal + cos_g * ft)
+    F_Z = weight * (cos_g * normal + s * sin_g * ft)
+    fx *= weight
+    x_c = fields[_X_OFFSET]
+    forces[0] += F_Y
+    forces[1] += F_Z
+    forces[2] += Y_c * F_Z + r * F_Y
+    forces[3] += x_c * F_Y - Y_c * fx
+    forces[4] += -r * fx - x_c * F_Z
+    forces[i_y] -= F_Y
+    forces[i_z] -= F_Z
+    details[row, 20] += weight
+    details[row, 2] += weight * normal
+    details[row, 3] += F_Z
+    details[row, 4] += F_Y
+    details[row, 5] += fx
+    details[row, 6] += weight * ft
+    details[row, 11] += weight * xi
+    details[row, 12] += weight * eta
+    details[row, 13] += weight * spin
+    details[row, 17] += weight * a
+    details[row, 18] += weight * b
+    return 1
+
+
+@numba.njit(cache=True)
+def contact_forces(
+    x,
+    q,
+    q_t,
+    irregularity,
+    values,
+    blendable,
+    xs,
+    layout,
+    bounds,
+    constants,
+    forces,
+    details,
+):  # pragma: no cover (compiled; tested through its Python callers)
+    """All contacts of one wheelset at one instant (see the module docstring).
+
+    Parameters
+    ----------
+    x : float
+        m, wheelset position along the route.
+    q, q_t : numpy.ndarray
+        Coordinates and velocities: ``[y_w, z_w, phi, psi, beta, ...]`` then the rail bodies'
+        coordinates at the indices of ``layout``.
+    irregularity : numpy.ndarray
+        (4,) m at x: vertical left, vertical right, lateral left, lateral right (track Y).
+    values, blendable, xs, layout, bounds : numpy.ndarray
+        From :class:`PackedTables`.
+    constants : numpy.ndarray
+        v (m/s), r0 (m), mu, G (Pa), normal damping (N s/m), curvature (1/m).
+    forces : numpy.ndarray
+        Output, generalised forces on q (zeroed, then filled).
+    details : numpy.ndarray
+        Output, (n_bodies * n_c, len(DETAIL_FIELDS)) per-contact rows (filled).
+
+    Returns
+    -------
+    int
+        Number of contacts carrying load.
+    """
+    v, r0 = constants[0], constants[1]
+    for i in range(forces.shape[0]):
+        forces[i] = 0.0
+    details[:, :] = 0.0
+    finite = math.isfinite(x)
+    for i in range(q.shape[0]):
+        finite = finite and math.isfinite(q[i]) and math.isfinite(q_t[i])
+    for i in range(irregularity.shape[0]):
+        finite = finite and math.isfinite(irregularity[i])
+    if not finite:  # a diverged state: NaN forces (the solver stops and says where)
+        for i in range(forces.shape[0]):
+            forces[i] = math.nan
+        return 0
+    y_w, phi = q[0], q[2]
+    omega = (v / r0 + q_t[4]) if v > 0.0 else 0.0
+    fields = np.empty(_N_FIELDS)
+    n_max = details.shape[0] // max(layout.shape[0], 1)
+    loaded = 0
+    for k in range(layout.shape[0]):
+        v_off, b_off, x_off = layout[k, 0], layout[k, 1], layout[k, 2]
+        n_x, n_s, n_c, s = layout[k, 3], layout[k, 4], layout[k, 5], layout[k, 6]
+        i_y, i_z = layout[k, 7], layout[k, 8]
+        shift0, step, x_from, x_to = bounds[k, 0], bounds[k, 1], bounds[k, 2], bounds[k, 3]
+        for c in range(n_max):
+            details[k * n_max + c, 0] = k
+            details[k * n_max + c, 1] = c
+            details[k * n_max + c, 14] = -1.0
+        if x < x_from or x > x_to:
+            continue
+        z_irr = irregularity[0] if s > 0 else irregularity[1]
+        y_irr = irregularity[2] if s > 0 else irregularity[3]
+        # the wheel's lateral shift towards its field side, relative to the rail body
+        # (the roll phi moves the wheel's running surface, r0 below the axle, by r0 phi)
+        shift = s * (y_w + r0 * phi - q[i_y] - y_irr)
+        shift_t = s * (q_t[0] + r0 * q_t[2] - q_t[i_y])
+        # cell along x (clamped to the table)
+        lo = 0
+        hi = n_x - 1
+        while hi - lo > 1:
+            mid = (lo + hi) // 2
+            if xs[x_off + mid] <= x:
+                lo = mid
+            else:
+                hi = mid
+        ix = lo
+        x0 = xs[x_off + ix]
+        tx = min(max((x - x0) / (xs[x_off + ix + 1] - x0), 0.0), 1.0)
+        position = min(max((shift - shift0) / step, 0.0), n_s - 1.000001)
+        js = int(position)
+        ts = position - js
+        blend = blendable[b_off + ix * n_s + js] != 0
+        v_base = v_off + (ix * n_s + js) * n_c * _N_FIELDS
+        if blend:
+            for c in range(n_c):
+                _interpolate(values, v_base, n_s, n_c, c, tx, ts, True, fields)
+                if fields[_GAP] < _EMPTY:
+                    loaded += _point(
+                        fields, fields[_GAP], 1.0, s, k * n_max + c, i_y, i_z, q, q_t, shift_t,
+                        z_irr, omega, constants, forces, details,
+                    )  # fmt: skip
+            continue
+        # cell whose nodes hold different contact points.  Per shift node of the cell and
+        # candidate slot: a point that both x nodes hold (within X_BLEND_DISTANCE, e.g. a
+        # contact drifting across a flaring rail) is interpolated along x, otherwise the two
+        # nodes' points are taken each with its x weight; either is carried to the query's
+        # shift to first order and the forces are blended with the shift weights.  The
+        # force is so continuous in x and shift (a nearest-node lookup jumps).
+        plane = n_s * n_c * _N_FIELDS
+        for db in range(2):
+            wb = ts if db else 1.0 - ts
+            if wb <= 0.0:
+                continue
+            jb = min(js + db, n_s - 1)
+            base0 = v_off + (ix * n_s + jb) * n_c * _N_FIELDS
+            shift_node = shift0 + jb * step
+            for c in range(n_c):
+                i0 = base0 + c * _N_FIELDS
+                i1 = i0 + plane
+                ok0 = values[i0 + _GAP] < _EMPTY
+                ok1 = values[i1 + _GAP] < _EMPTY
+                if ok0 and ok1 and abs(values[i0 + _Y_RAIL] - values[i1 + _Y_RAIL]) < _X_BLEND:
+                    for f in range(_N_FIELDS):
+                        fields[f] = values[i0 + f] + tx * (values[i1 + f] - values[i0 + f])
+                    gap = fields[_GAP] - fields[_SIN] * (shift - shift_node)
+                    loaded += _point(
+                        fields, gap, wb, s, k * n_max + c, i_y, i_z, q, q_t, shift_t, z_irr,
+                        omega, constants, forces, details,
+                    )  # fmt: skip
+                    continue
+                for da in range(2):
+                    w = wb * (tx if da else 1.0 - tx)
+                    if w <= 0.0 or not (ok1 if da else ok0):
+                        continue
+                    i = i1 if da else i0
+                    for f in range(_N_FIELDS):
+                        fields[f] = values[i + f]
+                    gap = fields[_GAP] - fields[_SIN] * (shift - shift_node)
+                    loaded += _point(
+                        fields, gap, w, s, k * n_max + c, i_y, i_z, q, q_t, shift_t, z_irr,
+                        omega, constants, forces, details,
+                    )  # fmt: skip
+        for c in range(n_c):  # positions: averages over the nodes that hold the point
+            row = k * n_max + c
+            found = details[row, 19]
+            if found > 0.0:
+                for f in (7, 8, 9, 10, 14, 15, 16):
+                    details[row, f] /= found
+            carried = details[row, 20]
+            if carried > 0.0:
+                for f in (11, 12, 13, 17, 18):
+                    details[row, f] /= carried
+    return loaded
+
+
+@numba.njit(cache=True)
+def contact_history(
+    x, q, q_t, irregularity, curvature, values, blendable, xs, layout, bounds, constants
+):  # pragma: no cover (compiled; tested through its Python callers)
+    """:func:`contact_forces` over the samples of a stored run.
+
+    Parameters
+    ----------
+    x : numpy.ndarray
+        m, (n,) wheelset positions.
+    q, q_t : numpy.ndarray
+        (n, n_q) coordinates and velocities.
+    irregularity : numpy.ndarray
+        (n, 4) m, irregularities at x (see :func:`contact_forces`).
+    curvature : numpy.ndarray
+        1/m, (n,) track curvature at x.
+    values, blendable, xs, layout, bounds : numpy.ndarray
+        From :class:`PackedTables`.
+    constants : numpy.ndarray
+        As for :func:`contact_forces` (its curvature entry is replaced per sample).
+
+    Returns
+    -------
+    forces : numpy.ndarray
+        (n, n_q) generalised contact forces.
+    details : numpy.ndarray
+        (n, n_bodies * n_c, len(DETAIL_FIELDS)) per-contact rows.
+    """
+    n = x.shape[0]
+    n_c = 1
+    for k in range(layout.shape[0]):
+        n_c = max(n_c, layout[k, 5])
+    forces = np.zeros((n, q.shape[1]))
+    details = np.zeros((n, max(layout.shape[0], 1) * n_c, _N_DETAIL))
+    c = constants.copy()
+    for i in range(n):
+        c[5] = curvature[i]
+        contact_forces(
+            x[i], q[i], q_t[i], irregularity[i], values, blendable, xs, layout, bounds, c,
+            forces[i], details[i],
+        )  # fmt: skip
+    return forces, details
