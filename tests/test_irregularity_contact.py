@@ -28,26 +28,12 @@ LENGTH = 1.0  # m
 
 def _dipped_route_contact(turnout, vehicle, tmp_path):
     """The through route's contact with the right rail after the crossing dipped."""
-    from exudyn_turnout.wheel_rail.data import profile_path
-    from exudyn_turnout.wheel_rail.geometry import WheelsetSetup, grid_wheel
     from exudyn_turnout.wheel_rail.kernel import pack_tables
-    from exudyn_turnout.wheel_rail.profiles import read_profile
     from exudyn_turnout.wheel_rail.sections import SectionGrid
     from exudyn_turnout.wheel_rail.tables import build_contact_table
-    from exudyn_turnout.wheel_rail.turnout_sections import rail_geometry, route_contact_tables
+    from exudyn_turnout.wheel_rail.turnout_sections import route_contact_tables
 
-    geometry = rail_geometry(turnout)
-    setup = WheelsetSetup(
-        gauge=geometry.gauge,
-        back_to_back=vehicle.back_to_back,
-        inclination=geometry.inclination,
-        nominal_radius=vehicle.r0,
-    )
-    wheel = grid_wheel(
-        read_profile(profile_path(vehicle.wheel_profile), kind="wheel"),
-        step=setup.grid_step,
-        nominal_radius=setup.nominal_radius,
-    )
+    wheel, setup = profile_contact.wheel_and_setup(turnout, vehicle)
     pairs = list(route_contact_tables(turnout, "through", wheel, setup))
     dip = dipped_joint(JOINT_X, ANGLE, LENGTH, rail="right")
     for k, (body, _table) in enumerate(pairs):

@@ -161,7 +161,7 @@ def static_lateral(turnout) -> list[str]:
         body = element.bodies[int(row[column["body"]])]
         fz, fy, angle = row[column["Fz"]], row[column["Fy"]], row[column["angle"]]
         lines.append(
-            f"- {body.wheel} wheel on {body.name}: Fz {fz / 1e3:.2f} kN, Fy on the wheel "
+            f"- {body.name}: Fz {fz / 1e3:.2f} kN, Fy on the wheel "
             f"{fy / 1e3:+.3f} kN, contact angle {angle * 1e3:.1f} mrad, "
             f"N tan(gamma) = {fz * np.tan(angle) / 1e3:.3f} kN, contact at "
             f"{row[column['y_rail']] * 1e3:.1f} mm from the track centre"

@@ -15,10 +15,12 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_turnout.inputs.routes import dip_angle, load_route
 from exudyn_turnout.inputs.turnout import load_turnout
+from exudyn_turnout.inputs.vehicle import load_vehicle
+from exudyn_turnout.passage.profile_contact import wheel_and_setup
 from exudyn_turnout.plotting.studies import plot_peak_vs_factor, save_study_figure
 from exudyn_turnout.studies import run_study
+from exudyn_turnout.wheel_rail.turnout_sections import route_transfers
 
 HERE = Path(__file__).resolve().parent
 STUDY = HERE / "speed_sweep.toml"
@@ -35,12 +37,17 @@ def markdown(table, provenance) -> str:
         f"{provenance.get('date_utc')}.",
         "",
     ]
+    wheel_grid, setup = wheel_and_setup(turnout, load_vehicle())
     for route, wheel in (("through", "right"), ("diverging", "left")):
-        x, depth, two_alpha = dip_angle(load_route(turnout, route), wheel, 46.0, 48.5)
-        lines.append(
-            f"- {route}: crossing dip of the {wheel} wheel's path at x = {x:.2f} m, depth "
-            f"{1e3 * depth:.2f} mm, 2 alpha = {1e3 * two_alpha:.1f} mrad"
-        )
+        for t in route_transfers(turnout, route, wheel_grid, setup, shifts=(0.0,)):
+            if t.place == "crossing" and t.wheel == wheel:
+                d = t.summaries[0]
+                lines.append(
+                    f"- {route}: crossing dip of the {wheel} wheel's rigid path over wing rail "
+                    f"and nose (design geometry, centred wheel): deepest at x = "
+                    f"{d.depth_x:.2f} m, depth {1e3 * d.depth:.2f} mm, "
+                    f"2 alpha = {1e3 * d.dip_angle:.1f} mrad"
+                )
     lines += [
         "",
         "Right wheel peaks (kN, forces on the rail, as the paper's figures), the largest "

@@ -40,6 +40,7 @@ from exudyn_turnout.wheel_rail.kernel import (
 __all__ = [
     "RouteContact",
     "route_contact",
+    "wheel_and_setup",
     "ProfileContactElement",
     "STATIC_LATERAL_STIFFNESS",
     "STATIC_SPIN_STIFFNESS",
@@ -470,6 +471,48 @@ def _contact_key(turnout, route: str, vehicle: Vehicle, cache_dir) -> str:
     return hashlib.sha256("\n".join(parts).encode()).hexdigest()
 
 
+def wheel_and_setup(turnout, vehicle: Vehicle) -> tuple:
+    """The vehicle's wheel profile, gridded, and the wheelset/track dimensions that place it.
+
+    Parameters
+    ----------
+    turnout : Turnout
+        Its ``[wheel_rail]`` gauge and rail inclination.
+    vehicle : Vehicle
+        Its ``wheel_profile`` (beside the vehicle file or packaged), ``back_to_back`` and
+        wheel radius r0.
+
+    Returns
+    -------
+    wheel : WheelGrid
+    setup : WheelsetSetup
+    """
+    from pathlib import Path
+
+    from exudyn_turnout.wheel_rail.data import profile_path
+    from exudyn_turnout.wheel_rail.geometry import WheelsetSetup, grid_wheel
+    from exudyn_turnout.wheel_rail.profiles import read_profile
+    from exudyn_turnout.wheel_rail.turnout_sections import rail_geometry
+
+    geometry = rail_geometry(turnout)
+    setup = WheelsetSetup(
+        gauge=geometry.gauge,
+        back_to_back=float(vehicle.back_to_back),  # type: ignore[arg-type]
+        inclination=geometry.inclination,
+        nominal_radius=vehicle.r0,
+    )
+    profile_file = Path(str(vehicle.wheel_profile))
+    if not profile_file.is_absolute():
+        beside = Path(vehicle.source).parent / profile_file
+        profile_file = beside if beside.exists() else profile_path(str(vehicle.wheel_profile))
+    wheel = grid_wheel(
+        read_profile(profile_file, kind="wheel"),
+        step=setup.grid_step,
+        nominal_radius=setup.nominal_radius,
+    )
+    return wheel, setup
+
+
 def route_contact(turnout, route: str, vehicle: Vehicle, cache_dir=None) -> RouteContact:
     """Contact tables of every rail body of a route for the vehicle's wheel profile.
 
@@ -500,11 +543,8 @@ def route_contact(turnout, route: str, vehicle: Vehicle, cache_dir=None) -> Rout
     import time
     from pathlib import Path
 
-    from exudyn_turnout.wheel_rail.data import profile_path
-    from exudyn_turnout.wheel_rail.geometry import WheelsetSetup, grid_wheel
     from exudyn_turnout.wheel_rail.kernel import pack_tables
-    from exudyn_turnout.wheel_rail.profiles import read_profile
-    from exudyn_turnout.wheel_rail.turnout_sections import rail_geometry, route_contact_tables
+    from exudyn_turnout.wheel_rail.turnout_sections import route_contact_tables
 
     key = _contact_key(turnout, route, vehicle, cache_dir)
     recent = _RECENT.get(key)
@@ -522,22 +562,7 @@ def route_contact(turnout, route: str, vehicle: Vehicle, cache_dir=None) -> Rout
                 "(or run with contact='height-table')"
             )
     start = time.perf_counter()
-    geometry = rail_geometry(turnout)
-    setup = WheelsetSetup(
-        gauge=geometry.gauge,
-        back_to_back=float(vehicle.back_to_back),  # type: ignore[arg-type]
-        inclination=geometry.inclination,
-        nominal_radius=vehicle.r0,
-    )
-    profile_file = Path(str(vehicle.wheel_profile))
-    if not profile_file.is_absolute():
-        beside = Path(vehicle.source).parent / profile_file
-        profile_file = beside if beside.exists() else profile_path(str(vehicle.wheel_profile))
-    wheel = grid_wheel(
-        read_profile(profile_file, kind="wheel"),
-        step=setup.grid_step,
-        nominal_radius=setup.nominal_radius,
-    )
+    wheel, setup = wheel_and_setup(turnout, vehicle)
     pairs = route_contact_tables(turnout, route, wheel, setup, cache_dir=cache_dir)
     bodies = [body for body, _ in pairs]
     packed = pack_tables(
