@@ -651,7 +651,10 @@ def _passage_intro(report) -> list[str]:
         f"to {passage['x_range_m'][1]:g} m. **Speeds**: {speeds}. {passage.get('speeds_note', '')} "
         "Regions: "
         + ", ".join(f"{k} {v[0]:g}-{v[1]:g} m" for k, v in passage["regions_m"].items())
-        + f". FE passage: {fe}.",
+        + f". FE passage: {fe}. **Contact**: the height-table contact for all three models "
+        "(rail height tables on a conical tread, flange and check-rail springs), because the "
+        "FE passage has only that one; the package's default profile contact (S1002 on the "
+        "turnout's rail sections) is compared with it in `validation/profile_contact.md`.",
         "",
     ]
 
