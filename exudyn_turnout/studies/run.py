@@ -203,6 +203,12 @@ def run_case(case: Case) -> dict[str, Any]:
             vehicle_path.write_text(case.vehicle_text, encoding="utf-8")
             turnout = load_turnout(turnout_path)
             vehicle = load_vehicle(vehicle_path)
+            if case.parameters_text:
+                from exudyn_turnout.corunning.fitted import load_fitted
+
+                parameters_path = Path(tmp) / case.parameters_name
+                parameters_path.write_text(case.parameters_text, encoding="utf-8")
+                turnout = load_fitted(turnout, parameters_path)
         settings = _settings_with_irregularity(case)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")

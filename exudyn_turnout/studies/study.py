@@ -61,7 +61,7 @@ from exudyn_turnout.studies.toml_writer import dumps, set_dotted
 __all__ = ["StudyError", "Case", "Study", "load_study", "study_from_dict", "FILE_FACTORS"]
 
 #: Factors that are not PassageSettings fields nor dotted file fields.
-FILE_FACTORS = ("turnout", "vehicle", "track", "irregularity")
+FILE_FACTORS = ("turnout", "vehicle", "track", "irregularity", "parameters")
 
 _TRACKS = ("2-layer", "3-layer", "fe")
 
@@ -90,6 +90,9 @@ class Case:
         File names.
     turnout_modified, vehicle_modified : bool
         Whether a dotted factor changed the file (then it is written to the case folder).
+    parameters_text, parameters_name : str
+        A fitted parameter file (``--parameters``, for ``source = "fitted"``): its content
+        and name ("" for none).
     irregularity_spec : str
         The spec ("" for none).
     irregularity : Irregularity or None
@@ -110,6 +113,8 @@ class Case:
     vehicle_name: str
     turnout_modified: bool = False
     vehicle_modified: bool = False
+    parameters_text: str = ""
+    parameters_name: str = ""
     irregularity_spec: str = ""
     irregularity: Irregularity | None = None
     history_step: float | None = None  #: s
@@ -252,6 +257,7 @@ class Study:
         """
         texts: dict[str, tuple[str, dict]] = {}
         checked: set[str] = set()
+        checked_parameters: set[tuple[str, str]] = set()
         irregularities: dict[str, Irregularity] = {}
         routes: dict[str, tuple[str, ...]] = {}
         versions = _versions()
@@ -290,6 +296,24 @@ class Study:
                     f"route {route!r}: {files['turnout'][1]} has no such route "
                     f"(routes: {', '.join(known) or 'none'})"
                 )
+            parameters = ("", "")
+            if merged.get("parameters"):
+                path = self._file("parameters", merged["parameters"])
+                try:
+                    parameters = (path.read_text(encoding="utf-8"), path.name)
+                except OSError as err:
+                    raise self._error(
+                        f"parameters {path.name}: cannot read ({err.strerror or err})"
+                    ) from None
+            pair = (_sha(parameters[0]), _sha(files["turnout"][0]))
+            if parameters[0] and pair not in checked_parameters:
+                self._check_parameters(parameters, files["turnout"])
+                checked_parameters.add(pair)
+            if (settings.get("source") == "fitted") != bool(parameters[0]):
+                raise self._error(
+                    "source = 'fitted' and a parameters file go together (the fitted set "
+                    "of exudyn-turnout fit)"
+                )
             spec = self._irregularity_spec(merged)
             if spec and spec not in irregularities:
                 try:
@@ -302,6 +326,7 @@ class Study:
                 "track": merged.get("track"),
                 "turnout_sha256": _sha(files["turnout"][0]),
                 "vehicle_sha256": _sha(files["vehicle"][0]),
+                "parameters_sha256": _sha(parameters[0]) if parameters[0] else "",
                 "irregularity": spec,
                 "irregularity_files": self._spec_files(spec),
                 "history_step": history,
@@ -320,6 +345,8 @@ class Study:
                     vehicle_text=files["vehicle"][0],
                     vehicle_name=files["vehicle"][1],
                     vehicle_modified=files["vehicle"][2],
+                    parameters_text=parameters[0],
+                    parameters_name=parameters[1],
                     irregularity_spec=spec,
                     irregularity=irregularities.get(spec),
                     history_step=history,
@@ -356,7 +383,30 @@ class Study:
         if value is None:
             return default_turnout_path() if kind == "turnout" else default_vehicle_path()
         path = Path(str(value))
-        return path if path.is_absolute() else self.directory / path
+        if path.is_absolute():
+            return path
+        if kind == "parameters" and not (self.directory / path).exists():
+            packaged = default_turnout_path().parent / path  # a packaged fitted file
+            if packaged.exists():
+                return packaged
+        return self.directory / path
+
+    def _check_parameters(self, parameters: tuple[str, str], turnout: tuple) -> None:
+        """Read the fitted file against the case's turnout with the package's reader."""
+        import tempfile
+
+        from exudyn_turnout.corunning.fitted import read_fitted
+        from exudyn_turnout.inputs.turnout import load_turnout
+
+        with tempfile.TemporaryDirectory() as tmp:
+            turnout_path = Path(tmp) / turnout[1]
+            turnout_path.write_text(turnout[0], encoding="utf-8")
+            path = Path(tmp) / parameters[1]
+            path.write_text(parameters[0], encoding="utf-8")
+            try:
+                read_fitted(path, load_turnout(turnout_path))
+            except ValueError as err:
+                raise self._error(f"parameters {parameters[1]}: {err}") from None
 
     def _read(self, kind: str, path: Path) -> tuple[str, dict]:
         try:
@@ -397,7 +447,8 @@ def _check_name(name: str, where: str, error) -> None:
         return
     raise error(
         f"{where}: unknown factor {name!r} (settings: {', '.join(fields)}; or track, "
-        "turnout, vehicle, irregularity, turnout.<dotted.path>, vehicle.<dotted.path>)"
+        "turnout, vehicle, irregularity, parameters, turnout.<dotted.path>, "
+        "vehicle.<dotted.path>)"
     )
 
 
@@ -408,7 +459,9 @@ def _check_value(name: str, value: Any, where: str, error) -> None:
     if name == "track":
         if value not in _TRACKS:
             raise error(f"{text}: must be one of {', '.join(_TRACKS)}")
-    elif name in ("turnout", "vehicle", "irregularity") or "str" in fields.get(name, ""):
+    elif name in ("turnout", "vehicle", "irregularity", "parameters") or "str" in fields.get(
+        name, ""
+    ):
         if not isinstance(value, str):
             raise error(f"{text}: must be a string")
     elif name in fields:
