@@ -30,6 +30,7 @@ import numpy as np
 
 from exudyn_turnout.inputs.routes import Route
 from exudyn_turnout.inputs.vehicle import Vehicle
+from exudyn_turnout.passage.contact_element import WheelRailElement
 from exudyn_turnout.wheel_rail.kernel import (
     DETAIL_FIELDS,
     PackedTables,
@@ -150,20 +151,7 @@ class ProfileContactElement:
         self._curvature_xs = tuple(float(a) for a in curvature.x)
         self._curvature_vs = tuple(float(a) for a in curvature.value)
 
-    def x_at(self, t: float) -> float:
-        """Position of the wheelset along the route at time t: x0 + v t.
-
-        Parameters
-        ----------
-        t : float
-            s, simulation time.
-
-        Returns
-        -------
-        float
-            m, position along the route.
-        """
-        return self.x0 + self.v * t
+    x_at = WheelRailElement.x_at  #: position x0 + v t at time t (the same as the old element)
 
     def _prepare(self, x: float) -> None:
         self._kappa = _interp(self._curvature_xs, self._curvature_vs, x)
