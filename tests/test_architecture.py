@@ -24,6 +24,7 @@ EXUDYN_BUILDERS = {
     "passage/contact_element.py",
     "passage/simulate.py",
     "passage/vehicle_builder.py",
+    "passage/full_vehicle_passage.py",
 }
 #: Modules allowed to import matplotlib: they draw.
 FIGURE_MODULES = {
