@@ -123,3 +123,33 @@ def test_steady_curving_lateral_balance(turnout, model):
     assert cols["x_ws4_m"].min() > 0.0
     # lateral forces point outward (positive, left) on the rails in this right-hand curve
     assert total.min() > 0.0
+
+
+def test_cli_runs_the_full_vehicle(tmp_path, capsys):
+    """``simulate --vehicle`` with a full-vehicle file runs the full vehicle; outputs carry
+    every wheelset (issue 13, CLI)."""
+    import json
+
+    from exudyn_turnout.cli.main import main
+    from exudyn_turnout.inputs.vehicle_model import default_vehicle_model_path
+
+    out = tmp_path / "run"
+    argv = ["simulate", "--vehicle", str(default_vehicle_model_path()), "--layers", "2"]
+    argv += ["--x-start", "52", "--x-end", "52.3", "--no-plot", "--out", str(out)]
+    assert main(argv) == 0
+    header = (out / "timeseries.csv").read_text().splitlines()[0].split(",")
+    for k in (1, 2, 3, 4):
+        assert f"Fz_ws{k}_right_N" in header and f"Fy_ws{k}_left_N" in header
+    summary = json.loads((out / "summary.json").read_text())
+    # the rear wheelsets stand on the switch panel's track (x = 30.4 m, 33 m), the front
+    # ones on plain track: the loads differ a little, together they carry the vehicle
+    # (44 482 kg, Iwnicki 1998)
+    loads = [
+        summary[f"static_wheel_load_ws{k}_{wheel}_N"]
+        for k in (1, 2, 3, 4)
+        for wheel in ("left", "right")
+    ]
+    assert sum(loads) == pytest.approx(44482 * 9.81, rel=1e-6)
+    assert "front wheelset" in capsys.readouterr().out
+    assert main(argv + ["--contact", "height-table"]) == 2
+    assert "profile contact only" in capsys.readouterr().err

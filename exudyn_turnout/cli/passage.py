@@ -78,26 +78,69 @@ def _run(args: argparse.Namespace) -> int:
 
     check_out_dir(args.out)
     turnout = turnout_from_args(args)
-    vehicle = load_vehicle(args.vehicle)
+    model = _full_vehicle(args.vehicle)
+    vehicle = load_vehicle(args.vehicle) if model is None else None
     args.route = route_from_args(args, turnout)
     settings = settings_from_args(args, layers=args.layers, source=args.source)
+    if model is not None and settings.contact != "profile":
+        raise UsageError("--contact height-table: the full vehicle has the profile contact only")
     if settings.contact == "profile":  # the rail geometry, checked before anything runs
         from exudyn_turnout.wheel_rail.turnout_sections import rail_geometry, route_segments
 
         rail_geometry(turnout)
         route_segments(turnout, args.route)
+
+    def simulate(bar):
+        if model is None:
+            return simulate_passage(turnout, settings, vehicle=vehicle, progress=bar)
+        from exudyn_turnout.passage.full_vehicle_passage import simulate_vehicle_passage
+
+        return simulate_vehicle_passage(turnout, settings, model, progress=bar)
+
     return run_passage_command(
         args,
-        lambda bar: simulate_passage(turnout, settings, vehicle=vehicle, progress=bar),
-        f"{turnout.name}, {args.route} route, {args.speed:g} km/h",
+        simulate,
+        f"{turnout.name}, {args.route} route, {args.speed:g} km/h"
+        + ("" if model is None else f", {model.name} (front wheelset)"),
+        "" if model is None else "full vehicle, front wheelset: ",
         turnout=turnout,
-        vehicle=vehicle,
+        vehicle=vehicle if model is None else args.vehicle,
         extra_settings={
             "model": "co-running",
             "profiles": args.profiles,
             "parameters": file_record(getattr(args, "parameters", None)),
         },
     )
+
+
+def _full_vehicle(path: str | None):
+    """The full vehicle model of a vehicle file with a car body, or None (single wheelset).
+
+    Parameters
+    ----------
+    path : str or None
+        ``--vehicle`` (None: the packaged single wheelset).
+
+    Returns
+    -------
+    VehicleModel or None
+    """
+    if path is None:
+        return None
+    import tomllib
+
+    try:
+        data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, ValueError):  # unreadable, not UTF-8, not TOML
+        return None  # load_vehicle says what is wrong with it
+    if "car_body" not in data:
+        return None
+    from exudyn_turnout.inputs.vehicle_model import VehicleModelError, load_vehicle_model
+
+    try:
+        return load_vehicle_model(path)
+    except VehicleModelError as err:
+        raise UsageError(f"--vehicle: {err}") from None
 
 
 def route_from_args(args: argparse.Namespace, turnout) -> str:
@@ -282,7 +325,9 @@ def add_passage_options(p: argparse.ArgumentParser) -> None:
     p.add_argument(
         "--vehicle",
         metavar="FILE",
-        help="vehicle file (default: packaged Manchester benchmark wheelset)",
+        help="vehicle file: a single wheelset with its sprung share (default: the packaged "
+        "Manchester benchmark wheelset) or a full vehicle with car body and bogies (e.g. the "
+        "packaged manchester_vehicle.toml; simulate only, profile contact)",
     )
     p.add_argument("--speed", type=number, default=100.0, metavar="KMH", help="km/h (default 100)")
     p.add_argument(
