@@ -9,7 +9,7 @@ import pytest
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
 from exudyn_turnout.passage.full_vehicle_passage import curve_geometry, simulate_vehicle_passage
-from exudyn_turnout.passage.results import PassageSettings
+from exudyn_turnout.passage.results import PassageError, PassageSettings
 from exudyn_turnout.passage.simulate import simulate_passage
 
 #: N, Iwnicki 1998: total mass 32 000 + 2 x 2 615 + 4 x 1 813 = 44 482 kg on 8 wheels.
@@ -153,3 +153,17 @@ def test_cli_runs_the_full_vehicle(tmp_path, capsys):
     assert "front wheelset" in capsys.readouterr().out
     assert main(argv + ["--contact", "height-table"]) == 2
     assert "profile contact only" in capsys.readouterr().err
+
+
+def test_rear_wheelsets_pass_the_crossing_beyond_the_turnout_end(turnout, model):
+    """The front wheelset may run past the turnout's end (plain track: the last zone at x_max)
+    by up to the vehicle's length, so the rear wheelsets cross the nose (46.9 m) too."""
+    settings = PassageSettings(layers=2, x_start=66.0, x_end=70.0)  # rear: 44.4 -> 48.4 m
+    s = simulate_vehicle_passage(turnout, settings, model).summary
+    W = 44482 * 9.81 / 8
+    for k in (3, 4):
+        assert s[f"peak_Fz_crossing_ws{k}_right_N"] > 1.5 * W  # the crossing impact
+    assert np.isnan(s["peak_Fz_crossing_ws1_right_N"])  # the front ones are past it
+    too_far = PassageSettings(layers=2, x_start=80.0, x_end=82.0)
+    with pytest.raises(PassageError, match="end plus the vehicle's length"):
+        simulate_vehicle_passage(turnout, too_far, model)

@@ -34,7 +34,10 @@ loads replaced by the new zone's, the dynamic part and velocities kept; the whee
 with the static deflection under its wheels so that no wheel load jumps), the other
 tracks copied. Wheelsets behind the turnout's x_min are on plain track: zone 1's parameters
 and the contact at x clamped to x_min (the plain-track blend of zone 1 at its start is
-plain track; the rail sections there are the plain rail).
+plain track; the rail sections there are the plain rail). Likewise past x_max: the last
+zone and the contact at x clamped to x_max (plain track in the packaged files), so the
+front wheelset may run up to x_max plus the vehicle's length and the rear wheelsets pass
+the whole turnout.
 
 The run starts in the steady state at speed (at rest in the track-following frame): first
 the static equilibrium at rest (lateral position and spin held, as the single wheelset's),
@@ -184,6 +187,7 @@ class _WheelsetContact(ProfileContactElement):
     for a solve at speed, frozen (x = x0 whatever t)."""
 
     x_clamp = -math.inf
+    x_clamp_end = math.inf  #: m, largest position (the turnout's end: plain track beyond)
     frozen = False
     hold_spin = False
 
@@ -201,7 +205,7 @@ class _WheelsetContact(ProfileContactElement):
             m.
         """
         x = self.x0 if self.frozen else self.x0 + self.v * t
-        return max(x, self.x_clamp)
+        return min(max(x, self.x_clamp), self.x_clamp_end)
 
     def columns(self, t: np.ndarray, q: np.ndarray, q_t: np.ndarray) -> dict[str, np.ndarray]:
         """Output columns (see the parent), at the clamped position.
@@ -217,7 +221,7 @@ class _WheelsetContact(ProfileContactElement):
         -------
         dict
         """
-        x = np.maximum(self.x0 + self.v * np.asarray(t, float), self.x_clamp)
+        x = np.clip(self.x0 + self.v * np.asarray(t, float), self.x_clamp, self.x_clamp_end)
         return super().columns((x - self.x0) / self.v, q, q_t)
 
     def __call__(self, mbs, t, item_number, q, q_t):
@@ -229,10 +233,13 @@ class _WheelsetContact(ProfileContactElement):
         return forces
 
     @classmethod
-    def of(cls, element: ProfileContactElement, x_clamp: float) -> _WheelsetContact:
+    def of(
+        cls, element: ProfileContactElement, x_clamp: float, x_clamp_end: float = math.inf
+    ) -> _WheelsetContact:
         out = cls.__new__(cls)
         out.__dict__.update(element.__dict__)
         out.x_clamp = x_clamp
+        out.x_clamp_end = x_clamp_end
         return out
 
 
@@ -326,6 +333,7 @@ class _Place:
 
     zone: Zone
     clamped: bool  #: behind the turnout's start: zone 1 at x_min
+    beyond: bool = False  #: past the turnout's end: the last zone at x_max
 
 
 @dataclass
@@ -347,6 +355,8 @@ class _System:
 def _place(turnout: Turnout, x: float) -> _Place:
     if x < turnout.x_min - 1e-9:
         return _Place(turnout.zones[0], True)
+    if x > turnout.x_max + 1e-9:
+        return _Place(turnout.zones[-1], False, True)
     for zone in turnout.zones:
         if zone.x_start - 1e-9 <= x < zone.x_end - 1e-9:
             return _Place(zone, False)
@@ -381,12 +391,12 @@ def _build(
     elements, params_all, slots_all, sensors = [], [], [], []
     for i, (ws, place) in enumerate(zip(build.wheelsets, places)):
         x_i = x_front + ws.x
-        x_track = turnout.x_min if place.clamped else x_i
+        x_track = turnout.x_min if place.clamped else turnout.x_max if place.beyond else x_i
         params = co_running_parameters(
             turnout, zone=place.zone.index, layers=settings.layers, source=settings.source
         )
         params = replace(params, zone=route.zone(params.zone))
-        v_track = 0.0 if (place.clamped or frozen) else v
+        v_track = 0.0 if (place.clamped or place.beyond or frozen) else v
         track = add_co_running_track(
             mbs, params, x_track, v_track, mechanism=settings.track_mechanism
         )
@@ -394,7 +404,7 @@ def _build(
             raw, slots = contact.element(vehicle, route, place.zone, x_i, v, settings.irregularity)
         except ValueError as err:
             raise PassageError(str(err)) from None
-        element = _WheelsetContact.of(raw, turnout.x_min)
+        element = _WheelsetContact.of(raw, turnout.x_min, turnout.x_max)
         element.frozen = frozen
         dummy = int(
             mbs.AddNode(
@@ -785,8 +795,9 @@ def _offset_of(system: _System, i: int) -> float:
 
 
 def _events(turnout: Turnout, offsets: tuple[float, ...], x_a: float, x_b: float) -> list[float]:
-    """Front positions where any wheelset crosses x_min or a zone boundary, with x_a and x_b."""
-    bounds = [turnout.x_min] + [z.x_start for z in turnout.zones[1:]]
+    """Front positions where any wheelset crosses x_min, a zone boundary or x_max, with x_a
+    and x_b."""
+    bounds = [turnout.x_min] + [z.x_start for z in turnout.zones[1:]] + [turnout.x_max]
     xs = {x_a, x_b}
     for o in offsets:
         for b in bounds:
@@ -839,7 +850,20 @@ def simulate_vehicle_passage(
     if settings.contact != "profile":
         raise PassageError("the full vehicle runs with the profile contact only")
     base = load_vehicle()
-    x_a, x_b = _check(settings, turnout, base)
+    length = -min(vehicle_model.wheelset.x)  # m, front to rear wheelset
+    x_a = turnout.x_min if settings.x_start is None else float(settings.x_start)
+    x_b = turnout.x_max if settings.x_end is None else float(settings.x_end)
+    if not (turnout.x_min <= x_a < x_b <= turnout.x_max + length + 1e-9):
+        raise PassageError(
+            f"x range {x_a:g}..{x_b:g} m (front wheelset) must lie within the turnout's "
+            f"start and its end plus the vehicle's length ({turnout.x_min:g}.."
+            f"{turnout.x_max + length:g} m) with x_start < x_end"
+        )
+    # speed, time step (the lightest rail under any wheelset), output step: as one wheelset's
+    covered = replace(
+        settings, x_start=max(turnout.x_min, x_a - length), x_end=min(turnout.x_max, x_b)
+    )
+    _check(covered, turnout, base)
     route = load_route(turnout, settings.route)
     for text in speed_warnings(route, settings.speed_kmh, x_a, x_b):
         warnings.warn(text, SpeedWarning, stacklevel=2)
