@@ -15,16 +15,14 @@ from exudyn_turnout.inputs.routes import load_route
 from exudyn_turnout.inputs.turnout import TurnoutFileError, default_turnout_path, load_turnout
 from exudyn_turnout.wheel_rail.data import s1002_wheel, standard_track
 from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
+from exudyn_turnout.wheel_rail.handovers import handover_windows, route_transfers, table_rest_path
 from exudyn_turnout.wheel_rail.sections import sections_at
 from exudyn_turnout.wheel_rail.tables import TableSettings, build_contact_table, lookup
+from exudyn_turnout.wheel_rail.turnout_design import rail_geometry
 from exudyn_turnout.wheel_rail.turnout_sections import (
     envelope_sections,
-    handover_windows,
-    rail_geometry,
     route_contact_tables,
     route_rail_bodies,
-    route_transfers,
-    table_rest_path,
 )
 
 SETUP = WheelsetSetup()

@@ -30,20 +30,20 @@ from exudyn_turnout.plotting.wheel_rail import (
 )
 from exudyn_turnout.wheel_rail.data import s1002_wheel
 from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
-from exudyn_turnout.wheel_rail.tables import build_contact_table, lookup
-from exudyn_turnout.wheel_rail.turnout_sections import (
+from exudyn_turnout.wheel_rail.handovers import (
     DIP_BASELINE,
-    blade_lowering,
+    handover_windows,
+    rest_path,
+    route_transfers,
+    table_rest_path,
+)
+from exudyn_turnout.wheel_rail.tables import build_contact_table, lookup
+from exudyn_turnout.wheel_rail.turnout_design import blade_lowering, rail_geometry, stock_setback
+from exudyn_turnout.wheel_rail.turnout_sections import (
     body_table_settings,
     envelope_sections,
-    handover_windows,
-    rail_geometry,
-    rest_path,
     route_contact_tables,
     route_rail_bodies,
-    route_transfers,
-    stock_setback,
-    table_rest_path,
 )
 
 HERE = Path(__file__).resolve().parent

@@ -85,7 +85,8 @@ def _run(args: argparse.Namespace) -> int:
     if model is not None and settings.contact != "profile":
         raise UsageError("--contact height-table: the full vehicle has the profile contact only")
     if settings.contact == "profile":  # the rail geometry, checked before anything runs
-        from exudyn_turnout.wheel_rail.turnout_sections import rail_geometry, route_segments
+        from exudyn_turnout.wheel_rail.turnout_design import rail_geometry
+        from exudyn_turnout.wheel_rail.turnout_sections import route_segments
 
         rail_geometry(turnout)
         route_segments(turnout, args.route)

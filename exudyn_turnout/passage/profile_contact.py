@@ -480,7 +480,7 @@ def wheel_and_setup(turnout, vehicle: Vehicle) -> tuple:
     from exudyn_turnout.wheel_rail.data import profile_path
     from exudyn_turnout.wheel_rail.geometry import WheelsetSetup, grid_wheel
     from exudyn_turnout.wheel_rail.profiles import read_profile
-    from exudyn_turnout.wheel_rail.turnout_sections import rail_geometry
+    from exudyn_turnout.wheel_rail.turnout_design import rail_geometry
 
     geometry = rail_geometry(turnout)
     setup = WheelsetSetup(

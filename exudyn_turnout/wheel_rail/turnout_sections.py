@@ -83,10 +83,10 @@ the start of the stock rail's set and of the wing rail's flare; 0.07-0.08 mm on 
 
 Hand-overs
 ----------
-Where one body or segment of a wheel ends and the next begins (:func:`handover_points`),
-the wheel's rigid rest height over all its bodies present at x (:func:`rest_path` from the
-sections, :func:`table_rest_path` from the tables) has no step in the packaged turnouts
-(``tests/test_turnout_sections.py``).
+Where one body or segment of a wheel ends and the next begins, the wheel's rigid rest
+height over all its bodies present at x has no step in the packaged turnouts
+(:mod:`.handovers`, ``tests/test_turnout_sections.py``). The ``[wheel_rail]`` design data
+and its formulas are :mod:`.turnout_design`.
 
 Stage: may import :mod:`exudyn_turnout.inputs` and :mod:`exudyn_turnout.wheel_rail`; pure
 numpy (the contact tables are :mod:`.tables`').
@@ -96,40 +96,31 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field, replace
-from pathlib import Path
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 
 from exudyn_turnout.inputs.geometry import TurnoutPlan, resolve_position, turnout_plan
 from exudyn_turnout.inputs.routes import load_route
-from exudyn_turnout.inputs.turnout import Turnout, TurnoutFileError
-from exudyn_turnout.wheel_rail.data import profile_path
+from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.wheel_rail.geometry import (
     CHECK_RAIL_DIRECTION,
     WheelGrid,
     WheelsetSetup,
-    prepare_rail,
-    prepare_wheel,
-    search_candidates_batch,
-    surface_derivatives,
 )
 from exudyn_turnout.wheel_rail.profiles import (
     Profile,
     ProfileFormatError,
-    read_profile,
     read_slices,
 )
 from exudyn_turnout.wheel_rail.sections import (
-    CrossingDesign,
     SectionGrid,
     SwitchDesign,
     gauge_point,
     inclination_ramp,
     lateral_grid,
     nose_heights,
-    place_rail,
     sections_at,
     slice_sections,
     surface_on_grid,
@@ -139,58 +130,66 @@ from exudyn_turnout.wheel_rail.tables import (
     ContactTable,
     TableSettings,
     build_contact_table,
-    lookup_values,
 )
-from exudyn_turnout.wheel_rail.transfer import dip_summary, two_rail_paths
+from exudyn_turnout.wheel_rail.turnout_design import (
+    RailGeometry,
+    _fail,
+    _number,
+    _placed,
+    _rail_profile,
+    _resolve_file,
+    _src,
+    _throat,
+    blade_heights,
+    blade_lowering,
+    check_face,
+    rail_geometry,
+    stock_setback,
+    wing_flare,
+)
 
 __all__ = [
     "SEGMENT_KINDS",
-    "DIP_BASELINE",
-    "CheckRailDesign",
-    "RailGeometry",
     "Segment",
     "RailBody",
-    "rail_geometry",
     "route_segments",
     "route_rail_bodies",
     "body_table_settings",
     "route_contact_tables",
-    "stock_setback",
-    "blade_lowering",
-    "wing_flare",
-    "blade_heights",
-    "check_face",
     "section_nodes",
     "envelope_sections",
-    "Transfer",
-    "route_transfers",
-    "RestPath",
-    "handover_points",
-    "handover_windows",
-    "rest_path",
-    "table_rest_path",
 ]
 
-#: m, baseline of the dip's slopes (:func:`.transfer.dip_summary`): 20 mm, as
-#: :func:`exudyn_turnout.inputs.routes.dip_angle` takes for the height tables
-DIP_BASELINE = 0.02
+
 #: Segment kinds of a ``sections`` list (see the module docstring).
 SEGMENT_KINDS = ("plain", "closure", "stock", "blade", "wing", "nose", "check", "slices")
+
+
 _ENVELOPED = ("blade", "wing", "nose", "slices")  # kinds whose height or edge changes fast
+
+
 _CONSTANT = ("plain", "closure")
+
+
 #: m, depth below its top above which a point of a section counts for the x grid (a wheel
 #: touches a rail above ~15 mm below its top; the flange root sits 10-14 mm below the tread)
 _TOUCHABLE = -0.016
+
+
 #: m, per kind, the depth below the top above which a section's change counts for the x
 #: grid: the stock rail's gauge face is behind the blade and the wing rail's and the nose's
 #: field-side faces are under the tread (only their tops and corners are touched); the
 #: blade's planed edge, the gauge faces (flange contact) and a check rail's face (back of
 #: the flange) count down to the flange root
 _DEPTH = {"stock": -0.005, "wing": -0.005, "nose": -0.005}
+
+
 #: a rail edge that moves (the blade's planed field side, which lies against the stock
 #: rail's gauge face) may move 5x the tolerance between nodes: with 0.2 mm, 2 mm, so the
 #: blend of two nodes lacks a strip at most 1 mm wide next to the stock rail's face
 _EDGE_FACTOR = 5.0
+
+
 #: per kind, factor on ``section_tolerance``: a check rail's face moves at its flares
 #: (1:67) and the back of the flange meets a flare only 4-19 mm off centre, so 0.5 mm there
 #: (1 mm lateral steps) instead of ~80 nodes on a 6.7 m check rail; the nose's top near its
@@ -198,8 +197,12 @@ _EDGE_FACTOR = 5.0
 #: dip's rising slope moved by 10 % between 0.2 and 0.1 mm, for 8 more nodes), the common
 #: one behind it (:func:`_tolerance_pieces`)
 _TOLERANCE_FACTOR = {"check": 2.5, "nose": 0.5}
+
+
 #: m, initial node spacing before bisection (no break point of a design is closer)
 _MAX_STEP = 0.5
+
+
 #: m, largest lateral motion of a rail that moves sideways (the stock rail's setback up to
 #: where the blade is at full height, the wing rail's flare up to where the nose is) between
 #: x nodes.  The tables blend two nodes only where the contact point moves by less than 2 mm
@@ -208,68 +211,14 @@ _MAX_STEP = 0.5
 #: wheel's rest height fell in steps: 0.21 mm every 52 mm along the wing rail's 1:16 flare,
 #: 0.03-0.05 mm every 0.5 m on the stock rail, with the section tolerance alone
 _LATERAL_STEP = 1.5e-3
+
+
 #: largest change of the nose's inclination (tangent) between x nodes of its twist: the
 #: rest height of the S1002 wheel moves by 0.36 mm over the 1:40 twist and its contact point
 #: by 13 mm, 10 mm of it in one jump (two-point contact), where the tables hold a cell: its
 #: step was 0.025 mm with 1/800, 0.02 mm is the hand-over check's tolerance
 #: (tests/test_turnout_sections.py); 1/1200 (0.067 m on a 2 m twist)
 _TWIST_STEP = 1.0 / 1200.0
-
-
-@dataclass(frozen=True)
-class CheckRailDesign:
-    """Check rail opposite a crossing: where its face stands, how high, its flares (SI)."""
-
-    #: m, from the back of the flange of a centred wheelset to the check rail's face
-    #: (``[check_rail] clearance``)
-    clearance: float = 0.004
-    flare_length: float = 1.0  #: m, length of each flared end (``[check_rail] flare_length``)
-    #: m, extra opening at each end (``[check_rail] flare_opening``)
-    flare_opening: float = 0.015
-    #: m, top of the check rail above the running rail's top.  0: a running-rail section on
-    #: the same chairs (the turnout files' check rail type is the stock rail's section)
-    height: float = 0.0
-
-
-@dataclass(frozen=True)
-class RailGeometry:
-    """The ``[wheel_rail]`` design data of a turnout file, defaults filled (SI)."""
-
-    #: rail profile: a name in ``exudyn_turnout/data/wheel_rail/profiles`` or a path
-    #: relative to the turnout file (Simpack .prr or two-column text)
-    profile: str = "MBench_UIC60_v3.prr"
-    #: tangent of the inclination the profile file already has (the Manchester benchmark's
-    #: UIC60 is stored inclined 1:40)
-    profile_inclination: float = 1.0 / 40.0
-    inclination: float = 1.0 / 40.0  #: tangent of the rails' inclination in the track
-    gauge: float = 1.435  #: m, track gauge (``[layout] gauge``)
-    gauge_depth: float = 0.014  #: m, gauge point below the top of rail (EN 15302)
-    #: m, wheelset back-to-back distance the check rail clearance refers to (EN 13260)
-    back_to_back: float = 1.360
-    #: m, length ahead of the toe over which the stock rail is set out by the blade's toe
-    #: width (assumed; a set bend of 3 mm over 1 m, 1:333)
-    stock_set_length: float = 1.0
-    switch: SwitchDesign = field(default_factory=SwitchDesign)  #: switch design
-    crossing: CrossingDesign = field(default_factory=CrossingDesign)  #: crossing design
-    check_rail: CheckRailDesign = field(default_factory=CheckRailDesign)  #: check rail
-    grid_step: float = 1e-4  #: m, lateral grid step of the sections
-    #: m, largest normal distance between a section and the linear interpolation of its
-    #: neighbouring x nodes.  0.2 mm, the tables' lateral shift step: the designs' heights
-    #: change linearly along x (exact between nodes), so it binds where a face or corner
-    #: moves sideways (stock rail, wing rail, nose); 0.1 mm took 1.4x the nodes
-    #: (``validation/turnout_contact_geometry.md``)
-    section_tolerance: float = 2e-4
-    min_step: float = 0.01  #: m, smallest x step of a body's grid
-    #: m, how far ahead and behind the wheel centre its envelope looks (at 0.1 m a 0.46 m
-    #: wheel is 10.9 mm above its lowest point: deeper than any step of these designs)
-    envelope_reach: float = 0.1
-    envelope_step: float = 0.002  #: m, dx step of the envelope search
-    source: str = ""  #: turnout file the geometry was read from
-
-    @property
-    def half_gauge(self) -> float:
-        """m, distance of the gauge point from the route's centre line."""
-        return 0.5 * self.gauge
 
 
 @dataclass(frozen=True)
@@ -297,334 +246,6 @@ class RailBody:
     back_of_flange: bool  #: True for check rails (search direction -70 deg)
     segments: tuple = ()  #: the :class:`Segment` list it was built from
     enveloped: bool = False  #: tables use the wheel's envelope (height changes along x)
-
-
-# --- validation helpers ---------------------------------------------------------------
-
-
-def _fail(geometry_src: str, field_name: str, problem: str) -> TurnoutFileError:
-    return TurnoutFileError(f"{geometry_src}: {field_name} {problem}")
-
-
-def _src(turnout: Turnout) -> str:
-    return Path(turnout.source).name
-
-
-def _number(src: str, name: str, value: Any, lo: float, hi: float, lo_open: bool = False) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise _fail(src, name, f"must be a finite number, got {value!r}")
-    if value < lo or (lo_open and value <= lo) or value > hi:
-        low = f"> {lo:g}" if lo_open else f">= {lo:g}"
-        raise _fail(src, name, f"must be {low} and <= {hi:g}, got {value:g}")
-    return float(value)
-
-
-#: field -> (lower bound, upper bound, lower bound open): plausibility bounds, SI
-_BOUNDS = {
-    "profile_inclination": (-0.1, 0.1, False),
-    "inclination": (-0.1, 0.1, False),
-    "gauge": (0.6, 2.0, True),
-    "gauge_depth": (0.005, 0.03, True),
-    "back_to_back": (0.5, 2.0, True),
-    "stock_set_length": (0.0, 10.0, False),
-    "grid_step": (1e-5, 1e-3, False),
-    "section_tolerance": (1e-6, 1e-3, False),
-    "min_step": (1e-3, 1.0, False),
-    "envelope_reach": (0.0, 0.3, False),
-    "envelope_step": (1e-4, 0.02, False),
-    "switch.radius": (10.0, 1e5, True),
-    "switch.entry_tangent": (0.0, 0.1, False),
-    "switch.toe_width": (0.0, 0.05, False),
-    "switch.toe_lowering": (0.0, 0.02, False),
-    "switch.lowering_length": (0.0, 50.0, True),
-    "switch.head_width": (0.03, 0.12, True),
-    "crossing.nose_tip": (-1e4, 1e4, False),
-    "crossing.crossing_number": (2.0, 100.0, False),
-    "crossing.tip_width": (0.0, 0.05, False),
-    "crossing.tip_lowering": (0.0, 0.02, False),
-    "crossing.lowering_length": (0.0, 10.0, True),
-    "crossing.flangeway": (0.02, 0.1, False),
-    "crossing.head_width": (0.03, 0.12, True),
-    "crossing.inclination_transition": (0.0, 20.0, False),
-    "check_rail.height": (-0.03, 0.06, False),
-}
-
-
-def _section(raw: Mapping[str, Any], src: str, name: str) -> Mapping[str, Any]:
-    value = raw.get(name, {})
-    if not isinstance(value, Mapping):
-        raise _fail(src, name, "must be a table")
-    return value
-
-
-def _fields(
-    src: str, prefix: str, table: Mapping[str, Any], known: tuple[str, ...]
-) -> dict[str, float]:
-    out = {}
-    for key, value in table.items():
-        name = f"{prefix}.{key}"
-        if key not in known:
-            raise _fail(src, name, f"is not a field (fields: {', '.join(known)})")
-        lo, hi, lo_open = _BOUNDS[name.split(".", 1)[1]]
-        out[key] = _number(src, name, value, lo, hi, lo_open)
-    return out
-
-
-def rail_geometry(turnout: Turnout) -> RailGeometry:
-    """The turnout's ``[wheel_rail]`` design data, validated, defaults filled.
-
-    Defaults that come from elsewhere in the file: ``gauge`` from ``[layout] gauge``;
-    ``switch.radius`` from ``[layout.diverging] radius``; ``crossing.nose_tip``,
-    ``crossing_number`` and ``tip_width`` from the plan (:func:`.inputs.geometry.turnout_plan`);
-    the check rail's clearance and flares from ``[check_rail]``.  Without ``[layout]`` the
-    class defaults stand.
-
-    Parameters
-    ----------
-    turnout : Turnout
-        A loaded turnout file.
-
-    Returns
-    -------
-    RailGeometry
-
-    Raises
-    ------
-    TurnoutFileError
-        An unknown field, a value that is not a number or out of its plausible range, a
-        profile that cannot be read (one line naming the file and the field).
-    """
-    src = _src(turnout)
-    raw = turnout.raw.get("wheel_rail", {})
-    if not isinstance(raw, Mapping):
-        raise _fail(src, "wheel_rail", "must be a table")
-    sub = ("switch", "crossing", "check_rail")
-    top = tuple(k for k in _BOUNDS if "." not in k)
-    scalars = _fields(
-        src,
-        "wheel_rail",
-        {k: v for k, v in raw.items() if k not in sub + ("profile",)},
-        top,
-    )
-    profile = raw.get("profile", RailGeometry.profile)
-    if not isinstance(profile, str) or not profile.strip():
-        raise _fail(src, "wheel_rail.profile", f"must be a file name, got {profile!r}")
-    parts = {}
-    for name in sub:
-        known = tuple(k.split(".", 1)[1] for k in _BOUNDS if k.startswith(name + "."))
-        parts[name] = _fields(src, f"wheel_rail.{name}", _section(raw, src, name), known)
-    layout = turnout.raw.get("layout")
-    plan: TurnoutPlan | None = turnout_plan(turnout) if isinstance(layout, Mapping) else None
-    switch_defaults: dict[str, float] = {}
-    crossing_defaults: dict[str, float] = {}
-    if plan is not None:
-        scalars.setdefault("gauge", plan.gauge)
-        diverging = layout.get("diverging", {}) if isinstance(layout, Mapping) else {}
-        if isinstance(diverging, Mapping) and "radius" in diverging:
-            switch_defaults["radius"] = float(diverging["radius"])
-        crossing_defaults = {
-            "nose_tip": plan.nose_tip_x,
-            "crossing_number": plan.crossing_angle_n,
-            "tip_width": plan.nose_tip_width,
-        }
-    check = turnout.raw.get("check_rail", {})
-    check_defaults = {
-        k: float(check[k])
-        for k in ("clearance", "flare_length", "flare_opening")
-        if isinstance(check, Mapping) and k in check
-    }
-    geometry = RailGeometry(
-        profile=profile,
-        switch=SwitchDesign(**{**switch_defaults, **parts["switch"]}),
-        crossing=CrossingDesign(**{**crossing_defaults, **parts["crossing"]}),
-        check_rail=CheckRailDesign(**{**check_defaults, **parts["check_rail"]}),
-        source=str(turnout.source),
-        **scalars,
-    )
-    _rail_profile(geometry, src)  # a profile that cannot be read fails here, at load
-    return geometry
-
-
-def _resolve_file(name: str, turnout_source: str) -> Path:
-    local = Path(turnout_source).parent / name if turnout_source else Path(name)
-    return local if local.exists() else profile_path(name)
-
-
-def _rail_profile(geometry: RailGeometry, src: str = "") -> Profile:
-    try:
-        return read_profile(_resolve_file(geometry.profile, geometry.source), kind="rail")
-    except ProfileFormatError as err:
-        raise _fail(src or Path(geometry.source).name, "wheel_rail.profile", str(err)) from None
-
-
-def _placed(geometry: RailGeometry, inclination: float, profile: Profile | None = None) -> Profile:
-    """The profile rotated to ``inclination`` and placed: top z = 0, gauge point gauge / 2."""
-    profile = _rail_profile(geometry) if profile is None else profile
-    extra = math.tan(math.atan(inclination) - math.atan(geometry.profile_inclination))
-    return place_rail(profile, geometry.gauge, extra, geometry.gauge_depth)
-
-
-# --- design formulas --------------------------------------------------------------------
-
-
-def stock_setback(x: float, design: SwitchDesign, set_length: float) -> float:
-    """Lateral distance of the stock rail's gauge face from the route's running line.
-
-    ``toe_width + e x + x^2 / (2 R)`` from the toe (x = 0): the blade head fills it
-    (:func:`.sections.switch_sections`); the curve of radius R leaves the route tangentially
-    (the plan's ``[layout.diverging]``) and the entry tangent e adds the switch's entry
-    angle.  Ahead of the toe the stock rail is *set* out linearly from 0 at ``-set_length``
-    to the toe width (the set bend that houses the blade tip; without it the stock rail
-    would step by ``toe_width`` at the toe).
-
-    Parameters
-    ----------
-    x : float
-        m, position from the toe.
-    design : SwitchDesign
-        Radius, entry tangent and toe width.
-    set_length : float
-        m, length of the set ahead of the toe (0: a step at the toe).
-
-    Returns
-    -------
-    float
-        m, towards the field side.
-    """
-    if x >= 0.0:
-        return design.toe_width + design.entry_tangent * x + x * x / (2.0 * design.radius)
-    if set_length <= 0.0:
-        return 0.0
-    return design.toe_width * max(0.0, 1.0 + x / set_length)
-
-
-def blade_lowering(x: float, design: SwitchDesign) -> float:
-    """How far the blade's top is below the full rail's: linear from the toe to full height.
-
-    ``toe_lowering * max(0, 1 - x / lowering_length)`` (the design of
-    :class:`.sections.SwitchDesign`, after Kassa & Nielsen, VSD 46 S1, 2008).
-
-    Parameters
-    ----------
-    x : float
-        m, position from the toe.
-    design : SwitchDesign
-        Toe lowering and lowering length.
-
-    Returns
-    -------
-    float
-        m, >= 0.
-    """
-    return design.toe_lowering * max(0.0, 1.0 - x / design.lowering_length)
-
-
-def blade_heights(
-    base: np.ndarray,
-    y: np.ndarray,
-    edge: float,
-    lowering: float,
-    face_slope: float = 4.0,
-    fillet: float = 0.003,
-) -> np.ndarray:
-    """A blade section: the full rail lowered, planed on its field side from ``edge``.
-
-    The planed side falls at ``face_slope`` (4: a 76 deg face, the blade fitted under the
-    stock rail's gauge corner; a vertical cut would leave a knife edge that the gap search
-    resolves badly) until it is 30 mm down (then no rail); the edge is rounded by a
-    parabola over ``edge +- fillet`` (assumed: a planed edge is not sharp; a moving sharp
-    edge would also need x nodes every ~0.3 mm of its lateral travel).
-
-    Parameters
-    ----------
-    base : numpy.ndarray
-        m, heights of the full rail on ``y``.
-    y : numpy.ndarray
-        m, lateral grid.
-    edge : float
-        m, lateral position of the planed edge (running line + head width there).
-    lowering : float
-        m, how far the blade's top is below the full rail's.
-    face_slope : float
-        Fall of the planed side per unit lateral distance.
-    fillet : float
-        m, half-width of the rounded edge.
-
-    Returns
-    -------
-    numpy.ndarray
-        m, heights (NaN: no blade).
-    """
-    z = base - lowering
-    top = float(np.interp(edge, y, z))
-    beyond = y > edge
-    z[beyond] = np.minimum(z[beyond], top - face_slope * (y[beyond] - edge))
-    # round the edge: a parabola tangent to the rail (slope s1) at edge - w and to the
-    # planed face (slope -face_slope) at edge + w
-    w = fillet
-    s1 = (top - float(np.interp(edge - w, y, base - lowering))) / w  # the rail's mean slope
-    s2 = -face_slope
-    near = np.abs(y - edge) <= w
-    u = y[near] - edge
-    z[near] = top + s1 * u + (s2 - s1) * (u + w) ** 2 / (4.0 * w)
-    z[beyond & (z < top - 0.03)] = np.nan
-    return z
-
-
-def _throat(design: CrossingDesign) -> float:
-    return design.nose_tip - design.crossing_number * (design.tip_width + design.flangeway)
-
-
-def wing_flare(x: float, design: CrossingDesign) -> float:
-    """Lateral distance of the wing rail's gauge face from the running line.
-
-    ``max(0, (x - x_throat) / N)``, ``x_throat = nose_tip - N (tip_width + flangeway)``: the
-    wing rail runs parallel to the nose's other leg, ``flangeway`` from it (as in
-    :func:`.sections.crossing_sections`).
-
-    Parameters
-    ----------
-    x : float
-        m, position along the route.
-    design : CrossingDesign
-        Nose tip, crossing number, tip width, flangeway.
-
-    Returns
-    -------
-    float
-        m, towards the field side.
-    """
-    return max(0.0, (x - _throat(design)) / design.crossing_number)
-
-
-def check_face(x: float, x_from: float, x_to: float, check: CheckRailDesign) -> float:
-    """Distance of the check rail's face from the back of the flange of a centred wheelset.
-
-    ``clearance + flare_opening * max(0, 1 - d / flare_length)``, d the distance from the
-    nearer end of the check rail (a linear flare, as
-    :meth:`exudyn_turnout.inputs.routes.Route.check_clearance_at`).
-
-    Parameters
-    ----------
-    x : float
-        m, position along the route.
-    x_from, x_to : float
-        m, ends of the check rail.
-    check : CheckRailDesign
-        Clearance and flares.
-
-    Returns
-    -------
-    float
-        m, clearance at x.
-    """
-    if check.flare_length <= 0.0:
-        return check.clearance
-    into = min(x - x_from, x_to - x) / check.flare_length
-    return check.clearance + check.flare_opening * max(0.0, 1.0 - into)
-
-
-# --- sections of one segment --------------------------------------------------------------
 
 
 @dataclass(frozen=True, eq=False)
@@ -888,9 +509,6 @@ def section_nodes(
             i += 1
     x = np.array(keep)
     return x, np.array([at(float(v)) for v in x])
-
-
-# --- bodies of a route --------------------------------------------------------------------
 
 
 def _position(src: str, name: str, value: Any, plan: TurnoutPlan | None) -> float:
@@ -1285,320 +903,3 @@ def route_contact_tables(
         )
         out.append((body, table))
     return tuple(out)
-
-
-# --- load transfer and dips from geometry ------------------------------------------------
-
-
-@dataclass(frozen=True, eq=False)
-class Transfer:
-    """Load transfer between two rail bodies of a route for several lateral shifts."""
-
-    route: str  #: route name
-    place: str  #: "switch" (stock rail -> blade) or "crossing" (wing rail -> nose)
-    wheel: str  #: "left" | "right"
-    first: str  #: name of the body the load comes from
-    second: str  #: name of the body it passes to
-    paths: tuple  #: :class:`.transfer.WheelPath` per shift
-    summaries: tuple  #: :class:`.transfer.DipSummary` per shift
-
-
-def _body_with(bodies: tuple[RailBody, ...], kind: str, wheel: str) -> RailBody | None:
-    for body in bodies:
-        if body.wheel == wheel and any(seg.kind == kind for seg in body.segments):
-            return body
-    return None
-
-
-def _sections_on(
-    body: RailBody, x: np.ndarray, geometry: RailGeometry, radius: float
-) -> SectionGrid:
-    """A body's sections at x: enveloped if the body is, else interpolated."""
-    if body.enveloped and geometry.envelope_reach > 0.0:
-        return wheel_envelope(
-            body.sections, x, radius, geometry.envelope_reach, geometry.envelope_step
-        )
-    return SectionGrid(x=x, y=body.sections.y, z=sections_at(body.sections, x), name=body.name)
-
-
-def route_transfers(
-    turnout: Turnout,
-    route: str,
-    wheel: WheelGrid,
-    setup: WheelsetSetup,
-    shifts: tuple = (-0.003, 0.0, 0.003),
-    step: float = 0.005,
-    bodies: tuple[RailBody, ...] | None = None,
-    x_ranges: Mapping[str, tuple[float, float]] | None = None,
-) -> tuple[Transfer, ...]:
-    """Where the load passes from stock rail to blade and from wing rail to nose, and the dip.
-
-    For each wheel of the route that has a ``stock`` and a ``blade`` body (switch), or a
-    ``wing`` and a ``nose`` body (crossing): the rigid-contact path of the wheel over both
-    bodies' envelopes (:func:`envelope_sections`, :func:`.transfer.two_rail_path`) at each
-    lateral shift, and its :func:`.transfer.dip_summary` (slopes over
-    :data:`DIP_BASELINE`).  x ranges: the switch from 0.5 m before the toe to where the
-    stock rail's body ends; the crossing from 1 m before to 1.5 m after the nose tip.
-
-    Parameters
-    ----------
-    turnout : Turnout
-        A loaded turnout file.
-    route : str
-        Route name.
-    wheel : WheelGrid
-        Gridded wheel.
-    setup : WheelsetSetup
-        Taping line and nominal radius.
-    shifts : tuple of float
-        m, lateral shifts of the wheel towards its field side (a wheelset offset y to the
-        left is a shift +y of the left wheel and -y of the right one).
-    step : float
-        m, x step of the path.
-    bodies : tuple of RailBody, optional
-        The route's bodies (default :func:`route_rail_bodies`).
-    x_ranges : mapping, optional
-        ``{"switch": (x_from, x_to), "crossing": (...)}``: other x ranges (m).
-
-    Returns
-    -------
-    tuple of Transfer
-    """
-    geometry = rail_geometry(turnout)
-    bodies = route_rail_bodies(turnout, route) if bodies is None else bodies
-    out = []
-    for place, kinds in (("switch", ("stock", "blade")), ("crossing", ("wing", "nose"))):
-        for side in ("left", "right"):
-            first, second = (_body_with(bodies, kind, side) for kind in kinds)
-            if first is None or second is None:
-                continue
-            if place == "switch":
-                x_from = max(first.x_from, second.x_from - 0.5)
-                x_to = min(first.x_to, second.x_to)
-            else:
-                tip = geometry.crossing.nose_tip
-                x_from, x_to = max(tip - 1.0, first.x_from), min(tip + 1.5, second.x_to)
-            if x_ranges and place in x_ranges:
-                x_from, x_to = x_ranges[place]
-            x = np.arange(x_from, x_to + 0.5 * step, step)
-            pair = [
-                _sections_on(body, x, geometry, setup.nominal_radius) for body in (first, second)
-            ]
-            paths = two_rail_paths(pair[0], pair[1], wheel, setup.taping_line, tuple(shifts))
-            out.append(
-                Transfer(
-                    route,
-                    place,
-                    side,
-                    first.name,
-                    second.name,
-                    paths,
-                    tuple(dip_summary(path, baseline=DIP_BASELINE) for path in paths),
-                )
-            )
-    return tuple(out)
-
-
-# --- rest height of a wheel over all its bodies (hand-overs) ------------------------------
-
-
-@dataclass(frozen=True, eq=False)
-class RestPath:
-    """Rigid rest height of one wheel over every running-rail body of it present at x."""
-
-    wheel: str  #: "left" | "right"
-    shift: float  #: m, lateral shift of the wheel towards its field side
-    x: np.ndarray  #: m, wheel-centre positions
-    #: m, lift of the wheel (its taping circle) at which its nearest candidate touches
-    #: (``max over bodies and candidates of -gap / cos(angle)``); NaN: no body under it
-    height: np.ndarray
-    body: np.ndarray  #: index into the bodies of the body that carries the wheel (-1: none)
-    y_rail: np.ndarray  #: m, contact point on that body (side coordinates)
-    angle: np.ndarray  #: rad, contact angle there
-
-
-def handover_points(bodies: tuple[RailBody, ...], wheel: str) -> list[float]:
-    """Where a running-rail body or segment of one wheel begins or ends inside the route.
-
-    Parameters
-    ----------
-    bodies : tuple of RailBody
-        The route's bodies (:func:`route_rail_bodies`).
-    wheel : str
-        "left" | "right".
-
-    Returns
-    -------
-    list of float
-        m, sorted, without the route's first and last x of that wheel's bodies; check rails
-        (back-of-flange contact, they never carry the wheel) are left out.
-    """
-    running = [b for b in bodies if b.wheel == wheel and not b.back_of_flange]
-    if not running:
-        return []
-    lo, hi = min(b.x_from for b in running), max(b.x_to for b in running)
-    points = {seg.x_from for b in running for seg in b.segments}
-    points |= {seg.x_to for b in running for seg in b.segments}
-    return sorted(p for p in points if lo < p < hi)
-
-
-def rest_path(
-    bodies: tuple[RailBody, ...],
-    geometry: RailGeometry,
-    wheel_grid: WheelGrid,
-    setup: WheelsetSetup,
-    wheel: str,
-    x: np.ndarray,
-    shift: float = 0.0,
-) -> RestPath:
-    """Rigid rest height of a wheel along x over all its running-rail bodies present there.
-
-    At each x, every body of ``wheel`` whose range ``[x_from, x_to]`` holds x (the kernel's
-    rule, :mod:`.kernel`) is searched as the contact tables are built (its wheel envelope
-    where the body is enveloped, :func:`envelope_sections`; vertical search, no roll); the
-    wheel rests on the candidate that lifts it highest, ``-gap / cos(angle)`` (as
-    :func:`.transfer.two_rail_path`).  A step in this height between close x is a step the
-    passage's wheel runs into.
-
-    Parameters
-    ----------
-    bodies : tuple of RailBody
-        The route's bodies.
-    geometry : RailGeometry
-        Envelope reach and step.
-    wheel_grid : WheelGrid
-        Gridded wheel.
-    setup : WheelsetSetup
-        Taping line and nominal radius.
-    wheel : str
-        "left" | "right".
-    x : numpy.ndarray
-        m, wheel-centre positions.
-    shift : float
-        m, lateral shift of the wheel towards its field side.
-
-    Returns
-    -------
-    RestPath
-    """
-    x = np.asarray(x, float)
-    n = len(x)
-    height = np.full(n, -np.inf)
-    carrier = np.full(n, -1, dtype=int)
-    y_rail, angle = np.full(n, np.nan), np.full(n, np.nan)
-    prepared = prepare_wheel(wheel_grid, setup.taping_line, 0.0, directions=())
-    for k, body in enumerate(bodies):
-        if body.wheel != wheel or body.back_of_flange:
-            continue
-        inside = np.flatnonzero((x >= body.x_from) & (x <= body.x_to))
-        if inside.size == 0:
-            continue
-        sections = _sections_on(body, x[inside], geometry, setup.nominal_radius)
-        derivatives = surface_derivatives(sections)
-        for row, i in enumerate(inside):
-            rail = prepare_rail(
-                sections.z[row],
-                derivatives.slope[row],
-                derivatives.curvature[row],
-                sections.y,
-                directions=(),
-            )
-            found = search_candidates_batch(rail, prepared, [shift], max_candidates=3)[0]
-            if len(found.gap) == 0:
-                continue
-            lifts = -found.gap / np.cos(found.angle)
-            best = int(np.argmax(lifts))
-            if lifts[best] > height[i]:
-                height[i], carrier[i] = float(lifts[best]), k
-                y_rail[i], angle[i] = float(found.y_rail[best]), float(found.angle[best])
-    height[np.isneginf(height)] = np.nan
-    return RestPath(wheel, float(shift), x, height, carrier, y_rail, angle)
-
-
-def handover_windows(
-    bodies: tuple[RailBody, ...], wheel: str, geometry: RailGeometry, margin: float = 0.1
-) -> list[tuple[float, float]]:
-    """x ranges to check for steps: around every hand-over, and over the nose's twist.
-
-    Parameters
-    ----------
-    bodies : tuple of RailBody
-        The route's bodies.
-    wheel : str
-        "left" | "right".
-    geometry : RailGeometry
-        The crossing's ``inclination_transition``.
-    margin : float
-        m, half-width of the window around each hand-over point.
-
-    Returns
-    -------
-    list of tuple
-        m, sorted, non-overlapping ``(x_from, x_to)``.
-    """
-    length = geometry.crossing.inclination_transition
-    windows = [(p - margin, p + margin) for p in handover_points(bodies, wheel)]
-    for body in bodies:
-        if body.wheel == wheel and not body.back_of_flange:
-            windows += [
-                (seg.x_to - length - margin, seg.x_to + margin)
-                for seg in body.segments
-                if seg.kind == "nose" and length > 0.0
-            ]
-    merged: list[tuple[float, float]] = []
-    for lo, hi in sorted(windows):
-        if merged and lo <= merged[-1][1]:
-            merged[-1] = (merged[-1][0], max(hi, merged[-1][1]))
-        else:
-            merged.append((lo, hi))
-    return merged
-
-
-def table_rest_path(pairs, wheel: str, x: np.ndarray, shift: float = 0.0) -> RestPath:
-    """:func:`rest_path` from the contact tables, as the passage's contact reads them.
-
-    At each x, every running-rail body of ``wheel`` whose range holds x is looked up
-    (:func:`.tables.lookup_values`, lift 0); the wheel rests on the candidate that lifts it
-    highest, ``-gap / cos(angle)``.
-
-    Parameters
-    ----------
-    pairs : sequence
-        ``(body, table)`` pairs (:func:`route_contact_tables`); a table may cover only part
-        of its body's x range (the query x must lie in it).
-    wheel : str
-        "left" | "right".
-    x : numpy.ndarray
-        m, wheel-centre positions.
-    shift : float
-        m, lateral shift of the wheel towards its field side.
-
-    Returns
-    -------
-    RestPath
-    """
-    x = np.asarray(x, float)
-    n = len(x)
-    height = np.full(n, -np.inf)
-    carrier = np.full(n, -1, dtype=int)
-    y_rail, angle = np.full(n, np.nan), np.full(n, np.nan)
-    for k, (body, table) in enumerate(pairs):
-        if body.wheel != wheel or body.back_of_flange:
-            continue
-        inside = np.flatnonzero((x >= body.x_from) & (x <= body.x_to))
-        if inside.size == 0:
-            continue
-        values = lookup_values(table, x[inside], np.full(inside.size, shift))
-        gap = values[..., table.fields.index("gap")]
-        theta = values[..., table.fields.index("angle")]
-        lifts = np.where(gap < 0.5, -gap / np.cos(theta), -np.inf)
-        best = np.argmax(lifts, axis=1)
-        rows = np.arange(inside.size)
-        better = lifts[rows, best] > height[inside]
-        chosen = inside[better]
-        height[chosen] = lifts[rows, best][better]
-        carrier[chosen] = k
-        y_rail[chosen] = values[rows, best, table.fields.index("y_rail")][better]
-        angle[chosen] = theta[rows, best][better]
-    height[np.isneginf(height)] = np.nan
-    return RestPath(wheel, float(shift), x, height, carrier, y_rail, angle)
