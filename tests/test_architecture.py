@@ -26,14 +26,8 @@ EXUDYN_BUILDERS = {
     "passage/vehicle_builder.py",
     "passage/full_vehicle_passage.py",
 }
-#: Modules allowed to import matplotlib: they draw.
-FIGURE_MODULES = {
-    "plotting/curves.py",
-    "plotting/model.py",
-    "plotting/__init__.py",
-    "plotting/wheel_rail.py",
-    "plotting/studies.py",
-}
+#: The one module allowed to import matplotlib (the figure modules get it from there).
+FIGURE_MODULES = {"plotting/backend.py"}
 #: Top-level stages, in pipeline order; a stage may not import a later stage of this list
 #: unless listed in ALLOWED_UPWARD.
 STAGES = ("inputs", "wheel_rail", "corunning", "fe", "passage", "studies", "report", "cli")
@@ -127,3 +121,16 @@ def test_stages_import_only_earlier_stages(name):
         other = _stage(i)
         if other is not None and other != own:
             assert STAGES.index(other) < STAGES.index(own), f"{name} imports {i}"
+
+
+def test_importing_the_figure_modules_does_not_import_matplotlib():
+    """matplotlib comes in through plotting/backend.py when a figure is drawn (fast CLI)."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, exudyn_turnout.plotting, exudyn_turnout.plotting.studies, "
+        "exudyn_turnout.plotting.wheel_rail; print('matplotlib' in sys.modules)"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"

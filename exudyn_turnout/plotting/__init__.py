@@ -1,8 +1,8 @@
 """Figures: computed results (:mod:`.curves`), the model itself (:mod:`.model`) and the
 wheel/rail geometry (:mod:`.wheel_rail`).
 
-The only package that imports matplotlib. Compute functions
-return data objects; these functions draw them (``Receptance.plot`` and
+The only package that imports matplotlib, through :mod:`.backend` when a figure is
+drawn. Compute functions return data objects; these functions draw them (``Receptance.plot`` and
 ``PassageResult.plot`` delegate here).
 """
 

@@ -10,9 +10,9 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
-import matplotlib.pyplot as plt
 import numpy as np
 
+from exudyn_turnout.plotting.backend import pyplot
 from exudyn_turnout.receptance import Receptance
 
 __all__ = [
@@ -95,6 +95,7 @@ def plot_receptance(
 
 
 def _axes(ax, phase: bool) -> tuple:
+    plt = pyplot()
     if ax is None:
         if phase:
             _, pair = plt.subplots(2, 1, sharex=True, figsize=(6.4, 6.0), height_ratios=(2, 1))
@@ -147,6 +148,7 @@ def plot_passage_forces(results, wheel: str = "right", labels=None, title: str |
         A 2 x 2 grid: rows vertical (Fz) and lateral (Fy) force on the rail, columns the
         switch and crossing regions named in the results' summaries.
     """
+    plt = pyplot()
     results = list(results)
     fig, axes = plt.subplots(2, 2, figsize=(10.0, 6.4), sharex="col")
     names = list(labels) if labels is not None else [passage_label(r) for r in results]
@@ -215,6 +217,7 @@ def plot_receptance_agreement(
     (Figure, ndarray of Axes)
         2 x n: magnitude |H| (m/N) on top, difference (dB) below.
     """
+    plt = pyplot()
     panels = list(panels)
     fig, axes = plt.subplots(
         2,
@@ -269,6 +272,7 @@ def plot_force_signals(panels, ylabel: str = "force on rail (kN)"):
     (Figure, ndarray of Axes)
         One row of panels.
     """
+    plt = pyplot()
     panels = list(panels)
     fig, axes = plt.subplots(1, len(panels), figsize=(5.0 * len(panels), 3.6), squeeze=False)
     for ax, (title, results, column, (x0, x1)) in zip(axes[0], panels):
@@ -303,6 +307,7 @@ def plot_stiffness_series(panels, ylabel: str = "static stiffness (MN/m)"):
     (Figure, ndarray of Axes)
         One column of panels.
     """
+    plt = pyplot()
     panels = list(panels)
     styles = {
         "points": dict(ls="none", marker=".", ms=3),
@@ -337,6 +342,7 @@ def save_figure(fig, path, dpi: int = 100) -> None:
     dpi : int
         Resolution (dots per inch) of raster formats.
     """
+    plt = pyplot()
     fig.savefig(path, dpi=dpi)
     plt.close(fig)
 
@@ -366,6 +372,7 @@ def plot_stiffness_profile(profile, fits=None, turnout=None, axes=None):
     (Figure, tuple of Axes)
         The figure and its (vertical, lateral) axes.
     """
+    plt = pyplot()
     if axes is None:
         _, pair = plt.subplots(2, 1, figsize=(12.0, 8.0), sharex=True)
         axes = tuple(pair)

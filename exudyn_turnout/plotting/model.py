@@ -6,7 +6,7 @@ builder (:mod:`exudyn_turnout.corunning.track`) turns into ``CartesianSpringDamp
 their values at x (``params.at(x)``). :func:`draw_cross_section` draws it like the
 paper's Figs 2 and 3; :func:`animate_passage` writes a GIF of a passage's cross-section
 (:func:`passage_frames` picks its samples). Compute returns data; only the ``draw_`` and
-``animate_`` functions import matplotlib (lazily).
+``animate_`` functions use matplotlib (from :mod:`.backend`, when they draw).
 
 Drawing coordinates: lateral positions are the model's (m, y positive left, seen in the
 running direction), except that rails closer than ``min_gap`` are drawn apart (their
@@ -29,6 +29,7 @@ from exudyn_turnout.corunning.parameters import CoRunningParameters
 from exudyn_turnout.inputs.routes import Route, load_route
 from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Turnout
 from exudyn_turnout.inputs.vehicle import Vehicle
+from exudyn_turnout.plotting.backend import patches, pillow_writer, pyplot
 
 __all__ = [
     "Body",
@@ -771,8 +772,8 @@ def draw_cross_section(
     matplotlib Axes
         The axes drawn into.
     """
-    import matplotlib.pyplot as plt
-    from matplotlib.patches import Rectangle
+    plt = pyplot()
+    Rectangle = patches().Rectangle
 
     geo = cross_section_geometry(params, x, route, vehicle, min_gap)
     lv = _Levels()
@@ -962,7 +963,7 @@ def _draw_suspension(ax: Any, springs: Sequence[SpringDamper], label: dict, box:
 def _draw_wheelset(
     ax: Any, b: Body, geo: CrossSection, lv: _Levels, colour: str, fontsize: float
 ) -> None:
-    from matplotlib.patches import Polygon, Rectangle
+    Polygon, Rectangle = patches().Polygon, patches().Rectangle
 
     half = 0.5 * (b.width - lv.wheel_width)
     bottom = b.z - 0.5 * b.height
@@ -1152,9 +1153,8 @@ def animate_passage(
     Path
         The GIF written.
     """
-    import matplotlib.pyplot as plt
-    from matplotlib.animation import PillowWriter
-    from matplotlib.patches import FancyArrowPatch, Polygon
+    plt = pyplot()
+    FancyArrowPatch, Polygon = patches().FancyArrowPatch, patches().Polygon
 
     from exudyn_turnout.inputs.turnout import load_turnout
     from exudyn_turnout.inputs.vehicle import load_vehicle
@@ -1331,8 +1331,8 @@ def animate_passage(
 
     fig.tight_layout()
     out = Path(path)
-    # matplotlib's stub says int; PillowWriter only computes int(1000 / fps): a float works
-    writer = PillowWriter(fps=fps)  # type: ignore[arg-type]
+    # PillowWriter only computes int(1000 / fps): a float fps works
+    writer = pillow_writer(fps)
     try:
         with writer.saving(fig, str(out), dpi):
             for i in frames:

@@ -14,8 +14,9 @@ import math
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
-import matplotlib.pyplot as plt
 import numpy as np
+
+from exudyn_turnout.plotting.backend import pyplot
 
 __all__ = [
     "plot_peak_vs_factor",
@@ -76,6 +77,7 @@ def plot_peak_vs_factor(
     -------
     (figure, axes)
     """
+    plt = pyplot()
     if ax is None:
         fig, ax = plt.subplots(figsize=(6.4, 4.2))
     else:
@@ -131,6 +133,7 @@ def plot_peak_distribution(
     -------
     (figure, axes)
     """
+    plt = pyplot()
     if axes is None:
         fig, axes = plt.subplots(1, 2, figsize=(9.0, 3.8))
     else:
@@ -168,6 +171,7 @@ def save_study_figure(fig, path) -> None:
     fig : matplotlib Figure
     path : str or Path
     """
+    plt = pyplot()
     target = Path(path)
     target.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(target, dpi=110, bbox_inches="tight")

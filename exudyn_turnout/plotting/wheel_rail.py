@@ -18,6 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
+from exudyn_turnout.plotting.backend import pyplot
 from exudyn_turnout.wheel_rail.geometry import WheelGrid, WheelsetContact, wheel_heights_on_grid
 from exudyn_turnout.wheel_rail.sections import SectionGrid, section_at
 from exudyn_turnout.wheel_rail.transfer import DipSummary, WheelPath
@@ -30,15 +31,6 @@ __all__ = [
     "plot_body_sections",
     "plot_dip",
 ]
-
-
-def _pyplot():
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def plot_contact_band(result: WheelsetContact, path: str | Path) -> Path:
@@ -55,7 +47,7 @@ def plot_contact_band(result: WheelsetContact, path: str | Path) -> Path:
     -------
     Path
     """
-    plt = _pyplot()
+    plt = pyplot()
     figure, axes = plt.subplots(3, 1, figsize=(7, 8), sharex=True)
     y_mm = result.y * 1e3
     axes[0].plot(y_mm, result.s_left * 1e3, ".", label="left wheel, on wheel")
@@ -116,7 +108,7 @@ def plot_sections(
     -------
     Path
     """
-    plt = _pyplot()
+    plt = pyplot()
     figure, axes = plt.subplots(
         len(positions), 1, figsize=(7, 2.2 * len(positions)), sharex=True, squeeze=False
     )
@@ -154,7 +146,7 @@ def plot_wheel_path(paths: list[WheelPath], path: str | Path) -> Path:
     -------
     Path
     """
-    plt = _pyplot()
+    plt = pyplot()
     figure, axes = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
     for wheel_path in paths:
         label = f"shift {wheel_path.shift * 1e3:+.0f} mm"
@@ -209,7 +201,7 @@ def plot_contact_band_along_x(
     -------
     Path
     """
-    plt = _pyplot()
+    plt = pyplot()
     x, y_rail, s_wheel = (np.asarray(v, float) for v in (x, y_rail, s_wheel))
     body = np.asarray(body, dtype=object)
     ranges = x_ranges or [(float(np.nanmin(x)), float(np.nanmax(x)))]
@@ -287,7 +279,7 @@ def plot_body_sections(
     -------
     Path
     """
-    plt = _pyplot()
+    plt = pyplot()
     figure, axes = plt.subplots(
         len(positions), 1, figsize=(7, 2.3 * len(positions)), sharex=True, squeeze=False
     )
@@ -338,7 +330,7 @@ def plot_dip(
     -------
     Path
     """
-    plt = _pyplot()
+    plt = pyplot()
     figure, axes = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
     for wheel_path, summary in zip(paths, summaries):
         label = f"shift {wheel_path.shift * 1e3:+.0f} mm"
