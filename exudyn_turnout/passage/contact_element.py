@@ -91,6 +91,12 @@ class WheelRailElement:
     """
 
     n_vehicle = 6  #: vehicle coordinates at the head of the element: y_w, z_w, phi, psi, y_s, z_s
+    #: m, how far a roll moves the wheels' running surfaces sideways per rad: 0 here (the
+    #: conical tread's contact ignores roll sideways; see the profile element)
+    running_surface_depth = 0.0
+    #: whether its lateral loads at rest are real (re-based at zone boundaries): not on the
+    #: conical tread (see passage.simulate._static_deflection)
+    lateral_static_loads = False
 
     def __init__(self, vehicle: Vehicle, route: Route, pairs, x0: float, v: float):
         self.vehicle, self.route, self.pairs = vehicle, route, tuple(pairs)

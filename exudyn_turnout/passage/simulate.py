@@ -474,7 +474,7 @@ def _carry_over(
     loads_old = _wheel_rail_loads(old, state, layers)
     source = {slot: continues.get(slot, slot) for slot in new.params.active_rails}
     loads_new = {slot: loads_old[src] for slot, src in source.items() if src in loads_old}
-    lateral = getattr(old.element, "running_surface_depth", 0.0) > 0.0  # profile contact
+    lateral = old.element.lateral_static_loads
     u_old = _static_deflection(old.params, x, loads_old, layers, lateral)
     u_new = _static_deflection(new.params, x, loads_new, layers, lateral)
     q_old, v_old = _track_vector(state, old, 0), _track_vector(state, old, 1)
@@ -545,7 +545,7 @@ def _vehicle_shift(
     roll = (mean["left"][0] - mean["right"][0]) / (2.0 * b)
     # profile contact: a roll moves the running surfaces sideways by r0 roll; move the
     # wheelset back by as much so the wheels stay where they touch
-    y -= getattr(old.element, "running_surface_depth", 0.0) * roll
+    y -= old.element.running_surface_depth * roll
     n_yaw = old.element.n_vehicle - 5  # yaw (and spin) coordinates
     return {"wheelset": np.array([y, z, roll]), "yaw": np.zeros(n_yaw), "sprung": np.array([y, z])}
 
