@@ -25,6 +25,8 @@ EXUDYN_BUILDERS = {
     "passage/simulate.py",
     "passage/vehicle_builder.py",
     "passage/full_vehicle_passage.py",
+    "passage/fe_passage.py",
+    "passage/hunting.py",
 }
 #: The one module allowed to import matplotlib (the figure modules get it from there).
 FIGURE_MODULES = {"plotting/backend.py"}

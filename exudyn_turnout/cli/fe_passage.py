@@ -1,4 +1,4 @@
-"""``exudyn-turnout fe simulate``: the wheelset passage over the FE turnout track (vertical).
+"""``exudyn-turnout fe simulate``: the wheelset passage over the FE turnout track.
 
 :func:`add_simulate` adds the ``simulate`` sub-command to the ``fe`` group of
 :mod:`exudyn_turnout.cli.fe` (pass it that group's sub-parsers). numpy/scipy only at
@@ -40,7 +40,7 @@ def _run(args: argparse.Namespace) -> int:
 
     from exudyn_turnout.inputs.turnout import load_turnout
     from exudyn_turnout.inputs.vehicle import load_vehicle
-    from exudyn_turnout.passage.fe_track import simulate_fe_passage
+    from exudyn_turnout.passage.simulate import simulate_passage
 
     check_out_dir(args.out)
     turnout = load_turnout(args.turnout)
@@ -50,8 +50,8 @@ def _run(args: argparse.Namespace) -> int:
     settings = settings_from_args(args)
     return run_passage_command(
         args,
-        lambda bar: simulate_fe_passage(
-            turnout, settings, vehicle=vehicle, options=options, progress=bar
+        lambda bar: simulate_passage(
+            turnout, settings, vehicle, bar, track="fe", fe_options=options
         ),
         f"FE track, {turnout.name}, {args.route} route, {args.speed:g} km/h",
         "FE track, ",
@@ -80,12 +80,21 @@ def add_simulate(fe_sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     """
     parser = fe_sub.add_parser(
         "simulate",
-        help="wheelset passage over the FE turnout track (vertical)",
-        description="Run one wheelset (Manchester benchmark, vertical part) over the vertical FE "
-        "model of the turnout with Hertz contact, the route's rail height profiles "
-        "and HHT-alpha time integration; write timeseries.csv, summary.json and "
-        "forces.png (the columns of `exudyn-turnout simulate`; lateral columns "
-        "empty) into --out.",
+        help="wheelset passage over the FE turnout track",
+        description="Run one wheelset (Manchester benchmark) over the FE model of the turnout "
+        "(vertical and lateral planes, rail torsion) with the profile contact of "
+        "`exudyn-turnout simulate`, co-simulated with Exudyn's vehicle (exact one-step "
+        "coupling); or, with --contact height-table, the older vertical-only FE passage "
+        "(own wheelset, Hertz contact on the route's rail height profiles, HHT-alpha; "
+        "lateral columns empty). Write timeseries.csv, summary.json, forces.png (and "
+        "contact_band.png) into --out.",
+    )
+    parser.add_argument(
+        "--contact",
+        choices=("profile", "height-table"),
+        default="profile",
+        help="wheel/rail contact (default profile; height-table: the vertical-only FE "
+        "passage kept for comparison)",
     )
     parser.add_argument(
         "--turnout",

@@ -81,7 +81,19 @@ def _run(args: argparse.Namespace) -> int:
     model = _full_vehicle(args.vehicle)
     vehicle = load_vehicle(args.vehicle) if model is None else None
     args.route = route_from_args(args, turnout)
-    settings = settings_from_args(args, layers=args.layers, source=args.source)
+    track = args.track or f"{args.layers}-layer"
+    layers = args.layers if track == "fe" else int(track[0])
+    settings = settings_from_args(args, layers=layers, source=args.source)
+    if track == "fe" and model is not None:
+        raise UsageError("--track fe runs the single wheelset for now (not a full vehicle)")
+    if track == "fe" and (
+        settings.contact != "profile" or getattr(args, "parameters", None) is not None
+    ):
+        raise UsageError(
+            "--track fe: the FE track takes Table 1 directly (no --parameters) and runs with "
+            "the profile contact (for the older vertical-only FE passage with the "
+            "height-table contact use `exudyn-turnout fe simulate --contact height-table`)"
+        )
     if model is not None and settings.contact != "profile":
         raise UsageError("--contact height-table: the full vehicle has the profile contact only")
     if settings.contact == "profile":  # the rail geometry, checked before anything runs
@@ -93,7 +105,7 @@ def _run(args: argparse.Namespace) -> int:
 
     def simulate(bar):
         if model is None:
-            return simulate_passage(turnout, settings, vehicle=vehicle, progress=bar)
+            return simulate_passage(turnout, settings, vehicle=vehicle, progress=bar, track=track)
         from exudyn_turnout.passage.full_vehicle_passage import simulate_vehicle_passage
 
         return simulate_vehicle_passage(turnout, settings, model, progress=bar)
@@ -103,11 +115,12 @@ def _run(args: argparse.Namespace) -> int:
         simulate,
         f"{turnout.name}, {args.route} route, {args.speed:g} km/h"
         + ("" if model is None else f", {model.name} (front wheelset)"),
-        "" if model is None else "full vehicle, front wheelset: ",
+        ("FE track, " if track == "fe" else "")
+        + ("" if model is None else "full vehicle, front wheelset: "),
         turnout=turnout,
         vehicle=vehicle if model is None else args.vehicle,
         extra_settings={
-            "model": "co-running",
+            "model": "FE" if track == "fe" else "co-running",
             "profiles": args.profiles,
             "parameters": file_record(getattr(args, "parameters", None)),
         },
@@ -370,6 +383,13 @@ def build(sub: argparse._SubParsersAction) -> None:
     )
     add_turnout_options(parser)
     parser.add_argument("--layers", type=int, choices=(2, 3), default=3)
+    parser.add_argument(
+        "--track",
+        choices=("2-layer", "3-layer", "fe"),
+        help="track model: a co-running track (same as --layers) or fe, the FE turnout "
+        "(vertical and lateral planes, rail torsion) under the same vehicle and contact "
+        "(default: --layers)",
+    )
     parser.add_argument(
         "--route",
         metavar="NAME",

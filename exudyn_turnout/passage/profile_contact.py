@@ -162,6 +162,37 @@ class ProfileContactElement:
         if self.irregularity is not None:
             self._irr[:] = self.irregularity.at(x)
 
+    def prepare(self, x: float) -> None:
+        """Set the curvature and irregularity at x for the next :meth:`forces_at` calls.
+
+        Parameters
+        ----------
+        x : float
+            m, wheelset position.
+        """
+        self._prepare(x)
+
+    def forces_at(self, x: float, q: np.ndarray, q_t: np.ndarray) -> np.ndarray:
+        """Generalised contact forces for coordinates q, q_t at x (after :meth:`prepare`).
+
+        The hot path of a caller that evaluates the contact many times at one x (the FE
+        track's coupling solve): no copies, no curving load, no static holds.
+
+        Parameters
+        ----------
+        x : float
+            m, wheelset position (the one given to :meth:`prepare`).
+        q, q_t : numpy.ndarray
+            Element coordinates and velocities (float arrays of length ``n``).
+
+        Returns
+        -------
+        numpy.ndarray
+            The element's force buffer (overwritten by the next call).
+        """
+        self._call(x, q, q_t)
+        return self._forces
+
     def evaluate(self, x: float, q, q_t) -> tuple[np.ndarray, np.ndarray]:
         """Contact forces at position x for element coordinates q, q_t.
 
@@ -331,9 +362,16 @@ class ProfileContactElement:
             p.bounds,
             self._constants,
         )
-        rails = {
-            b.rail: np.column_stack((-forces[:, b.i_z], forces[:, b.i_y])) for b in self.bodies
-        }
+        # per slot, the forces on its distinct coordinate pairs (bodies of one slot share a
+        # pair on the co-running track; on the FE track every body has its own)
+        rails: dict[str, np.ndarray] = {}
+        seen: set = set()
+        for b in self.bodies:
+            if (b.i_y, b.i_z) in seen:
+                continue
+            seen.add((b.i_y, b.i_z))
+            values = np.column_stack((-forces[:, b.i_z], forces[:, b.i_y]))
+            rails[b.rail] = rails[b.rail] + values if b.rail in rails else values
         cols: dict[str, np.ndarray] = {}
         for wheel in ("right", "left"):
             cols[f"Fz_{wheel}_N"], cols[f"Fy_{wheel}_N"] = np.zeros(n), np.zeros(n)

@@ -49,6 +49,7 @@ __all__ = [
     "max_time_step",
     "contact_resonance",
     "lightest_rail_mass",
+    "element_matrices",
 ]
 
 
@@ -265,6 +266,34 @@ class _ZoneSystem:
         return self.params.zone.sleeper_y
 
 
+def element_matrices(vehicle: Vehicle, n: int, spin: bool) -> tuple[np.ndarray, np.ndarray]:
+    """Mass and stiffness matrices of the contact element's own coordinates.
+
+    The wheelset's yaw inertia and yaw stiffness (coordinate 3) and, with profile contact,
+    its spin inertia (coordinate 4) sit in the contact element (their nodes are generic).
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+    n : int
+        Number of the element's coordinates.
+    spin : bool
+        The element has the spin perturbation (profile contact).
+
+    Returns
+    -------
+    M, K : numpy.ndarray
+        (n, n), kg (kg m^2) and N/m (N m/rad).
+    """
+    M, K = np.zeros((n, n)), np.zeros((n, n))
+    M[3, 3], K[3, 3] = vehicle.J_yaw, vehicle.k_yaw
+    if spin:
+        if vehicle.J_spin is None:
+            raise PassageError("the vehicle has no spin inertia: the profile contact needs it")
+        M[4, 4] = vehicle.J_spin
+    return M, K
+
+
 def _initial_guess(vehicle: Vehicle) -> tuple[float, float]:
     """Wheelset and sprung-mass z (m) with the contacts closed, so Hertz springs have stiffness."""
     W = vehicle.static_wheel_load
@@ -332,11 +361,7 @@ def _build(
     nodes = [veh.wheelset_node, veh.yaw_node, veh.sprung_node] + [
         track.wheel_nodes[r] for r in slots
     ]
-    M, K = np.zeros((element.n, element.n)), np.zeros((element.n, element.n))
-    M[3, 3], K[3, 3] = vehicle.J_yaw, vehicle.k_yaw
-    if profile:
-        assert vehicle.J_spin is not None  # checked by RouteContact
-        M[4, 4] = vehicle.J_spin
+    M, K = element_matrices(vehicle, element.n, profile)
     contact = mbs.AddObject(
         ObjectGenericODE2(
             nodeNumbers=nodes, massMatrix=M, stiffnessMatrix=K, forceUserFunction=element
@@ -666,8 +691,11 @@ def simulate_passage(
     """Run the vehicle through the turnout on a co-running track or on the FE track.
 
     One entry point whatever the track: ``track="2-layer"`` or ``"3-layer"`` (the paper's
-    co-running models, Figs 2, 3) or ``"fe"`` (the FE reference,
-    :func:`~exudyn_turnout.passage.fe_track.simulate_fe_passage`, vertical only for now).
+    co-running models, Figs 2, 3) or ``"fe"`` (the FE reference, vertical and lateral, with
+    the same vehicle and profile contact:
+    :func:`~exudyn_turnout.passage.fe_passage.simulate_fe_profile_passage`; with
+    ``settings.contact = "height-table"`` the older vertical-only FE passage
+    :func:`~exudyn_turnout.passage.fe_track.simulate_fe_passage`).
 
     Parameters
     ----------
@@ -702,7 +730,13 @@ def simulate_passage(
     """
     if track is not None and track not in TRACKS:
         raise PassageError(f"track must be one of {', '.join(TRACKS)}, got {track!r}")
-    if track == "fe":
+    if track == "fe" and settings.contact == "profile":
+        from exudyn_turnout.passage.fe_passage import simulate_fe_profile_passage
+
+        return simulate_fe_profile_passage(
+            turnout, settings, vehicle, fe_options, progress=progress
+        )
+    if track == "fe":  # the vertical FE passage with its own height-table contact
         from exudyn_turnout.passage.fe_track import simulate_fe_passage
 
         return simulate_fe_passage(turnout, settings, vehicle, fe_options, progress=progress)

@@ -1,0 +1,762 @@
+"""The FE turnout under the one vehicle and the one contact: exact one-step co-simulation.
+
+The FE reference track (:mod:`exudyn_turnout.fe`: Timoshenko rails of order p on discrete
+pads, sleepers on the ballast; the vertical plane and the lateral plane with rail torsion,
+:mod:`~exudyn_turnout.fe.torsion`) carries the same Exudyn vehicle
+(:func:`~exudyn_turnout.passage.vehicle.add_vehicle`) through the same profile contact
+element (:class:`~exudyn_turnout.passage.profile_contact.ProfileContactElement`, the numba
+kernel of :mod:`~exudyn_turnout.wheel_rail.kernel`) as the co-running tracks: only the
+track differs.
+
+::
+
+     Exudyn: vehicle (wheelset y, z, roll, yaw, spin; sprung mass y, z)
+        |  ObjectGenericODE2 on the vehicle's coordinates, forceUserFunction:
+        |  FEContactElement = ProfileContactElement with every rail body's (y, z)
+        |  solved from the FE track's one-step response  r = r_free + C F(r)
+        |
+     ===+====================  FE track (scipy): vertical plane  M, D, K  (w, psi, sleepers)
+        |                                     lateral plane   M, D, K  (v, psi, roll, warping)
+      pre-step: predict r_free, r_t_free, C      post-step: complete the step with F
+
+Why a co-simulation (measured, ``EXUDYN_NOTES.md``: a 35 000-DOF turnout): the whole FE
+track as one sparse Exudyn object costs 26-39 ms a step, moving load markers 19-42 ms,
+a scipy loop with one factorised matrix 2.1 ms; modal reduction needs 1 600-2 100 modes
+below 2-3 kHz. So the FE track is stepped outside Exudyn with its constant effective
+matrix factorised once, and the coupling is made exact instead of lagged.
+
+Exact one-step coupling
+-----------------------
+Exudyn's implicit solver is the generalized-alpha method in the form of Arnold & Bruls
+(2007) with the constants of :func:`generalized_alpha` (a test runs Exudyn and this module's
+update side by side: equal to 1e-17). Stepping the linear FE track
+M qdd + D v + K u = G F with the same constants, the equations hold at t_{n+1} and::
+
+    u_{n+1} = u^ + beta' h^2 qdd_{n+1},  v_{n+1} = v^ + gamma' h qdd_{n+1},
+    beta' = beta (1 - alpha_f) / (1 - alpha_m),  gamma' = gamma (1 - alpha_f) / (1 - alpha_m)
+
+(u^, v^ from the step's start), so with A = M + gamma' h D + beta' h^2 K (constant,
+factorised once per plane) qdd_{n+1} = qdd* + A^-1 G F, qdd* = A^-1 (-D v^ - K u^). The
+rail coordinates r = G^T u of the contact bodies (the rail head's displacement at the
+contact, (T1) of :mod:`~exudyn_turnout.fe.torsion`) are then linear in the unknown contact
+forces F on the rails::
+
+    r = r_free + C F,   r_t = r_t_free + (gamma' / (beta' h)) (r - r_free),
+    r_free = G^T (u^ + beta' h^2 qdd*),   C = beta' h^2 G^T A^-1 G
+
+Before each step (``PreStepUserFunction``, t_{n+1}) the track predicts r_free, r_t_free and
+C; in every call of the force function (Newton iterations, Jacobian) the element solves
+r = r_free + C F(q_vehicle, r, r_t(r)) for r by Newton (a 2m x 2m system, m rail bodies in
+reach, the Jacobian of F by finite differences once a step) and returns the forces on the
+vehicle; after the step (``PostStepUserFunction``) the converged forces complete the FE
+step. This is the monolithic solution of the coupled equations, not an approximation:
+``EXUDYN_NOTES.md`` measured 0.003-0.007 N against a monolithic run; the tests compare the
+co-simulation's static state with the FE's static receptance.
+
+Where the rail is touched: every rail body of the route (stock rail, blade, wing rail,
+nose, check rail...) has its own (y, z) coordinates in the element, so one element serves
+the whole run (no zones: the FE track is the whole turnout). A body in reach of the wheelset
+(its table's x range contains x) is coupled to the FE rail of its co-running slot at x
+(:meth:`~exudyn_turnout.fe.layout.Layout.slot_rail`), at the wheelset's x, at the rail
+top (height above the shear centre from the torsion section) and on the rail's centre line
+(the lateral offset of the contact point, a few cm, and its roll moment from the vertical
+force are left out; the lateral force's roll moment about the shear centre is in).
+
+Damping in the time domain as :mod:`~exudyn_turnout.passage.fe_track`: the structural loss
+G becomes the viscous G / omega_ref (``loss_reference_hz``).
+
+Start: the static equilibrium of vehicle and FE track (Exudyn's static solver with the
+element coupled to the FE's static compliance G^T K^-1 G), the FE field carried at speed
+(u_t = v du/dx from the static field 1 mm ahead under the same forces) and the FE
+accelerations from its equations of motion (Exudyn computes the vehicle's).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as sla
+
+from exudyn_turnout.fe.layout import Layout, load_layout
+from exudyn_turnout.fe.mesh import build_mesh
+from exudyn_turnout.fe.model import PlaneModel, assemble
+from exudyn_turnout.fe.rail_head import RailHeadPoint, rail_head_point
+from exudyn_turnout.fe.torsion import UIC60_SECTION, RailTorsionSection
+from exudyn_turnout.inputs.turnout import Turnout
+
+__all__ = [
+    "GeneralizedAlpha",
+    "generalized_alpha",
+    "FETrackPlanes",
+    "build_fe_planes",
+    "FECoSimulation",
+    "FEContactElement",
+    "lagrange_weights",
+    "run_progress",
+]
+
+#: SuperLU options for the symmetric positive definite matrices A and K: minimum degree on
+#: A + A^T, no pivoting. Against COLAMD a quarter of the fill and half the solve time
+#: (turnout, h = 1e-4 s: vertical 0.48 vs 1.80 million nonzeros in L + U, lateral 0.93 vs 2.97).
+_LU = dict(permc_spec="MMD_AT_PLUS_A", options=dict(SymmetricMode=True, DiagPivotThresh=0.0))
+#: m, Newton tolerance of the rail coordinates in the coupling solve (1.5e-3 N of Hertz force).
+COUPLING_TOLERANCE = 1e-12
+#: m, finite-difference step of the coupling Jacobian (Hertz deflections are ~50 um).
+_FD_STEP = 1e-9
+#: Newton iterations of the coupling solve before giving up.
+_MAX_ITERATIONS = 30
+#: m, the FE field 1 mm ahead gives the convected start velocity v du/dx.
+_START_DX = 1e-3
+
+
+@dataclass(frozen=True)
+class GeneralizedAlpha:
+    """Constants of the generalized-alpha method (Arnold & Bruls 2007), as Exudyn's."""
+
+    alpha_m: float  #: -
+    alpha_f: float  #: -
+    beta: float  #: -
+    gamma: float  #: -
+
+    @property
+    def beta_eff(self) -> float:
+        """beta' = beta (1 - alpha_f) / (1 - alpha_m): u_{n+1} = u^ + beta' h^2 qdd_{n+1}."""
+        return self.beta * (1.0 - self.alpha_f) / (1.0 - self.alpha_m)
+
+    @property
+    def gamma_eff(self) -> float:
+        """gamma' = gamma (1 - alpha_f) / (1 - alpha_m): v_{n+1} = v^ + gamma' h qdd_{n+1}."""
+        return self.gamma * (1.0 - self.alpha_f) / (1.0 - self.alpha_m)
+
+
+def generalized_alpha(spectral_radius: float) -> GeneralizedAlpha:
+    """Generalized-alpha constants for a high-frequency spectral radius rho_inf in [0, 1].
+
+    alpha_m = (2 rho - 1) / (rho + 1), alpha_f = rho / (rho + 1), gamma = 1/2 + alpha_f -
+    alpha_m, beta = (gamma + 1/2)^2 / 4 (Chung & Hulbert 1993, in the form of Arnold &
+    Bruls 2007, "Convergence of the generalized-alpha scheme for constrained mechanical
+    systems", Multibody System Dynamics 18: the constants Exudyn's ``generalizedAlpha``
+    uses, checked by a test against Exudyn's own integration).
+
+    Parameters
+    ----------
+    spectral_radius : float
+        rho_inf in [0, 1].
+
+    Returns
+    -------
+    GeneralizedAlpha
+    """
+    rho = float(spectral_radius)
+    if not 0.0 <= rho <= 1.0:
+        raise ValueError(f"spectral radius must be in [0, 1], got {spectral_radius!r}")
+    alpha_m = (2.0 * rho - 1.0) / (rho + 1.0)
+    alpha_f = rho / (rho + 1.0)
+    gamma = 0.5 + alpha_f - alpha_m
+    return GeneralizedAlpha(alpha_m, alpha_f, 0.25 * (gamma + 0.5) ** 2, gamma)
+
+
+@dataclass(frozen=True)
+class FETrackPlanes:
+    """The FE track's two planes with time-domain damping (SI units)."""
+
+    vertical: PlaneModel  #: vertical plane (w, psi of the rails; sleepers)
+    lateral: PlaneModel  #: lateral plane (v, psi, roll, warping of the rails; sleepers)
+    layout: Layout  #: which FE rail lies under each co-running slot
+    D_vertical: sp.csc_matrix  #: N s/m, viscous damping + G / omega_ref, vertical
+    D_lateral: sp.csc_matrix  #: N s/m, likewise lateral
+    build_s: float  #: s, wall time of meshing and assembly
+
+
+def build_fe_planes(
+    turnout: Turnout,
+    options=None,
+    layout: Layout | None = None,
+    torsion: RailTorsionSection | None = UIC60_SECTION,
+) -> FETrackPlanes:
+    """Mesh and assemble the vertical and the lateral FE planes of the turnout.
+
+    Parameters
+    ----------
+    turnout : Turnout
+        Table 1 properties and the ``[layout]`` section.
+    options : FEPassageOptions, optional
+        Mesh and ``loss_reference_hz``
+        (:class:`~exudyn_turnout.passage.fe_track.FEPassageOptions`).
+    layout : Layout, optional
+        Default :func:`~exudyn_turnout.fe.layout.load_layout` of the turnout.
+    torsion : RailTorsionSection or None
+        Rail torsion in the lateral plane (default the 60E1 section); None: planar lateral
+        bending only.
+
+    Returns
+    -------
+    FETrackPlanes
+    """
+    from exudyn_turnout.passage.fe_track import FEPassageOptions
+
+    options = options or FEPassageOptions()
+    layout = layout or load_layout(turnout)
+    t0 = time.perf_counter()
+    mesh = build_mesh(turnout, layout, options.mesh)
+    vertical = assemble(turnout, mesh, "vertical")
+    lateral = assemble(turnout, mesh, "lateral", torsion=torsion)
+    omega_ref = 2.0 * math.pi * options.loss_reference_hz
+    return FETrackPlanes(
+        vertical,
+        lateral,
+        layout,
+        (vertical.D + vertical.G / omega_ref).tocsc(),
+        (lateral.D + lateral.G / omega_ref).tocsc(),
+        time.perf_counter() - t0,
+    )
+
+
+class _Plane:
+    """State, factorised effective matrix and influence columns of one FE plane."""
+
+    def __init__(self, model: PlaneModel, D: sp.spmatrix, h: float, ga: GeneralizedAlpha):
+        self.model, self.h, self.ga = model, h, ga
+        A = model.M + ga.gamma_eff * h * D + ga.beta_eff * h * h * model.K
+        self.lu = sla.splu(sp.csc_matrix(A), **_LU)
+        self.M, self.D, self.K = model.M.tocsr(), sp.csr_matrix(D), model.K.tocsr()
+        n = model.n_dof
+        self.u, self.v, self.qdd, self.a = (np.zeros(n) for _ in range(4))
+        self.u_hat, self.v_hat, self.qdd_star = np.zeros(n), np.zeros(n), np.zeros(n)
+        self._columns: dict[tuple, np.ndarray] = {}
+
+    def columns(self, dofs: np.ndarray) -> np.ndarray:
+        """A^-1 of the unit vectors of ``dofs`` (n, len(dofs)), cached per DOF set."""
+        key = tuple(int(d) for d in dofs)
+        cols = self._columns.get(key)
+        if cols is None:
+            E = np.zeros((self.model.n_dof, len(key)))
+            E[list(key), np.arange(len(key))] = 1.0
+            cols = self._columns[key] = self.lu.solve(E)
+        return cols
+
+    def forget(self, keep: set) -> None:
+        """Drop the cached columns of DOF sets not in ``keep``."""
+        for key in [k for k in self._columns if k not in keep]:
+            del self._columns[key]
+
+    def predict(self) -> None:
+        """u^, v^ and qdd* of the next step (no contact forces)."""
+        ga, h = self.ga, self.h
+        carry = (ga.alpha_f * self.qdd - ga.alpha_m * self.a) / (1.0 - ga.alpha_m)
+        self.u_hat = self.u + h * self.v + h * h * ((0.5 - ga.beta) * self.a + ga.beta * carry)
+        self.v_hat = self.v + h * ((1.0 - ga.gamma) * self.a + ga.gamma * carry)
+        self.qdd_star = self.lu.solve(-(self.D @ self.v_hat) - self.K @ self.u_hat)
+
+    def complete(self, qdd_contact: np.ndarray) -> None:
+        """Finish the step with the contact forces' part A^-1 G F of the acceleration."""
+        ga, h = self.ga, self.h
+        qdd = self.qdd_star + qdd_contact
+        a = ((1.0 - ga.alpha_f) * qdd + ga.alpha_f * self.qdd - ga.alpha_m * self.a) / (
+            1.0 - ga.alpha_m
+        )
+        self.u = self.u + h * self.v + h * h * ((0.5 - ga.beta) * self.a + ga.beta * a)
+        self.v = self.v + h * ((1.0 - ga.gamma) * self.a + ga.gamma * a)
+        self.qdd, self.a = qdd, a
+
+
+@dataclass(frozen=True)
+class _Coupled:
+    """The rail bodies in reach at one position and the FE points they act on."""
+
+    bodies: tuple  #: indices of the element's bodies in reach
+    points: tuple  #: RailHeadPoint per body
+    index: np.ndarray  #: element coordinates (y, z per body) of the coupled rail coordinates
+
+
+def lagrange_weights(p: int, xi: float) -> np.ndarray:
+    """Lagrange shape functions of order p on nodes 0, 1/p, ..., 1 at one xi (fast scalar).
+
+    The values of :func:`~exudyn_turnout.fe.timoshenko.lagrange_shape_functions` (tested),
+    without its derivatives and array overhead.
+
+    Parameters
+    ----------
+    p : int
+        Polynomial order (>= 1).
+    xi : float
+        Position in [0, 1].
+
+    Returns
+    -------
+    numpy.ndarray
+        (p + 1,) N_i(xi).
+    """
+    nodes = [i / p for i in range(p + 1)]
+    out = np.empty(p + 1)
+    for i in range(p + 1):
+        value = 1.0
+        for j in range(p + 1):
+            if j != i:
+                value *= (xi - nodes[j]) / (nodes[i] - nodes[j])
+        out[i] = value
+    return out
+
+
+class FECoSimulation:
+    """The FE track's side of the co-simulation: state, prediction, completion.
+
+    Parameters
+    ----------
+    planes : FETrackPlanes
+        From :func:`build_fe_planes`.
+    route : str
+        Route name (slot table of the layout).
+    h : float
+        s, time step (the Exudyn solver's).
+    spectral_radius : float
+        rho_inf of Exudyn's generalized-alpha solver.
+    """
+
+    def __init__(self, planes: FETrackPlanes, route: str, h: float, spectral_radius: float):
+        t0 = time.perf_counter()
+        self.planes, self.route, self.h = planes, route, float(h)
+        self.ga = generalized_alpha(spectral_radius)
+        self.vertical = _Plane(planes.vertical, planes.D_vertical, self.h, self.ga)
+        self.lateral = _Plane(planes.lateral, planes.D_lateral, self.h, self.ga)
+        self.t = 0.0  #: s, time of the current state
+        self.t_next = math.nan  #: s, time of the predicted step (nan: none predicted)
+        self.static = False  #: True: couple to the static compliance (static solve)
+        self._predicted: dict[int, tuple] = {}
+        self._static_lu: tuple | None = None
+        self._static_cache: tuple | None = None
+        self._grids: dict[str, tuple] = {}
+        self.timings = {"factorise_s": time.perf_counter() - t0, "predict_s": 0.0}
+        self.timings.update({"complete_s": 0.0, "coupling_s": 0.0})
+
+    # --- where the wheels touch ---------------------------------------------------------
+
+    def points(self, element, x: float) -> _Coupled:
+        """The element's rail bodies in reach at x and their FE contact points.
+
+        Parameters
+        ----------
+        element : ProfileContactElement
+            With one (y, z) coordinate pair per rail body.
+        x : float
+            m, wheelset position.
+
+        Returns
+        -------
+        _Coupled
+
+        Raises
+        ------
+        ValueError
+            A body in reach has no FE rail in its slot at x.
+        """
+        bounds, layout = element.tables.bounds, self.planes.layout
+        x_fe = min(max(x, layout.x_start), layout.x_end)
+        bodies, points, index = [], [], []
+        for k, body in enumerate(element.bodies):
+            if not bounds[k, 2] - 1e-9 <= x <= bounds[k, 3] + 1e-9:
+                continue
+            try:
+                rail_id = layout.slot_rail(body.rail, x_fe, self.route)
+            except ValueError as err:
+                raise ValueError(f"rail body '{body.name}' at x = {x:.3f} m: {err}") from None
+            bodies.append(k)
+            points.append(self._point(rail_id, x_fe))
+            index += [body.i_y, body.i_z]
+        return _Coupled(tuple(bodies), tuple(points), np.array(index, dtype=np.int64))
+
+    def _point(self, rail_id: str, x: float) -> RailHeadPoint:
+        """:func:`~exudyn_turnout.fe.rail_head.rail_head_point` at the rail top, fast.
+
+        The rails' element bounds are gathered once and the shape functions evaluated by
+        scalar products (the step's hot path; the same values, tested).
+        """
+        grid = self._grids.get(rail_id)
+        if grid is None:
+            ref = rail_head_point(self.planes.vertical, self.planes.lateral, rail_id, x)
+            mesh = self.planes.vertical.mesh
+            elements = np.asarray(mesh.rail_elems[rail_id])
+            x0 = mesh.node_x[mesh.elem_nodes[elements, 0]]
+            x1 = mesh.node_x[mesh.elem_nodes[elements, 1]]
+            grid = self._grids[rail_id] = (elements, x0, x1, ref.z)
+        elements, x0, x1, z = grid
+        k = int(np.clip(np.searchsorted(x0, x + 1e-9, side="right") - 1, 0, len(elements) - 1))
+        xi = min(max((x - x0[k]) / (x1[k] - x0[k]), 0.0), 1.0)
+        nodes = self.planes.vertical.rail_elem_nodes[elements[k]]
+        lateral = self.planes.lateral
+        return RailHeadPoint(
+            rail_id,
+            float(x),
+            0.0,
+            float(z),
+            lagrange_weights(self.planes.vertical.order, xi),
+            2 * nodes,
+            2 * nodes,
+            lateral.roll_dof(nodes) if lateral.torsion is not None else None,
+            self.planes.vertical.n_dof,
+            lateral.n_dof,
+        )
+
+    def _influence(self, point: RailHeadPoint) -> tuple[np.ndarray, np.ndarray]:
+        """A^-1 g of a point's lateral and vertical unit loads (lateral, vertical plane)."""
+        N = point.weights
+        x_z = self.vertical.columns(point.w_dofs) @ N
+        x_y = self.lateral.columns(point.v_dofs) @ N
+        if point.roll_dofs is not None:
+            x_y = x_y - point.z * (self.lateral.columns(point.roll_dofs) @ N)
+        return x_y, x_z
+
+    @staticmethod
+    def _lateral_at(point: RailHeadPoint, q: np.ndarray) -> float:
+        value = point.weights @ q[point.v_dofs]
+        if point.roll_dofs is not None:
+            value -= point.z * (point.weights @ q[point.roll_dofs])
+        return float(value)
+
+    def _gather(self, coupled: _Coupled, q_lat: np.ndarray, q_ver: np.ndarray) -> np.ndarray:
+        """G^T q: (y, z) per body of the lateral and vertical plane vectors."""
+        out = np.empty(2 * len(coupled.points))
+        for j, p in enumerate(coupled.points):
+            out[2 * j] = self._lateral_at(p, q_lat)
+            out[2 * j + 1] = p.weights @ q_ver[p.w_dofs]
+        return out
+
+    def _compliance(self, coupled: _Coupled) -> tuple[np.ndarray, list]:
+        """G^T A^-1 G (2m x 2m) and the influence vectors per body."""
+        m = len(coupled.points)
+        C = np.zeros((2 * m, 2 * m))
+        influence = [self._influence(p) for p in coupled.points]
+        for k, (x_y, x_z) in enumerate(influence):
+            C[:, 2 * k] = self._gather_lat(coupled, x_y)
+            C[:, 2 * k + 1] = self._gather_ver(coupled, x_z)
+        return C, influence
+
+    def _gather_lat(self, coupled: _Coupled, x_lat: np.ndarray) -> np.ndarray:
+        out = np.zeros(2 * len(coupled.points))
+        for j, p in enumerate(coupled.points):
+            out[2 * j] = self._lateral_at(p, x_lat)
+        return out
+
+    def _gather_ver(self, coupled: _Coupled, x_ver: np.ndarray) -> np.ndarray:
+        out = np.zeros(2 * len(coupled.points))
+        for j, p in enumerate(coupled.points):
+            out[2 * j + 1] = p.weights @ x_ver[p.w_dofs]
+        return out
+
+    # --- the step -----------------------------------------------------------------------
+
+    def predict(self, t_next: float, elements: Sequence) -> None:
+        """Prepare the step to t_next: r_free, r_t_free and C of every element's bodies.
+
+        Parameters
+        ----------
+        t_next : float
+            s, time at the end of the step.
+        elements : sequence of FEContactElement
+            The elements coupled to this track.
+        """
+        t0 = time.perf_counter()
+        self.vertical.predict()
+        self.lateral.predict()
+        h, ga = self.h, self.ga
+        bh2 = ga.beta_eff * h * h
+        keep: set = set()
+        self._predicted = {}
+        for el in elements:
+            coupled = self.points(el.element, el.element.x_at(t_next))
+            C, influence = self._compliance(coupled)
+            u_lat = self.lateral.u_hat + bh2 * self.lateral.qdd_star
+            u_ver = self.vertical.u_hat + bh2 * self.vertical.qdd_star
+            v_lat = self.lateral.v_hat + ga.gamma_eff * h * self.lateral.qdd_star
+            v_ver = self.vertical.v_hat + ga.gamma_eff * h * self.vertical.qdd_star
+            r_free = self._gather(coupled, u_lat, u_ver)
+            r_t_free = self._gather(coupled, v_lat, v_ver)
+            self._predicted[id(el)] = (coupled, r_free, r_t_free, bh2 * C, influence)
+            for p in coupled.points:
+                keep.add(tuple(int(d) for d in p.w_dofs))
+                keep.add(tuple(int(d) for d in p.v_dofs))
+                if p.roll_dofs is not None:
+                    keep.add(tuple(int(d) for d in p.roll_dofs))
+        self.vertical.forget(keep)
+        self.lateral.forget(keep)
+        self.t_next = float(t_next)
+        self.timings["predict_s"] += time.perf_counter() - t0
+
+    def coupling(self, element, t: float) -> tuple:
+        """What the element's rail coordinates obey at time t.
+
+        Parameters
+        ----------
+        element : FEContactElement
+        t : float
+            s.
+
+        Returns
+        -------
+        tuple
+            (coupled, r_free, r_t_free, C, c_v): r = r_free + C F,
+            r_t = r_t_free + c_v (r - r_free); C = 0 at the current state's time (the rails
+            are where the FE state says).
+        """
+        x = element.element.x_at(t)
+        if self.static:
+            coupled = self.points(element.element, x)
+            return (
+                coupled,
+                np.zeros(len(coupled.index)),
+                np.zeros(len(coupled.index)),
+                (self._static_compliance(coupled)),
+                0.0,
+            )
+        if t == self.t_next and id(element) in self._predicted:
+            coupled, r_free, r_t_free, C, _ = self._predicted[id(element)]
+            return coupled, r_free, r_t_free, C, self.ga.gamma_eff / (self.ga.beta_eff * self.h)
+        coupled = self.points(element.element, x)
+        r = self._gather(coupled, self.lateral.u, self.vertical.u)
+        r_t = self._gather(coupled, self.lateral.v, self.vertical.v)
+        return coupled, r, r_t, np.zeros((len(r), len(r))), 0.0
+
+    def complete(self, forces: Sequence[tuple[object, np.ndarray]]) -> None:
+        """Finish the predicted step with the converged forces on the rail coordinates.
+
+        Parameters
+        ----------
+        forces : sequence of (FEContactElement, numpy.ndarray)
+            Per element, the forces on its coupled rail coordinates (y, z per body, N).
+        """
+        t0 = time.perf_counter()
+        add_ver = np.zeros(self.vertical.model.n_dof)
+        add_lat = np.zeros(self.lateral.model.n_dof)
+        for el, F in forces:
+            coupled, _, _, _, influence = self._predicted[id(el)]
+            for k, (x_y, x_z) in enumerate(influence):
+                add_lat += F[2 * k] * x_y
+                add_ver += F[2 * k + 1] * x_z
+        self.vertical.complete(add_ver)
+        self.lateral.complete(add_lat)
+        self.t, self.t_next = self.t_next, math.nan
+        self.timings["complete_s"] += time.perf_counter() - t0
+
+    # --- static state and start ---------------------------------------------------------
+
+    def _static_factors(self) -> tuple:
+        if self._static_lu is None:
+            self._static_lu = (
+                sla.splu(self.lateral.model.K.tocsc(), **_LU),
+                sla.splu(self.vertical.model.K.tocsc(), **_LU),
+            )
+        return self._static_lu
+
+    def _static_loads(self, coupled: _Coupled, F: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        f_lat = np.zeros(self.lateral.model.n_dof)
+        f_ver = np.zeros(self.vertical.model.n_dof)
+        for k, p in enumerate(coupled.points):
+            fv, fl = p.loads(F[2 * k], F[2 * k + 1])
+            f_lat += fl
+            f_ver += fv
+        return f_lat, f_ver
+
+    def _static_field(self, coupled: _Coupled, F: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        lu_lat, lu_ver = self._static_factors()
+        f_lat, f_ver = self._static_loads(coupled, F)
+        return lu_lat.solve(f_lat), lu_ver.solve(f_ver)
+
+    def _static_compliance(self, coupled: _Coupled) -> np.ndarray:
+        """G^T K^-1 G of the coupled points (the static solve's compliance), cached."""
+        key = (coupled.bodies, tuple(p.x for p in coupled.points))
+        if self._static_cache is not None and self._static_cache[0] == key:
+            return self._static_cache[1]
+        m = len(coupled.points)
+        C = np.zeros((2 * m, 2 * m))
+        for k in range(m):
+            for j in (0, 1):
+                F = np.zeros(2 * m)
+                F[2 * k + j] = 1.0
+                u_lat, u_ver = self._static_field(coupled, F)
+                C[:, 2 * k + j] = self._gather(coupled, u_lat, u_ver)
+        self._static_cache = (key, C)
+        return C
+
+    def start(self, element, x: float, F: np.ndarray, v: float) -> None:
+        """Set the FE state to the static field under F at x, carried at speed v.
+
+        Parameters
+        ----------
+        element : FEContactElement
+        x : float
+            m, wheelset position.
+        F : numpy.ndarray
+            N, static forces on the coupled rail coordinates at x (y, z per body).
+        v : float
+            m/s, speed: the field moves with the wheelset, u_t = v du/dx.
+        """
+        coupled = self.points(element.element, x)
+        u_lat, u_ver = self._static_field(coupled, F)
+        ahead = self.points(element.element, x + _START_DX)
+        if ahead.bodies != coupled.bodies:
+            ahead = coupled
+        a_lat, a_ver = self._static_field(ahead, F)
+        self.lateral.u, self.vertical.u = u_lat, u_ver
+        self.lateral.v = v * (a_lat - u_lat) / _START_DX
+        self.vertical.v = v * (a_ver - u_ver) / _START_DX
+        f_lat, f_ver = self._static_loads(coupled, F)
+        for plane, f in ((self.lateral, f_lat), (self.vertical, f_ver)):
+            rhs = f - plane.D @ plane.v - plane.K @ plane.u
+            plane.qdd = sla.splu(plane.model.M.tocsc(), **_LU).solve(rhs)
+            plane.a = plane.qdd.copy()
+        self.t, self.t_next, self.static = 0.0, math.nan, False
+
+    def rail_displacements(self, coupled: _Coupled) -> np.ndarray:
+        """The current state's rail-head displacements at coupled points.
+
+        Parameters
+        ----------
+        coupled : _Coupled
+            From :meth:`points`.
+
+        Returns
+        -------
+        numpy.ndarray
+            m, (y, z) per coupled body.
+        """
+        return self._gather(coupled, self.lateral.u, self.vertical.u)
+
+
+class FEContactElement:
+    """Exudyn ``forceUserFunction``: the profile contact element on the FE track.
+
+    The wrapped :class:`~exudyn_turnout.passage.profile_contact.ProfileContactElement` has
+    the vehicle's 7 coordinates and one (y, z) pair per rail body; Exudyn sees the vehicle's
+    coordinates only, the rail coordinates are solved in every call from the FE track's
+    one-step response (module docstring).
+
+    Parameters
+    ----------
+    element : ProfileContactElement
+        The contact element, one coordinate pair per rail body.
+    track : FECoSimulation
+        The FE track it is coupled to.
+    """
+
+    def __init__(self, element, track: FECoSimulation):
+        self.element, self.track = element, track
+        self.n = element.n_vehicle
+        self.q = np.zeros(element.n)
+        self.q_t = np.zeros(element.n)
+        self._jacobian: tuple | None = None  #: (time, coupled bodies, matrix)
+        self.last: tuple = ((), np.zeros(0), np.zeros(0))  #: (coupled, r, forces on r)
+
+    def solve(self, t: float, q, q_t) -> np.ndarray:
+        """Rail coordinates and forces for vehicle coordinates q, q_t at time t.
+
+        Parameters
+        ----------
+        t : float
+            s.
+        q, q_t : array_like
+            The vehicle's coordinates and velocities (the element's first 7).
+
+        Returns
+        -------
+        numpy.ndarray
+            The forces on the coupled rail coordinates (N, y and z per body); the full
+            coordinate vectors are in ``self.q``, ``self.q_t`` after the call.
+
+        Raises
+        ------
+        ArithmeticError
+            The coupling Newton did not converge (with time and position).
+        """
+        t0 = time.perf_counter()
+        el, n = self.element, self.n
+        x = el.x_at(t)
+        coupled, r_free, r_t_free, C, c_v = self.track.coupling(self, t)
+        self.q[:n], self.q_t[:n] = q, q_t
+        self.q[n:], self.q_t[n:] = 0.0, 0.0
+        idx = coupled.index
+        el.prepare(x)
+        if idx.size == 0:
+            forces = el.forces_at(x, self.q, self.q_t)
+            self.last = (coupled, np.zeros(0), np.zeros(0))
+            return np.zeros(0)
+
+        def rail_forces(r: np.ndarray) -> np.ndarray:
+            self.q[idx] = r
+            self.q_t[idx] = r_t_free + c_v * (r - r_free)
+            return el.forces_at(x, self.q, self.q_t)[idx].copy()
+
+        r = r_free.copy()
+        if not C.any():  # the rails are where the FE state says
+            forces = rail_forces(r)
+            self.last = (coupled, r, forces)
+            return forces
+        if len(self.last[1]) == len(r) and self.last[0].bodies == coupled.bodies:
+            r = self.last[1].copy()  # the previous solution: usually within a few nm
+        J = None
+        if self._jacobian is not None and self._jacobian[:2] == (t, coupled.bodies):
+            J = self._jacobian[2]
+        eye = np.eye(len(r))
+        for iteration in range(_MAX_ITERATIONS):
+            forces = rail_forces(r)
+            g = r - r_free - C @ forces
+            if np.max(np.abs(g)) <= COUPLING_TOLERANCE:
+                break
+            if J is None or iteration >= 4 or self.track.static:
+                dF = np.empty((len(r), len(r)))
+                for j in range(len(r)):
+                    dr = r.copy()
+                    dr[j] += _FD_STEP
+                    dF[:, j] = (rail_forces(dr) - forces) / _FD_STEP
+                J = eye - C @ dF
+                self._jacobian = (t, coupled.bodies, J)
+            r = r - np.linalg.solve(J, g)
+        else:
+            raise ArithmeticError(
+                f"FE coupling did not converge at t = {t:.6f} s, x = {x:.3f} m "
+                f"(residual {np.max(np.abs(g)):.3g} m)"
+            )
+        self.q[idx] = r
+        self.q_t[idx] = r_t_free + c_v * (r - r_free)
+        self.last = (coupled, r, forces)
+        self.track.timings["coupling_s"] += time.perf_counter() - t0
+        return forces
+
+    def __call__(self, mbs, t, item_number, q, q_t):
+        """Exudyn ``forceUserFunction``: generalised forces on the vehicle's coordinates."""
+        try:
+            self.solve(t, q, q_t)
+        except (ArithmeticError, ValueError) as err:
+            raise RuntimeError(str(err)) from None
+        return self.element(mbs, t, item_number, self.q, self.q_t)[: self.n].copy()
+
+
+def run_progress(
+    progress: Callable[[float, float], None] | None, total: float, x0: float, v: float
+) -> Callable[[float], None]:
+    """A callable t -> None reporting progress about every 2 % of the run (or doing nothing).
+
+    Parameters
+    ----------
+    progress : callable(fraction, x) or None
+    total : float
+        s, duration of the run.
+    x0, v : float
+        m, m/s: start position and speed.
+
+    Returns
+    -------
+    callable
+    """
+    due = [0.0]
+
+    def report(t: float) -> None:
+        if progress is not None and t >= due[0]:
+            due[0] = t + 0.02 * total
+            progress(min(t / total, 1.0), x0 + v * t)
+
+    return report

@@ -1,0 +1,453 @@
+"""The single wheelset through the turnout on the FE track, vertical and lateral.
+
+The same vehicle (:func:`~exudyn_turnout.passage.vehicle.add_vehicle`) and the same profile
+contact (:class:`~exudyn_turnout.passage.profile_contact.ProfileContactElement`) as the
+co-running passage of :mod:`~exudyn_turnout.passage.simulate`, on the FE turnout track
+coupled by the exact one-step co-simulation of :mod:`~exudyn_turnout.passage.fe_coupling`
+(read its docstring for the scheme and why). The run is one Exudyn solve over the whole x
+range: the FE track has no zones; every rail body of the route is coupled to the FE rail
+of its slot wherever the wheelset is in its reach.
+
+::
+
+      sprung mass m_s (y, z)              Exudyn
+        |k_y, k_z, c_z at +-d|
+     ===o=====wheelset=====o===           y, z, roll, yaw, spin
+        |  profile contact  |             ProfileContactElement (per rail body y, z)
+     ---+-------------------+---          FE rail heads: r = r_free + C F  (co-simulation)
+     FE vertical plane (w) + lateral plane (v, roll, warping), pads, sleepers, ballast
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import asdict, dataclass, replace
+from typing import Any
+
+import numpy as np
+
+from exudyn_turnout.inputs.routes import Route, SpeedWarning, load_route, speed_warnings
+from exudyn_turnout.inputs.turnout import Turnout
+from exudyn_turnout.inputs.vehicle import Vehicle, load_vehicle
+from exudyn_turnout.passage.fe_coupling import (
+    FEContactElement,
+    FECoSimulation,
+    FETrackPlanes,
+    build_fe_planes,
+    generalized_alpha,
+    run_progress,
+)
+from exudyn_turnout.passage.results import (
+    DEFAULT_SETTINGS,
+    PassageError,
+    PassageFailure,
+    PassageResult,
+    PassageSettings,
+    check_plausible,
+    passage_summary,
+)
+
+__all__ = [
+    "simulate_fe_profile_passage",
+    "fe_contact_element",
+    "static_equilibrium",
+    "FEStaticState",
+]
+
+#: Vehicle coordinates in the element: wheelset (y, z, roll), yaw and spin, sprung (y, z).
+_VEHICLE_NODES = ("wheelset", "yaw", "sprung")
+
+
+def fe_contact_element(route_contact, vehicle: Vehicle, route: Route, x0: float, v: float, irr):
+    """The profile contact element with one (y, z) coordinate pair per rail body of the route.
+
+    Parameters
+    ----------
+    route_contact : RouteContact
+        The route's rail bodies and tables
+        (:func:`~exudyn_turnout.passage.profile_contact.route_contact`).
+    vehicle : Vehicle
+    route : Route
+    x0, v : float
+        m, m/s: position at t = 0 and speed (0: static).
+    irr : Irregularity or None
+
+    Returns
+    -------
+    ProfileContactElement
+
+    Raises
+    ------
+    PassageError
+        Both wheels touch one rail slot.
+    """
+    from exudyn_turnout.passage.profile_contact import (
+        N_VEHICLE_COORDINATES,
+        ProfileContactElement,
+    )
+
+    n_bodies = route_contact.tables.n_bodies
+    for slot in set(route_contact.rails):
+        wheels = {w for w, r in zip(route_contact.wheels, route_contact.rails) if r == slot}
+        if len(wheels) > 1:
+            raise PassageError(f"route {route.name}: rail {slot} is touched by both wheels")
+    coordinates = [
+        (N_VEHICLE_COORDINATES + 2 * k, N_VEHICLE_COORDINATES + 2 * k + 1) for k in range(n_bodies)
+    ]
+    return ProfileContactElement(
+        vehicle,
+        route,
+        route_contact.tables.select(range(n_bodies), coordinates),
+        list(zip(route_contact.wheels, route_contact.rails)),
+        x0,
+        v,
+        irr,
+    )
+
+
+@dataclass
+class _System:
+    """One Exudyn system of the FE passage: vehicle, coupled element, coordinate indices."""
+
+    mbs: Any  #: exudyn.MainSystem
+    container: Any  #: exudyn.SystemContainer
+    coupled: FEContactElement
+    index: np.ndarray  #: global ODE2 indices of the element's 7 vehicle coordinates
+    nodes: dict  #: "wheelset", "yaw", "sprung" -> node number
+
+
+def _build(vehicle: Vehicle, coupled: FEContactElement, z_w: float, z_s: float, roll: float):
+    import exudyn as exu
+    from exudyn.itemInterface import ObjectGenericODE2, ObjectGround
+
+    from exudyn_turnout.passage.simulate import element_matrices
+    from exudyn_turnout.passage.vehicle import add_vehicle
+
+    container = exu.SystemContainer()
+    mbs = container.AddSystem()
+    ground = mbs.AddObject(ObjectGround())
+    veh = add_vehicle(mbs, vehicle, ground, z_w, z_s, spin=True, roll0=roll)
+    nodes = dict(zip(_VEHICLE_NODES, (veh.wheelset_node, veh.yaw_node, veh.sprung_node)))
+    M, K = element_matrices(vehicle, coupled.n, True)
+    mbs.AddObject(
+        ObjectGenericODE2(
+            nodeNumbers=list(nodes.values()),
+            massMatrix=M,
+            stiffnessMatrix=K,
+            forceUserFunction=coupled,
+        )
+    )
+    mbs.Assemble()
+    index = np.concatenate(
+        [
+            mbs.GetNodeODE2Index(nodes["wheelset"]) + np.arange(3),
+            mbs.GetNodeODE2Index(nodes["yaw"]) + np.arange(2),
+            mbs.GetNodeODE2Index(nodes["sprung"]) + np.arange(2),
+        ]
+    )
+    return _System(mbs, container, coupled, index, nodes)
+
+
+def _coordinates(system: _System, initial: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    import exudyn as exu
+
+    kind = exu.ConfigurationType.Initial if initial else exu.ConfigurationType.Current
+    data = system.mbs.systemData
+    q = np.asarray(data.GetODE2Coordinates(kind))
+    q_t = np.asarray(data.GetODE2Coordinates_t(kind))
+    return q[system.index].copy(), q_t[system.index].copy()
+
+
+def _solve_static(system: _System, x: float) -> None:
+    import exudyn as exu
+
+    from exudyn_turnout.corunning.track import simulation_settings
+
+    sim = simulation_settings(1.0, 1.0)
+    sim.staticSolver.newton.absoluteTolerance = 1e-4
+    try:
+        system.mbs.SolveStatic(sim, updateInitialValues=True)
+    except (exu.SolverError, RuntimeError) as err:
+        raise PassageFailure(
+            f"static equilibrium on the FE track not found at x = {x:g} m: {str(err).strip()}"
+        ) from None
+
+
+class _Recorder:
+    """The full element coordinates (vehicle and rail bodies) at the output times."""
+
+    def __init__(self, every: int):
+        self.every, self.count = every, 0
+        self.t: list[float] = []
+        self.q: list[np.ndarray] = []
+        self.q_t: list[np.ndarray] = []
+
+    def add(self, t: float, coupled: FEContactElement, last: bool = False) -> None:
+        if self.count % self.every == 0 or last:
+            self.t.append(t)
+            self.q.append(coupled.q.copy())
+            self.q_t.append(coupled.q_t.copy())
+        self.count += 1
+
+
+def _columns(element, rec: _Recorder, x0: float, v: float) -> dict[str, np.ndarray]:
+    """Output columns: the co-running passage's names, rail columns per slot from the FE."""
+    t = np.array(rec.t)
+    q, q_t = np.array(rec.q), np.array(rec.q_t)
+    cols: dict[str, np.ndarray] = {"t_s": t, "x_m": x0 + v * t}
+    cols.update(element.columns(t, q, q_t))
+    names = ("y_wheelset_m", "z_wheelset_m", "roll_wheelset_rad", "yaw_wheelset_rad")
+    for i, name in enumerate(names + ("spin_wheelset_rad",)):
+        cols[name] = q[:, i]
+    x = cols["x_m"]
+    bounds = element.tables.bounds
+    for slot in dict.fromkeys(b.rail for b in element.bodies):
+        y, z = np.full(len(t), np.nan), np.full(len(t), np.nan)
+        for k, b in enumerate(element.bodies):
+            if b.rail != slot:
+                continue
+            inside = (x >= bounds[k, 2] - 1e-9) & (x <= bounds[k, 3] + 1e-9) & np.isnan(y)
+            y[inside], z[inside] = q[inside, b.i_y], q[inside, b.i_z]
+        cols[f"y_rail_{slot}_m"], cols[f"z_rail_{slot}_m"] = y, z
+    return cols
+
+
+def simulate_fe_profile_passage(
+    turnout: Turnout,
+    settings: PassageSettings = DEFAULT_SETTINGS,
+    vehicle: Vehicle | None = None,
+    options=None,
+    *,
+    planes: FETrackPlanes | None = None,
+    progress: Callable[[float, float], None] | None = None,
+) -> PassageResult:
+    """Run the wheelset over the FE track with the profile contact (module docstring).
+
+    Parameters
+    ----------
+    turnout : Turnout
+    settings : PassageSettings
+        Route, speed, x range, time step, output step, ``spectral_radius`` (of Exudyn's
+        generalized-alpha, used by the FE side too), ``irregularity``; ``layers``,
+        ``source`` and ``track_mechanism`` do not apply.
+    vehicle : Vehicle, optional
+        Default: the packaged Manchester benchmark wheelset.
+    options : FEPassageOptions, optional
+        Mesh and ``loss_reference_hz``
+        (:class:`~exudyn_turnout.passage.fe_track.FEPassageOptions`).
+    planes : FETrackPlanes, optional
+        FE planes from :func:`~exudyn_turnout.passage.fe_coupling.build_fe_planes` to reuse.
+    progress : callable(fraction, x), optional
+        Called about every 2 % of the run.
+
+    Returns
+    -------
+    PassageResult
+        The columns of :func:`~exudyn_turnout.passage.simulate.simulate_passage` with the
+        profile contact (vertical and lateral forces per wheel and slot, contact points);
+        ``y_rail_<slot>_m``, ``z_rail_<slot>_m`` are the FE rail head's displacement under
+        the wheel. Summary: :func:`~exudyn_turnout.passage.results.passage_summary` plus
+        ``model`` "FE", DOF counts, time integration and wall time of each part.
+
+    Raises
+    ------
+    PassageError
+        Bad settings (one line naming the problem) or a solver failure (time and position).
+    """
+    from exudyn_turnout.passage.fe_track import FEPassageOptions
+    from exudyn_turnout.passage.profile_contact import route_contact
+    from exudyn_turnout.passage.simulate import _check, _QuietExudyn
+
+    wall = time.perf_counter()
+    vehicle = vehicle or load_vehicle()
+    options = options or FEPassageOptions()
+    settings = replace(settings, contact="profile")
+    x_a, x_b = _check(settings, turnout, vehicle)
+    route = load_route(turnout, settings.route)
+    for text in speed_warnings(route, settings.speed_kmh, x_a, x_b):
+        import warnings
+
+        warnings.warn(text, SpeedWarning, stacklevel=2)
+    try:
+        contact = route_contact(turnout, route.name, vehicle)
+    except ValueError as err:
+        raise PassageError(str(err)) from None
+    planes = planes or build_fe_planes(turnout, options)
+    lay = planes.layout
+    if not (lay.x_start <= x_a and x_b <= lay.x_end):
+        raise PassageError(
+            f"x range {x_a:g}..{x_b:g} m must lie within the FE layout "
+            f"({lay.x_start:g}..{lay.x_end:g} m)"
+        )
+    with _QuietExudyn():
+        return _simulate(
+            turnout, settings, vehicle, route, contact, planes, x_a, x_b, progress, wall
+        )
+
+
+def _simulate(turnout, settings, vehicle, route, contact, planes, x_a, x_b, progress, wall):
+    import exudyn as exu
+
+    from exudyn_turnout.corunning.track import simulation_settings
+    from exudyn_turnout.passage.simulate import NEWTON_ABSOLUTE_TOLERANCE
+
+    v = settings.v
+    duration = (x_b - x_a) / v
+    n_steps = max(1, math.ceil(duration / settings.time_step - 1e-9))
+    h = duration / n_steps
+    every = max(1, round((settings.output_step or h) / h))
+    track = FECoSimulation(planes, route.name, h, settings.spectral_radius)
+    irr = settings.irregularity
+    t0 = time.perf_counter()
+    rest = static_equilibrium(track, contact, vehicle, route, x_a, irr)
+    q0, loads = rest.vehicle_q, rest.wheel_loads
+    track.start(rest.element, x_a, rest.rail_forces, v)
+    static_s = time.perf_counter() - t0
+    # the run at speed
+    moving = fe_contact_element(contact, vehicle, route, x_a, v, irr)
+    coupled = FEContactElement(moving, track)
+    system = _build(vehicle, coupled, 0.0, 0.0, 0.0)
+    data = system.mbs.systemData
+    q_init = np.asarray(data.GetODE2Coordinates(exu.ConfigurationType.Initial)).copy()
+    q_init[system.index] = q0
+    data.SetODE2Coordinates(q_init, exu.ConfigurationType.Initial)
+    recorder = _Recorder(every)
+    report = run_progress(progress, duration, x_a, v)
+
+    def pre_step(mbs, t):
+        track.predict(t, [coupled])
+        report(t)
+        return True
+
+    def post_step(mbs, t):
+        q, q_t = _coordinates(system)
+        if t == track.t_next:
+            F = coupled.solve(t, q, q_t)
+            track.complete([(coupled, F)])
+        else:  # t = 0: the start state
+            coupled.solve(t, q, q_t)
+        recorder.add(t, coupled, last=abs(t - duration) < 0.5 * h)
+        return True
+
+    system.mbs.SetPreStepUserFunction(pre_step)
+    system.mbs.SetPostStepUserFunction(post_step)
+    sim = simulation_settings(duration, h)
+    sim.timeIntegration.numberOfSteps = n_steps
+    sim.timeIntegration.generalizedAlpha.spectralRadius = settings.spectral_radius
+    sim.timeIntegration.newton.absoluteTolerance = NEWTON_ABSOLUTE_TOLERANCE
+    sim.timeIntegration.adaptiveStep = False
+    t1 = time.perf_counter()
+    try:
+        system.mbs.SolveDynamic(sim)
+    except (exu.SolverError, RuntimeError) as err:
+        t = track.t_next if math.isfinite(track.t_next) else data.GetTime()
+        raise PassageFailure(
+            f"FE passage failed at t = {t:.5f} s, x = {x_a + v * t:.3f} m: {str(err).strip()}"
+        ) from None
+    steps_s = time.perf_counter() - t1
+    columns = _columns(moving, recorder, x_a, v)
+    W = 0.5 * (loads["left"] + loads["right"])
+    check_plausible(columns, W, "FE track")
+    summary = passage_summary(columns, turnout, settings, loads, time.perf_counter() - wall)
+    summary.update(_summary(planes, settings, track, h, n_steps, static_s, steps_s))
+    return PassageResult(replace(settings, x_start=x_a, x_end=x_b), columns, summary, (x_a,))
+
+
+@dataclass(frozen=True)
+class FEStaticState:
+    """Static equilibrium of the vehicle on the FE track at one position."""
+
+    x: float  #: m, wheelset position
+    element: FEContactElement  #: the static element (its ``last`` holds bodies and r)
+    vehicle_q: np.ndarray  #: the vehicle's 7 coordinates (m, rad)
+    rail_forces: np.ndarray  #: N, forces on the coupled rail coordinates (y, z per body)
+    rail_displacements: np.ndarray  #: m, the rail heads' (y, z) per coupled body
+    wheel_loads: dict  #: N, "left", "right": total normal force on each wheel
+
+
+def static_equilibrium(
+    track: FECoSimulation, contact, vehicle: Vehicle, route: Route, x: float, irregularity=None
+) -> FEStaticState:
+    """The vehicle at rest on the FE track: Exudyn's static solve, rails on K^-1.
+
+    The element's rail coordinates obey r = C_s F with the FE's static compliance
+    C_s = G^T K^-1 G (lateral position and spin held, as on the co-running track).
+
+    Parameters
+    ----------
+    track : FECoSimulation
+        The FE track (its state is not changed).
+    contact : RouteContact
+        The route's rail bodies and tables.
+    vehicle : Vehicle
+    route : Route
+    x : float
+        m, wheelset position.
+    irregularity : Irregularity, optional
+
+    Returns
+    -------
+    FEStaticState
+
+    Raises
+    ------
+    PassageFailure
+        No equilibrium, or wheel loads that do not carry the vehicle.
+    """
+    from exudyn_turnout.passage.simulate import _initial_guess
+
+    rest = fe_contact_element(contact, vehicle, route, x, 0.0, irregularity)
+    coupled = FEContactElement(rest, track)
+    z_w, z_s = _initial_guess(vehicle)
+    z_touch, roll = rest.touching_position(x, -z_w / 3.0)
+    track.static = True
+    try:
+        static = _build(vehicle, coupled, z_touch, z_touch + z_s - z_w, roll)
+        _solve_static(static, x)
+        q0, _ = _coordinates(static, initial=True)
+        F0 = coupled.solve(0.0, q0, np.zeros_like(q0))
+    finally:
+        track.static = False
+    loads = rest.wheel_loads(x, coupled.q)
+    _check_static(loads, vehicle, x)
+    return FEStaticState(x, coupled, q0, F0, coupled.last[1].copy(), loads)
+
+
+def _check_static(loads: dict, vehicle: Vehicle, x: float) -> None:
+    total = loads["left"] + loads["right"]
+    weight = 2.0 * vehicle.static_wheel_load
+    if not abs(total - weight) <= 0.2 * weight:
+        raise PassageFailure(
+            f"absurd static state on the FE track at x = {x:g} m: the wheel loads sum to "
+            f"{total:.4g} N, the vehicle weighs {weight:.4g} N"
+        )
+
+
+def _summary(planes, settings, track, h, n_steps, static_s, steps_s) -> dict[str, object]:
+    ga = generalized_alpha(settings.spectral_radius)
+    all_settings = asdict(settings)
+    not_fe = ("layers", "source", "track_mechanism")
+    parts = dict(track.timings, build=planes.build_s, static=static_s, steps=steps_s)
+    return {
+        "settings": {k: val for k, val in all_settings.items() if k not in not_fe},
+        "model": "FE",
+        "layers": None,
+        "source": "Table 1 (FE model)",
+        "lateral": "FE lateral plane with rail torsion (roll and warping)"
+        if planes.lateral.torsion is not None
+        else "FE lateral plane, bending only",
+        "n_dof": planes.vertical.n_dof + planes.lateral.n_dof,
+        "n_dof_vertical": planes.vertical.n_dof,
+        "n_dof_lateral": planes.lateral.n_dof,
+        "time_integration": (
+            f"generalized-alpha (Exudyn's), rho_inf {settings.spectral_radius:g}: alpha_m = "
+            f"{ga.alpha_m:.4f}, alpha_f = {ga.alpha_f:.4f}, beta = {ga.beta:.4f}, gamma = "
+            f"{ga.gamma:.4f}; FE track co-simulated with exact one-step coupling"
+        ),
+        "time_step_s": float(h),
+        "n_steps": int(n_steps),
+        "fe_options": asdict(planes.vertical.mesh.options),
+        "wall_time_parts_s": {k.removesuffix("_s"): float(t) for k, t in parts.items()},
+    }
