@@ -197,7 +197,7 @@ def test_coupling_is_consistent_with_the_fe_state(short_run, turnout, planes):
     rest = static_equilibrium(track, contact, vehicle, route, X0)
     v = 27.0
     element = FEContactElement(fe_contact_element(contact, vehicle, route, X0, v, None), track)
-    track.start(element, X0, rest.rail_forces, v)
+    track.start([element], [rest.rail_forces], v)
     track.predict(1e-4, [element])
     q = rest.vehicle_q.copy()
     q[1] -= 1e-5  # the wheelset pressed 10 um further down

@@ -104,12 +104,19 @@ __all__ = [
 #: A + A^T, no pivoting. Against COLAMD a quarter of the fill and half the solve time
 #: (turnout, h = 1e-4 s: vertical 0.48 vs 1.80 million nonzeros in L + U, lateral 0.93 vs 2.97).
 _LU = dict(permc_spec="MMD_AT_PLUS_A", options=dict(SymmetricMode=True, DiagPivotThresh=0.0))
-#: m, Newton tolerance of the rail coordinates in the coupling solve (1.5e-3 N of Hertz force).
-COUPLING_TOLERANCE = 1e-12
+#: m, the coupling solve iterates until its residual (of the rail coordinates) is below this
+#: or stops falling (the round-off of C F, ~1e-11 m at a 125 kN load): the vehicle's Newton
+#: differentiates the result with steps of ~1e-9 m, so it must be smooth far below that.
+COUPLING_TARGET = 1e-13
+#: m, the largest residual accepted where it stops falling: 0.15 N of Hertz force
+#: (k_H ~ 1.5e9 N/m), below the vehicle's Newton tolerance (1 N).
+COUPLING_TOLERANCE = 1e-10
 #: m, finite-difference step of the coupling Jacobian (Hertz deflections are ~50 um).
 _FD_STEP = 1e-9
 #: Newton iterations of the coupling solve before giving up.
-_MAX_ITERATIONS = 30
+_MAX_ITERATIONS = 50
+#: Step fractions of the coupling Newton's backtracking.
+_DAMPING = (1.0, 0.5, 0.25, 0.125, 0.0625, 1.0 / 32, 1.0 / 128, 1.0 / 512)
 #: m, the FE field 1 mm ahead gives the convected start velocity v du/dx.
 _START_DX = 1e-3
 
@@ -329,14 +336,15 @@ class FECoSimulation:
         self.static = False  #: True: couple to the static compliance (static solve)
         self._predicted: dict[int, tuple] = {}
         self._static_lu: tuple | None = None
-        self._static_cache: tuple | None = None
+        self._static: dict[int, tuple] = {}
+        self._static_forces: dict[int, np.ndarray] = {}
         self._grids: dict[str, tuple] = {}
         self.timings = {"factorise_s": time.perf_counter() - t0, "predict_s": 0.0}
         self.timings.update({"complete_s": 0.0, "coupling_s": 0.0})
 
     # --- where the wheels touch ---------------------------------------------------------
 
-    def points(self, element, x: float) -> _Coupled:
+    def points(self, element, x: float, x_fe: float | None = None) -> _Coupled:
         """The element's rail bodies in reach at x and their FE contact points.
 
         Parameters
@@ -344,7 +352,12 @@ class FECoSimulation:
         element : ProfileContactElement
             With one (y, z) coordinate pair per rail body.
         x : float
-            m, wheelset position.
+            m, the position of the contact tables (which bodies are in reach).
+        x_fe : float, optional
+            m, the position on the FE track (default x). It differs for a wheelset of a
+            long vehicle beyond the turnout's ends, whose contact is the plain rail's at
+            the end and whose FE point lies on the model's plain-track extension (its slot's
+            FE rail at the layout's end, continued).
 
         Returns
         -------
@@ -356,13 +369,14 @@ class FECoSimulation:
             A body in reach has no FE rail in its slot at x.
         """
         bounds, layout = element.tables.bounds, self.planes.layout
-        x_fe = min(max(x, layout.x_start), layout.x_end)
+        x_fe = x if x_fe is None else x_fe
+        x_slot = min(max(x_fe, layout.x_start), layout.x_end)
         bodies, points, index = [], [], []
         for k, body in enumerate(element.bodies):
             if not bounds[k, 2] - 1e-9 <= x <= bounds[k, 3] + 1e-9:
                 continue
             try:
-                rail_id = layout.slot_rail(body.rail, x_fe, self.route)
+                rail_id = layout.slot_rail(body.rail, x_slot, self.route)
             except ValueError as err:
                 raise ValueError(f"rail body '{body.name}' at x = {x:.3f} m: {err}") from None
             bodies.append(k)
@@ -377,6 +391,11 @@ class FECoSimulation:
         scalar products (the step's hot path; the same values, tested).
         """
         grid = self._grids.get(rail_id)
+        if grid is not None and not grid[1][0] - 1e-9 <= x <= grid[2][-1] + 1e-9:
+            raise ValueError(
+                f"x = {x:.3f} m is beyond the FE model's rail {rail_id} "
+                f"({grid[1][0]:g} to {grid[2][-1]:g} m): lengthen FEOptions.extension"
+            )
         if grid is None:
             ref = rail_head_point(self.planes.vertical, self.planes.lateral, rail_id, x)
             mesh = self.planes.vertical.mesh
@@ -468,7 +487,7 @@ class FECoSimulation:
         keep: set = set()
         self._predicted = {}
         for el in elements:
-            coupled = self.points(el.element, el.element.x_at(t_next))
+            coupled = self.points(el.element, *el.positions(t_next))
             C, influence = self._compliance(coupled)
             u_lat = self.lateral.u_hat + bh2 * self.lateral.qdd_star
             u_ver = self.vertical.u_hat + bh2 * self.vertical.qdd_star
@@ -503,20 +522,18 @@ class FECoSimulation:
             r_t = r_t_free + c_v (r - r_free); C = 0 at the current state's time (the rails
             are where the FE state says).
         """
-        x = element.element.x_at(t)
+        x, x_fe = element.positions(t)
         if self.static:
-            coupled = self.points(element.element, x)
-            return (
-                coupled,
-                np.zeros(len(coupled.index)),
-                np.zeros(len(coupled.index)),
-                (self._static_compliance(coupled)),
-                0.0,
-            )
+            coupled, blocks = self._static[id(element)]
+            r_free = np.zeros(len(coupled.index))
+            for other, C_ij in blocks.items():
+                if other != id(element):
+                    r_free += C_ij @ self._static_forces[other]
+            return coupled, r_free, np.zeros_like(r_free), blocks[id(element)], 0.0
         if t == self.t_next and id(element) in self._predicted:
             coupled, r_free, r_t_free, C, _ = self._predicted[id(element)]
             return coupled, r_free, r_t_free, C, self.ga.gamma_eff / (self.ga.beta_eff * self.h)
-        coupled = self.points(element.element, x)
+        coupled = self.points(element.element, x, x_fe)
         r = self._gather(coupled, self.lateral.u, self.vertical.u)
         r_t = self._gather(coupled, self.lateral.v, self.vertical.v)
         return coupled, r, r_t, np.zeros((len(r), len(r))), 0.0
@@ -566,45 +583,98 @@ class FECoSimulation:
         f_lat, f_ver = self._static_loads(coupled, F)
         return lu_lat.solve(f_lat), lu_ver.solve(f_ver)
 
-    def _static_compliance(self, coupled: _Coupled) -> np.ndarray:
-        """G^T K^-1 G of the coupled points (the static solve's compliance), cached."""
-        key = (coupled.bodies, tuple(p.x for p in coupled.points))
-        if self._static_cache is not None and self._static_cache[0] == key:
-            return self._static_cache[1]
-        m = len(coupled.points)
-        C = np.zeros((2 * m, 2 * m))
-        for k in range(m):
-            for j in (0, 1):
-                F = np.zeros(2 * m)
-                F[2 * k + j] = 1.0
-                u_lat, u_ver = self._static_field(coupled, F)
-                C[:, 2 * k + j] = self._gather(coupled, u_lat, u_ver)
-        self._static_cache = (key, C)
-        return C
+    def _static_sum(self, coupled: Sequence[_Coupled], forces: Sequence[np.ndarray]) -> tuple:
+        """Static fields (lateral, vertical) of several elements' forces together."""
+        lu_lat, lu_ver = self._static_factors()
+        f_lat = np.zeros(self.lateral.model.n_dof)
+        f_ver = np.zeros(self.vertical.model.n_dof)
+        for c, F in zip(coupled, forces):
+            fl, fv = self._static_loads(c, F)
+            f_lat += fl
+            f_ver += fv
+        return lu_lat.solve(f_lat), lu_ver.solve(f_ver)
 
-    def start(self, element, x: float, F: np.ndarray, v: float) -> None:
-        """Set the FE state to the static field under F at x, carried at speed v.
+    def begin_static(self, elements: Sequence) -> None:
+        """Couple the elements to the FE's static compliance (for Exudyn's static solve).
+
+        Every element's rail coordinates obey r_i = sum_j C_ij F_j, C_ij = G_i^T K^-1 G_j
+        (the wheelsets of a bogie deflect each other's rails); an element solves for its own
+        F_i with the others' latest forces (:meth:`report_static`) held.
+
+        Parameters
+        ----------
+        elements : sequence of FEContactElement
+            At their positions at t = 0 (the static solve does not move them).
+        """
+        coupled = [self.points(el.element, *el.positions(0.0)) for el in elements]
+        fields = []
+        for c in coupled:
+            columns = []
+            for k in range(len(c.points)):
+                for j in (0, 1):
+                    F = np.zeros(2 * len(c.points))
+                    F[2 * k + j] = 1.0
+                    columns.append(self._static_field(c, F))
+            fields.append(columns)
+        self._static = {}
+        self._static_forces = {}
+        for el, c in zip(elements, coupled):
+            blocks = {}
+            for other, c_other, columns in zip(elements, coupled, fields):
+                C = np.zeros((len(c.index), len(c_other.index)))
+                for col, (u_lat, u_ver) in enumerate(columns):
+                    C[:, col] = self._gather(c, u_lat, u_ver)
+                blocks[id(other)] = C
+            self._static[id(el)] = (c, blocks)
+            self._static_forces[id(el)] = np.zeros(len(c.index))
+        self.static = True
+
+    def report_static(self, element, forces: np.ndarray) -> None:
+        """Record an element's latest forces on its rail coordinates in the static solve.
 
         Parameters
         ----------
         element : FEContactElement
-        x : float
-            m, wheelset position.
-        F : numpy.ndarray
-            N, static forces on the coupled rail coordinates at x (y, z per body).
-        v : float
-            m/s, speed: the field moves with the wheelset, u_t = v du/dx.
+        forces : numpy.ndarray
+            N, y and z per coupled body.
         """
-        coupled = self.points(element.element, x)
-        u_lat, u_ver = self._static_field(coupled, F)
-        ahead = self.points(element.element, x + _START_DX)
-        if ahead.bodies != coupled.bodies:
-            ahead = coupled
-        a_lat, a_ver = self._static_field(ahead, F)
+        if self.static and id(element) in self._static_forces:
+            self._static_forces[id(element)] = np.array(forces, float)
+
+    def end_static(self) -> None:
+        """Leave the static coupling (the next calls couple dynamically)."""
+        self.static = False
+
+    def start(self, elements: Sequence, forces: Sequence[np.ndarray], v: float) -> None:
+        """Set the FE state to the static field under the elements' forces, carried at speed v.
+
+        Parameters
+        ----------
+        elements : sequence of FEContactElement
+            At their positions at t = 0.
+        forces : sequence of numpy.ndarray
+            N, per element the static forces on its coupled rail coordinates (y, z per body).
+        v : float
+            m/s, speed: the field moves with the vehicle, u_t = v du/dx.
+        """
+        here, ahead = [], []
+        for el in elements:
+            x, x_fe = el.positions(0.0)
+            coupled = self.points(el.element, x, x_fe)
+            there = self.points(el.element, x + _START_DX, x_fe + _START_DX)
+            here.append(coupled)
+            ahead.append(there if there.bodies == coupled.bodies else coupled)
+        u_lat, u_ver = self._static_sum(here, forces)
+        a_lat, a_ver = self._static_sum(ahead, forces)
         self.lateral.u, self.vertical.u = u_lat, u_ver
         self.lateral.v = v * (a_lat - u_lat) / _START_DX
         self.vertical.v = v * (a_ver - u_ver) / _START_DX
-        f_lat, f_ver = self._static_loads(coupled, F)
+        f_lat = np.zeros(self.lateral.model.n_dof)
+        f_ver = np.zeros(self.vertical.model.n_dof)
+        for coupled, F in zip(here, forces):
+            fl, fv = self._static_loads(coupled, F)
+            f_lat += fl
+            f_ver += fv
         for plane, f in ((self.lateral, f_lat), (self.vertical, f_ver)):
             rhs = f - plane.D @ plane.v - plane.K @ plane.u
             plane.qdd = sla.splu(plane.model.M.tocsc(), **_LU).solve(rhs)
@@ -643,13 +713,31 @@ class FEContactElement:
         The FE track it is coupled to.
     """
 
-    def __init__(self, element, track: FECoSimulation):
+    def __init__(self, element, track: FECoSimulation, fe_position: Callable | None = None):
         self.element, self.track = element, track
+        self._fe_position = fe_position
         self.n = element.n_vehicle
         self.q = np.zeros(element.n)
         self.q_t = np.zeros(element.n)
         self._jacobian: tuple | None = None  #: (time, coupled bodies, matrix)
         self.last: tuple = ((), np.zeros(0), np.zeros(0))  #: (coupled, r, forces on r)
+
+    def positions(self, t: float) -> tuple[float, float]:
+        """Positions (m) at time t of the contact tables and on the FE track.
+
+        Parameters
+        ----------
+        t : float
+            s.
+
+        Returns
+        -------
+        x, x_fe : float
+            The element's ``x_at(t)`` and the wheelset's position on the FE track (the
+            same unless a ``fe_position`` was given).
+        """
+        x = self.element.x_at(t)
+        return x, (x if self._fe_position is None else float(self._fe_position(t)))
 
     def solve(self, t: float, q, q_t) -> np.ndarray:
         """Rail coordinates and forces for vehicle coordinates q, q_t at time t.
@@ -701,30 +789,59 @@ class FEContactElement:
         if self._jacobian is not None and self._jacobian[:2] == (t, coupled.bodies):
             J = self._jacobian[2]
         eye = np.eye(len(r))
-        for iteration in range(_MAX_ITERATIONS):
+
+        def residual(r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             forces = rail_forces(r)
-            g = r - r_free - C @ forces
-            if np.max(np.abs(g)) <= COUPLING_TOLERANCE:
+            return r - r_free - C @ forces, forces
+
+        g, forces = residual(r)
+        size = np.max(np.abs(g))
+        fresh = False
+        for _ in range(_MAX_ITERATIONS):
+            if size <= COUPLING_TARGET:
                 break
-            if J is None or iteration >= 4 or self.track.static:
-                dF = np.empty((len(r), len(r)))
-                for j in range(len(r)):
-                    dr = r.copy()
-                    dr[j] += _FD_STEP
-                    dF[:, j] = (rail_forces(dr) - forces) / _FD_STEP
-                J = eye - C @ dF
+            if J is None or self.track.static:
+                J, fresh = self._newton_matrix(rail_forces, r, forces, C, eye), True
                 self._jacobian = (t, coupled.bodies, J)
-            r = r - np.linalg.solve(J, g)
-        else:
+            step = np.linalg.solve(J, g)
+            # backtracking on the largest residual: the creep forces' dependence on the rail
+            # velocity makes a full step with an old Jacobian overshoot where points switch
+            for damping in _DAMPING:
+                trial = r - damping * step
+                g_trial, f_trial = residual(trial)
+                size_trial = np.max(np.abs(g_trial))
+                if size_trial < (1.0 - 1e-4 * damping) * size:
+                    break
+            else:
+                if fresh:  # no descent even with a new Jacobian
+                    break
+                J = None  # an old Jacobian: recompute and retry
+                continue
+            if size_trial > 0.25 * size:  # slow: a new Jacobian for the next iteration
+                J = None
+            r, g, forces, size, fresh = trial, g_trial, f_trial, size_trial, False
+        if size > COUPLING_TOLERANCE:
             raise ArithmeticError(
                 f"FE coupling did not converge at t = {t:.6f} s, x = {x:.3f} m "
-                f"(residual {np.max(np.abs(g)):.3g} m)"
+                f"(residual {size:.3g} m)"
             )
         self.q[idx] = r
         self.q_t[idx] = r_t_free + c_v * (r - r_free)
         self.last = (coupled, r, forces)
+        self.track.report_static(self, forces)
         self.track.timings["coupling_s"] += time.perf_counter() - t0
         return forces
+
+    @staticmethod
+    def _newton_matrix(rail_forces, r, forces, C, eye, scale: float = 1.0) -> np.ndarray:
+        """I - C dF/dr (dF/dr with the rail velocity's dependence on r) by differences."""
+        dF = np.empty((len(r), len(r)))
+        step = scale * _FD_STEP
+        for j in range(len(r)):
+            dr = r.copy()
+            dr[j] += step
+            dF[:, j] = (rail_forces(dr) - forces) / step
+        return eye - C @ dF
 
     def __call__(self, mbs, t, item_number, q, q_t):
         """Exudyn ``forceUserFunction``: generalised forces on the vehicle's coordinates."""

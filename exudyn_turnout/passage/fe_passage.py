@@ -161,7 +161,6 @@ def _coordinates(system: _System, initial: bool = False) -> tuple[np.ndarray, np
 
 
 def _solve_static(system: _System, x: float) -> None:
-    import exudyn as exu
 
     from exudyn_turnout.corunning.track import simulation_settings
 
@@ -169,9 +168,9 @@ def _solve_static(system: _System, x: float) -> None:
     sim.staticSolver.newton.absoluteTolerance = 1e-4
     try:
         system.mbs.SolveStatic(sim, updateInitialValues=True)
-    except (exu.SolverError, RuntimeError) as err:
+    except Exception as err:  # Exudyn's SolverError, or ModelError from a user function
         raise PassageFailure(
-            f"static equilibrium on the FE track not found at x = {x:g} m: {str(err).strip()}"
+            f"static equilibrium on the FE track not found at x = {x:g} m: {_reason(err)}"
         ) from None
 
 
@@ -303,7 +302,7 @@ def _simulate(turnout, settings, vehicle, route, contact, planes, x_a, x_b, prog
     t0 = time.perf_counter()
     rest = static_equilibrium(track, contact, vehicle, route, x_a, irr)
     q0, loads = rest.vehicle_q, rest.wheel_loads
-    track.start(rest.element, x_a, rest.rail_forces, v)
+    track.start([rest.element], [rest.rail_forces], v)
     static_s = time.perf_counter() - t0
     # the run at speed
     moving = fe_contact_element(contact, vehicle, route, x_a, v, irr)
@@ -341,10 +340,10 @@ def _simulate(turnout, settings, vehicle, route, contact, planes, x_a, x_b, prog
     t1 = time.perf_counter()
     try:
         system.mbs.SolveDynamic(sim)
-    except (exu.SolverError, RuntimeError) as err:
+    except Exception as err:  # Exudyn's SolverError, or ModelError from a user function
         t = track.t_next if math.isfinite(track.t_next) else data.GetTime()
         raise PassageFailure(
-            f"FE passage failed at t = {t:.5f} s, x = {x_a + v * t:.3f} m: {str(err).strip()}"
+            f"FE passage failed at t = {t:.5f} s, x = {x_a + v * t:.3f} m: {_reason(err)}"
         ) from None
     steps_s = time.perf_counter() - t1
     columns = _columns(moving, recorder, x_a, v)
@@ -402,17 +401,26 @@ def static_equilibrium(
     coupled = FEContactElement(rest, track)
     z_w, z_s = _initial_guess(vehicle)
     z_touch, roll = rest.touching_position(x, -z_w / 3.0)
-    track.static = True
+    track.begin_static([coupled])
     try:
         static = _build(vehicle, coupled, z_touch, z_touch + z_s - z_w, roll)
         _solve_static(static, x)
         q0, _ = _coordinates(static, initial=True)
         F0 = coupled.solve(0.0, q0, np.zeros_like(q0))
     finally:
-        track.static = False
+        track.end_static()
     loads = rest.wheel_loads(x, coupled.q)
     _check_static(loads, vehicle, x)
     return FEStaticState(x, coupled, q0, F0, coupled.last[1].copy(), loads)
+
+
+def _reason(err: Exception) -> str:
+    """The one line of an Exudyn error that says what went wrong (a user function's own)."""
+    lines = [line.strip() for line in str(err).splitlines() if line.strip()]
+    for line in lines:
+        if line.startswith(("RuntimeError:", "ArithmeticError:", "ValueError:")):
+            return line.split(":", 1)[1].strip()
+    return lines[0] if lines else type(err).__name__
 
 
 def _check_static(loads: dict, vehicle: Vehicle, x: float) -> None:
