@@ -1,14 +1,17 @@
 """Benchmark: the full vehicle (4 wheelsets, a co-running track under each) vs one wheelset.
 
 Run: ``python benchmarks/bench_vehicle_passage.py [--route R] [--x-start X] [--x-end X]
-[--speed V]`` (default: the whole turnout, through route, 100 km/h). Each case runs once
-(profile contact, h = 1e-4 s): the single-wheelset passage
+[--speed V] [--layers 2 3]`` (default: the whole turnout, through route, 100 km/h, 2 and 3
+layers). Each case runs once (profile contact, h = 1e-4 s): the single-wheelset passage
 (:func:`exudyn_turnout.passage.simulate.simulate_passage`) and the full Manchester vehicle
-(:func:`exudyn_turnout.passage.full_vehicle_passage.simulate_vehicle_passage`), on the
-2-layer and the 3-layer track, plus a short run (0.5 m) of each to separate the fixed cost
-(building the systems, static solves) from the cost per step: "marginal us/step" is
-(wall - wall_short) / (steps - steps_short). The contact tables are loaded and the compiled
-contact kernel warmed up before, untimed. The 2-core machine is shared: expect noise.
+(:func:`exudyn_turnout.passage.full_vehicle_passage.simulate_vehicle_passage`), plus a short
+run (0.5 m) of each to separate the fixed cost (building the systems, static solves) from the
+cost per step: "marginal us/step" is (wall - wall_short) / (steps - steps_short). "cpu s" is
+the process's CPU time of the run (less sensitive than wall time to other processes on a
+shared machine). For the full vehicle: Newton iterations per step and Jacobian evaluations
+of the whole run (Exudyn's solver statistics, summed over the run's segments). The contact
+tables are loaded and the compiled contact kernel warmed up before, untimed. Issue 13's
+target: the 3-layer full vehicle at most 1.0 x real time.
 """
 
 from __future__ import annotations
@@ -19,15 +22,41 @@ from dataclasses import replace
 
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
+from exudyn_turnout.passage import full_vehicle_passage
 from exudyn_turnout.passage.full_vehicle_passage import simulate_vehicle_passage
 from exudyn_turnout.passage.results import PassageSettings
 from exudyn_turnout.passage.simulate import simulate_passage
 
 
-def _timed(run, settings) -> tuple[float, int]:
-    wall = time.perf_counter()
-    result = run(settings)
-    return time.perf_counter() - wall, len(result.columns["t_s"]) - 1
+class _NewtonCount:
+    """Sums Exudyn's Newton statistics over the full vehicle's run segments."""
+
+    def __init__(self):
+        self.steps = self.iterations = self.jacobians = 0
+        self._run = full_vehicle_passage._run
+
+    def __enter__(self):
+        def counted(system, *args, **kwargs):
+            cols = self._run(system, *args, **kwargs)
+            it = system.mbs.sys["dynamicSolver"].it
+            self.steps += it.currentStepIndex
+            self.iterations += it.newtonStepsCount
+            self.jacobians += it.newtonJacobiCount
+            return cols
+
+        full_vehicle_passage._run = counted
+        return self
+
+    def __exit__(self, *exc):
+        full_vehicle_passage._run = self._run
+
+
+def _timed(run, settings) -> tuple[float, float, int, _NewtonCount]:
+    with _NewtonCount() as count:
+        wall, cpu = time.perf_counter(), time.process_time()
+        result = run(settings)
+        wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
+    return wall, cpu, len(result.columns["t_s"]) - 1, count
 
 
 def main() -> None:
@@ -37,6 +66,7 @@ def main() -> None:
     parser.add_argument("--x-start", type=float, default=None, help="front wheelset start (m)")
     parser.add_argument("--x-end", type=float, default=None, help="front wheelset end (m)")
     parser.add_argument("--speed", type=float, default=100.0, help="km/h")
+    parser.add_argument("--layers", type=int, nargs="+", default=[2, 3], choices=[2, 3])
     args = parser.parse_args()
     turnout, model = load_turnout(), load_vehicle_model()
     x_a = turnout.x_min if args.x_start is None else args.x_start
@@ -49,22 +79,27 @@ def main() -> None:
     print(f"{args.route} route, front wheelset x {x_a:g} .. {x_b:g} m, {args.speed:g} km/h, ")
     print(f"h = 1e-4 s, {simulated:.3f} s simulated")
     print(
-        f"{'case':<36}{'steps':>7}{'wall s':>8}{'us/step':>9}{'marginal us/step':>18}"
-        f"{'x real time':>13}"
+        f"{'case':<30}{'steps':>7}{'wall s':>8}{'cpu s':>7}{'us/step':>9}{'marginal':>10}"
+        f"{'x real time':>12}{'Newton/step':>12}{'Jacobians':>10}"
     )
     cases = (
         ("1 wheelset", lambda s: simulate_passage(turnout, s)),
         ("4 wheelsets (full vehicle)", lambda s: simulate_vehicle_passage(turnout, s, model)),
     )
-    for layers in (2, 3):
+    for layers in args.layers:
         settings = replace(base, layers=layers)
         for label, run in cases:
-            wall_0, steps_0 = _timed(run, replace(settings, x_end=x_a + 0.5))
-            wall, steps = _timed(run, settings)
+            wall_0, _, steps_0, _ = _timed(run, replace(settings, x_end=x_a + 0.5))
+            wall, cpu, steps, count = _timed(run, settings)
             marginal = 1e6 * (wall - wall_0) / max(steps - steps_0, 1)
+            newton = (
+                f"{count.iterations / count.steps:>12.2f}{count.jacobians:>10d}"
+                if count.steps
+                else f"{'-':>12}{'-':>10}"
+            )
             print(
-                f"{label + f', {layers} layers':<36}{steps:>7}{wall:>8.2f}"
-                f"{1e6 * wall / steps:>9.1f}{marginal:>18.1f}{wall / simulated:>13.1f}"
+                f"{label + f', {layers}L':<30}{steps:>7}{wall:>8.2f}{cpu:>7.2f}"
+                f"{1e6 * wall / steps:>9.1f}{marginal:>10.1f}{wall / simulated:>12.2f}{newton}"
             )
 
 

@@ -167,3 +167,149 @@ def test_rear_wheelsets_pass_the_crossing_beyond_the_turnout_end(turnout, model)
     too_far = PassageSettings(layers=2, x_start=80.0, x_end=82.0)
     with pytest.raises(PassageError, match="end plus the vehicle's length"):
         simulate_vehicle_passage(turnout, too_far, model)
+
+
+def _segment(turnout, model, x_front, v, frozen=False, route_name="through"):
+    """One run segment's Exudyn system of the full vehicle (3 layers), its contact function
+    and a state with every wheel pressed into its rails and moving a little."""
+    from exudyn_turnout.inputs.routes import load_route
+    from exudyn_turnout.inputs.vehicle import load_vehicle
+    from exudyn_turnout.passage import full_vehicle_passage as fvp
+    from exudyn_turnout.passage.profile_contact import route_contact
+
+    route, base = load_route(turnout, route_name), load_vehicle()
+    settings = PassageSettings(route=route_name, speed_kmh=100.0, layers=3)
+    places = tuple(fvp._place(turnout, x_front + o) for o in model.wheelset.x)
+    args = (turnout, route, model, fvp.contact_vehicle(base, model))
+    args += (route_contact(turnout, route_name, base), settings, places, x_front, v, frozen)
+    system = fvp._build(*args, (x_front - 20.0, x_front + 10.0))
+    contacts = system.mbs.variables["exudyn_turnout.full_vehicle_passage"][0]
+    rng = np.random.default_rng(13)
+    q = 1e-5 * rng.standard_normal(contacts.n)
+    q_t = 1e-2 * rng.standard_normal(contacts.n)
+    for el, (a, _) in zip(contacts.elements, contacts.spans):
+        # 0.1 mm into the rails (the static Hertz penetration is ~0.1 mm)
+        q[a + 1], q[a + 2] = el.touching_position(el.x_at(0.0), 1e-4)
+    return system, contacts, q, q_t
+
+
+@pytest.mark.parametrize(
+    "v, hold_spin, route",
+    [
+        (100.0 / 3.6, False, "through"),
+        (100.0 / 3.6, False, "diverging"),  # x = 20 m: in the 760 m curve, curving loads
+        (100.0 / 3.6, True, "through"),
+        (0.0, False, "through"),
+    ],
+)
+def test_one_contact_function_for_all_wheelsets_gives_each_elements_forces(
+    turnout, model, v, hold_spin, route
+):
+    # the merged force function (one Exudyn call for the four wheelsets) must return, bit
+    # for bit, what each wheelset's own element returns: running (curving load), the solve
+    # at speed (spin held) and at rest (lateral position and spin held)
+    x = 46.5 if route == "through" else 20.0
+    _, contacts, q, q_t = _segment(turnout, model, x, v, route_name=route)
+    t = 0.0123
+    expected = []
+    for el, (a, b) in zip(contacts.elements, contacts.spans):
+        el.hold_spin = hold_spin
+        expected.append(np.array(el(None, t, 0, list(q[a:b]), list(q_t[a:b]))))
+    forces = np.array(contacts(None, t, 0, list(q), list(q_t)))
+    c = contacts.n_contacts
+    assert np.array_equal(forces[:c], np.concatenate(expected))
+    assert np.max(np.abs(forces)) > 1e4  # the wheels do carry load (N)
+    assert contacts._biased == (route == "diverging")  # the curving loads were applied
+    # on straight track the bumpstops ride along on the last coordinates (car body, bogies)
+    assert (contacts.stops is not None) == (route == "through")
+    if contacts.stops is not None:
+        stop = contacts.stops[1](None, t, 0, list(q[c:]), list(q_t[c:]))
+        assert np.array_equal(forces[c:], stop)
+
+
+def test_contact_jacobian_equals_central_differences(turnout, model):
+    # -df/dq and -df/dq_t of the contact function (forward differences per wheelset) against
+    # central differences of the whole function (definition of the derivative). Tolerance:
+    # 1e-4 of the largest entry (forward differences with steps of 1e-9 against central ones
+    # of 1e-8 m / 1e-6 m/s; measured: 2.4e-6 of it at x = 20, 46.5 and 47 m).
+    _, contacts, q, q_t = _segment(turnout, model, 20.0, 100.0 / 3.6)
+    t = 0.0
+    jac_q, jac_q_t = contacts.jacobian(t, q, q_t)
+    for vector, jac, step in ((q, jac_q, 1e-8), (q_t, jac_q_t, 1e-6)):
+        central = np.zeros_like(jac)
+        for j in range(contacts.n):
+            up, down = vector.copy(), vector.copy()
+            up[j] += step
+            down[j] -= step
+            if vector is q:
+                f_up = np.array(contacts(None, t, 0, list(up), list(q_t)))
+                f_down = np.array(contacts(None, t, 0, list(down), list(q_t)))
+            else:
+                f_up = np.array(contacts(None, t, 0, list(q), list(up)))
+                f_down = np.array(contacts(None, t, 0, list(q), list(down)))
+            central[:, j] = (f_down - f_up) / (2.0 * step)
+        scale = np.max(np.abs(central))
+        assert scale > 0.0
+        assert np.max(np.abs(jac - central)) < 1e-4 * scale
+    # the wheelsets do not couple: off-diagonal blocks are zero
+    (a, b), (c, d) = contacts.spans[0], contacts.spans[1]
+    assert not np.any(jac_q[a:b, c:d]) and not np.any(jac_q[c:d, a:b])
+
+
+def test_exudyn_takes_the_contact_jacobian_as_its_own_numerical_one(turnout, model):
+    # the system Jacobian assembled with the contacts' jacobianUserFunction equals the one
+    # Exudyn differentiates numerically without it (same steps: relative 1e-7, minimum
+    # coordinate 0.01): the sign, the factors f_ODE2 / f_ODE2_t and the object's own
+    # stiffness (the dummies' springs, added by Exudyn) are right.
+    import exudyn as exu
+
+    from exudyn_turnout.corunning.track import simulation_settings
+
+    jacobians = []
+    for user in (True, False):
+        system, contacts, _, _ = _segment(turnout, model, 46.5, 100.0 / 3.6)
+        mbs = system.mbs
+        data = mbs.systemData
+        q_t = np.zeros(data.ODE2Size())
+        q_t[::7] = 0.01  # m/s: creepages
+        data.SetODE2Coordinates_t(q_t, exu.ConfigurationType.Initial)
+        # the car body 27.5 mm to the side: the bumpstops (clearance 25 mm, next kink at
+        # 30 mm; on the contacts' object on straight track) are engaged
+        q = np.array(data.GetODE2Coordinates(exu.ConfigurationType.Initial))
+        q[mbs.GetNodeODE2Index(system.names["car_body"])] += 0.0275
+        data.SetODE2Coordinates(q, exu.ConfigurationType.Initial)
+        u = []
+        for name in ("car_body", "bogie1", "bogie2"):  # the bumpstops' coordinates
+            node = system.names[name]
+            i = mbs.GetNodeODE2Index(node)
+            k = np.atleast_1d(mbs.GetNodeOutput(node, exu.OutputVariableType.Coordinates)).size
+            u += list(q[i : i + k])
+        assert len(u) == contacts.n - contacts.n_contacts
+        assert np.any(contacts.stops[1](None, 0.0, 0, u, [0.0] * len(u)))  # engaged
+        if not user:
+            for i in range(data.NumberOfObjects()):
+                if mbs.GetObject(i)["objectType"] == "GenericODE2":
+                    if mbs.GetObject(i)["forceUserFunction"] is contacts:
+                        mbs.SetObjectParameter(i, "jacobianUserFunction", 0)
+        solver = exu.MainSolverImplicitSecondOrder()
+        solver.InitializeSolver(mbs, simulation_settings(0.01, 1e-4))
+        blocks = []
+        for f_q, f_q_t in ((1.0, 0.0), (0.0, 1.0)):
+            solver.ComputeJacobianODE2RHS(
+                mbs, scalarFactor_ODE2=f_q, scalarFactor_ODE2_t=f_q_t, scalarFactor_ODE1=0.0
+            )
+            blocks.append(np.array(solver.GetSystemJacobian()))
+        jacobians.append(blocks)
+    for user, numerical in zip(*jacobians):
+        assert np.max(np.abs(numerical)) > 1e5
+        assert np.allclose(user, numerical, rtol=0.0, atol=1e-9 * np.max(np.abs(numerical)))
+
+
+def test_newton_tolerance_per_wheelset():
+    # sqrt(n) times the single wheelset's: the L2 residual of n wheelsets with each
+    # wheelset's share at the single wheelset's tolerance
+    from exudyn_turnout.passage.full_vehicle_passage import newton_tolerance
+    from exudyn_turnout.passage.simulate import NEWTON_ABSOLUTE_TOLERANCE
+
+    assert newton_tolerance(1) == NEWTON_ABSOLUTE_TOLERANCE
+    assert newton_tolerance(4) == pytest.approx(2.0 * NEWTON_ABSOLUTE_TOLERANCE)
