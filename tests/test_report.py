@@ -132,6 +132,40 @@ def test_claims_without_data_are_not_checked():
     assert all(x == NOT_CHECKED for x in v.values())
 
 
+def _lateral_passage_metrics(p2: float, p3: float, pfe: float) -> dict:
+    """Passage metrics of one route whose lateral crossing force is plotted (as Fig. 8)."""
+
+    def model(peak: float, fe: bool) -> dict:
+        out = {"peaks_N": {"Fy_crossing": peak}, "dynamic_rms_N": {"Fy_crossing": 1e3}}
+        if not fe:
+            rel = abs(peak) / abs(pfe) - 1
+            out["vs_FE"] = {
+                "peak_relative": {"Fy_crossing": rel},
+                "rms_difference_N": {"Fy_crossing": abs(peak - pfe)},
+                "trend_deviation": {"Fy_crossing": 0.01},
+            }
+        return out
+
+    models = {"2-layer": model(p2, False), "3-layer": model(p3, False), "FE": model(pfe, True)}
+    return {
+        "fe_available": True,
+        "lateral_route": "diverging",
+        "routes": {"diverging": {"signals": ["Fy_crossing"], "models": models}},
+    }
+
+
+def test_lateral_crossing_claim_follows_the_criterion():
+    """F6 (Sec. 4.2: 'overestimates the peak impact forces at the crossing panel despite a
+    lower vehicle speed', the diverging route of Fig. 8): |peak Fy| of the 2-layer model more
+    than 5 % above FE's; the signed peaks (force on the rail, + left) compare by magnitude."""
+    v = _verdicts({"passage": _lateral_passage_metrics(-9.0e3, -7.5e3, -7.0e3)})
+    assert v["F6"] == HOLDS  # 9.0 / 7.0 - 1 = +28.6 % > 5 %
+    # the lateral signal also gets the verdicts of the claims on every plotted signal
+    assert v["F2"] == HOLDS and v["F5"] == HOLDS  # 1 % trend; 3-layer 0.5 vs 2-layer 2.0 kN
+    assert _verdicts({"passage": _lateral_passage_metrics(-7.2e3, -7.1e3, -7.0e3)})["F6"] == FAILS
+    assert _verdicts({"passage": {"fe_available": True, "routes": {}}})["F6"] == NOT_CHECKED
+
+
 def test_cost_claim_range():
     cost = {"repeats": 5, "ratio_3_over_2": {"through": 1.1}, "extra_dof_per_zone": {"2": 8}}
     assert _verdicts({"cost": cost})["C1"] == HOLDS and _verdicts({"cost": cost})["C2"] == HOLDS
@@ -153,6 +187,49 @@ def test_cache_round_trip_and_keys(tmp_path):
     arrays, meta = cache.load(key)
     assert arrays["H"] == pytest.approx(np.array([1 + 2j, 3j])) and meta == {"wall_time_s": 1.5}
     assert ResultCache(None).load(key) is None
+
+
+def test_fe_passage_cache_key_changes_with_contact_vehicle_and_version(turnout, monkeypatch):
+    """An FE passage of the height-table contact, or of another vehicle, is never reused."""
+    from dataclasses import replace
+
+    import exudyn_turnout.report.metrics as rm
+    from exudyn_turnout.passage.results import PassageSettings
+
+    settings = PassageSettings(route="through", x_start=46.0, x_end=47.0, contact="profile")
+    wheelset = rm.ReportConfig(vehicle="wheelset")
+    key = rm.fe_passage_cache_key(turnout, settings, wheelset)
+    assert key == rm.fe_passage_cache_key(turnout, settings, wheelset)  # deterministic
+    others = {
+        rm.fe_passage_cache_key(turnout, replace(settings, contact="height-table"), wheelset),
+        rm.fe_passage_cache_key(turnout, settings, rm.ReportConfig(vehicle="full")),
+        rm.fe_passage_cache_key(turnout, replace(settings, speed_kmh=90.0), wheelset),
+    }
+    monkeypatch.setattr(rm, "FE_PASSAGE_VERSION", rm.FE_PASSAGE_VERSION + 1)
+    others.add(rm.fe_passage_cache_key(turnout, settings, wheelset))
+    assert key not in others and len(others) == 4
+
+
+def test_report_vehicle_option_and_missing_full_vehicle_fe(turnout, monkeypatch):
+    """vehicle is "full" (default) or "wheelset"; the full vehicle's FE passage is n/a, not a
+    crash, in a version whose simulate_vehicle_passage has no track keyword."""
+    import exudyn_turnout.report.metrics as rm
+
+    assert (
+        rm.ReportConfig().vehicle == "full" and rm.report_config(quick=True).vehicle == "wheelset"
+    )
+    with pytest.raises(ValueError, match="ReportConfig.vehicle must be one of full, wheelset"):
+        rm.ReportConfig(vehicle="bogie")
+    monkeypatch.setattr(rm, "_full_vehicle_track_keywords", lambda: set())
+    ok, why = rm.fe_availability(rm.ReportConfig(vehicle="full"))
+    assert not ok and why == "the full vehicle on the FE track is not available in this version"
+    assert rm.fe_availability(rm.ReportConfig(vehicle="wheelset")) == (True, "")
+    config = rm.resolve_config(rm.ReportConfig(passage_x=(46.0, 47.0)), rm.report_settings(turnout))
+    with pytest.raises(rm.FENotAvailable, match="not available in this version"):
+        rm.run_passage(turnout, config, "through", "fe")
+    # the static wheel loads the report checks: M g / 8 = 44 482 x 9.81 / 8 (issue 13) and
+    # (m_w + m_s) g / 2 of the single wheelset
+    assert rm.vehicle_static_load("full") == pytest.approx(44482 * 9.81 / 8, rel=1e-3)
 
 
 # --- the quick report -----------------------------------------------------------------
@@ -208,8 +285,13 @@ def test_quick_report_writes_its_files(quick_report):
         "receptance_vertical.png",
         "receptance_lateral.png",
         "forces_through.png",
+        "forces_diverging.png",
         "stiffness.png",
     } <= pngs
+    # each route's figure is embedded with its caption (lateral sign convention)
+    for route in ("through", "diverging"):
+        assert f"(forces_{route}.png)" in md and f"`forces_{route}.png`" in md
+    assert "force on the rail, + left" in md
     metrics = json.loads((out / "metrics.json").read_text())
     for section in (
         "parameters",
@@ -224,6 +306,37 @@ def test_quick_report_writes_its_files(quick_report):
         assert section in metrics
     assert {c["verdict"] for c in metrics["claims"]} <= {HOLDS, FAILS, NOT_CHECKED}
     assert all(c["id"] in md for c in metrics["claims"]) and "## Summary" in md
+
+
+def test_quick_report_has_fe_lateral_references(quick_report):
+    """Profile contact and the same single wheelset on all three tracks; the FE passage gives
+    finite vertical and lateral peaks at the crossing on both routes (the quick window covers
+    the crossing only), each compared with the 2-layer and 3-layer runs, and the claims on
+    lateral forces (diverging route, Fig. 8) get verdicts."""
+    _, out = quick_report
+    metrics = json.loads((out / "metrics.json").read_text())
+    md = (out / "report.md").read_text()
+    passage = metrics["passage"]
+    assert passage["contact"] == "profile" and passage["vehicle"] == "wheelset"
+    assert passage["fe_available"] and passage["lateral_route"] == "diverging"
+    for route in ("through", "diverging"):
+        rt = passage["routes"][route]
+        assert set(rt["models"]) == {"2-layer", "3-layer", "FE"}
+        fe_peaks = rt["models"]["FE"]["peaks_N"]
+        # a wheel load of tens of kN, a lateral force of some kN (not zero, not absurd)
+        assert 20e3 < fe_peaks["Fz_crossing"] < 400e3
+        assert 0.1e3 < abs(fe_peaks["Fy_crossing"]) < 100e3
+        for m in ("2-layer", "3-layer"):
+            rel = rt["models"][m]["vs_FE"]["peak_relative"]
+            assert {"Fz_crossing", "Fy_crossing"} <= set(rel)
+            assert all(math.isfinite(rel[k]) for k in ("Fz_crossing", "Fy_crossing"))
+    claims = {c["id"]: c for c in metrics["claims"]}
+    assert claims["F6"]["verdict"] in (HOLDS, FAILS)
+    for cid in ("F2", "F5"):  # judged on every plotted signal, the diverging Fy among them
+        assert claims[cid]["verdict"] in (HOLDS, FAILS)
+        assert "diverging Fy_crossing" in claims[cid]["evidence"]
+    assert "profile contact for all three tracks" in md and "fe_coupling.py" in md
+    assert "torsion-aware" in md
 
 
 def test_report_opens_with_the_summary_and_ends_with_the_appendix(quick_report):

@@ -2,6 +2,8 @@
 
 Usage: ``python validation/report.py [--out DIR] [--quick] [--cache DIR | --no-cache]``;
 the default output is ``validation/report/`` (the committed copy of the full report).
+The full report runs the full Manchester vehicle (``ReportConfig.vehicle = "full"``) on the
+2-layer, 3-layer and FE tracks with the profile contact; ``--quick`` the single wheelset.
 """
 
 import sys

@@ -7,9 +7,10 @@ the whole pipeline (parameters, FE stiffness, receptances, 2-layer / 3-layer / F
 on the file's routes ``main`` and ``branch``, cost, convergence, claims) on a turnout that
 differs from the packaged one in every property a file can change (another turnout is
 another file, for every command).
-Default output: ``validation/second_turnout/`` (the committed copy, the full report: ~17
-min on 2 shared cores, most of it the FE passages over the whole turnout; ``--quick``
-takes ~30 s).
+Default output: ``validation/second_turnout/`` (the committed copy). The full report runs
+the full Manchester vehicle with the profile contact on the 2-layer, 3-layer and FE tracks
+(most of its time the FE passages over the whole turnout, cached afterwards); ``--quick``
+runs the single wheelset over the crossing (~1 min on 2 shared cores).
 """
 
 import sys

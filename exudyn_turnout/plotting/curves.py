@@ -22,6 +22,7 @@ __all__ = [
     "plot_passage_forces",
     "plot_receptance_agreement",
     "plot_force_signals",
+    "plot_force_grid",
     "plot_stiffness_series",
     "save_figure",
     "plot_stiffness_profile",
@@ -286,6 +287,60 @@ def plot_force_signals(panels, ylabel: str = "force on rail (kN)"):
         ax.grid(True, alpha=0.3)
     axes[0, 0].set_ylabel(ylabel)
     axes[0, 0].legend(fontsize="small")
+    fig.tight_layout()
+    return fig, axes
+
+
+def plot_force_grid(rows, ylabels=None, missing: str = "outside the passage's x range"):
+    """Contact-force histories of several models along x in a grid of panels.
+
+    Parameters
+    ----------
+    rows : sequence of sequence of (str, mapping, str, (float, float)) or None
+        Per row (e.g. vertical, lateral) and column (e.g. switch, crossing): title, model
+        name -> PassageResult, column name (e.g. "Fy_right_N") and the x range (m) to show;
+        None leaves that panel empty with the text ``missing``.
+    ylabels : sequence of str, optional
+        y-axis label per row (the forces are drawn in kN); default "force on rail (kN)".
+    missing : str
+        Text of an empty panel.
+
+    Returns
+    -------
+    (Figure, ndarray of Axes)
+        len(rows) x (longest row) axes.
+    """
+    plt = pyplot()
+    rows = [list(r) for r in rows]
+    n_rows, n_cols = len(rows), max(len(r) for r in rows)
+    fig, axes = plt.subplots(n_rows, n_cols, figsize=(5.0 * n_cols, 3.4 * n_rows), squeeze=False)
+    labels = list(ylabels) if ylabels is not None else ["force on rail (kN)"] * n_rows
+    legend = None
+    for i, row in enumerate(rows):
+        for j in range(n_cols):
+            ax = axes[i, j]
+            panel = row[j] if j < len(row) else None
+            if panel is None:
+                ax.text(0.5, 0.5, missing, ha="center", va="center", transform=ax.transAxes)
+                ax.set_xticks([])
+                ax.set_yticks([])
+                continue
+            title, results, column, (x0, x1) = panel
+            for name, result in results.items():
+                x, force = result.columns["x_m"], result.columns[column]
+                sel = (x >= x0) & (x <= x1)
+                ax.plot(x[sel], force[sel] / 1e3, label=name, **_style(name))
+            ax.set_xlim(x0, x1)
+            ax.set_title(title, fontsize="medium")
+            ax.grid(True, alpha=0.3)
+            if i == n_rows - 1:
+                ax.set_xlabel("x from switch toe (m)")
+            if j == 0 or axes[i, 0].get_ylabel() == "":
+                ax.set_ylabel(labels[i])
+            if legend is None and results:
+                legend = ax
+    if legend is not None:
+        legend.legend(fontsize="small")
     fig.tight_layout()
     return fig, axes
 

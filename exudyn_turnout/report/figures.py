@@ -19,10 +19,13 @@ __all__ = [
     "write_figures",
     "receptance_panels",
     "force_panels",
+    "force_grid",
     "crossing_window",
     "stiffness_panels",
 ]
 
+#: One force panel: title, model -> PassageResult, column, x range (m).
+_Panel = tuple[str, Mapping, str, tuple[float, float]]
 #: m, before / after the wheel's dip shown in a crossing panel when the report has no settings.
 _DEFAULT_CROSSING_WINDOW = (0.8, 2.2)
 
@@ -69,7 +72,11 @@ def crossing_window(report) -> tuple[float, float]:
 
 
 def force_panels(report, route: str) -> list[tuple[str, Mapping, str, tuple[float, float]]]:
-    """(title, model -> PassageResult, column, x range) per plotted signal of a route.
+    """(title, model -> PassageResult, column, x range) per signal of a route with data.
+
+    Vertical and lateral force at the switch and at the crossing (the route's
+    ``all_signals``; older metrics: its plotted ``signals``), skipping the regions outside
+    the passage's x range.
 
     Parameters
     ----------
@@ -81,16 +88,41 @@ def force_panels(report, route: str) -> list[tuple[str, Mapping, str, tuple[floa
     -------
     list of (str, dict, str, (float, float))
     """
+    return [panel for row in force_grid(report, route) for panel in row if panel is not None]
+
+
+def force_grid(
+    report, route: str
+) -> list[list[tuple[str, Mapping, str, tuple[float, float]] | None]]:
+    """The panels of a route's force figure: rows Fz, Fy; columns switch, crossing.
+
+    Parameters
+    ----------
+    report : Report
+    route : str
+        A route of the report.
+
+    Returns
+    -------
+    list of list
+        Per force ("Fz", "Fy") the panels at the switch and the crossing, each
+        (title, model -> PassageResult, column, x range) or None (outside the x range, or a
+        signal the metrics do not have).
+    """
     p = report.metrics["passage"]
     lo, hi = p["x_range_m"]
-    wheel = p["routes"][route].get("wheel", "right")
-    panels: list[tuple[str, Mapping, str, tuple[float, float]]] = []
-    for signal in p["routes"][route]["signals"]:
-        quantity, region = signal.split("_")
-        x0, x1 = crossing_window(report) if region == "crossing" else p["regions_m"][region]
-        x0, x1 = max(x0, lo), min(x1, hi)
-        if x1 > x0:
-            what = "vertical" if quantity == "Fz" else "lateral"
+    rt = p["routes"][route]
+    wheel = rt.get("wheel", "right")
+    signals = set(rt.get("all_signals", rt["signals"]))
+    grid: list[list[_Panel | None]] = []
+    for quantity, what in (("Fz", "vertical"), ("Fy", "lateral (+ left)")):
+        row: list[_Panel | None] = []
+        for region in ("switch", "crossing"):
+            x0, x1 = crossing_window(report) if region == "crossing" else p["regions_m"][region]
+            x0, x1 = max(x0, lo), min(x1, hi)
+            if f"{quantity}_{region}" not in signals or not x1 > x0:
+                row.append(None)
+                continue
             title = (
                 f"{route}, {p['speeds_kmh'][route]:g} km/h: {what} force, {wheel} wheel, {region}"
             )
@@ -100,8 +132,10 @@ def force_panels(report, route: str) -> list[tuple[str, Mapping, str, tuple[floa
                 for m, r in report.passages[route].items()
                 if column in r.columns and np.isfinite(r.columns[column]).any()
             }
-            panels.append((title, results, column, (x0, x1)))
-    return panels
+            row.append((title, results, column, (x0, x1)))
+        if any(panel is not None for panel in row):
+            grid.append(row)
+    return grid
 
 
 def write_figures(report, out_dir: str | Path, dpi: int = 100) -> dict[str, str]:
@@ -119,7 +153,7 @@ def write_figures(report, out_dir: str | Path, dpi: int = 100) -> dict[str, str]
         Figure name -> file name.
     """
     from exudyn_turnout.plotting.curves import (
-        plot_force_signals,
+        plot_force_grid,
         plot_receptance_agreement,
         save_figure,
     )
@@ -134,9 +168,10 @@ def write_figures(report, out_dir: str | Path, dpi: int = 100) -> dict[str, str]
                 fig, out, f"receptance_{direction}.png", dpi, save_figure
             )
     for route in report.passages:
-        signals = force_panels(report, route)
-        if signals:
-            fig, _ = plot_force_signals(signals)
+        grid = force_grid(report, route)
+        if grid:
+            labels = [_ylabel(row) for row in grid]
+            fig, _ = plot_force_grid(grid, labels)
             files[f"forces_{route}"] = _save(fig, out, f"forces_{route}.png", dpi, save_figure)
     files.update(_stiffness_figure(report, out, dpi))
     return files
@@ -178,6 +213,12 @@ def write_model_figure(report, turnout, out_dir: str | Path, dpi: int = 100) -> 
         params, x, route=load_route(turnout, route) if route else None, vehicle=load_vehicle()
     )
     return {"model": _save(ax.figure, Path(out_dir), "model_cross_section.png", dpi, save_figure)}
+
+
+def _ylabel(row) -> str:
+    """y label of a row of force panels: vertical, or lateral with its sign."""
+    column = next(p[2] for p in row if p is not None)
+    return "Fz on rail (kN)" if column.startswith("Fz") else "Fy on rail, + left (kN)"
 
 
 def _save(fig: Any, out: Path, name: str, dpi: int, save_figure) -> str:

@@ -26,7 +26,6 @@ computes them. Parts of the FE reference that are not in the package yet are rep
 from __future__ import annotations
 
 import dataclasses
-import importlib
 import math
 import sys
 import time
@@ -75,20 +74,45 @@ __all__ = [
     "pinned_pinned_frequency",
     "receptance_case_metrics",
     "passage_model_metrics",
+    "FENotAvailable",
+    "fe_availability",
+    "vehicle_static_load",
+    "run_passage",
+    "fe_passage_cache_key",
     "build_report",
     "write_report",
 ]
 
 #: Modules whose source is part of the cache key of FE results.
 _FE_CODE = ("exudyn_turnout.fe", "exudyn_turnout.inputs.turnout", "exudyn_turnout.receptance")
+#: The FE passage with the profile contact and the vehicles it carries: every module whose
+#: code changes its result (the wheel/rail package contributes all its files).
 _FE_PASSAGE_CODE = _FE_CODE + (
+    "exudyn_turnout.passage.fe_passage",
+    "exudyn_turnout.passage.fe_coupling",
     "exudyn_turnout.passage.fe_track",
     "exudyn_turnout.passage.simulate",
-    "exudyn_turnout.passage.contact_element",
+    "exudyn_turnout.passage.results",
+    "exudyn_turnout.passage.profile_contact",
+    "exudyn_turnout.passage.vehicle",
+    "exudyn_turnout.passage.full_vehicle_passage",
+    "exudyn_turnout.passage.vehicle_builder",
     "exudyn_turnout.inputs.vehicle",
-    "exudyn_turnout.wheel_rail.laws",
+    "exudyn_turnout.inputs.vehicle_model",
     "exudyn_turnout.inputs.routes",
+    "exudyn_turnout.wheel_rail",
 )
+#: Version of the report's FE passage (a new value invalidates every cached FE passage):
+#: 2 = the FE track under the co-running passage's vehicle and profile contact, vertical and
+#: lateral (:mod:`exudyn_turnout.passage.fe_passage`); 1 was the vertical height-table one.
+FE_PASSAGE_VERSION = 2
+#: Vehicles the report can run: the full Manchester vehicle (front wheelset's wheel plotted,
+#: as the paper) or the single benchmark wheelset under its sprung share (fast).
+VEHICLES = ("full", "wheelset")
+
+
+class FENotAvailable(RuntimeError):
+    """The FE passage cannot run in this version for this vehicle (reported as n/a)."""
 
 
 @dataclass(frozen=True)
@@ -107,8 +131,17 @@ class ReportConfig:
     time_step: float = 1e-4  #: s, co-running passages (the convergence check halves it)
     timing_repeats: int = 5  #: runs per co-running passage, best wall time taken
     fe_passage: bool = True  #: run the FE passage when the package has one
+    #: "full": the Manchester vehicle (its front wheelset's wheel is plotted, as the paper);
+    #: "wheelset": the single benchmark wheelset under its sprung share (fast, for tests)
+    vehicle: str = "full"
     criteria: Criteria = Criteria()
     cache_dir: str | None = None  #: None: no cache
+
+    def __post_init__(self):
+        if self.vehicle not in VEHICLES:
+            raise ValueError(
+                f"ReportConfig.vehicle must be one of {', '.join(VEHICLES)}, got {self.vehicle!r}"
+            )
 
     @property
     def frequencies(self) -> np.ndarray:
@@ -122,7 +155,8 @@ def report_config(quick: bool = False, cache_dir: str | Path | None = "default")
     ``cache_dir`` ``"default"`` is :func:`~exudyn_turnout.report.cache.default_cache_dir`;
     None disables the cache. Quick: 48 frequencies, a coarse FE mesh (quadratic elements,
     0.6 m, 6 m extensions), passages over the crossing only (the turnout file's
-    ``report.quick_passage_x``, resolved by :func:`resolve_config`), one timing run.
+    ``report.quick_passage_x``, resolved by :func:`resolve_config`), one timing run, the
+    single wheelset (the full report runs the full Manchester vehicle).
 
     Parameters
     ----------
@@ -152,7 +186,12 @@ def report_config(quick: bool = False, cache_dir: str | Path | None = "default")
         absorbing_length=6.0,
     )
     return ReportConfig(
-        quick=True, n_frequencies=48, fe_options=coarse, timing_repeats=1, cache_dir=cache
+        quick=True,
+        n_frequencies=48,
+        fe_options=coarse,
+        timing_repeats=1,
+        cache_dir=cache,
+        vehicle="wheelset",
     )
 
 
@@ -798,11 +837,12 @@ def receptance_section(
 
 
 def _settings(turnout: Turnout, config: ReportConfig, route: str, layers: int) -> PassageSettings:
-    """The report's co-running passage: the height-table contact, like the FE passage (which
-    has no profile contact yet), so that 2-layer, 3-layer and FE differ only in the track."""
+    """The report's passage on every track: the profile contact (S1002 on the turnout's rail
+    sections), as the FE passage has it too, so that 2-layer, 3-layer and FE differ only in
+    the track."""
     x = config.passage_x or (turnout.x_min, turnout.x_max)
     return PassageSettings(
-        contact="height-table",
+        contact="profile",
         route=route,
         layers=layers,
         speed_kmh=_speeds(config)[route],
@@ -812,6 +852,103 @@ def _settings(turnout: Turnout, config: ReportConfig, route: str, layers: int) -
     )
 
 
+def _fe_options(config: ReportConfig):
+    """The FE passage's options with the report's FE mesh."""
+    from exudyn_turnout.passage.fe_track import FEPassageOptions
+
+    return FEPassageOptions(mesh=config.fe_options)
+
+
+def _full_vehicle_track_keywords() -> set[str]:
+    """Keywords of ``simulate_vehicle_passage`` among ``track`` and ``fe_options``."""
+    import inspect
+
+    from exudyn_turnout.passage.full_vehicle_passage import simulate_vehicle_passage
+
+    return {"track", "fe_options"} & set(inspect.signature(simulate_vehicle_passage).parameters)
+
+
+#: Why the full vehicle's FE passage is n/a where the package has no ``track`` keyword for it.
+_NO_FULL_FE = "the full vehicle on the FE track is not available in this version"
+
+
+def fe_availability(config: ReportConfig) -> tuple[bool, str]:
+    """Whether the report's FE passage can run, and why not.
+
+    Parameters
+    ----------
+    config : ReportConfig
+        ``fe_passage`` and ``vehicle``.
+
+    Returns
+    -------
+    (bool, str)
+        True and "" when it can; False and the reason (one sentence) when not.
+    """
+    if not config.fe_passage:
+        return False, "FE passage switched off in this report"
+    if config.vehicle == "full" and "track" not in _full_vehicle_track_keywords():
+        return False, _NO_FULL_FE
+    return True, ""
+
+
+def run_passage(
+    turnout: Turnout, config: ReportConfig, route: str, track: str, settings=None
+) -> PassageResult:
+    """One passage of the report: ``config.vehicle`` on ``track`` with the profile contact.
+
+    Parameters
+    ----------
+    turnout : Turnout
+    config : ReportConfig
+        Resolved (:func:`resolve_config`): speeds, x range, time step, vehicle, FE mesh.
+    route : str
+        A report route.
+    track : {"2-layer", "3-layer", "fe"}
+        The track under the vehicle.
+    settings : PassageSettings, optional
+        Default: the report's settings of the route (profile contact); given, e.g., with a
+        halved time step for the convergence check.
+
+    Returns
+    -------
+    PassageResult
+        The single wheelset's, or the full vehicle's (the front wheelset's forces under the
+        single-wheelset column names).
+
+    Raises
+    ------
+    FENotAvailable
+        ``track="fe"`` with the full vehicle in a version whose
+        ``simulate_vehicle_passage`` has no ``track`` keyword.
+    """
+    layers = 3 if track == "fe" else int(track[0])
+    settings = settings or _settings(turnout, config, route, layers)
+    fe = {"fe_options": _fe_options(config)} if track == "fe" else {}
+    if config.vehicle == "wheelset":
+        return simulate_passage(turnout, settings, track=track, **fe)
+    from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
+    from exudyn_turnout.passage.full_vehicle_passage import simulate_vehicle_passage
+
+    model = load_vehicle_model()
+    settings = replace(settings, layers=layers)
+    keywords = _full_vehicle_track_keywords()
+    if track != "fe":
+        return simulate_vehicle_passage(turnout, settings, model)
+    if "track" not in keywords:
+        raise FENotAvailable(_NO_FULL_FE)
+    # keywords by name: the package may or may not have them (checked above)
+    extra: dict[str, Any] = {k: v for k, v in fe.items() if k in keywords}
+    extra["track"] = "fe"
+    import inspect
+
+    try:  # the call checked against the signature only: a TypeError in the run is a failure
+        inspect.signature(simulate_vehicle_passage).bind(turnout, settings, model, **extra)
+    except TypeError as err:
+        raise FENotAvailable(f"{_NO_FULL_FE} ({err})") from None
+    return simulate_vehicle_passage(turnout, settings, model, **extra)
+
+
 def _timed_co_running(
     turnout: Turnout, config: ReportConfig, route: str
 ) -> tuple[dict[str, PassageResult], dict[str, list[float]]]:
@@ -819,10 +956,12 @@ def _timed_co_running(
     wall time per model, and every run's wall time (s)."""
     best: dict[str, PassageResult] = {}
     walls: dict[str, list[float]] = {"2-layer": [], "3-layer": []}
+    # one untimed run first: it loads the route's contact tables (built once per machine,
+    # then read from disk), which would otherwise count against the first timed run
+    run_passage(turnout, config, route, "2-layer", _warm_up_settings(turnout, config, route))
     for _ in range(config.timing_repeats):
-        for layers in (2, 3):
-            r = simulate_passage(turnout, _settings(turnout, config, route, layers))
-            name = f"{layers}-layer"
+        for name in ("2-layer", "3-layer"):
+            r = run_passage(turnout, config, route, name)
             walls[name].append(_summary_float(r.summary, "wall_time_s"))
             if name not in best or _summary_float(r.summary, "wall_time_s") < _summary_float(
                 best[name].summary, "wall_time_s"
@@ -831,43 +970,80 @@ def _timed_co_running(
     return best, walls
 
 
-def _fe_passage_module():
-    """The FE passage module if there is one with ``simulate_fe_passage``, else (None, reason)."""
-    try:
-        module = importlib.import_module("exudyn_turnout.passage.fe_track")
-    except ImportError as err:
-        return None, f"no FE passage in this version: {err}"
-    if not hasattr(module, "simulate_fe_passage"):
-        return None, "exudyn_turnout.passage.fe_track has no simulate_fe_passage"
-    return module, ""
+def _warm_up_settings(turnout: Turnout, config: ReportConfig, route: str) -> PassageSettings:
+    """The report's settings of the route over its first 0.2 m (loads what the runs share)."""
+    settings = _settings(turnout, config, route, 2)
+    assert settings.x_start is not None
+    return replace(settings, x_end=min(settings.x_start + 0.2, settings.x_end or turnout.x_max))
 
 
-def _fe_passage_options(module, config: ReportConfig):
-    """The FE passage's options with the report's FE mesh, if the module has an options class."""
-    options = getattr(module, "FEPassageOptions", None)
-    return None if options is None else options(mesh=config.fe_options)
+def fe_passage_cache_key(
+    turnout: Turnout, settings: PassageSettings, config: ReportConfig, fe_slots: str | None = None
+) -> str:
+    """Cache key of the report's FE passage.
+
+    The turnout file's content, the passage settings (route, speed, x range, time step and
+    the contact model), the vehicle (``config.vehicle`` and, for the full vehicle, its
+    packaged file's content), the FE passage's options (mesh), :data:`FE_PASSAGE_VERSION`
+    and the source of every module that computes the result: a height-table FE result, or
+    one of another vehicle, is never reused.
+
+    Parameters
+    ----------
+    turnout : Turnout
+    settings : PassageSettings
+        The FE passage's settings.
+    config : ReportConfig
+        ``vehicle`` and ``fe_options``.
+    fe_slots : str, optional
+        The route's ``[layout.slots]`` key (default: the route's name).
+
+    Returns
+    -------
+    str
+        64 hex digits (:func:`~exudyn_turnout.report.cache.input_key`).
+    """
+    fe_slots = fe_slots or settings.route
+    parts = () if fe_slots == settings.route else (fe_slots,)
+    return input_key(
+        "fe_passage",
+        FE_PASSAGE_VERSION,
+        _fingerprint(turnout),
+        source_fingerprint(_FE_PASSAGE_CODE),
+        settings,
+        config.vehicle,
+        _vehicle_fingerprint(config.vehicle),
+        # whether the full vehicle's FE passage takes the report's mesh (fe_options) or not
+        sorted(_full_vehicle_track_keywords()) if config.vehicle == "full" else [],
+        _fe_options(config),
+        *parts,
+    )
+
+
+def _vehicle_fingerprint(vehicle: str) -> str:
+    """SHA-256 of the vehicle file the report loads ("" for the packaged wheelset, whose data
+    are in the code of :mod:`exudyn_turnout.inputs.vehicle`, part of the source fingerprint)."""
+    if vehicle != "full":
+        return ""
+    from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
+
+    return input_key(load_vehicle_model())
 
 
 def _cached_fe_passage(
     turnout: Turnout,
     settings: PassageSettings,
-    module,
     config: ReportConfig,
     cache: ResultCache,
     fe_slots: str | None = None,
 ) -> tuple[PassageResult, dict[str, Any]]:
     """FE passage (computed or from the cache); ``fe_slots``: the route's ``[layout.slots]`` key."""
-    options = _fe_passage_options(module, config)
-    fe_slots = fe_slots or settings.route
-    parts = () if fe_slots == settings.route else (fe_slots,)
-    key = input_key(
-        "fe_passage",
-        _fingerprint(turnout),
-        source_fingerprint(_FE_PASSAGE_CODE),
-        settings,
-        options,
-        *parts,
-    )
+    if fe_slots and fe_slots != settings.route:
+        raise FENotAvailable(
+            f"the FE passage couples to [layout.slots.{settings.route}]; the report's fe_slots "
+            f"{fe_slots!r} is not supported by the FE passage with the profile contact"
+        )
+    key = fe_passage_cache_key(turnout, settings, config, fe_slots)
     hit = cache.load(key)
     if hit is not None:
         arrays, meta = hit
@@ -878,10 +1054,7 @@ def _cached_fe_passage(
             tuple(meta["zone_starts"]),
         )
         return result, {"cached": True, "computed": meta["computed"]}
-    kwargs = {} if options is None else {"options": options}
-    if fe_slots != settings.route:  # the route's pairs under the name of its FE slot table
-        kwargs["route"] = replace(load_route(turnout, settings.route), name=fe_slots)
-    result = module.simulate_fe_passage(turnout, settings, **kwargs)
+    result = run_passage(turnout, config, settings.route, "fe", settings)
     info = {"cached": False, "computed": time.strftime("%Y-%m-%d %H:%M")}
     cache.save(
         key,
@@ -986,8 +1159,10 @@ def _vs_reference(
         if _column(q, wheel) in rc and math.isfinite(_number(rs, _peak_key(q, r, wheel)))
     ]
     return {
+        # |peak| / |peak_FE| - 1: the lateral peaks are signed (largest magnitude), so a
+        # larger force in the negative direction counts as larger, as a vertical one would
         "peak_relative": {
-            k: ag.relative_difference(float(result.summary[p]), float(rs[p]))
+            k: ag.relative_difference(abs(float(result.summary[p])), abs(float(rs[p])))
             for k, _, _, p in pairs
         },
         "rms_difference_N": {
@@ -1027,13 +1202,10 @@ def passage_section(
         JSON-ready metrics, and route -> model ("2-layer", "3-layer", "FE") -> PassageResult.
     """
     settings = settings or report_settings(turnout)
-    module, why = (
-        _fe_passage_module()
-        if config.fe_passage
-        else (None, "FE passage switched off in this report")
-    )
+    fe_ok, why = fe_availability(config)
     regions = dict(settings.regions)
-    static = load_vehicle().static_wheel_load
+    static = vehicle_static_load(config.vehicle)
+    every = tuple((q, r) for q in FORCES for r in REGIONS)
     metrics: dict[str, Any] = {
         "speeds_kmh": _speeds(config),
         "regions_m": regions,
@@ -1042,32 +1214,38 @@ def passage_section(
         "radius_m": {r.name: r.radius for r in settings.routes},
         "speeds_note": settings.speeds_note,
         "impact_route": settings.impact_route,
-        "fe_available": module is not None,
+        "lateral_route": settings.lateral_route,
+        "fe_available": fe_ok,
         "fe_note": why,
         "wheel": {r.name: r.wheel for r in settings.routes},
         "x_range_m": list(config.passage_x or (turnout.x_min, turnout.x_max)),
+        "contact": "profile",
+        "vehicle": config.vehicle,
+        "vehicle_name": _vehicle_name(config.vehicle),
+        "static_wheel_load_N": static,
+        "fe_coupling": "exact one-step co-simulation (exudyn_turnout.passage.fe_coupling)",
     }
     results: dict[str, dict[str, PassageResult]] = {}
     for rr in settings.routes:
-        route, signals = rr.name, rr.signals
+        route = rr.name
         results[route], walls = _timed_co_running(turnout, config, route)
         fe_info = None
-        if module is not None:
-            fe_settings = _settings(turnout, config, route, 3)
+        if fe_ok:
             fe_result, fe_info = _run_fe_passage(
-                turnout, fe_settings, module, config, cache, rr.fe_slots
+                turnout, _settings(turnout, config, route, 3), config, cache, rr.fe_slots
             )
             if fe_result is not None:
                 results[route]["FE"] = fe_result
         ref = results[route].get("FE")
         models = {
             m: passage_model_metrics(
-                res, signals, regions, config.criteria, static, ref if m != "FE" else None, rr.wheel
+                res, every, regions, config.criteria, static, ref if m != "FE" else None, rr.wheel
             )
             for m, res in results[route].items()
         }
         metrics["routes"][route] = {
-            "signals": [_signal_key(q, r) for q, r in signals],
+            "signals": [_signal_key(q, r) for q, r in rr.signals],
+            "all_signals": [_signal_key(q, r) for q, r in every],
             "fe": fe_info,
             "models": models,
             "wheel": rr.wheel,
@@ -1081,6 +1259,45 @@ def passage_section(
     return metrics, results
 
 
+def vehicle_static_load(vehicle: str) -> float:
+    """Static wheel load (N) of the report's vehicle on level track.
+
+    Parameters
+    ----------
+    vehicle : {"full", "wheelset"}
+        The full Manchester vehicle (M g / 8) or the single wheelset ((m_w + m_s) g / 2).
+
+    Returns
+    -------
+    float
+        N.
+    """
+    if vehicle == "full":
+        from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
+
+        return float(load_vehicle_model().static_wheel_load)
+    return float(load_vehicle().static_wheel_load)
+
+
+def _vehicle_mass(vehicle: str) -> float:
+    """kg, the full vehicle's total mass, or the single wheelset's m_w + m_s."""
+    if vehicle == "full":
+        from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
+
+        return float(load_vehicle_model().total_mass)
+    v = load_vehicle()
+    return float(v.m_w + v.m_s)
+
+
+def _vehicle_name(vehicle: str) -> str:
+    if vehicle == "full":
+        from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
+
+        m = load_vehicle_model()
+        return f"{m.name} ({m.n_wheelsets} wheelsets, {m.total_mass:.0f} kg)"
+    return "Manchester benchmark wheelset under its sprung share"
+
+
 def _lateral_acceleration(turnout: Turnout, config: ReportConfig) -> dict[str, float]:
     """v^2 |curvature|max (m/s^2) per route at the report's speeds (no cant)."""
     out = {}
@@ -1090,12 +1307,23 @@ def _lateral_acceleration(turnout: Turnout, config: ReportConfig) -> dict[str, f
     return out
 
 
-def _run_fe_passage(turnout, settings, module, config, cache, fe_slots=None):
+def _run_fe_passage(turnout, settings, config, cache, fe_slots=None):
     try:
-        return _cached_fe_passage(turnout, settings, module, config, cache, fe_slots)
-    except Exception as err:  # an FE passage still in development must not stop the report
+        return _cached_fe_passage(turnout, settings, config, cache, fe_slots)
+    except FENotAvailable as err:
+        _log(f"FE passage n/a: {err}")
+        return None, {"note": str(err)}
+    except Exception as err:  # an FE passage that fails must not stop the report
         _log(f"FE passage failed: {err!r}")
-        return None, {"error": repr(err)}
+        return None, {"error": _one_line(err)}
+
+
+def _one_line(err: Exception) -> str:
+    """The error's type and message on one line, without a traceback that Exudyn appends
+    (its ``At:`` block) to an error raised in a user function."""
+    text = str(err).split("\nAt:")[0]
+    lines = [x.strip() for x in text.splitlines() if x.strip()]
+    return f"{type(err).__name__}: " + " ".join(lines)
 
 
 # --- 5 computing cost, 6 checks -------------------------------------------------------
@@ -1139,6 +1367,16 @@ def cost_metrics(
         "best_ratio_3_over_2": {route: w["3-layer"] / w["2-layer"] for route, w in wall.items()},
         "ratio_FE_over_3": {
             route: w["FE"] / median[route]["3-layer"] for route, w in wall.items() if "FE" in w
+        },
+        "fe_run": {
+            route: {
+                "n_dof": res["FE"].summary.get("n_dof"),
+                "time_step_s": res["FE"].summary.get("time_step_s"),
+                "n_steps": res["FE"].summary.get("n_steps"),
+                "wall_time_parts_s": res["FE"].summary.get("wall_time_parts_s"),
+            }
+            for route, res in passages.items()
+            if "FE" in res
         },
         "dof_per_zone": dof,
         "extra_dof_per_zone": {z: d["3-layer"] - d["2-layer"] for z, d in dof.items()},
@@ -1189,8 +1427,12 @@ def convergence_metrics(
             base = passages[route][
                 f"{layers}-layer"
             ]  # the report's run, same settings but the step
-            half = simulate_passage(
-                turnout, replace(base.settings, time_step=0.5 * config.time_step)
+            half = run_passage(
+                turnout,
+                config,
+                route,
+                f"{layers}-layer",
+                replace(base.settings, time_step=0.5 * config.time_step),
             )
             peaks = {}
             for q, r in rr.signals:
@@ -1218,15 +1460,18 @@ def static_checks(
     passages: Mapping[str, Mapping[str, PassageResult]],
     receptance: Mapping,
     criteria: Criteria,
+    vehicle: str = "wheelset",
 ) -> dict[str, Any]:
-    """Static wheel loads at the start of every passage vs (m_w + m_s) g / 2.
+    """Static wheel loads at the start of every passage vs the vehicle's static wheel load.
 
+    The single wheelset's is (m_w + m_s) g / 2, the full vehicle's M g / 8 (front wheelset).
     And the co-running models' static stiffness relative to FE's.
 
     The criterion is on the mean of the two wheels (vertical equilibrium of the vehicle);
     each wheel's own difference (the split between them) is reported beside it.
     """
     v = load_vehicle()
+    expected = vehicle_static_load(vehicle)
     loads = {}
     for route, res in passages.items():
         for m, r in res.items():
@@ -1238,9 +1483,9 @@ def static_checks(
                 "right_N": right,
                 "left_N": left,
                 "mean_N": 0.5 * (right + left),
-                "right_relative": ag.relative_difference(right, v.static_wheel_load),
-                "left_relative": ag.relative_difference(left, v.static_wheel_load),
-                "mean_relative": ag.relative_difference(0.5 * (right + left), v.static_wheel_load),
+                "right_relative": ag.relative_difference(right, expected),
+                "left_relative": ag.relative_difference(left, expected),
+                "mean_relative": ag.relative_difference(0.5 * (right + left), expected),
             }
     ok = all(abs(x["mean_relative"]) <= criteria.static_tolerance for x in loads.values())
     stiff = {
@@ -1261,9 +1506,11 @@ def static_checks(
         for route, x in starts.items()
     }
     return {
+        "vehicle": vehicle,
         "m_w_kg": v.m_w,
         "m_s_kg": v.m_s,
-        "expected_static_wheel_load_N": v.static_wheel_load,
+        "vehicle_mass_kg": _vehicle_mass(vehicle),
+        "expected_static_wheel_load_N": expected,
         "static_wheel_load": loads,
         "static_wheel_load_ok": ok,
         "start_x_m": starts,
@@ -1315,7 +1562,9 @@ def build_report(turnout: Turnout | None = None, config: ReportConfig = ReportCo
         turnout, passages, metrics["receptance"], metrics["passage"], config
     )
     metrics["convergence"] = convergence_metrics(turnout, passages, config, settings)
-    metrics["checks"] = static_checks(turnout, passages, metrics["receptance"], config.criteria)
+    metrics["checks"] = static_checks(
+        turnout, passages, metrics["receptance"], config.criteria, config.vehicle
+    )
     claims = tuple(evaluate_claims(metrics, config.criteria))
     metrics["claims"] = [dataclasses.asdict(c) for c in claims]
     metrics["compute_wall_time_s"] = time.perf_counter() - t0
@@ -1330,6 +1579,23 @@ def _config_metrics(config: ReportConfig) -> dict[str, Any]:
     if d["cache_dir"] and d["cache_dir"].startswith(home + "/"):  # no home path in metrics.json
         d["cache_dir"] = "~" + d["cache_dir"][len(home) :]
     return d
+
+
+def _source_links(out: Path, files: tuple[str, ...]) -> dict[str, str]:
+    """Repository path -> path relative to ``out`` of the package's source files, when the
+    report is written inside the repository holding the package (none otherwise)."""
+    import os
+
+    root = Path(__file__).resolve().parents[2]  # the folder holding exudyn_turnout/
+    try:
+        Path(out).resolve().relative_to(root)
+    except ValueError:
+        return {}
+    return {
+        f: Path(os.path.relpath(root / f, Path(out).resolve())).as_posix()
+        for f in files
+        if (root / f).is_file()
+    }
 
 
 def write_report(
@@ -1362,6 +1628,7 @@ def write_report(
     figures.update(write_model_figure(report, turnout or load_turnout(), out))
     report.metrics["report_wall_time_s"] = time.perf_counter() - t0
     (out / "metrics.json").write_text(to_json(report.metrics), encoding="utf-8")
-    (out / "report.md").write_text(render_markdown(report, figures), encoding="utf-8")
+    links = _source_links(out, ("exudyn_turnout/passage/fe_coupling.py",))
+    (out / "report.md").write_text(render_markdown(report, figures, links), encoding="utf-8")
     _log(f"wrote {out / 'report.md'} in {report.metrics['report_wall_time_s']:.0f} s")
     return report

@@ -165,6 +165,11 @@ class ReportSettings:
         """The first route whose vertical force at the crossing is plotted (claim F4), or None."""
         return next((r.name for r in self.routes if ("Fz", "crossing") in r.signals), None)
 
+    @property
+    def lateral_route(self) -> str | None:
+        """The first route whose lateral force at the crossing is plotted (claim F6), or None."""
+        return next((r.name for r in self.routes if ("Fy", "crossing") in r.signals), None)
+
 
 def _filename(turnout: Turnout) -> str:
     return Path(str(turnout.source)).name
