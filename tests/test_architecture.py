@@ -27,6 +27,7 @@ EXUDYN_BUILDERS = {
     "passage/full_vehicle_passage.py",
     "passage/fe_passage.py",
     "passage/hunting.py",
+    "passage/fe_vehicle_passage.py",
 }
 #: The one module allowed to import matplotlib (the figure modules get it from there).
 FIGURE_MODULES = {"plotting/backend.py"}

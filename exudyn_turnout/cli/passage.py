@@ -84,8 +84,6 @@ def _run(args: argparse.Namespace) -> int:
     track = args.track or f"{args.layers}-layer"
     layers = args.layers if track == "fe" else int(track[0])
     settings = settings_from_args(args, layers=layers, source=args.source)
-    if track == "fe" and model is not None:
-        raise UsageError("--track fe runs the single wheelset for now (not a full vehicle)")
     if track == "fe" and (
         settings.contact != "profile" or getattr(args, "parameters", None) is not None
     ):
@@ -108,7 +106,7 @@ def _run(args: argparse.Namespace) -> int:
             return simulate_passage(turnout, settings, vehicle=vehicle, progress=bar, track=track)
         from exudyn_turnout.passage.full_vehicle_passage import simulate_vehicle_passage
 
-        return simulate_vehicle_passage(turnout, settings, model, progress=bar)
+        return simulate_vehicle_passage(turnout, settings, model, progress=bar, track=track)
 
     return run_passage_command(
         args,

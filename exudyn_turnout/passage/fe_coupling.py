@@ -235,21 +235,50 @@ class _Plane:
         n = model.n_dof
         self.u, self.v, self.qdd, self.a = (np.zeros(n) for _ in range(4))
         self.u_hat, self.v_hat, self.qdd_star = np.zeros(n), np.zeros(n), np.zeros(n)
-        self._columns: dict[tuple, np.ndarray] = {}
+        self._columns: dict[tuple, np.ndarray] = {}  #: (dofs, other, factor) -> A^-1 E
 
-    def columns(self, dofs: np.ndarray) -> np.ndarray:
-        """A^-1 of the unit vectors of ``dofs`` (n, len(dofs)), cached per DOF set."""
-        key = tuple(int(d) for d in dofs)
+    def columns(
+        self, dofs: np.ndarray, other: np.ndarray | None = None, factor: float = 0.0
+    ) -> np.ndarray:
+        """A^-1 of the unit vectors of ``dofs`` (plus ``factor`` times those of ``other``).
+
+        Parameters
+        ----------
+        dofs : numpy.ndarray
+            (k,) DOF indices.
+        other : numpy.ndarray, optional
+            (k,) DOFs whose unit vectors are added, times ``factor``, column by column
+            (a rail node's lateral displacement and roll: the head's lateral motion).
+        factor : float
+            Weight of ``other``.
+
+        Returns
+        -------
+        numpy.ndarray
+            (n, k), cached per (dofs, other, factor).
+        """
+        first = tuple(int(d) for d in dofs)
+        second = tuple(int(d) for d in other) if other is not None else ()
+        key = (first, second, float(factor))
         cols = self._columns.get(key)
         if cols is None:
-            E = np.zeros((self.model.n_dof, len(key)))
-            E[list(key), np.arange(len(key))] = 1.0
+            k = len(first)
+            E = np.zeros((self.model.n_dof, k))
+            E[list(first), np.arange(k)] = 1.0
+            if second:
+                E[list(second), np.arange(k)] += factor
             cols = self._columns[key] = self.lu.solve(E)
         return cols
 
     def forget(self, keep: set) -> None:
-        """Drop the cached columns of DOF sets not in ``keep``."""
-        for key in [k for k in self._columns if k not in keep]:
+        """Drop the cached columns whose DOF sets are not in ``keep``.
+
+        Parameters
+        ----------
+        keep : set of tuple
+            DOF sets (tuples of int) still in use.
+        """
+        for key in [k for k in self._columns if k[0] not in keep]:
             del self._columns[key]
 
     def predict(self) -> None:
@@ -425,9 +454,8 @@ class FECoSimulation:
         """A^-1 g of a point's lateral and vertical unit loads (lateral, vertical plane)."""
         N = point.weights
         x_z = self.vertical.columns(point.w_dofs) @ N
-        x_y = self.lateral.columns(point.v_dofs) @ N
-        if point.roll_dofs is not None:
-            x_y = x_y - point.z * (self.lateral.columns(point.roll_dofs) @ N)
+        # the head's lateral unit load: v and, with torsion, -z times the roll (T1, T2)
+        x_y = self.lateral.columns(point.v_dofs, point.roll_dofs, -point.z) @ N
         return x_y, x_z
 
     @staticmethod
@@ -499,8 +527,6 @@ class FECoSimulation:
             for p in coupled.points:
                 keep.add(tuple(int(d) for d in p.w_dofs))
                 keep.add(tuple(int(d) for d in p.v_dofs))
-                if p.roll_dofs is not None:
-                    keep.add(tuple(int(d) for d in p.roll_dofs))
         self.vertical.forget(keep)
         self.lateral.forget(keep)
         self.t_next = float(t_next)

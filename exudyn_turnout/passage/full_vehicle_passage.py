@@ -78,6 +78,7 @@ from exudyn_turnout.passage.profile_contact import (
     RouteContact,
 )
 from exudyn_turnout.passage.results import (
+    TRACKS,
     PassageError,
     PassageFailure,
     PassageResult,
@@ -104,6 +105,11 @@ __all__ = [
     "DUMMY_MASS",
     "DUMMY_STIFFNESS",
     "newton_tolerance",
+    "vehicle_summary",
+    "WheelsetContactElement",
+    "BodyLoads",
+    "add_vehicle_loads",
+    "set_initial_vehicle",
 ]
 
 #: kg, mass of each of the contact element's two unused sprung-mass coordinates.
@@ -203,7 +209,7 @@ def _offsets(
     return lat - l_ref - h_ref * (x_points - x_ref), h - h_ref
 
 
-class _WheelsetContact(ProfileContactElement):
+class WheelsetContactElement(ProfileContactElement):
     """The profile contact element with its position clamped to the turnout's start and,
     for a solve at speed, frozen (x = x0 whatever t)."""
 
@@ -272,7 +278,20 @@ class _WheelsetContact(ProfileContactElement):
     @classmethod
     def of(
         cls, element: ProfileContactElement, x_clamp: float, x_clamp_end: float = math.inf
-    ) -> _WheelsetContact:
+    ) -> WheelsetContactElement:
+        """The element ``element`` as a wheelset's contact, clamped to [x_clamp, x_clamp_end].
+
+        Parameters
+        ----------
+        element : ProfileContactElement
+            The wheelset's contact element (its state is shared, not copied).
+        x_clamp, x_clamp_end : float
+            m, the turnout's start and end: the contact tables' range.
+
+        Returns
+        -------
+        WheelsetContactElement
+        """
         out = cls.__new__(cls)
         out.__dict__.update(element.__dict__)
         out.x_clamp = x_clamp
@@ -294,7 +313,7 @@ class _Contacts:
     object's last coordinates: one Python call fewer per residual evaluation.
     """
 
-    def __init__(self, elements: list[_WheelsetContact], stops: tuple | None = None):
+    def __init__(self, elements: list[WheelsetContactElement], stops: tuple | None = None):
         self.elements = list(elements)
         ends = np.cumsum([el.n for el in self.elements])
         self.spans = [(int(b - el.n), int(b)) for el, b in zip(self.elements, ends)]
@@ -394,7 +413,7 @@ class _Contacts:
         return f_q * jac_q + f_q_t * jac_q_t
 
 
-class _BodyLoads:
+class BodyLoads:
     """Force function on the vehicle's nodes: K q_geo + D q_geo_t, -m v^2 kappa on car body
     and bogies (module docstring).
 
@@ -447,7 +466,13 @@ class _BodyLoads:
         1 cm grid ``x``, shared by a run's segments through ``cache``: a step then
         interpolates them linearly (two vector operations) instead of evaluating the route's
         geometry (the loads vary over metres: at most ~0.1 N off the exact ones). Only
-        running and in a curve (the static solves evaluate them exactly)."""
+        running and in a curve (the static solves evaluate them exactly).
+
+        Parameters
+        ----------
+        cache : dict
+            Shared by the segments of a run (filled on the first call).
+        """
         if not self.curved or self.frozen:
             return
         key = (float(self.x[0]), self.x.size, self.v)
@@ -471,12 +496,34 @@ class _BodyLoads:
         return f[i] + w * (f[i + 1] - f[i]), q_geo[i] + w * (q_geo[i + 1] - q_geo[i])
 
     def geometry(self, x_front: float) -> np.ndarray:
-        """q_geo: the unstrained vehicle's coordinates in the track-following frame."""
+        """q_geo: the unstrained vehicle's coordinates in the track-following frame.
+
+        Parameters
+        ----------
+        x_front : float
+            m, the front wheelset's position.
+
+        Returns
+        -------
+        numpy.ndarray
+            m and rad, per vehicle coordinate.
+        """
         return self.geometries(np.array([x_front]))[0]
 
     def geometries(self, x_front: np.ndarray) -> np.ndarray:
         """:meth:`geometry` at several front positions at once (one row each), with one
-        interpolation of the integrated curvature for all of them (the same numbers)."""
+        interpolation of the integrated curvature for all of them (the same numbers).
+
+        Parameters
+        ----------
+        x_front : numpy.ndarray
+            m, front wheelset positions.
+
+        Returns
+        -------
+        numpy.ndarray
+            (positions, coordinates).
+        """
         x_front = np.asarray(x_front, float)
         q_geo = np.zeros((len(x_front), self.n))
         if not self.curved:
@@ -490,7 +537,17 @@ class _BodyLoads:
         return q_geo
 
     def geometry_at(self, t: float) -> np.ndarray:
-        """q_geo at time t (cached per t; the forces' own when they were computed at t)."""
+        """q_geo at time t (cached per t; the forces' own when they were computed at t).
+
+        Parameters
+        ----------
+        t : float
+            s.
+
+        Returns
+        -------
+        numpy.ndarray
+        """
         if t != self._t_geo:
             self._t_geo = t
             x = self.x_f0 if self.frozen else self.x_f0 + self.v * t
@@ -499,7 +556,19 @@ class _BodyLoads:
 
     def forces(self, x_front: float, factor: float = 1.0) -> np.ndarray:
         """Generalised forces (N, N m) on the vehicle's coordinates with the front at x_front:
-        K q_geo + D q_geo_t and ``factor`` times the curving loads."""
+        K q_geo + D q_geo_t and ``factor`` times the curving loads.
+
+        Parameters
+        ----------
+        x_front : float
+            m, the front wheelset's position.
+        factor : float
+            Share of the curving loads (a static solve ramps them up).
+
+        Returns
+        -------
+        numpy.ndarray
+        """
         if self.curved and not self.frozen:  # damping: D q_geo_t, q_geo_t = v dq_geo/dx
             h = _GEOMETRY_STEP
             q_geo, ahead, behind = self.geometries(np.array([x_front, x_front + h, x_front - h]))
@@ -544,12 +613,12 @@ class _System:
     container: Any
     mbs: Any
     places: tuple[_Place, ...]
-    elements: list  #: per wheelset, its _WheelsetContact
+    elements: list  #: per wheelset, its WheelsetContactElement
     params: list  #: per wheelset, its track's CoRunningParameters
     slots: list  #: per wheelset, rail slots of its element in coordinate order
     names: dict  #: node name -> node ("car_body", "bogie1", "ws1", "t1:sleeper", "t1:m0_r1")
     sensors: list  #: per wheelset, (coordinate sensors, velocity sensors) of its element nodes
-    body_loads: _BodyLoads
+    body_loads: BodyLoads
     x_front: float  #: m, front wheelset's position at t = 0
 
 
@@ -608,7 +677,7 @@ def _build(
             raw, slots = contact.element(vehicle, route, place.zone, x_i, v, settings.irregularity)
         except ValueError as err:
             raise PassageError(str(err)) from None
-        element = _WheelsetContact.of(raw, turnout.x_min, turnout.x_max)
+        element = WheelsetContactElement.of(raw, turnout.x_min, turnout.x_max)
         element.frozen = frozen
         dummy = int(
             mbs.AddNode(
@@ -653,7 +722,7 @@ def _build(
     stiffness = np.asarray(stiffness.GetPythonObject(), float)
     damping = mbs.GetObjectParameter(build.items["suspension"], "dampingMatrix")
     damping = np.asarray(damping.GetPythonObject(), float)
-    loads = _BodyLoads(build, stiffness, damping, route, x_front, v, *x_range)
+    loads = BodyLoads(build, stiffness, damping, route, x_front, v, *x_range)
     loads.frozen = frozen
     if tables is not None:
         loads.tabulate(tables)
@@ -679,17 +748,17 @@ def _build(
             jacobianUserFunction=contacts.jacobian_function,
         )
     )
-    keep = _add_vehicle_loads(mbs, build, loads) if loads.curved else ()
+    keep = add_vehicle_loads(mbs, build, loads) if loads.curved else ()
     mbs.variables["exudyn_turnout.full_vehicle_passage"] = (contacts, loads, keep)
     mbs.Assemble()
     system = _System(
         container, mbs, places, elements, params_all, slots_all, names, sensors, loads, x_front
     )
-    _set_initial_vehicle(system, build)
+    set_initial_vehicle(system, build)
     return system
 
 
-def _add_vehicle_loads(mbs, build, loads: _BodyLoads) -> tuple:
+def add_vehicle_loads(mbs, build, loads: BodyLoads) -> tuple:
     """The curving loads (``loads``) and the lateral bumpstops of ``vehicle_builder`` on the
     vehicle's bodies, the bumpstops acting on q - q_geo (track-following frame: a bumpstop
     sees the car body's displacement relative to the unstrained vehicle).
@@ -697,7 +766,19 @@ def _add_vehicle_loads(mbs, build, loads: _BodyLoads) -> tuple:
     For a curve (on straight track the loads are zero and the bumpstops ride on the contacts'
     object, :class:`_Contacts`): one ObjectGenericODE2 on all bodies carries both (one
     Python call per residual evaluation); its Jacobian is the bumpstops' (the loads depend
-    on t only). Returns the user functions (to keep them alive).
+    on t only).
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+    build : VehicleBuild
+        From :func:`~exudyn_turnout.passage.vehicle_builder.add_vehicle_model`.
+    loads : BodyLoads
+
+    Returns
+    -------
+    tuple
+        The user functions (keep them alive as long as the system).
     """
     from exudyn.itemInterface import ObjectGenericODE2
 
@@ -741,8 +822,16 @@ def _add_vehicle_loads(mbs, build, loads: _BodyLoads) -> tuple:
     return forceUserFunction, jacobianUserFunction
 
 
-def _set_initial_vehicle(system: _System, build) -> None:
-    """Vehicle at the rigid-track equilibrium, each wheelset lowered to touch its rails."""
+def set_initial_vehicle(system: _System, build) -> None:
+    """Vehicle at the rigid-track equilibrium, each wheelset lowered to touch its rails.
+
+    Parameters
+    ----------
+    system : object
+        With ``mbs`` and ``elements`` (per wheelset, its contact element).
+    build : VehicleBuild
+        From :func:`~exudyn_turnout.passage.vehicle_builder.add_vehicle_model`.
+    """
     import exudyn as exu
 
     mbs = system.mbs
@@ -1075,12 +1164,17 @@ def simulate_vehicle_passage(
     settings: PassageSettings,
     vehicle_model: VehicleModel,
     progress: Callable[[float, float], None] | None = None,
+    *,
+    track: str | None = None,
+    fe_options=None,
 ) -> PassageResult:
     """Run the full vehicle through the turnout, a co-running track under every wheelset.
 
     See the module docstring for the model. ``settings.x_start`` / ``x_end`` are the front
     wheelset's positions (default: the turnout's start and end); wheelsets behind the
-    turnout's start are on plain track. Profile contact only.
+    turnout's start are on plain track. Profile contact only. With ``track="fe"`` the same
+    vehicle and contacts run on the FE turnout track instead
+    (:func:`~exudyn_turnout.passage.fe_vehicle_passage.simulate_fe_vehicle_passage`).
 
     Parameters
     ----------
@@ -1092,6 +1186,10 @@ def simulate_vehicle_passage(
         :func:`~exudyn_turnout.inputs.vehicle_model.load_vehicle_model`.
     progress : callable(fraction, x), optional
         Called about every 2 % of each segment's run.
+    track : {"2-layer", "3-layer", "fe"}, optional
+        Default: ``settings.layers`` layers of co-running track under every wheelset.
+    fe_options : FEPassageOptions, optional
+        Mesh options of the FE track (``track="fe"`` only).
 
     Returns
     -------
@@ -1109,6 +1207,10 @@ def simulate_vehicle_passage(
     PassageError
         Bad settings (one line), a vehicle without car body, or a solver failure.
     """
+    if track is not None and track not in TRACKS:
+        raise PassageError(f"track must be one of {', '.join(TRACKS)}, got {track!r}")
+    if track in ("2-layer", "3-layer"):
+        settings = replace(settings, layers=int(track[0]))
     if vehicle_model.car_body is None:
         raise PassageError(f"{vehicle_model.name}: not a full vehicle (no car body)")
     if settings.contact != "profile":
@@ -1132,6 +1234,13 @@ def simulate_vehicle_passage(
     for text in speed_warnings(route, settings.speed_kmh, x_a, x_b):
         warnings.warn(text, SpeedWarning, stacklevel=2)
     wall = time.perf_counter()
+    if track == "fe":
+        from exudyn_turnout.passage.fe_vehicle_passage import simulate_fe_vehicle_passage
+
+        with _QuietExudyn():
+            return simulate_fe_vehicle_passage(
+                turnout, settings, vehicle_model, fe_options, progress=progress
+            )
     with _QuietExudyn():
         return _simulate(turnout, settings, vehicle_model, base, route, x_a, x_b, progress, wall)
 
@@ -1187,6 +1296,39 @@ def _simulate(turnout, settings, model, base, route, x_a, x_b, progress, wall) -
         state, previous, t_prev = _state(system), system, duration
         t_offset += duration
     columns = _join(segments)
+    summary = vehicle_summary(turnout, settings, model, columns, static_loads, wall)
+    return PassageResult(settings, columns, summary, tuple(starts))
+
+
+def vehicle_summary(
+    turnout: Turnout,
+    settings: PassageSettings,
+    model: VehicleModel,
+    columns: Mapping[str, np.ndarray],
+    static_loads: list,
+    wall: float,
+) -> dict:
+    """Summary of a full vehicle's passage: the front wheelset's, then per wheelset peaks.
+
+    Parameters
+    ----------
+    turnout : Turnout
+    settings : PassageSettings
+    model : VehicleModel
+    columns : mapping
+        The run's columns (``Fz_wsk_<wheel>_N``, ``x_wsk_m``...).
+    static_loads : list of dict
+        Per wheelset, "left" and "right" static wheel loads (N).
+    wall : float
+        s, ``time.perf_counter()`` at the start of the run.
+
+    Returns
+    -------
+    dict
+        :func:`~exudyn_turnout.passage.results.passage_summary` of the front wheelset plus
+        ``peak_<Fz|Fy>_<region>_wsk_<wheel>_N``, ``static_wheel_load_wsk_<wheel>_N``,
+        ``vehicle`` and ``wheelsets``.
+    """
     front = static_loads[0]
     summary = passage_summary(columns, turnout, settings, front, time.perf_counter() - wall)
     regions = {name: turnout.regions[name] for name in ("switch", "crossing")}
@@ -1202,5 +1344,5 @@ def _simulate(turnout, settings, model, base, route, x_a, x_b, progress, wall) -
                         own, f"{q}_{wheel}", rng, signed
                     )
     summary["vehicle"] = model.name
-    summary["wheelsets"] = len(offsets)
-    return PassageResult(settings, columns, summary, tuple(starts))
+    summary["wheelsets"] = len(static_loads)
+    return summary

@@ -1,0 +1,392 @@
+"""The full vehicle through the turnout on the FE track (every wheelset on the one FE model).
+
+The vehicle of :mod:`~exudyn_turnout.passage.full_vehicle_passage` (car body, bogies,
+wheelsets; the same build, the same body loads and bumpstops, the same contact element
+per wheelset) runs over the FE turnout track of :mod:`~exudyn_turnout.passage.fe_coupling`
+instead of a co-running track per wheelset: all wheelsets load the one FE model, which
+carries each wheelset's deflection basin to its neighbours (the wheelsets of a bogie,
+2.56 m apart, deflect each other's rails).
+
+::
+
+        car body                         Exudyn (as the co-running full vehicle)
+     ___|_______|___
+    |  bogie 1      |  bogie 2 ...
+    o-------o           o-------o         wheelsets ws1..ws4, profile contact each
+   =|=======|===========|=======|======   one FE track: r_i = r_free,i + C_ii F_i per step
+      FE vertical + lateral planes, rail torsion; plain-track extensions beyond the turnout
+
+Coupling per step: every wheelset's contact element solves its rail coordinates from its
+own one-step compliance C_ii; the cross terms C_ij (i != j) of the one-step compliance are
+left out: a step's response of the rail decays within centimetres (h = 1e-4 s: the rail's
+bending waves travel ~1-10 cm), the wheelsets are >= 2.5 m apart (the run records the
+largest |C_ij| / |C_ii| at the start to show it). Everything earlier steps did reaches the
+other wheelsets through the FE state (r_free). In the static solves the cross terms are in
+(K^-1 reaches metres).
+
+Wheelsets beyond the turnout's ends (the rear ones while the front is at the switch, the
+front ones after x_max) touch the plain rail's section at the end (the contact tables'
+range) and load the FE model's plain-track extension at their own x: the extension is
+lengthened to the vehicle's length plus 3 m where the default is shorter.
+
+The start is the co-running full vehicle's: static equilibrium at rest (lateral position
+and spin held), then the static solve with the creep forces at speed (spin held), all with
+the FE's static compliance; the FE field then moves with the vehicle (convected velocity).
+A start in a curve that needs the dynamic relaxation of the co-running passage is refused
+(start the run where the vehicle stands on straight track).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+
+from exudyn_turnout.inputs.routes import Route, load_route
+from exudyn_turnout.inputs.turnout import Turnout
+from exudyn_turnout.inputs.vehicle import load_vehicle
+from exudyn_turnout.inputs.vehicle_model import VehicleModel
+from exudyn_turnout.passage.fe_coupling import (
+    FEContactElement,
+    FECoSimulation,
+    build_fe_planes,
+    run_progress,
+)
+from exudyn_turnout.passage.results import (
+    PassageError,
+    PassageFailure,
+    PassageResult,
+    PassageSettings,
+    check_plausible,
+)
+
+__all__ = ["simulate_fe_vehicle_passage", "EXTENSION_MARGIN"]
+
+#: m, the FE model's plain-track extension reaches this far beyond the vehicle's length.
+EXTENSION_MARGIN = 3.0
+
+
+@dataclass
+class _Vehicle:
+    """One Exudyn system of the vehicle with its coupled contact elements."""
+
+    mbs: Any  #: exudyn.MainSystem
+    container: Any  #: exudyn.SystemContainer
+    build: Any  #: VehicleBuild
+    elements: list  #: per wheelset, its WheelsetContactElement
+    coupled: list  #: per wheelset, its FEContactElement
+    index: list  #: per wheelset, global ODE2 indices of the element's 7 vehicle coordinates
+    keep: tuple  #: user functions to keep alive
+
+
+def _fe_position(element) -> Callable[[float], float]:
+    """The wheelset's own x on the FE track (not clamped to the tables' range)."""
+
+    def position(t: float) -> float:
+        return element.x0 if element.frozen else element.x0 + element.v * t
+
+    return position
+
+
+def _build(turnout, route, model, vehicle, contact, settings, track, x_range, x_front, v, frozen):
+    import exudyn as exu
+    from exudyn.itemInterface import NodeGenericODE2, ObjectGenericODE2
+
+    from exudyn_turnout.passage.fe_passage import fe_contact_element
+    from exudyn_turnout.passage.full_vehicle_passage import (
+        DUMMY_MASS,
+        DUMMY_STIFFNESS,
+        BodyLoads,
+        WheelsetContactElement,
+        add_vehicle_loads,
+        set_initial_vehicle,
+    )
+    from exudyn_turnout.passage.vehicle_builder import add_vehicle_model
+
+    container = exu.SystemContainer()
+    mbs = container.AddSystem()
+    build = add_vehicle_model(
+        mbs, model, representation="linear", wheelset_spin=True, bumpstop="none"
+    )
+    elements, coupled, nodes = [], [], []
+    for ws in build.wheelsets:
+        raw = fe_contact_element(contact, vehicle, route, x_front + ws.x, v, settings.irregularity)
+        element = WheelsetContactElement.of(raw, turnout.x_min, turnout.x_max)
+        element.frozen = frozen
+        wrapper = FEContactElement(element, track, _fe_position(element))
+        dummy = mbs.AddNode(
+            NodeGenericODE2(
+                referenceCoordinates=[0.0, 0.0],
+                initialCoordinates=[0.0, 0.0],
+                initialCoordinates_t=[0.0, 0.0],
+                numberOfODE2Coordinates=2,
+            )
+        )
+        m, k = np.zeros((7, 7)), np.zeros((7, 7))
+        for j in (5, 6):  # the dummy sprung-mass coordinates
+            m[j, j], k[j, j] = DUMMY_MASS, DUMMY_STIFFNESS
+        mbs.AddObject(
+            ObjectGenericODE2(
+                nodeNumbers=[ws.node, dummy],
+                massMatrix=m,
+                stiffnessMatrix=k,
+                forceUserFunction=wrapper,
+            )
+        )
+        elements.append(element)
+        coupled.append(wrapper)
+        nodes.append((ws.node, dummy))
+    suspension = build.items["suspension"]
+    stiffness = np.asarray(
+        mbs.GetObjectParameter(suspension, "stiffnessMatrix").GetPythonObject(), float
+    )
+    damping = np.asarray(
+        mbs.GetObjectParameter(suspension, "dampingMatrix").GetPythonObject(), float
+    )
+    loads = BodyLoads(build, stiffness, damping, route, x_front, v, *x_range)
+    loads.frozen = frozen
+    keep = add_vehicle_loads(mbs, build, loads)
+    mbs.Assemble()
+    index = [
+        np.concatenate(
+            [mbs.GetNodeODE2Index(ws_node) + np.arange(5), mbs.GetNodeODE2Index(d) + np.arange(2)]
+        )
+        for ws_node, d in nodes
+    ]
+    system = _Vehicle(mbs, container, build, elements, coupled, index, keep + (loads,))
+    set_initial_vehicle(system, build)
+    return system
+
+
+def _coordinates(system: _Vehicle, i: int, initial: bool = False):
+    import exudyn as exu
+
+    kind = exu.ConfigurationType.Initial if initial else exu.ConfigurationType.Current
+    data = system.mbs.systemData
+    q = np.asarray(data.GetODE2Coordinates(kind))
+    q_t = np.asarray(data.GetODE2Coordinates_t(kind))
+    return q[system.index[i]].copy(), q_t[system.index[i]].copy()
+
+
+def _static(system: _Vehicle, track: FECoSimulation, what: str, x: float, load_steps: int = 1):
+    """Exudyn's static solve with the FE's static compliance; per wheelset the rail forces."""
+    from exudyn_turnout.corunning.track import simulation_settings
+    from exudyn_turnout.passage.fe_passage import _reason
+
+    sim = simulation_settings(1.0, 1.0)
+    sim.staticSolver.numberOfLoadSteps = load_steps
+    sim.staticSolver.newton.absoluteTolerance = 1e-4
+    sim.staticSolver.newton.maxIterations = 50
+    track.begin_static(system.coupled)
+    try:
+        system.mbs.SolveStatic(sim, updateInitialValues=True)
+        forces: list[np.ndarray] = []
+        for _ in range(3):  # the cross terms: the others' final forces, to round-off
+            forces = []
+            for i, c in enumerate(system.coupled):
+                q, _ = _coordinates(system, i, initial=True)
+                forces.append(c.solve(0.0, q, np.zeros_like(q)))
+    except Exception as err:  # Exudyn's SolverError, or ModelError from a user function
+        raise PassageFailure(
+            f"{what} on the FE track not found with the front wheelset at x = {x:g} m: "
+            f"{_reason(err)}"
+        ) from None
+    finally:
+        track.end_static()
+    return forces
+
+
+def _copy(source: _Vehicle, target: _Vehicle) -> None:
+    import exudyn as exu
+
+    data_s, data_t = source.mbs.systemData, target.mbs.systemData
+    kind = exu.ConfigurationType.Initial
+    q = np.asarray(data_s.GetODE2Coordinates(kind)).copy()
+    data_t.SetODE2Coordinates(q, kind)
+    data_t.SetODE2Coordinates_t(np.zeros_like(q), kind)
+
+
+def _cross_compliance(track: FECoSimulation, elements: list) -> float:
+    """Largest |C_ij| / max |C_ii| of the one-step compliance between wheelsets at t = h."""
+    track.predict(track.h, elements)
+    own, cross = 0.0, 0.0
+    points = [track.points(c.element, *c.positions(track.h)) for c in elements]
+    for i, p_i in enumerate(points):
+        for j, p_j in enumerate(points):
+            for a in p_i.points:
+                for b in p_j.points:
+                    x_y, x_z = track._influence(b)
+                    value = abs(a.weights @ x_z[a.w_dofs])
+                    if i == j:
+                        own = max(own, value)
+                    else:
+                        cross = max(cross, value)
+    track.t_next = math.nan
+    return cross / own if own > 0 else 0.0
+
+
+def simulate_fe_vehicle_passage(
+    turnout: Turnout,
+    settings: PassageSettings,
+    vehicle_model: VehicleModel,
+    options=None,
+    *,
+    progress: Callable[[float, float], None] | None = None,
+) -> PassageResult:
+    """Run the full vehicle over the FE track (module docstring).
+
+    Called by :func:`~exudyn_turnout.passage.full_vehicle_passage.simulate_vehicle_passage`
+    with ``track="fe"`` (which checks the settings and silences Exudyn).
+
+    Parameters
+    ----------
+    turnout : Turnout
+    settings : PassageSettings
+        As for the co-running full vehicle; ``layers``, ``source`` and ``track_mechanism``
+        do not apply.
+    vehicle_model : VehicleModel
+        A full vehicle.
+    options : FEPassageOptions, optional
+        FE mesh and damping (the extension is lengthened to the vehicle's length + 3 m).
+    progress : callable(fraction, x), optional
+
+    Returns
+    -------
+    PassageResult
+        The columns and summary of the co-running full vehicle's passage; the summary also
+        has ``model`` "FE", DOF counts and ``cross_compliance`` (the largest one-step
+        compliance between wheelsets over a wheelset's own).
+
+    Raises
+    ------
+    PassageError
+        Bad settings.
+    PassageFailure
+        A solver failure (time and position), or no steady start.
+    """
+    from exudyn_turnout.passage.fe_passage import _reason, _summary
+    from exudyn_turnout.passage.fe_track import FEPassageOptions
+    from exudyn_turnout.passage.full_vehicle_passage import (
+        contact_vehicle,
+        vehicle_summary,
+        wheelset_columns,
+    )
+    from exudyn_turnout.passage.profile_contact import route_contact
+
+    wall = time.perf_counter()
+    options = options or FEPassageOptions()
+    length = -min(vehicle_model.wheelset.x)
+    if options.mesh.extension < length + EXTENSION_MARGIN:
+        options = replace(options, mesh=replace(options.mesh, extension=length + EXTENSION_MARGIN))
+    route: Route = load_route(turnout, settings.route)
+    base = load_vehicle()
+    try:
+        contact = route_contact(turnout, route.name, base)
+    except ValueError as err:
+        raise PassageError(str(err)) from None
+    vehicle = contact_vehicle(base, vehicle_model)
+    x_a = turnout.x_min if settings.x_start is None else float(settings.x_start)
+    x_b = turnout.x_max if settings.x_end is None else float(settings.x_end)
+    v = settings.v
+    duration = (x_b - x_a) / v
+    n_steps = max(1, math.ceil(duration / settings.time_step - 1e-9))
+    h = duration / n_steps
+    planes = build_fe_planes(turnout, options)
+    track = FECoSimulation(planes, route.name, h, settings.spectral_radius)
+    x_range = (x_a + min(vehicle_model.wheelset.x), x_b)
+    args = (turnout, route, vehicle_model, vehicle, contact, settings, track, x_range, x_a)
+    t0 = time.perf_counter()
+    rest = _build(*args, 0.0, True)
+    forces = _static(rest, track, "static equilibrium at rest", x_a)
+    static_loads = [el.wheel_loads(el.x_at(0.0), c.q) for el, c in zip(rest.elements, rest.coupled)]
+    moving = _build(*args, v, True)
+    _copy(rest, moving)
+    for el in moving.elements:
+        el.hold_spin = True
+    forces = _static(moving, track, "steady state at speed", x_a, 10)
+    system = _build(*args, v, False)
+    _copy(moving, system)
+    track.start(system.coupled, forces, v)
+    cross = _cross_compliance(track, system.coupled)
+    static_s = time.perf_counter() - t0
+    every = max(1, round((settings.output_step or h) / h))
+    records: list[list] = [[] for _ in system.coupled]
+    times: list[float] = []
+    report = run_progress(progress, duration, x_a, v)
+    count = [0]
+
+    def pre_step(mbs, t):
+        track.predict(t, system.coupled)
+        report(t)
+        return True
+
+    def post_step(mbs, t):
+        states = [_coordinates(system, i) for i in range(len(system.coupled))]
+        if t == track.t_next:
+            done = [(c, c.solve(t, q, q_t)) for c, (q, q_t) in zip(system.coupled, states)]
+            track.complete(done)
+        else:  # t = 0: the start state
+            for c, (q, q_t) in zip(system.coupled, states):
+                c.solve(t, q, q_t)
+        if count[0] % every == 0 or abs(t - duration) < 0.5 * h:
+            times.append(t)
+            for rec, c in zip(records, system.coupled):
+                rec.append((c.q.copy(), c.q_t.copy()))
+        count[0] += 1
+        return True
+
+    import exudyn as exu
+
+    from exudyn_turnout.corunning.track import simulation_settings
+    from exudyn_turnout.passage.full_vehicle_passage import newton_tolerance
+
+    system.mbs.SetPreStepUserFunction(pre_step)
+    system.mbs.SetPostStepUserFunction(post_step)
+    sim = simulation_settings(duration, h)
+    sim.timeIntegration.numberOfSteps = n_steps
+    sim.timeIntegration.generalizedAlpha.spectralRadius = settings.spectral_radius
+    sim.timeIntegration.newton.absoluteTolerance = newton_tolerance(len(system.coupled))
+    sim.timeIntegration.adaptiveStep = False
+    t1 = time.perf_counter()
+    try:
+        system.mbs.SolveDynamic(sim)
+    except Exception as err:  # Exudyn's SolverError, or ModelError from a user function
+        t = track.t_next if math.isfinite(track.t_next) else system.mbs.systemData.GetTime()
+        raise PassageFailure(
+            f"FE passage failed at t = {t:.5f} s, front wheelset at x = {x_a + v * t:.3f} m: "
+            f"{_reason(err)}"
+        ) from None
+    del exu
+    steps_s = time.perf_counter() - t1
+    t = np.array(times)
+    columns: dict[str, np.ndarray] = {"t_s": t, "x_m": x_a + v * t}
+    for i, (el, rec) in enumerate(zip(system.elements, records)):
+        q = np.array([a for a, _ in rec])
+        q_t = np.array([b for _, b in rec])
+        label = f"ws{i + 1}"
+        own = wheelset_columns(el, t, q, q_t, label)
+        own[f"x_{label}_m"] = el.x0 + v * t
+        if i == 0:
+            from exudyn_turnout.passage.fe_passage import _columns, _Recorder
+
+            recorder = _Recorder(1)
+            recorder.t, recorder.q, recorder.q_t = list(t), list(q), list(q_t)
+            columns.update(_columns(el, recorder, x_a, v))
+        plausible = {
+            "t_s": t,
+            "x_m": el.x0 + v * t,
+            "y_wheelset_m": q[:, 0],
+            "z_wheelset_m": q[:, 1],
+            "Fz_right_N": own[f"Fz_{label}_right_N"],
+            "Fz_left_N": own[f"Fz_{label}_left_N"],
+        }
+        check_plausible(plausible, vehicle_model.static_wheel_load, f"wheelset {i + 1}")
+        columns.update(own)
+    summary = vehicle_summary(turnout, settings, vehicle_model, columns, static_loads, wall)
+    summary.update(_summary(planes, settings, track, h, n_steps, static_s, steps_s))
+    summary["cross_compliance"] = cross
+    return PassageResult(replace(settings, x_start=x_a, x_end=x_b), columns, summary, (x_a,))
