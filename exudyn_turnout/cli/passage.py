@@ -374,10 +374,12 @@ def build(sub: argparse._SubParsersAction) -> None:
     """
     parser = sub.add_parser(
         "simulate",
-        help="wheelset passage on the co-running track",
-        description="Run one wheelset (Manchester benchmark) through the turnout on a 2- or "
-        "3-layer co-running track with penalty wheel/rail contact; write timeseries.csv, "
-        "summary.json, forces.png and (profile contact) contact_band.png into --out.",
+        help="vehicle passage on the co-running or the FE track",
+        description="Run the vehicle (default the Manchester benchmark wheelset with its "
+        "sprung share; --vehicle a full vehicle file) through the turnout on a 2- or "
+        "3-layer co-running track, or on the FE track (--track fe), with penalty "
+        "wheel/rail contact; write timeseries.csv, summary.json, forces.png and (profile "
+        "contact) contact_band.png into --out.",
     )
     add_turnout_options(parser)
     parser.add_argument("--layers", type=int, choices=(2, 3), default=3)
