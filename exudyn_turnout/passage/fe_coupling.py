@@ -609,15 +609,20 @@ class FECoSimulation:
         f_lat, f_ver = self._static_loads(coupled, F)
         return lu_lat.solve(f_lat), lu_ver.solve(f_ver)
 
-    def _static_sum(self, coupled: Sequence[_Coupled], forces: Sequence[np.ndarray]) -> tuple:
-        """Static fields (lateral, vertical) of several elements' forces together."""
-        lu_lat, lu_ver = self._static_factors()
+    def _loads_sum(self, coupled: Sequence[_Coupled], forces: Sequence[np.ndarray]) -> tuple:
+        """Load vectors (lateral, vertical) of several elements' forces together."""
         f_lat = np.zeros(self.lateral.model.n_dof)
         f_ver = np.zeros(self.vertical.model.n_dof)
         for c, F in zip(coupled, forces):
             fl, fv = self._static_loads(c, F)
             f_lat += fl
             f_ver += fv
+        return f_lat, f_ver
+
+    def _static_sum(self, coupled: Sequence[_Coupled], forces: Sequence[np.ndarray]) -> tuple:
+        """Static fields (lateral, vertical) of several elements' forces together."""
+        lu_lat, lu_ver = self._static_factors()
+        f_lat, f_ver = self._loads_sum(coupled, forces)
         return lu_lat.solve(f_lat), lu_ver.solve(f_ver)
 
     def begin_static(self, elements: Sequence) -> None:
@@ -695,12 +700,7 @@ class FECoSimulation:
         self.lateral.u, self.vertical.u = u_lat, u_ver
         self.lateral.v = v * (a_lat - u_lat) / _START_DX
         self.vertical.v = v * (a_ver - u_ver) / _START_DX
-        f_lat = np.zeros(self.lateral.model.n_dof)
-        f_ver = np.zeros(self.vertical.model.n_dof)
-        for coupled, F in zip(here, forces):
-            fl, fv = self._static_loads(coupled, F)
-            f_lat += fl
-            f_ver += fv
+        f_lat, f_ver = self._loads_sum(here, forces)
         for plane, f in ((self.lateral, f_lat), (self.vertical, f_ver)):
             rhs = f - plane.D @ plane.v - plane.K @ plane.u
             plane.qdd = sla.splu(plane.model.M.tocsc(), **_LU).solve(rhs)

@@ -54,6 +54,7 @@ __all__ = [
     "fe_contact_element",
     "static_equilibrium",
     "FEStaticState",
+    "coupled_run_settings",
 ]
 
 #: Vehicle coordinates in the element: wheelset (y, z, roll), yaw and spin, sprung (y, z).
@@ -289,7 +290,6 @@ def simulate_fe_profile_passage(
 def _simulate(turnout, settings, vehicle, route, contact, planes, x_a, x_b, progress, wall):
     import exudyn as exu
 
-    from exudyn_turnout.corunning.track import simulation_settings
     from exudyn_turnout.passage.simulate import NEWTON_ABSOLUTE_TOLERANCE
 
     v = settings.v
@@ -332,11 +332,7 @@ def _simulate(turnout, settings, vehicle, route, contact, planes, x_a, x_b, prog
 
     system.mbs.SetPreStepUserFunction(pre_step)
     system.mbs.SetPostStepUserFunction(post_step)
-    sim = simulation_settings(duration, h)
-    sim.timeIntegration.numberOfSteps = n_steps
-    sim.timeIntegration.generalizedAlpha.spectralRadius = settings.spectral_radius
-    sim.timeIntegration.newton.absoluteTolerance = NEWTON_ABSOLUTE_TOLERANCE
-    sim.timeIntegration.adaptiveStep = False
+    sim = coupled_run_settings(duration, n_steps, settings, NEWTON_ABSOLUTE_TOLERANCE)
     t1 = time.perf_counter()
     try:
         system.mbs.SolveDynamic(sim)
@@ -412,6 +408,34 @@ def static_equilibrium(
     loads = rest.wheel_loads(x, coupled.q)
     _check_static(loads, vehicle, x)
     return FEStaticState(x, coupled, q0, F0, coupled.last[1].copy(), loads)
+
+
+def coupled_run_settings(duration: float, n_steps: int, settings: PassageSettings, tolerance):
+    """Exudyn's settings of a run coupled to the FE track: fixed steps, the run's rho_inf.
+
+    Parameters
+    ----------
+    duration : float
+        s.
+    n_steps : int
+        Steps (the FE side's h = duration / n_steps: no adaptive step).
+    settings : PassageSettings
+        ``spectral_radius``.
+    tolerance : float
+        N, Newton's absolute tolerance.
+
+    Returns
+    -------
+    exudyn.SimulationSettings
+    """
+    from exudyn_turnout.corunning.track import simulation_settings
+
+    sim = simulation_settings(duration, duration / n_steps)
+    sim.timeIntegration.numberOfSteps = n_steps
+    sim.timeIntegration.generalizedAlpha.spectralRadius = settings.spectral_radius
+    sim.timeIntegration.newton.absoluteTolerance = tolerance
+    sim.timeIntegration.adaptiveStep = False
+    return sim
 
 
 def _reason(err: Exception) -> str:

@@ -339,18 +339,13 @@ def simulate_fe_vehicle_passage(
         count[0] += 1
         return True
 
-    import exudyn as exu
-
-    from exudyn_turnout.corunning.track import simulation_settings
+    from exudyn_turnout.passage.fe_passage import coupled_run_settings
     from exudyn_turnout.passage.full_vehicle_passage import newton_tolerance
 
     system.mbs.SetPreStepUserFunction(pre_step)
     system.mbs.SetPostStepUserFunction(post_step)
-    sim = simulation_settings(duration, h)
-    sim.timeIntegration.numberOfSteps = n_steps
-    sim.timeIntegration.generalizedAlpha.spectralRadius = settings.spectral_radius
-    sim.timeIntegration.newton.absoluteTolerance = newton_tolerance(len(system.coupled))
-    sim.timeIntegration.adaptiveStep = False
+    tolerance = newton_tolerance(len(system.coupled))
+    sim = coupled_run_settings(duration, n_steps, settings, tolerance)
     t1 = time.perf_counter()
     try:
         system.mbs.SolveDynamic(sim)
@@ -360,7 +355,6 @@ def simulate_fe_vehicle_passage(
             f"FE passage failed at t = {t:.5f} s, front wheelset at x = {x_a + v * t:.3f} m: "
             f"{_reason(err)}"
         ) from None
-    del exu
     steps_s = time.perf_counter() - t1
     t = np.array(times)
     columns: dict[str, np.ndarray] = {"t_s": t, "x_m": x_a + v * t}
