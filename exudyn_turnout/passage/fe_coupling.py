@@ -117,6 +117,8 @@ _FD_STEP = 1e-9
 _MAX_ITERATIONS = 50
 #: Step fractions of the coupling Newton's backtracking.
 _DAMPING = (1.0, 0.5, 0.25, 0.125, 0.0625, 1.0 / 32, 1.0 / 128, 1.0 / 512)
+#: m, a body's FE rail is looked up this far inside the body's x range at its ends.
+_SLOT_INSET = 1e-6
 #: m, the FE field 1 mm ahead gives the convected start velocity v du/dx.
 _START_DX = 1e-3
 
@@ -402,10 +404,14 @@ class FECoSimulation:
         x_slot = min(max(x_fe, layout.x_start), layout.x_end)
         bodies, points, index = [], [], []
         for k, body in enumerate(element.bodies):
-            if not bounds[k, 2] - 1e-9 <= x <= bounds[k, 3] + 1e-9:
+            lo, hi = bounds[k, 2], bounds[k, 3]
+            if not lo - 1e-9 <= x <= hi + 1e-9:
                 continue
+            # the slot's FE rail inside the body's own range: at its ends (x0 + v t carries
+            # round-off, slot ranges are half-open) the rail it has just inside
+            inside = min(max(x_slot, lo + _SLOT_INSET), hi - _SLOT_INSET)
             try:
-                rail_id = layout.slot_rail(body.rail, x_slot, self.route)
+                rail_id = layout.slot_rail(body.rail, inside, self.route)
             except ValueError as err:
                 raise ValueError(f"rail body '{body.name}' at x = {x:.3f} m: {err}") from None
             bodies.append(k)

@@ -307,7 +307,11 @@ def simulate_fe_vehicle_passage(
     _copy(rest, moving)
     for el in moving.elements:
         el.hold_spin = True
-    forces = _static(moving, track, "steady state at speed", x_a, 10)
+    start = "steady state at speed (static solve with the creep forces, spin held)"
+    try:
+        forces = _static(moving, track, "steady state at speed", x_a, 10)
+    except PassageFailure as err:  # start from rest at speed: a short creep transient
+        moving, start = rest, f"static state at rest (the steady state at speed failed: {err})"
     system = _build(*args, v, False)
     _copy(moving, system)
     track.start(system.coupled, forces, v)
@@ -383,4 +387,5 @@ def simulate_fe_vehicle_passage(
     summary = vehicle_summary(turnout, settings, vehicle_model, columns, static_loads, wall)
     summary.update(_summary(planes, settings, track, h, n_steps, static_s, steps_s))
     summary["cross_compliance"] = cross
+    summary["start"] = start
     return PassageResult(replace(settings, x_start=x_a, x_end=x_b), columns, summary, (x_a,))

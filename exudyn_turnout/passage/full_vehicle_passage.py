@@ -911,8 +911,13 @@ def _carry_over(
         continues = route.continues.get(p_new.zone.index, {})
         source = {slot: continues.get(slot, slot) for slot in new.params[i].active_rails}
         loads_new = {slot: loads_old[src] for slot, src in source.items() if src in loads_old}
-        u_old = _static_deflection(old.params[i], x, loads_old, layers, True)
-        u_new = _static_deflection(new.params[i], x, loads_new, layers, True)
+        # the boundary itself, in each zone's own range (x0 + v t carries round-off)
+        u_old = _static_deflection(
+            old.params[i], _inside(old.params[i].zone, x), loads_old, layers, True
+        )
+        u_new = _static_deflection(
+            new.params[i], _inside(new.params[i].zone, x), loads_new, layers, True
+        )
         q_old, v_old = _track_vector(state, old, i, 0), _track_vector(state, old, i, 1)
         dyn = {n: q_old[n] - u_old[n] for n in q_old}
         shift = new.params[i].zone.sleeper_y - old.params[i].zone.sleeper_y
@@ -952,6 +957,11 @@ def _carry_over(
         q[i : i + len(a)], q_t[i : i + len(a)] = a, b
     data.SetODE2Coordinates(q, exu.ConfigurationType.Initial)
     data.SetODE2Coordinates_t(q_t, exu.ConfigurationType.Initial)
+
+
+def _inside(zone: Zone, x: float) -> float:
+    """x moved into the zone's range [x_start, x_end] (by round-off at its boundary)."""
+    return min(max(x, zone.x_start), zone.x_end)
 
 
 def _solve_static(system: _System, what: str, load_steps: int = 1) -> None:
