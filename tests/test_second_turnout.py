@@ -283,8 +283,9 @@ def test_validate_quick(tmp_path, capsys):
     assert m["stiffness"]["statements"]["switch_plateau"]["x_m"] == 9.0
     assert m["stiffness"]["statements"]["crossing_x_range_m"] == [22.0, 26.5]
     assert m["receptance"]["route"] == "main"
-    # the FE passage runs on both routes (through the [report] fe_slots mapping)
-    assert p["routes"]["main"]["fe_compared"] == ["Fz_crossing"]
+    # the FE passage runs on both routes (through the [report] fe_slots mapping), with the
+    # profile contact vertical and lateral (issue 14)
+    assert p["routes"]["main"]["fe_compared"] == ["Fz_crossing", "Fy_crossing"]
     assert "Fz_crossing" in p["routes"]["branch"]["fe_compared"]
     verdicts = {c["id"]: c["verdict"] for c in m["claims"]}
     assert verdicts["F4"] != "not checked" and verdicts["S2"] != "not checked"

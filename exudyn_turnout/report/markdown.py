@@ -706,10 +706,10 @@ def _passage_intro(report, links: Mapping[str, str] | None = None) -> list[str]:
         "Each route's figure shows the vertical force Fz (pressing the rail down) and the lateral "
         "force Fy on the rail (**positive to the left** in the running direction, the sign of "
         "the passage's columns) of the plotted wheel, at the switch and at the crossing: "
-        "2-layer blue dashed, 3-layer red, FE black. The paper shows the vertical forces of the "
-        "through route (Fig. 7) and the lateral forces of the diverging route (Fig. 8); the "
-        "claims are judged on the signals of the turnout file's `[report.routes]` `forces`, "
-        "the tables give all four.",
+        "2-layer blue dashed, 3-layer red, FE black. The paper's Fig. 7 shows vertical forces on "
+        "the straight route, its Fig. 8 lateral forces on the turning route; the claims are "
+        "judged on the signals of the turnout file's `[report.routes]` `forces`, the tables "
+        "give all four.",
         "",
     ]
 
