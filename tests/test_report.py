@@ -205,7 +205,9 @@ def test_fe_passage_cache_key_changes_with_contact_vehicle_and_version(turnout, 
         rm.fe_passage_cache_key(turnout, settings, rm.ReportConfig(vehicle="full")),
         rm.fe_passage_cache_key(turnout, replace(settings, speed_kmh=90.0), wheelset),
     }
-    monkeypatch.setattr(rm, "FE_PASSAGE_VERSION", rm.FE_PASSAGE_VERSION + 1)
+    import exudyn_turnout.report.passages as rp
+
+    monkeypatch.setattr(rp, "FE_PASSAGE_VERSION", rp.FE_PASSAGE_VERSION + 1)
     others.add(rm.fe_passage_cache_key(turnout, settings, wheelset))
     assert key not in others and len(others) == 4
 
@@ -220,7 +222,9 @@ def test_report_vehicle_option_and_missing_full_vehicle_fe(turnout, monkeypatch)
     )
     with pytest.raises(ValueError, match="ReportConfig.vehicle must be one of full, wheelset"):
         rm.ReportConfig(vehicle="bogie")
-    monkeypatch.setattr(rm, "_full_vehicle_track_keywords", lambda: set())
+    import exudyn_turnout.report.passages as rp
+
+    monkeypatch.setattr(rp, "_full_vehicle_track_keywords", lambda: set())
     ok, why = rm.fe_availability(rm.ReportConfig(vehicle="full"))
     assert not ok and why == "the full vehicle on the FE track is not available in this version"
     assert rm.fe_availability(rm.ReportConfig(vehicle="wheelset")) == (True, "")

@@ -10,7 +10,9 @@ Sections of the report (as numbered in ``report.md``, after a summary of the ver
 1 track stiffness along the turnout (FE static stiffness, fits, Eqs 10, 14), 2 receptance
 (Figs 5, 6 analogue, with the static stiffness of the co-running models against FE's),
 3 contact forces (Figs 7, 8 analogue), 4 computing cost, 5 convergence and static checks;
-appendix A: parameters (derived vs published Table 2).
+appendix A: parameters (derived vs published Table 2). Section 3 is computed by
+:mod:`~exudyn_turnout.report.passages`; the configuration lives in
+:mod:`~exudyn_turnout.report.config` (both re-exported here).
 
 Everything turnout-specific (routes, speeds, wheels, plotted forces, regions, where the
 receptances are taken, the quick passage window, the stock and check rails of the FE
@@ -27,40 +29,54 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import sys
 import time
 from collections.abc import Mapping
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from pathlib import Path
-from typing import Any, SupportsFloat, SupportsInt, cast
+from typing import Any
 
 import numpy as np
 
 from exudyn_turnout.corunning.comparison import TOLERANCE, compare_with_table2
 from exudyn_turnout.corunning.modal import co_running_receptance, dof_names
 from exudyn_turnout.corunning.parameters import reference_support
-from exudyn_turnout.fe.mesh import FEOptions
 from exudyn_turnout.inputs.routes import dip_angle, load_route
 from exudyn_turnout.inputs.turnout import Turnout, load_turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
-from exudyn_turnout.passage.results import PassageResult, PassageSettings
-from exudyn_turnout.passage.simulate import simulate_passage
-from exudyn_turnout.receptance import Receptance, log_frequencies
+from exudyn_turnout.passage.results import PassageResult
+from exudyn_turnout.receptance import Receptance
 from exudyn_turnout.report import agreement as ag
 from exudyn_turnout.report.cache import (
     ResultCache,
-    default_cache_dir,
-    file_fingerprint,
     input_key,
     source_fingerprint,
 )
-from exudyn_turnout.report.claims import RANGES, Claim, Criteria, evaluate_claims
+from exudyn_turnout.report.claims import RANGES, Criteria, evaluate_claims
+from exudyn_turnout.report.config import (
+    _FE_CODE,
+    FENotAvailable,
+    Report,
+    ReportConfig,
+    _fingerprint,
+    _log,
+    report_config,
+    resolve_config,
+)
+from exudyn_turnout.report.passages import (
+    _peak_key,
+    _signal_key,
+    _summary_float,
+    _vehicle_mass,
+    fe_availability,
+    fe_passage_cache_key,
+    passage_model_metrics,
+    passage_section,
+    run_passage,
+    vehicle_static_load,
+)
 from exudyn_turnout.report.settings import (
-    FORCES,
-    REGIONS,
     ReportSettings,
     check_rails,
-    quick_passage_x,
     report_settings,
     stock_rails,
 )
@@ -82,179 +98,6 @@ __all__ = [
     "build_report",
     "write_report",
 ]
-
-#: Modules whose source is part of the cache key of FE results.
-_FE_CODE = ("exudyn_turnout.fe", "exudyn_turnout.inputs.turnout", "exudyn_turnout.receptance")
-#: The FE passage with the profile contact and the vehicles it carries: every module whose
-#: code changes its result (the wheel/rail package contributes all its files).
-_FE_PASSAGE_CODE = _FE_CODE + (
-    "exudyn_turnout.passage.fe_passage",
-    "exudyn_turnout.passage.fe_coupling",
-    "exudyn_turnout.passage.fe_track",
-    "exudyn_turnout.passage.simulate",
-    "exudyn_turnout.passage.results",
-    "exudyn_turnout.passage.profile_contact",
-    "exudyn_turnout.passage.vehicle",
-    "exudyn_turnout.passage.full_vehicle_passage",
-    "exudyn_turnout.passage.vehicle_builder",
-    "exudyn_turnout.inputs.vehicle",
-    "exudyn_turnout.inputs.vehicle_model",
-    "exudyn_turnout.inputs.routes",
-    "exudyn_turnout.wheel_rail",
-)
-#: Version of the report's FE passage (a new value invalidates every cached FE passage):
-#: 2 = the FE track under the co-running passage's vehicle and profile contact, vertical and
-#: lateral (:mod:`exudyn_turnout.passage.fe_passage`); 1 was the vertical height-table one.
-FE_PASSAGE_VERSION = 2
-#: Vehicles the report can run: the full Manchester vehicle (front wheelset's wheel plotted,
-#: as the paper) or the single benchmark wheelset under its sprung share (fast).
-VEHICLES = ("full", "wheelset")
-
-
-class FENotAvailable(RuntimeError):
-    """The FE passage cannot run in this version for this vehicle (reported as n/a)."""
-
-
-@dataclass(frozen=True)
-class ReportConfig:
-    """What the report computes and how finely (see :func:`report_config`)."""
-
-    quick: bool = False  #: reduced report for CI
-    n_frequencies: int = 400  #: log-spaced receptance frequencies from f_min to f_max
-    f_min: float = 1.0  #: Hz
-    f_max: float = 2000.0  #: Hz
-    fe_options: FEOptions = FEOptions()  #: FE discretisation and model ends
-    #: km/h per route; None: the turnout's ``[report]`` speeds
-    speeds_kmh: tuple[tuple[str, float], ...] | None = None
-    #: m, passage x range; None: the whole turnout, or ``report.quick_passage_x`` if quick
-    passage_x: tuple[float, float] | None = None
-    time_step: float = 1e-4  #: s, co-running passages (the convergence check halves it)
-    timing_repeats: int = 5  #: runs per co-running passage, best wall time taken
-    fe_passage: bool = True  #: run the FE passage when the package has one
-    #: "full": the Manchester vehicle (its front wheelset's wheel is plotted, as the paper);
-    #: "wheelset": the single benchmark wheelset under its sprung share (fast, for tests)
-    vehicle: str = "full"
-    criteria: Criteria = Criteria()
-    cache_dir: str | None = None  #: None: no cache
-
-    def __post_init__(self):
-        if self.vehicle not in VEHICLES:
-            raise ValueError(
-                f"ReportConfig.vehicle must be one of {', '.join(VEHICLES)}, got {self.vehicle!r}"
-            )
-
-    @property
-    def frequencies(self) -> np.ndarray:
-        """Hz, the receptance frequencies."""
-        return log_frequencies(self.f_min, self.f_max, self.n_frequencies)
-
-
-def report_config(quick: bool = False, cache_dir: str | Path | None = "default") -> ReportConfig:
-    """Full report (default) or the reduced CI report (``quick``).
-
-    ``cache_dir`` ``"default"`` is :func:`~exudyn_turnout.report.cache.default_cache_dir`;
-    None disables the cache. Quick: 48 frequencies, a coarse FE mesh (quadratic elements,
-    0.6 m, 6 m extensions), passages over the crossing only (the turnout file's
-    ``report.quick_passage_x``, resolved by :func:`resolve_config`), one timing run, the
-    single wheelset (the full report runs the full Manchester vehicle).
-
-    Parameters
-    ----------
-    quick : bool
-        The reduced report.
-    cache_dir : str, Path or None
-        Directory of the FE result cache, ``"default"`` or None.
-
-    Returns
-    -------
-    ReportConfig
-        Unresolved: speeds and the quick window come from the turnout
-        (:func:`resolve_config`).
-    """
-    cache = (
-        str(default_cache_dir())
-        if cache_dir == "default"
-        else (None if cache_dir is None else str(cache_dir))
-    )
-    if not quick:
-        return ReportConfig(cache_dir=cache)
-    coarse = FEOptions(
-        element_order=2,
-        element_length=0.6,
-        sleeper_element_length=1.0,
-        extension=6.0,
-        absorbing_length=6.0,
-    )
-    return ReportConfig(
-        quick=True,
-        n_frequencies=48,
-        fe_options=coarse,
-        timing_repeats=1,
-        cache_dir=cache,
-        vehicle="wheelset",
-    )
-
-
-def resolve_config(
-    config: ReportConfig, settings: ReportSettings, turnout: Turnout | None = None
-) -> ReportConfig:
-    """``config`` with the turnout's speeds and, for a quick report, its quick passage window.
-
-    Speeds not given in ``config`` are the turnout's ``[report]`` speeds; a quick report
-    without ``passage_x`` runs the passages over
-    :func:`~exudyn_turnout.report.settings.quick_passage_x` (the file's
-    ``report.quick_passage_x`` or 3.5 m about the crossing dip). A route of
-    ``config.speeds_kmh`` that the report does not run is an error (ValueError).
-
-    Parameters
-    ----------
-    config : ReportConfig
-        What the report computes (:func:`report_config`).
-    settings : ReportSettings
-        The turnout's report settings (:func:`~exudyn_turnout.report.settings.report_settings`).
-    turnout : Turnout, optional
-        The turnout of ``settings``; needed when its quick window is derived (default: the
-        packaged turnout).
-
-    Returns
-    -------
-    ReportConfig
-        With ``speeds_kmh`` for every report route and ``passage_x`` resolved.
-    """
-    speeds = dict(settings.speeds_kmh)
-    for route, v in config.speeds_kmh or ():
-        if route not in speeds:
-            raise ValueError(
-                f"report speed given for route {route!r}, which the report does "
-                f"not run ({', '.join(speeds)})"
-            )
-        speeds[route] = float(v)
-    x = config.passage_x
-    if x is None and config.quick:
-        x = quick_passage_x(turnout or load_turnout(), settings)
-    return replace(
-        config, speeds_kmh=tuple(speeds.items()), passage_x=None if x is None else (x[0], x[1])
-    )
-
-
-@dataclass(frozen=True)
-class Report:
-    """The report's numbers (``metrics``, JSON-ready), claims, and what its figures draw."""
-
-    config: ReportConfig  #: resolved (:func:`resolve_config`)
-    metrics: dict[str, Any]  #: every number in report.md, SI units
-    claims: tuple[Claim, ...]
-    #: case -> model -> curve
-    receptances: Mapping[str, Mapping[str, Receptance]] = field(default_factory=dict)
-    #: route -> model -> run
-    passages: Mapping[str, Mapping[str, PassageResult]] = field(default_factory=dict)
-    #: dict with the FE "profile", its "fits" and the co-running r2 static stiffness; or None
-    stiffness: Any = None
-    settings: ReportSettings | None = None  #: the turnout's report settings
-
-
-def _log(message: str) -> None:
-    print(f"[report] {message}", file=sys.stderr, flush=True)
 
 
 # --- 1 parameters ---------------------------------------------------------------------
@@ -302,11 +145,6 @@ def _derived_at_middle(turnout: Turnout, zone: int) -> dict[str, float]:
 
 
 # --- 2 stiffness along the turnout ----------------------------------------------------
-
-
-def _fingerprint(turnout: Turnout) -> str:
-    path = Path(str(turnout.source))
-    return file_fingerprint(path) if path.is_file() else input_key(dict(turnout.raw))
 
 
 def paper_stiffness_profiles(turnout: Turnout, x: np.ndarray) -> dict[str, list[float] | float]:
@@ -834,496 +672,6 @@ def receptance_section(
 
 
 # --- 4 contact forces -----------------------------------------------------------------
-
-
-def _settings(turnout: Turnout, config: ReportConfig, route: str, layers: int) -> PassageSettings:
-    """The report's passage on every track: the profile contact (S1002 on the turnout's rail
-    sections), as the FE passage has it too, so that 2-layer, 3-layer and FE differ only in
-    the track."""
-    x = config.passage_x or (turnout.x_min, turnout.x_max)
-    return PassageSettings(
-        contact="profile",
-        route=route,
-        layers=layers,
-        speed_kmh=_speeds(config)[route],
-        x_start=x[0],
-        x_end=x[1],
-        time_step=config.time_step,
-    )
-
-
-def _fe_options(config: ReportConfig):
-    """The FE passage's options with the report's FE mesh."""
-    from exudyn_turnout.passage.fe_track import FEPassageOptions
-
-    return FEPassageOptions(mesh=config.fe_options)
-
-
-def _full_vehicle_track_keywords() -> set[str]:
-    """Keywords of ``simulate_vehicle_passage`` among ``track`` and ``fe_options``."""
-    import inspect
-
-    from exudyn_turnout.passage.full_vehicle_passage import simulate_vehicle_passage
-
-    return {"track", "fe_options"} & set(inspect.signature(simulate_vehicle_passage).parameters)
-
-
-#: Why the full vehicle's FE passage is n/a where the package has no ``track`` keyword for it.
-_NO_FULL_FE = "the full vehicle on the FE track is not available in this version"
-
-
-def fe_availability(config: ReportConfig) -> tuple[bool, str]:
-    """Whether the report's FE passage can run, and why not.
-
-    Parameters
-    ----------
-    config : ReportConfig
-        ``fe_passage`` and ``vehicle``.
-
-    Returns
-    -------
-    (bool, str)
-        True and "" when it can; False and the reason (one sentence) when not.
-    """
-    if not config.fe_passage:
-        return False, "FE passage switched off in this report"
-    if config.vehicle == "full" and "track" not in _full_vehicle_track_keywords():
-        return False, _NO_FULL_FE
-    return True, ""
-
-
-def run_passage(
-    turnout: Turnout, config: ReportConfig, route: str, track: str, settings=None
-) -> PassageResult:
-    """One passage of the report: ``config.vehicle`` on ``track`` with the profile contact.
-
-    Parameters
-    ----------
-    turnout : Turnout
-    config : ReportConfig
-        Resolved (:func:`resolve_config`): speeds, x range, time step, vehicle, FE mesh.
-    route : str
-        A report route.
-    track : {"2-layer", "3-layer", "fe"}
-        The track under the vehicle.
-    settings : PassageSettings, optional
-        Default: the report's settings of the route (profile contact); given, e.g., with a
-        halved time step for the convergence check.
-
-    Returns
-    -------
-    PassageResult
-        The single wheelset's, or the full vehicle's (the front wheelset's forces under the
-        single-wheelset column names).
-
-    Raises
-    ------
-    FENotAvailable
-        ``track="fe"`` with the full vehicle in a version whose
-        ``simulate_vehicle_passage`` has no ``track`` keyword.
-    """
-    layers = 3 if track == "fe" else int(track[0])
-    settings = settings or _settings(turnout, config, route, layers)
-    fe = {"fe_options": _fe_options(config)} if track == "fe" else {}
-    if config.vehicle == "wheelset":
-        return simulate_passage(turnout, settings, track=track, **fe)
-    from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
-    from exudyn_turnout.passage.full_vehicle_passage import simulate_vehicle_passage
-
-    model = load_vehicle_model()
-    settings = replace(settings, layers=layers)
-    keywords = _full_vehicle_track_keywords()
-    if track != "fe":
-        return simulate_vehicle_passage(turnout, settings, model)
-    if "track" not in keywords:
-        raise FENotAvailable(_NO_FULL_FE)
-    # keywords by name: the package may or may not have them (checked above)
-    extra: dict[str, Any] = {k: v for k, v in fe.items() if k in keywords}
-    extra["track"] = "fe"
-    import inspect
-
-    try:  # the call checked against the signature only: a TypeError in the run is a failure
-        inspect.signature(simulate_vehicle_passage).bind(turnout, settings, model, **extra)
-    except TypeError as err:
-        raise FENotAvailable(f"{_NO_FULL_FE} ({err})") from None
-    return simulate_vehicle_passage(turnout, settings, model, **extra)
-
-
-def _timed_co_running(
-    turnout: Turnout, config: ReportConfig, route: str
-) -> tuple[dict[str, PassageResult], dict[str, list[float]]]:
-    """2- and 3-layer passages, each run ``timing_repeats`` times interleaved: the run with the best
-    wall time per model, and every run's wall time (s)."""
-    best: dict[str, PassageResult] = {}
-    walls: dict[str, list[float]] = {"2-layer": [], "3-layer": []}
-    # one untimed run first: it loads the route's contact tables (built once per machine,
-    # then read from disk), which would otherwise count against the first timed run
-    run_passage(turnout, config, route, "2-layer", _warm_up_settings(turnout, config, route))
-    for _ in range(config.timing_repeats):
-        for name in ("2-layer", "3-layer"):
-            r = run_passage(turnout, config, route, name)
-            walls[name].append(_summary_float(r.summary, "wall_time_s"))
-            if name not in best or _summary_float(r.summary, "wall_time_s") < _summary_float(
-                best[name].summary, "wall_time_s"
-            ):
-                best[name] = r
-    return best, walls
-
-
-def _warm_up_settings(turnout: Turnout, config: ReportConfig, route: str) -> PassageSettings:
-    """The report's settings of the route over its first 0.2 m (loads what the runs share)."""
-    settings = _settings(turnout, config, route, 2)
-    assert settings.x_start is not None
-    return replace(settings, x_end=min(settings.x_start + 0.2, settings.x_end or turnout.x_max))
-
-
-def fe_passage_cache_key(
-    turnout: Turnout, settings: PassageSettings, config: ReportConfig, fe_slots: str | None = None
-) -> str:
-    """Cache key of the report's FE passage.
-
-    The turnout file's content, the passage settings (route, speed, x range, time step and
-    the contact model), the vehicle (``config.vehicle`` and, for the full vehicle, its
-    packaged file's content), the FE passage's options (mesh), :data:`FE_PASSAGE_VERSION`
-    and the source of every module that computes the result: a height-table FE result, or
-    one of another vehicle, is never reused.
-
-    Parameters
-    ----------
-    turnout : Turnout
-    settings : PassageSettings
-        The FE passage's settings.
-    config : ReportConfig
-        ``vehicle`` and ``fe_options``.
-    fe_slots : str, optional
-        The route's ``[layout.slots]`` key (default: the route's name).
-
-    Returns
-    -------
-    str
-        64 hex digits (:func:`~exudyn_turnout.report.cache.input_key`).
-    """
-    fe_slots = fe_slots or settings.route
-    parts = () if fe_slots == settings.route else (fe_slots,)
-    return input_key(
-        "fe_passage",
-        FE_PASSAGE_VERSION,
-        _fingerprint(turnout),
-        source_fingerprint(_FE_PASSAGE_CODE),
-        settings,
-        config.vehicle,
-        _vehicle_fingerprint(config.vehicle),
-        # whether the full vehicle's FE passage takes the report's mesh (fe_options) or not
-        sorted(_full_vehicle_track_keywords()) if config.vehicle == "full" else [],
-        _fe_options(config),
-        *parts,
-    )
-
-
-def _vehicle_fingerprint(vehicle: str) -> str:
-    """SHA-256 of the vehicle file the report loads ("" for the packaged wheelset, whose data
-    are in the code of :mod:`exudyn_turnout.inputs.vehicle`, part of the source fingerprint)."""
-    if vehicle != "full":
-        return ""
-    from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
-
-    return input_key(load_vehicle_model())
-
-
-def _cached_fe_passage(
-    turnout: Turnout,
-    settings: PassageSettings,
-    config: ReportConfig,
-    cache: ResultCache,
-    fe_slots: str | None = None,
-) -> tuple[PassageResult, dict[str, Any]]:
-    """FE passage (computed or from the cache); ``fe_slots``: the route's ``[layout.slots]`` key."""
-    if fe_slots and fe_slots != settings.route:
-        raise FENotAvailable(
-            f"the FE passage couples to [layout.slots.{settings.route}]; the report's fe_slots "
-            f"{fe_slots!r} is not supported by the FE passage with the profile contact"
-        )
-    key = fe_passage_cache_key(turnout, settings, config, fe_slots)
-    hit = cache.load(key)
-    if hit is not None:
-        arrays, meta = hit
-        result = PassageResult(
-            settings,
-            {k: np.asarray(v) for k, v in arrays.items()},
-            meta["summary"],
-            tuple(meta["zone_starts"]),
-        )
-        return result, {"cached": True, "computed": meta["computed"]}
-    result = run_passage(turnout, config, settings.route, "fe", settings)
-    info = {"cached": False, "computed": time.strftime("%Y-%m-%d %H:%M")}
-    cache.save(
-        key,
-        dict(result.columns),
-        {"summary": dict(result.summary), "zone_starts": list(result.zone_starts), **info},
-    )
-    return result, info
-
-
-def _signal_key(q: str, where: str) -> str:
-    return f"{q}_{where}"
-
-
-def _column(q: str, wheel: str) -> str:
-    """Time-history column of force ``q`` ("Fz", "Fy") on ``wheel`` ("right", "left")."""
-    return f"{q}_{wheel}_N"
-
-
-def _peak_key(q: str, where: str, wheel: str) -> str:
-    """Passage summary key of the peak of ``q`` in region ``where`` for ``wheel``."""
-    return f"peak_{q}_{where}_N" if wheel == "right" else f"peak_{q}_{where}_{wheel}_N"
-
-
-def passage_model_metrics(
-    result: PassageResult,
-    signals,
-    regions: Mapping[str, tuple[float, float]],
-    criteria: Criteria,
-    static_load: float,
-    reference: PassageResult | None = None,
-    wheel: str = "right",
-) -> dict:
-    """Peaks, oscillation (dynamic RMS) and, given the FE ``reference``, the differences from it.
-
-    Parameters
-    ----------
-    result : PassageResult
-    signals : sequence of (str, str)
-        (force "Fz"/"Fy", region "switch"/"crossing") of ``wheel``.
-    regions : mapping
-        region -> (x_from, x_to) in m.
-    criteria : Criteria
-        ``trend_window`` for the running mean.
-    static_load : float
-        N, the static wheel load the trend deviation is relative to.
-    reference : PassageResult, optional
-    wheel : {"right", "left"}
-        The wheel whose forces are taken (the report route's ``wheel``).
-
-    Returns
-    -------
-    dict
-        JSON-ready: ``peaks_N``, ``dynamic_rms_N``, contact losses, static load, times and,
-        with a reference, ``vs_FE``.
-    """
-    s, c, w = result.summary, result.columns, criteria.trend_window
-    out: dict[str, Any] = {
-        "peaks_N": {
-            _signal_key(q, r): _number(s, _peak_key(q, r, wheel)) for q in FORCES for r in REGIONS
-        },
-        "dynamic_rms_N": {
-            _signal_key(q, r): ag.dynamic_rms(c["x_m"], c[_column(q, wheel)], w, regions[r])
-            if _column(q, wheel) in c
-            else math.nan
-            for q, r in signals
-        },
-        "contact_losses": int(cast(SupportsInt, s.get("contact_losses", -1))),
-        "static_wheel_load_N": _number(s, "static_wheel_load_N"),
-        "wall_time_s": _number(s, "wall_time_s"),
-        "simulated_time_s": _number(s, "simulated_time_s"),
-    }
-    if reference is not None:
-        out["vs_FE"] = _vs_reference(result, reference, signals, regions, w, static_load, wheel)
-    return out
-
-
-def _summary_float(summary: Mapping[str, object], key: str) -> float:
-    """summary[key] as a float: a passage summary holds numbers and text, this key a number."""
-    return float(cast(SupportsFloat, summary[key]))
-
-
-def _speeds(config: ReportConfig) -> dict[str, float]:
-    """km/h per route of a config resolved by :func:`resolve_config` (which fills them)."""
-    assert config.speeds_kmh is not None, "report config not resolved (resolve_config)"
-    return dict(config.speeds_kmh)
-
-
-def _number(summary: Mapping[str, Any], key: str) -> float:
-    """summary[key] as a float; NaN if absent or None (lateral peaks of a vertical-only model)."""
-    v = summary.get(key)
-    return math.nan if v is None else float(v)
-
-
-def _vs_reference(
-    result, reference, signals, regions, window, static_load, wheel: str = "right"
-) -> dict[str, Any]:
-    """Differences from the reference for the signals it has (a finite peak and the column)."""
-    c, rc, rs = result.columns, reference.columns, reference.summary
-    pairs = [
-        (_signal_key(q, r), _column(q, wheel), regions[r], _peak_key(q, r, wheel))
-        for q, r in signals
-        if _column(q, wheel) in rc and math.isfinite(_number(rs, _peak_key(q, r, wheel)))
-    ]
-    return {
-        # |peak| / |peak_FE| - 1: the lateral peaks are signed (largest magnitude), so a
-        # larger force in the negative direction counts as larger, as a vertical one would
-        "peak_relative": {
-            k: ag.relative_difference(abs(float(result.summary[p])), abs(float(rs[p])))
-            for k, _, _, p in pairs
-        },
-        "rms_difference_N": {
-            k: ag.rms_difference(c["x_m"], c[col], rc["x_m"], rc[col], rng)
-            for k, col, rng, _ in pairs
-        },
-        "trend_deviation": {
-            k: ag.max_trend_difference(c["x_m"], c[col], rc["x_m"], rc[col], window, rng)
-            / static_load
-            for k, col, rng, _ in pairs
-        },
-    }
-
-
-def passage_section(
-    turnout: Turnout,
-    config: ReportConfig,
-    cache: ResultCache,
-    settings: ReportSettings | None = None,
-) -> tuple[dict, dict]:
-    """Every report route, 2-layer, 3-layer and (if available) FE: (metrics, route -> model -> run).
-
-    Parameters
-    ----------
-    turnout : Turnout
-    config : ReportConfig
-        Resolved (:func:`resolve_config`): its speeds name every report route.
-    cache : ResultCache
-        Where FE passages are stored.
-    settings : ReportSettings, optional
-        Default :func:`~exudyn_turnout.report.settings.report_settings` of the turnout: the
-        routes, their wheel, plotted forces and ``[layout.slots]`` key, the regions.
-
-    Returns
-    -------
-    (dict, dict)
-        JSON-ready metrics, and route -> model ("2-layer", "3-layer", "FE") -> PassageResult.
-    """
-    settings = settings or report_settings(turnout)
-    fe_ok, why = fe_availability(config)
-    regions = dict(settings.regions)
-    static = vehicle_static_load(config.vehicle)
-    every = tuple((q, r) for q in FORCES for r in REGIONS)
-    metrics: dict[str, Any] = {
-        "speeds_kmh": _speeds(config),
-        "regions_m": regions,
-        "routes": {},
-        "steady_lateral_acceleration_m_s2": _lateral_acceleration(turnout, config),
-        "radius_m": {r.name: r.radius for r in settings.routes},
-        "speeds_note": settings.speeds_note,
-        "impact_route": settings.impact_route,
-        "lateral_route": settings.lateral_route,
-        "fe_available": fe_ok,
-        "fe_note": why,
-        "wheel": {r.name: r.wheel for r in settings.routes},
-        "x_range_m": list(config.passage_x or (turnout.x_min, turnout.x_max)),
-        "contact": "profile",
-        "vehicle": config.vehicle,
-        "vehicle_name": _vehicle_name(config.vehicle),
-        "static_wheel_load_N": static,
-        "fe_coupling": "exact one-step co-simulation (exudyn_turnout.passage.fe_coupling)",
-    }
-    results: dict[str, dict[str, PassageResult]] = {}
-    for rr in settings.routes:
-        route = rr.name
-        results[route], walls = _timed_co_running(turnout, config, route)
-        fe_info = None
-        if fe_ok:
-            fe_result, fe_info = _run_fe_passage(
-                turnout, _settings(turnout, config, route, 3), config, cache, rr.fe_slots
-            )
-            if fe_result is not None:
-                results[route]["FE"] = fe_result
-        ref = results[route].get("FE")
-        models = {
-            m: passage_model_metrics(
-                res, every, regions, config.criteria, static, ref if m != "FE" else None, rr.wheel
-            )
-            for m, res in results[route].items()
-        }
-        metrics["routes"][route] = {
-            "signals": [_signal_key(q, r) for q, r in rr.signals],
-            "all_signals": [_signal_key(q, r) for q, r in every],
-            "fe": fe_info,
-            "models": models,
-            "wheel": rr.wheel,
-            "fe_compared": list(models["2-layer"].get("vs_FE", {}).get("peak_relative", {})),
-            "co_running_wall_times_s": walls,
-        }
-        _log(
-            f"passages {route}: "
-            + ", ".join(f"{m} {r.summary['wall_time_s']:.1f} s" for m, r in results[route].items())
-        )
-    return metrics, results
-
-
-def vehicle_static_load(vehicle: str) -> float:
-    """Static wheel load (N) of the report's vehicle on level track.
-
-    Parameters
-    ----------
-    vehicle : {"full", "wheelset"}
-        The full Manchester vehicle (M g / 8) or the single wheelset ((m_w + m_s) g / 2).
-
-    Returns
-    -------
-    float
-        N.
-    """
-    if vehicle == "full":
-        from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
-
-        return float(load_vehicle_model().static_wheel_load)
-    return float(load_vehicle().static_wheel_load)
-
-
-def _vehicle_mass(vehicle: str) -> float:
-    """kg, the full vehicle's total mass, or the single wheelset's m_w + m_s."""
-    if vehicle == "full":
-        from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
-
-        return float(load_vehicle_model().total_mass)
-    v = load_vehicle()
-    return float(v.m_w + v.m_s)
-
-
-def _vehicle_name(vehicle: str) -> str:
-    if vehicle == "full":
-        from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
-
-        m = load_vehicle_model()
-        return f"{m.name} ({m.n_wheelsets} wheelsets, {m.total_mass:.0f} kg)"
-    return "Manchester benchmark wheelset under its sprung share"
-
-
-def _lateral_acceleration(turnout: Turnout, config: ReportConfig) -> dict[str, float]:
-    """v^2 |curvature|max (m/s^2) per route at the report's speeds (no cant)."""
-    out = {}
-    for route, v in _speeds(config).items():
-        kappa = max(abs(k) for k in load_route(turnout, route).curvature.value)
-        out[route] = (v / 3.6) ** 2 * kappa
-    return out
-
-
-def _run_fe_passage(turnout, settings, config, cache, fe_slots=None):
-    try:
-        return _cached_fe_passage(turnout, settings, config, cache, fe_slots)
-    except FENotAvailable as err:
-        _log(f"FE passage n/a: {err}")
-        return None, {"note": str(err)}
-    except Exception as err:  # an FE passage that fails must not stop the report
-        _log(f"FE passage failed: {err!r}")
-        return None, {"error": _one_line(err)}
-
-
-def _one_line(err: Exception) -> str:
-    """The error's type and message on one line, without a traceback that Exudyn appends
-    (its ``At:`` block) to an error raised in a user function."""
-    text = str(err).split("\nAt:")[0]
-    lines = [x.strip() for x in text.splitlines() if x.strip()]
-    return f"{type(err).__name__}: " + " ".join(lines)
 
 
 # --- 5 computing cost, 6 checks -------------------------------------------------------
