@@ -57,6 +57,7 @@ __all__ = [
 _FE_PASSAGE_CODE = _FE_CODE + (
     "exudyn_turnout.passage.fe_passage",
     "exudyn_turnout.passage.fe_coupling",
+    "exudyn_turnout.passage.fe_vehicle_passage",
     "exudyn_turnout.passage.fe_track",
     "exudyn_turnout.passage.simulate",
     "exudyn_turnout.passage.results",
