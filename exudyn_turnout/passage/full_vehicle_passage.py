@@ -822,7 +822,7 @@ def add_vehicle_loads(mbs, build, loads: BodyLoads) -> tuple:
     return forceUserFunction, jacobianUserFunction
 
 
-def set_initial_vehicle(system: _System, build) -> None:
+def set_initial_vehicle(system, build, positions=None) -> None:
     """Vehicle at the rigid-track equilibrium, each wheelset lowered to touch its rails.
 
     Parameters
@@ -831,6 +831,9 @@ def set_initial_vehicle(system: _System, build) -> None:
         With ``mbs`` and ``elements`` (per wheelset, its contact element).
     build : VehicleBuild
         From :func:`~exudyn_turnout.passage.vehicle_builder.add_vehicle_model`.
+    positions : sequence of float, optional
+        m, per wheelset the position of its contact tables (default each element's
+        ``x_at(0.0)``).
     """
     import exudyn as exu
 
@@ -842,9 +845,11 @@ def set_initial_vehicle(system: _System, build) -> None:
         n = len(b.dof)
         q[i : i + n] = build.static_state[k : k + n]
         k += n
-    for ws, el in zip(build.wheelsets, system.elements):
+    if positions is None:
+        positions = [el.x_at(0.0) for el in system.elements]
+    for ws, el, x in zip(build.wheelsets, system.elements, positions):
         W = build.model.static_wheel_load
-        z, roll = el.touching_position(el.x_at(0.0), (W / el.vehicle.contact.C_H) ** (2.0 / 3.0))
+        z, roll = el.touching_position(x, (W / el.vehicle.contact.C_H) ** (2.0 / 3.0))
         i = mbs.GetNodeODE2Index(ws.node)
         q[i + ws.dof["z"]], q[i + ws.dof["roll"]] = z, roll
     mbs.systemData.SetODE2Coordinates(q, exu.ConfigurationType.Initial)

@@ -34,6 +34,7 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
@@ -383,7 +384,7 @@ def _straight(turnout: Turnout, route_name: str, model: VehicleModel, v: float) 
     import exudyn as exu
     from exudyn.itemInterface import ObjectGenericODE2, SensorNode
 
-    from exudyn_turnout.passage.full_vehicle_passage import contact_vehicle
+    from exudyn_turnout.passage.full_vehicle_passage import contact_vehicle, set_initial_vehicle
     from exudyn_turnout.passage.vehicle_builder import add_vehicle_model, static_settings
 
     if model.car_body is None:
@@ -430,8 +431,11 @@ def _straight(turnout: Turnout, route_name: str, model: VehicleModel, v: float) 
         for body in build.bodies()
     ]
     mbs.Assemble()
-    q = _initial_state(mbs, build, forces, model)
-    mbs.systemData.SetODE2Coordinates(q.tolist(), exu.ConfigurationType.Initial)
+    set_initial_vehicle(
+        SimpleNamespace(mbs=mbs, elements=[f.element for f in forces]),
+        build,
+        [f.x for f in forces],
+    )
     for f in forces:
         f.static = True
     sim = static_settings()
@@ -572,25 +576,6 @@ def simulate_hunting(
         wall,
         int(sim.timeIntegration.numberOfSteps),
     )
-
-
-def _initial_state(mbs, build, forces: list, model: VehicleModel) -> np.ndarray:
-    """The rigid-track equilibrium of the vehicle, each wheelset lowered onto its rails."""
-    import exudyn as exu
-
-    q = np.array(mbs.systemData.GetODE2Coordinates(exu.ConfigurationType.Initial))
-    k = 0
-    for b in build.bodies():
-        i = mbs.GetNodeODE2Index(b.node)
-        n = len(b.dof)
-        q[i : i + n] = build.static_state[k : k + n]
-        k += n
-    penetration = (model.static_wheel_load / forces[0].element.vehicle.contact.C_H) ** (2 / 3)
-    for ws, f in zip(build.wheelsets, forces):
-        z, roll = f.element.touching_position(f.x, penetration)
-        i = mbs.GetNodeODE2Index(ws.node)
-        q[i + ws.dof["z"]], q[i + ws.dof["roll"]] = z, roll
-    return q
 
 
 @dataclass(frozen=True, eq=False)
