@@ -28,6 +28,7 @@ EXUDYN_BUILDERS = {
     "passage/fe_passage.py",
     "passage/hunting.py",
     "passage/fe_vehicle_passage.py",
+    "passage/vehicle_analysis.py",
 }
 #: The one module allowed to import matplotlib (the figure modules get it from there).
 FIGURE_MODULES = {"plotting/backend.py"}

@@ -88,19 +88,22 @@ free, ~20 us engaged) when it engages. RotVecLG was no faster than Rxyz within t
 The linear model leaves out what the rigid one has beyond small angles: finite rotations,
 and the wheel-load preload's geometric roll term (-2 r0 Q), which the contact element
 supplies.
+
+The data of a build (representations, handles) are in
+:mod:`~exudyn_turnout.passage.vehicle_handles`; the vehicle on rigid track (support, static
+state, connector forces, linearisation, modes) in
+:mod:`~exudyn_turnout.passage.vehicle_analysis`; both are re-exported here.
 """
 
 from __future__ import annotations
 
 import math
 import operator
-from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import exudyn as exu
 import numpy as np
-import scipy.linalg
 from exudyn.advancedUtilities import CreateSymbolicUserFunction
 from exudyn.itemInterface import (
     CartesianSpringDamper,
@@ -130,6 +133,33 @@ from exudyn_turnout.inputs.vehicle_model import (
     VehicleModel,
     _full_vehicle_parts,
 )
+from exudyn_turnout.passage.vehicle_analysis import (
+    _linearize,
+    connector_forces_at_reference,
+    dynamic_settings,
+    rigid_track_support,
+    solve_static,
+    static_settings,
+    support_wheel_loads,
+    vehicle_modes,
+)
+from exudyn_turnout.passage.vehicle_handles import (
+    _KEEPALIVE,
+    _LINEAR_DOF,
+    _POINT_DOF,
+    _RIGID_DOF,
+    _WHEELSET_DOF,
+    BUMPSTOP_LAWS,
+    REPRESENTATIONS,
+    ROTATIONS,
+    BodyHandles,
+    RigidTrack,
+    TrackSupport,
+    VehicleBuild,
+    VehicleMode,
+    WheelsetHandles,
+    _point_transform,
+)
 
 __all__ = [
     "REPRESENTATIONS",
@@ -151,164 +181,8 @@ __all__ = [
     "vehicle_modes",
 ]
 
-#: "linear": small-angle linear model (one ObjectGenericODE2), "rigid": rigid bodies + connectors.
-REPRESENTATIONS = ("linear", "rigid")
-#: Rotation parametrizations of the rigid-body nodes ("rigid" representation).
-ROTATIONS = ("Rxyz", "RotVecLG")
-#: Lateral bumpstop force law: "auto" (symbolic on "rigid", Python on "linear"), or one of them,
-#: or "none" (left out).
-BUMPSTOP_LAWS = ("auto", "symbolic", "python", "none")
-
-#: Coordinates of a rigid-body node (X, Y, Z, rotation about X, Y, Z) by name.
-_RIGID_DOF = {"y": 0, "z": 1, "x": 2, "pitch": 3, "yaw": 4, "roll": 5}
-#: ... of a wheelset's rigid-body node: the rotation about its axle is the spin.
-_WHEELSET_DOF = {"y": 0, "z": 1, "x": 2, "spin": 3, "yaw": 4, "roll": 5}
-#: ... of a sprung point (NodePoint).
-_POINT_DOF = {"y": 0, "z": 1, "x": 2}
-#: Free coordinates of each body kind in the linear representation, in node order.
-_LINEAR_DOF = {
-    "body": ("y", "z", "roll", "pitch", "yaw"),
-    "wheelset": ("y", "z", "roll", "yaw"),
-    "sprung": ("y", "z"),
-}
-#: Connector outputs read by :func:`connector_forces_at_reference` (those a type has).
-_FORCE_OUTPUTS = (
-    exu.OutputVariableType.Force,
-    exu.OutputVariableType.ForceLocal,
-    exu.OutputVariableType.Torque,
-    exu.OutputVariableType.TorqueLocal,
-)
-_KEEPALIVE = "exudyn_turnout.passage.vehicle_builder.user_functions"  # mbs.variables key
-
-
-@dataclass(frozen=True)
-class RigidTrack:
-    """Linear wheel supports of rigid track, for static loads and eigen-analysis.
-
-    Defaults: vertical k_z = the linearised Hertz spring 1.5 C_H^(2/3) N^(1/3) = 1.14e9 N/m
-    (C_H = 9e10 N/m^1.5, data/manchester_wheelset.toml; N = 54.55 kN) in series with the
-    plain-track support K_st,z = 6.37e7 N/m (paper Eq 2, README) = 6.03e7 N/m; lateral
-    k_y = the plain-track lateral support K_st,y = 2.80e7 N/m (``exudyn-turnout params
-    --zone 1``; creep forces, a velocity effect, are not in it). No longitudinal support
-    (the longitudinal coordinates are held) and no damping unless given.
-    """
-
-    k_z: float = 6.03e7  #: N/m, vertical, per wheel
-    k_y: float = 2.80e7  #: N/m, lateral, per wheel
-    k_x: float = 0.0  #: N/m, longitudinal, per wheel (needed if the wheelset spin is free)
-    c_z: float = 0.0  #: N s/m, vertical damping per wheel
-    c_y: float = 0.0  #: N s/m, lateral damping per wheel
-
-
-@dataclass(frozen=True)
-class BodyHandles:
-    """Exudyn items of a car body, bogie frame or sprung point."""
-
-    name: str  #: "car_body", "bogie1", "sprung1", ...
-    node: int  #: its node (rigid: NodeRigidBodyRxyz/RotVecLG or NodePoint; linear: NodeGenericODE2)
-    body: int  #: rigid: ObjectRigidBody / ObjectMassPoint; linear: -1 (mass in the element)
-    x: float  #: m, longitudinal position relative to the vehicle reference
-    reference: tuple[float, float, float]  #: m, reference position (Exudyn X, Y, Z)
-    dof: Mapping[str, int]  #: coordinate name -> index in the node (held ones too)
-
-
-@dataclass(frozen=True)
-class WheelsetHandles:
-    """Exudyn items of one wheelset, for a contact element and the track under it.
-
-    Linear representation: ``node`` is a NodeGenericODE2 with (y, z, roll, yaw[, spin]), the
-    coordinates the package's contact element reads; ``body`` is -1, ``wheel_markers`` is
-    empty and ``centre_marker`` a MarkerNodeCoordinates. Rigid representation: a rigid-body
-    node and body, MarkerBodyPosition at the wheels' nominal contact points, a
-    MarkerBodyRigid at the centre.
-    """
-
-    index: int  #: 0-based, front first
-    name: str  #: "wheelset1", ...
-    x: float  #: m, offset from the vehicle reference (front wheelset 0, others < 0)
-    node: int
-    body: int
-    centre_marker: int
-    wheel_markers: tuple[int, ...]  #: (right, left) contact-point markers (rigid only)
-    wheel_positions: tuple[tuple[float, float, float], ...]  #: m, (right, left) contact
-    #: points relative to the wheelset centre (Exudyn X, Y, Z): (-+b, -r0, 0)
-    reference: tuple[float, float, float]  #: m, reference position of the centre
-    dof: Mapping[str, int]  #: coordinate name -> index in the node (held ones too)
-
-
-@dataclass(frozen=True)
-class VehicleBuild:
-    """Handles of a vehicle built by :func:`add_vehicle_model`."""
-
-    model: VehicleModel
-    representation: str  #: one of REPRESENTATIONS
-    rotation: str  #: rigid-body node parametrization (rigid representation)
-    ground: int  #: ObjectGround
-    wheelsets: tuple[WheelsetHandles, ...]
-    bogies: tuple[BodyHandles, ...]
-    car_body: BodyHandles | None
-    sprung: tuple[BodyHandles, ...]  #: sprung points (single-wheelset layout)
-    #: name -> object: connectors ("primary_ws1_left", "secondary_b2_right", "torsion_b1",
-    #: "bumpstop_b1") or, linear, "suspension" and "bumpstops" (ObjectGenericODE2)
-    items: Mapping[str, int]
-    constraints: tuple[int, ...]  #: coordinate constraints holding x (and spin), rigid only
-    held: tuple[tuple[int, int], ...]  #: (node, local coordinate) held at its reference
-    gravity_loads: tuple[int, ...]  #: rigid: LoadMassProportional; linear: -
-    #: linear: the static equilibrium of the rigid model it was linearised at (free coords)
-    static_state: tuple[float, ...] = ()
-    keepalive: tuple[Any, ...] = field(default=(), repr=False)  #: user functions
-
-    def bodies(self) -> tuple[BodyHandles | WheelsetHandles, ...]:
-        """All bodies in node order: car body, bogies, sprung points, wheelsets.
-
-        Returns
-        -------
-        tuple of BodyHandles or WheelsetHandles
-            The handles, the car body first (if any), the wheelsets last.
-        """
-        out: list = [] if self.car_body is None else [self.car_body]
-        return tuple(out + list(self.bogies) + list(self.sprung) + list(self.wheelsets))
-
-
-@dataclass(frozen=True)
-class TrackSupport:
-    """Rigid-track wheel supports added by :func:`rigid_track_support`."""
-
-    track: RigidTrack
-    items: tuple[int, ...]  #: rigid: connectors (right, left per wheelset); linear: one element
-    build: VehicleBuild = field(repr=False)
-
-
-@dataclass(frozen=True)
-class VehicleMode:
-    """One vibration mode of the linearised vehicle."""
-
-    frequency_hz: float  #: Hz, undamped natural frequency (eig of K, M)
-    damped_frequency_hz: float  #: Hz, |lambda| / 2 pi of the matching damped mode
-    damping_ratio: float  #: -, -Re(lambda) / |lambda| of the matching damped mode
-    body: str  #: body with the largest share of kinetic energy, e.g. "car_body"
-    direction: str  #: its dominant direction: "y", "z", "roll", "pitch", "yaw", "spin"
-    share: float  #: -, that coordinate's share of the mode's kinetic energy
-    participation: Mapping[str, float]  #: "body.direction" -> energy share (>= 1 %)
-
 
 # ------------------------------------------------------------------------------ geometry
-def _point_transform(dof: Sequence[str], r: Sequence[float]) -> np.ndarray:
-    """3 x n matrix: small-angle displacement (X, Y, Z) of a body point at offset r (Exudyn
-    axes) from the body's coordinates ``dof``: u = t + theta x r, theta = (pitch, yaw, roll)."""
-    rx, ry, rz = r
-    cols = {
-        "y": (1.0, 0.0, 0.0),
-        "z": (0.0, 1.0, 0.0),
-        "x": (0.0, 0.0, 1.0),
-        "roll": (-ry, rx, 0.0),
-        "pitch": (0.0, -rz, ry),
-        "spin": (0.0, -rz, ry),
-        "yaw": (rz, 0.0, -rx),
-    }
-    return np.array([cols[d] for d in dof]).T
-
-
 def _bumpstop_of(model: VehicleModel) -> BumpStop:
     """The model's lateral bumpstop; ValueError if it has none."""
     if model.bumpstop is None:
@@ -899,300 +773,3 @@ def _add_linear_bumpstops(
     )
     mbs.variables.setdefault(_KEEPALIVE, []).extend(functions)
     return item, functions
-
-
-def rigid_track_support(
-    mbs: exu.MainSystem, build: VehicleBuild, track: RigidTrack = RigidTrack()
-) -> TrackSupport:
-    """Put every wheel on linear springs to ground at its contact point (rigid track).
-
-    Rigid representation: a ``CartesianSpringDamper`` per wheel from a ground point at the
-    nominal contact point (y = -+b, z = 0, x of the wheelset) to the wheel's contact marker,
-    stiffness (k_y, k_z, k_x), force-free in the reference configuration. Linear: the same
-    springs (small-angle transform of the contact points) as one ObjectGenericODE2 on the
-    wheelset nodes.
-
-    Parameters
-    ----------
-    mbs : exudyn.MainSystem
-        The system the vehicle was added to (not yet assembled).
-    build : VehicleBuild
-        The vehicle, as returned by :func:`add_vehicle_model`.
-    track : RigidTrack
-        Support stiffness and damping per wheel.
-
-    Returns
-    -------
-    TrackSupport
-        The support items, for :func:`support_wheel_loads`.
-    """
-    k3 = np.diag([track.k_y, track.k_z, track.k_x])
-    c3 = np.diag([track.c_y, track.c_z, 0.0])
-    if build.representation == "rigid":
-        items = []
-        for ws in build.wheelsets:
-            for marker, local in zip(ws.wheel_markers, ws.wheel_positions):
-                ground = int(
-                    mbs.AddMarker(
-                        MarkerBodyPosition(
-                            bodyNumber=build.ground, localPosition=[local[0], 0.0, ws.x]
-                        )
-                    )
-                )
-                items.append(
-                    int(
-                        mbs.AddObject(
-                            CartesianSpringDamper(
-                                markerNumbers=[ground, marker],
-                                stiffness=np.diag(k3).tolist(),
-                                damping=np.diag(c3).tolist(),
-                            )
-                        )
-                    )
-                )
-        return TrackSupport(track, tuple(items), build)
-    n = sum(len(ws.dof) for ws in build.wheelsets)
-    k, d = np.zeros((n, n)), np.zeros((n, n))
-    start = 0
-    for ws in build.wheelsets:
-        sl = slice(start, start + len(ws.dof))
-        for r in ws.wheel_positions:
-            t = _point_transform(list(ws.dof), r)
-            k[sl, sl] += t.T @ k3 @ t
-            d[sl, sl] += t.T @ c3 @ t
-        start += len(ws.dof)
-    item = int(
-        mbs.AddObject(
-            ObjectGenericODE2(
-                nodeNumbers=[ws.node for ws in build.wheelsets],
-                massMatrix=np.zeros((n, n)),
-                stiffnessMatrix=k,
-                dampingMatrix=d,
-            )
-        )
-    )
-    return TrackSupport(track, (item,), build)
-
-
-def support_wheel_loads(mbs: exu.MainSystem, support: TrackSupport) -> np.ndarray:
-    """Vertical wheel loads (N, positive pressing the rail) carried by the rigid-track supports.
-
-    Parameters
-    ----------
-    mbs : exudyn.MainSystem
-        The assembled system holding the supports.
-    support : TrackSupport
-        As returned by :func:`rigid_track_support`.
-
-    Returns
-    -------
-    numpy.ndarray
-        Shape (n_wheelsets, 2): (right, left) per wheelset, at the current state.
-    """
-    build = support.build
-    if build.representation == "rigid":
-        f = [-float(mbs.GetObjectOutput(o, exu.OutputVariableType.Force)[1]) for o in support.items]
-        return np.array(f).reshape(-1, 2)
-    out = []
-    for ws in build.wheelsets:
-        q = np.array(mbs.GetNodeOutput(ws.node, exu.OutputVariableType.Coordinates))
-        out.append(
-            [
-                -support.track.k_z * (_point_transform(list(ws.dof), r) @ q)[1]
-                for r in ws.wheel_positions
-            ]
-        )
-    return np.array(out)
-
-
-def static_settings() -> exu.SimulationSettings:
-    """Quiet static-solver settings: Newton tolerance in force units, no files.
-
-    Returns
-    -------
-    exudyn.SimulationSettings
-        Verbose off, Newton relative tolerance 1e-10 and absolute 1e-6 N, one load step,
-        no solution file.
-    """
-    settings = exu.SimulationSettings()
-    settings.staticSolver.verboseMode = 0
-    settings.staticSolver.newton.relativeTolerance = 1e-10
-    settings.staticSolver.newton.absoluteTolerance = 1e-6
-    settings.staticSolver.numberOfLoadSteps = 1
-    settings.solution.file.write = False
-    settings.timeIntegration.verboseMode = 0
-    return settings
-
-
-def dynamic_settings(end_time: float, step: float) -> exu.SimulationSettings:
-    """Quiet generalized-alpha settings (spectral radius 0.8, modified Newton, fixed step).
-
-    Parameters
-    ----------
-    end_time : float
-        s, end of the time integration.
-    step : float
-        s, time step (also the sensors' write period).
-
-    Returns
-    -------
-    exudyn.SimulationSettings
-        :func:`static_settings` plus the time-integration settings above.
-    """
-    s = static_settings()
-    s.timeIntegration.endTime = end_time
-    s.timeIntegration.numberOfSteps = max(1, int(round(end_time / step)))
-    s.timeIntegration.generalizedAlpha.spectralRadius = 0.8
-    s.timeIntegration.newton.useModifiedNewton = True
-    s.timeIntegration.newton.absoluteTolerance = 1e-4
-    s.timeIntegration.adaptiveStep = False
-    s.solution.sensors.writePeriod = step
-    return s
-
-
-def solve_static(mbs: exu.MainSystem) -> np.ndarray:
-    """Static equilibrium under gravity; it becomes the initial state. Quiet, no files.
-
-    ``mbs`` must be assembled.
-
-    Parameters
-    ----------
-    mbs : exudyn.MainSystem
-        The assembled system; its initial values are replaced by the equilibrium.
-
-    Returns
-    -------
-    numpy.ndarray
-        ODE2 coordinates (m, rad) at static equilibrium.
-    """
-    previous = exu.config.printToConsole
-    exu.config.printToConsole = False
-    try:
-        ok = mbs.SolveStatic(static_settings(), updateInitialValues=True)
-    finally:
-        exu.config.printToConsole = previous
-    if not ok:
-        raise RuntimeError("static solver did not converge")
-    return np.array(mbs.systemData.GetODE2Coordinates())
-
-
-def connector_forces_at_reference(mbs: exu.MainSystem) -> dict[int, np.ndarray]:
-    """Force and torque outputs of every ``Connector*`` spring-damper with all ODE2
-    coordinates and velocities zero (the reference configuration).
-
-    Reads ``OutputVariableType.Force``, ``ForceLocal``, ``Torque``, ``TorqueLocal``, those
-    the connector type has (``RigidBodySpringDamper`` has only the local ones); coordinate
-    constraints (``ConnectorCoordinate``) have no force law and are skipped. Leaves the
-    current state at zero. ``mbs`` must be assembled.
-
-    Parameters
-    ----------
-    mbs : exudyn.MainSystem
-        The assembled system.
-
-    Returns
-    -------
-    dict of int to numpy.ndarray
-        Object index -> concatenated force (and torque) components.
-    """
-    data = mbs.systemData
-    n = len(data.GetODE2Coordinates())
-    data.SetODE2Coordinates([0.0] * n, exu.ConfigurationType.Current)
-    data.SetODE2Coordinates_t([0.0] * n, exu.ConfigurationType.Current)
-    out = {}
-    for i in range(data.NumberOfObjects()):
-        kind = mbs.GetObject(i)["objectType"]
-        if not kind.startswith("Connector") or kind == "ConnectorCoordinate":
-            continue
-        parts = []
-        for output in _FORCE_OUTPUTS:
-            try:
-                parts.append(np.atleast_1d(mbs.GetObjectOutput(i, output)))
-            except ValueError:  # exudyn.ExudynValueError: the type has no such output
-                pass
-        if not parts:
-            raise ValueError(f"connector {i} ({kind}) has no force or torque output")
-        out[i] = np.concatenate(parts)
-    return out
-
-
-def _linearize(mbs: exu.MainSystem) -> list[np.ndarray]:
-    previous = exu.config.printToConsole
-    exu.config.printToConsole = False
-    try:
-        return [np.asarray(a) for a in mbs.ComputeLinearizedSystem(static_settings())]
-    finally:
-        exu.config.printToConsole = previous
-
-
-def _coordinate_names(mbs: exu.MainSystem, build: VehicleBuild) -> list[str]:
-    n = len(mbs.systemData.GetODE2Coordinates())
-    names = [""] * n
-    for handles in build.bodies():
-        start = mbs.GetNodeODE2Index(handles.node)
-        for dname, k in handles.dof.items():
-            names[start + k] = f"{handles.name}.{dname}"
-    return names
-
-
-def vehicle_modes(mbs: exu.MainSystem, build: VehicleBuild) -> tuple[VehicleMode, ...]:
-    """Vibration modes of a vehicle-alone system, linearised at its initial state.
-
-    Call after :func:`solve_static` (the equilibrium is then the initial state). M, K, D
-    come from ``mbs.ComputeLinearizedSystem()``; held coordinates and coordinates of other
-    items are removed. The undamped frequencies solve K v = w^2 M v; each undamped mode is
-    paired with the damped mode (state-space eigenvalue lambda) of highest modal assurance
-    criterion for its damping ratio.
-
-    Parameters
-    ----------
-    mbs : exudyn.MainSystem
-        The assembled system holding the vehicle alone (e.g. on :func:`rigid_track_support`).
-    build : VehicleBuild
-        The vehicle, as returned by :func:`add_vehicle_model`: names the coordinates.
-
-    Returns
-    -------
-    tuple of VehicleMode
-        Sorted by frequency.
-    """
-    m, k, d = _linearize(mbs)
-    names = _coordinate_names(mbs, build)
-    removed = {mbs.GetNodeODE2Index(n) + c for n, c in build.held}
-    keep = [i for i, name in enumerate(names) if name and i not in removed]
-    m, k, d = (a[np.ix_(keep, keep)] for a in (m, k, d))
-    names = [names[i] for i in keep]
-    w2, vectors = scipy.linalg.eig(k, m)
-    order = np.argsort(w2.real)
-    w2, vectors = w2.real[order], vectors.real[:, order]
-    n = len(keep)
-    a = np.block([[np.zeros((n, n)), np.eye(n)], [-np.linalg.solve(m, k), -np.linalg.solve(m, d)]])
-    lam, psi = scipy.linalg.eig(a)
-    upper = lam.imag > 1e-9
-    lam, psi = lam[upper], psi[:n, upper]
-    modes = []
-    for col in range(n):
-        v = vectors[:, col]
-        energy = np.abs(v * (m @ v))
-        energy = energy / np.sum(energy)
-        top = int(np.argmax(energy))
-        body, direction = names[top].split(".")
-        f_d, zeta = math.nan, math.nan
-        if len(lam):
-            mac = np.abs(psi.conj().T @ v) ** 2 / (np.sum(np.abs(psi) ** 2, axis=0) * (v @ v))
-            best = int(np.argmax(mac))
-            f_d = abs(lam[best]) / (2 * math.pi)
-            zeta = -lam[best].real / abs(lam[best])
-        part = {names[i]: float(energy[i]) for i in np.argsort(-energy) if energy[i] >= 0.01}
-        modes.append(
-            VehicleMode(
-                math.sqrt(max(w2[col], 0.0)) / (2 * math.pi),
-                float(f_d),
-                float(zeta),
-                body,
-                direction,
-                float(energy[top]),
-                part,
-            )
-        )
-    return tuple(modes)
