@@ -192,10 +192,12 @@ class _Recorder:
         self.count += 1
 
 
-def _columns(element, rec: _Recorder, x0: float, v: float) -> dict[str, np.ndarray]:
-    """Output columns: the co-running passage's names, rail columns per slot from the FE."""
-    t = np.array(rec.t)
-    q, q_t = np.array(rec.q), np.array(rec.q_t)
+def _columns(element, t, q, q_t, x0: float, v: float) -> dict[str, np.ndarray]:
+    """Output columns: the co-running passage's names, rail columns per slot from the FE.
+
+    ``t``: sample times (s); ``q``, ``q_t``: the element's full coordinates per sample.
+    """
+    t, q, q_t = np.asarray(t, float), np.asarray(q, float), np.asarray(q_t, float)
     cols: dict[str, np.ndarray] = {"t_s": t, "x_m": x0 + v * t}
     cols.update(element.columns(t, q, q_t))
     names = ("y_wheelset_m", "z_wheelset_m", "roll_wheelset_rad", "yaw_wheelset_rad")
@@ -342,7 +344,7 @@ def _simulate(turnout, settings, vehicle, route, contact, planes, x_a, x_b, prog
             f"FE passage failed at t = {t:.5f} s, x = {x_a + v * t:.3f} m: {_reason(err)}"
         ) from None
     steps_s = time.perf_counter() - t1
-    columns = _columns(moving, recorder, x_a, v)
+    columns = _columns(moving, recorder.t, recorder.q, recorder.q_t, x_a, v)
     W = 0.5 * (loads["left"] + loads["right"])
     check_plausible(columns, W, "FE track")
     summary = passage_summary(columns, turnout, settings, loads, time.perf_counter() - wall)

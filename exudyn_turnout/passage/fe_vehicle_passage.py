@@ -268,7 +268,7 @@ def simulate_fe_vehicle_passage(
     PassageFailure
         A solver failure (time and position), or no steady start.
     """
-    from exudyn_turnout.passage.fe_passage import _reason, _summary
+    from exudyn_turnout.passage.fe_passage import _columns, _reason, _summary
     from exudyn_turnout.passage.fe_track import FEPassageOptions
     from exudyn_turnout.passage.full_vehicle_passage import (
         contact_vehicle,
@@ -369,11 +369,7 @@ def simulate_fe_vehicle_passage(
         own = wheelset_columns(el, t, q, q_t, label)
         own[f"x_{label}_m"] = el.x0 + v * t
         if i == 0:
-            from exudyn_turnout.passage.fe_passage import _columns, _Recorder
-
-            recorder = _Recorder(1)
-            recorder.t, recorder.q, recorder.q_t = list(t), list(q), list(q_t)
-            columns.update(_columns(el, recorder, x_a, v))
+            columns.update(_columns(el, t, q, q_t, x_a, v))
         plausible = {
             "t_s": t,
             "x_m": el.x0 + v * t,
