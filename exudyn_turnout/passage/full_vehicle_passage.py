@@ -92,6 +92,7 @@ from exudyn_turnout.passage.simulate import (
     _check,
     _dof_of,
     _join,
+    _progress_function,
     _QuietExudyn,
     _static_deflection,
     _vehicle_shift,
@@ -1073,15 +1074,9 @@ def _run(
     sim.timeIntegration.newton.modifiedNewtonContractivity = _NEWTON_CONTRACTIVITY
     v = settings.v
     if progress is not None:
-        due = [0.0]
-
-        def pre_step(mbs, t):
-            if t >= due[0]:
-                due[0] = t + 0.02 * total
-                progress(min((t_offset + t) / total, 1.0), system.x_front + v * t)
-            return True
-
-        system.mbs.SetPreStepUserFunction(pre_step)
+        system.mbs.SetPreStepUserFunction(
+            _progress_function(progress, t_offset, total, system.x_front, v)
+        )
     try:
         system.mbs.SolveDynamic(sim)
     except (exu.SolverError, RuntimeError) as err:
