@@ -13,9 +13,9 @@ import argparse
 import time
 
 from exudyn_turnout.inputs.turnout import load_turnout
-from exudyn_turnout.passage.fe_track import simulate_fe_passage
+from exudyn_turnout.passage.fe_track.vertical_legacy import simulate_fe_passage
 from exudyn_turnout.passage.results import PassageSettings
-from exudyn_turnout.passage.simulate import simulate_passage
+from exudyn_turnout.passage.run import simulate_passage
 
 #: Parts of the FE passage's wall time (summary ``wall_time_parts_s``) and what they are.
 PARTS = (

@@ -20,7 +20,7 @@ import time
 
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.passage.results import PassageSettings
-from exudyn_turnout.passage.simulate import simulate_passage
+from exudyn_turnout.passage.run import simulate_passage
 
 
 def _timed(run) -> tuple[float, object]:
@@ -50,12 +50,11 @@ def main(argv=None) -> None:
     rows.append(("FE, height-table contact, vertical only (fe_track.py)", wall_old, old))
     if args.full:
         from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
-        from exudyn_turnout.passage.full_vehicle_passage import simulate_vehicle_passage
 
         model = load_vehicle_model()
         for track in ("3-layer", "fe"):
             wall, r = _timed(
-                lambda track=track: simulate_vehicle_passage(turnout, settings, model, track=track)
+                lambda track=track: simulate_passage(turnout, settings, model, track=track)
             )
             rows.append((f"full vehicle, {track}", wall, r))
     print(

@@ -21,7 +21,7 @@ import exudyn as exu
 import numpy as np
 
 from exudyn_turnout.inputs.vehicle_model import load_vehicle_model, single_wheelset_share
-from exudyn_turnout.passage.vehicle_builder import (
+from exudyn_turnout.passage.vehicle.builder import (
     RigidTrack,
     add_vehicle_model,
     dynamic_settings,

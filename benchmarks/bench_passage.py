@@ -12,10 +12,10 @@ import time
 from dataclasses import replace
 
 from exudyn_turnout.inputs.turnout import load_turnout
-from exudyn_turnout.passage import contact_element as wheelrail
-from exudyn_turnout.passage import profile_contact
+from exudyn_turnout.passage.contact import height_table as wheelrail
+from exudyn_turnout.passage.contact import profile as profile_contact
 from exudyn_turnout.passage.results import PassageSettings
-from exudyn_turnout.passage.simulate import simulate_passage
+from exudyn_turnout.passage.run import simulate_passage
 
 
 def _timed(turnout, settings, repeat):

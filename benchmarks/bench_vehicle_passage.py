@@ -3,8 +3,8 @@
 Run: ``python benchmarks/bench_vehicle_passage.py [--route R] [--x-start X] [--x-end X]
 [--speed V] [--layers 2 3]`` (default: the whole turnout, through route, 100 km/h, 2 and 3
 layers). Each case runs once (profile contact, h = 1e-4 s): the single-wheelset passage
-(:func:`exudyn_turnout.passage.simulate.simulate_passage`) and the full Manchester vehicle
-(:func:`exudyn_turnout.passage.full_vehicle_passage.simulate_vehicle_passage`), plus a short
+(:func:`exudyn_turnout.passage.run.simulate_passage`) and the full Manchester vehicle
+(:func:`exudyn_turnout.passage.run.simulate_passage`), plus a short
 run (0.5 m) of each to separate the fixed cost (building the systems, static solves) from the
 cost per step: "marginal us/step" is (wall - wall_short) / (steps - steps_short). "cpu s" is
 the process's CPU time of the run (less sensitive than wall time to other processes on a
@@ -22,10 +22,9 @@ from dataclasses import replace
 
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
-from exudyn_turnout.passage import full_vehicle_passage
-from exudyn_turnout.passage.full_vehicle_passage import simulate_vehicle_passage
+from exudyn_turnout.passage.corunning_track import vehicle as full_vehicle_passage
 from exudyn_turnout.passage.results import PassageSettings
-from exudyn_turnout.passage.simulate import simulate_passage
+from exudyn_turnout.passage.run import simulate_passage
 
 
 class _NewtonCount:
@@ -74,7 +73,7 @@ def main() -> None:
     base = PassageSettings(route=args.route, speed_kmh=args.speed, x_start=x_a, x_end=x_b)
     warm = replace(base, x_end=x_a + 0.05)
     simulate_passage(turnout, warm)  # contact tables, compiled kernel: untimed
-    simulate_vehicle_passage(turnout, warm, model)
+    simulate_passage(turnout, warm, model)
     simulated = (x_b - x_a) / base.v
     print(f"{args.route} route, front wheelset x {x_a:g} .. {x_b:g} m, {args.speed:g} km/h, ")
     print(f"h = 1e-4 s, {simulated:.3f} s simulated")
@@ -84,7 +83,7 @@ def main() -> None:
     )
     cases = (
         ("1 wheelset", lambda s: simulate_passage(turnout, s)),
-        ("4 wheelsets (full vehicle)", lambda s: simulate_vehicle_passage(turnout, s, model)),
+        ("4 wheelsets (full vehicle)", lambda s: simulate_passage(turnout, s, model)),
     )
     for layers in args.layers:
         settings = replace(base, layers=layers)

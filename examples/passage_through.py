@@ -9,7 +9,7 @@ from pathlib import Path
 
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.passage.results import PassageSettings, peaks_table
-from exudyn_turnout.passage.simulate import compare_layers
+from exudyn_turnout.passage.run import compare_layers
 from exudyn_turnout.plotting.curves import plot_passage_forces
 
 

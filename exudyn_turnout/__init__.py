@@ -23,7 +23,7 @@ The front door::
     params = et.co_running_parameters(turnout, zone=2, layers=3)
     h = et.co_running_receptance(turnout, 3, "r2", "vertical", x=47.2)
     result = et.simulate_passage(turnout, et.PassageSettings(route="through"),
-                                 track="3-layer")
+                                 track="3-layer")     # vehicle="manchester": full vehicle
     result.plot(); h.plot()
 
 Names that need Exudyn, scipy's FE solvers or matplotlib are imported on first use, so
@@ -61,12 +61,21 @@ _LAZY = {
     "co_running_modes": "exudyn_turnout.corunning.modal",
     "fe_receptance": "exudyn_turnout.fe.frf",
     "FEOptions": "exudyn_turnout.fe.mesh",
-    "simulate_passage": "exudyn_turnout.passage.simulate",
+    "simulate_passage": "exudyn_turnout.passage.run",
+    "compare_layers": "exudyn_turnout.passage.run",
+    "PACKAGED_VEHICLES": "exudyn_turnout.passage.run",
+    "load_vehicle_model": "exudyn_turnout.inputs.vehicle_model",
+    "VehicleModel": "exudyn_turnout.inputs.vehicle_model",
+    "simulate_hunting": "exudyn_turnout.passage.hunting",
+    "find_hunting_onset": "exudyn_turnout.passage.hunting",
+    "HuntingSettings": "exudyn_turnout.passage.hunting",
+    "run_study": "exudyn_turnout.studies.run",
+    "write_report": "exudyn_turnout.report",
     "PassageSettings": "exudyn_turnout.passage.results",
     "PassageResult": "exudyn_turnout.passage.results",
     "PassageError": "exudyn_turnout.passage.results",
     "TRACKS": "exudyn_turnout.passage.results",
-    "FEPassageOptions": "exudyn_turnout.passage.fe_track",
+    "FEPassageOptions": "exudyn_turnout.passage.fe_track.options",
     "plot_receptance": "exudyn_turnout.plotting.curves",
     "plot_passage_forces": "exudyn_turnout.plotting.curves",
     "draw_cross_section": "exudyn_turnout.plotting.model",

@@ -17,15 +17,15 @@ import scipy.sparse.linalg as sla
 from exudyn_turnout.fe.rail_head import rail_head_point
 from exudyn_turnout.fe.timoshenko import lagrange_shape_functions
 from exudyn_turnout.inputs.vehicle import GRAVITY, load_vehicle
-from exudyn_turnout.passage.fe_coupling import (
+from exudyn_turnout.passage.fe_track.coupling import (
     _Plane,
     build_fe_planes,
     generalized_alpha,
     lagrange_weights,
 )
-from exudyn_turnout.passage.fe_passage import simulate_fe_profile_passage
+from exudyn_turnout.passage.fe_track.wheelset import simulate_wheelset
 from exudyn_turnout.passage.results import PassageSettings
-from exudyn_turnout.passage.simulate import simulate_passage
+from exudyn_turnout.passage.run import simulate_passage
 
 X0 = -3.0  # m, plain track before the toe (the FE layout starts at -6 m)
 
@@ -39,7 +39,7 @@ def planes(turnout):
 def short_run(turnout, planes):
     """0.15 m of plain track at 100 km/h on the FE track (54 steps)."""
     settings = PassageSettings(route="through", speed_kmh=100.0, x_start=X0, x_end=X0 + 0.15)
-    return simulate_fe_profile_passage(turnout, settings, planes=planes)
+    return simulate_wheelset(turnout, settings, planes=planes)
 
 
 def test_generalized_alpha_update_is_exudyns(turnout):
@@ -143,9 +143,9 @@ def test_static_deflection_is_the_fe_static_solution(turnout, planes):
     load vectors and head displacements of fe/rail_head.py (not the coupling's own).
     """
     from exudyn_turnout.inputs.routes import load_route
-    from exudyn_turnout.passage.fe_coupling import FECoSimulation
-    from exudyn_turnout.passage.fe_passage import static_equilibrium
-    from exudyn_turnout.passage.profile_contact import route_contact
+    from exudyn_turnout.passage.contact.profile import route_contact
+    from exudyn_turnout.passage.fe_track.coupling import FECoSimulation
+    from exudyn_turnout.passage.fe_track.wheelset import static_equilibrium
 
     vehicle = load_vehicle()
     route = load_route(turnout, "through")
@@ -181,9 +181,13 @@ def test_coupling_is_consistent_with_the_fe_state(short_run, turnout, planes):
     rail head (to 1e-12 m): r = r_free + C F and the FE update agree (no lag, no sign slip).
     The forces stay near the static load on plain track (sleeper passing: < 5 %)."""
     from exudyn_turnout.inputs.routes import load_route
-    from exudyn_turnout.passage.fe_coupling import FEContactElement, FECoSimulation
-    from exudyn_turnout.passage.fe_passage import fe_contact_element, static_equilibrium
-    from exudyn_turnout.passage.profile_contact import route_contact
+    from exudyn_turnout.passage.contact.profile import route_contact
+    from exudyn_turnout.passage.fe_track.common import fe_contact_element
+    from exudyn_turnout.passage.fe_track.coupling import (
+        FEContactElement,
+        FECoSimulation,
+    )
+    from exudyn_turnout.passage.fe_track.wheelset import static_equilibrium
 
     cols = short_run.columns
     W = short_run.summary["static_wheel_load_N"]

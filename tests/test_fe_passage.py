@@ -28,8 +28,8 @@ from exudyn_turnout.fe.timoshenko import lagrange_shape_functions
 from exudyn_turnout.inputs.routes import ContactPair, Route
 from exudyn_turnout.inputs.turnout import Table1D
 from exudyn_turnout.inputs.vehicle import load_vehicle
-from exudyn_turnout.passage.fe_track import (
-    FEPassageOptions,
+from exudyn_turnout.passage.fe_track.options import FEPassageOptions
+from exudyn_turnout.passage.fe_track.vertical_legacy import (
     build_fe_track,
     contact_points,
     hht_parameters,
@@ -356,7 +356,7 @@ def test_cli_bad_input_is_a_usage_error(tmp_path, argv, text):
 def test_cli_writes_the_passage_files(tmp_path, turnout, capsys):
     import json
 
-    from exudyn_turnout.passage.simulate import simulate_passage
+    from exudyn_turnout.passage.run import simulate_passage
 
     args = _fe_parser().parse_args(
         [

@@ -11,15 +11,15 @@ import numpy as np
 import pytest
 
 from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
-from exudyn_turnout.passage.full_vehicle_passage import simulate_vehicle_passage
 from exudyn_turnout.passage.results import PassageError, PassageSettings
+from exudyn_turnout.passage.run import simulate_passage
 
 SETTINGS = PassageSettings(route="through", speed_kmh=100.0, x_start=-5.0, x_end=-4.9)
 
 
 @pytest.fixture(scope="module")
 def fe_run(turnout):
-    return simulate_vehicle_passage(turnout, SETTINGS, load_vehicle_model(), track="fe")
+    return simulate_passage(turnout, SETTINGS, load_vehicle_model(), track="fe")
 
 
 def test_static_wheel_loads_carry_the_vehicle(fe_run):
@@ -31,7 +31,7 @@ def test_static_wheel_loads_carry_the_vehicle(fe_run):
 
 
 def test_static_wheel_loads_equal_the_co_running_ones(turnout, fe_run):
-    co = simulate_vehicle_passage(turnout, SETTINGS, load_vehicle_model(), track="3-layer")
+    co = simulate_passage(turnout, SETTINGS, load_vehicle_model(), track="3-layer")
     for k in range(1, 5):
         for wheel in ("left", "right"):
             key = f"static_wheel_load_ws{k}_{wheel}_N"
@@ -53,4 +53,4 @@ def test_every_wheel_stays_loaded_on_plain_track(fe_run):
 
 def test_unknown_track_is_refused(turnout):
     with pytest.raises(PassageError, match="track must be one of"):
-        simulate_vehicle_passage(turnout, SETTINGS, load_vehicle_model(), track="4-layer")
+        simulate_passage(turnout, SETTINGS, load_vehicle_model(), track="4-layer")

@@ -21,9 +21,11 @@ from exudyn_turnout.corunning.track import add_co_running_track
 from exudyn_turnout.inputs.routes import load_route
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
+from exudyn_turnout.passage.contact.height_table import HeightTableContact
+from exudyn_turnout.passage.contact.profile import route_contact
+from exudyn_turnout.passage.corunning_track.wheelset import build_zone_system
 from exudyn_turnout.passage.results import PassageSettings
-from exudyn_turnout.passage.simulate import _build
-from exudyn_turnout.passage.vehicle import add_vehicle
+from exudyn_turnout.passage.vehicle.wheelset import add_vehicle
 
 #: Exudyn connector types that carry a force law; all the package uses are listed here.
 CONNECTOR_TYPES = tuple(
@@ -86,15 +88,23 @@ def test_vehicle_springs_force_free():
     assert _assert_force_free(mbs, "vehicle") == 2  # two axlebox springs
 
 
+@pytest.mark.parametrize("contact", ["height-table", "profile"])
 @pytest.mark.parametrize("route_name", ["through", "diverging"])
 @pytest.mark.parametrize("layers", [2, 3])
-def test_passage_systems_force_free(turnout, route_name, layers):
+def test_passage_systems_force_free(turnout, route_name, layers, contact):
     vehicle = load_vehicle()
     route = load_route(turnout, route_name)
-    settings = replace(PassageSettings(), route=route_name, layers=layers)
+    settings = replace(PassageSettings(), route=route_name, layers=layers, contact=contact)
+    made = (
+        HeightTableContact()
+        if contact == "height-table"
+        else route_contact(turnout, route_name, vehicle)
+    )
     for zone in turnout.zones:
-        system = _build(turnout, route, vehicle, zone, settings, zone.x_start, 0.0)
-        _assert_force_free(system.mbs, f"{route_name} zone {zone.index} {layers} layers")
+        system = build_zone_system(turnout, route, vehicle, zone, settings, zone.x_start, 0.0, made)
+        _assert_force_free(
+            system.mbs, f"{route_name} zone {zone.index} {layers} layers, {contact} contact"
+        )
 
 
 def test_wheelset_roll_and_lateral_stiffness_by_hand():

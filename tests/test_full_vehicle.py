@@ -34,7 +34,7 @@ from exudyn_turnout.inputs.vehicle_model import (
     single_wheelset_share,
     sway_frequencies,
 )
-from exudyn_turnout.passage.vehicle_builder import (
+from exudyn_turnout.passage.vehicle.builder import (
     RigidTrack,
     add_vehicle_model,
     connector_forces_at_reference,

@@ -1,5 +1,5 @@
 """The full Manchester vehicle through the turnout, a co-running track under every wheelset
-(issue 13; :mod:`exudyn_turnout.passage.full_vehicle_passage`)."""
+(issue 13; :mod:`exudyn_turnout.passage.corunning_track.vehicle`)."""
 
 from __future__ import annotations
 
@@ -8,9 +8,9 @@ import pytest
 
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
-from exudyn_turnout.passage.full_vehicle_passage import curve_geometry, simulate_vehicle_passage
 from exudyn_turnout.passage.results import PassageError, PassageSettings
-from exudyn_turnout.passage.simulate import simulate_passage
+from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.vehicle.track_frame import curve_geometry
 
 #: N, Iwnicki 1998: total mass 32 000 + 2 x 2 615 + 4 x 1 813 = 44 482 kg on 8 wheels.
 STATIC_WHEEL_LOAD = 44482.0 * 9.81 / 8.0
@@ -31,7 +31,7 @@ def plain(turnout, model):
     """All four wheelsets on plain track: the front at x = -4 m, the rear ones behind the
     turnout's start (zone 1 clamped to x_min)."""
     s = PassageSettings(route="through", speed_kmh=60.0, layers=2, x_start=-4.0, x_end=-3.8)
-    return simulate_vehicle_passage(turnout, s, model)
+    return simulate_passage(turnout, s, model)
 
 
 def test_static_wheel_loads_on_plain_track(plain):
@@ -68,7 +68,7 @@ def test_suspension_has_no_stiffness_against_rigid_motion(model):
     # unstrained vehicle (no spring changes length); gravity's roll terms do not enter.
     import exudyn as exu
 
-    from exudyn_turnout.passage.vehicle_builder import add_vehicle_model
+    from exudyn_turnout.passage.vehicle.builder import add_vehicle_model
 
     mbs = exu.SystemContainer().AddSystem()
     build = add_vehicle_model(mbs, model, representation="linear", wheelset_spin=True)
@@ -88,7 +88,7 @@ def test_zone_crossing_of_the_front_wheelset(turnout, model):
     # the front wheelset crosses zone 1 -> 2 (crossing panel, x = 44.29 m) on the through
     # route; the others stay in zone 1 and their tracks are copied.
     s = PassageSettings(route="through", speed_kmh=60.0, layers=2, x_start=44.2, x_end=44.4)
-    result = simulate_vehicle_passage(turnout, s, model)
+    result = simulate_passage(turnout, s, model)
     assert result.zone_starts == pytest.approx((44.2, 44.29))
     cols = result.columns
     i = int(np.searchsorted(cols["x_m"], 44.29))
@@ -114,7 +114,7 @@ def test_steady_curving_lateral_balance(turnout, model):
     # whole vehicle's centrifugal load, M v^2 / R (Newton's second law in the
     # track-following frame): 44 482 kg x (60 / 3.6 m/s)^2 / 760 m = 16.26 kN (issue 13).
     s = PassageSettings(route="diverging", speed_kmh=60.0, layers=2, x_start=30.0, x_end=30.1)
-    result = simulate_vehicle_passage(turnout, s, model)
+    result = simulate_passage(turnout, s, model)
     cols = result.columns
     total = sum(cols[f"Fy_ws{i}_{w}_N"] for i in range(1, 5) for w in ("right", "left"))
     expected = 44482.0 * (60.0 / 3.6) ** 2 / 760.0
@@ -159,14 +159,14 @@ def test_rear_wheelsets_pass_the_crossing_beyond_the_turnout_end(turnout, model)
     """The front wheelset may run past the turnout's end (plain track: the last zone at x_max)
     by up to the vehicle's length, so the rear wheelsets cross the nose (46.9 m) too."""
     settings = PassageSettings(layers=2, x_start=66.0, x_end=70.0)  # rear: 44.4 -> 48.4 m
-    s = simulate_vehicle_passage(turnout, settings, model).summary
+    s = simulate_passage(turnout, settings, model).summary
     W = 44482 * 9.81 / 8
     for k in (3, 4):
         assert s[f"peak_Fz_crossing_ws{k}_right_N"] > 1.5 * W  # the crossing impact
     assert np.isnan(s["peak_Fz_crossing_ws1_right_N"])  # the front ones are past it
     too_far = PassageSettings(layers=2, x_start=80.0, x_end=82.0)
     with pytest.raises(PassageError, match="end plus the vehicle's length"):
-        simulate_vehicle_passage(turnout, too_far, model)
+        simulate_passage(turnout, too_far, model)
 
 
 def _segment(turnout, model, x_front, v, frozen=False, route_name="through"):
@@ -174,8 +174,8 @@ def _segment(turnout, model, x_front, v, frozen=False, route_name="through"):
     and a state with every wheel pressed into its rails and moving a little."""
     from exudyn_turnout.inputs.routes import load_route
     from exudyn_turnout.inputs.vehicle import load_vehicle
-    from exudyn_turnout.passage import full_vehicle_passage as fvp
-    from exudyn_turnout.passage.profile_contact import route_contact
+    from exudyn_turnout.passage.contact.profile import route_contact
+    from exudyn_turnout.passage.corunning_track import vehicle as fvp
 
     route, base = load_route(turnout, route_name), load_vehicle()
     settings = PassageSettings(route=route_name, speed_kmh=100.0, layers=3)
@@ -308,8 +308,7 @@ def test_exudyn_takes_the_contact_jacobian_as_its_own_numerical_one(turnout, mod
 def test_newton_tolerance_per_wheelset():
     # sqrt(n) times the single wheelset's: the L2 residual of n wheelsets with each
     # wheelset's share at the single wheelset's tolerance
-    from exudyn_turnout.passage.full_vehicle_passage import newton_tolerance
-    from exudyn_turnout.passage.simulate import NEWTON_ABSOLUTE_TOLERANCE
+    from exudyn_turnout.passage.common import NEWTON_ABSOLUTE_TOLERANCE, newton_tolerance
 
     assert newton_tolerance(1) == NEWTON_ABSOLUTE_TOLERANCE
     assert newton_tolerance(4) == pytest.approx(2.0 * NEWTON_ABSOLUTE_TOLERANCE)

@@ -22,7 +22,7 @@ from exudyn_turnout.corunning.parameters import co_running_parameters
 from exudyn_turnout.inputs.geometry import turnout_plan
 from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.passage.results import PassageError, PassageSettings, write_passage
-from exudyn_turnout.passage.simulate import simulate_passage
+from exudyn_turnout.passage.run import simulate_passage
 
 W = (1813 + 32000 / 4 + 2615 / 2) * 9.81 / 2
 
@@ -187,7 +187,8 @@ def test_cli_bad_input(tmp_path, capsys, argv, fragment):
 
 @pytest.mark.parametrize("contact", ["profile", "height-table"])
 def test_solver_failure_names_time_and_position(turnout, monkeypatch, contact):
-    from exudyn_turnout.passage import contact_element, profile_contact
+    from exudyn_turnout.passage.contact import height_table as contact_element
+    from exudyn_turnout.passage.contact import profile as profile_contact
 
     element = {
         "profile": profile_contact.ProfileContactElement,

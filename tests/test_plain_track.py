@@ -23,7 +23,7 @@ from exudyn_turnout.corunning.parameters import (
 )
 from exudyn_turnout.corunning.track import EntryLaw
 from exudyn_turnout.passage.results import PassageSettings
-from exudyn_turnout.passage.simulate import simulate_passage
+from exudyn_turnout.passage.run import simulate_passage
 
 
 def _static_stiffness(params, x: float, rail: str, direction: str) -> float:

@@ -214,7 +214,7 @@ def test_fe_passage_cache_key_changes_with_contact_vehicle_and_version(turnout, 
 
 def test_report_vehicle_option_and_missing_full_vehicle_fe(turnout, monkeypatch):
     """vehicle is "full" (default) or "wheelset"; the full vehicle's FE passage is n/a, not a
-    crash, in a version whose simulate_vehicle_passage has no track keyword."""
+    crash, in a version whose simulate_passage has no track keyword."""
     import exudyn_turnout.report.metrics as rm
 
     assert (

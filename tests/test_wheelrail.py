@@ -9,7 +9,7 @@ import pytest
 
 from exudyn_turnout.inputs.routes import load_route
 from exudyn_turnout.inputs.vehicle import load_vehicle
-from exudyn_turnout.passage.contact_element import BoundPair, WheelRailElement
+from exudyn_turnout.passage.contact.height_table import BoundPair, WheelRailElement
 
 
 @pytest.fixture(scope="module")

@@ -12,7 +12,8 @@ Run: ``python validation/fe_passage_convergence.py [--quick]``; prints Markdown 
   extension: the largest difference of the force history, relative to the static load.
 
 Each window starts from its own static equilibrium (a steady start, see
-:mod:`exudyn_turnout.passage.fe_track`), so the windows stand for the full passage there.
+:mod:`exudyn_turnout.passage.fe_track.vertical_legacy`), so the windows stand for the full
+passage there.
 """
 
 import argparse
@@ -22,7 +23,8 @@ import numpy as np
 
 from exudyn_turnout.fe.mesh import FEOptions
 from exudyn_turnout.inputs.turnout import load_turnout
-from exudyn_turnout.passage.fe_track import FEPassageOptions, simulate_fe_passage
+from exudyn_turnout.passage.fe_track.options import FEPassageOptions
+from exudyn_turnout.passage.fe_track.vertical_legacy import simulate_fe_passage
 from exudyn_turnout.passage.results import PassageSettings
 
 #: (name, x_start, x_end, summary key) of the windows (m).

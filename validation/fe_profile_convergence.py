@@ -4,7 +4,7 @@ Run: ``python validation/fe_profile_convergence.py``; writes
 ``validation/fe_profile_convergence.md`` (Markdown tables) and prints it.
 
 The FE track under the single wheelset with the profile contact
-(:mod:`exudyn_turnout.passage.fe_passage`), through route, 100 km/h, in two windows that
+(:mod:`exudyn_turnout.passage.fe_track.wheelset`), through route, 100 km/h, in two windows that
 hold the switch and the crossing nose's load transfer; each window starts from its own
 static equilibrium carried at speed. Peaks of the right wheel's vertical force and of the
 lateral force on the right rail (largest magnitude) for
@@ -24,9 +24,9 @@ import numpy as np
 
 from exudyn_turnout.fe.mesh import FEOptions
 from exudyn_turnout.inputs.turnout import load_turnout
-from exudyn_turnout.passage.fe_track import FEPassageOptions
+from exudyn_turnout.passage.fe_track.options import FEPassageOptions
 from exudyn_turnout.passage.results import PassageSettings
-from exudyn_turnout.passage.simulate import simulate_passage
+from exudyn_turnout.passage.run import simulate_passage
 
 #: (name, x_start, x_end) of the windows (m): switch blade take-over, crossing nose.
 WINDOWS = (("switch", 2.0, 6.0), ("crossing", 44.0, 49.0))

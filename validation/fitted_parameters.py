@@ -194,7 +194,7 @@ def receptance_markdown(rows, fits):
 
 def passage_markdown(turnout, fitted_turnout):
     from exudyn_turnout.passage.results import PassageSettings
-    from exudyn_turnout.passage.simulate import simulate_passage
+    from exudyn_turnout.passage.run import simulate_passage
 
     windows = (
         ("switch", (1.0, 8.0), "peak_Fz_switch_N"),

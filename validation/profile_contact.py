@@ -25,7 +25,7 @@ from exudyn_turnout.inputs.geometry import turnout_plan
 from exudyn_turnout.inputs.turnout import default_turnout_path, load_turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.passage.results import PassageSettings
-from exudyn_turnout.passage.simulate import simulate_passage
+from exudyn_turnout.passage.run import simulate_passage
 
 HERE = Path(__file__).resolve().parent
 
@@ -138,7 +138,7 @@ def static_lateral(turnout) -> list[str]:
     from scipy.optimize import fsolve
 
     from exudyn_turnout.inputs.routes import load_route
-    from exudyn_turnout.passage.profile_contact import route_contact
+    from exudyn_turnout.passage.contact.profile import route_contact
     from exudyn_turnout.wheel_rail.kernel import DETAIL_FIELDS
 
     vehicle = load_vehicle()

@@ -17,7 +17,7 @@ import numpy as np
 
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
-from exudyn_turnout.passage.profile_contact import wheel_and_setup
+from exudyn_turnout.passage.contact.profile import wheel_and_setup
 from exudyn_turnout.plotting.studies import plot_peak_vs_factor, save_study_figure
 from exudyn_turnout.studies import run_study
 from exudyn_turnout.wheel_rail.handovers import route_transfers

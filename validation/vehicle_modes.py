@@ -25,7 +25,7 @@ from exudyn_turnout.inputs.vehicle_model import (
     hand_frequencies,
     load_vehicle_model,
 )
-from exudyn_turnout.passage.vehicle_builder import (
+from exudyn_turnout.passage.vehicle.builder import (
     RigidTrack,
     add_vehicle_model,
     rigid_track_support,

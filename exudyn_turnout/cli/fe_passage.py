@@ -19,7 +19,7 @@ from exudyn_turnout.cli.passage import (
 )
 
 if TYPE_CHECKING:
-    from exudyn_turnout.passage.fe_track import FEPassageOptions
+    from exudyn_turnout.passage.fe_track.options import FEPassageOptions
 
 __all__ = ["add_simulate"]
 
@@ -27,7 +27,7 @@ __all__ = ["add_simulate"]
 def _options(args: argparse.Namespace) -> FEPassageOptions:
     """FE passage options from ``--element-length``; a bad value is exit 2."""
     from exudyn_turnout.fe.mesh import FEOptions
-    from exudyn_turnout.passage.fe_track import FEPassageOptions
+    from exudyn_turnout.passage.fe_track.options import FEPassageOptions
 
     try:
         return FEPassageOptions(mesh=FEOptions(element_length=args.element_length))
@@ -40,7 +40,7 @@ def _run(args: argparse.Namespace) -> int:
 
     from exudyn_turnout.inputs.turnout import load_turnout
     from exudyn_turnout.inputs.vehicle import load_vehicle
-    from exudyn_turnout.passage.simulate import simulate_passage
+    from exudyn_turnout.passage.run import simulate_passage
 
     check_out_dir(args.out)
     turnout = load_turnout(args.turnout)

@@ -16,6 +16,7 @@ from exudyn_turnout.cli.main import (
     progress_bar,
     turnout_from_args,
 )
+from exudyn_turnout.passage.run import simulate_passage
 
 __all__ = [
     "build",
@@ -73,7 +74,6 @@ def settings_from_args(args: argparse.Namespace, **track_options):
 
 def _run(args: argparse.Namespace) -> int:
     from exudyn_turnout.inputs.vehicle import load_vehicle
-    from exudyn_turnout.passage.simulate import simulate_passage
     from exudyn_turnout.provenance import file_record
 
     check_out_dir(args.out)
@@ -104,9 +104,8 @@ def _run(args: argparse.Namespace) -> int:
     def simulate(bar):
         if model is None:
             return simulate_passage(turnout, settings, vehicle=vehicle, progress=bar, track=track)
-        from exudyn_turnout.passage.full_vehicle_passage import simulate_vehicle_passage
 
-        return simulate_vehicle_passage(turnout, settings, model, progress=bar, track=track)
+        return simulate_passage(turnout, settings, model, progress=bar, track=track)
 
     return run_passage_command(
         args,

@@ -2,7 +2,7 @@
 
 The packaged default is ``data/manchester_wheelset.toml`` (one wheelset of the Manchester
 benchmark vehicle under its share of bogie and car body). The Exudyn model built from
-it is :func:`exudyn_turnout.passage.vehicle.add_vehicle`; the full vehicle's file is read
+it is :func:`exudyn_turnout.passage.vehicle.wheelset.add_vehicle`; the full vehicle's file is read
 by :mod:`exudyn_turnout.inputs.vehicle_model`.
 """
 

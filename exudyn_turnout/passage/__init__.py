@@ -1,13 +1,18 @@
 """Stage 5, the passage: a vehicle runs through the turnout on any track.
 
+A passage is a vehicle, a track and a contact; :func:`~.run.simulate_passage` is the one
+door and the only module that knows every track.
+
+- :mod:`.run`: the door and the dispatch;
+- :mod:`.common`: settings checks, time-step limit, Newton tolerance, progress;
 - :mod:`.results`: settings and result types, peaks, summary, output files (no Exudyn);
-- :mod:`.simulate`: :func:`simulate_passage` (co-running track under the wheelset, zones
-  switched during the run, or the FE track);
-- :mod:`.fe_track`: the FE turnout as the passage's track (time integration of the FE
-  model of :mod:`exudyn_turnout.fe` under the moving contact);
-- :mod:`.contact_element`: the wheel/rail penalty contact as an Exudyn element;
-- :mod:`.vehicle`: the single wheelset with its sprung share in Exudyn;
-- :mod:`.vehicle_builder`: the full Manchester vehicle in Exudyn.
+- :mod:`.vehicle`: the single wheelset and the full vehicle in Exudyn;
+- :mod:`.contact`: the wheel/rail contact (protocol, profile contact, height-table baseline);
+- :mod:`.corunning_track`: the 2- and 3-layer co-running track under every wheelset, zones
+  switched during the run;
+- :mod:`.fe_track`: the FE reference track, coupled to Exudyn by exact one-step
+  co-simulation;
+- :mod:`.hunting`: the full vehicle's hunting stability on rigid straight track.
 """
 
 from exudyn_turnout.passage.results import (
@@ -18,7 +23,7 @@ from exudyn_turnout.passage.results import (
     PassageSettings,
     write_passage,
 )
-from exudyn_turnout.passage.simulate import simulate_passage
+from exudyn_turnout.passage.run import compare_layers, simulate_passage
 
 __all__ = [
     "TRACKS",
@@ -26,6 +31,7 @@ __all__ = [
     "PassageFailure",
     "PassageResult",
     "PassageSettings",
+    "compare_layers",
     "simulate_passage",
     "write_passage",
 ]

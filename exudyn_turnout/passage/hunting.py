@@ -1,12 +1,12 @@
 """Hunting stability of the full vehicle on straight rigid plain track (issue 13).
 
 The vehicle of a :class:`~exudyn_turnout.inputs.vehicle_model.VehicleModel` (car body,
-bogies, wheelsets; :func:`~exudyn_turnout.passage.vehicle_builder.add_vehicle_model`,
+bogies, wheelsets; :func:`~exudyn_turnout.passage.vehicle.builder.add_vehicle_model`,
 linear representation, wheelset spin free, lateral bumpstops) runs at constant speed v on
 straight, rigid plain track: the plain rail section of the turnout's route at its start
 x_min (UIC60 1:40 in the packaged turnout), constant along x. Every wheel is in contact
 with it through the package's profile contact
-(:class:`~exudyn_turnout.passage.profile_contact.ProfileContactElement`: contact points
+(:class:`~exudyn_turnout.passage.contact.profile.ProfileContactElement`: contact points
 from the S1002/UIC60 tables, Hertz normal force per point, Polach's creep forces with
 spin), the rails held fixed (rigid track). The run starts from the steady state at speed
 (the symmetric static equilibrium; on straight track nothing else differs) with a lateral
@@ -44,7 +44,7 @@ from exudyn_turnout.inputs.routes import load_route
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel, load_vehicle_model
-from exudyn_turnout.passage.profile_contact import (
+from exudyn_turnout.passage.contact.profile import (
     STATIC_LATERAL_STIFFNESS,
     STATIC_SPIN_STIFFNESS,
     ProfileContactElement,
@@ -384,8 +384,11 @@ def _straight(turnout: Turnout, route_name: str, model: VehicleModel, v: float) 
     import exudyn as exu
     from exudyn.itemInterface import ObjectGenericODE2, SensorNode
 
-    from exudyn_turnout.passage.full_vehicle_passage import contact_vehicle, set_initial_vehicle
-    from exudyn_turnout.passage.vehicle_builder import add_vehicle_model, static_settings
+    from exudyn_turnout.passage.vehicle.builder import add_vehicle_model, static_settings
+    from exudyn_turnout.passage.vehicle.track_frame import (
+        contact_vehicle,
+        set_initial_vehicle,
+    )
 
     if model.car_body is None:
         raise ValueError(f"{model.name}: not a full vehicle (no car body)")
@@ -517,7 +520,7 @@ def simulate_hunting(
     """
     import exudyn as exu
 
-    from exudyn_turnout.passage.vehicle_builder import dynamic_settings
+    from exudyn_turnout.passage.vehicle.builder import dynamic_settings
 
     if not (math.isfinite(conicity) and 0.0 < conicity <= 1.0):
         raise ValueError(f"hunting: conicity = {conicity!r} must be in (0, 1]")
@@ -656,7 +659,7 @@ def linear_hunting(
     ValueError
         Speed not positive, or as :func:`simulate_hunting`.
     """
-    from exudyn_turnout.passage.vehicle_builder import static_settings
+    from exudyn_turnout.passage.vehicle.builder import static_settings
 
     if not (math.isfinite(speed_kmh) and speed_kmh > 0.0):
         raise ValueError(f"linear hunting: speed_kmh = {speed_kmh!r} must be > 0 km/h")

@@ -1,13 +1,14 @@
 """What a passage is asked and what it gives: settings, result, peaks, summary, output files.
 
-Pure data and numpy (no Exudyn): :mod:`exudyn_turnout.passage.simulate` (co-running track)
-and :mod:`exudyn_turnout.passage.fe_track` (FE track) both fill a :class:`PassageResult`,
+Pure data and numpy (no Exudyn): the drivers of every track (:mod:`exudyn_turnout.passage.run`)
+fill a :class:`PassageResult`,
 summarise it with :func:`passage_summary` and write it with :func:`write_passage`.
 """
 
 from __future__ import annotations
 
 import math
+import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, fields
 from typing import Any
@@ -15,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from exudyn_turnout.inputs.turnout import Turnout
+from exudyn_turnout.inputs.vehicle_model import VehicleModel
 
 __all__ = [
     "settings_record",
@@ -558,3 +560,51 @@ def peaks_table(results: Mapping[str, PassageResult]) -> str:
             + f"{float(r.summary['wall_time_s']):>10.2f}"  # type: ignore[arg-type]
         )
     return "\n".join(lines)
+
+
+def vehicle_summary(
+    turnout: Turnout,
+    settings: PassageSettings,
+    model: VehicleModel,
+    columns: Mapping[str, np.ndarray],
+    static_loads: list,
+    wall: float,
+) -> dict:
+    """Summary of a full vehicle's passage: the front wheelset's, then per wheelset peaks.
+
+    Parameters
+    ----------
+    turnout : Turnout
+    settings : PassageSettings
+    model : VehicleModel
+    columns : mapping
+        The run's columns (``Fz_wsk_<wheel>_N``, ``x_wsk_m``...).
+    static_loads : list of dict
+        Per wheelset, "left" and "right" static wheel loads (N).
+    wall : float
+        s, ``time.perf_counter()`` at the start of the run.
+
+    Returns
+    -------
+    dict
+        :func:`~exudyn_turnout.passage.results.passage_summary` of the front wheelset plus
+        ``peak_<Fz|Fy>_<region>_wsk_<wheel>_N``, ``static_wheel_load_wsk_<wheel>_N``,
+        ``vehicle`` and ``wheelsets``.
+    """
+    front = static_loads[0]
+    summary = passage_summary(columns, turnout, settings, front, time.perf_counter() - wall)
+    regions = {name: turnout.regions[name] for name in ("switch", "crossing")}
+    for i, loads in enumerate(static_loads):
+        label = f"ws{i + 1}"
+        own = {"x_m": columns[f"x_{label}_m"]}
+        for wheel in ("right", "left"):
+            summary[f"static_wheel_load_{label}_{wheel}_N"] = float(loads[wheel])
+            for q, signed in (("Fz", False), ("Fy", True)):
+                own[f"{q}_{wheel}"] = columns[f"{q}_{label}_{wheel}_N"]
+                for where, rng in regions.items():
+                    summary[f"peak_{q}_{where}_{label}_{wheel}_N"] = _peak(
+                        own, f"{q}_{wheel}", rng, signed
+                    )
+    summary["vehicle"] = model.name
+    summary["wheelsets"] = len(static_loads)
+    return summary

@@ -1118,7 +1118,8 @@ def animate_passage(
     """Write a GIF of a passage's cross-section: wheelset and rails moving, forces as arrows.
 
     Each frame shows the wheelset (a rigid axle with two wheels, at its y, z and roll about
-    its reference point at contact height, as in :mod:`~exudyn_turnout.passage.contact_element`),
+    its reference point at contact height, as in
+    :mod:`~exudyn_turnout.passage.contact.height_table`),
     the rails the wheels touch (y, z, and the route's rail height under the wheel) with
     their unloaded outlines dashed, all displacements multiplied by ``scale``, and the
     contact forces on the rails as arrows (kN, with a scale key); the title gives x, t and
@@ -1127,7 +1128,7 @@ def animate_passage(
     Parameters
     ----------
     result : PassageResult
-        From :func:`~exudyn_turnout.passage.simulate.simulate_passage` (co-running track).
+        From :func:`~exudyn_turnout.passage.run.simulate_passage` (co-running track).
     path : str or Path
         GIF file to write (replaced if it exists).
     every : int, optional

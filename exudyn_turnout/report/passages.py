@@ -20,7 +20,7 @@ from exudyn_turnout.inputs.routes import load_route
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.passage.results import PassageResult, PassageSettings
-from exudyn_turnout.passage.simulate import simulate_passage
+from exudyn_turnout.passage.run import simulate_passage
 from exudyn_turnout.report import agreement as ag
 from exudyn_turnout.report.cache import (
     ResultCache,
@@ -55,16 +55,16 @@ __all__ = [
 #: The FE passage with the profile contact and the vehicles it carries: every module whose
 #: code changes its result (the wheel/rail package contributes all its files).
 _FE_PASSAGE_CODE = _FE_CODE + (
-    "exudyn_turnout.passage.fe_passage",
-    "exudyn_turnout.passage.fe_coupling",
-    "exudyn_turnout.passage.fe_vehicle_passage",
-    "exudyn_turnout.passage.fe_track",
-    "exudyn_turnout.passage.simulate",
+    "exudyn_turnout.passage.fe_track.wheelset",
+    "exudyn_turnout.passage.fe_track.coupling",
+    "exudyn_turnout.passage.fe_track.vehicle",
+    "exudyn_turnout.passage.fe_track.vertical_legacy",
+    "exudyn_turnout.passage.corunning_track.wheelset",
     "exudyn_turnout.passage.results",
-    "exudyn_turnout.passage.profile_contact",
-    "exudyn_turnout.passage.vehicle",
-    "exudyn_turnout.passage.full_vehicle_passage",
-    "exudyn_turnout.passage.vehicle_builder",
+    "exudyn_turnout.passage.contact.profile",
+    "exudyn_turnout.passage.vehicle.wheelset",
+    "exudyn_turnout.passage.corunning_track.vehicle",
+    "exudyn_turnout.passage.vehicle.builder",
     "exudyn_turnout.inputs.vehicle",
     "exudyn_turnout.inputs.vehicle_model",
     "exudyn_turnout.inputs.routes",
@@ -74,7 +74,7 @@ _FE_PASSAGE_CODE = _FE_CODE + (
 
 #: Version of the report's FE passage (a new value invalidates every cached FE passage):
 #: 2 = the FE track under the co-running passage's vehicle and profile contact, vertical and
-#: lateral (:mod:`exudyn_turnout.passage.fe_passage`); 1 was the vertical height-table one.
+#: lateral (:mod:`exudyn_turnout.passage.fe_track.wheelset`); 1 was the vertical height-table one.
 FE_PASSAGE_VERSION = 2
 
 
@@ -96,18 +96,16 @@ def _settings(turnout: Turnout, config: ReportConfig, route: str, layers: int) -
 
 def _fe_options(config: ReportConfig):
     """The FE passage's options with the report's FE mesh."""
-    from exudyn_turnout.passage.fe_track import FEPassageOptions
+    from exudyn_turnout.passage.fe_track.options import FEPassageOptions
 
     return FEPassageOptions(mesh=config.fe_options)
 
 
 def _full_vehicle_track_keywords() -> set[str]:
-    """Keywords of ``simulate_vehicle_passage`` among ``track`` and ``fe_options``."""
+    """Keywords of ``simulate_passage`` among ``track`` and ``fe_options``."""
     import inspect
 
-    from exudyn_turnout.passage.full_vehicle_passage import simulate_vehicle_passage
-
-    return {"track", "fe_options"} & set(inspect.signature(simulate_vehicle_passage).parameters)
+    return {"track", "fe_options"} & set(inspect.signature(simulate_passage).parameters)
 
 
 #: Why the full vehicle's FE passage is n/a where the package has no ``track`` keyword for it.
@@ -162,7 +160,7 @@ def run_passage(
     ------
     FENotAvailable
         ``track="fe"`` with the full vehicle in a version whose
-        ``simulate_vehicle_passage`` has no ``track`` keyword.
+        ``simulate_passage`` has no ``track`` keyword.
     """
     layers = 3 if track == "fe" else int(track[0])
     settings = settings or _settings(turnout, config, route, layers)
@@ -170,13 +168,12 @@ def run_passage(
     if config.vehicle == "wheelset":
         return simulate_passage(turnout, settings, track=track, **fe)
     from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
-    from exudyn_turnout.passage.full_vehicle_passage import simulate_vehicle_passage
 
     model = load_vehicle_model()
     settings = replace(settings, layers=layers)
     keywords = _full_vehicle_track_keywords()
     if track != "fe":
-        return simulate_vehicle_passage(turnout, settings, model)
+        return simulate_passage(turnout, settings, model)
     if "track" not in keywords:
         raise FENotAvailable(_NO_FULL_FE)
     # keywords by name: the package may or may not have them (checked above)
@@ -185,10 +182,10 @@ def run_passage(
     import inspect
 
     try:  # the call checked against the signature only: a TypeError in the run is a failure
-        inspect.signature(simulate_vehicle_passage).bind(turnout, settings, model, **extra)
+        inspect.signature(simulate_passage).bind(turnout, settings, model, **extra)
     except TypeError as err:
         raise FENotAvailable(f"{_NO_FULL_FE} ({err})") from None
-    return simulate_vehicle_passage(turnout, settings, model, **extra)
+    return simulate_passage(turnout, settings, model, **extra)
 
 
 def _timed_co_running(
@@ -465,7 +462,7 @@ def passage_section(
         "vehicle": config.vehicle,
         "vehicle_name": _vehicle_name(config.vehicle),
         "static_wheel_load_N": static,
-        "fe_coupling": "exact one-step co-simulation (exudyn_turnout.passage.fe_coupling)",
+        "fe_coupling": "exact one-step co-simulation (exudyn_turnout.passage.fe_track.coupling)",
     }
     results: dict[str, dict[str, PassageResult]] = {}
     for rr in settings.routes:

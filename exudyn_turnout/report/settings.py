@@ -178,7 +178,7 @@ def _filename(turnout: Turnout) -> str:
 def regions(turnout: Turnout) -> dict[str, tuple[float, float]]:
     """``[regions]`` of the turnout file: "switch", "crossing" -> (x_from, x_to) in m.
 
-    Defaults as :mod:`exudyn_turnout.passage.simulate` (whose peaks the report reads): switch 0-10 m
+    Defaults as :mod:`exudyn_turnout.passage.results` (whose peaks the report reads): switch 0-10 m
     from the toe, crossing the last zone.
 
     Parameters

@@ -194,7 +194,7 @@ def run_case(case: Case) -> dict[str, Any]:
     try:
         from exudyn_turnout.inputs.turnout import load_turnout
         from exudyn_turnout.inputs.vehicle import load_vehicle
-        from exudyn_turnout.passage.simulate import simulate_passage
+        from exudyn_turnout.passage.run import simulate_passage
 
         with tempfile.TemporaryDirectory(prefix="exudyn-turnout-case-") as tmp:
             turnout_path = Path(tmp) / case.turnout_name

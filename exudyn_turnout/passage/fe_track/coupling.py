@@ -3,8 +3,8 @@
 The FE reference track (:mod:`exudyn_turnout.fe`: Timoshenko rails of order p on discrete
 pads, sleepers on the ballast; the vertical plane and the lateral plane with rail torsion,
 :mod:`~exudyn_turnout.fe.torsion`) carries the same Exudyn vehicle
-(:func:`~exudyn_turnout.passage.vehicle.add_vehicle`) through the same profile contact
-element (:class:`~exudyn_turnout.passage.profile_contact.ProfileContactElement`, the numba
+(:func:`~exudyn_turnout.passage.vehicle.wheelset.add_vehicle`) through the same profile contact
+element (:class:`~exudyn_turnout.passage.contact.profile.ProfileContactElement`, the numba
 kernel of :mod:`~exudyn_turnout.wheel_rail.kernel`) as the co-running tracks: only the
 track differs.
 
@@ -62,7 +62,7 @@ top (height above the shear centre from the torsion section) and on the rail's c
 (the lateral offset of the contact point, a few cm, and its roll moment from the vertical
 force are left out; the lateral force's roll moment about the shear centre is in).
 
-Damping in the time domain as :mod:`~exudyn_turnout.passage.fe_track`: the structural loss
+Damping in the time domain: the structural loss
 G becomes the viscous G / omega_ref (``loss_reference_hz``).
 
 Start: the static equilibrium of vehicle and FE track (Exudyn's static solver with the
@@ -197,7 +197,7 @@ def build_fe_planes(
         Table 1 properties and the ``[layout]`` section.
     options : FEPassageOptions, optional
         Mesh and ``loss_reference_hz``
-        (:class:`~exudyn_turnout.passage.fe_track.FEPassageOptions`).
+        (:class:`~exudyn_turnout.passage.fe_track.options.FEPassageOptions`).
     layout : Layout, optional
         Default :func:`~exudyn_turnout.fe.layout.load_layout` of the turnout.
     torsion : RailTorsionSection or None
@@ -208,7 +208,7 @@ def build_fe_planes(
     -------
     FETrackPlanes
     """
-    from exudyn_turnout.passage.fe_track import FEPassageOptions
+    from exudyn_turnout.passage.fe_track.options import FEPassageOptions
 
     options = options or FEPassageOptions()
     layout = layout or load_layout(turnout)
@@ -737,7 +737,7 @@ class FECoSimulation:
 class FEContactElement:
     """Exudyn ``forceUserFunction``: the profile contact element on the FE track.
 
-    The wrapped :class:`~exudyn_turnout.passage.profile_contact.ProfileContactElement` has
+    The wrapped :class:`~exudyn_turnout.passage.contact.profile.ProfileContactElement` has
     the vehicle's 7 coordinates and one (y, z) pair per rail body; Exudyn sees the vehicle's
     coordinates only, the rail coordinates are solved in every call from the FE track's
     one-step response (module docstring).

@@ -1,6 +1,6 @@
 """The vehicle on rigid track: support, static state, connector forces, linearisation, modes.
 
-Used by :mod:`~exudyn_turnout.passage.vehicle_builder` (its linear representation is the
+Used by :mod:`~exudyn_turnout.passage.vehicle.builder` (its linear representation is the
 rigid-body model linearised at the static state on rigid track) and by the checks of the
 vehicle (natural frequencies, force-free reference configuration).
 """
@@ -18,12 +18,12 @@ from exudyn.itemInterface import (
     ObjectGenericODE2,
 )
 
-from exudyn_turnout.passage.vehicle_handles import (
+from exudyn_turnout.passage.vehicle.handles import (
     RigidTrack,
     TrackSupport,
     VehicleBuild,
     VehicleMode,
-    _point_transform,
+    point_transform,
 )
 
 __all__ = [
@@ -101,7 +101,7 @@ def rigid_track_support(
     for ws in build.wheelsets:
         sl = slice(start, start + len(ws.dof))
         for r in ws.wheel_positions:
-            t = _point_transform(list(ws.dof), r)
+            t = point_transform(list(ws.dof), r)
             k[sl, sl] += t.T @ k3 @ t
             d[sl, sl] += t.T @ c3 @ t
         start += len(ws.dof)
@@ -142,7 +142,7 @@ def support_wheel_loads(mbs: exu.MainSystem, support: TrackSupport) -> np.ndarra
         q = np.array(mbs.GetNodeOutput(ws.node, exu.OutputVariableType.Coordinates))
         out.append(
             [
-                -support.track.k_z * (_point_transform(list(ws.dof), r) @ q)[1]
+                -support.track.k_z * (point_transform(list(ws.dof), r) @ q)[1]
                 for r in ws.wheel_positions
             ]
         )
@@ -260,7 +260,7 @@ def connector_forces_at_reference(mbs: exu.MainSystem) -> dict[int, np.ndarray]:
     return out
 
 
-def _linearize(mbs: exu.MainSystem) -> list[np.ndarray]:
+def linearized_matrices(mbs: exu.MainSystem) -> list[np.ndarray]:
     previous = exu.config.printToConsole
     exu.config.printToConsole = False
     try:
@@ -300,7 +300,7 @@ def vehicle_modes(mbs: exu.MainSystem, build: VehicleBuild) -> tuple[VehicleMode
     tuple of VehicleMode
         Sorted by frequency.
     """
-    m, k, d = _linearize(mbs)
+    m, k, d = linearized_matrices(mbs)
     names = _coordinate_names(mbs, build)
     removed = {mbs.GetNodeODE2Index(n) + c for n, c in build.held}
     keep = [i for i, name in enumerate(names) if name and i not in removed]

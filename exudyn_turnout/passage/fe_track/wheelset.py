@@ -1,9 +1,10 @@
 """The single wheelset through the turnout on the FE track, vertical and lateral.
 
-The same vehicle (:func:`~exudyn_turnout.passage.vehicle.add_vehicle`) and the same profile
-contact (:class:`~exudyn_turnout.passage.profile_contact.ProfileContactElement`) as the
-co-running passage of :mod:`~exudyn_turnout.passage.simulate`, on the FE turnout track
-coupled by the exact one-step co-simulation of :mod:`~exudyn_turnout.passage.fe_coupling`
+The same vehicle (:func:`~exudyn_turnout.passage.vehicle.wheelset.add_vehicle`) and the same profile
+contact (:class:`~exudyn_turnout.passage.contact.profile.ProfileContactElement`) as the
+co-running passage of :mod:`~exudyn_turnout.passage.corunning_track.wheelset`, on the FE
+turnout track
+coupled by the exact one-step co-simulation of :mod:`~exudyn_turnout.passage.fe_track.coupling`
 (read its docstring for the scheme and why). The run is one Exudyn solve over the whole x
 range: the FE track has no zones; every rail body of the route is coupled to the FE rail
 of its slot wherever the wheelset is in its reach.
@@ -23,7 +24,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from dataclasses import asdict, dataclass, replace
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -31,12 +32,18 @@ import numpy as np
 from exudyn_turnout.inputs.routes import Route, SpeedWarning, load_route, speed_warnings
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle import Vehicle, load_vehicle
-from exudyn_turnout.passage.fe_coupling import (
+from exudyn_turnout.passage.fe_track.common import (
+    coupled_run_settings,
+    failure_reason,
+    fe_columns,
+    fe_contact_element,
+    fe_summary,
+)
+from exudyn_turnout.passage.fe_track.coupling import (
     FEContactElement,
     FECoSimulation,
     FETrackPlanes,
     build_fe_planes,
-    generalized_alpha,
     run_progress,
 )
 from exudyn_turnout.passage.results import (
@@ -50,7 +57,7 @@ from exudyn_turnout.passage.results import (
 )
 
 __all__ = [
-    "simulate_fe_profile_passage",
+    "simulate_wheelset",
     "fe_contact_element",
     "static_equilibrium",
     "FEStaticState",
@@ -59,53 +66,6 @@ __all__ = [
 
 #: Vehicle coordinates in the element: wheelset (y, z, roll), yaw and spin, sprung (y, z).
 _VEHICLE_NODES = ("wheelset", "yaw", "sprung")
-
-
-def fe_contact_element(route_contact, vehicle: Vehicle, route: Route, x0: float, v: float, irr):
-    """The profile contact element with one (y, z) coordinate pair per rail body of the route.
-
-    Parameters
-    ----------
-    route_contact : RouteContact
-        The route's rail bodies and tables
-        (:func:`~exudyn_turnout.passage.profile_contact.route_contact`).
-    vehicle : Vehicle
-    route : Route
-    x0, v : float
-        m, m/s: position at t = 0 and speed (0: static).
-    irr : Irregularity or None
-
-    Returns
-    -------
-    ProfileContactElement
-
-    Raises
-    ------
-    PassageError
-        Both wheels touch one rail slot.
-    """
-    from exudyn_turnout.passage.profile_contact import (
-        N_VEHICLE_COORDINATES,
-        ProfileContactElement,
-    )
-
-    n_bodies = route_contact.tables.n_bodies
-    for slot in set(route_contact.rails):
-        wheels = {w for w, r in zip(route_contact.wheels, route_contact.rails) if r == slot}
-        if len(wheels) > 1:
-            raise PassageError(f"route {route.name}: rail {slot} is touched by both wheels")
-    coordinates = [
-        (N_VEHICLE_COORDINATES + 2 * k, N_VEHICLE_COORDINATES + 2 * k + 1) for k in range(n_bodies)
-    ]
-    return ProfileContactElement(
-        vehicle,
-        route,
-        route_contact.tables.select(range(n_bodies), coordinates),
-        list(zip(route_contact.wheels, route_contact.rails)),
-        x0,
-        v,
-        irr,
-    )
 
 
 @dataclass
@@ -123,8 +83,7 @@ def _build(vehicle: Vehicle, coupled: FEContactElement, z_w: float, z_s: float, 
     import exudyn as exu
     from exudyn.itemInterface import ObjectGenericODE2, ObjectGround
 
-    from exudyn_turnout.passage.simulate import element_matrices
-    from exudyn_turnout.passage.vehicle import add_vehicle
+    from exudyn_turnout.passage.vehicle.wheelset import add_vehicle, element_matrices
 
     container = exu.SystemContainer()
     mbs = container.AddSystem()
@@ -171,7 +130,7 @@ def _solve_static(system: _System, x: float) -> None:
         system.mbs.SolveStatic(sim, updateInitialValues=True)
     except Exception as err:  # Exudyn's SolverError, or ModelError from a user function
         raise PassageFailure(
-            f"static equilibrium on the FE track not found at x = {x:g} m: {_reason(err)}"
+            f"static equilibrium on the FE track not found at x = {x:g} m: {failure_reason(err)}"
         ) from None
 
 
@@ -192,31 +151,7 @@ class _Recorder:
         self.count += 1
 
 
-def _columns(element, t, q, q_t, x0: float, v: float) -> dict[str, np.ndarray]:
-    """Output columns: the co-running passage's names, rail columns per slot from the FE.
-
-    ``t``: sample times (s); ``q``, ``q_t``: the element's full coordinates per sample.
-    """
-    t, q, q_t = np.asarray(t, float), np.asarray(q, float), np.asarray(q_t, float)
-    cols: dict[str, np.ndarray] = {"t_s": t, "x_m": x0 + v * t}
-    cols.update(element.columns(t, q, q_t))
-    names = ("y_wheelset_m", "z_wheelset_m", "roll_wheelset_rad", "yaw_wheelset_rad")
-    for i, name in enumerate(names + ("spin_wheelset_rad",)):
-        cols[name] = q[:, i]
-    x = cols["x_m"]
-    bounds = element.tables.bounds
-    for slot in dict.fromkeys(b.rail for b in element.bodies):
-        y, z = np.full(len(t), np.nan), np.full(len(t), np.nan)
-        for k, b in enumerate(element.bodies):
-            if b.rail != slot:
-                continue
-            inside = (x >= bounds[k, 2] - 1e-9) & (x <= bounds[k, 3] + 1e-9) & np.isnan(y)
-            y[inside], z[inside] = q[inside, b.i_y], q[inside, b.i_z]
-        cols[f"y_rail_{slot}_m"], cols[f"z_rail_{slot}_m"] = y, z
-    return cols
-
-
-def simulate_fe_profile_passage(
+def simulate_wheelset(
     turnout: Turnout,
     settings: PassageSettings = DEFAULT_SETTINGS,
     vehicle: Vehicle | None = None,
@@ -238,16 +173,16 @@ def simulate_fe_profile_passage(
         Default: the packaged Manchester benchmark wheelset.
     options : FEPassageOptions, optional
         Mesh and ``loss_reference_hz``
-        (:class:`~exudyn_turnout.passage.fe_track.FEPassageOptions`).
+        (:class:`~exudyn_turnout.passage.fe_track.options.FEPassageOptions`).
     planes : FETrackPlanes, optional
-        FE planes from :func:`~exudyn_turnout.passage.fe_coupling.build_fe_planes` to reuse.
+        FE planes from :func:`~exudyn_turnout.passage.fe_track.coupling.build_fe_planes` to reuse.
     progress : callable(fraction, x), optional
         Called about every 2 % of the run.
 
     Returns
     -------
     PassageResult
-        The columns of :func:`~exudyn_turnout.passage.simulate.simulate_passage` with the
+        The columns of :func:`~exudyn_turnout.passage.run.simulate_passage` with the
         profile contact (vertical and lateral forces per wheel and slot, contact points);
         ``y_rail_<slot>_m``, ``z_rail_<slot>_m`` are the FE rail head's displacement under
         the wheel. Summary: :func:`~exudyn_turnout.passage.results.passage_summary` plus
@@ -258,15 +193,15 @@ def simulate_fe_profile_passage(
     PassageError
         Bad settings (one line naming the problem) or a solver failure (time and position).
     """
-    from exudyn_turnout.passage.fe_track import FEPassageOptions
-    from exudyn_turnout.passage.profile_contact import route_contact
-    from exudyn_turnout.passage.simulate import _check, _QuietExudyn
+    from exudyn_turnout.passage.common import QuietExudyn, check_settings
+    from exudyn_turnout.passage.contact.profile import route_contact
+    from exudyn_turnout.passage.fe_track.options import FEPassageOptions
 
     wall = time.perf_counter()
     vehicle = vehicle or load_vehicle()
     options = options or FEPassageOptions()
     settings = replace(settings, contact="profile")
-    x_a, x_b = _check(settings, turnout, vehicle)
+    x_a, x_b = check_settings(settings, turnout, vehicle)
     route = load_route(turnout, settings.route)
     for text in speed_warnings(route, settings.speed_kmh, x_a, x_b):
         import warnings
@@ -283,7 +218,7 @@ def simulate_fe_profile_passage(
             f"x range {x_a:g}..{x_b:g} m must lie within the FE layout "
             f"({lay.x_start:g}..{lay.x_end:g} m)"
         )
-    with _QuietExudyn():
+    with QuietExudyn():
         return _simulate(
             turnout, settings, vehicle, route, contact, planes, x_a, x_b, progress, wall
         )
@@ -292,7 +227,7 @@ def simulate_fe_profile_passage(
 def _simulate(turnout, settings, vehicle, route, contact, planes, x_a, x_b, progress, wall):
     import exudyn as exu
 
-    from exudyn_turnout.passage.simulate import NEWTON_ABSOLUTE_TOLERANCE
+    from exudyn_turnout.passage.common import NEWTON_ABSOLUTE_TOLERANCE
 
     v = settings.v
     duration = (x_b - x_a) / v
@@ -341,14 +276,14 @@ def _simulate(turnout, settings, vehicle, route, contact, planes, x_a, x_b, prog
     except Exception as err:  # Exudyn's SolverError, or ModelError from a user function
         t = track.t_next if math.isfinite(track.t_next) else data.GetTime()
         raise PassageFailure(
-            f"FE passage failed at t = {t:.5f} s, x = {x_a + v * t:.3f} m: {_reason(err)}"
+            f"FE passage failed at t = {t:.5f} s, x = {x_a + v * t:.3f} m: {failure_reason(err)}"
         ) from None
     steps_s = time.perf_counter() - t1
-    columns = _columns(moving, recorder.t, recorder.q, recorder.q_t, x_a, v)
+    columns = fe_columns(moving, recorder.t, recorder.q, recorder.q_t, x_a, v)
     W = 0.5 * (loads["left"] + loads["right"])
     check_plausible(columns, W, "FE track")
     summary = passage_summary(columns, turnout, settings, loads, time.perf_counter() - wall)
-    summary.update(_summary(planes, settings, track, h, n_steps, static_s, steps_s))
+    summary.update(fe_summary(planes, settings, track, h, n_steps, static_s, steps_s))
     return PassageResult(replace(settings, x_start=x_a, x_end=x_b), columns, summary, (x_a,))
 
 
@@ -393,11 +328,11 @@ def static_equilibrium(
     PassageFailure
         No equilibrium, or wheel loads that do not carry the vehicle.
     """
-    from exudyn_turnout.passage.simulate import _initial_guess
+    from exudyn_turnout.passage.vehicle.wheelset import initial_guess
 
     rest = fe_contact_element(contact, vehicle, route, x, 0.0, irregularity)
     coupled = FEContactElement(rest, track)
-    z_w, z_s = _initial_guess(vehicle)
+    z_w, z_s = initial_guess(vehicle)
     z_touch, roll = rest.touching_position(x, -z_w / 3.0)
     track.begin_static([coupled])
     try:
@@ -412,43 +347,6 @@ def static_equilibrium(
     return FEStaticState(x, coupled, q0, F0, coupled.last[1].copy(), loads)
 
 
-def coupled_run_settings(duration: float, n_steps: int, settings: PassageSettings, tolerance):
-    """Exudyn's settings of a run coupled to the FE track: fixed steps, the run's rho_inf.
-
-    Parameters
-    ----------
-    duration : float
-        s.
-    n_steps : int
-        Steps (the FE side's h = duration / n_steps: no adaptive step).
-    settings : PassageSettings
-        ``spectral_radius``.
-    tolerance : float
-        N, Newton's absolute tolerance.
-
-    Returns
-    -------
-    exudyn.SimulationSettings
-    """
-    from exudyn_turnout.corunning.track import simulation_settings
-
-    sim = simulation_settings(duration, duration / n_steps)
-    sim.timeIntegration.numberOfSteps = n_steps
-    sim.timeIntegration.generalizedAlpha.spectralRadius = settings.spectral_radius
-    sim.timeIntegration.newton.absoluteTolerance = tolerance
-    sim.timeIntegration.adaptiveStep = False
-    return sim
-
-
-def _reason(err: Exception) -> str:
-    """The one line of an Exudyn error that says what went wrong (a user function's own)."""
-    lines = [line.strip() for line in str(err).splitlines() if line.strip()]
-    for line in lines:
-        if line.startswith(("RuntimeError:", "ArithmeticError:", "ValueError:")):
-            return line.split(":", 1)[1].strip()
-    return lines[0] if lines else type(err).__name__
-
-
 def _check_static(loads: dict, vehicle: Vehicle, x: float) -> None:
     total = loads["left"] + loads["right"]
     weight = 2.0 * vehicle.static_wheel_load
@@ -457,31 +355,3 @@ def _check_static(loads: dict, vehicle: Vehicle, x: float) -> None:
             f"absurd static state on the FE track at x = {x:g} m: the wheel loads sum to "
             f"{total:.4g} N, the vehicle weighs {weight:.4g} N"
         )
-
-
-def _summary(planes, settings, track, h, n_steps, static_s, steps_s) -> dict[str, object]:
-    ga = generalized_alpha(settings.spectral_radius)
-    all_settings = asdict(settings)
-    not_fe = ("layers", "source", "track_mechanism")
-    parts = dict(track.timings, build=planes.build_s, static=static_s, steps=steps_s)
-    return {
-        "settings": {k: val for k, val in all_settings.items() if k not in not_fe},
-        "model": "FE",
-        "layers": None,
-        "source": "Table 1 (FE model)",
-        "lateral": "FE lateral plane with rail torsion (roll and warping)"
-        if planes.lateral.torsion is not None
-        else "FE lateral plane, bending only",
-        "n_dof": planes.vertical.n_dof + planes.lateral.n_dof,
-        "n_dof_vertical": planes.vertical.n_dof,
-        "n_dof_lateral": planes.lateral.n_dof,
-        "time_integration": (
-            f"generalized-alpha (Exudyn's), rho_inf {settings.spectral_radius:g}: alpha_m = "
-            f"{ga.alpha_m:.4f}, alpha_f = {ga.alpha_f:.4f}, beta = {ga.beta:.4f}, gamma = "
-            f"{ga.gamma:.4f}; FE track co-simulated with exact one-step coupling"
-        ),
-        "time_step_s": float(h),
-        "n_steps": int(n_steps),
-        "fe_options": asdict(planes.vertical.mesh.options),
-        "wall_time_parts_s": {k.removesuffix("_s"): float(t) for k, t in parts.items()},
-    }

@@ -18,7 +18,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
+
 from exudyn_turnout.inputs.vehicle import GRAVITY, Vehicle
+from exudyn_turnout.passage.results import PassageError
 
 __all__ = ["VehicleHandles", "add_vehicle"]
 
@@ -123,3 +126,38 @@ def add_vehicle(
         for body in (wheelset_body, sprung_body)
     )
     return VehicleHandles(wheelset_node, wheelset_body, sprung_node, sprung_body, yaw_node, loads)
+
+
+def element_matrices(vehicle: Vehicle, n: int, spin: bool) -> tuple[np.ndarray, np.ndarray]:
+    """Mass and stiffness matrices of the contact element's own coordinates.
+
+    The wheelset's yaw inertia and yaw stiffness (coordinate 3) and, with profile contact,
+    its spin inertia (coordinate 4) sit in the contact element (their nodes are generic).
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+    n : int
+        Number of the element's coordinates.
+    spin : bool
+        The element has the spin perturbation (profile contact).
+
+    Returns
+    -------
+    M, K : numpy.ndarray
+        (n, n), kg (kg m^2) and N/m (N m/rad).
+    """
+    M, K = np.zeros((n, n)), np.zeros((n, n))
+    M[3, 3], K[3, 3] = vehicle.J_yaw, vehicle.k_yaw
+    if spin:
+        if vehicle.J_spin is None:
+            raise PassageError("the vehicle has no spin inertia: the profile contact needs it")
+        M[4, 4] = vehicle.J_spin
+    return M, K
+
+
+def initial_guess(vehicle: Vehicle) -> tuple[float, float]:
+    """Wheelset and sprung-mass z (m) with the contacts closed, so Hertz springs have stiffness."""
+    W = vehicle.static_wheel_load
+    z_w = -3.0 * (W / vehicle.contact.C_H) ** (2.0 / 3.0)
+    return z_w, z_w - 0.5 * vehicle.m_s * 9.81 / vehicle.k_z

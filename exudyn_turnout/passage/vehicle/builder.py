@@ -90,9 +90,9 @@ and the wheel-load preload's geometric roll term (-2 r0 Q), which the contact el
 supplies.
 
 The data of a build (representations, handles) are in
-:mod:`~exudyn_turnout.passage.vehicle_handles`; the vehicle on rigid track (support, static
+:mod:`~exudyn_turnout.passage.vehicle.handles`; the vehicle on rigid track (support, static
 state, connector forces, linearisation, modes) in
-:mod:`~exudyn_turnout.passage.vehicle_analysis`; both are re-exported here.
+:mod:`~exudyn_turnout.passage.vehicle.analysis`; both are re-exported here.
 """
 
 from __future__ import annotations
@@ -133,32 +133,32 @@ from exudyn_turnout.inputs.vehicle_model import (
     VehicleModel,
     _full_vehicle_parts,
 )
-from exudyn_turnout.passage.vehicle_analysis import (
-    _linearize,
+from exudyn_turnout.passage.vehicle.analysis import (
     connector_forces_at_reference,
     dynamic_settings,
+    linearized_matrices,
     rigid_track_support,
     solve_static,
     static_settings,
     support_wheel_loads,
     vehicle_modes,
 )
-from exudyn_turnout.passage.vehicle_handles import (
-    _KEEPALIVE,
-    _LINEAR_DOF,
-    _POINT_DOF,
-    _RIGID_DOF,
-    _WHEELSET_DOF,
+from exudyn_turnout.passage.vehicle.handles import (
     BUMPSTOP_LAWS,
+    KEEPALIVE_KEY,
+    LINEAR_DOF,
+    POINT_DOF,
     REPRESENTATIONS,
+    RIGID_DOF,
     ROTATIONS,
+    WHEELSET_DOF,
     BodyHandles,
     RigidTrack,
     TrackSupport,
     VehicleBuild,
     VehicleMode,
     WheelsetHandles,
-    _point_transform,
+    point_transform,
 )
 
 __all__ = [
@@ -330,9 +330,9 @@ def _add_rigid(
             car_body.mass,
             (car_body.pitch_inertia, car_body.yaw_inertia, car_body.roll_inertia),
             ref,
-            _RIGID_DOF,
+            RIGID_DOF,
         )
-        car = BodyHandles("car_body", node, body, car_body.x[0], ref, dict(_RIGID_DOF))
+        car = BodyHandles("car_body", node, body, car_body.x[0], ref, dict(RIGID_DOF))
         for j, x_bogie in enumerate(bogie_kind.x):
             ref = (0.0, bogie_kind.cog_height, x_bogie)
             node, body = rigid(
@@ -340,9 +340,9 @@ def _add_rigid(
                 bogie_kind.mass,
                 (bogie_kind.pitch_inertia, bogie_kind.yaw_inertia, bogie_kind.roll_inertia),
                 ref,
-                _RIGID_DOF,
+                RIGID_DOF,
             )
-            bogies.append(BodyHandles(f"bogie{j + 1}", node, body, x_bogie, ref, dict(_RIGID_DOF)))
+            bogies.append(BodyHandles(f"bogie{j + 1}", node, body, x_bogie, ref, dict(RIGID_DOF)))
     for i, x_wheelset in enumerate(wheelset_data.x):
         ref = (0.0, wheelset_data.wheel_radius, x_wheelset)
         node, body = rigid(
@@ -350,10 +350,10 @@ def _add_rigid(
             wheelset_data.mass,
             (wheelset_data.spin_inertia, wheelset_data.yaw_inertia, wheelset_data.roll_inertia),
             ref,
-            _WHEELSET_DOF,
+            WHEELSET_DOF,
         )
         if not wheelset_spin:
-            held.append((node, _WHEELSET_DOF["spin"]))
+            held.append((node, WHEELSET_DOF["spin"]))
         local = tuple(
             (side * wheelset_data.contact_semi_spacing, -wheelset_data.wheel_radius, 0.0)
             for side in (-1, 1)
@@ -374,7 +374,7 @@ def _add_rigid(
                 markers,
                 local,
                 ref,
-                dict(_WHEELSET_DOF),
+                dict(WHEELSET_DOF),
             )
         )
         if model.sprung_mass is not None:
@@ -382,9 +382,9 @@ def _add_rigid(
             node = int(mbs.AddNode(NodePoint(referenceCoordinates=list(ref))))
             body = int(mbs.AddObject(MassPoint(mass=model.sprung_mass.mass, nodeNumber=node)))
             sprung.append(
-                BodyHandles(f"sprung{i + 1}", node, body, x_wheelset, ref, dict(_POINT_DOF))
+                BodyHandles(f"sprung{i + 1}", node, body, x_wheelset, ref, dict(POINT_DOF))
             )
-            held.append((node, _POINT_DOF["x"]))
+            held.append((node, POINT_DOF["x"]))
 
     def position_marker(handles, point):
         local = _offset(point, handles.reference)
@@ -481,7 +481,7 @@ def _add_rigid(
                 mbs.SetObjectParameter(item, "springForceUserFunction", law)
                 items[f"bumpstop_b{j + 1}"] = item
     if keep:
-        mbs.variables.setdefault(_KEEPALIVE, []).extend(keep)
+        mbs.variables.setdefault(KEEPALIVE_KEY, []).extend(keep)
 
     constraints = tuple(
         int(
@@ -533,11 +533,11 @@ def _free_names(build: VehicleBuild, spin: bool) -> list[tuple[Any, str]]:
     out = []
     for handles in build.bodies():
         if isinstance(handles, WheelsetHandles):
-            names = _LINEAR_DOF["wheelset"] + (("spin",) if spin else ())
+            names = LINEAR_DOF["wheelset"] + (("spin",) if spin else ())
         elif handles.name.startswith("sprung"):
-            names = _LINEAR_DOF["sprung"]
+            names = LINEAR_DOF["sprung"]
         else:
-            names = _LINEAR_DOF["body"]
+            names = LINEAR_DOF["body"]
         out += [(handles, name) for name in names]
     return out
 
@@ -559,7 +559,7 @@ def _add_linear(
     loads = support_wheel_loads(ref_mbs, support)
     for item in support.items:
         ref_mbs.SetObjectParameter(item, "activeConnector", False)
-    m, k, d = _linearize(ref_mbs)
+    m, k, d = linearized_matrices(ref_mbs)
     q_rigid = np.array(ref_mbs.systemData.GetODE2Coordinates())
     held = {ref_mbs.GetNodeODE2Index(n) + c for n, c in rigid.held}
 
@@ -595,12 +595,12 @@ def _add_linear(
             {dname: i for i, dname in enumerate(dof)},
         )
 
-    car = None if rigid.car_body is None else body(rigid.car_body, _LINEAR_DOF["body"])
-    bogies = tuple(body(handles, _LINEAR_DOF["body"]) for handles in rigid.bogies)
-    sprung = tuple(body(handles, _LINEAR_DOF["sprung"]) for handles in rigid.sprung)
+    car = None if rigid.car_body is None else body(rigid.car_body, LINEAR_DOF["body"])
+    bogies = tuple(body(handles, LINEAR_DOF["body"]) for handles in rigid.bogies)
+    sprung = tuple(body(handles, LINEAR_DOF["sprung"]) for handles in rigid.sprung)
     wheelsets = []
     for handles in rigid.wheelsets:
-        dof = _LINEAR_DOF["wheelset"] + spin
+        dof = LINEAR_DOF["wheelset"] + spin
         node = generic_node(len(dof))
         wheelsets.append(
             WheelsetHandles(
@@ -640,7 +640,7 @@ def _add_linear(
     for ws, pair in zip(partial.wheelsets, loads):
         coordinate_names = list(ws.dof)
         for wheel_load, r in zip(pair, ws.wheel_positions):
-            t = _point_transform(coordinate_names, r)
+            t = point_transform(coordinate_names, r)
             start = offsets[ws.node]
             f_wheels[start : start + len(coordinate_names)] += t.T @ np.array(
                 [0.0, wheel_load, 0.0]
@@ -697,7 +697,7 @@ def _gather(indices: Sequence[int]) -> Callable[[Sequence[float]], tuple[float, 
     return operator.itemgetter(*indices)
 
 
-def _linear_bumpstop_functions(
+def linear_bumpstop_functions(
     model: VehicleModel, car: BodyHandles, bogies: Sequence[BodyHandles]
 ) -> tuple[int, tuple[Any, ...]]:
     """Force and Jacobian functions on (car body, bogies): F = -c F_stop(c^T q) per bogie,
@@ -711,8 +711,8 @@ def _linear_bumpstop_functions(
     for bogie in bogies:
         point = (0.0, stop.height, bogie.x)
         c = np.zeros(size)
-        c[:n_car] = _point_transform(list(car.dof), _offset(point, car.reference))[0]
-        c[start : start + len(bogie.dof)] = -_point_transform(
+        c[:n_car] = point_transform(list(car.dof), _offset(point, car.reference))[0]
+        c[start : start + len(bogie.dof)] = -point_transform(
             list(bogie.dof), _offset(point, bogie.reference)
         )[0]
         rows.append(c)
@@ -755,8 +755,8 @@ def _linear_bumpstop_functions(
 def _add_linear_bumpstops(
     mbs: exu.MainSystem, model: VehicleModel, car: BodyHandles, bogies: Sequence[BodyHandles]
 ) -> tuple[int, tuple[Any, ...]]:
-    """One ObjectGenericODE2 on (car body, bogies) with :func:`_linear_bumpstop_functions`."""
-    size, functions = _linear_bumpstop_functions(model, car, bogies)
+    """One ObjectGenericODE2 on (car body, bogies) with :func:`linear_bumpstop_functions`."""
+    size, functions = linear_bumpstop_functions(model, car, bogies)
     forceUserFunction, jacobianUserFunction = functions
     zero = np.zeros((size, size))
     item = int(
@@ -771,5 +771,5 @@ def _add_linear_bumpstops(
             )
         )
     )
-    mbs.variables.setdefault(_KEEPALIVE, []).extend(functions)
+    mbs.variables.setdefault(KEEPALIVE_KEY, []).extend(functions)
     return item, functions

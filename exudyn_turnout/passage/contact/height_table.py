@@ -22,10 +22,14 @@ from __future__ import annotations
 
 import math
 from bisect import bisect_right
+from collections.abc import Mapping
 from dataclasses import dataclass
+
+import numpy as np
 
 from exudyn_turnout.inputs.routes import ContactPair, Route
 from exudyn_turnout.inputs.vehicle import Vehicle
+from exudyn_turnout.passage.results import PassageError
 from exudyn_turnout.wheel_rail.laws import (
     creep_coefficient,
     flange_force,
@@ -35,7 +39,13 @@ from exudyn_turnout.wheel_rail.laws import (
     saturation_factor,
 )
 
-__all__ = ["BoundPair", "PairForces", "WheelRailElement", "STATIC_LATERAL_STIFFNESS"]
+__all__ = [
+    "BoundPair",
+    "PairForces",
+    "WheelRailElement",
+    "HeightTableContact",
+    "STATIC_LATERAL_STIFFNESS",
+]
 
 #: N/m: holds the wheelset's lateral position in the static solve only, where creep
 #: (a velocity effect) gives no lateral stiffness; the symmetric equilibrium has y = 0.
@@ -120,6 +130,47 @@ class WheelRailElement:
             m, position along the route.
         """
         return self.x0 + self.v * t
+
+    def force_columns(
+        self, t: np.ndarray, q: np.ndarray, force: np.ndarray, rails: Mapping[str, int]
+    ) -> dict[str, np.ndarray]:
+        """Forces and displacements of one zone's run.
+
+        Parameters
+        ----------
+        t : numpy.ndarray
+            s, sample times from the zone's start.
+        q : numpy.ndarray
+            Stored element coordinates (samples x n).
+        force : numpy.ndarray
+            The element's stored generalised forces, the left-hand side K q - f_user of its
+            equations: the force a wheel puts on a rail is +force[z] (pressing down) and
+            -force[y] (lateral, on the rail).
+        rails : mapping
+            Rail slot -> index of its y in the element.
+
+        Returns
+        -------
+        dict
+            The passage's columns (see :func:`exudyn_turnout.passage.run.simulate_passage`).
+        """
+        cols: dict[str, np.ndarray] = {"t_s": t, "x_m": self.x0 + self.v * t}
+        wheel_of = {bp.pair.rail: bp.pair.wheel for bp in self.pairs}
+        for wheel in ("right", "left"):
+            for name in ("Fz", "Fy"):
+                cols[f"{name}_{wheel}_N"] = np.zeros_like(t)
+        for slot, i in rails.items():
+            key = f"{wheel_of[slot]}_{slot}"
+            cols[f"Fz_{key}_N"], cols[f"Fy_{key}_N"] = force[:, i + 1].copy(), -force[:, i]
+            cols[f"Fz_{wheel_of[slot]}_N"] += cols[f"Fz_{key}_N"]
+            cols[f"Fy_{wheel_of[slot]}_N"] += cols[f"Fy_{key}_N"]
+        for i, name in enumerate(
+            ("y_wheelset_m", "z_wheelset_m", "roll_wheelset_rad", "yaw_wheelset_rad")
+        ):
+            cols[name] = q[:, i]
+        for slot, i in rails.items():
+            cols[f"y_rail_{slot}_m"], cols[f"z_rail_{slot}_m"] = q[:, i], q[:, i + 1]
+        return cols
 
     def geometry(self, x: float) -> tuple:
         """Track geometry the pairs see at position x, and the route's curvature there.
@@ -297,3 +348,63 @@ class WheelRailElement:
         else:
             forces[0] -= STATIC_LATERAL_STIFFNESS * q[0]
         return forces
+
+
+class HeightTableContact:
+    """The height-table contact of a route: makes each zone's :class:`WheelRailElement`.
+
+    A documented baseline (the contact of the package's first passages: rail heights and
+    contact angles from tables, linear Kalker creep with saturation, a flange spring). Only
+    :mod:`exudyn_turnout.passage.run` imports it (``PassageSettings.contact =
+    "height-table"``); the drivers see it through
+    :class:`~exudyn_turnout.passage.contact.protocol.Contact`. It runs on the co-running
+    tracks under the single wheelset only.
+    """
+
+    #: no spin coordinate; outputs from the element's stored generalised forces
+    profile = False
+
+    def element(
+        self, vehicle: Vehicle, route: Route, zone, x0: float, v: float, irregularity=None
+    ) -> tuple[WheelRailElement, list[str]]:
+        """The zone's contact element and the rail slots it couples to.
+
+        Parameters
+        ----------
+        vehicle : Vehicle
+        route : Route
+        zone : Zone
+            The zone (its active rails).
+        x0, v : float
+            m, m/s: position at t = 0 and speed.
+        irregularity : None
+            Not supported by this contact (checked by the passage's settings).
+
+        Returns
+        -------
+        element : WheelRailElement
+        slots : list of str
+            The rail slots the element couples to, in coordinate order.
+
+        Raises
+        ------
+        PassageError
+            Both wheels touch one rail slot in the zone.
+        """
+        del irregularity
+        pairs = [p for p in route.pairs_in(zone) if p.rail in zone.active_rails]
+        slots = [r for r in zone.active_rails if any(p.rail == r for p in pairs)]
+        for r in slots:
+            if len({p.wheel for p in pairs if p.rail == r}) > 1:
+                raise PassageError(
+                    f"route {route.name}: rail {r} is touched by both wheels in zone {zone.index}"
+                )
+        rails_of = {r: 6 + 2 * i for i, r in enumerate(slots)}
+        element = WheelRailElement(
+            vehicle,
+            route,
+            [BoundPair(p, rails_of[p.rail], rails_of[p.rail] + 1) for p in pairs],
+            x0,
+            v,
+        )
+        return element, slots

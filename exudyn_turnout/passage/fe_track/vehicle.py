@@ -1,8 +1,8 @@
 """The full vehicle through the turnout on the FE track (every wheelset on the one FE model).
 
-The vehicle of :mod:`~exudyn_turnout.passage.full_vehicle_passage` (car body, bogies,
+The vehicle of :mod:`~exudyn_turnout.passage.corunning_track.vehicle` (car body, bogies,
 wheelsets; the same build, the same body loads and bumpstops, the same contact element
-per wheelset) runs over the FE turnout track of :mod:`~exudyn_turnout.passage.fe_coupling`
+per wheelset) runs over the FE turnout track of :mod:`~exudyn_turnout.passage.fe_track.coupling`
 instead of a co-running track per wheelset: all wheelsets load the one FE model, which
 carries each wheelset's deflection basin to its neighbours (the wheelsets of a bogie,
 2.56 m apart, deflect each other's rails).
@@ -50,7 +50,7 @@ from exudyn_turnout.inputs.routes import Route, load_route
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
-from exudyn_turnout.passage.fe_coupling import (
+from exudyn_turnout.passage.fe_track.coupling import (
     FEContactElement,
     FECoSimulation,
     build_fe_planes,
@@ -64,7 +64,7 @@ from exudyn_turnout.passage.results import (
     check_plausible,
 )
 
-__all__ = ["simulate_fe_vehicle_passage", "EXTENSION_MARGIN"]
+__all__ = ["simulate_vehicle", "EXTENSION_MARGIN"]
 
 #: m, the FE model's plain-track extension reaches this far beyond the vehicle's length.
 EXTENSION_MARGIN = 3.0
@@ -96,16 +96,16 @@ def _build(turnout, route, model, vehicle, contact, settings, track, x_range, x_
     import exudyn as exu
     from exudyn.itemInterface import NodeGenericODE2, ObjectGenericODE2
 
-    from exudyn_turnout.passage.fe_passage import fe_contact_element
-    from exudyn_turnout.passage.full_vehicle_passage import (
+    from exudyn_turnout.passage.contact.vehicle_contacts import WheelsetContactElement
+    from exudyn_turnout.passage.fe_track.common import fe_contact_element
+    from exudyn_turnout.passage.vehicle.builder import add_vehicle_model
+    from exudyn_turnout.passage.vehicle.track_frame import (
         DUMMY_MASS,
         DUMMY_STIFFNESS,
         BodyLoads,
-        WheelsetContactElement,
         add_vehicle_loads,
         set_initial_vehicle,
     )
-    from exudyn_turnout.passage.vehicle_builder import add_vehicle_model
 
     container = exu.SystemContainer()
     mbs = container.AddSystem()
@@ -175,7 +175,7 @@ def _coordinates(system: _Vehicle, i: int, initial: bool = False):
 def _static(system: _Vehicle, track: FECoSimulation, what: str, x: float, load_steps: int = 1):
     """Exudyn's static solve with the FE's static compliance; per wheelset the rail forces."""
     from exudyn_turnout.corunning.track import simulation_settings
-    from exudyn_turnout.passage.fe_passage import _reason
+    from exudyn_turnout.passage.fe_track.common import failure_reason
 
     sim = simulation_settings(1.0, 1.0)
     sim.staticSolver.numberOfLoadSteps = load_steps
@@ -193,7 +193,7 @@ def _static(system: _Vehicle, track: FECoSimulation, what: str, x: float, load_s
     except Exception as err:  # Exudyn's SolverError, or ModelError from a user function
         raise PassageFailure(
             f"{what} on the FE track not found with the front wheelset at x = {x:g} m: "
-            f"{_reason(err)}"
+            f"{failure_reason(err)}"
         ) from None
     finally:
         track.end_static()
@@ -229,7 +229,7 @@ def _cross_compliance(track: FECoSimulation, elements: list) -> float:
     return cross / own if own > 0 else 0.0
 
 
-def simulate_fe_vehicle_passage(
+def simulate_vehicle(
     turnout: Turnout,
     settings: PassageSettings,
     vehicle_model: VehicleModel,
@@ -239,7 +239,7 @@ def simulate_fe_vehicle_passage(
 ) -> PassageResult:
     """Run the full vehicle over the FE track (module docstring).
 
-    Called by :func:`~exudyn_turnout.passage.full_vehicle_passage.simulate_vehicle_passage`
+    Called by :func:`~exudyn_turnout.passage.run.simulate_passage`
     with ``track="fe"`` (which checks the settings and silences Exudyn).
 
     Parameters
@@ -268,14 +268,16 @@ def simulate_fe_vehicle_passage(
     PassageFailure
         A solver failure (time and position), or no steady start.
     """
-    from exudyn_turnout.passage.fe_passage import _columns, _reason, _summary
-    from exudyn_turnout.passage.fe_track import FEPassageOptions
-    from exudyn_turnout.passage.full_vehicle_passage import (
-        contact_vehicle,
-        vehicle_summary,
-        wheelset_columns,
+    from exudyn_turnout.passage.contact.profile import route_contact
+    from exudyn_turnout.passage.contact.vehicle_contacts import wheelset_columns
+    from exudyn_turnout.passage.fe_track.common import (
+        failure_reason,
+        fe_columns,
+        fe_summary,
     )
-    from exudyn_turnout.passage.profile_contact import route_contact
+    from exudyn_turnout.passage.fe_track.options import FEPassageOptions
+    from exudyn_turnout.passage.results import vehicle_summary
+    from exudyn_turnout.passage.vehicle.track_frame import contact_vehicle
 
     wall = time.perf_counter()
     options = options or FEPassageOptions()
@@ -343,8 +345,8 @@ def simulate_fe_vehicle_passage(
         count[0] += 1
         return True
 
-    from exudyn_turnout.passage.fe_passage import coupled_run_settings
-    from exudyn_turnout.passage.full_vehicle_passage import newton_tolerance
+    from exudyn_turnout.passage.common import newton_tolerance
+    from exudyn_turnout.passage.fe_track.common import coupled_run_settings
 
     system.mbs.SetPreStepUserFunction(pre_step)
     system.mbs.SetPostStepUserFunction(post_step)
@@ -357,7 +359,7 @@ def simulate_fe_vehicle_passage(
         t = track.t_next if math.isfinite(track.t_next) else system.mbs.systemData.GetTime()
         raise PassageFailure(
             f"FE passage failed at t = {t:.5f} s, front wheelset at x = {x_a + v * t:.3f} m: "
-            f"{_reason(err)}"
+            f"{failure_reason(err)}"
         ) from None
     steps_s = time.perf_counter() - t1
     t = np.array(times)
@@ -369,7 +371,7 @@ def simulate_fe_vehicle_passage(
         own = wheelset_columns(el, t, q, q_t, label)
         own[f"x_{label}_m"] = el.x0 + v * t
         if i == 0:
-            columns.update(_columns(el, t, q, q_t, x_a, v))
+            columns.update(fe_columns(el, t, q, q_t, x_a, v))
         plausible = {
             "t_s": t,
             "x_m": el.x0 + v * t,
@@ -381,7 +383,7 @@ def simulate_fe_vehicle_passage(
         check_plausible(plausible, vehicle_model.static_wheel_load, f"wheelset {i + 1}")
         columns.update(own)
     summary = vehicle_summary(turnout, settings, vehicle_model, columns, static_loads, wall)
-    summary.update(_summary(planes, settings, track, h, n_steps, static_s, steps_s))
+    summary.update(fe_summary(planes, settings, track, h, n_steps, static_s, steps_s))
     summary["cross_compliance"] = cross
     summary["start"] = start
     return PassageResult(replace(settings, x_start=x_a, x_end=x_b), columns, summary, (x_a,))

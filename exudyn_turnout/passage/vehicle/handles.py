@@ -1,5 +1,5 @@
 """The vehicle build's data: representations, coordinate names and the handles of the
-Exudyn items :func:`~exudyn_turnout.passage.vehicle_builder.add_vehicle_model` adds.
+Exudyn items :func:`~exudyn_turnout.passage.vehicle.builder.add_vehicle_model` adds.
 """
 
 from __future__ import annotations
@@ -40,26 +40,26 @@ BUMPSTOP_LAWS = ("auto", "symbolic", "python", "none")
 
 
 #: Coordinates of a rigid-body node (X, Y, Z, rotation about X, Y, Z) by name.
-_RIGID_DOF = {"y": 0, "z": 1, "x": 2, "pitch": 3, "yaw": 4, "roll": 5}
+RIGID_DOF = {"y": 0, "z": 1, "x": 2, "pitch": 3, "yaw": 4, "roll": 5}
 
 
 #: ... of a wheelset's rigid-body node: the rotation about its axle is the spin.
-_WHEELSET_DOF = {"y": 0, "z": 1, "x": 2, "spin": 3, "yaw": 4, "roll": 5}
+WHEELSET_DOF = {"y": 0, "z": 1, "x": 2, "spin": 3, "yaw": 4, "roll": 5}
 
 
 #: ... of a sprung point (NodePoint).
-_POINT_DOF = {"y": 0, "z": 1, "x": 2}
+POINT_DOF = {"y": 0, "z": 1, "x": 2}
 
 
 #: Free coordinates of each body kind in the linear representation, in node order.
-_LINEAR_DOF = {
+LINEAR_DOF = {
     "body": ("y", "z", "roll", "pitch", "yaw"),
     "wheelset": ("y", "z", "roll", "yaw"),
     "sprung": ("y", "z"),
 }
 
 
-_KEEPALIVE = "exudyn_turnout.passage.vehicle_builder.user_functions"  # mbs.variables key
+KEEPALIVE_KEY = "exudyn_turnout.passage.vehicle.builder.user_functions"  # mbs.variables key
 
 
 @dataclass(frozen=True)
@@ -173,7 +173,7 @@ class VehicleMode:
     participation: Mapping[str, float]  #: "body.direction" -> energy share (>= 1 %)
 
 
-def _point_transform(dof: Sequence[str], r: Sequence[float]) -> np.ndarray:
+def point_transform(dof: Sequence[str], r: Sequence[float]) -> np.ndarray:
     """3 x n matrix: small-angle displacement (X, Y, Z) of a body point at offset r (Exudyn
     axes) from the body's coordinates ``dof``: u = t + theta x r, theta = (pitch, yaw, roll)."""
     rx, ry, rz = r

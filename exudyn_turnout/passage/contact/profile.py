@@ -30,7 +30,6 @@ import numpy as np
 
 from exudyn_turnout.inputs.routes import Route
 from exudyn_turnout.inputs.vehicle import Vehicle
-from exudyn_turnout.passage.contact_element import WheelRailElement
 from exudyn_turnout.wheel_rail.kernel import (
     DETAIL_FIELDS,
     PackedTables,
@@ -154,7 +153,20 @@ class ProfileContactElement:
         self._curvature_xs = tuple(float(a) for a in curvature.x)
         self._curvature_vs = tuple(float(a) for a in curvature.value)
 
-    x_at = WheelRailElement.x_at  #: position x0 + v t at time t (the same as the old element)
+    def x_at(self, t: float) -> float:
+        """Position of the wheelset along the route at time t: x0 + v t.
+
+        Parameters
+        ----------
+        t : float
+            s, simulation time.
+
+        Returns
+        -------
+        float
+            m, position along the route.
+        """
+        return self.x0 + self.v * t
 
     def _prepare(self, x: float) -> None:
         self._kappa = _interp(self._curvature_xs, self._curvature_vs, x)
@@ -387,6 +399,9 @@ class ProfileContactElement:
 @dataclass(frozen=True, eq=False)
 class RouteContact:
     """The rail bodies of a route with their packed contact tables (built once per passage)."""
+
+    #: profile contact: spin coordinate, outputs from the stored coordinates and velocities
+    profile = True
 
     tables: PackedTables  #: every body of the route (coordinates bound per zone)
     wheels: tuple  #: per body, "left" or "right"

@@ -1,7 +1,8 @@
 """A wheelset passing over the FE turnout track in the time domain (vertical plane).
 
 The FE reference for the passage forces (the paper's FE/MBS co-simulation, Figs 7, 8):
-the same wheelset as :mod:`~exudyn_turnout.passage.simulate` (vertical part: wheelset heave z_w
+the same wheelset as :mod:`~exudyn_turnout.passage.corunning_track.wheelset` (vertical part:
+wheelset heave z_w
 and roll phi, sprung mass z_s on the primary suspension k_z, c_z at +-d) runs at constant
 speed over the vertical FE model of :mod:`exudyn_turnout.fe` (Timoshenko rails of order
 p on discrete pads, sleepers as beams on the ballast layer), with the same Hertz law
@@ -96,12 +97,14 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as sla
 
 from exudyn_turnout.fe.layout import Layout, load_layout
-from exudyn_turnout.fe.mesh import FEOptions, build_mesh
+from exudyn_turnout.fe.mesh import build_mesh
 from exudyn_turnout.fe.model import PlaneModel, assemble
 from exudyn_turnout.fe.timoshenko import lagrange_shape_functions
 from exudyn_turnout.inputs.routes import WHEELS, ContactPair, Route, load_route
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle import GRAVITY, Vehicle, load_vehicle
+from exudyn_turnout.passage.common import lightest_rail_mass, max_time_step
+from exudyn_turnout.passage.fe_track.options import FEPassageOptions
 from exudyn_turnout.passage.results import (
     DEFAULT_SETTINGS,
     PLAUSIBLE,
@@ -112,7 +115,6 @@ from exudyn_turnout.passage.results import (
     check_plausible,
     passage_summary,
 )
-from exudyn_turnout.passage.simulate import lightest_rail_mass, max_time_step
 
 __all__ = [
     "FEPassageOptions",
@@ -134,28 +136,6 @@ _START_DX = 1e-3
 _CONTACT_EPSILON = 1e-16
 #: SuperLU options: COLAMD ordering (fill ~1.5e6 for the ~30 000-DOF turnout, ~3.5 ms per solve).
 _LU = dict(permc_spec="COLAMD")
-
-
-@dataclass(frozen=True)
-class FEPassageOptions:
-    """Discretisation and solver options of the FE passage."""
-
-    mesh: FEOptions = FEOptions()  #: FE mesh (element order and length, model-end extensions)
-    loss_reference_hz: float = 1000.0  #: Hz, f_ref of the viscous equivalent G / (2 pi f_ref)
-    contact_tolerance: float = (
-        1e-2  #: N, Newton residual of the contact forces (2e-7 of a wheel load)
-    )
-    max_contact_iterations: int = 50  #: Newton iterations per step before giving up
-
-    def __post_init__(self):
-        if not (math.isfinite(self.loss_reference_hz) and self.loss_reference_hz > 0):
-            raise ValueError(
-                f"FEPassageOptions.loss_reference_hz must be > 0, got {self.loss_reference_hz!r}"
-            )
-        if not self.contact_tolerance > 0 or self.max_contact_iterations < 1:
-            raise ValueError(
-                "FEPassageOptions.contact_tolerance must be > 0 and max_contact_iterations >= 1"
-            )
 
 
 @dataclass(frozen=True)
@@ -864,7 +844,7 @@ class _Recorder:
         )
 
     def columns(self) -> dict[str, np.ndarray]:
-        """Columns of :func:`~exudyn_turnout.passage.simulate.simulate_passage`.
+        """Columns of :func:`~exudyn_turnout.passage.run.simulate_passage`.
 
         The lateral ones are NaN: the FE passage is vertical only.
         """
@@ -955,10 +935,10 @@ def simulate_fe_passage(
     Returns
     -------
     PassageResult
-        The columns of :func:`~exudyn_turnout.passage.simulate.simulate_passage`; lateral columns
+        The columns of :func:`~exudyn_turnout.passage.run.simulate_passage`; lateral columns
         (``Fy_*``, ``y_*``, ``yaw``) are NaN (empty in the CSV file): the FE passage is
         vertical only. ``z_rail_<slot>_m`` is the FE rail's deflection under the wheel.
-        ``summary``: :func:`~exudyn_turnout.passage.simulate.passage_summary` plus ``model`` "FE",
+        ``summary``: :func:`~exudyn_turnout.passage.results.passage_summary` plus ``model`` "FE",
         DOF count, options and the wall time of each part.
 
     Raises

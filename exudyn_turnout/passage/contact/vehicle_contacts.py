@@ -1,0 +1,282 @@
+"""The contact elements of a vehicle's wheelsets: each wheelset's profile contact clamped to
+the turnout and frozen for the steady-state solve, all of them as one Exudyn force
+function with a block Jacobian, and each wheelset's output columns."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from exudyn_turnout.passage.contact.profile import (
+    STATIC_LATERAL_STIFFNESS,
+    STATIC_SPIN_STIFFNESS,
+    ProfileContactElement,
+)
+
+__all__ = [
+    "WheelsetContactElement",
+    "VehicleContacts",
+    "wheelset_columns",
+]
+
+#: relative step of the contact Jacobian's forward differences (Exudyn's default
+#: ``numericalDifferentiation.relativeEpsilon``)
+_JACOBIAN_EPSILON = 1e-7
+
+#: smallest coordinate size scaling that step (Exudyn's ``minimumCoordinateSize``)
+_JACOBIAN_MINIMUM_SIZE = 0.01
+
+
+class WheelsetContactElement(ProfileContactElement):
+    """The profile contact element with its position clamped to the turnout's start and,
+    for a solve at speed, frozen (x = x0 whatever t)."""
+
+    x_clamp = -math.inf
+    x_clamp_end = math.inf  #: m, largest position (the turnout's end: plain track beyond)
+    frozen = False
+    hold_spin = False
+
+    def x_at(self, t: float) -> float:
+        """Position (m) of the wheelset at time t, at least ``x_clamp``; x0 if frozen.
+
+        Parameters
+        ----------
+        t : float
+            s.
+
+        Returns
+        -------
+        float
+            m.
+        """
+        x = self.x0 if self.frozen else self.x0 + self.v * t
+        return min(max(x, self.x_clamp), self.x_clamp_end)
+
+    def columns(self, t: np.ndarray, q: np.ndarray, q_t: np.ndarray) -> dict[str, np.ndarray]:
+        """Output columns (see the parent), at the clamped position.
+
+        Parameters
+        ----------
+        t : numpy.ndarray
+            s.
+        q, q_t : numpy.ndarray
+            Stored element coordinates and velocities.
+
+        Returns
+        -------
+        dict
+        """
+        x = np.clip(self.x0 + self.v * np.asarray(t, float), self.x_clamp, self.x_clamp_end)
+        return super().columns((x - self.x0) / self.v, q, q_t)
+
+    def __call__(self, mbs, t, item_number, q, q_t):
+        """Exudyn ``forceUserFunction`` (the parent's); frozen at speed (the steady-state
+        solve, velocities zero) the spin perturbation is held by a spring, as at rest."""
+        forces = super().__call__(mbs, t, item_number, q, q_t)
+        if self.hold_spin and self.v > 0.0:
+            forces[4] -= STATIC_SPIN_STIFFNESS * q[4]
+        return forces
+
+    def _generalised_forces(self, x: float, q: np.ndarray, q_t: np.ndarray) -> np.ndarray:
+        """:meth:`__call__`'s forces at x, after ``_prepare(x)``: q, q_t float arrays; the
+        element's buffer is returned (overwritten by the next call)."""
+        self._call(x, q, q_t)
+        forces = self._forces
+        if self.v > 0.0:
+            a_y = self.v**2 * self._kappa
+            forces[0] -= self.vehicle.m_w * a_y
+            forces[5] -= self.vehicle.m_s * a_y
+            if self.hold_spin:
+                forces[4] -= STATIC_SPIN_STIFFNESS * q[4]
+        else:
+            forces[0] -= STATIC_LATERAL_STIFFNESS * q[0]
+            forces[4] -= STATIC_SPIN_STIFFNESS * q[4]
+        return forces
+
+    @classmethod
+    def of(
+        cls, element: ProfileContactElement, x_clamp: float, x_clamp_end: float = math.inf
+    ) -> WheelsetContactElement:
+        """The element ``element`` as a wheelset's contact, clamped to [x_clamp, x_clamp_end].
+
+        Parameters
+        ----------
+        element : ProfileContactElement
+            The wheelset's contact element (its state is shared, not copied).
+        x_clamp, x_clamp_end : float
+            m, the turnout's start and end: the contact tables' range.
+
+        Returns
+        -------
+        WheelsetContactElement
+        """
+        out = cls.__new__(cls)
+        out.__dict__.update(element.__dict__)
+        out.x_clamp = x_clamp
+        out.x_clamp_end = x_clamp_end
+        return out
+
+
+class VehicleContacts:
+    """All wheelsets' contact elements as one Exudyn force function (one ObjectGenericODE2).
+
+    One Python call per residual evaluation instead of one per wheelset; positions,
+    curvature, irregularity and the curving loads -m_w v^2 kappa prepared once per time (the
+    Newton iterations of a step share t). The forces are those of each element's own
+    ``__call__``, bit for bit; the wheelsets' blocks do not couple (the numerical Jacobian
+    is block diagonal).
+
+    ``stops``: on straight track the vehicle's bumpstops (``vehicle_builder``'s force and
+    Jacobian functions on car body and bogies, ``size`` coordinates) ride along on the
+    object's last coordinates: one Python call fewer per residual evaluation.
+    """
+
+    def __init__(self, elements: list[WheelsetContactElement], stops: tuple | None = None):
+        self.elements = list(elements)
+        ends = np.cumsum([el.n for el in self.elements])
+        self.spans = [(int(b - el.n), int(b)) for el, b in zip(self.elements, ends)]
+        self.n_contacts = int(ends[-1])  #: coordinates of the contact elements, first
+        self.stops = stops  #: (size, force, jacobian) of the bumpstops, or None
+        self.n = self.n_contacts + (int(stops[0]) if stops is not None else 0)
+        self._out = np.zeros(self.n)
+        self._bias = np.zeros(self.n)  #: N, the curving loads (subtracted as in __call__)
+        self._t = math.nan
+        self._x = [0.0] * len(self.elements)
+        self._moving = False  #: all at speed without holds: forces = kernel + bias
+        self._a_y = [0.0] * len(self.elements)  #: m/s^2, the curving accelerations in _bias
+        self._biased = False  #: any curving load (x + 0.0 == x: skipped on straight track)
+
+    def _new_time(self, t: float) -> None:
+        self._t = t
+        self._moving = True
+        for k, (el, (a, _)) in enumerate(zip(self.elements, self.spans)):
+            x = el.x_at(t)
+            el._prepare(x)
+            el._cached_t = t
+            self._x[k] = x
+            if el.v > 0.0 and not el.hold_spin:
+                a_y = el.v**2 * el._kappa
+                if a_y != self._a_y[k]:  # changes in curves only
+                    self._a_y[k] = a_y
+                    self._bias[a] = -(el.vehicle.m_w * a_y)
+                    self._bias[a + 5] = -(el.vehicle.m_s * a_y)
+                    self._biased = bool(np.any(self._bias))
+            else:
+                self._moving = False
+
+    def __call__(self, mbs, t, item_number, q_list, q_t_list):
+        q, q_t = np.array(q_list, dtype=float), np.array(q_t_list, dtype=float)
+        if t != self._t:
+            self._new_time(t)
+        out = self._out
+        if self._moving:  # the hot path: x - c == x + (-c) exactly
+            for el, x, (a, b) in zip(self.elements, self._x, self.spans):
+                el._call(x, q[a:b], q_t[a:b])
+                out[a:b] = el._forces
+            if self._biased:
+                out += self._bias
+        else:
+            for el, x, (a, b) in zip(self.elements, self._x, self.spans):
+                out[a:b] = el._generalised_forces(x, q[a:b], q_t[a:b])
+        if self.stops is not None:
+            c = self.n_contacts
+            out[c:] = self.stops[1](mbs, t, item_number, q_list[c:], q_t_list[c:])
+        return out
+
+    def jacobian(self, t: float, q: np.ndarray, q_t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """-df/dq and -df/dq_t of the contact forces f (the left-hand side's Jacobians), by
+        forward differences per wheelset (its block; the blocks do not couple).
+
+        The steps are Exudyn's own numerical differentiation's (relative 1e-7 of the
+        coordinate, at least 1e-7 x 0.01). The dummy sprung-mass columns (5, 6) are zero:
+        nothing acts on them (m_s = 0).
+
+        Parameters
+        ----------
+        t : float
+            s.
+        q, q_t : numpy.ndarray
+            The object's coordinates and velocities.
+
+        Returns
+        -------
+        jac_q, jac_q_t : numpy.ndarray
+            (n, n), N/m and N s/m.
+        """
+        if t != self._t:
+            self._new_time(t)
+        jac_q, jac_q_t = np.zeros((self.n, self.n)), np.zeros((self.n, self.n))
+        for el, x, (a, b) in zip(self.elements, self._x, self.spans):
+            u, u_t = np.array(q[a:b], dtype=float), np.array(q_t[a:b], dtype=float)
+            f0 = el._generalised_forces(x, u, u_t).copy()
+            for vector, jac in ((u, jac_q), (u_t, jac_q_t)):
+                for j in range(b - a):
+                    if j in (5, 6):
+                        continue
+                    value = vector[j]
+                    eps = _JACOBIAN_EPSILON * max(abs(value), _JACOBIAN_MINIMUM_SIZE)
+                    vector[j] = value + eps
+                    f1 = el._generalised_forces(x, u, u_t)
+                    vector[j] = value
+                    jac[a:b, a + j] = (f0 - f1) / eps
+        if self.stops is not None:  # their tangent stiffness; no damping
+            c = self.n_contacts
+            jac_q[c:, c:] = self.stops[2](None, t, 0, q[c:], q_t[c:], 1.0, 0.0)
+        return jac_q, jac_q_t
+
+    def jacobian_function(self, mbs, t, item_number, q, q_t, f_q, f_q_t):
+        """Exudyn ``jacobianUserFunction``: f_q (-df/dq) + f_q_t (-df/dq_t); the object's
+        own stiffness (the dummies' springs) Exudyn adds itself.
+
+        Parameters
+        ----------
+        mbs : exudyn.MainSystem
+        t : float
+            s.
+        item_number : int
+        q, q_t : sequence of float
+            The object's coordinates and velocities.
+        f_q, f_q_t : float
+            Exudyn's factors of the position and velocity Jacobians.
+
+        Returns
+        -------
+        numpy.ndarray
+            (n, n).
+        """
+        jac_q, jac_q_t = self.jacobian(t, np.asarray(q, float), np.asarray(q_t, float))
+        return f_q * jac_q + f_q_t * jac_q_t
+
+
+def wheelset_columns(
+    element: ProfileContactElement, t: np.ndarray, q: np.ndarray, q_t: np.ndarray, label: str
+) -> dict[str, np.ndarray]:
+    """Per wheel forces and wheelset coordinates of one wheelset, named ``..._<label>_...``.
+
+    Parameters
+    ----------
+    element : ProfileContactElement
+        The wheelset's contact element.
+    t : numpy.ndarray
+        s, times from the segment's start.
+    q, q_t : numpy.ndarray
+        Its element coordinates and velocities (samples x element size).
+    label : str
+        E.g. "ws2".
+
+    Returns
+    -------
+    dict
+        ``Fz_<label>_<wheel>_N``, ``Fy_<label>_<wheel>_N``, per rail slot
+        ``Fz_<label>_<wheel>_<rail>_N``, ``Fy_...``, and ``y_<label>_m``, ``z_<label>_m``,
+        ``roll_<label>_rad``, ``yaw_<label>_rad``.
+    """
+    cols = element.columns(t, q, q_t)
+    out = {}
+    for name, values in cols.items():
+        if name.startswith(("Fz_", "Fy_")):
+            out[f"{name[:3]}{label}_{name[3:]}"] = values
+    for k, name in enumerate(("y", "z", "roll", "yaw")):
+        out[f"{name}_{label}_{'m' if k < 2 else 'rad'}"] = q[:, k]
+    return out

@@ -1,0 +1,1 @@
+"""corunning_track"""

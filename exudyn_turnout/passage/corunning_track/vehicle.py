@@ -1,0 +1,638 @@
+"""The full vehicle through the turnout, a co-running track under every wheelset (issue 13).
+
+The vehicle of a :class:`~exudyn_turnout.inputs.vehicle_model.VehicleModel` (car body,
+bogies, wheelsets; :func:`~exudyn_turnout.passage.vehicle.builder.add_vehicle_model`,
+linear representation, wheelset spin free) runs at constant speed along a route. Every
+wheelset has
+
+- its own co-running track (``settings.layers``), evaluated at that wheelset's x and built
+  with the parameters of the zone containing it;
+- its own profile contact element: the same
+  :class:`~exudyn_turnout.passage.contact.profile.ProfileContactElement` as the single
+  wheelset's passage, given a Vehicle whose sprung mass ``m_s`` is 0 (the car body and the
+  bogies get their own curving load here, so the element applies -m_w v^2 kappa to its
+  wheelset only). The element's two sprung-mass coordinates sit on a decoupled dummy node
+  (1 kg on 1e6 N/m) that stays at rest.
+
+Track-following frame: every body's lateral coordinate and yaw are relative to the track
+centreline and tangent at that body's own x. A vehicle whose suspension is unstrained in a
+curve then has y_i = -e_i, psi_i = -theta_i, where e_i is the centreline's offset at x_i
+from the tangent at the car body's x and theta_i the change of heading (both integrals of
+the route's curvature): the suspension gets the extra force K q_geo (K its stiffness
+matrix), which gives the wheelsets' geometric angle of attack in the bogie and the bogies'
+offset under the car body. Car body and bogies get -m v^2 kappa(x) at their CoG
+(d'Alembert in the track-following frame); while q_geo changes (entering a curve) the
+suspension dampers see D q_geo_t as well. Left out: the yaw inertia terms J v^2 dkappa/dx
+of the frame's changing yaw rate, and for the wheelsets everything the single wheelset's
+element leaves out.
+
+Zones: a wheelset's track and contact are in the zone containing its x. When any wheelset
+crosses a zone boundary the system is rebuilt with the new zone for that wheelset and the
+state carried over: vehicle bodies unchanged, that wheelset's track re-based as
+``simulate._carry_over`` does (the old zone's static deflection under the current wheel
+loads replaced by the new zone's, the dynamic part and velocities kept; the wheelset moved
+with the static deflection under its wheels so that no wheel load jumps), the other
+tracks copied. Wheelsets behind the turnout's x_min are on plain track: zone 1's parameters
+and the contact at x clamped to x_min (the plain-track blend of zone 1 at its start is
+plain track; the rail sections there are the plain rail). Likewise past x_max: the last
+zone and the contact at x clamped to x_max (plain track in the packaged files), so the
+front wheelset may run up to x_max plus the vehicle's length and the rear wheelsets pass
+the whole turnout.
+
+Exudyn objects of the user functions (speed, benchmarks/bench_vehicle_passage.py): the four
+contact elements are one ObjectGenericODE2 (one Python call per residual evaluation) with a
+forward-difference Jacobian per wheelset (Exudyn's own steps, a block each instead of the
+whole object's numerical one); on straight track the bumpstops ride on it and the curving
+loads (zero there) are left out; in a curve the curving loads and the bumpstops share one
+object, the loads tabulated along the run. A run's Newton tolerance is
+:func:`newton_tolerance`.
+
+The run starts in the steady state at speed (at rest in the track-following frame): first
+the static equilibrium at rest (lateral position and spin held, as the single wheelset's),
+then a static solve with the creep forces of speed v (spin held); where that fails (in a
+curve: saturated creep) a dynamic relaxation with x frozen (:data:`RELAX_TIME` s at
+:data:`RELAX_STEP` s, curving loads ramped up over the first second) reaches it.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, replace
+from types import SimpleNamespace
+from typing import Any
+
+import numpy as np
+
+from exudyn_turnout.corunning.parameters import co_running_parameters
+from exudyn_turnout.inputs.routes import Route
+from exudyn_turnout.inputs.turnout import Turnout, Zone
+from exudyn_turnout.inputs.vehicle import Vehicle, load_vehicle
+from exudyn_turnout.inputs.vehicle_model import VehicleModel
+from exudyn_turnout.passage.common import (
+    NEWTON_ABSOLUTE_TOLERANCE,
+    QuietExudyn,
+    join_segments,
+    newton_tolerance,
+    progress_function,
+)
+from exudyn_turnout.passage.contact.profile import RouteContact
+from exudyn_turnout.passage.contact.vehicle_contacts import (
+    VehicleContacts,
+    WheelsetContactElement,
+    wheelset_columns,
+)
+from exudyn_turnout.passage.corunning_track.carry_over import (
+    dof_of,
+    inside_zone,
+    static_deflection,
+    vehicle_shift,
+)
+from exudyn_turnout.passage.results import (
+    PassageError,
+    PassageFailure,
+    PassageResult,
+    PassageSettings,
+    check_plausible,
+    vehicle_summary,
+)
+from exudyn_turnout.passage.vehicle.track_frame import (
+    DUMMY_MASS,
+    DUMMY_STIFFNESS,
+    BodyLoads,
+    add_vehicle_loads,
+    contact_vehicle,
+    set_initial_vehicle,
+)
+
+__all__ = ["simulate_vehicle"]
+
+#: s, time of the dynamic relaxation to the steady state at speed (where the static solve
+#: fails, e.g. in a curve): the car body's lateral mode (~0.7 Hz, damping ratio ~0.45)
+#: settles in it
+RELAX_TIME = 8.0
+#: s, its time step (implicit, numerically damped: only the end state matters)
+RELAX_STEP = 5e-3
+#: Exudyn's ``modifiedNewtonContractivity`` in a run: the Jacobian is recomputed when a
+#: Newton iteration reduces the residual by less than this factor (Exudyn's default 0.5).
+#: Where contact points move fast (switch, crossing) the kept Jacobian converges slowly;
+#: the contact Jacobian is cheap (~1 ms): recomputing it sooner saves iterations
+#: (benchmarks/bench_vehicle_passage.py: Newton iterations per step).
+_NEWTON_CONTRACTIVITY = 0.1
+
+
+@dataclass(frozen=True)
+class _Place:
+    """Where one wheelset's track and contact are in a run segment."""
+
+    zone: Zone
+    clamped: bool  #: behind the turnout's start: zone 1 at x_min
+    beyond: bool = False  #: past the turnout's end: the last zone at x_max
+
+
+@dataclass
+class _System:
+    """One segment's Exudyn system."""
+
+    container: Any
+    mbs: Any
+    places: tuple[_Place, ...]
+    elements: list  #: per wheelset, its WheelsetContactElement
+    params: list  #: per wheelset, its track's CoRunningParameters
+    slots: list  #: per wheelset, rail slots of its element in coordinate order
+    names: dict  #: node name -> node ("car_body", "bogie1", "ws1", "t1:sleeper", "t1:m0_r1")
+    sensors: list  #: per wheelset, (coordinate sensors, velocity sensors) of its element nodes
+    body_loads: BodyLoads
+    x_front: float  #: m, front wheelset's position at t = 0
+
+
+def _place(turnout: Turnout, x: float) -> _Place:
+    if x < turnout.x_min - 1e-9:
+        return _Place(turnout.zones[0], True)
+    if x > turnout.x_max + 1e-9:
+        return _Place(turnout.zones[-1], False, True)
+    for zone in turnout.zones:
+        if zone.x_start - 1e-9 <= x < zone.x_end - 1e-9:
+            return _Place(zone, False)
+    return _Place(turnout.zones[-1], False)
+
+
+def _build(
+    turnout: Turnout,
+    route: Route,
+    model: VehicleModel,
+    vehicle: Vehicle,
+    contact: RouteContact,
+    settings: PassageSettings,
+    places: tuple[_Place, ...],
+    x_front: float,
+    v: float,
+    frozen: bool,
+    x_range: tuple[float, float],
+    tables: dict | None = None,
+) -> _System:
+    import exudyn as exu
+    from exudyn.itemInterface import NodeGenericODE2, ObjectGenericODE2, SensorNode
+
+    from exudyn_turnout.corunning.track import add_co_running_track
+    from exudyn_turnout.passage.vehicle import builder as vehicle_builder
+    from exudyn_turnout.passage.vehicle.builder import add_vehicle_model
+
+    container = exu.SystemContainer()
+    mbs = container.AddSystem()
+    build = add_vehicle_model(
+        mbs, model, representation="linear", wheelset_spin=True, bumpstop="none"
+    )
+    names: dict[str, int] = {b.name: b.node for b in build.bodies() if b.name[:5] != "wheel"}
+    elements, params_all, slots_all, sensors = [], [], [], []
+    contact_nodes: list[int] = []
+    for i, (ws, place) in enumerate(zip(build.wheelsets, places)):
+        x_i = x_front + ws.x
+        x_track = turnout.x_min if place.clamped else turnout.x_max if place.beyond else x_i
+        params = co_running_parameters(
+            turnout, zone=place.zone.index, layers=settings.layers, source=settings.source
+        )
+        params = replace(params, zone=route.zone(params.zone))
+        v_track = 0.0 if (place.clamped or place.beyond or frozen) else v
+        track = add_co_running_track(
+            mbs, params, x_track, v_track, mechanism=settings.track_mechanism
+        )
+        try:
+            raw, slots = contact.element(vehicle, route, place.zone, x_i, v, settings.irregularity)
+        except ValueError as err:
+            raise PassageError(str(err)) from None
+        element = WheelsetContactElement.of(raw, turnout.x_min, turnout.x_max)
+        element.frozen = frozen
+        dummy = int(
+            mbs.AddNode(
+                NodeGenericODE2(
+                    referenceCoordinates=[0.0, 0.0],
+                    initialCoordinates=[0.0, 0.0],
+                    initialCoordinates_t=[0.0, 0.0],
+                    numberOfODE2Coordinates=2,
+                )
+            )
+        )
+        rail_nodes = [track.wheel_nodes[r] for r in slots]
+        contact_nodes += [ws.node, dummy] + rail_nodes
+        sensors.append(
+            tuple(
+                [
+                    mbs.AddSensor(
+                        SensorNode(
+                            nodeNumber=n,
+                            storeInternal=True,
+                            writeToFile=False,
+                            outputVariableType=kind,
+                        )
+                    )
+                    for n in [ws.node] + rail_nodes
+                ]
+                for kind in (
+                    exu.OutputVariableType.Coordinates,
+                    exu.OutputVariableType.Coordinates_t,
+                )
+            )
+        )
+        names[f"ws{i + 1}"] = ws.node
+        names[f"dummy{i + 1}"] = dummy
+        names[f"t{i + 1}:sleeper"] = track.sleeper_node
+        names.update({f"t{i + 1}:rail_{r}": n for r, n in track.rail_nodes.items()})
+        names.update({f"t{i + 1}:m0_{r}": n for r, n in track.layer_nodes.items()})
+        elements.append(element)
+        params_all.append(params)
+        slots_all.append(slots)
+    stiffness = mbs.GetObjectParameter(build.items["suspension"], "stiffnessMatrix")
+    stiffness = np.asarray(stiffness.GetPythonObject(), float)
+    damping = mbs.GetObjectParameter(build.items["suspension"], "dampingMatrix")
+    damping = np.asarray(damping.GetPythonObject(), float)
+    loads = BodyLoads(build, stiffness, damping, route, x_front, v, *x_range)
+    loads.frozen = frozen
+    if tables is not None:
+        loads.tabulate(tables)
+    stops = None
+    car = build.car_body
+    if not loads.curved and model.bumpstop is not None and car is not None:  # q_geo = 0
+        size, (stop_force, stop_jacobian) = vehicle_builder.linear_bumpstop_functions(
+            model, car, build.bogies
+        )
+        stops = (size, stop_force, stop_jacobian)
+        contact_nodes += [car.node] + [b.node for b in build.bogies]
+    contacts = VehicleContacts(elements, stops)
+    m, k = np.zeros((contacts.n, contacts.n)), np.zeros((contacts.n, contacts.n))
+    for a, _ in contacts.spans:
+        for j in (5, 6):  # the dummy sprung-mass coordinates
+            m[a + j, a + j], k[a + j, a + j] = DUMMY_MASS, DUMMY_STIFFNESS
+    mbs.AddObject(
+        ObjectGenericODE2(
+            nodeNumbers=contact_nodes,
+            massMatrix=m,
+            stiffnessMatrix=k,
+            forceUserFunction=contacts,
+            jacobianUserFunction=contacts.jacobian_function,
+        )
+    )
+    keep = add_vehicle_loads(mbs, build, loads) if loads.curved else ()
+    mbs.variables["exudyn_turnout.full_vehicle_passage"] = (contacts, loads, keep)
+    mbs.Assemble()
+    system = _System(
+        container, mbs, places, elements, params_all, slots_all, names, sensors, loads, x_front
+    )
+    set_initial_vehicle(system, build)
+    return system
+
+
+def _state(system: _System) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    import exudyn as exu
+
+    data, mbs = system.mbs.systemData, system.mbs
+    q = np.asarray(data.GetODE2Coordinates(exu.ConfigurationType.Current))
+    q_t = np.asarray(data.GetODE2Coordinates_t(exu.ConfigurationType.Current))
+    out = {}
+    for name, node in system.names.items():
+        i = mbs.GetNodeODE2Index(node)
+        k = np.atleast_1d(mbs.GetNodeOutput(node, exu.OutputVariableType.Coordinates)).size
+        out[name] = (q[i : i + k].copy(), q_t[i : i + k].copy())
+    return out
+
+
+def _element_vector(system: _System, state: Mapping, i: int, index: int) -> np.ndarray:
+    """Element coordinates (index 0) or velocities (1) of wheelset i (0-based) in ``state``."""
+    body = "m0" if system.params[i].layers == 3 else "rail"
+    parts = [state[f"ws{i + 1}"][index], state[f"dummy{i + 1}"][index]]
+    parts += [state[f"t{i + 1}:{body}_{r}"][index] for r in system.slots[i]]
+    return np.concatenate(parts)
+
+
+def _track_vector(state: Mapping, system: _System, i: int, index: int) -> dict[str, float]:
+    out: dict[str, float] = {}
+    prefix = f"t{i + 1}:"
+    for name in system.names:
+        if name.startswith(prefix):
+            out.update(zip(dof_of(name[len(prefix) :]), state[name][index]))
+    return out
+
+
+def _carry_over(
+    state: Mapping,
+    old: _System,
+    new: _System,
+    route: Route,
+    layers: int,
+    x_front: float,
+    t_old: float,
+) -> None:
+    """Set ``new``'s initial state from ``old``'s final ``state`` (module docstring)."""
+    import exudyn as exu
+
+    values: dict[str, tuple[np.ndarray, np.ndarray]] = {}
+    for name in new.names:
+        if not name.startswith("t"):
+            values[name] = (state[name][0].copy(), state[name][1].copy())
+    for i, (p_old, p_new) in enumerate(zip(old.places, new.places)):
+        prefix = f"t{i + 1}:"
+        if p_old.zone.index == p_new.zone.index:  # same zone (or leaving the clamp): copy
+            for name in new.names:
+                if name.startswith(prefix):
+                    values[name] = state[name]
+            continue
+        el = old.elements[i]
+        x = el.x_at(t_old)
+        q_el, v_el = _element_vector(old, state, i, 0), _element_vector(old, state, i, 1)
+        loads_old = el.rail_loads(x, q_el, v_el)
+        continues = route.continues.get(p_new.zone.index, {})
+        source = {slot: continues.get(slot, slot) for slot in new.params[i].active_rails}
+        loads_new = {slot: loads_old[src] for slot, src in source.items() if src in loads_old}
+        # the boundary itself, in each zone's own range (x0 + v t carries round-off)
+        u_old = static_deflection(
+            old.params[i], inside_zone(old.params[i].zone, x), loads_old, layers, True
+        )
+        u_new = static_deflection(
+            new.params[i], inside_zone(new.params[i].zone, x), loads_new, layers, True
+        )
+        q_old, v_old = _track_vector(state, old, i, 0), _track_vector(state, old, i, 1)
+        dyn = {n: q_old[n] - u_old[n] for n in q_old}
+        shift = new.params[i].zone.sleeper_y - old.params[i].zone.sleeper_y
+        dyn["z_t"] += shift * dyn["phi_t"]
+        v_old["z_t"] += shift * v_old["phi_t"]
+        q_new, v_new = {}, {}
+        for name in u_new:
+            axis, _, rest = name.partition("_")
+            slot = rest.rsplit("_", 1)[-1]
+            src = name.replace(slot, source[slot]) if slot in source else name
+            if src in dyn:
+                q_new[name], v_new[name] = u_new[name] + dyn[src], v_old[src]
+            else:  # a rail that appears: the sleeper's motion under it
+                arm = new.params[i].zone.rail_y[slot] - new.params[i].zone.sleeper_y
+                if axis == "y":
+                    q_new[name], v_new[name] = u_new[name] + dyn["y_t"], v_old["y_t"]
+                else:
+                    q_new[name] = u_new[name] + dyn["z_t"] + arm * dyn["phi_t"]
+                    v_new[name] = v_old["z_t"] + arm * v_old["phi_t"]
+        for name in new.names:
+            if name.startswith(prefix):
+                dofs = dof_of(name[len(prefix) :])
+                values[name] = (
+                    np.array([q_new[d] for d in dofs]),
+                    np.array([v_new[d] for d in dofs]),
+                )
+        fake = SimpleNamespace(element=el)
+        moved = vehicle_shift(fake, u_old, u_new, loads_old, source, layers)  # type: ignore[arg-type]
+        q_ws = values[f"ws{i + 1}"][0]
+        q_ws[:3] = q_ws[:3] + moved["wheelset"]
+    mbs, data = new.mbs, new.mbs.systemData
+    q = np.asarray(data.GetODE2Coordinates(exu.ConfigurationType.Initial)).copy()
+    q_t = np.zeros_like(q)
+    for name, node in new.names.items():
+        i = mbs.GetNodeODE2Index(node)
+        a, b = values[name]
+        q[i : i + len(a)], q_t[i : i + len(a)] = a, b
+    data.SetODE2Coordinates(q, exu.ConfigurationType.Initial)
+    data.SetODE2Coordinates_t(q_t, exu.ConfigurationType.Initial)
+
+
+def _solve_static(system: _System, what: str, load_steps: int = 1) -> None:
+    import exudyn as exu
+
+    from exudyn_turnout.corunning.track import simulation_settings
+
+    sim = simulation_settings(1.0, 1.0)
+    sim.staticSolver.numberOfLoadSteps = load_steps
+    sim.staticSolver.newton.absoluteTolerance = 1e-4
+    sim.staticSolver.newton.maxIterations = 50
+    try:
+        system.mbs.SolveStatic(sim, updateInitialValues=True)
+    except (exu.SolverError, RuntimeError) as err:
+        raise PassageFailure(
+            f"{what} not found with the front wheelset at x = {system.x_front:g} m: {err}"
+        ) from None
+
+
+def _relax(system: _System, duration: float, h: float) -> None:
+    """Integrate with x frozen (the curving loads ramped up over the first second) until the
+    vehicle is at rest in the track-following frame: the steady state at speed."""
+    import exudyn as exu
+
+    from exudyn_turnout.corunning.track import simulation_settings
+
+    sim = simulation_settings(duration, h, duration)
+    sim.timeIntegration.generalizedAlpha.spectralRadius = 0.0
+    sim.timeIntegration.newton.absoluteTolerance = NEWTON_ABSOLUTE_TOLERANCE
+    try:
+        system.mbs.SolveDynamic(sim)
+    except (exu.SolverError, RuntimeError) as err:
+        raise PassageFailure(
+            f"steady state at speed not found with the front wheelset at x = "
+            f"{system.x_front:g} m: {str(err).strip()}"
+        ) from None
+
+
+def _copy_state(state: Mapping, system: _System) -> None:
+    import exudyn as exu
+
+    mbs, data = system.mbs, system.mbs.systemData
+    q = np.asarray(data.GetODE2Coordinates(exu.ConfigurationType.Initial)).copy()
+    q_t = np.zeros_like(q)
+    for name, node in system.names.items():
+        i = mbs.GetNodeODE2Index(node)
+        a, b = state[name]
+        q[i : i + len(a)], q_t[i : i + len(a)] = a, b
+    data.SetODE2Coordinates(q, exu.ConfigurationType.Initial)
+    data.SetODE2Coordinates_t(q_t, exu.ConfigurationType.Initial)
+
+
+def _run(
+    system: _System,
+    duration: float,
+    settings: PassageSettings,
+    t_offset: float,
+    total: float,
+    progress: Callable | None,
+    static_load: float,
+) -> dict[str, np.ndarray]:
+    import exudyn as exu
+
+    from exudyn_turnout.corunning.track import simulation_settings
+
+    h = settings.time_step
+    sim = simulation_settings(duration, h, 0.999 * (settings.output_step or h))
+    sim.timeIntegration.numberOfSteps = max(1, int(math.ceil(duration / h - 1e-9)))
+    sim.timeIntegration.generalizedAlpha.spectralRadius = settings.spectral_radius
+    sim.timeIntegration.newton.absoluteTolerance = newton_tolerance(len(system.elements))
+    sim.timeIntegration.newton.modifiedNewtonContractivity = _NEWTON_CONTRACTIVITY
+    v = settings.v
+    if progress is not None:
+        system.mbs.SetPreStepUserFunction(
+            progress_function(progress, t_offset, total, system.x_front, v)
+        )
+    try:
+        system.mbs.SolveDynamic(sim)
+    except (exu.SolverError, RuntimeError) as err:
+        t = system.mbs.systemData.GetTime()
+        raise PassageFailure(
+            f"solver failed at t = {t_offset + t:.5f} s, front wheelset at x = "
+            f"{system.x_front + v * t:.3f} m: {str(err).strip()}"
+        ) from None
+    cols: dict[str, np.ndarray] = {}
+    for i, (element, (pos, vel)) in enumerate(zip(system.elements, system.sensors)):
+        stored = [system.mbs.GetSensorStoredData(s) for s in pos]
+        stored_t = [system.mbs.GetSensorStoredData(s) for s in vel]
+        t = stored[0][:, 0]
+        zeros = np.zeros((len(t), 2))
+        q = np.hstack([stored[0][:, 1:], zeros] + [a[:, 1:] for a in stored[1:]])
+        q_t = np.hstack([stored_t[0][:, 1:], zeros] + [a[:, 1:] for a in stored_t[1:]])
+        if not (np.all(np.isfinite(q)) and np.all(np.isfinite(q_t))):
+            bad = t[~np.all(np.isfinite(q), axis=1)][0]
+            raise PassageFailure(
+                f"solution diverged at t = {t_offset + bad:.5f} s, front wheelset at x = "
+                f"{system.x_front + v * bad:.3f} m: reduce the time step"
+            )
+        label = f"ws{i + 1}"
+        x_i = system.x_front + _offset_of(system, i) + v * t
+        if i == 0:
+            cols["t_s"], cols["x_m"] = t + t_offset, system.x_front + v * t
+            cols.update(element.columns(t, q, q_t))
+            for k, name in enumerate(
+                ("y_wheelset_m", "z_wheelset_m", "roll_wheelset_rad", "yaw_wheelset_rad")
+            ):
+                cols[name] = q[:, k]
+            for j, slot in enumerate(system.slots[0]):
+                base = element.n_vehicle + 2 * j
+                cols[f"y_rail_{slot}_m"], cols[f"z_rail_{slot}_m"] = q[:, base], q[:, base + 1]
+        own = wheelset_columns(element, t, q, q_t, label)
+        own[f"x_{label}_m"] = x_i
+        plausible = {
+            "t_s": t + t_offset,
+            "x_m": x_i,
+            "y_wheelset_m": q[:, 0],
+            "z_wheelset_m": q[:, 1],
+            "Fz_right_N": own[f"Fz_{label}_right_N"],
+            "Fz_left_N": own[f"Fz_{label}_left_N"],
+        }
+        for j, slot in enumerate(system.slots[i]):
+            plausible[f"z_rail_{slot}_m"] = q[:, element.n_vehicle + 2 * j + 1]
+        check_plausible(plausible, static_load, f"wheelset {i + 1}")
+        cols.update(own)
+    return cols
+
+
+def _offset_of(system: _System, i: int) -> float:
+    """Longitudinal offset (m) of wheelset i (0-based) behind the front one (<= 0)."""
+    return system.elements[i].x0 - system.x_front
+
+
+def _events(turnout: Turnout, offsets: tuple[float, ...], x_a: float, x_b: float) -> list[float]:
+    """Front positions where any wheelset crosses x_min, a zone boundary or x_max, with x_a
+    and x_b."""
+    bounds = [turnout.x_min] + [z.x_start for z in turnout.zones[1:]] + [turnout.x_max]
+    xs = {x_a, x_b}
+    for o in offsets:
+        for b in bounds:
+            if x_a + 1e-9 < b - o < x_b - 1e-9:
+                xs.add(b - o)
+    return sorted(xs)
+
+
+def simulate_vehicle(
+    turnout: Turnout,
+    settings: PassageSettings,
+    model: VehicleModel,
+    route: Route,
+    x_range: tuple[float, float],
+    progress: Callable[[float, float], None] | None = None,
+) -> PassageResult:
+    """Run the full vehicle through the turnout, a co-running track under every wheelset
+    (module docstring); the door is :func:`exudyn_turnout.passage.run.simulate_passage`,
+    which checks the settings first.
+
+    Parameters
+    ----------
+    turnout : Turnout
+    settings : PassageSettings
+        Route, speed, layers, source, time step, output step, spring mechanism.
+    model : VehicleModel
+        A full vehicle (car body, bogies).
+    route : Route
+        ``settings.route`` of the turnout.
+    x_range : tuple of float
+        m, the front wheelset's start and end (checked).
+    progress : callable(fraction, x), optional
+        Called about every 2 % of each segment's run.
+
+    Returns
+    -------
+    PassageResult
+        Columns: ``t_s``, ``x_m`` (front wheelset), per wheelset k = 1..n ``Fz_wsk_<wheel>_N``,
+        ``Fy_wsk_<wheel>_N`` (per rail slot too), ``x_wsk_m``, ``y_wsk_m``, ``z_wsk_m``,
+        ``roll_wsk_rad``, ``yaw_wsk_rad``; the front wheelset also under the single-wheelset
+        names (``Fz_right_N``, contact points, ``y_wheelset_m``, ``z_rail_<slot>_m``...).
+        Summary: :func:`~exudyn_turnout.passage.results.passage_summary` of the front
+        wheelset, plus per wheelset ``peak_<Fz|Fy>_<region>_wsk_<wheel>_N`` (region by that
+        wheelset's own x) and ``static_wheel_load_wsk_<wheel>_N``.
+
+    Raises
+    ------
+    PassageFailure
+        A solver failure (time and position).
+    """
+    wall = time.perf_counter()
+    base = load_vehicle()
+    x_a, x_b = x_range
+    with QuietExudyn():
+        return _simulate(turnout, settings, model, base, route, x_a, x_b, progress, wall)
+
+
+def _simulate(turnout, settings, model, base, route, x_a, x_b, progress, wall) -> PassageResult:
+    from exudyn_turnout.passage.contact.profile import route_contact
+
+    try:
+        contact = route_contact(turnout, route.name, base)
+    except ValueError as err:
+        raise PassageError(str(err)) from None
+    vehicle = contact_vehicle(base, model)
+    offsets = tuple(model.wheelset.x)
+    events = _events(turnout, offsets, x_a, x_b)
+    x_range = (x_a + min(offsets), x_b)
+    v = settings.v
+
+    def places(x_lo: float, x_hi: float) -> tuple[_Place, ...]:
+        return tuple(_place(turnout, 0.5 * (x_lo + x_hi) + o) for o in offsets)
+
+    first = places(events[0], events[1])
+    args = (turnout, route, model, vehicle, contact, settings)
+    rest = _build(*args, first, x_a, 0.0, True, x_range)
+    _solve_static(rest, "static equilibrium at rest")
+    state = _state(rest)
+    static_loads = [
+        el.wheel_loads(el.x_at(0.0), _element_vector(rest, state, i, 0))
+        for i, el in enumerate(rest.elements)
+    ]
+    moving = _build(*args, first, x_a, v, True, x_range)
+    _copy_state(state, moving)  # the rest state has K q_geo balanced already
+    try:
+        for el in moving.elements:
+            el.hold_spin = True
+        _solve_static(moving, "steady state at speed", 10)
+    except PassageFailure:  # e.g. in a curve: relax dynamically with x frozen
+        moving = _build(*args, first, x_a, v, True, x_range)
+        _copy_state(state, moving)
+        _relax(moving, RELAX_TIME, RELAX_STEP)
+    state, previous = _state(moving), moving
+    t_prev = 0.0
+    segments, t_offset, total = [], 0.0, (x_b - x_a) / v
+    starts = []
+    tables: dict = {}  # the running loads' table, shared by the segments
+    for k in range(len(events) - 1):
+        x0, x1 = events[k], events[k + 1]
+        system = _build(*args, places(x0, x1), x0, v, False, x_range, tables)
+        _carry_over(state, previous, system, route, settings.layers, x0, t_prev)
+        duration = (x1 - x0) / v
+        cols = _run(system, duration, settings, t_offset, total, progress, model.static_wheel_load)
+        segments.append(cols if k == 0 else {n: c[1:] for n, c in cols.items()})
+        starts.append(x0)
+        state, previous, t_prev = _state(system), system, duration
+        t_offset += duration
+    columns = join_segments(segments)
+    summary = vehicle_summary(turnout, settings, model, columns, static_loads, wall)
+    return PassageResult(settings, columns, summary, tuple(starts))

@@ -1,0 +1,511 @@
+"""A wheelset passing through the turnout on a co-running track (paper Section 4).
+
+The wheelset (:mod:`~exudyn_turnout.inputs.vehicle`) runs at constant speed along a route
+(:mod:`~exudyn_turnout.inputs.routes`) over a two- or three-layer co-running track
+(:mod:`~exudyn_turnout.corunning.track`) whose position-dependent stiffness and damping
+follow the wheelset's x, coupled by the penalty wheel/rail contact of
+:mod:`~exudyn_turnout.passage.contact.height_table`.
+
+The run starts from static equilibrium at ``x_start`` and is split at the zone boundaries
+(Table 3): in each zone a new Exudyn system is built with that zone's masses and active
+rails, and the state of everything that continues (vehicle, sleeper, rails present in
+both zones, or a rail slot that a route says continues another) is carried over.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+
+from exudyn_turnout.corunning.parameters import CoRunningParameters, co_running_parameters
+from exudyn_turnout.inputs.routes import Route
+from exudyn_turnout.inputs.turnout import Turnout, Zone
+from exudyn_turnout.inputs.vehicle import Vehicle
+from exudyn_turnout.passage.common import (
+    NEWTON_ABSOLUTE_TOLERANCE,
+    QuietExudyn,
+    join_segments,
+    progress_function,
+    zones_of_run,
+)
+from exudyn_turnout.passage.contact.protocol import Contact
+from exudyn_turnout.passage.corunning_track.carry_over import (
+    dof_of,
+    static_deflection,
+    vehicle_shift,
+)
+from exudyn_turnout.passage.results import (
+    PassageError,
+    PassageFailure,
+    PassageResult,
+    PassageSettings,
+    check_plausible,
+    passage_summary,
+)
+from exudyn_turnout.passage.vehicle.wheelset import add_vehicle, element_matrices, initial_guess
+
+__all__ = ["simulate_wheelset", "build_zone_system", "ZoneSystem"]
+
+
+def _profile_columns(
+    element: Any, t: np.ndarray, q: np.ndarray, q_t: np.ndarray, rails: Mapping[str, int]
+) -> dict[str, np.ndarray]:
+    """Columns of one zone's run with profile contact, from stored coordinates and velocities."""
+    cols: dict[str, np.ndarray] = {"t_s": t, "x_m": element.x0 + element.v * t}
+    cols.update(element.columns(t, q, q_t))
+    for i, name in enumerate(
+        (
+            "y_wheelset_m",
+            "z_wheelset_m",
+            "roll_wheelset_rad",
+            "yaw_wheelset_rad",
+            "spin_wheelset_rad",
+        )
+    ):
+        cols[name] = q[:, i]
+    for slot, i in rails.items():
+        cols[f"y_rail_{slot}_m"], cols[f"z_rail_{slot}_m"] = q[:, i], q[:, i + 1]
+    return cols
+
+
+@dataclass
+class ZoneSystem:
+    """One zone's Exudyn system and what the passage needs of it."""
+
+    container: Any  #: exudyn.SystemContainer
+    mbs: Any  #: exudyn.MainSystem
+    zone: Zone
+    element: Any  #: WheelRailElement or ProfileContactElement
+    names: dict  #: node name ("wheelset", "yaw", "sprung", "sleeper", "rail_r1", "m0_r1") -> node
+    rails: dict  #: rail slot touched by a wheel -> index of its y in the element
+    sensors: list  #: sensors of the coordinates of the element's nodes, in element order
+    params: CoRunningParameters  #: the zone's set, with the route's cross-section
+    #: stores the contact element's generalised forces every step (-1: profile contact,
+    #: whose outputs come from the stored coordinates and velocities)
+    force_sensor: int
+
+    @property
+    def sleeper_y(self) -> float:
+        """m, lateral position of the zone's sleeper reference point."""
+        return self.params.zone.sleeper_y
+
+
+def build_zone_system(
+    turnout: Turnout,
+    route: Route,
+    vehicle: Vehicle,
+    zone: Zone,
+    settings: PassageSettings,
+    x0: float,
+    v: float,
+    contact: Contact,
+) -> ZoneSystem:
+    """One zone's Exudyn system: the co-running track of the zone under the wheelset, the
+    vehicle, and the contact element coupling them.
+
+    ::
+
+        sprung mass ---- primary suspension ---- wheelset (y, z, roll, yaw [, spin])
+                                                    |  contact element (penalty)
+        rail bodies m_r (y, z) per active rail slot  --- [3 layers: m0 bodies] ---
+        sleeper (y_t, z_t, phi_t) --- ballast/ground (co-running springs at x0 + v t)
+
+    Parameters
+    ----------
+    turnout : Turnout
+    route : Route
+    vehicle : Vehicle
+    zone : Zone
+        The zone (Table 3) whose parameters and active rails the track has.
+    settings : PassageSettings
+        Layers, parameter source, spring mechanism, irregularity.
+    x0, v : float
+        m, m/s: the wheelset's position at t = 0 and speed (0: static).
+    contact : Contact
+        Makes the zone's contact element.
+
+    Returns
+    -------
+    ZoneSystem
+        The assembled system and what the passage reads of it.
+    """
+    import exudyn as exu
+    from exudyn.itemInterface import ObjectGenericODE2, SensorBody, SensorNode
+
+    from exudyn_turnout.corunning.track import add_co_running_track
+
+    container = exu.SystemContainer()
+    mbs = container.AddSystem()
+    params = co_running_parameters(
+        turnout, zone=zone.index, layers=settings.layers, source=settings.source
+    )
+    params = replace(params, zone=route.zone(params.zone))
+    track = add_co_running_track(mbs, params, x0, v, mechanism=settings.track_mechanism)
+    profile = contact.profile
+    element: Any
+    try:
+        element, slots = contact.element(vehicle, route, zone, x0, v, settings.irregularity)
+    except ValueError as err:
+        raise PassageError(str(err)) from None
+    if profile:
+        z_w, z_s = initial_guess(vehicle)
+        z_touch, roll = element.touching_position(x0, -z_w / 3.0)
+        veh = add_vehicle(
+            mbs, vehicle, track.ground, z_touch, z_touch + z_s - z_w, spin=True, roll0=roll
+        )
+    else:
+        veh = add_vehicle(mbs, vehicle, track.ground, *initial_guess(vehicle))
+    rails = {r: element.n_vehicle + 2 * i for i, r in enumerate(slots)}
+    nodes = [veh.wheelset_node, veh.yaw_node, veh.sprung_node] + [
+        track.wheel_nodes[r] for r in slots
+    ]
+    M, K = element_matrices(vehicle, element.n, profile)
+    contact_object = mbs.AddObject(
+        ObjectGenericODE2(
+            nodeNumbers=nodes, massMatrix=M, stiffnessMatrix=K, forceUserFunction=element
+        )
+    )
+    force_sensor = -1
+    if not profile:  # the profile element's outputs are computed from stored states
+        force_sensor = mbs.AddSensor(
+            SensorBody(
+                bodyNumber=contact_object,
+                storeInternal=True,
+                writeToFile=False,
+                outputVariableType=exu.OutputVariableType.Force,
+            )
+        )
+    sensors = [
+        mbs.AddSensor(
+            SensorNode(
+                nodeNumber=n,
+                storeInternal=True,
+                writeToFile=False,
+                outputVariableType=kind,
+            )
+        )
+        for kind in (
+            (exu.OutputVariableType.Coordinates, exu.OutputVariableType.Coordinates_t)
+            if profile
+            else (exu.OutputVariableType.Coordinates,)
+        )
+        for n in nodes
+    ]
+    names = {
+        "wheelset": veh.wheelset_node,
+        "yaw": veh.yaw_node,
+        "sprung": veh.sprung_node,
+        "sleeper": track.sleeper_node,
+    }
+    names.update({f"rail_{r}": n for r, n in track.rail_nodes.items()})
+    names.update({f"m0_{r}": n for r, n in track.layer_nodes.items()})
+    mbs.Assemble()
+    return ZoneSystem(container, mbs, zone, element, names, rails, sensors, params, force_sensor)
+
+
+def _node_state(system: ZoneSystem) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    import exudyn as exu
+
+    data = system.mbs.systemData
+    q = np.asarray(data.GetODE2Coordinates(exu.ConfigurationType.Current))
+    q_t = np.asarray(data.GetODE2Coordinates_t(exu.ConfigurationType.Current))
+    out = {}
+    for name, node in system.names.items():
+        i = system.mbs.GetNodeODE2Index(node)
+        k = np.atleast_1d(system.mbs.GetNodeOutput(node, exu.OutputVariableType.Coordinates)).size
+        out[name] = (q[i : i + k].copy(), q_t[i : i + k].copy())
+    return out
+
+
+def _track_vector(state: dict, system: ZoneSystem, index: int) -> dict[str, float]:
+    """Track coordinates (index 0) or velocities (1) of ``state`` by coordinate name."""
+    out: dict[str, float] = {}
+    for name in system.names:
+        if name in ("wheelset", "yaw", "sprung"):
+            continue
+        out.update(zip(dof_of(name), state[name][index]))
+    return out
+
+
+def _wheel_rail_loads(
+    system: ZoneSystem, state: dict, layers: int
+) -> dict[str, tuple[float, float]]:
+    """Total (vertical, lateral) force on each rail slot touched, from the element at ``state``."""
+    q = np.concatenate([state[n][0] for n in _element_nodes(system, layers)])
+    q_t = np.concatenate([state[n][1] for n in _element_nodes(system, layers)])
+    el = system.element
+    return el.rail_loads(el.x_at(system.mbs.systemData.GetTime()), q, q_t)
+
+
+def _carry_over(
+    state: dict,
+    old: ZoneSystem,
+    new: ZoneSystem,
+    continues: Mapping[str, str],
+    layers: int,
+    x: float,
+) -> None:
+    """Set the new zone's initial state from the old zone's final ``state``.
+
+    The static part of the track's deflection is re-based: the old zone's static deflection
+    under the current wheel loads is replaced by the new zone's (its parameters differ),
+    and the wheelset and sprung mass move with the rails they stand on, so that no wheel
+    load jumps; the dynamic deviation from static equilibrium and all velocities carry
+    over. A rail that appears starts with the sleeper's motion under it.
+    """
+    import exudyn as exu
+
+    loads_old = _wheel_rail_loads(old, state, layers)
+    source = {slot: continues.get(slot, slot) for slot in new.params.active_rails}
+    loads_new = {slot: loads_old[src] for slot, src in source.items() if src in loads_old}
+    lateral = old.element.lateral_static_loads
+    u_old = static_deflection(old.params, x, loads_old, layers, lateral)
+    u_new = static_deflection(new.params, x, loads_new, layers, lateral)
+    q_old, v_old = _track_vector(state, old, 0), _track_vector(state, old, 1)
+    dyn = {n: q_old[n] - u_old[n] for n in q_old}
+    shift = new.sleeper_y - old.sleeper_y  # the sleeper's reference point moved with the zone
+    dyn["z_t"] += shift * dyn["phi_t"]
+    v_old["z_t"] += shift * v_old["phi_t"]
+    q_new, v_new = {}, {}
+    for name in u_new:
+        axis, _, rest = name.partition("_")
+        slot = rest.rsplit("_", 1)[-1]
+        src = (
+            name.replace(slot, source[slot]) if slot in source else name
+        )  # sleeper names have no slot
+        if src in dyn:
+            q_new[name], v_new[name] = u_new[name] + dyn[src], v_old[src]
+        else:  # a rail that appears: the sleeper's motion under it
+            arm = new.params.zone.rail_y[slot] - new.sleeper_y
+            k = 0 if axis == "y" else 1
+            q_new[name] = u_new[name] + (dyn["y_t"] if k == 0 else dyn["z_t"] + arm * dyn["phi_t"])
+            v_new[name] = v_old["y_t"] if k == 0 else v_old["z_t"] + arm * v_old["phi_t"]
+    moved = vehicle_shift(old, u_old, u_new, loads_old, source, layers)
+    mbs, data = new.mbs, new.mbs.systemData
+    q = np.asarray(data.GetODE2Coordinates(exu.ConfigurationType.Initial)).copy()
+    q_t = np.zeros_like(q)
+    for name, node in new.names.items():
+        i = mbs.GetNodeODE2Index(node)
+        if name in ("wheelset", "yaw", "sprung"):
+            values, rates = state[name][0] + moved[name], state[name][1]
+        else:
+            dofs = dof_of(name)
+            values, rates = np.array([q_new[d] for d in dofs]), np.array([v_new[d] for d in dofs])
+        q[i : i + len(values)], q_t[i : i + len(values)] = values, rates
+    data.SetODE2Coordinates(q, exu.ConfigurationType.Initial)
+    data.SetODE2Coordinates_t(q_t, exu.ConfigurationType.Initial)
+
+
+def _element_nodes(system: ZoneSystem, layers: int) -> list[str]:
+    body = "m0" if layers == 3 else "rail"
+    return ["wheelset", "yaw", "sprung"] + [f"{body}_{r}" for r in system.rails]
+
+
+def _wheel_loads(system: ZoneSystem, state: dict, layers: int) -> dict[str, float]:
+    """Total normal force (N) on each wheel in ``state``."""
+    q = np.concatenate([state[n][0] for n in _element_nodes(system, layers)])
+    el = system.element
+    return el.wheel_loads(el.x0, q)
+
+
+def _solve_static(system: ZoneSystem) -> None:
+    import exudyn as exu
+
+    from exudyn_turnout.corunning.track import simulation_settings
+
+    sim = simulation_settings(1.0, 1.0)
+    sim.staticSolver.newton.absoluteTolerance = 1e-4
+    try:
+        system.mbs.SolveStatic(sim, updateInitialValues=True)
+    except (exu.SolverError, RuntimeError) as err:
+        raise PassageFailure(
+            f"static equilibrium not found at x = {system.element.x0:g} m "
+            f"(zone {system.zone.index}): {err}"
+        ) from None
+
+
+def _run(
+    system: ZoneSystem,
+    duration: float,
+    settings: PassageSettings,
+    t_offset: float,
+    total: float,
+    progress: Callable | None,
+) -> dict[str, np.ndarray]:
+    """Integrate one zone for ``duration`` s; return its columns (time shifted by t_offset)."""
+    import exudyn as exu
+
+    from exudyn_turnout.corunning.track import simulation_settings
+
+    h = settings.time_step
+    sim = simulation_settings(
+        duration, h, 0.999 * (settings.output_step or h)
+    )  # every step: no rounding skips
+    sim.timeIntegration.numberOfSteps = max(1, int(math.ceil(duration / h - 1e-9)))
+    sim.timeIntegration.generalizedAlpha.spectralRadius = settings.spectral_radius
+    # 1 N residual: 2e-5 of a wheel load; peaks equal those at 1e-4 N to 0.2 N, with half
+    # the iterations
+    sim.timeIntegration.newton.absoluteTolerance = NEWTON_ABSOLUTE_TOLERANCE
+    el = system.element
+    if progress is not None:
+        system.mbs.SetPreStepUserFunction(progress_function(progress, t_offset, total, el.x0, el.v))
+    try:
+        system.mbs.SolveDynamic(sim)
+    except (exu.SolverError, RuntimeError) as err:
+        t = system.mbs.systemData.GetTime()
+        raise PassageFailure(
+            f"solver failed at t = {t_offset + t:.5f} s, x = {el.x_at(t):.3f} m "
+            f"(zone {system.zone.index}, {system.zone.name}): {str(err).strip()}"
+        ) from None
+    stored = [system.mbs.GetSensorStoredData(sensor) for sensor in system.sensors]
+    t = stored[0][:, 0]
+    q = np.hstack([a[:, 1:] for a in stored])
+    if int(system.force_sensor) >= 0:
+        force = system.mbs.GetSensorStoredData(system.force_sensor)[:, 1:]
+    else:
+        force = np.zeros((len(t), 1))
+    finite = np.all(np.isfinite(q), axis=1) & np.all(np.isfinite(force), axis=1)
+    if not finite.all():
+        bad = t[~finite][0]
+        raise PassageFailure(
+            f"solution diverged at t = {t_offset + bad:.5f} s, x = {el.x_at(bad):.3f} m "
+            f"(zone {system.zone.index}): reduce the time step"
+        )
+    if int(system.force_sensor) >= 0:
+        cols = el.force_columns(t, q, force, system.rails)
+    else:
+        n = q.shape[1] // 2
+        cols = _profile_columns(el, t, q[:, :n], q[:, n:], system.rails)
+    cols["t_s"] = t + t_offset
+    return cols
+
+
+def simulate_wheelset(
+    turnout: Turnout,
+    settings: PassageSettings,
+    vehicle: Vehicle,
+    contact: Contact,
+    route: Route,
+    x_range: tuple[float, float],
+    progress: Callable[[float, float], None] | None = None,
+) -> PassageResult:
+    """Run the single wheelset through the turnout on the co-running track of
+    ``settings.layers`` layers (the door is :func:`exudyn_turnout.passage.run.simulate_passage`).
+
+    Parameters
+    ----------
+    turnout : Turnout
+        From :func:`~exudyn_turnout.inputs.turnout.load_turnout`.
+    settings : PassageSettings
+        The scenario: route, speed, x range, layers, parameter source, time step, output
+        step, spring mechanism.
+    vehicle : Vehicle
+        The single wheelset with its sprung mass.
+    contact : Contact
+        The route's wheel/rail contact (:class:`~exudyn_turnout.passage.contact.protocol.Contact`):
+        it makes each zone's contact element.
+    route : Route
+        ``settings.route`` of the turnout.
+    x_range : tuple of float
+        m, start and end of the run (checked by the door).
+    progress : callable(fraction, x), optional
+        Called about every 2 % of the run.
+
+    Returns
+    -------
+    PassageResult
+        ``columns``: ``t_s``, ``x_m``; per wheel and rail ``Fz_<wheel>_<rail>_N`` (normal force
+        pressing the rail down) and ``Fy_<wheel>_<rail>_N`` (lateral force on the rail, positive
+        left); per wheel ``Fz_<wheel>_N``, ``Fy_<wheel>_N``; wheelset ``y``, ``z``, ``roll``,
+        ``yaw``; per rail touched, the contact body's ``y_rail_<rail>_m``, ``z_rail_<rail>_m``
+        (NaN where that rail is not part of the zone). ``summary``: peaks (see
+        :func:`~exudyn_turnout.passage.results.passage_summary`).
+
+    Raises
+    ------
+    PassageFailure
+        A solver failure (time and position) or an absurd static state.
+    """
+    x_a, x_b = x_range
+    zones = zones_of_run(turnout, x_a, x_b)
+    wall = time.perf_counter()
+    with QuietExudyn():
+        return _simulate(
+            turnout, settings, vehicle, route, zones, x_a, x_b, progress, wall, contact
+        )
+
+
+def _simulate(
+    turnout: Turnout,
+    settings: PassageSettings,
+    vehicle: Vehicle,
+    route: Route,
+    zones: list[Zone],
+    x_a: float,
+    x_b: float,
+    progress: Callable | None,
+    wall: float,
+    contact: Contact,
+) -> PassageResult:
+    v = settings.v
+    static = build_zone_system(turnout, route, vehicle, zones[0], settings, x_a, 0.0, contact)
+    _solve_static(static)
+    state = _node_state(static)
+    static_loads = _wheel_loads(static, state, settings.layers)
+    _check_static(state, static_loads, x_a, vehicle)
+    W = 0.5 * (static_loads["left"] + static_loads["right"])
+    segments, x, t_offset, previous, total = [], x_a, 0.0, static, (x_b - x_a) / v
+    for k, zone in enumerate(zones):
+        system = build_zone_system(turnout, route, vehicle, zone, settings, x, v, contact)
+        _carry_over(
+            state,
+            previous,
+            system,
+            route.continues.get(zone.index, {}) if k else {},
+            settings.layers,
+            x,
+        )
+        duration = (min(zone.x_end, x_b) - x) / v
+        cols = _run(system, duration, settings, t_offset, total, progress)
+        check_plausible(cols, W, f"zone {zone.index}, {zone.name}")
+        segments.append(cols if k == 0 else {n: c[1:] for n, c in cols.items()})
+        state, previous = _node_state(system), system
+        x, t_offset = min(zone.x_end, x_b), t_offset + duration
+    columns = join_segments(segments)
+    summary = passage_summary(columns, turnout, settings, static_loads, time.perf_counter() - wall)
+    return PassageResult(settings, columns, summary, tuple(max(z.x_start, x_a) for z in zones))
+
+
+def _check_static(
+    state: Mapping[str, tuple[np.ndarray, np.ndarray]],
+    loads: Mapping[str, float],
+    x: float,
+    vehicle: Vehicle,
+) -> None:
+    """Stop on an absurd static state: deflections beyond :data:`PLAUSIBLE`, or wheel loads
+    that do not carry the vehicle (their sum off the weight by more than 20 %)."""
+    cols = {
+        "t_s": np.zeros(1),
+        "x_m": np.full(1, x),
+        "z_wheelset_m": state["wheelset"][0][1:2],
+        "y_wheelset_m": state["wheelset"][0][0:1],
+    }
+    for name, (q, _) in state.items():
+        if name.startswith("rail_"):
+            cols[f"z_{name}_m"] = q[1:2]
+    try:
+        check_plausible(cols, vehicle.static_wheel_load, "static equilibrium")
+    except PassageFailure as err:
+        message = str(err).replace("implausible run stopped", "absurd static state")
+        raise PassageFailure(message) from None
+    total = loads["left"] + loads["right"]
+    if not abs(total - 2.0 * vehicle.static_wheel_load) <= 0.2 * 2.0 * vehicle.static_wheel_load:
+        raise PassageFailure(
+            f"absurd static state at x = {x:g} m: the wheel loads sum to {total:.4g} N, "
+            f"the vehicle weighs {2.0 * vehicle.static_wheel_load:.4g} N"
+        )
