@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
-from exudyn_turnout.inputs.turnout import _Reader, read_toml
+from exudyn_turnout.inputs.toml_fields import FieldReader, read_toml
 
 __all__ = [
     "Vehicle",
@@ -106,7 +106,7 @@ def load_vehicle(path: str | Path | None = None) -> Vehicle:
     """
     path = Path(path) if path is not None else default_vehicle_path()
     data = read_toml(path)
-    r = _Reader(path.name, data)
+    r = FieldReader(path.name, data)
     w, p = "wheelset", "primary_suspension"  # table names
     k_max, c_max = 1e12, 1e10  # N/m, N s/m: plausibility bounds
     radius = r.number(f"{w}.wheel_radius", upper=2.0)
@@ -145,7 +145,7 @@ def load_vehicle(path: str | Path | None = None) -> Vehicle:
     )
 
 
-def _profile_fields(r: _Reader, data: dict, path: Path) -> tuple:
+def _profile_fields(r: FieldReader, data: dict, path: Path) -> tuple:
     """(J_spin, back_to_back, wheel_profile) of ``[wheelset]``, None where not given."""
     w = "wheelset"
     table = data.get(w, {})
@@ -211,7 +211,7 @@ def load_contact_law(data: dict, filename: str) -> ContactLaw:
     TurnoutFileError
         A field is missing or not a valid number.
     """
-    r = _Reader(Path(filename).name, data)
+    r = FieldReader(Path(filename).name, data)
     names = (
         "C_H",
         "damping",
