@@ -52,6 +52,7 @@ from exudyn_turnout.inputs.vehicle_frequencies import (
     sway_frequencies,
     wheelset_bounce_frequency,
 )
+from exudyn_turnout.inputs.vehicle_names import PACKAGED_VEHICLES, packaged_vehicle_path
 
 __all__ = [
     "GRAVITY",
@@ -314,7 +315,8 @@ def load_vehicle_model(path: str | Path | None = None) -> VehicleModel:
     Parameters
     ----------
     path : str or Path, optional
-        TOML vehicle file.
+        TOML vehicle file, or the name of a packaged one (``"manchester"``, see
+        :mod:`.vehicle_names`; a file of that name in the working directory comes first).
 
     Returns
     -------
@@ -325,10 +327,23 @@ def load_vehicle_model(path: str | Path | None = None) -> VehicleModel:
     ------
     VehicleModelError
         The file cannot be read, is not UTF-8 TOML, or a field is missing or out of range;
-        one line naming the file and the field.
+        one line naming the file and the field. A single-wheelset vehicle file (no
+        ``[vehicle]``, a ``[contact]`` table), which
+        :func:`~exudyn_turnout.inputs.vehicle.load_vehicle` reads: one line saying so.
     """
-    path = Path(path) if path is not None else default_vehicle_model_path()
-    reader = _Fields(path.name, _read(path))
+    if path is None:
+        path = default_vehicle_model_path()
+    elif isinstance(path, str) and path in PACKAGED_VEHICLES and not Path(path).exists():
+        path = packaged_vehicle_path(path)
+    path = Path(path)
+    data = _read(path)
+    if "vehicle" not in data and "contact" in data and "wheelset" in data:
+        raise VehicleModelError(
+            f"{path.name}: is a single-wheelset vehicle file (no [vehicle] table): load it "
+            "with exudyn_turnout.inputs.vehicle.load_vehicle "
+            "(or exudyn_turnout.inputs.vehicles.packaged_vehicle('wheelset'))"
+        )
+    reader = _Fields(path.name, data)
     n_wheelsets = reader.integer("vehicle.wheelsets", 1, 16)
     n_bogies = reader.integer("vehicle.bogies", 0, 2)
     if n_bogies == 1:
