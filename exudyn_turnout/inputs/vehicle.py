@@ -190,10 +190,10 @@ def _refuse_vehicle_model_file(path: Path, data: Mapping[str, Any]) -> None:
         return
     full = layout.get("bogies") or "car_body" in data or "bogie" in data
     what = "a full-vehicle file (car body on bogies)" if full else "a vehicle-model file"
+    packaged = " (or exudyn_turnout.inputs.vehicles.packaged_vehicle('manchester'))" if full else ""
     raise TurnoutFileError(
         f"{path.name}: is {what}, not a single-wheelset vehicle file: load it with "
-        "exudyn_turnout.inputs.vehicle_model.load_vehicle_model "
-        "(or exudyn_turnout.inputs.vehicles.packaged_vehicle('manchester'))"
+        f"exudyn_turnout.inputs.vehicle_model.load_vehicle_model{packaged}"
     )
 
 
