@@ -183,7 +183,7 @@ def _segment(turnout, model, x_front, v, frozen=False, route_name="through"):
     args = (turnout, route, model, fvp.contact_vehicle(base, model))
     args += (route_contact(turnout, route_name, base), settings, places, x_front, v, frozen)
     system = fvp._build(*args, (x_front - 20.0, x_front + 10.0))
-    contacts = system.mbs.variables["exudyn_turnout.full_vehicle_passage"][0]
+    contacts = system.mbs.variables["exudyn_turnout.corunning_track.vehicle"][0]
     rng = np.random.default_rng(13)
     q = 1e-5 * rng.standard_normal(contacts.n)
     q_t = 1e-2 * rng.standard_normal(contacts.n)

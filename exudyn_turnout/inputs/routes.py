@@ -21,11 +21,11 @@ import numpy as np
 from exudyn_turnout.inputs.geometry import TurnoutPlan, resolve_position, turnout_plan
 from exudyn_turnout.inputs.turnout import (
     RAIL_SLOTS,
+    FieldReader,
     Table1D,
     Turnout,
     TurnoutFileError,
     Zone,
-    _Reader,
 )
 
 __all__ = [
@@ -232,7 +232,7 @@ def route_names(turnout: Turnout) -> tuple[str, ...]:
     return tuple(turnout.raw.get("routes", {}))
 
 
-def _x(r: _Reader, field: str, value: object, plan: TurnoutPlan | None) -> float:
+def _x(r: FieldReader, field: str, value: object, plan: TurnoutPlan | None) -> float:
     """A position: a number (m) or a feature of the plan, e.g. ``"nose_tip - 0.2"``."""
     if isinstance(value, str):
         try:
@@ -242,7 +242,7 @@ def _x(r: _Reader, field: str, value: object, plan: TurnoutPlan | None) -> float
     return r.check(field, value, positive=False)
 
 
-def _range(r: _Reader, field: str, plan: TurnoutPlan | None) -> tuple[float, float] | None:
+def _range(r: FieldReader, field: str, plan: TurnoutPlan | None) -> tuple[float, float] | None:
     value = r.get(field, None)
     if value is None:
         return None
@@ -254,7 +254,7 @@ def _range(r: _Reader, field: str, plan: TurnoutPlan | None) -> tuple[float, flo
     return x_from, x_to
 
 
-def _pair(r: _Reader, p: str, plan: TurnoutPlan | None) -> ContactPair:
+def _pair(r: FieldReader, p: str, plan: TurnoutPlan | None) -> ContactPair:
     wheel = r.choice(p + ".wheel", tuple(WHEELS))
     rail = r.choice(p + ".rail", RAIL_SLOTS)
     xs, zs = r.get(p + ".x", []), r.get(p + ".z", [])
@@ -280,7 +280,7 @@ def _pair(r: _Reader, p: str, plan: TurnoutPlan | None) -> ContactPair:
     return pair
 
 
-def _check_active(r: _Reader, turnout: Turnout, field: str, pair: ContactPair) -> None:
+def _check_active(r: FieldReader, turnout: Turnout, field: str, pair: ContactPair) -> None:
     x_from, x_to = pair.x_range()
     if x_from < turnout.x_min - 1e-9 or x_to > turnout.x_max + 1e-9:
         raise r.fail(
@@ -298,7 +298,7 @@ def _check_active(r: _Reader, turnout: Turnout, field: str, pair: ContactPair) -
             )
 
 
-def _continues(r: _Reader, field: str, turnout: Turnout) -> dict[int, dict[str, str]]:
+def _continues(r: FieldReader, field: str, turnout: Turnout) -> dict[int, dict[str, str]]:
     out: dict[int, dict[str, str]] = {}
     for i, item in enumerate(r.get(field, []) or []):
         item_field = f"{field}[{i}]"
@@ -346,7 +346,7 @@ def load_route(turnout: Turnout, name: str) -> Route:
         Unknown route, or a field that cannot be right (the message names the field).
     """
     filename = turnout.source.replace("\\", "/").rsplit("/", 1)[-1]
-    r = _Reader(filename, turnout.raw)
+    r = FieldReader(filename, turnout.raw)
     if name not in route_names(turnout):
         raise TurnoutFileError(
             f"{filename}: no route {name!r} (routes: {', '.join(route_names(turnout)) or 'none'})"
@@ -456,7 +456,7 @@ def speed_warnings(route: Route, speed_kmh: float, x_from: float, x_to: float) -
     return out
 
 
-def _curvature(r: _Reader, p: str) -> Table1D:
+def _curvature(r: FieldReader, p: str) -> Table1D:
     f = p + ".curvature"
     xs, vs = r.get(f + ".x"), r.get(f + ".value")
     if not isinstance(xs, list) or not isinstance(vs, list) or len(xs) != len(vs) or len(xs) < 2:

@@ -1,18 +1,24 @@
 """Vehicle files: the single wheelset with its sprung share, and the contact constants.
 
 The packaged default is ``data/manchester_wheelset.toml`` (one wheelset of the Manchester
-benchmark vehicle under its share of bogie and car body). The Exudyn model built from
-it is :func:`exudyn_turnout.passage.vehicle.wheelset.add_vehicle`; the full vehicle's file is read
-by :mod:`exudyn_turnout.inputs.vehicle_model`.
+benchmark vehicle under its share of bogie and car body), by name ``"wheelset"``
+(:mod:`.vehicle_names`). The Exudyn model built from it is
+:func:`exudyn_turnout.passage.vehicle.wheelset.add_vehicle`; the full vehicle's file is
+read by
+:mod:`exudyn_turnout.inputs.vehicle_model` (:func:`load_vehicle` given one says so in one
+line and names that loader).
 """
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
+from typing import Any
 
-from exudyn_turnout.inputs.turnout import _Reader, read_toml
+from exudyn_turnout.inputs.toml_fields import FieldReader, TurnoutFileError, read_toml
+from exudyn_turnout.inputs.vehicle_names import PACKAGED_VEHICLES, packaged_vehicle_path
 
 __all__ = [
     "Vehicle",
@@ -20,6 +26,7 @@ __all__ = [
     "load_vehicle",
     "load_contact_law",
     "default_vehicle_path",
+    "resolve_vehicle_path",
     "GRAVITY",
 ]
 
@@ -91,7 +98,8 @@ def load_vehicle(path: str | Path | None = None) -> Vehicle:
     Parameters
     ----------
     path : str or Path, optional
-        TOML vehicle file.
+        TOML vehicle file, or the name of a packaged one (``"wheelset"``, see
+        :mod:`.vehicle_names`; a file of that name in the working directory comes first).
 
     Returns
     -------
@@ -102,11 +110,14 @@ def load_vehicle(path: str | Path | None = None) -> Vehicle:
     ------
     TurnoutFileError
         The file cannot be read, or a field is missing or out of range (the message names
-        the file and the field).
+        the file and the field); the file is a full-vehicle (vehicle-model) file, which
+        :func:`~exudyn_turnout.inputs.vehicle_model.load_vehicle_model` reads (one line
+        saying so).
     """
-    path = Path(path) if path is not None else default_vehicle_path()
+    path = resolve_vehicle_path(path)
     data = read_toml(path)
-    r = _Reader(path.name, data)
+    _refuse_vehicle_model_file(path, data)
+    r = FieldReader(path.name, data)
     w, p = "wheelset", "primary_suspension"  # table names
     k_max, c_max = 1e12, 1e10  # N/m, N s/m: plausibility bounds
     radius = r.number(f"{w}.wheel_radius", upper=2.0)
@@ -145,7 +156,49 @@ def load_vehicle(path: str | Path | None = None) -> Vehicle:
     )
 
 
-def _profile_fields(r: _Reader, data: dict, path: Path) -> tuple:
+def resolve_vehicle_path(path: str | Path | None) -> Path:
+    """The file a vehicle argument names: a path, a packaged name, or None (the default).
+
+    Parameters
+    ----------
+    path : str or Path or None
+        A path; a name of :data:`.vehicle_names.PACKAGED_VEHICLES` (when no file of that
+        name exists); None for :func:`default_vehicle_path`.
+
+    Returns
+    -------
+    Path
+        The file to read.
+
+    Raises
+    ------
+    TurnoutFileError
+        A string without suffix or directory that is neither a file nor a packaged name
+        (one line listing the names).
+    """
+    if path is None:
+        return default_vehicle_path()
+    if isinstance(path, str) and not Path(path).exists():
+        if path in PACKAGED_VEHICLES or not (Path(path).suffix or "/" in path or "\\" in path):
+            return packaged_vehicle_path(path)  # a name: unknown ones fail listing the names
+    return Path(path)
+
+
+def _refuse_vehicle_model_file(path: Path, data: Mapping[str, Any]) -> None:
+    """One clear line if ``data`` is a vehicle-model file (``[vehicle]``, no ``[contact]``)."""
+    layout = data.get("vehicle")
+    if "contact" in data or not isinstance(layout, Mapping):
+        return
+    full = layout.get("bogies") or "car_body" in data or "bogie" in data
+    what = "a full-vehicle file (car body on bogies)" if full else "a vehicle-model file"
+    packaged = " (or exudyn_turnout.inputs.vehicles.packaged_vehicle('manchester'))" if full else ""
+    raise TurnoutFileError(
+        f"{path.name}: is {what}, not a single-wheelset vehicle file: load it with "
+        f"exudyn_turnout.inputs.vehicle_model.load_vehicle_model{packaged}"
+    )
+
+
+def _profile_fields(r: FieldReader, data: dict, path: Path) -> tuple:
     """(J_spin, back_to_back, wheel_profile) of ``[wheelset]``, None where not given."""
     w = "wheelset"
     table = data.get(w, {})
@@ -211,7 +264,7 @@ def load_contact_law(data: dict, filename: str) -> ContactLaw:
     TurnoutFileError
         A field is missing or not a valid number.
     """
-    r = _Reader(Path(filename).name, data)
+    r = FieldReader(Path(filename).name, data)
     names = (
         "C_H",
         "damping",

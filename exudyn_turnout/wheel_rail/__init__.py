@@ -12,8 +12,12 @@ wheel envelope), :mod:`.geometry` (candidate contact points, wheelset equilibriu
 equivalent conicity, flange angle, Nadal), :mod:`.hertz` (exact Hertz ellipse, C_H),
 :mod:`.creep` (Kalker coefficients, Polach's creep forces with spin), :mod:`.tables`
 (cached tables, vectorised lookup), :mod:`.transfer` (load transfer and dips),
-:mod:`.references` (CONTACT reference outputs), :mod:`.data` (packaged data),
-figures in :mod:`exudyn_turnout.plotting.wheel_rail` (this package never imports matplotlib).
+:mod:`.references` (CONTACT reference outputs), :mod:`.data` (packaged data); a turnout's
+rail bodies: :mod:`.turnout_design` (``[wheel_rail]`` design data and formulas),
+:mod:`.turnout_segments` (the ``sections`` lists), :mod:`.section_nodes` (x grids),
+:mod:`.turnout_sections` (bodies and their contact tables), :mod:`.handovers` (load transfer,
+rest heights at hand-overs); figures in :mod:`exudyn_turnout.plotting.wheel_rail` (this
+package never imports matplotlib).
 """
 
 from exudyn_turnout.wheel_rail.creep import (

@@ -44,6 +44,13 @@ __all__ = [
     "wing_flare",
     "blade_heights",
     "check_face",
+    "crossing_throat",
+    "design_error",
+    "design_number",
+    "design_source",
+    "placed_rail",
+    "read_rail_profile",
+    "resolve_design_file",
 ]
 
 
@@ -103,20 +110,75 @@ class RailGeometry:
         return 0.5 * self.gauge
 
 
-def _fail(geometry_src: str, field_name: str, problem: str) -> TurnoutFileError:
+def design_error(geometry_src: str, field_name: str, problem: str) -> TurnoutFileError:
+    """The error of one field of a turnout file's rail design: ``<file>: <field> <problem>``.
+
+    Parameters
+    ----------
+    geometry_src : str
+        File name (:func:`design_source`).
+    field_name : str
+        Dotted field name.
+    problem : str
+        What is wrong.
+
+    Returns
+    -------
+    TurnoutFileError
+        The error (to raise).
+    """
     return TurnoutFileError(f"{geometry_src}: {field_name} {problem}")
 
 
-def _src(turnout: Turnout) -> str:
+def design_source(turnout: Turnout) -> str:
+    """The turnout file's name, as errors of its rail design name it.
+
+    Parameters
+    ----------
+    turnout : Turnout
+        A loaded turnout file.
+
+    Returns
+    -------
+    str
+        The file name without its directory.
+    """
     return Path(turnout.source).name
 
 
-def _number(src: str, name: str, value: Any, lo: float, hi: float, lo_open: bool = False) -> float:
+def design_number(
+    src: str, name: str, value: Any, lo: float, hi: float, lo_open: bool = False
+) -> float:
+    """``value`` as a finite float in [lo, hi] (``(lo, hi]`` if ``lo_open``), else an error.
+
+    Parameters
+    ----------
+    src : str
+        File name, for the message.
+    name : str
+        Dotted field name, for the message.
+    value : Any
+        The value read.
+    lo, hi : float
+        Bounds.
+    lo_open : bool
+        The lower bound is excluded.
+
+    Returns
+    -------
+    float
+        The value.
+
+    Raises
+    ------
+    TurnoutFileError
+        Not a finite number, or out of bounds.
+    """
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise _fail(src, name, f"must be a finite number, got {value!r}")
+        raise design_error(src, name, f"must be a finite number, got {value!r}")
     if value < lo or (lo_open and value <= lo) or value > hi:
         low = f"> {lo:g}" if lo_open else f">= {lo:g}"
-        raise _fail(src, name, f"must be {low} and <= {hi:g}, got {value:g}")
+        raise design_error(src, name, f"must be {low} and <= {hi:g}, got {value:g}")
     return float(value)
 
 
@@ -154,7 +216,7 @@ _BOUNDS = {
 def _section(raw: Mapping[str, Any], src: str, name: str) -> Mapping[str, Any]:
     value = raw.get(name, {})
     if not isinstance(value, Mapping):
-        raise _fail(src, name, "must be a table")
+        raise design_error(src, name, "must be a table")
     return value
 
 
@@ -165,9 +227,9 @@ def _fields(
     for key, value in table.items():
         name = f"{prefix}.{key}"
         if key not in known:
-            raise _fail(src, name, f"is not a field (fields: {', '.join(known)})")
+            raise design_error(src, name, f"is not a field (fields: {', '.join(known)})")
         lo, hi, lo_open = _BOUNDS[name.split(".", 1)[1]]
-        out[key] = _number(src, name, value, lo, hi, lo_open)
+        out[key] = design_number(src, name, value, lo, hi, lo_open)
     return out
 
 
@@ -195,10 +257,10 @@ def rail_geometry(turnout: Turnout) -> RailGeometry:
         An unknown field, a value that is not a number or out of its plausible range, a
         profile that cannot be read (one line naming the file and the field).
     """
-    src = _src(turnout)
+    src = design_source(turnout)
     raw = turnout.raw.get("wheel_rail", {})
     if not isinstance(raw, Mapping):
-        raise _fail(src, "wheel_rail", "must be a table")
+        raise design_error(src, "wheel_rail", "must be a table")
     sub = ("switch", "crossing", "check_rail")
     top = tuple(k for k in _BOUNDS if "." not in k)
     scalars = _fields(
@@ -209,7 +271,7 @@ def rail_geometry(turnout: Turnout) -> RailGeometry:
     )
     profile = raw.get("profile", RailGeometry.profile)
     if not isinstance(profile, str) or not profile.strip():
-        raise _fail(src, "wheel_rail.profile", f"must be a file name, got {profile!r}")
+        raise design_error(src, "wheel_rail.profile", f"must be a file name, got {profile!r}")
     parts = {}
     for name in sub:
         known = tuple(k.split(".", 1)[1] for k in _BOUNDS if k.startswith(name + "."))
@@ -242,25 +304,78 @@ def rail_geometry(turnout: Turnout) -> RailGeometry:
         source=str(turnout.source),
         **scalars,
     )
-    _rail_profile(geometry, src)  # a profile that cannot be read fails here, at load
+    read_rail_profile(geometry, src)  # a profile that cannot be read fails here, at load
     return geometry
 
 
-def _resolve_file(name: str, turnout_source: str) -> Path:
+def resolve_design_file(name: str, turnout_source: str) -> Path:
+    """A design file named in a turnout file: next to the file if there, else packaged.
+
+    Parameters
+    ----------
+    name : str
+        File name (a profile or slice file) as the turnout file gives it.
+    turnout_source : str
+        Path of the turnout file ("" for the working directory).
+
+    Returns
+    -------
+    Path
+        The file relative to the turnout file if it exists, else the packaged profile of
+        that name (:func:`.data.profile_path`).
+    """
     local = Path(turnout_source).parent / name if turnout_source else Path(name)
     return local if local.exists() else profile_path(name)
 
 
-def _rail_profile(geometry: RailGeometry, src: str = "") -> Profile:
+def read_rail_profile(geometry: RailGeometry, src: str = "") -> Profile:
+    """The rail profile of ``[wheel_rail] profile``, as read (not placed).
+
+    Parameters
+    ----------
+    geometry : RailGeometry
+        The design data (profile name, source file).
+    src : str
+        File name for errors (default: the geometry's source).
+
+    Returns
+    -------
+    Profile
+        The rail profile.
+
+    Raises
+    ------
+    TurnoutFileError
+        The profile cannot be read.
+    """
     try:
-        return read_profile(_resolve_file(geometry.profile, geometry.source), kind="rail")
+        return read_profile(resolve_design_file(geometry.profile, geometry.source), kind="rail")
     except ProfileFormatError as err:
-        raise _fail(src or Path(geometry.source).name, "wheel_rail.profile", str(err)) from None
+        raise design_error(
+            src or Path(geometry.source).name, "wheel_rail.profile", str(err)
+        ) from None
 
 
-def _placed(geometry: RailGeometry, inclination: float, profile: Profile | None = None) -> Profile:
-    """The profile rotated to ``inclination`` and placed: top z = 0, gauge point gauge / 2."""
-    profile = _rail_profile(geometry) if profile is None else profile
+def placed_rail(
+    geometry: RailGeometry, inclination: float, profile: Profile | None = None
+) -> Profile:
+    """The profile rotated to ``inclination`` and placed: top z = 0, gauge point gauge / 2.
+
+    Parameters
+    ----------
+    geometry : RailGeometry
+        Gauge, gauge depth, the inclination the profile file has.
+    inclination : float
+        Tangent of the inclination wanted.
+    profile : Profile, optional
+        The profile as read (default: :func:`read_rail_profile`).
+
+    Returns
+    -------
+    Profile
+        The placed rail (side coordinates).
+    """
+    profile = read_rail_profile(geometry) if profile is None else profile
     extra = math.tan(math.atan(inclination) - math.atan(geometry.profile_inclination))
     return place_rail(profile, geometry.gauge, extra, geometry.gauge_depth)
 
@@ -369,7 +484,19 @@ def blade_heights(
     return z
 
 
-def _throat(design: CrossingDesign) -> float:
+def crossing_throat(design: CrossingDesign) -> float:
+    """x of the crossing's throat: ``nose_tip - N (tip_width + flangeway)``.
+
+    Parameters
+    ----------
+    design : CrossingDesign
+        The crossing.
+
+    Returns
+    -------
+    float
+        m, where the wing rail begins to leave the running line (:func:`wing_flare`).
+    """
     return design.nose_tip - design.crossing_number * (design.tip_width + design.flangeway)
 
 
@@ -392,7 +519,7 @@ def wing_flare(x: float, design: CrossingDesign) -> float:
     float
         m, towards the field side.
     """
-    return max(0.0, (x - _throat(design)) / design.crossing_number)
+    return max(0.0, (x - crossing_throat(design)) / design.crossing_number)
 
 
 def check_face(x: float, x_from: float, x_to: float, check: CheckRailDesign) -> float:

@@ -11,36 +11,9 @@ default; :func:`rail_geometry` validates the section (one-line
 :class:`~exudyn_turnout.inputs.turnout.TurnoutFileError` naming file and field).
 
 Each ``[[routes.<name>.contacts]]`` entry carries ``sections``: the cross-section of the
-rail body that entry's wheel runs on, as a list of segments along x::
-
-    sections = [{ kind = "plain", x = [-5.0, -1.0] }, { kind = "stock", x = [-1.0, 7.0] }]
-
-Kinds (x of each segment a number or a plan feature expression, ``"nose_tip + 0.5"``;
-the segments follow each other without gaps):
-
-===========  ==============================================================================
-``plain``    the full rail on the route's running line (gauge point at gauge / 2)
-``closure``  the same (a closure rail is a full rail on the running line)
-``stock``    switch stock rail moved to the field side by the setback ``set(x) + e x +
-             x^2 / (2 R)`` (:func:`stock_setback`): the curve leaving the route, the entry
-             angle, the stock-rail set ahead of the toe
-``blade``    switch blade: full rail planed on its field side to the setback (head width
-             ``min(setback, head_width)``, a rounded 76 deg planed face,
-             :func:`blade_heights`), top lowered near the toe (:func:`blade_lowering`)
-``wing``     wing rail: leaves the running line at 1:N from the throat (:func:`wing_flare`)
-``nose``     crossing nose: two upright rail legs ``tip_width + (x - nose_tip) / N`` apart
-             (:func:`.sections.nose_heights`), lowered near the tip, nothing before it;
-             over the segment's last ``crossing.inclination_transition`` (2 m) the legs
-             twist to the track's inclination (:func:`.sections.inclination_ramp`), so the
-             section at its end is the plain rail's: no step where the plain rail after
-             the crossing takes the wheel over
-``check``    check rail (back-of-flange contact): an upright rail head whose face stands
-             ``clearance(x)`` from the back of the flange of a centred wheelset, opened by
-             the flares at the segment's ends (:func:`check_face`)
-``slices``   a CONTACT slice set: ``file`` (relative to the turnout file, or a packaged
-             name), ``x0`` the x of its u = 0; placed with the gauge point of its first slice
-             at gauge / 2 and its highest point at z = 0, no inclination
-===========  ==============================================================================
+rail body that entry's wheel runs on, as a list of segments along x (kinds ``plain``,
+``closure``, ``stock``, ``blade``, ``wing``, ``nose``, ``check``, ``slices``:
+:mod:`.turnout_segments`, re-exported here).
 
 Coordinates
 -----------
@@ -62,7 +35,7 @@ yaw in the curve (a table has no yaw, as for the through route).
 x grid
 ------
 A body's sections are computed on a non-uniform x grid with nodes only where the section
-changes (:func:`section_nodes`): the design's break points, then bisection until linear
+changes (:mod:`.section_nodes`): the design's break points, then bisection until linear
 interpolation between nodes is within ``section_tolerance`` (normal distance, over the
 part of the section a wheel can touch: per kind, down to 5 or 16 mm below its top) or the
 step is ``min_step``, then nodes that their neighbours interpolate within the tolerance
@@ -95,13 +68,10 @@ numpy (the contact tables are :mod:`.tables`').
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
 from dataclasses import dataclass, replace
-from typing import Any
 
 import numpy as np
 
-from exudyn_turnout.inputs.geometry import TurnoutPlan, resolve_position, turnout_plan
 from exudyn_turnout.inputs.routes import load_route
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.wheel_rail.geometry import (
@@ -109,11 +79,8 @@ from exudyn_turnout.wheel_rail.geometry import (
     WheelGrid,
     WheelsetSetup,
 )
-from exudyn_turnout.wheel_rail.profiles import (
-    Profile,
-    ProfileFormatError,
-    read_slices,
-)
+from exudyn_turnout.wheel_rail.profiles import Profile, read_slices
+from exudyn_turnout.wheel_rail.section_nodes import TOUCHABLE_DEPTH, section_nodes
 from exudyn_turnout.wheel_rail.sections import (
     SectionGrid,
     SwitchDesign,
@@ -133,20 +100,19 @@ from exudyn_turnout.wheel_rail.tables import (
 )
 from exudyn_turnout.wheel_rail.turnout_design import (
     RailGeometry,
-    _fail,
-    _number,
-    _placed,
-    _rail_profile,
-    _resolve_file,
-    _src,
-    _throat,
     blade_heights,
     blade_lowering,
     check_face,
+    crossing_throat,
+    design_error,
+    design_source,
+    placed_rail,
     rail_geometry,
+    read_rail_profile,
     stock_setback,
     wing_flare,
 )
+from exudyn_turnout.wheel_rail.turnout_segments import SEGMENT_KINDS, Segment, route_segments
 
 __all__ = [
     "SEGMENT_KINDS",
@@ -161,19 +127,10 @@ __all__ = [
 ]
 
 
-#: Segment kinds of a ``sections`` list (see the module docstring).
-SEGMENT_KINDS = ("plain", "closure", "stock", "blade", "wing", "nose", "check", "slices")
-
-
 _ENVELOPED = ("blade", "wing", "nose", "slices")  # kinds whose height or edge changes fast
 
 
 _CONSTANT = ("plain", "closure")
-
-
-#: m, depth below its top above which a point of a section counts for the x grid (a wheel
-#: touches a rail above ~15 mm below its top; the flange root sits 10-14 mm below the tread)
-_TOUCHABLE = -0.016
 
 
 #: m, per kind, the depth below the top above which a section's change counts for the x
@@ -184,12 +141,6 @@ _TOUCHABLE = -0.016
 _DEPTH = {"stock": -0.005, "wing": -0.005, "nose": -0.005}
 
 
-#: a rail edge that moves (the blade's planed field side, which lies against the stock
-#: rail's gauge face) may move 5x the tolerance between nodes: with 0.2 mm, 2 mm, so the
-#: blend of two nodes lacks a strip at most 1 mm wide next to the stock rail's face
-_EDGE_FACTOR = 5.0
-
-
 #: per kind, factor on ``section_tolerance``: a check rail's face moves at its flares
 #: (1:67) and the back of the flange meets a flare only 4-19 mm off centre, so 0.5 mm there
 #: (1 mm lateral steps) instead of ~80 nodes on a 6.7 m check rail; the nose's top near its
@@ -197,10 +148,6 @@ _EDGE_FACTOR = 5.0
 #: dip's rising slope moved by 10 % between 0.2 and 0.1 mm, for 8 more nodes), the common
 #: one behind it (:func:`_tolerance_pieces`)
 _TOLERANCE_FACTOR = {"check": 2.5, "nose": 0.5}
-
-
-#: m, initial node spacing before bisection (no break point of a design is closer)
-_MAX_STEP = 0.5
 
 
 #: m, largest lateral motion of a rail that moves sideways (the stock rail's setback up to
@@ -219,17 +166,6 @@ _LATERAL_STEP = 1.5e-3
 #: step was 0.025 mm with 1/800, 0.02 mm is the hand-over check's tolerance
 #: (tests/test_turnout_sections.py); 1/1200 (0.067 m on a 2 m twist)
 _TWIST_STEP = 1.0 / 1200.0
-
-
-@dataclass(frozen=True)
-class Segment:
-    """One stretch of a rail body along x with one kind of cross-section."""
-
-    kind: str  #: a kind of :data:`SEGMENT_KINDS`
-    x_from: float  #: m, start along the through route
-    x_to: float  #: m, end
-    path: str = ""  #: slice file (``slices`` only)
-    x0: float = 0.0  #: m, x of the slice set's u = 0 (``slices`` only)
 
 
 @dataclass(frozen=True, eq=False)
@@ -264,9 +200,9 @@ def _context(geometry: RailGeometry, check: bool) -> _Context:
     half = geometry.half_gauge
     low = half - (0.19 if check else 0.0775)
     y = lateral_grid(low, half + 0.1225, geometry.grid_step)
-    raw = _rail_profile(geometry)
-    base = _placed(geometry, geometry.inclination, raw)
-    upright = _placed(geometry, 0.0, raw)
+    raw = read_rail_profile(geometry)
+    base = placed_rail(geometry, geometry.inclination, raw)
+    upright = placed_rail(geometry, 0.0, raw)
     return _Context(
         geometry,
         base,
@@ -334,7 +270,7 @@ def _nose(context: _Context, segment: Segment, x: float) -> np.ndarray:
     elif tilt == 0.0:
         leg = context.upright_heights
     else:
-        leg = surface_on_grid(_placed(g, tilt, context.raw), y)
+        leg = surface_on_grid(placed_rail(g, tilt, context.raw), y)
     width = c.tip_width + (x - c.nose_tip) / c.crossing_number
     lowering = c.tip_lowering * max(0.0, 1.0 - (x - c.nose_tip) / c.lowering_length)
     return nose_heights(leg, y, g.half_gauge, width, lowering)
@@ -360,7 +296,7 @@ def _break_points(context: _Context, segment: Segment) -> list[float]:
         c = g.crossing
         end = c.nose_tip + c.lowering_length  # the nose carries the wheel from here on
         n = int(math.ceil(wing_flare(end, c) / _LATERAL_STEP - 1e-9))
-        points += [float(v) for v in np.linspace(_throat(c), end, n + 1)]
+        points += [float(v) for v in np.linspace(crossing_throat(c), end, n + 1)]
     elif segment.kind == "nose":
         c = g.crossing
         points += [
@@ -387,224 +323,6 @@ def _solve_width(design: SwitchDesign, width: float) -> float:
     return max(0.0, (-b + math.sqrt(b * b - 4.0 * a * c)) / (2.0 * a))
 
 
-def _linear_error(
-    za: np.ndarray,
-    zm: np.ndarray,
-    zb: np.ndarray,
-    t,
-    region: slice,
-    step: float,
-    depth: float = _TOUCHABLE,
-) -> float:
-    """Normal distance (m) between sections and the linear blend of their neighbours.
-
-    Over ``region`` where a rail stands less than ``-depth`` below its top; a strip of rail
-    present in a section and not in the blend (or the reverse) counts by its width /
-    :data:`_EDGE_FACTOR`.  ``zm`` may hold several sections (rows) at fractions ``t``.
-    """
-    zm = np.atleast_2d(zm)[:, region]
-    t = np.asarray(t, float).reshape(-1, 1)
-    blend = (1.0 - t) * za[region] + t * zb[region]
-    both_rows = np.concatenate((blend, zm), axis=1)
-    if not np.any(np.isfinite(both_rows)):
-        return 0.0
-    with np.errstate(invalid="ignore"):
-        level = np.nanmax(np.where(np.isfinite(both_rows), both_rows, -1.0), axis=1) + depth
-        high_blend, high_middle = blend > level[:, None], zm > level[:, None]
-    lost = (np.isnan(blend) & high_middle) | (np.isnan(zm) & high_blend)
-    strip = float(np.max(np.count_nonzero(lost, axis=1))) * step / _EDGE_FACTOR
-    both = np.isfinite(blend) & np.isfinite(zm) & (high_blend | high_middle)
-    if not np.any(both):
-        return strip
-    slope = np.zeros_like(zm)
-    slope[:, 1:-1] = (zm[:, 2:] - zm[:, :-2]) / (2.0 * step)
-    slope = np.where(np.isfinite(slope), slope, 0.0)
-    normal = np.abs(zm - blend)[both] / np.sqrt(1.0 + slope[both] ** 2)
-    return max(strip, float(np.max(normal)))
-
-
-def section_nodes(
-    evaluate,
-    break_points: list[float],
-    tolerance: float,
-    min_step: float,
-    region: slice,
-    grid_step: float,
-    depth: float = _TOUCHABLE,
-) -> tuple[np.ndarray, np.ndarray]:
-    """Non-uniform x nodes of a section that changes along x.
-
-    Break points, then every interval at most 0.5 m long, bisected while the section at its
-    middle differs from the mean of its ends by more than ``tolerance`` (normal distance
-    over ``region``, where a rail stands above -16 mm; a strip of rail that appears or
-    disappears counts by its width) and the halves are at least ``min_step`` long; last,
-    inner nodes other than break points that their neighbours interpolate within the
-    tolerance are dropped.
-
-    Parameters
-    ----------
-    evaluate : callable
-        ``evaluate(x) -> numpy.ndarray`` heights on the lateral grid (m, NaN: no rail).
-    break_points : list of float
-        m, sorted; the first and last are the ends.
-    tolerance : float
-        m, interpolation tolerance.
-    min_step : float
-        m, smallest node spacing.
-    region : slice
-        Lateral grid points a wheel can reach.
-    grid_step : float
-        m, lateral grid step.
-    depth : float
-        m, the part of a section above its top + depth counts (a laterally moving face that
-        no wheel reaches, e.g. a stock rail's gauge face behind the blade, is left out by
-        a shallower depth).
-
-    Returns
-    -------
-    tuple
-        (x nodes (m, increasing), heights (n_x, n_y)).
-    """
-    cache: dict[float, np.ndarray] = {}
-
-    def at(x: float) -> np.ndarray:
-        if x not in cache:
-            cache[x] = evaluate(x)
-        return cache[x]
-
-    nodes: set[float] = set()
-    for a, b in zip(break_points[:-1], break_points[1:]):
-        pieces = max(1, int(math.ceil((b - a) / _MAX_STEP - 1e-9)))
-        edges = [float(v) for v in np.linspace(a, b, pieces + 1)]
-        intervals = list(zip(edges[:-1], edges[1:]))
-        while intervals:
-            lo, hi = intervals.pop()
-            nodes.update((lo, hi))
-            if hi - lo < 2.0 * min_step:
-                continue
-            mid = 0.5 * (lo + hi)
-            if _linear_error(at(lo), at(mid), at(hi), 0.5, region, grid_step, depth) > tolerance:
-                intervals += [(lo, mid), (mid, hi)]
-    keep = sorted(nodes)
-    fixed = set(break_points)
-    dropped: list[float] = []
-    i = 1
-    while i < len(keep) - 1:
-        a, b = keep[i - 1], keep[i + 1]
-        inside = [keep[i]] + [v for v in dropped if a < v < b]
-        if keep[i] not in fixed and (
-            _linear_error(
-                at(a),
-                np.array([at(v) for v in inside]),
-                at(b),
-                [(v - a) / (b - a) for v in inside],
-                region,
-                grid_step,
-                depth,
-            )
-            <= tolerance
-        ):
-            dropped.append(keep.pop(i))
-        else:
-            i += 1
-    x = np.array(keep)
-    return x, np.array([at(float(v)) for v in x])
-
-
-def _position(src: str, name: str, value: Any, plan: TurnoutPlan | None) -> float:
-    if isinstance(value, str):
-        try:
-            return resolve_position(value, plan)
-        except ValueError as err:
-            raise _fail(src, name, str(err)) from None
-    return _number(src, name, value, -1e4, 1e4)
-
-
-def route_segments(turnout: Turnout, route: str) -> tuple[tuple[Segment, ...], ...]:
-    """The ``sections`` lists of a route's contact entries, validated.
-
-    Parameters
-    ----------
-    turnout : Turnout
-        A loaded turnout file.
-    route : str
-        Route name (a ``[routes.<name>]`` key).
-
-    Returns
-    -------
-    tuple
-        Per contact entry (file order), its segments in increasing x.
-
-    Raises
-    ------
-    TurnoutFileError
-        A missing or malformed ``sections`` list, an unknown kind, segments with gaps or
-        overlaps, segments that do not cover the entry's x range, a check segment mixed with
-        running-rail kinds, a slice file that cannot be read.
-    """
-    src = _src(turnout)
-    pairs = load_route(turnout, route).pairs
-    raw_pairs = turnout.raw["routes"][route]["contacts"]
-    plan = turnout_plan(turnout) if isinstance(turnout.raw.get("layout"), Mapping) else None
-    out = []
-    for i, (pair, raw) in enumerate(zip(pairs, raw_pairs)):
-        p = f"routes.{route}.contacts[{i}].sections"
-        items = raw.get("sections")
-        if not isinstance(items, list) or not items:
-            raise _fail(src, p, "must be a non-empty list of {kind, x} (the rail body along x)")
-        segments: list[Segment] = []
-        for k, item in enumerate(items):
-            f = f"{p}[{k}]"
-            if not isinstance(item, Mapping):
-                raise _fail(src, f, "must be a table {kind = ..., x = [x_from, x_to]}")
-            unknown = set(item) - {"kind", "x", "file", "x0"}
-            if unknown:
-                raise _fail(src, f, f"has unknown keys {sorted(unknown)} (kind, x, file, x0)")
-            kind = item.get("kind")
-            if kind not in SEGMENT_KINDS:
-                raise _fail(
-                    src, f + ".kind", f"must be one of {', '.join(SEGMENT_KINDS)}, got {kind!r}"
-                )
-            xs = item.get("x")
-            if not isinstance(xs, list) or len(xs) != 2:
-                raise _fail(src, f + ".x", f"must be [x_from, x_to], got {xs!r}")
-            a, b = (_position(src, f + ".x", v, plan) for v in xs)
-            if not b > a:
-                raise _fail(src, f + ".x", f"range is inverted: {a:g} >= {b:g}")
-            if segments and abs(a - segments[-1].x_to) > 1e-9:
-                raise _fail(
-                    src,
-                    f + ".x",
-                    f"must start where the previous segment ends "
-                    f"({segments[-1].x_to:g} m), got {a:g}",
-                )
-            path, x0 = "", 0.0
-            if kind == "slices":
-                name = item.get("file")
-                if not isinstance(name, str) or not name:
-                    raise _fail(src, f + ".file", "must name a CONTACT .slcs file")
-                path = str(_resolve_file(name, turnout.source))
-                try:
-                    read_slices(path)
-                except ProfileFormatError as err:
-                    raise _fail(src, f + ".file", str(err)) from None
-                x0 = _position(src, f + ".x0", item.get("x0", 0.0), plan)
-            segments.append(Segment(kind, a, b, path, x0))
-        kinds = {seg.kind for seg in segments}
-        if "check" in kinds and kinds != {"check"}:
-            raise _fail(src, p, "mixes a check rail with running-rail kinds (one body each)")
-        lo, hi = pair.x_range()
-        if segments[0].x_from > lo + 1e-9 or segments[-1].x_to < hi - 1e-9:
-            raise _fail(
-                src,
-                p,
-                f"cover {segments[0].x_from:g}..{segments[-1].x_to:g} m, "
-                f"not the contact's x range {lo:g}..{hi:g} m",
-            )
-        out.append(tuple(segments))
-    return tuple(out)
-
-
 def _region(context: _Context, check: bool) -> slice:
     """Lateral grid points a wheel (shifted by up to 12 mm, or the check rail's range) touches."""
     half = context.geometry.half_gauge
@@ -617,7 +335,7 @@ def _front_nodes(
     x: np.ndarray, z: np.ndarray, region: slice, reach: float, step: float
 ) -> list[float]:
     """Extra x nodes ahead of where a body begins (no touchable rail -> rail)."""
-    present = np.any(z[:, region] > _TOUCHABLE, axis=1)
+    present = np.any(z[:, region] > TOUCHABLE_DEPTH, axis=1)
     extra = []
     for i in np.flatnonzero(~present[:-1] & present[1:]):
         k = np.arange(1, int(round(reach / step)) + 1)
@@ -658,7 +376,7 @@ def _segment_nodes(
             g.min_step,
             region,
             g.grid_step,
-            _DEPTH.get(segment.kind, _TOUCHABLE),
+            _DEPTH.get(segment.kind, TOUCHABLE_DEPTH),
         )
         if xs:  # the shared node once
             x, z = x[1:], z[1:]
@@ -705,8 +423,8 @@ def _check_twist(
     for body in segments:
         for seg in body:
             if seg.kind == "nose" and length > 0.0 and seg.x_to - length < full - 1e-9:
-                raise _fail(
-                    _src(turnout),
+                raise design_error(
+                    design_source(turnout),
                     "wheel_rail.crossing.inclination_transition",
                     f"{length:g} m would begin the nose's twist at {seg.x_to - length:g} m, "
                     f"before the nose reaches full height at {full:g} m (its section ends at "

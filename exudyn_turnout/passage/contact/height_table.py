@@ -105,7 +105,7 @@ class WheelRailElement:
     #: conical tread's contact ignores roll sideways; see the profile element)
     running_surface_depth = 0.0
     #: whether its lateral loads at rest are real (re-based at zone boundaries): not on the
-    #: conical tread (see passage.simulate._static_deflection)
+    #: conical tread (see passage.corunning_track.carry_over.static_deflection)
     lateral_static_loads = False
 
     def __init__(self, vehicle: Vehicle, route: Route, pairs, x0: float, v: float):

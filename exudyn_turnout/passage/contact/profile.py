@@ -111,7 +111,7 @@ class ProfileContactElement:
 
     n_vehicle = N_VEHICLE_COORDINATES
     #: its lateral loads at rest are N tan(gamma) of real contact points (re-based at zone
-    #: boundaries, passage.simulate._static_deflection)
+    #: boundaries, passage.corunning_track.carry_over.static_deflection)
     lateral_static_loads = True
 
     def __init__(

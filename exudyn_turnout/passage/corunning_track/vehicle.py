@@ -274,7 +274,7 @@ def _build(
         )
     )
     keep = add_vehicle_loads(mbs, build, loads) if loads.curved else ()
-    mbs.variables["exudyn_turnout.full_vehicle_passage"] = (contacts, loads, keep)
+    mbs.variables["exudyn_turnout.corunning_track.vehicle"] = (contacts, loads, keep)
     mbs.Assemble()
     system = _System(
         container, mbs, places, elements, params_all, slots_all, names, sensors, loads, x_front

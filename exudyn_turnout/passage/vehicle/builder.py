@@ -127,11 +127,11 @@ from exudyn.itemInterface import (
     RigidBodySpringDamper,
 )
 
+from exudyn_turnout.inputs.vehicle_data import full_vehicle_parts
 from exudyn_turnout.inputs.vehicle_model import (
     GRAVITY,
     BumpStop,
     VehicleModel,
-    _full_vehicle_parts,
 )
 from exudyn_turnout.passage.vehicle.analysis import (
     connector_forces_at_reference,
@@ -323,7 +323,7 @@ def _add_rigid(
     sprung: list[BodyHandles] = []
     wheelsets: list[WheelsetHandles] = []
     if model.car_body is not None:
-        car_body, bogie_kind, _ = _full_vehicle_parts(model)
+        car_body, bogie_kind, _ = full_vehicle_parts(model)
         ref = (0.0, car_body.cog_height, car_body.x[0])
         node, body = rigid(
             "car_body",
@@ -415,7 +415,7 @@ def _add_rigid(
     # secondary suspension, torsion (yaw, anti-roll), bumpstop: bogie frame -> car body
     keep: list[Any] = []
     if car is not None:
-        _, _, secondary = _full_vehicle_parts(model)
+        _, _, secondary = full_vehicle_parts(model)
         for j, bogie in enumerate(bogies):
             for side, label in ((-1.0, "right"), (1.0, "left")):
                 point = (side * secondary.semi_spacing, secondary.height, bogie.x)
