@@ -7,9 +7,7 @@ are what counts):
 
 - 3-layer co-running track, profile contact (Exudyn; the README's main job);
 - FE track, profile contact, vertical and lateral planes with rail torsion, co-simulated
-  (``passage/fe_passage.py``), with the split of its wall time;
-- the older FE passage, vertical only, own wheelset and height-table contact
-  (``passage/fe_track.py``: the issue's "today's vertical-only one");
+  (``passage/fe_track/``), with the split of its wall time;
 - with ``--full``: the full vehicle (4 wheelsets) on the FE track and on 3-layer tracks.
 """
 
@@ -45,16 +43,10 @@ def main(argv=None) -> None:
     rows.append(("3-layer co-running, profile contact (Exudyn)", wall_3l, co))
     wall_fe, fe = _timed(lambda: simulate_passage(turnout, settings, track="fe"))
     rows.append(("FE, profile contact, vertical + lateral (co-simulation)", wall_fe, fe))
-    old_settings = PassageSettings(x_start=args.x_start, x_end=args.x_end, contact="height-table")
-    wall_old, old = _timed(lambda: simulate_passage(turnout, old_settings, track="fe"))
-    rows.append(("FE, height-table contact, vertical only (fe_track.py)", wall_old, old))
     if args.full:
-        from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
-
-        model = load_vehicle_model()
         for track in ("3-layer", "fe"):
             wall, r = _timed(
-                lambda track=track: simulate_passage(turnout, settings, model, track=track)
+                lambda track=track: simulate_passage(turnout, settings, "manchester", track=track)
             )
             rows.append((f"full vehicle, {track}", wall, r))
     print(

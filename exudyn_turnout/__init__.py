@@ -63,7 +63,7 @@ _LAZY = {
     "FEOptions": "exudyn_turnout.fe.mesh",
     "simulate_passage": "exudyn_turnout.passage.run",
     "compare_layers": "exudyn_turnout.passage.run",
-    "PACKAGED_VEHICLES": "exudyn_turnout.passage.run",
+    "packaged_vehicle": "exudyn_turnout.inputs.vehicles",
     "load_vehicle_model": "exudyn_turnout.inputs.vehicle_model",
     "VehicleModel": "exudyn_turnout.inputs.vehicle_model",
     "simulate_hunting": "exudyn_turnout.passage.hunting",

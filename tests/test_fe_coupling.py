@@ -39,7 +39,20 @@ def planes(turnout):
 def short_run(turnout, planes):
     """0.15 m of plain track at 100 km/h on the FE track (54 steps)."""
     settings = PassageSettings(route="through", speed_kmh=100.0, x_start=X0, x_end=X0 + 0.15)
-    return simulate_wheelset(turnout, settings, planes=planes)
+    return _fe_wheelset(turnout, settings, planes)
+
+
+def _fe_wheelset(turnout, settings, planes):
+    """The FE track's wheelset run with prebuilt FE planes (the door builds them anew)."""
+    from exudyn_turnout.inputs.routes import load_route
+    from exudyn_turnout.inputs.vehicle import load_vehicle
+    from exudyn_turnout.passage.contact.profile import route_contact
+
+    vehicle = load_vehicle()
+    contact = route_contact(turnout, settings.route, vehicle)
+    route = load_route(turnout, settings.route)
+    x_range = (settings.x_start, settings.x_end)
+    return simulate_wheelset(turnout, settings, vehicle, contact, route, x_range, planes=planes)
 
 
 def test_generalized_alpha_update_is_exudyns(turnout):

@@ -13,7 +13,6 @@ from pathlib import Path
 
 from exudyn_turnout.inputs.routes import dip_angle, load_route
 from exudyn_turnout.inputs.turnout import load_turnout
-from exudyn_turnout.passage.fe_track.vertical_legacy import simulate_fe_passage
 from exudyn_turnout.passage.results import PassageSettings, write_passage
 from exudyn_turnout.passage.run import simulate_passage
 
@@ -23,7 +22,7 @@ WINDOWS = (("switch: stock rail to switch blade", (1.0, 8.0)), ("crossing nose",
 
 def run_all(turnout, speed_kmh: float = 100.0) -> dict:
     """{"FE": result, "2-layer": result, "3-layer": result} of the through route."""
-    out = {"FE": simulate_fe_passage(turnout, PassageSettings(speed_kmh=speed_kmh))}
+    out = {"FE": simulate_passage(turnout, PassageSettings(speed_kmh=speed_kmh), track="fe")}
     for layers in (2, 3):
         out[f"{layers}-layer"] = simulate_passage(
             turnout, PassageSettings(speed_kmh=speed_kmh, layers=layers)

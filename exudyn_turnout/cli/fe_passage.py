@@ -84,17 +84,8 @@ def add_simulate(fe_sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         description="Run one wheelset (Manchester benchmark) over the FE model of the turnout "
         "(vertical and lateral planes, rail torsion) with the profile contact of "
         "`exudyn-turnout simulate`, co-simulated with Exudyn's vehicle (exact one-step "
-        "coupling); or, with --contact height-table, the older vertical-only FE passage "
-        "(own wheelset, Hertz contact on the route's rail height profiles, HHT-alpha; "
-        "lateral columns empty). Write timeseries.csv, summary.json, forces.png (and "
-        "contact_band.png) into --out.",
-    )
-    parser.add_argument(
-        "--contact",
-        choices=("profile", "height-table"),
-        default="profile",
-        help="wheel/rail contact (default profile; height-table: the vertical-only FE "
-        "passage kept for comparison)",
+        "coupling); the same as `exudyn-turnout simulate --track fe`. Write "
+        "timeseries.csv, summary.json, forces.png and contact_band.png into --out.",
     )
     parser.add_argument(
         "--turnout",

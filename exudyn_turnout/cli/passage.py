@@ -89,8 +89,8 @@ def _run(args: argparse.Namespace) -> int:
     ):
         raise UsageError(
             "--track fe: the FE track takes Table 1 directly (no --parameters) and runs with "
-            "the profile contact (for the older vertical-only FE passage with the "
-            "height-table contact use `exudyn-turnout fe simulate --contact height-table`)"
+            "the profile contact (the height-table contact is the single wheelset's "
+            "co-running baseline)"
         )
     if model is not None and settings.contact != "profile":
         raise UsageError("--contact height-table: the full vehicle has the profile contact only")
@@ -130,7 +130,7 @@ def _full_vehicle(path: str | None):
     Parameters
     ----------
     path : str or None
-        ``--vehicle`` (None: the packaged single wheelset).
+        ``--vehicle``: a file or a packaged name (None: the packaged single wheelset).
 
     Returns
     -------
@@ -138,6 +138,13 @@ def _full_vehicle(path: str | None):
     """
     if path is None:
         return None
+    from exudyn_turnout.inputs.vehicle_names import PACKAGED_VEHICLES
+
+    if path in PACKAGED_VEHICLES:  # a packaged vehicle by name
+        from exudyn_turnout.inputs.vehicles import packaged_vehicle
+
+        named = packaged_vehicle(path)
+        return named if hasattr(named, "car_body") else None
     import tomllib
 
     try:
@@ -335,10 +342,10 @@ def add_passage_options(p: argparse.ArgumentParser) -> None:
     """
     p.add_argument(
         "--vehicle",
-        metavar="FILE",
-        help="vehicle file: a single wheelset with its sprung share (default: the packaged "
-        "Manchester benchmark wheelset) or a full vehicle with car body and bogies (e.g. the "
-        "packaged manchester_vehicle.toml; simulate only, profile contact)",
+        metavar="NAME|FILE",
+        help="vehicle: wheelset (default: the packaged Manchester benchmark wheelset with its "
+        "sprung share), manchester (the full Manchester benchmark vehicle, car body on two "
+        "bogies; simulate only, profile contact), or a vehicle file of either kind",
     )
     p.add_argument("--speed", type=number, default=100.0, metavar="KMH", help="km/h (default 100)")
     p.add_argument(

@@ -23,13 +23,13 @@ from __future__ import annotations
 import warnings
 from collections.abc import Callable
 from dataclasses import replace
-from importlib.resources import files
-from typing import Any
+from typing import Any, cast
 
-from exudyn_turnout.inputs.routes import SpeedWarning, load_route, speed_warnings
-from exudyn_turnout.inputs.turnout import Turnout
+from exudyn_turnout.inputs.routes import Route, SpeedWarning, load_route, speed_warnings
+from exudyn_turnout.inputs.turnout import Turnout, TurnoutFileError
 from exudyn_turnout.inputs.vehicle import Vehicle, load_vehicle
-from exudyn_turnout.inputs.vehicle_model import VehicleModel, load_vehicle_model
+from exudyn_turnout.inputs.vehicle_model import VehicleModel
+from exudyn_turnout.inputs.vehicles import packaged_vehicle
 from exudyn_turnout.passage.common import QuietExudyn, check_settings, check_vehicle_settings
 from exudyn_turnout.passage.results import (
     DEFAULT_SETTINGS,
@@ -38,20 +38,14 @@ from exudyn_turnout.passage.results import (
     PassageResult,
     PassageSettings,
 )
+from exudyn_turnout.passage.track import TrackImplementation
 
 __all__ = [
-    "PACKAGED_VEHICLES",
     "simulate_passage",
     "compare_layers",
     "track_of",
     "vehicle_of",
 ]
-
-#: Names of the packaged vehicles -> their files in ``exudyn_turnout/data``.
-PACKAGED_VEHICLES = {
-    "wheelset": "manchester_wheelset.toml",  # the single wheelset with its sprung share
-    "manchester": "manchester_vehicle.toml",  # the full Manchester benchmark vehicle
-}
 
 
 def track_of(settings: PassageSettings, track: str | None) -> tuple[str, PassageSettings]:
@@ -93,7 +87,8 @@ def vehicle_of(vehicle: Vehicle | VehicleModel | str | None) -> Vehicle | Vehicl
     ----------
     vehicle : Vehicle, VehicleModel, str or None
         ``None`` or ``"wheelset"``: the packaged single wheelset; ``"manchester"``: the
-        full Manchester benchmark vehicle (:data:`PACKAGED_VEHICLES`); a
+        full Manchester benchmark vehicle
+        (:func:`~exudyn_turnout.inputs.vehicles.packaged_vehicle`); a
         :class:`~exudyn_turnout.inputs.vehicle.Vehicle` (single wheelset) or a
         :class:`~exudyn_turnout.inputs.vehicle_model.VehicleModel` (full vehicle).
 
@@ -104,18 +99,15 @@ def vehicle_of(vehicle: Vehicle | VehicleModel | str | None) -> Vehicle | Vehicl
     Raises
     ------
     PassageError
-        An unknown name.
+        An unknown name (one line listing the names).
     """
     if vehicle is None:
         vehicle = "wheelset"
     if isinstance(vehicle, str):
-        if vehicle not in PACKAGED_VEHICLES:
-            raise PassageError(
-                f"vehicle must be one of {', '.join(PACKAGED_VEHICLES)} or a vehicle file, "
-                f"got {vehicle!r}"
-            )
-        path = str(files("exudyn_turnout") / "data" / PACKAGED_VEHICLES[vehicle])
-        return load_vehicle(path) if vehicle == "wheelset" else load_vehicle_model(path)
+        try:
+            return packaged_vehicle(vehicle)
+        except TurnoutFileError as err:
+            raise PassageError(str(err)) from None
     return vehicle
 
 
@@ -171,26 +163,48 @@ def simulate_passage(
     """
     track, settings = track_of(settings, track)
     model = vehicle_of(vehicle)
+    implementation = _implementation(track)
     if isinstance(model, VehicleModel):
-        return _full_vehicle(turnout, settings, model, track, fe_options, progress)
+        base = load_vehicle()
+        x_range = check_vehicle_settings(settings, turnout, model, base)
+        route = _route(turnout, settings, x_range)
+        contact = _contact(turnout, settings, route.name, base)
+        run = implementation.simulate_vehicle
+    else:
+        if track == "fe" and settings.contact != "profile":
+            raise PassageError(
+                "the FE track runs with the profile contact only (the height-table contact "
+                "is the single wheelset's co-running baseline)"
+            )
+        x_range = check_settings(settings, turnout, model)
+        route = _route(turnout, settings, x_range)
+        contact = _contact(turnout, settings, route.name, model)
+        run = implementation.simulate_wheelset
+    with QuietExudyn():
+        return run(turnout, settings, model, contact, route, x_range, progress, fe_options)
+
+
+def _implementation(track: str) -> TrackImplementation:
+    """The track implementation of ``track`` (imported on first use: Exudyn, numba)."""
     if track == "fe":
-        return _wheelset_on_fe(turnout, settings, model, fe_options, progress)
-    return _wheelset_on_corunning(turnout, settings, model, progress)
+        from exudyn_turnout.passage import fe_track
+
+        return cast(TrackImplementation, fe_track)
+    from exudyn_turnout.passage import corunning_track
+
+    return cast(TrackImplementation, corunning_track)
 
 
-def _wheelset_on_corunning(turnout, settings, vehicle, progress) -> PassageResult:
-    from exudyn_turnout.passage.corunning_track.wheelset import simulate_wheelset
-
-    x_a, x_b = check_settings(settings, turnout, vehicle)
+def _route(turnout: Turnout, settings: PassageSettings, x_range: tuple[float, float]) -> Route:
+    """The settings' route, with a warning where the speed exceeds the route's permitted."""
     route = load_route(turnout, settings.route)
-    for text in speed_warnings(route, settings.speed_kmh, x_a, x_b):
+    for text in speed_warnings(route, settings.speed_kmh, *x_range):
         warnings.warn(text, SpeedWarning, stacklevel=3)
-    contact = _contact(turnout, settings, route.name, vehicle)
-    return simulate_wheelset(turnout, settings, vehicle, contact, route, (x_a, x_b), progress)
+    return route
 
 
-def _contact(turnout, settings, route_name: str, vehicle: Vehicle):
-    """The route's contact named by ``settings.contact`` (checked by ``check_settings``)."""
+def _contact(turnout: Turnout, settings: PassageSettings, route_name: str, vehicle: Vehicle):
+    """The route's contact named by ``settings.contact`` (checked by the settings' check)."""
     if settings.contact == "height-table":
         from exudyn_turnout.passage.contact.height_table import HeightTableContact
 
@@ -201,32 +215,6 @@ def _contact(turnout, settings, route_name: str, vehicle: Vehicle):
         return route_contact(turnout, route_name, vehicle)
     except ValueError as err:
         raise PassageError(str(err)) from None
-
-
-def _wheelset_on_fe(turnout, settings, vehicle, fe_options, progress) -> PassageResult:
-    if settings.contact == "height-table":  # the vertical-only FE passage (legacy)
-        from exudyn_turnout.passage.fe_track.vertical_legacy import simulate_fe_passage
-
-        return simulate_fe_passage(turnout, settings, vehicle, fe_options, progress=progress)
-    from exudyn_turnout.passage.fe_track.wheelset import simulate_wheelset
-
-    return simulate_wheelset(turnout, settings, vehicle, fe_options, progress=progress)
-
-
-def _full_vehicle(turnout, settings, model, track, fe_options, progress) -> PassageResult:
-    base = load_vehicle()
-    x_a, x_b = check_vehicle_settings(settings, turnout, model, base)
-    route = load_route(turnout, settings.route)
-    for text in speed_warnings(route, settings.speed_kmh, x_a, x_b):
-        warnings.warn(text, SpeedWarning, stacklevel=3)
-    if track == "fe":
-        from exudyn_turnout.passage.fe_track.vehicle import simulate_vehicle as on_fe
-
-        with QuietExudyn():
-            return on_fe(turnout, settings, model, fe_options, progress=progress)
-    from exudyn_turnout.passage.corunning_track.vehicle import simulate_vehicle
-
-    return simulate_vehicle(turnout, settings, model, route, (x_a, x_b), progress)
 
 
 def compare_layers(

@@ -538,9 +538,11 @@ def simulate_vehicle(
     turnout: Turnout,
     settings: PassageSettings,
     model: VehicleModel,
+    contact: RouteContact,
     route: Route,
     x_range: tuple[float, float],
     progress: Callable[[float, float], None] | None = None,
+    options: None = None,
 ) -> PassageResult:
     """Run the full vehicle through the turnout, a co-running track under every wheelset
     (module docstring); the door is :func:`exudyn_turnout.passage.run.simulate_passage`,
@@ -553,12 +555,17 @@ def simulate_vehicle(
         Route, speed, layers, source, time step, output step, spring mechanism.
     model : VehicleModel
         A full vehicle (car body, bogies).
+    contact : RouteContact
+        The route's profile contact, made for the single-wheelset file's contact law and
+        wheel profile.
     route : Route
         ``settings.route`` of the turnout.
     x_range : tuple of float
         m, the front wheelset's start and end (checked).
     progress : callable(fraction, x), optional
         Called about every 2 % of each segment's run.
+    options : None
+        The co-running track has no options (the FE track's interface has them).
 
     Returns
     -------
@@ -576,21 +583,15 @@ def simulate_vehicle(
     PassageFailure
         A solver failure (time and position).
     """
+    del options
     wall = time.perf_counter()
-    base = load_vehicle()
     x_a, x_b = x_range
     with QuietExudyn():
-        return _simulate(turnout, settings, model, base, route, x_a, x_b, progress, wall)
+        return _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall)
 
 
-def _simulate(turnout, settings, model, base, route, x_a, x_b, progress, wall) -> PassageResult:
-    from exudyn_turnout.passage.contact.profile import route_contact
-
-    try:
-        contact = route_contact(turnout, route.name, base)
-    except ValueError as err:
-        raise PassageError(str(err)) from None
-    vehicle = contact_vehicle(base, model)
+def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall):
+    vehicle = contact_vehicle(load_vehicle(), model)
     offsets = tuple(model.wheelset.x)
     events = _events(turnout, offsets, x_a, x_b)
     x_range = (x_a + min(offsets), x_b)

@@ -393,6 +393,7 @@ def simulate_wheelset(
     route: Route,
     x_range: tuple[float, float],
     progress: Callable[[float, float], None] | None = None,
+    options: None = None,
 ) -> PassageResult:
     """Run the single wheelset through the turnout on the co-running track of
     ``settings.layers`` layers (the door is :func:`exudyn_turnout.passage.run.simulate_passage`).
@@ -415,6 +416,8 @@ def simulate_wheelset(
         m, start and end of the run (checked by the door).
     progress : callable(fraction, x), optional
         Called about every 2 % of the run.
+    options : None
+        The co-running track has no options (the FE track's interface has them).
 
     Returns
     -------
@@ -431,6 +434,7 @@ def simulate_wheelset(
     PassageFailure
         A solver failure (time and position) or an absurd static state.
     """
+    del options
     x_a, x_b = x_range
     zones = zones_of_run(turnout, x_a, x_b)
     wall = time.perf_counter()

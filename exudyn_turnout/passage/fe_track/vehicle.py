@@ -46,18 +46,19 @@ from typing import Any
 
 import numpy as np
 
-from exudyn_turnout.inputs.routes import Route, load_route
+from exudyn_turnout.inputs.routes import Route
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
+from exudyn_turnout.passage.contact.profile import RouteContact
 from exudyn_turnout.passage.fe_track.coupling import (
     FEContactElement,
     FECoSimulation,
     build_fe_planes,
     run_progress,
 )
+from exudyn_turnout.passage.fe_track.options import FEPassageOptions
 from exudyn_turnout.passage.results import (
-    PassageError,
     PassageFailure,
     PassageResult,
     PassageSettings,
@@ -233,9 +234,11 @@ def simulate_vehicle(
     turnout: Turnout,
     settings: PassageSettings,
     vehicle_model: VehicleModel,
-    options=None,
-    *,
+    contact: RouteContact,
+    route: Route,
+    x_range: tuple[float, float],
     progress: Callable[[float, float], None] | None = None,
+    options: FEPassageOptions | None = None,
 ) -> PassageResult:
     """Run the full vehicle over the FE track (module docstring).
 
@@ -250,9 +253,16 @@ def simulate_vehicle(
         do not apply.
     vehicle_model : VehicleModel
         A full vehicle.
+    contact : RouteContact
+        The route's profile contact, made for the single-wheelset file's contact law and
+        wheel profile.
+    route : Route
+        ``settings.route`` of the turnout.
+    x_range : tuple of float
+        m, the front wheelset's start and end (checked by the door).
+    progress : callable(fraction, x), optional
     options : FEPassageOptions, optional
         FE mesh and damping (the extension is lengthened to the vehicle's length + 3 m).
-    progress : callable(fraction, x), optional
 
     Returns
     -------
@@ -268,7 +278,6 @@ def simulate_vehicle(
     PassageFailure
         A solver failure (time and position), or no steady start.
     """
-    from exudyn_turnout.passage.contact.profile import route_contact
     from exudyn_turnout.passage.contact.vehicle_contacts import wheelset_columns
     from exudyn_turnout.passage.fe_track.common import (
         failure_reason,
@@ -284,23 +293,16 @@ def simulate_vehicle(
     length = -min(vehicle_model.wheelset.x)
     if options.mesh.extension < length + EXTENSION_MARGIN:
         options = replace(options, mesh=replace(options.mesh, extension=length + EXTENSION_MARGIN))
-    route: Route = load_route(turnout, settings.route)
-    base = load_vehicle()
-    try:
-        contact = route_contact(turnout, route.name, base)
-    except ValueError as err:
-        raise PassageError(str(err)) from None
-    vehicle = contact_vehicle(base, vehicle_model)
-    x_a = turnout.x_min if settings.x_start is None else float(settings.x_start)
-    x_b = turnout.x_max if settings.x_end is None else float(settings.x_end)
+    vehicle = contact_vehicle(load_vehicle(), vehicle_model)
+    x_a, x_b = x_range
     v = settings.v
     duration = (x_b - x_a) / v
     n_steps = max(1, math.ceil(duration / settings.time_step - 1e-9))
     h = duration / n_steps
     planes = build_fe_planes(turnout, options)
     track = FECoSimulation(planes, route.name, h, settings.spectral_radius)
-    x_range = (x_a + min(vehicle_model.wheelset.x), x_b)
-    args = (turnout, route, vehicle_model, vehicle, contact, settings, track, x_range, x_a)
+    covered = (x_a + min(vehicle_model.wheelset.x), x_b)
+    args = (turnout, route, vehicle_model, vehicle, contact, settings, track, covered, x_a)
     t0 = time.perf_counter()
     rest = _build(*args, 0.0, True)
     forces = _static(rest, track, "static equilibrium at rest", x_a)

@@ -29,9 +29,11 @@ from typing import Any
 
 import numpy as np
 
-from exudyn_turnout.inputs.routes import Route, SpeedWarning, load_route, speed_warnings
+from exudyn_turnout.inputs.routes import Route
 from exudyn_turnout.inputs.turnout import Turnout
-from exudyn_turnout.inputs.vehicle import Vehicle, load_vehicle
+from exudyn_turnout.inputs.vehicle import Vehicle
+from exudyn_turnout.passage.common import QuietExudyn
+from exudyn_turnout.passage.contact.profile import RouteContact
 from exudyn_turnout.passage.fe_track.common import (
     coupled_run_settings,
     failure_reason,
@@ -46,8 +48,8 @@ from exudyn_turnout.passage.fe_track.coupling import (
     build_fe_planes,
     run_progress,
 )
+from exudyn_turnout.passage.fe_track.options import FEPassageOptions
 from exudyn_turnout.passage.results import (
-    DEFAULT_SETTINGS,
     PassageError,
     PassageFailure,
     PassageResult,
@@ -153,31 +155,42 @@ class _Recorder:
 
 def simulate_wheelset(
     turnout: Turnout,
-    settings: PassageSettings = DEFAULT_SETTINGS,
-    vehicle: Vehicle | None = None,
-    options=None,
+    settings: PassageSettings,
+    vehicle: Vehicle,
+    contact: RouteContact,
+    route: Route,
+    x_range: tuple[float, float],
+    progress: Callable[[float, float], None] | None = None,
+    options: FEPassageOptions | None = None,
     *,
     planes: FETrackPlanes | None = None,
-    progress: Callable[[float, float], None] | None = None,
 ) -> PassageResult:
-    """Run the wheelset over the FE track with the profile contact (module docstring).
+    """Run the wheelset over the FE track with the profile contact (module docstring); the
+    door is :func:`exudyn_turnout.passage.run.simulate_passage`, which checks the settings.
 
     Parameters
     ----------
     turnout : Turnout
     settings : PassageSettings
-        Route, speed, x range, time step, output step, ``spectral_radius`` (of Exudyn's
+        Route, speed, time step, output step, ``spectral_radius`` (of Exudyn's
         generalized-alpha, used by the FE side too), ``irregularity``; ``layers``,
         ``source`` and ``track_mechanism`` do not apply.
-    vehicle : Vehicle, optional
-        Default: the packaged Manchester benchmark wheelset.
+    vehicle : Vehicle
+        The single wheelset with its sprung mass.
+    contact : RouteContact
+        The route's profile contact for this vehicle.
+    route : Route
+        ``settings.route`` of the turnout.
+    x_range : tuple of float
+        m, start and end of the run (checked by the door).
+    progress : callable(fraction, x), optional
+        Called about every 2 % of the run.
     options : FEPassageOptions, optional
         Mesh and ``loss_reference_hz``
         (:class:`~exudyn_turnout.passage.fe_track.options.FEPassageOptions`).
     planes : FETrackPlanes, optional
-        FE planes from :func:`~exudyn_turnout.passage.fe_track.coupling.build_fe_planes` to reuse.
-    progress : callable(fraction, x), optional
-        Called about every 2 % of the run.
+        FE planes from :func:`~exudyn_turnout.passage.fe_track.coupling.build_fe_planes` to
+        reuse.
 
     Returns
     -------
@@ -191,26 +204,11 @@ def simulate_wheelset(
     Raises
     ------
     PassageError
-        Bad settings (one line naming the problem) or a solver failure (time and position).
+        The x range outside the FE layout, or a solver failure (time and position).
     """
-    from exudyn_turnout.passage.common import QuietExudyn, check_settings
-    from exudyn_turnout.passage.contact.profile import route_contact
-    from exudyn_turnout.passage.fe_track.options import FEPassageOptions
-
     wall = time.perf_counter()
-    vehicle = vehicle or load_vehicle()
     options = options or FEPassageOptions()
-    settings = replace(settings, contact="profile")
-    x_a, x_b = check_settings(settings, turnout, vehicle)
-    route = load_route(turnout, settings.route)
-    for text in speed_warnings(route, settings.speed_kmh, x_a, x_b):
-        import warnings
-
-        warnings.warn(text, SpeedWarning, stacklevel=2)
-    try:
-        contact = route_contact(turnout, route.name, vehicle)
-    except ValueError as err:
-        raise PassageError(str(err)) from None
+    x_a, x_b = x_range
     planes = planes or build_fe_planes(turnout, options)
     lay = planes.layout
     if not (lay.x_start <= x_a and x_b <= lay.x_end):
