@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from exudyn_turnout.corunning.parameters import CoRunningParameters
 from exudyn_turnout.inputs.turnout import Zone
 
 __all__ = [
@@ -20,6 +21,7 @@ __all__ = [
     "static_deflection",
     "vehicle_shift",
     "inside_zone",
+    "rebase_track",
 ]
 
 NODE_DOF = {"sleeper": ("y_t", "z_t", "phi_t")}
@@ -89,7 +91,7 @@ def static_deflection(
 
 
 def vehicle_shift(
-    old: Any,
+    element: Any,
     u_old: dict,
     u_new: dict,
     loads: Mapping,
@@ -100,8 +102,8 @@ def vehicle_shift(
 
     Parameters
     ----------
-    old : object
-        The old zone's system (its ``element``: the contact element).
+    element : ContactElement
+        The old zone's contact element of the wheelset.
     u_old, u_new : dict
         m, the old and the new zone's static deflections by coordinate name.
     loads : mapping
@@ -117,13 +119,13 @@ def vehicle_shift(
     """
     from exudyn_turnout.corunning.modal import wheel_dof
 
-    b = old.element.vehicle.b
+    b = element.vehicle.b
     dz: dict[str, list[float]] = {"left": [], "right": []}
     dy: dict[str, list[float]] = {"left": [], "right": []}
     new_slot = {
         src: slot for slot, src in source.items()
     }  # source holds the new zone's active slots only
-    for rail, wheel in old.element.wheel_of.items():
+    for rail, wheel in element.wheel_of.items():
         N = loads.get(rail, (0.0, 0.0))[0]
         if N <= 0.0 or rail not in new_slot:
             continue
@@ -139,8 +141,8 @@ def vehicle_shift(
     roll = (mean["left"][0] - mean["right"][0]) / (2.0 * b)
     # profile contact: a roll moves the running surfaces sideways by r0 roll; move the
     # wheelset back by as much so the wheels stay where they touch
-    y -= old.element.running_surface_depth * roll
-    n_yaw = old.element.n_vehicle - 5  # yaw (and spin) coordinates
+    y -= element.running_surface_depth * roll
+    n_yaw = element.n_vehicle - 5  # yaw (and spin) coordinates
     return {"wheelset": np.array([y, z, roll]), "yaw": np.zeros(n_yaw), "sprung": np.array([y, z])}
 
 
@@ -159,3 +161,74 @@ def inside_zone(zone: Zone, x: float) -> float:
         m.
     """
     return min(max(x, zone.x_start), zone.x_end)
+
+
+def rebase_track(
+    old_params: CoRunningParameters,
+    new_params: CoRunningParameters,
+    x_old: float,
+    x_new: float,
+    loads_old: Mapping[str, tuple[float, float]],
+    continues: Mapping[str, str],
+    q_old: Mapping[str, float],
+    v_old: Mapping[str, float],
+    layers: int,
+    lateral: bool,
+) -> tuple[dict[str, float], dict[str, float], dict[str, float], dict[str, float], dict]:
+    """A wheelset's track state re-based from its old zone to its new one (module docstring).
+
+    The old zone's static deflection under the current wheel loads is replaced by the new
+    zone's; the dynamic deviation from it and the velocities carry over (the sleeper's
+    reference point moves with the zone: its heave takes the roll's share). A rail that
+    appears starts with the sleeper's motion under it.
+
+    Parameters
+    ----------
+    old_params, new_params : CoRunningParameters
+        The old and the new zone's parameter sets (with the route's cross-section).
+    x_old, x_new : float
+        m, where each set's static deflection is evaluated (the boundary, inside each
+        zone's own range).
+    loads_old : mapping
+        Rail slot -> (vertical, lateral) wheel load on the old zone's rails, N.
+    continues : mapping
+        New zone's rail slot -> the old zone's slot it continues (the route's).
+    q_old, v_old : mapping
+        The old track's coordinates and velocities by coordinate name.
+    layers : {2, 3}
+    lateral : bool
+        The lateral loads are real static loads (profile contact).
+
+    Returns
+    -------
+    q_new, v_new : dict
+        The new track's coordinates and velocities by coordinate name.
+    u_old, u_new : dict
+        The two static deflections by coordinate name.
+    source : dict
+        New zone's rail slot -> the old zone's slot it takes its loads from.
+    """
+    source = {slot: continues.get(slot, slot) for slot in new_params.active_rails}
+    loads_new = {slot: loads_old[src] for slot, src in source.items() if src in loads_old}
+    u_old = static_deflection(old_params, x_old, loads_old, layers, lateral)
+    u_new = static_deflection(new_params, x_new, loads_new, layers, lateral)
+    v = dict(v_old)
+    dyn = {n: q_old[n] - u_old[n] for n in q_old}
+    shift = new_params.zone.sleeper_y - old_params.zone.sleeper_y
+    dyn["z_t"] += shift * dyn["phi_t"]
+    v["z_t"] += shift * v["phi_t"]
+    q_new, v_new = {}, {}
+    for name in u_new:
+        axis, _, rest = name.partition("_")
+        slot = rest.rsplit("_", 1)[-1]
+        src = name.replace(slot, source[slot]) if slot in source else name  # sleeper: no slot
+        if src in dyn:
+            q_new[name], v_new[name] = u_new[name] + dyn[src], v[src]
+        else:  # a rail that appears: the sleeper's motion under it
+            arm = new_params.zone.rail_y[slot] - new_params.zone.sleeper_y
+            if axis == "y":
+                q_new[name], v_new[name] = u_new[name] + dyn["y_t"], v["y_t"]
+            else:
+                q_new[name] = u_new[name] + dyn["z_t"] + arm * dyn["phi_t"]
+                v_new[name] = v["z_t"] + arm * v["phi_t"]
+    return q_new, v_new, u_old, u_new, source

@@ -60,7 +60,6 @@ import math
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
-from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
@@ -86,7 +85,7 @@ from exudyn_turnout.passage.contact.vehicle_contacts import (
 from exudyn_turnout.passage.corunning_track.carry_over import (
     dof_of,
     inside_zone,
-    static_deflection,
+    rebase_track,
     vehicle_shift,
 )
 from exudyn_turnout.passage.results import (
@@ -342,34 +341,20 @@ def _carry_over(
         q_el, v_el = _element_vector(old, state, i, 0), _element_vector(old, state, i, 1)
         loads_old = el.rail_loads(x, q_el, v_el)
         continues = route.continues.get(p_new.zone.index, {})
-        source = {slot: continues.get(slot, slot) for slot in new.params[i].active_rails}
-        loads_new = {slot: loads_old[src] for slot, src in source.items() if src in loads_old}
-        # the boundary itself, in each zone's own range (x0 + v t carries round-off)
-        u_old = static_deflection(
-            old.params[i], inside_zone(old.params[i].zone, x), loads_old, layers, True
-        )
-        u_new = static_deflection(
-            new.params[i], inside_zone(new.params[i].zone, x), loads_new, layers, True
-        )
         q_old, v_old = _track_vector(state, old, i, 0), _track_vector(state, old, i, 1)
-        dyn = {n: q_old[n] - u_old[n] for n in q_old}
-        shift = new.params[i].zone.sleeper_y - old.params[i].zone.sleeper_y
-        dyn["z_t"] += shift * dyn["phi_t"]
-        v_old["z_t"] += shift * v_old["phi_t"]
-        q_new, v_new = {}, {}
-        for name in u_new:
-            axis, _, rest = name.partition("_")
-            slot = rest.rsplit("_", 1)[-1]
-            src = name.replace(slot, source[slot]) if slot in source else name
-            if src in dyn:
-                q_new[name], v_new[name] = u_new[name] + dyn[src], v_old[src]
-            else:  # a rail that appears: the sleeper's motion under it
-                arm = new.params[i].zone.rail_y[slot] - new.params[i].zone.sleeper_y
-                if axis == "y":
-                    q_new[name], v_new[name] = u_new[name] + dyn["y_t"], v_old["y_t"]
-                else:
-                    q_new[name] = u_new[name] + dyn["z_t"] + arm * dyn["phi_t"]
-                    v_new[name] = v_old["z_t"] + arm * v_old["phi_t"]
+        # the boundary itself, in each zone's own range (x0 + v t carries round-off)
+        q_new, v_new, u_old, u_new, source = rebase_track(
+            old.params[i],
+            new.params[i],
+            inside_zone(old.params[i].zone, x),
+            inside_zone(new.params[i].zone, x),
+            loads_old,
+            continues,
+            q_old,
+            v_old,
+            layers,
+            True,
+        )
         for name in new.names:
             if name.startswith(prefix):
                 dofs = dof_of(name[len(prefix) :])
@@ -377,8 +362,7 @@ def _carry_over(
                     np.array([q_new[d] for d in dofs]),
                     np.array([v_new[d] for d in dofs]),
                 )
-        fake = SimpleNamespace(element=el)
-        moved = vehicle_shift(fake, u_old, u_new, loads_old, source, layers)  # type: ignore[arg-type]
+        moved = vehicle_shift(el, u_old, u_new, loads_old, source, layers)
         q_ws = values[f"ws{i + 1}"][0]
         q_ws[:3] = q_ws[:3] + moved["wheelset"]
     mbs, data = new.mbs, new.mbs.systemData

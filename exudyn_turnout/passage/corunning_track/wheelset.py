@@ -36,7 +36,7 @@ from exudyn_turnout.passage.common import (
 from exudyn_turnout.passage.contact.protocol import Contact
 from exudyn_turnout.passage.corunning_track.carry_over import (
     dof_of,
-    static_deflection,
+    rebase_track,
     vehicle_shift,
 )
 from exudyn_turnout.passage.results import (
@@ -261,31 +261,12 @@ def _carry_over(
     import exudyn as exu
 
     loads_old = _wheel_rail_loads(old, state, layers)
-    source = {slot: continues.get(slot, slot) for slot in new.params.active_rails}
-    loads_new = {slot: loads_old[src] for slot, src in source.items() if src in loads_old}
     lateral = old.element.lateral_static_loads
-    u_old = static_deflection(old.params, x, loads_old, layers, lateral)
-    u_new = static_deflection(new.params, x, loads_new, layers, lateral)
     q_old, v_old = _track_vector(state, old, 0), _track_vector(state, old, 1)
-    dyn = {n: q_old[n] - u_old[n] for n in q_old}
-    shift = new.sleeper_y - old.sleeper_y  # the sleeper's reference point moved with the zone
-    dyn["z_t"] += shift * dyn["phi_t"]
-    v_old["z_t"] += shift * v_old["phi_t"]
-    q_new, v_new = {}, {}
-    for name in u_new:
-        axis, _, rest = name.partition("_")
-        slot = rest.rsplit("_", 1)[-1]
-        src = (
-            name.replace(slot, source[slot]) if slot in source else name
-        )  # sleeper names have no slot
-        if src in dyn:
-            q_new[name], v_new[name] = u_new[name] + dyn[src], v_old[src]
-        else:  # a rail that appears: the sleeper's motion under it
-            arm = new.params.zone.rail_y[slot] - new.sleeper_y
-            k = 0 if axis == "y" else 1
-            q_new[name] = u_new[name] + (dyn["y_t"] if k == 0 else dyn["z_t"] + arm * dyn["phi_t"])
-            v_new[name] = v_old["y_t"] if k == 0 else v_old["z_t"] + arm * v_old["phi_t"]
-    moved = vehicle_shift(old, u_old, u_new, loads_old, source, layers)
+    q_new, v_new, u_old, u_new, source = rebase_track(
+        old.params, new.params, x, x, loads_old, continues, q_old, v_old, layers, lateral
+    )
+    moved = vehicle_shift(old.element, u_old, u_new, loads_old, source, layers)
     mbs, data = new.mbs, new.mbs.systemData
     q = np.asarray(data.GetODE2Coordinates(exu.ConfigurationType.Initial)).copy()
     q_t = np.zeros_like(q)
