@@ -212,9 +212,9 @@ def test_fe_passage_cache_key_changes_with_contact_vehicle_and_version(turnout, 
     assert key not in others and len(others) == 4
 
 
-def test_report_vehicle_option_and_missing_full_vehicle_fe(turnout, monkeypatch):
-    """vehicle is "full" (default) or "wheelset"; the full vehicle's FE passage is n/a, not a
-    crash, in a version whose simulate_vehicle_passage has no track keyword."""
+def test_report_vehicle_option_and_fe_availability(turnout):
+    """vehicle is "full" (default) or "wheelset"; the FE passage is available for both unless
+    switched off."""
     import exudyn_turnout.report.metrics as rm
 
     assert (
@@ -222,15 +222,10 @@ def test_report_vehicle_option_and_missing_full_vehicle_fe(turnout, monkeypatch)
     )
     with pytest.raises(ValueError, match="ReportConfig.vehicle must be one of full, wheelset"):
         rm.ReportConfig(vehicle="bogie")
-    import exudyn_turnout.report.passages as rp
-
-    monkeypatch.setattr(rp, "_full_vehicle_track_keywords", lambda: set())
-    ok, why = rm.fe_availability(rm.ReportConfig(vehicle="full"))
-    assert not ok and why == "the full vehicle on the FE track is not available in this version"
+    assert rm.fe_availability(rm.ReportConfig(vehicle="full")) == (True, "")
     assert rm.fe_availability(rm.ReportConfig(vehicle="wheelset")) == (True, "")
-    config = rm.resolve_config(rm.ReportConfig(passage_x=(46.0, 47.0)), rm.report_settings(turnout))
-    with pytest.raises(rm.FENotAvailable, match="not available in this version"):
-        rm.run_passage(turnout, config, "through", "fe")
+    off = rm.fe_availability(rm.ReportConfig(fe_passage=False))
+    assert off == (False, "FE passage switched off in this report")
     # the static wheel loads the report checks: M g / 8 = 44 482 x 9.81 / 8 (issue 13) and
     # (m_w + m_s) g / 2 of the single wheelset
     assert rm.vehicle_static_load("full") == pytest.approx(44482 * 9.81 / 8, rel=1e-3)

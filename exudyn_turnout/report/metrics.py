@@ -43,35 +43,35 @@ from exudyn_turnout.corunning.parameters import reference_support
 from exudyn_turnout.inputs.routes import dip_angle, load_route
 from exudyn_turnout.inputs.turnout import Turnout, load_turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
-from exudyn_turnout.passage.results import PassageResult
 from exudyn_turnout.receptance import Receptance
 from exudyn_turnout.report import agreement as ag
 from exudyn_turnout.report.cache import (
+    FE_STAGES,
     ResultCache,
+    code_fingerprint,
     input_key,
-    source_fingerprint,
 )
 from exudyn_turnout.report.claims import RANGES, Criteria, evaluate_claims
 from exudyn_turnout.report.config import (
-    _FE_CODE,
     FENotAvailable,
     Report,
     ReportConfig,
-    _fingerprint,
-    _log,
+    log,
     report_config,
     resolve_config,
+    turnout_fingerprint,
 )
+from exudyn_turnout.report.passage_api import PassageResult
 from exudyn_turnout.report.passages import (
-    _peak_key,
-    _signal_key,
-    _summary_float,
-    _vehicle_mass,
     fe_availability,
     fe_passage_cache_key,
     passage_model_metrics,
     passage_section,
+    peak_key,
     run_passage,
+    signal_key,
+    summary_float,
+    vehicle_mass,
     vehicle_static_load,
 )
 from exudyn_turnout.report.settings import (
@@ -164,7 +164,7 @@ def _cached_stiffness(turnout: Turnout, config: ReportConfig, cache: ResultCache
     from exudyn_turnout.fe.stiffness import StiffnessProfile, static_stiffness_profile
 
     key = input_key(
-        "fe_stiffness", _fingerprint(turnout), source_fingerprint(_FE_CODE), config.fe_options
+        "fe_stiffness", turnout_fingerprint(turnout), code_fingerprint(FE_STAGES), config.fe_options
     )
     hit = cache.load(key)
     if hit is not None:
@@ -391,7 +391,7 @@ def stiffness_section(
             "co_running_zones": [z.index for z in zones],
         }
     )
-    _log(
+    log(
         f"stiffness profile: FE {info['wall_time_s']:.1f} s"
         + (" (cached)" if info["cached"] else "")
     )
@@ -485,8 +485,8 @@ def _cached_fe_receptance(
     f = config.frequencies
     key = input_key(
         "fe_receptance",
-        _fingerprint(turnout),
-        source_fingerprint(_FE_CODE),
+        turnout_fingerprint(turnout),
+        code_fingerprint(FE_STAGES),
         rail,
         direction,
         x,
@@ -664,7 +664,7 @@ def receptance_section(
             metrics["cases"][case], curves[case] = _receptance_case(
                 turnout, rail, x, direction, config, cache, fe_slots
             )
-            _log(
+            log(
                 f"receptance {case}: FE {metrics['cases'][case]['fe']['wall_time_s']:.1f} s"
                 + (" (cached)" if metrics["cases"][case]["fe"]["cached"] else "")
             )
@@ -692,7 +692,7 @@ def cost_metrics(
     wall times per model are reported beside it. FE / 3-layer uses the 3-layer median.
     """
     wall = {
-        route: {m: _summary_float(r.summary, "wall_time_s") for m, r in res.items()}
+        route: {m: summary_float(r.summary, "wall_time_s") for m, r in res.items()}
         for route, res in passages.items()
     }
     runs = {route: rt["co_running_wall_times_s"] for route, rt in passage_metrics["routes"].items()}
@@ -706,7 +706,7 @@ def cost_metrics(
         "wall_time_s": wall,
         "median_wall_time_s": median,
         "simulated_time_s": {
-            route: _summary_float(res["3-layer"].summary, "simulated_time_s")
+            route: summary_float(res["3-layer"].summary, "simulated_time_s")
             for route, res in passages.items()
         },
         "ratio_3_over_2": {
@@ -784,9 +784,9 @@ def convergence_metrics(
             )
             peaks = {}
             for q, r in rr.signals:
-                k = _peak_key(q, r, rr.wheel)
-                a, b = _summary_float(base.summary, k), _summary_float(half.summary, k)
-                peaks[_signal_key(q, r)] = {
+                k = peak_key(q, r, rr.wheel)
+                a, b = summary_float(base.summary, k), summary_float(half.summary, k)
+                peaks[signal_key(q, r)] = {
                     "h_N": a,
                     "h_half_N": b,
                     "relative_change": ag.relative_difference(b, a),
@@ -824,8 +824,8 @@ def static_checks(
     for route, res in passages.items():
         for m, r in res.items():
             right, left = (
-                _summary_float(r.summary, "static_wheel_load_N"),
-                _summary_float(r.summary, "static_wheel_load_left_N"),
+                summary_float(r.summary, "static_wheel_load_N"),
+                summary_float(r.summary, "static_wheel_load_left_N"),
             )
             loads[f"{route}, {m}"] = {
                 "right_N": right,
@@ -857,7 +857,7 @@ def static_checks(
         "vehicle": vehicle,
         "m_w_kg": v.m_w,
         "m_s_kg": v.m_s,
-        "vehicle_mass_kg": _vehicle_mass(vehicle),
+        "vehicle_mass_kg": vehicle_mass(vehicle),
         "expected_static_wheel_load_N": expected,
         "static_wheel_load": loads,
         "static_wheel_load_ok": ok,
@@ -898,7 +898,7 @@ def build_report(turnout: Turnout | None = None, config: ReportConfig = ReportCo
     metrics: dict[str, Any] = {
         "turnout": turnout.name,
         "turnout_file": Path(str(turnout.source)).name,
-        "turnout_sha256": _fingerprint(turnout),
+        "turnout_sha256": turnout_fingerprint(turnout),
         "config": _config_metrics(config),
         "criteria": dataclasses.asdict(config.criteria),
     }
@@ -978,5 +978,5 @@ def write_report(
     (out / "metrics.json").write_text(to_json(report.metrics), encoding="utf-8")
     links = _source_links(out, ("exudyn_turnout/passage/fe_coupling.py",))
     (out / "report.md").write_text(render_markdown(report, figures, links), encoding="utf-8")
-    _log(f"wrote {out / 'report.md'} in {report.metrics['report_wall_time_s']:.0f} s")
+    log(f"wrote {out / 'report.md'} in {report.metrics['report_wall_time_s']:.0f} s")
     return report
