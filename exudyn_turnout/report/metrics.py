@@ -966,7 +966,8 @@ def write_report(
         The built report (``metrics`` as written).
     """
     from exudyn_turnout.report.figures import write_figures, write_model_figure
-    from exudyn_turnout.report.markdown import render_markdown, to_json
+    from exudyn_turnout.report.markdown import render_markdown
+    from exudyn_turnout.report.markdown_format import to_json
 
     t0 = time.perf_counter()
     out = Path(out_dir)
