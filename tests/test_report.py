@@ -194,21 +194,20 @@ def test_fe_passage_cache_key_changes_with_contact_vehicle_and_version(turnout, 
     from dataclasses import replace
 
     import exudyn_turnout.report.metrics as rm
+    import exudyn_turnout.report.passages as rp
     from exudyn_turnout.passage.results import PassageSettings
 
     settings = PassageSettings(route="through", x_start=46.0, x_end=47.0, contact="profile")
     wheelset = rm.ReportConfig(vehicle="wheelset")
-    key = rm.fe_passage_cache_key(turnout, settings, wheelset)
-    assert key == rm.fe_passage_cache_key(turnout, settings, wheelset)  # deterministic
+    key = rp.fe_passage_cache_key(turnout, settings, wheelset)
+    assert key == rp.fe_passage_cache_key(turnout, settings, wheelset)  # deterministic
     others = {
-        rm.fe_passage_cache_key(turnout, replace(settings, contact="height-table"), wheelset),
-        rm.fe_passage_cache_key(turnout, settings, rm.ReportConfig(vehicle="full")),
-        rm.fe_passage_cache_key(turnout, replace(settings, speed_kmh=90.0), wheelset),
+        rp.fe_passage_cache_key(turnout, replace(settings, contact="height-table"), wheelset),
+        rp.fe_passage_cache_key(turnout, settings, rm.ReportConfig(vehicle="full")),
+        rp.fe_passage_cache_key(turnout, replace(settings, speed_kmh=90.0), wheelset),
     }
-    import exudyn_turnout.report.passages as rp
-
     monkeypatch.setattr(rp, "FE_PASSAGE_VERSION", rp.FE_PASSAGE_VERSION + 1)
-    others.add(rm.fe_passage_cache_key(turnout, settings, wheelset))
+    others.add(rp.fe_passage_cache_key(turnout, settings, wheelset))
     assert key not in others and len(others) == 4
 
 
@@ -216,19 +215,20 @@ def test_report_vehicle_option_and_fe_availability(turnout):
     """vehicle is "full" (default) or "wheelset"; the FE passage is available for both unless
     switched off."""
     import exudyn_turnout.report.metrics as rm
+    import exudyn_turnout.report.passages as rp
 
     assert (
         rm.ReportConfig().vehicle == "full" and rm.report_config(quick=True).vehicle == "wheelset"
     )
     with pytest.raises(ValueError, match="ReportConfig.vehicle must be one of full, wheelset"):
         rm.ReportConfig(vehicle="bogie")
-    assert rm.fe_availability(rm.ReportConfig(vehicle="full")) == (True, "")
-    assert rm.fe_availability(rm.ReportConfig(vehicle="wheelset")) == (True, "")
-    off = rm.fe_availability(rm.ReportConfig(fe_passage=False))
+    assert rp.fe_availability(rm.ReportConfig(vehicle="full")) == (True, "")
+    assert rp.fe_availability(rm.ReportConfig(vehicle="wheelset")) == (True, "")
+    off = rp.fe_availability(rm.ReportConfig(fe_passage=False))
     assert off == (False, "FE passage switched off in this report")
     # the static wheel loads the report checks: M g / 8 = 44 482 x 9.81 / 8 (issue 13) and
     # (m_w + m_s) g / 2 of the single wheelset
-    assert rm.vehicle_static_load("full") == pytest.approx(44482 * 9.81 / 8, rel=1e-3)
+    assert rp.vehicle_static_load("full") == pytest.approx(44482 * 9.81 / 8, rel=1e-3)
 
 
 # --- the quick report -----------------------------------------------------------------
