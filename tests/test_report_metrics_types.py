@@ -3,13 +3,15 @@ committed ``metrics.json`` files unchanged, and ``report.md`` renders from them.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from pathlib import Path
 
 import pytest
 
-from exudyn_turnout.report.claims import Claim
+from exudyn_turnout.report.claims import evaluate_claims
 from exudyn_turnout.report.config import Report, ReportConfig
+from exudyn_turnout.report.criteria import Claim, Criteria
 from exudyn_turnout.report.markdown import render_markdown
 from exudyn_turnout.report.markdown_format import to_json
 from exudyn_turnout.report.metrics_types import PassageModel, ReportMetrics
@@ -42,6 +44,17 @@ def test_committed_metrics_round_trip(path):
     assert model.peaks_N["Fz_crossing"] == peak
     assert typed.criteria.agree_db == data["criteria"]["agree_db"]
     assert [c.id for c in typed.claims or ()] == [c["id"] for c in data["claims"]]
+
+
+@pytest.mark.parametrize("path", COMMITTED, ids=lambda p: p.parent.name)
+def test_claims_of_committed_metrics_are_the_committed_claims(path):
+    """The claims judged on the committed metrics, as a dict or typed, are the committed ones
+    (the claims read the typed records and judge as the report did)."""
+    data = _load(path)
+    criteria = Criteria(**data["criteria"])
+    for metrics in (data, ReportMetrics.from_dict(data)):
+        claims = [dataclasses.asdict(c) for c in evaluate_claims(metrics, criteria)]
+        assert json.loads(to_json({"claims": claims}))["claims"] == data["claims"]
 
 
 def test_unknown_or_missing_keys_are_errors():

@@ -16,8 +16,8 @@ from exudyn_turnout.inputs.routes import load_route
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.report import agreement as ag
-from exudyn_turnout.report.claims import Criteria
 from exudyn_turnout.report.config import ReportConfig
+from exudyn_turnout.report.criteria import Criteria
 from exudyn_turnout.report.passage_api import PassageResult
 from exudyn_turnout.report.passages import (
     peak_key,

@@ -24,7 +24,7 @@ from exudyn_turnout.report.cache import (
     file_fingerprint,
     input_key,
 )
-from exudyn_turnout.report.claims import Claim, Criteria
+from exudyn_turnout.report.criteria import Claim, Criteria
 from exudyn_turnout.report.passage_api import PassageResult
 from exudyn_turnout.report.settings import (
     ReportSettings,

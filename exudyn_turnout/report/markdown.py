@@ -21,7 +21,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from pathlib import Path
 
-from exudyn_turnout.report.claims import RANGES, Criteria
+from exudyn_turnout.report.criteria import RANGES, Criteria
 from exudyn_turnout.report.markdown_checks import checks_lines
 from exudyn_turnout.report.markdown_cost import cost_lines
 from exudyn_turnout.report.markdown_format import fmt

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from exudyn_turnout.report.claims import FAILS, HOLDS, NOT_CHECKED, Claim
+from exudyn_turnout.report.criteria import FAILS, HOLDS, NOT_CHECKED, Claim
 from exudyn_turnout.report.metrics_types import FEInfo
 
 __all__ = [

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 
-from exudyn_turnout.report.claims import Claim
+from exudyn_turnout.report.criteria import Claim
 from exudyn_turnout.report.markdown_format import claims_table, fe_source, figure, fmt, table
 from exudyn_turnout.report.metrics_types import PassageMetrics
 

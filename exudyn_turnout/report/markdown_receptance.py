@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 
-from exudyn_turnout.report.claims import RANGES, Claim
+from exudyn_turnout.report.criteria import RANGES, Claim
 from exudyn_turnout.report.markdown_format import (
     EXCL,
     claims_table,

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
-from exudyn_turnout.report.claims import Claim
+from exudyn_turnout.report.criteria import Claim
 from exudyn_turnout.report.markdown_format import (
     claims_table,
     fe_source,

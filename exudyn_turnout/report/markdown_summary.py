@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
-from exudyn_turnout.report.claims import FAILS, HOLDS, NOT_CHECKED, Claim
+from exudyn_turnout.report.criteria import FAILS, HOLDS, NOT_CHECKED, Claim
 from exudyn_turnout.report.markdown_format import EXCL, fmt, span, table, verdict_text
 from exudyn_turnout.report.metrics_types import PassageMetrics, PassageModel, ReportMetrics
 

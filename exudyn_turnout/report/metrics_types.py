@@ -16,7 +16,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from exudyn_turnout.report.claims import Claim, Criteria
+from exudyn_turnout.report.criteria import Claim, Criteria
 from exudyn_turnout.report.record import Record, optional
 
 __all__ = [

@@ -26,13 +26,13 @@ from exudyn_turnout.report.cache import (
     code_fingerprint,
     input_key,
 )
-from exudyn_turnout.report.claims import Criteria
 from exudyn_turnout.report.config import (
     FENotAvailable,
     ReportConfig,
     log,
     turnout_fingerprint,
 )
+from exudyn_turnout.report.criteria import Criteria
 from exudyn_turnout.report.passage_api import (
     PassageResult,
     PassageSettings,

@@ -20,8 +20,8 @@ from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.receptance import Receptance
 from exudyn_turnout.report import agreement as ag
 from exudyn_turnout.report.cache import FE_STAGES, ResultCache, code_fingerprint, input_key
-from exudyn_turnout.report.claims import RANGES, Criteria
 from exudyn_turnout.report.config import ReportConfig, log, turnout_fingerprint
+from exudyn_turnout.report.criteria import RANGES, Criteria
 from exudyn_turnout.report.settings import (
     ReportSettings,
     report_settings,
