@@ -25,6 +25,7 @@ from exudyn_turnout.report.cache import (
     input_key,
 )
 from exudyn_turnout.report.criteria import Claim, Criteria
+from exudyn_turnout.report.metrics_types import ReportMetrics
 from exudyn_turnout.report.passage_api import PassageResult
 from exudyn_turnout.report.settings import (
     ReportSettings,
@@ -187,6 +188,16 @@ class Report:
     #: dict with the FE "profile", its "fits" and the co-running r2 static stiffness; or None
     stiffness: Any = None
     settings: ReportSettings | None = None  #: the turnout's report settings
+
+    @property
+    def typed_metrics(self) -> ReportMetrics:
+        """``metrics`` read as typed records (a new object per call: ``metrics`` may grow).
+
+        Returns
+        -------
+        ReportMetrics
+        """
+        return ReportMetrics.from_dict(self.metrics)
 
 
 def log(message: str) -> None:

@@ -146,8 +146,8 @@ def render_markdown(
     Parameters
     ----------
     report : Report
-        From :func:`~exudyn_turnout.report.metrics.build_report`: its ``metrics`` (read as
-        :class:`~exudyn_turnout.report.metrics_types.ReportMetrics`) and ``claims``.
+        From :func:`~exudyn_turnout.report.metrics.build_report`: its ``typed_metrics`` and
+        ``claims``.
     figures : mapping
         Figure name -> file name relative to report.md.
     links : mapping, optional
@@ -159,7 +159,7 @@ def render_markdown(
     str
         The Markdown text.
     """
-    m = ReportMetrics.from_dict(report.metrics)
+    m = report.typed_metrics
     claims = report.claims
     lines = (
         _header(m)
