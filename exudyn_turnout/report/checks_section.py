@@ -18,6 +18,7 @@ from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.report import agreement as ag
 from exudyn_turnout.report.config import ReportConfig
 from exudyn_turnout.report.criteria import Criteria
+from exudyn_turnout.report.metrics_types import ReceptanceMetrics
 from exudyn_turnout.report.passage_api import PassageResult
 from exudyn_turnout.report.passages import (
     peak_key,
@@ -101,7 +102,7 @@ def convergence_metrics(
 def static_checks(
     turnout: Turnout,
     passages: Mapping[str, Mapping[str, PassageResult]],
-    receptance: Mapping,
+    receptance: ReceptanceMetrics,
     criteria: Criteria,
     vehicle: str = "wheelset",
 ) -> dict[str, Any]:
@@ -119,8 +120,8 @@ def static_checks(
     passages : mapping
         route -> model -> PassageResult of
         :func:`~exudyn_turnout.report.passages.passage_section`.
-    receptance : mapping
-        The receptance section's metrics (their static stiffness ratios to FE).
+    receptance : ReceptanceMetrics
+        The receptance section (its static stiffness ratios to FE).
     criteria : Criteria
         ``static_tolerance``.
     vehicle : {"full", "wheelset"}
@@ -151,8 +152,8 @@ def static_checks(
             }
     ok = all(abs(x["mean_relative"]) <= criteria.static_tolerance for x in loads.values())
     stiff = {
-        case: {m: c["models"][m]["static_stiffness_ratio_to_FE"] for m in ("2-layer", "3-layer")}
-        for case, c in receptance["cases"].items()
+        case: {m: c.models[m].static_stiffness_ratio_to_FE for m in ("2-layer", "3-layer")}
+        for case, c in receptance.cases.items()
     }
     starts: dict[str, float] = {}
     for route, res in passages.items():

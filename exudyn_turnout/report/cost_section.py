@@ -15,6 +15,7 @@ from exudyn_turnout.corunning.modal import dof_names
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.report import agreement as ag
 from exudyn_turnout.report.config import ReportConfig
+from exudyn_turnout.report.metrics_types import PassageMetrics, ReceptanceMetrics
 from exudyn_turnout.report.passage_api import PassageResult
 from exudyn_turnout.report.passages import (
     summary_float,
@@ -26,8 +27,8 @@ __all__ = ["cost_metrics"]
 def cost_metrics(
     turnout: Turnout,
     passages: Mapping[str, Mapping[str, PassageResult]],
-    receptance: Mapping,
-    passage_metrics: Mapping,
+    receptance: ReceptanceMetrics,
+    passage_metrics: PassageMetrics,
     config: ReportConfig,
 ) -> dict[str, Any]:
     """Wall times measured in this run, ratios, coordinates per zone, receptance times.
@@ -43,10 +44,10 @@ def cost_metrics(
     passages : mapping
         route -> model -> PassageResult of
         :func:`~exudyn_turnout.report.passages.passage_section`.
-    receptance : mapping
-        The receptance section's metrics (its wall times).
-    passage_metrics : mapping
-        The passage section's metrics (every timed run).
+    receptance : ReceptanceMetrics
+        The receptance section (its wall times).
+    passage_metrics : PassageMetrics
+        The passage section (every timed run).
     config : ReportConfig
         ``timing_repeats``.
 
@@ -60,7 +61,7 @@ def cost_metrics(
         route: {m: summary_float(r.summary, "wall_time_s") for m, r in res.items()}
         for route, res in passages.items()
     }
-    runs = {route: rt["co_running_wall_times_s"] for route, rt in passage_metrics["routes"].items()}
+    runs = {route: rt.co_running_wall_times_s for route, rt in passage_metrics.routes.items()}
     median = {route: {m: float(np.median(v)) for m, v in w.items()} for route, w in runs.items()}
     dof = {
         str(z.index): {f"{n}-layer": len(dof_names(z.active_rails, n)) for n in (2, 3)}
@@ -95,11 +96,11 @@ def cost_metrics(
         "extra_dof_per_zone": {z: d["3-layer"] - d["2-layer"] for z, d in dof.items()},
         "receptance_wall_time_s": {
             case: {
-                "co-running": c["co_running_wall_time_s"],
-                "FE": c["fe"]["wall_time_s"],
-                "FE_cached": c["fe"]["cached"],
+                "co-running": c.co_running_wall_time_s,
+                "FE": c.fe.wall_time_s,
+                "FE_cached": c.fe.cached,
             }
-            for case, c in receptance["cases"].items()
+            for case, c in receptance.cases.items()
         },
     }
     return out

@@ -48,6 +48,7 @@ from exudyn_turnout.report.config import (
     turnout_fingerprint,
 )
 from exudyn_turnout.report.cost_section import cost_metrics
+from exudyn_turnout.report.metrics_types import PassageMetrics, ReceptanceMetrics
 from exudyn_turnout.report.parameters_section import parameters_metrics
 from exudyn_turnout.report.passages import passage_section
 from exudyn_turnout.report.receptance_section import receptance_positions, receptance_section
@@ -99,12 +100,13 @@ def build_report(turnout: Turnout | None = None, config: ReportConfig = ReportCo
     metrics["stiffness"], profile = stiffness_section(turnout, config, cache, settings)
     metrics["receptance"], curves = receptance_section(turnout, config, cache, settings)
     metrics["passage"], passages = passage_section(turnout, config, cache, settings)
-    metrics["cost"] = cost_metrics(
-        turnout, passages, metrics["receptance"], metrics["passage"], config
-    )
+    # the later sections read the earlier ones typed
+    receptance = ReceptanceMetrics.from_dict(metrics["receptance"], "receptance")
+    passage = PassageMetrics.from_dict(metrics["passage"], "passage")
+    metrics["cost"] = cost_metrics(turnout, passages, receptance, passage, config)
     metrics["convergence"] = convergence_metrics(turnout, passages, config, settings)
     metrics["checks"] = static_checks(
-        turnout, passages, metrics["receptance"], config.criteria, config.vehicle
+        turnout, passages, receptance, config.criteria, config.vehicle
     )
     claims = tuple(evaluate_claims(metrics, config.criteria))
     metrics["claims"] = [dataclasses.asdict(c) for c in claims]
