@@ -49,7 +49,7 @@ def test_fe_passage_key_covers_every_module_the_passage_executes():
     of a test session counts) is a file of the FE passage's cache key, except the modules of
     ``report/``, ``cli/`` and ``plotting/`` (see :data:`NOT_RESULTS`)."""
     import exudyn_turnout
-    from exudyn_turnout.report.cache import PASSAGE_STAGES, code_files
+    from exudyn_turnout.report.cache import RESULT_STAGES, code_files
 
     root = Path(exudyn_turnout.__file__).resolve().parent
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(root.parent)] + sys.path))
@@ -67,7 +67,7 @@ def test_fe_passage_key_covers_every_module_the_passage_executes():
     files = {Path(f).resolve() for f in loaded.values() if f}
     assert all(f.is_relative_to(root) for f in files), "another copy of the package was loaded"
     relevant = {f for f in files if f.relative_to(root).parts[0] not in NOT_RESULTS}
-    covered = {f.resolve() for f in code_files(PASSAGE_STAGES)}
+    covered = {f.resolve() for f in code_files(RESULT_STAGES)}
     missing = sorted(str(f.relative_to(root)) for f in relevant - covered)
     assert not missing, f"executed in an FE passage but not in its cache key: {missing}"
 
@@ -118,7 +118,7 @@ def test_code_files_hash_stage_folders_recursively(tmp_path):
 
 
 def test_fe_passage_cache_key_follows_the_code(turnout, monkeypatch):
-    """The FE passage's key is the key of the code of :data:`PASSAGE_STAGES`: another code
+    """The FE passage's key is the key of the code of :data:`RESULT_STAGES`: another code
     fingerprint gives another key."""
     import exudyn_turnout as et
     import exudyn_turnout.report.passages as rp
@@ -128,3 +128,45 @@ def test_fe_passage_cache_key_follows_the_code(turnout, monkeypatch):
     key = rp.fe_passage_cache_key(turnout, settings, config)
     monkeypatch.setattr(rp, "code_fingerprint", lambda stages: "0" * 64)
     assert rp.fe_passage_cache_key(turnout, settings, config) != key
+
+
+def _imported_files(files, root: Path) -> set[Path]:
+    """Files of the package imported anywhere (also inside functions) by ``files``."""
+    import ast
+
+    out = set()
+    for f in files:
+        if f.suffix != ".py":
+            continue
+        for node in ast.walk(ast.parse(f.read_text(encoding="utf-8"))):
+            names = []
+            if isinstance(node, ast.ImportFrom) and node.module:
+                names = [node.module] + [f"{node.module}.{a.name}" for a in node.names]
+            elif isinstance(node, ast.Import):
+                names = [a.name for a in node.names]
+            for name in names:
+                if name != "exudyn_turnout" and not name.startswith("exudyn_turnout."):
+                    continue
+                path = root.joinpath(*name.split(".")[1:])
+                for candidate in (path.with_suffix(".py"), path / "__init__.py"):
+                    if candidate.is_file():
+                        out.add(candidate.resolve())
+    return out
+
+
+def test_key_code_imports_only_code_of_the_key():
+    """Every package module that the code of the cache key imports (at the top or in a
+    function) is itself in the key, but for ``report/``, ``cli/`` and ``plotting/`` (see
+    :data:`NOT_RESULTS`): the key of every FE result (receptance, stiffness, passage) cannot
+    miss a module by a static import either (a narrower key of inputs/ and fe/ for the FE
+    receptance did: the package's ``__init__`` imports ``corunning/parameters.py``)."""
+    import exudyn_turnout
+    from exudyn_turnout.report import cache
+
+    root = Path(exudyn_turnout.__file__).resolve().parent
+    covered = {f.resolve() for f in cache.code_files(cache.RESULT_STAGES)}
+    imported = _imported_files(covered, root)
+    relevant = {f for f in imported if f.relative_to(root).parts[0] not in NOT_RESULTS}
+    missing = sorted(str(f.relative_to(root)) for f in relevant - covered)
+    assert not missing, f"imported by the key's code but not in the key: {missing}"
+    assert len(imported) > 20  # the walk found the package's imports

@@ -30,15 +30,14 @@ __all__ = [
     "file_fingerprint",
     "code_files",
     "code_fingerprint",
-    "FE_STAGES",
-    "PASSAGE_STAGES",
+    "RESULT_STAGES",
 ]
 
-#: Stage folders of the package whose code an FE receptance or static stiffness executes.
-FE_STAGES = ("inputs", "fe")
-
-#: Stage folders of the package whose code a passage (co-running or FE) can execute.
-PASSAGE_STAGES = ("inputs", "wheel_rail", "corunning", "fe", "passage")
+#: Stage folders of the package whose code a cached result (FE receptance, FE static
+#: stiffness, FE passage) can execute. One set for all: importing the package runs
+#: ``corunning/`` code even for an FE receptance, and an FE receptance or stiffness profile is
+#: recomputed in seconds, so a narrower set would save little and could go stale.
+RESULT_STAGES = ("inputs", "wheel_rail", "corunning", "fe", "passage")
 
 #: Top-level modules of the package that every stage may execute.
 _TOP_LEVEL = ("__init__.py", "provenance.py", "receptance.py")
@@ -109,7 +108,7 @@ def _package_root() -> Path:
 
 
 def code_files(
-    stages: Iterable[str] = PASSAGE_STAGES, root: str | Path | None = None
+    stages: Iterable[str] = RESULT_STAGES, root: str | Path | None = None
 ) -> tuple[Path, ...]:
     """Every file of the package whose content a result of ``stages`` depends on.
 
@@ -121,7 +120,7 @@ def code_files(
     Parameters
     ----------
     stages : iterable of str
-        Stage folders of the package, e.g. :data:`PASSAGE_STAGES`.
+        Stage folders of the package, e.g. :data:`RESULT_STAGES`.
     root : str or Path, optional
         The package folder (default: the installed ``exudyn_turnout``).
 
@@ -139,13 +138,13 @@ def code_files(
     return tuple(sorted(files))
 
 
-def code_fingerprint(stages: Iterable[str] = PASSAGE_STAGES, root: str | Path | None = None) -> str:
+def code_fingerprint(stages: Iterable[str] = RESULT_STAGES, root: str | Path | None = None) -> str:
     """SHA-256 (hex) of the files of :func:`code_files` (their paths and bytes).
 
     Parameters
     ----------
     stages : iterable of str
-        Stage folders of the package, e.g. :data:`PASSAGE_STAGES` or :data:`FE_STAGES`.
+        Stage folders of the package, e.g. :data:`RESULT_STAGES`.
     root : str or Path, optional
         The package folder (default: the installed ``exudyn_turnout``).
 

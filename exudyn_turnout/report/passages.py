@@ -21,7 +21,7 @@ from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.report import agreement as ag
 from exudyn_turnout.report.cache import (
-    PASSAGE_STAGES,
+    RESULT_STAGES,
     ResultCache,
     code_fingerprint,
     input_key,
@@ -173,7 +173,7 @@ def fe_passage_cache_key(
     packaged file's content), the FE passage's options (mesh), :data:`FE_PASSAGE_VERSION`
     and every file of the stage folders a passage can execute
     (:func:`~exudyn_turnout.report.cache.code_fingerprint` of
-    :data:`~exudyn_turnout.report.cache.PASSAGE_STAGES`): a height-table FE result, one of
+    :data:`~exudyn_turnout.report.cache.RESULT_STAGES`): a height-table FE result, one of
     another vehicle, or one of other code, is never reused.
 
     Parameters
@@ -197,7 +197,7 @@ def fe_passage_cache_key(
         "fe_passage",
         FE_PASSAGE_VERSION,
         turnout_fingerprint(turnout),
-        code_fingerprint(PASSAGE_STAGES),
+        code_fingerprint(RESULT_STAGES),
         settings,
         config.vehicle,
         _vehicle_fingerprint(config.vehicle),

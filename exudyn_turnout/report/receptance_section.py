@@ -19,7 +19,7 @@ from exudyn_turnout.inputs.routes import dip_angle, load_route
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.receptance import Receptance
 from exudyn_turnout.report import agreement as ag
-from exudyn_turnout.report.cache import FE_STAGES, ResultCache, code_fingerprint, input_key
+from exudyn_turnout.report.cache import RESULT_STAGES, ResultCache, code_fingerprint, input_key
 from exudyn_turnout.report.config import ReportConfig, log, turnout_fingerprint
 from exudyn_turnout.report.criteria import RANGES, Criteria
 from exudyn_turnout.report.settings import (
@@ -120,7 +120,7 @@ def _cached_fe_receptance(
     key = input_key(
         "fe_receptance",
         turnout_fingerprint(turnout),
-        code_fingerprint(FE_STAGES),
+        code_fingerprint(RESULT_STAGES),
         rail,
         direction,
         x,

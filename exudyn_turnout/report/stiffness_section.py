@@ -16,7 +16,7 @@ import numpy as np
 from exudyn_turnout.corunning.modal import co_running_receptance
 from exudyn_turnout.corunning.parameters import reference_support
 from exudyn_turnout.inputs.turnout import Turnout
-from exudyn_turnout.report.cache import FE_STAGES, ResultCache, code_fingerprint, input_key
+from exudyn_turnout.report.cache import RESULT_STAGES, ResultCache, code_fingerprint, input_key
 from exudyn_turnout.report.config import ReportConfig, log, turnout_fingerprint
 from exudyn_turnout.report.settings import (
     ReportSettings,
@@ -58,7 +58,10 @@ def _cached_stiffness(turnout: Turnout, config: ReportConfig, cache: ResultCache
     from exudyn_turnout.fe.stiffness import StiffnessProfile, static_stiffness_profile
 
     key = input_key(
-        "fe_stiffness", turnout_fingerprint(turnout), code_fingerprint(FE_STAGES), config.fe_options
+        "fe_stiffness",
+        turnout_fingerprint(turnout),
+        code_fingerprint(RESULT_STAGES),
+        config.fe_options,
     )
     hit = cache.load(key)
     if hit is not None:
