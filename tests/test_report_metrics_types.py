@@ -71,7 +71,10 @@ def test_unknown_or_missing_keys_are_errors():
         ReportMetrics.from_dict(data)
     data = _load(COMMITTED[0])
     data.pop("provenance", None)  # optional: absent stays absent
-    assert "provenance" not in ReportMetrics.from_dict(data).to_dict()
+    data["passage"]["impact_route"] = None  # optional: present as null stays null
+    back = ReportMetrics.from_dict(data).to_dict()
+    assert "provenance" not in back and back["passage"]["impact_route"] is None
+    assert back == data
 
 
 def _markdown(directory: Path) -> str:

@@ -6,8 +6,9 @@ fields that are records, ``dict[str, X]``, ``list[X]`` and ``X | None``, and
 :meth:`Record.to_dict` gives the JSON object back. Values are taken as they are (no
 conversion of numbers), so ``from_dict(d).to_dict() == d``. A key that is not a valid
 Python name (e.g. ``co-running``) is named by the field's metadata ``{"key": ...}``; a key
-that may be absent is a field made by :func:`optional` (None, and no key written, when
-absent). An unknown or a missing key is an error: the schema never drifts silently.
+that may be absent is a field made by :func:`optional`: None when absent, and then not
+written back (a key present with null is written back as null; a record made in code writes
+every key). An unknown or a missing key is an error: the schema never drifts silently.
 
 A float read from ``metrics.json`` is None where the report computed NaN (JSON null).
 """
@@ -26,7 +27,7 @@ R = TypeVar("R", bound="Record")
 
 
 def optional(key: str | None = None) -> Any:
-    """A field whose JSON key may be absent (then the field is None and no key is written).
+    """A field whose JSON key may be absent (then the field is None and no key is written back).
 
     Parameters
     ----------
@@ -40,6 +41,11 @@ def optional(key: str | None = None) -> Any:
     """
     metadata = {"optional": True} | ({"key": key} if key else {})
     return dataclasses.field(default=None, metadata=metadata)
+
+
+def _fields(record: Any) -> list[dataclasses.Field]:
+    """The fields of a record that are JSON keys (not its bookkeeping)."""
+    return [f for f in dataclasses.fields(record) if not f.metadata.get("internal")]
 
 
 def json_key(f: dataclasses.Field) -> str:
@@ -94,6 +100,11 @@ def _dump(value: Any) -> Any:
 class Record:
     """Base of the typed JSON objects (see the module docstring)."""
 
+    #: JSON keys of optional fields that the parsed object did not have (not written back)
+    absent_keys: frozenset[str] = dataclasses.field(
+        default=frozenset(), repr=False, compare=False, kw_only=True, metadata={"internal": True}
+    )
+
     @classmethod
     def from_dict(cls: type[R], data: Mapping[str, Any], where: str = "") -> R:
         """The record of a parsed JSON object.
@@ -119,21 +130,24 @@ class Record:
         if not isinstance(data, Mapping):
             raise ValueError(f"{where}: expected an object, got {type(data).__name__}")
         hints = get_type_hints(cls)
-        fields = dataclasses.fields(cls)
+        fields = _fields(cls)
         unknown = set(data) - {json_key(f) for f in fields}
         if unknown:
             raise ValueError(f"{where}: unknown keys {sorted(unknown)} for {cls.__name__}")
-        values = {}
+        values: dict[str, Any] = {}
+        absent = set()
         for f in fields:
             key = json_key(f)
             if key in data:
                 values[f.name] = _load(hints[f.name], data[key], f"{where}.{key}")
-            elif not f.metadata.get("optional"):
+            elif f.metadata.get("optional"):
+                absent.add(key)
+            else:
                 raise ValueError(f"{where}: missing key {key!r} of {cls.__name__}")
-        return cls(**values)
+        return cls(**values, absent_keys=frozenset(absent))
 
     def to_dict(self) -> dict[str, Any]:
-        """The JSON object (keys in field order; absent optional keys left out).
+        """The JSON object (keys in field order; optional keys the parsed object had not left out).
 
         Returns
         -------
@@ -141,6 +155,6 @@ class Record:
         """
         return {
             json_key(f): _dump(getattr(self, f.name))
-            for f in dataclasses.fields(self)
-            if not (f.metadata.get("optional") and getattr(self, f.name) is None)
+            for f in _fields(self)
+            if json_key(f) not in self.absent_keys
         }
