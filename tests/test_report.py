@@ -17,7 +17,8 @@ import pytest
 from exudyn_turnout.cli.main import main
 from exudyn_turnout.report import agreement as ag
 from exudyn_turnout.report.cache import ResultCache, input_key
-from exudyn_turnout.report.claims import FAILS, HOLDS, NOT_CHECKED, Criteria, evaluate_claims
+from exudyn_turnout.report.claims import evaluate_claims
+from exudyn_turnout.report.criteria import FAILS, HOLDS, NOT_CHECKED, Criteria
 
 # --- metric functions -----------------------------------------------------------------
 
@@ -101,13 +102,37 @@ def _receptance_metrics(low_2l: float) -> dict:
         out["1-2000 Hz excl. pinned-pinned"] = max(r.values())
         return {"range_rms_db": out, "pinned_pinned_bands_rms_db": 5.0}
 
+    def stiffness(out):
+        out.update(
+            {"peaks_hz": [], "static_stiffness_N_per_m": 5e7, "static_stiffness_ratio_to_FE": 1.0}
+        )
+        return out
+
     case = {
         "pinned_pinned_hz": 1000.0,
+        "excluded_bands_hz": [794.3, 1000.0, 1259.0],
+        "models": {
+            "2-layer": stiffness(model(ranges)),
+            "3-layer": stiffness(model(r3)),
+            "FE": stiffness({}),
+        },
         "fe_peak_near_pinned_pinned_hz": 1010.0,
         "fe_dip_near_pinned_pinned_hz": None,
-        "models": {"2-layer": model(ranges), "3-layer": model(r3)},
+        "rail": "r2",
+        "direction": "vertical",
+        "x_m": 3.9,
+        "zone": 1,
+        "rail_type": "switch",
+        "distance_to_sleeper_m": 0.01,
+        "fe": {"cached": True, "wall_time_s": 1.0, "computed": "2026-12-01 12:00"},
+        "co_running_wall_time_s": 0.01,
+        "fe_n_dof": 1000,
     }
-    return {"cases": {f"case {i}": case for i in range(4)}}
+    return {
+        "positions": {"switch rail": {"rail": "r2", "x_m": 3.9}},
+        "cases": {f"case {i}": case for i in range(4)},
+        "frequencies": {"n": 48, "f_min_hz": 1.0, "f_max_hz": 2000.0},
+    }
 
 
 def _verdicts(metrics: dict) -> dict:
@@ -136,7 +161,14 @@ def _lateral_passage_metrics(p2: float, p3: float, pfe: float) -> dict:
     """Passage metrics of one route whose lateral crossing force is plotted (as Fig. 8)."""
 
     def model(peak: float, fe: bool) -> dict:
-        out = {"peaks_N": {"Fy_crossing": peak}, "dynamic_rms_N": {"Fy_crossing": 1e3}}
+        out = {
+            "peaks_N": {"Fy_crossing": peak},
+            "dynamic_rms_N": {"Fy_crossing": 1e3},
+            "contact_losses": 0,
+            "static_wheel_load_N": 54e3,
+            "wall_time_s": 1.0,
+            "simulated_time_s": 0.1,
+        }
         if not fe:
             rel = abs(peak) / abs(pfe) - 1
             out["vs_FE"] = {
@@ -147,11 +179,28 @@ def _lateral_passage_metrics(p2: float, p3: float, pfe: float) -> dict:
         return out
 
     models = {"2-layer": model(p2, False), "3-layer": model(p3, False), "FE": model(pfe, True)}
-    return {
-        "fe_available": True,
-        "lateral_route": "diverging",
-        "routes": {"diverging": {"signals": ["Fy_crossing"], "models": models}},
+    route = {
+        "signals": ["Fy_crossing"],
+        "fe": {"cached": False, "computed": "2026-12-01 12:00"},
+        "models": models,
+        "fe_compared": ["Fy_crossing"],
+        "co_running_wall_times_s": {"2-layer": [1.0], "3-layer": [1.1]},
     }
+    return _passage_metrics(routes={"diverging": route}, lateral_route="diverging")
+
+
+def _passage_metrics(**given) -> dict:
+    """A passage section of metrics.json: ``given`` keys, the others empty."""
+    empty = {
+        "speeds_kmh": {},
+        "regions_m": {},
+        "routes": {},
+        "steady_lateral_acceleration_m_s2": {},
+        "fe_available": True,
+        "fe_note": "",
+        "x_range_m": [0.0, 1.0],
+    }
+    return empty | given
 
 
 def test_lateral_crossing_claim_follows_the_criterion():
@@ -163,11 +212,28 @@ def test_lateral_crossing_claim_follows_the_criterion():
     # the lateral signal also gets the verdicts of the claims on every plotted signal
     assert v["F2"] == HOLDS and v["F5"] == HOLDS  # 1 % trend; 3-layer 0.5 vs 2-layer 2.0 kN
     assert _verdicts({"passage": _lateral_passage_metrics(-7.2e3, -7.1e3, -7.0e3)})["F6"] == FAILS
-    assert _verdicts({"passage": {"fe_available": True, "routes": {}}})["F6"] == NOT_CHECKED
+    assert _verdicts({"passage": _passage_metrics()})["F6"] == NOT_CHECKED
+    no_fe = _passage_metrics(fe_available=False, fe_note="switched off")
+    assert [c.evidence for c in evaluate_claims({"passage": no_fe}) if c.id == "F6"] == [
+        "FE passage not available: switched off"
+    ]
 
 
 def test_cost_claim_range():
-    cost = {"repeats": 5, "ratio_3_over_2": {"through": 1.1}, "extra_dof_per_zone": {"2": 8}}
+    cost = {
+        k: {}
+        for k in (
+            "wall_time_s",
+            "median_wall_time_s",
+            "simulated_time_s",
+            "best_ratio_3_over_2",
+            "ratio_FE_over_3",
+            "fe_run",
+            "dof_per_zone",
+            "receptance_wall_time_s",
+        )
+    }
+    cost.update({"repeats": 5, "ratio_3_over_2": {"through": 1.1}, "extra_dof_per_zone": {"2": 8}})
     assert _verdicts({"cost": cost})["C1"] == HOLDS and _verdicts({"cost": cost})["C2"] == HOLDS
     cost["ratio_3_over_2"]["through"] = 1.3
     assert _verdicts({"cost": cost})["C1"] == FAILS
@@ -194,46 +260,41 @@ def test_fe_passage_cache_key_changes_with_contact_vehicle_and_version(turnout, 
     from dataclasses import replace
 
     import exudyn_turnout.report.metrics as rm
+    import exudyn_turnout.report.passages as rp
     from exudyn_turnout.passage.results import PassageSettings
 
     settings = PassageSettings(route="through", x_start=46.0, x_end=47.0, contact="profile")
     wheelset = rm.ReportConfig(vehicle="wheelset")
-    key = rm.fe_passage_cache_key(turnout, settings, wheelset)
-    assert key == rm.fe_passage_cache_key(turnout, settings, wheelset)  # deterministic
+    key = rp.fe_passage_cache_key(turnout, settings, wheelset)
+    assert key == rp.fe_passage_cache_key(turnout, settings, wheelset)  # deterministic
     others = {
-        rm.fe_passage_cache_key(turnout, replace(settings, contact="height-table"), wheelset),
-        rm.fe_passage_cache_key(turnout, settings, rm.ReportConfig(vehicle="full")),
-        rm.fe_passage_cache_key(turnout, replace(settings, speed_kmh=90.0), wheelset),
+        rp.fe_passage_cache_key(turnout, replace(settings, contact="height-table"), wheelset),
+        rp.fe_passage_cache_key(turnout, settings, rm.ReportConfig(vehicle="full")),
+        rp.fe_passage_cache_key(turnout, replace(settings, speed_kmh=90.0), wheelset),
     }
-    import exudyn_turnout.report.passages as rp
-
     monkeypatch.setattr(rp, "FE_PASSAGE_VERSION", rp.FE_PASSAGE_VERSION + 1)
-    others.add(rm.fe_passage_cache_key(turnout, settings, wheelset))
+    others.add(rp.fe_passage_cache_key(turnout, settings, wheelset))
     assert key not in others and len(others) == 4
 
 
-def test_report_vehicle_option_and_missing_full_vehicle_fe(turnout, monkeypatch):
-    """vehicle is "full" (default) or "wheelset"; the full vehicle's FE passage is n/a, not a
-    crash, in a version whose simulate_passage has no track keyword."""
+def test_report_vehicle_option_and_fe_availability(turnout):
+    """vehicle is "full" (default) or "wheelset"; the FE passage is available for both unless
+    switched off."""
     import exudyn_turnout.report.metrics as rm
+    import exudyn_turnout.report.passages as rp
 
     assert (
         rm.ReportConfig().vehicle == "full" and rm.report_config(quick=True).vehicle == "wheelset"
     )
     with pytest.raises(ValueError, match="ReportConfig.vehicle must be one of full, wheelset"):
         rm.ReportConfig(vehicle="bogie")
-    import exudyn_turnout.report.passages as rp
-
-    monkeypatch.setattr(rp, "_full_vehicle_track_keywords", lambda: set())
-    ok, why = rm.fe_availability(rm.ReportConfig(vehicle="full"))
-    assert not ok and why == "the full vehicle on the FE track is not available in this version"
-    assert rm.fe_availability(rm.ReportConfig(vehicle="wheelset")) == (True, "")
-    config = rm.resolve_config(rm.ReportConfig(passage_x=(46.0, 47.0)), rm.report_settings(turnout))
-    with pytest.raises(rm.FENotAvailable, match="not available in this version"):
-        rm.run_passage(turnout, config, "through", "fe")
+    assert rp.fe_availability(rm.ReportConfig(vehicle="full")) == (True, "")
+    assert rp.fe_availability(rm.ReportConfig(vehicle="wheelset")) == (True, "")
+    off = rp.fe_availability(rm.ReportConfig(fe_passage=False))
+    assert off == (False, "FE passage switched off in this report")
     # the static wheel loads the report checks: M g / 8 = 44 482 x 9.81 / 8 (issue 13) and
     # (m_w + m_s) g / 2 of the single wheelset
-    assert rm.vehicle_static_load("full") == pytest.approx(44482 * 9.81 / 8, rel=1e-3)
+    assert rp.vehicle_static_load("full") == pytest.approx(44482 * 9.81 / 8, rel=1e-3)
 
 
 # --- the quick report -----------------------------------------------------------------

@@ -518,8 +518,3 @@ def load_turnout(path: str | Path | None = None) -> Turnout:
         reference_rail_type=reference,
         regions=regions,
     )
-
-
-#: Former name of :class:`~exudyn_turnout.inputs.toml_fields.FieldReader`, kept for callers
-#: not yet moved (``inputs/routes.py``, ``report/settings.py``).
-_Reader = FieldReader

@@ -169,19 +169,22 @@ def simulate_passage(
         x_range = check_vehicle_settings(settings, turnout, model, base)
         route = _route(turnout, settings, x_range)
         contact = _contact(turnout, settings, route.name, base)
-        run = implementation.simulate_vehicle
-    else:
-        if track == "fe" and settings.contact != "profile":
-            raise PassageError(
-                "the FE track runs with the profile contact only (the height-table contact "
-                "is the single wheelset's co-running baseline)"
+        with QuietExudyn():
+            return implementation.simulate_vehicle(
+                turnout, settings, model, contact, route, x_range, progress, fe_options
             )
-        x_range = check_settings(settings, turnout, model)
-        route = _route(turnout, settings, x_range)
-        contact = _contact(turnout, settings, route.name, model)
-        run = implementation.simulate_wheelset
+    if track == "fe" and settings.contact != "profile":
+        raise PassageError(
+            "the FE track runs with the profile contact only (the height-table contact "
+            "is the single wheelset's co-running baseline)"
+        )
+    x_range = check_settings(settings, turnout, model)
+    route = _route(turnout, settings, x_range)
+    contact = _contact(turnout, settings, route.name, model)
     with QuietExudyn():
-        return run(turnout, settings, model, contact, route, x_range, progress, fe_options)
+        return implementation.simulate_wheelset(
+            turnout, settings, model, contact, route, x_range, progress, fe_options
+        )
 
 
 def _implementation(track: str) -> TrackImplementation:

@@ -2,8 +2,9 @@
 
 A result is stored as ``<key>.npz`` (its arrays) and ``<key>.json`` (everything else)
 under the cache directory. The key is the SHA-256 of everything the result depends on:
-the turnout file's content, the options and settings, the frequencies, and the source
-code of the modules that compute it (so that a code change invalidates the entry). No
+the turnout file's content, the options and settings, the frequencies, and the files of
+the package's stage folders that compute it (:func:`code_fingerprint`: a code change
+invalidates the entry). No
 pickle: a cache file cannot run code.
 
 The default directory is ``$XDG_CACHE_HOME/exudyn_turnout`` (``~/.cache/exudyn_turnout``).
@@ -13,7 +14,6 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
-import importlib.util
 import json
 import os
 from collections.abc import Iterable, Mapping
@@ -27,9 +27,23 @@ __all__ = [
     "ResultCache",
     "default_cache_dir",
     "input_key",
-    "source_fingerprint",
     "file_fingerprint",
+    "code_files",
+    "code_fingerprint",
+    "RESULT_STAGES",
 ]
+
+#: Stage folders of the package whose code a cached result (FE receptance, FE static
+#: stiffness, FE passage) can execute. One set for all: importing the package runs
+#: ``corunning/`` code even for an FE receptance, and an FE receptance or stiffness profile is
+#: recomputed in seconds, so a narrower set would save little and could go stale.
+RESULT_STAGES = ("inputs", "wheel_rail", "corunning", "fe", "passage")
+
+#: Top-level modules of the package that every stage may execute.
+_TOP_LEVEL = ("__init__.py", "provenance.py", "receptance.py")
+
+#: Package data that change results: turnout and vehicle files, wheel and rail profiles.
+_DATA = ("data/**/*.toml", "data/wheel_rail/profiles/**/*")
 
 
 def default_cache_dir() -> Path:
@@ -88,32 +102,66 @@ def file_fingerprint(path: str | Path) -> str:
     return hashlib.sha256(Path(path).read_bytes()).hexdigest()
 
 
-def source_fingerprint(modules: Iterable[str]) -> str:
-    """SHA-256 (hex) of the source files of modules (a package contributes all its ``.py`` files).
+def _package_root() -> Path:
+    """The folder of the ``exudyn_turnout`` package (the parent of ``report/``)."""
+    return Path(__file__).resolve().parents[1]
 
-    Modules that cannot be found contribute their name only.
+
+def code_files(
+    stages: Iterable[str] = RESULT_STAGES, root: str | Path | None = None
+) -> tuple[Path, ...]:
+    """Every file of the package whose content a result of ``stages`` depends on.
+
+    All ``*.py`` files of the stage folders, recursively (a stage reorganised into
+    sub-folders stays covered, no module is named), the package's top-level modules
+    (``__init__.py``, ``provenance.py``, ``receptance.py``) and its data files that change
+    results (``data/**/*.toml``, the wheel and rail profiles).
 
     Parameters
     ----------
-    modules : iterable of str
-        Dotted module or package names.
+    stages : iterable of str
+        Stage folders of the package, e.g. :data:`RESULT_STAGES`.
+    root : str or Path, optional
+        The package folder (default: the installed ``exudyn_turnout``).
+
+    Returns
+    -------
+    tuple of Path
+        Paths under ``root``, sorted, no duplicates.
+    """
+    root = _package_root() if root is None else Path(root)
+    files = {root / name for name in _TOP_LEVEL if (root / name).is_file()}
+    for stage in stages:
+        files.update(f for f in (root / stage).rglob("*.py") if "__pycache__" not in f.parts)
+    for pattern in _DATA:
+        files.update(f for f in root.glob(pattern) if f.is_file())
+    return tuple(sorted(files))
+
+
+def code_fingerprint(stages: Iterable[str] = RESULT_STAGES, root: str | Path | None = None) -> str:
+    """SHA-256 (hex) of the files of :func:`code_files` (their paths and bytes).
+
+    Parameters
+    ----------
+    stages : iterable of str
+        Stage folders of the package, e.g. :data:`RESULT_STAGES`.
+    root : str or Path, optional
+        The package folder (default: the installed ``exudyn_turnout``).
 
     Returns
     -------
     str
-        64 hex digits.
+        64 hex digits; any change of a file's content, a new file or a removed one changes it.
     """
+    root = _package_root() if root is None else Path(root)
     h = hashlib.sha256()
-    for name in sorted(modules):
-        h.update(name.encode())
-        spec = importlib.util.find_spec(name)
-        if spec is None or spec.origin is None:
-            continue
-        origin = Path(spec.origin)
-        files = sorted(origin.parent.glob("*.py")) if origin.name == "__init__.py" else [origin]
-        for f in files:
-            h.update(f.name.encode())
-            h.update(f.read_bytes())
+    for f in code_files(stages, root):
+        name = f.relative_to(root).as_posix().encode()
+        data = f.read_bytes()
+        # lengths first: no two file sets can give the same byte stream
+        h.update(f"{len(name)}:{len(data)}:".encode())
+        h.update(name)
+        h.update(data)
     return h.hexdigest()
 
 

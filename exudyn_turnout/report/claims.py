@@ -1,11 +1,12 @@
 """The paper's claims, the criteria we judge them by, and their evaluation on report metrics.
 
 Every claim of Shih, Ambur & Dixon (2023) that the validation report checks is a
-function here that takes the report's metrics (plain dicts, see
-:mod:`exudyn_turnout.report.metrics`) and the :class:`Criteria`, and returns a :class:`Claim`
-with the verdict and the numbers behind it. The criteria are fixed in :class:`Criteria`
-before any result is computed and are printed in the report; they are not tuned to
-the results.
+function here that takes one section of the report's metrics (a typed record of
+:mod:`exudyn_turnout.report.metrics_types`, None when the section is missing) and the
+:class:`~exudyn_turnout.report.criteria.Criteria`, and returns a
+:class:`~exudyn_turnout.report.criteria.Claim` with the verdict and the numbers behind it.
+The criteria are fixed before any result is computed and are printed in the report; they
+are not tuned to the results.
 
 Verdicts: ``"holds"``, ``"does not hold here"``, or ``"not checked"`` when the data it
 needs (e.g. the FE passage) are not available in this run.
@@ -15,74 +16,22 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
 from typing import Any
 
-__all__ = [
-    "Criteria",
-    "Claim",
-    "HOLDS",
-    "FAILS",
-    "NOT_CHECKED",
-    "RANGES",
-    "evaluate_claims",
-    "CLAIM_FUNCTIONS",
-]
+from exudyn_turnout.report.criteria import FAILS, HOLDS, NOT_CHECKED, RANGES, Claim, Criteria
+from exudyn_turnout.report.metrics_types import (
+    CostMetrics,
+    PassageMetrics,
+    PassageModel,
+    ReceptanceCase,
+    ReceptanceMetrics,
+    ReportMetrics,
+    StiffnessMetrics,
+    StiffnessStatements,
+)
+from exudyn_turnout.report.record import Record
 
-HOLDS, FAILS, NOT_CHECKED = "holds", "does not hold here", "not checked"
-
-#: Hz, the frequency ranges of the receptance comparison (nominal one-third-octave centres).
-RANGES: tuple[tuple[float, float], ...] = ((1.0, 125.0), (125.0, 500.0), (500.0, 2000.0))
-
-
-@dataclass(frozen=True)
-class Criteria:
-    """Thresholds that turn metrics into verdicts (stated in the report before the results)."""
-
-    agree_db: float = (
-        3.0  #: dB; a model "agrees" with FE in a range if its band RMS is at most this
-    )
-    pinned_pinned_neighbours: int = 1  #: bands either side of the pinned-pinned band also left out
-    peak_prominence_db: float = 1.0  #: dB; minimum prominence of a receptance "main peak"
-    peak_agree: float = (
-        0.10  #: -; peak forces "agree" if they differ from FE by at most this fraction
-    )
-    overestimate: float = 0.05  #: -; a peak "overestimates" FE if it exceeds it by more than this
-    #: -; the lateral crossing peak "overestimates" FE if its magnitude exceeds FE's by more
-    #: than this: the same 5 % as the vertical one, because the paper makes one statement for
-    #: both figures ("overestimates the peak impact forces at the crossing panel despite a lower
-    #: vehicle speed", Sec. 4.2: the lower speed is the diverging route of Fig. 8, lateral)
-    overestimate_lateral: float = 0.05
-    trend_window: float = 1.0  #: m; running-mean window that defines a force's "overall trend"
-    trend_agree: float = 0.10  #: -; trends agree if they differ by at most this x static wheel load
-    cost_ratio: tuple[float, float] = (
-        1.0,
-        1.2,
-    )  #: -; "about 10 % more": 3-layer / 2-layer in this range
-    fe_slower: float = 10.0  #: -; "far more expensive": FE / 3-layer wall time at least this
-    converged: float = 0.01  #: -; peak change when the time step is halved at most this
-    static_tolerance: float = 0.005  #: -; static wheel load within this of (m_w + m_s) g / 2
-    stock_uniform: float = (
-        0.10  #: -; "remains the same": stock-rail K_z within this of its plain-track value
-    )
-    much_higher: float = 1.2  #: -; "much higher" stiffness: ratio at least this
-    lateral_increase: tuple[float, float] = (
-        1.15,
-        1.35,
-    )  #: -; "around 25 %": K_y end / start in this range
-
-
-@dataclass(frozen=True)
-class Claim:
-    """One claim of the paper with our verdict."""
-
-    id: str  #: short id, e.g. "R1"
-    topic: str  #: "track stiffness", "receptance", "contact forces" or "computing cost"
-    statement: str  #: the paper's claim, paraphrased, with its section
-    criterion: str  #: how we judge it
-    verdict: str  #: HOLDS, FAILS or NOT_CHECKED
-    evidence: str  #: the numbers behind the verdict, one line
-    values: Mapping[str, Any] = field(default_factory=dict)  #: those numbers, for metrics.json
+__all__ = ["evaluate_claims", "CLAIM_FUNCTIONS"]
 
 
 def _verdict(ok: bool | None) -> str:
@@ -93,19 +42,24 @@ def _range_key(lo: float, hi: float, excl: bool = False) -> str:
     return f"{lo:g}-{hi:g} Hz" + (" excl. pinned-pinned" if excl else "")
 
 
-def _cases(rec: Mapping) -> list[tuple[str, Mapping]]:
-    return list(rec.get("cases", {}).items())
+def _cases(rec: ReceptanceMetrics | None) -> list[tuple[str, ReceptanceCase]]:
+    return list(rec.cases.items()) if rec is not None else []
+
+
+def _range_rms(case: ReceptanceCase, model: str) -> Mapping[str, float]:
+    """dB per frequency range of a co-running model (FE has none)."""
+    return case.models[model].range_rms_db or {}
 
 
 def _fmt_db(values: Mapping[str, float]) -> str:
     return ", ".join(f"{k} {v:.1f} dB" for k, v in values.items())
 
 
-def _rms(rec: Mapping, model: str, key: str) -> dict[str, float]:
-    return {name: c["models"][model]["range_rms_db"][key] for name, c in _cases(rec)}
+def _rms(rec: ReceptanceMetrics | None, model: str, key: str) -> dict[str, float]:
+    return {name: _range_rms(c, model)[key] for name, c in _cases(rec)}
 
 
-def claim_two_layer_low(rec: Mapping, c: Criteria) -> Claim:
+def claim_two_layer_low(rec: ReceptanceMetrics | None, c: Criteria) -> Claim:
     """R1: two-layer band RMS vs FE over 1-125 Hz within the agreement limit, all four cases."""
     key = _range_key(*RANGES[0])
     measured = _rms(rec, "2-layer", key)
@@ -122,13 +76,10 @@ def claim_two_layer_low(rec: Mapping, c: Criteria) -> Claim:
     )
 
 
-def claim_two_layer_high(rec: Mapping, c: Criteria) -> Claim:
+def claim_two_layer_high(rec: ReceptanceMetrics | None, c: Criteria) -> Claim:
     """R2: two-layer band RMS vs FE above the agreement limit in 125-2000 Hz, all cases."""
     keys = [_range_key(*r) for r in RANGES[1:]]
-    measured = {
-        name: max(cs["models"]["2-layer"]["range_rms_db"][k] for k in keys)
-        for name, cs in _cases(rec)
-    }
+    measured = {name: max(_range_rms(cs, "2-layer")[k] for k in keys) for name, cs in _cases(rec)}
     ok = all(x > c.agree_db for x in measured.values()) if measured else None
     return Claim(
         "R2",
@@ -142,13 +93,10 @@ def claim_two_layer_high(rec: Mapping, c: Criteria) -> Claim:
     )
 
 
-def claim_three_layer_agrees(rec: Mapping, c: Criteria) -> Claim:
+def claim_three_layer_agrees(rec: ReceptanceMetrics | None, c: Criteria) -> Claim:
     """R3: three-layer within the agreement limit in every range, pinned-pinned bands left out."""
     keys = [_range_key(*r, excl=True) for r in RANGES]
-    measured = {
-        name: max(cs["models"]["3-layer"]["range_rms_db"][k] for k in keys)
-        for name, cs in _cases(rec)
-    }
+    measured = {name: max(_range_rms(cs, "3-layer")[k] for k in keys) for name, cs in _cases(rec)}
     ok = all(x <= c.agree_db for x in measured.values()) if measured else None
     return Claim(
         "R3",
@@ -163,18 +111,19 @@ def claim_three_layer_agrees(rec: Mapping, c: Criteria) -> Claim:
     )
 
 
-def claim_pinned_pinned(rec: Mapping, c: Criteria) -> Claim:
+def claim_pinned_pinned(rec: ReceptanceMetrics | None, c: Criteria) -> Claim:
     """R4: three-layer misses the pinned-pinned detail (its band RMS there above the limit)."""
     measured = {
         name: {
-            "pinned_pinned_hz": cs["pinned_pinned_hz"],
-            "FE_peak_hz": cs["fe_peak_near_pinned_pinned_hz"],
-            "FE_dip_hz": cs["fe_dip_near_pinned_pinned_hz"],
-            "3-layer_rms_db": cs["models"]["3-layer"]["pinned_pinned_bands_rms_db"],
+            "pinned_pinned_hz": cs.pinned_pinned_hz,
+            "FE_peak_hz": cs.fe_peak_near_pinned_pinned_hz,
+            "FE_dip_hz": cs.fe_dip_near_pinned_pinned_hz,
+            "3-layer_rms_db": cs.models["3-layer"].pinned_pinned_bands_rms_db,
         }
         for name, cs in _cases(rec)
     }
-    finite = [x["3-layer_rms_db"] for x in measured.values() if math.isfinite(x["3-layer_rms_db"])]
+    levels = [x["3-layer_rms_db"] for x in measured.values()]
+    finite = [x for x in levels if x is not None and math.isfinite(x)]
     ok = all(x > c.agree_db for x in finite) if finite else None
     evidence = "; ".join(
         f"{n}: f_pp {x['pinned_pinned_hz']:.0f} Hz, 3-layer {x['3-layer_rms_db']:.1f} dB"
@@ -194,7 +143,7 @@ def claim_pinned_pinned(rec: Mapping, c: Criteria) -> Claim:
     )
 
 
-def claim_three_better(rec: Mapping, c: Criteria) -> Claim:
+def claim_three_better(rec: ReceptanceMetrics | None, c: Criteria) -> Claim:
     """R5: three-layer band RMS over 1-2000 Hz (pinned-pinned left out) below the two-layer's."""
     key = _range_key(RANGES[0][0], RANGES[-1][1], excl=True)
     v2, v3 = _rms(rec, "2-layer", key), _rms(rec, "3-layer", key)
@@ -212,36 +161,43 @@ def claim_three_better(rec: Mapping, c: Criteria) -> Claim:
     )
 
 
-def _signals(pas: Mapping) -> list[tuple[str, str]]:
-    return [(route, sig) for route, r in pas.get("routes", {}).items() for sig in r["signals"]]
+def _signals(pas: PassageMetrics | None) -> list[tuple[str, str]]:
+    if pas is None:
+        return []
+    return [(route, sig) for route, r in pas.routes.items() for sig in r.signals]
 
 
-def _model(pas: Mapping, route: str, model: str) -> Mapping | None:
-    return pas["routes"][route]["models"].get(model)
-
-
-def _ran(pas: Mapping, route: str, model: str) -> Mapping:
+def _ran(pas: PassageMetrics | None, route: str, model: str) -> PassageModel:
     """The passage metrics of a model known to have run on ``route`` (KeyError otherwise)."""
-    return pas["routes"][route]["models"][model]
+    assert pas is not None  # a route of its passages
+    return pas.routes[route].models[model]
 
 
-def _fe_signals(pas: Mapping) -> list[tuple[str, str]]:
+def _vs_fe(pas: PassageMetrics | None, route: str, model: str, what: str) -> Mapping[str, float]:
+    """``what`` ("peak_relative", ...) of a model known to have an FE reference on ``route``."""
+    vs = _ran(pas, route, model).vs_FE
+    assert vs is not None  # a signal of _fe_signals
+    return getattr(vs, what)
+
+
+def _fe_signals(pas: PassageMetrics | None) -> list[tuple[str, str]]:
     """(route, signal) pairs with an FE reference (an FE passage may be absent or vertical-only)."""
     out = []
     for route, sig in _signals(pas):
-        models = [_model(pas, route, m) for m in ("2-layer", "3-layer")]
+        assert pas is not None  # it has signals
+        models = [pas.routes[route].models.get(m) for m in ("2-layer", "3-layer")]
         if all(
-            m is not None and sig in m.get("vs_FE", {}).get("peak_relative", {}) for m in models
+            m is not None and m.vs_FE is not None and sig in m.vs_FE.peak_relative for m in models
         ):
             out.append((route, sig))
     return out
 
 
-def claim_oscillates(pas: Mapping, c: Criteria) -> Claim:
+def claim_oscillates(pas: PassageMetrics | None, c: Criteria) -> Claim:
     """F1: the two-layer force oscillates more (dynamic RMS) than the three-layer force."""
     measured = {
         f"{route} {sig}": {
-            m: _ran(pas, route, m)["dynamic_rms_N"][sig] for m in ("2-layer", "3-layer")
+            m: _ran(pas, route, m).dynamic_rms_N[sig] for m in ("2-layer", "3-layer")
         }
         for route, sig in _signals(pas)
     }
@@ -263,11 +219,11 @@ def claim_oscillates(pas: Mapping, c: Criteria) -> Claim:
     )
 
 
-def _fe_peak_rel(pas: Mapping, route: str, sig: str, model: str) -> float:
-    return _ran(pas, route, model)["vs_FE"]["peak_relative"][sig]
+def _fe_peak_rel(pas: PassageMetrics | None, route: str, sig: str, model: str) -> float:
+    return _vs_fe(pas, route, model, "peak_relative")[sig]
 
 
-def claim_trend(pas: Mapping, c: Criteria) -> Claim:
+def claim_trend(pas: PassageMetrics | None, c: Criteria) -> Claim:
     """F2: running means of the 2- and 3-layer forces within the trend limit of FE's."""
     st = "All three models agree on the overall trend of the contact forces (Sec. 4.2)"
     criterion = (
@@ -278,7 +234,7 @@ def claim_trend(pas: Mapping, c: Criteria) -> Claim:
     if not signals:
         return _no_fe("F2", st, criterion, pas)
     measured = {
-        f"{route} {sig} {m}": _ran(pas, route, m)["vs_FE"]["trend_deviation"][sig]
+        f"{route} {sig} {m}": _vs_fe(pas, route, m, "trend_deviation")[sig]
         for route, sig in signals
         for m in ("2-layer", "3-layer")
     }
@@ -295,18 +251,22 @@ def claim_trend(pas: Mapping, c: Criteria) -> Claim:
 
 
 def _no_fe(
-    cid: str, statement: str, criterion: str, pas: Mapping, topic: str = "contact forces"
+    cid: str,
+    statement: str,
+    criterion: str,
+    pas: PassageMetrics | None,
+    topic: str = "contact forces",
 ) -> Claim:
     why = (
         "no FE reference for these signals in this run (outside the passage's x range, or no "
         "finite FE value)"
-        if pas.get("fe_available")
-        else f"FE passage not available: {pas.get('fe_note', 'no passage data')}"
+        if pas is not None and pas.fe_available
+        else f"FE passage not available: {pas.fe_note if pas is not None else 'no passage data'}"
     )
     return Claim(cid, topic, statement, criterion, NOT_CHECKED, why, {})
 
 
-def claim_switch_agrees(pas: Mapping, c: Criteria) -> Claim:
+def claim_switch_agrees(pas: PassageMetrics | None, c: Criteria) -> Claim:
     """F3: two-layer switch peaks within the peak limit of FE's."""
     st = (
         "The two-layer model agrees with the FE reference in the switch region, both routes (Sec. "
@@ -334,13 +294,13 @@ def claim_switch_agrees(pas: Mapping, c: Criteria) -> Claim:
     )
 
 
-def claim_overestimates(pas: Mapping, c: Criteria) -> Claim:
+def claim_overestimates(pas: PassageMetrics | None, c: Criteria) -> Claim:
     """F4: two-layer crossing peak (``impact_route``, Fz) above FE's by more than ``overestimate``.
 
-    ``pas["impact_route"]``: the first report route whose vertical force at the crossing is
+    ``pas.impact_route``: the first report route whose vertical force at the crossing is
     plotted (the through route of the UIC60 turnout, the paper's Fig. 7).
     """
-    route = pas.get("impact_route")
+    route = pas.impact_route if pas is not None else None
     st = "The two-layer model overestimates the peak impact force at the crossing (Sec. 4.2)"
     criterion = (
         f"{route or 'no'} route, peak Fz at the crossing: 2-layer exceeds FE by more than "
@@ -349,7 +309,7 @@ def claim_overestimates(pas: Mapping, c: Criteria) -> Claim:
     if route is None or (route, "Fz_crossing") not in _fe_signals(pas):
         return _no_fe("F4", st, criterion, pas)
     rel = _fe_peak_rel(pas, route, "Fz_crossing", "2-layer")
-    peaks = {m: _ran(pas, route, m)["peaks_N"]["Fz_crossing"] for m in ("2-layer", "3-layer", "FE")}
+    peaks = {m: _ran(pas, route, m).peaks_N["Fz_crossing"] for m in ("2-layer", "3-layer", "FE")}
     return Claim(
         "F4",
         "contact forces",
@@ -362,14 +322,14 @@ def claim_overestimates(pas: Mapping, c: Criteria) -> Claim:
     )
 
 
-def claim_overestimates_lateral(pas: Mapping, c: Criteria) -> Claim:
+def claim_overestimates_lateral(pas: PassageMetrics | None, c: Criteria) -> Claim:
     """F6: two-layer lateral crossing peak (``lateral_route``) above FE's in magnitude.
 
-    ``pas["lateral_route"]``: the first report route whose lateral force at the crossing is
+    ``pas.lateral_route``: the first report route whose lateral force at the crossing is
     plotted (the diverging route of the UIC60 turnout, the paper's Fig. 8). The paper's
     "despite a lower vehicle speed" (Sec. 4.2) puts its crossing statement on that route.
     """
-    route = pas.get("lateral_route")
+    route = pas.lateral_route if pas is not None else None
     st = (
         "The two-layer model overestimates the peak force at the crossing on the diverging route "
         "too, despite its lower speed: lateral force (Sec. 4.2, Fig. 8)"
@@ -380,7 +340,7 @@ def claim_overestimates_lateral(pas: Mapping, c: Criteria) -> Claim:
     )
     if route is None or (route, "Fy_crossing") not in _fe_signals(pas):
         return _no_fe("F6", st, criterion, pas)
-    peaks = {m: _ran(pas, route, m)["peaks_N"]["Fy_crossing"] for m in ("2-layer", "3-layer", "FE")}
+    peaks = {m: _ran(pas, route, m).peaks_N["Fy_crossing"] for m in ("2-layer", "3-layer", "FE")}
     rel = abs(peaks["2-layer"]) / abs(peaks["FE"]) - 1.0 if peaks["FE"] else math.nan
     ok = rel > c.overestimate_lateral if math.isfinite(rel) else None
     return Claim(
@@ -395,7 +355,7 @@ def claim_overestimates_lateral(pas: Mapping, c: Criteria) -> Claim:
     )
 
 
-def claim_three_closer(pas: Mapping, c: Criteria) -> Claim:
+def claim_three_closer(pas: PassageMetrics | None, c: Criteria) -> Claim:
     """F5: three-layer force histories and crossing peaks closer to FE than the two-layer's."""
     st = (
         "The three-layer model is closer to the FE reference than the two-layer model, above all "
@@ -412,7 +372,7 @@ def claim_three_closer(pas: Mapping, c: Criteria) -> Claim:
     measured = {}
     for route, sig in signals:
         measured[f"{route} {sig} RMS diff"] = {
-            m: _ran(pas, route, m)["vs_FE"]["rms_difference_N"][sig] for m in ("2-layer", "3-layer")
+            m: _vs_fe(pas, route, m, "rms_difference_N")[sig] for m in ("2-layer", "3-layer")
         }
         if sig.endswith("crossing"):
             measured[f"{route} {sig} |peak rel|"] = {
@@ -439,9 +399,9 @@ def claim_three_closer(pas: Mapping, c: Criteria) -> Claim:
     )
 
 
-def claim_cost(cost: Mapping, c: Criteria) -> Claim:
+def claim_cost(cost: CostMetrics | None, c: Criteria) -> Claim:
     """C1: wall-time ratio 3-layer / 2-layer within the cost range, each route."""
-    r = cost.get("ratio_3_over_2", {})
+    r = cost.ratio_3_over_2 if cost is not None else {}
     lo, hi = c.cost_ratio
     ok = all(lo <= x <= hi for x in r.values()) if r else None
     return Claim(
@@ -450,17 +410,17 @@ def claim_cost(cost: Mapping, c: Criteria) -> Claim:
         "The three-layer model costs about 10 % more computing time than the two-layer model "
         "(Sec. 4.2)",
         f"wall time 3-layer / 2-layer in [{lo:g}, {hi:g}] for each route: median over "
-        f"{cost.get('repeats', 0)} interleaved pairs (3-layer run / the 2-layer run just before "
-        "it), measured in the same run",
+        f"{cost.repeats if cost is not None else 0} interleaved pairs (3-layer run / the "
+        "2-layer run just before it), measured in the same run",
         _verdict(ok),
         ", ".join(f"{k} {x:.2f}" for k, x in r.items()),
         dict(r),
     )
 
 
-def claim_dof(cost: Mapping, c: Criteria) -> Claim:
+def claim_dof(cost: CostMetrics | None, c: Criteria) -> Claim:
     """C2: the three-layer model has 8 more coordinates in the zone with the most rails."""
-    extra = cost.get("extra_dof_per_zone", {})
+    extra = cost.extra_dof_per_zone if cost is not None else {}
     ok = max(extra.values()) == 8 if extra else None
     return Claim(
         "C2",
@@ -474,9 +434,9 @@ def claim_dof(cost: Mapping, c: Criteria) -> Claim:
     )
 
 
-def claim_fe_slower(cost: Mapping, c: Criteria) -> Claim:
+def claim_fe_slower(cost: CostMetrics | None, c: Criteria) -> Claim:
     """C3: FE passage at least ``fe_slower`` times the three-layer wall time, each route."""
-    r = cost.get("ratio_FE_over_3", {})
+    r = cost.ratio_FE_over_3 if cost is not None else {}
     st = "The co-running models need far less computing time than the FE track (Abstract, Sec. 1)"
     criterion = f"wall time FE / 3-layer (median of its runs) >= {c.fe_slower:g} for each route"
     if not r:
@@ -501,8 +461,8 @@ def claim_fe_slower(cost: Mapping, c: Criteria) -> Claim:
     )
 
 
-def _statements(st: Mapping) -> Mapping | None:
-    return st.get("statements") if st.get("available") else None
+def _statements(st: StiffnessMetrics | None) -> StiffnessStatements | None:
+    return st.statements if st is not None and st.available else None
 
 
 def _no_profile(cid: str, statement: str, criterion: str) -> Claim:
@@ -517,7 +477,7 @@ def _no_profile(cid: str, statement: str, criterion: str) -> Claim:
     )
 
 
-def claim_stock_uniform(st: Mapping, c: Criteria) -> Claim:
+def claim_stock_uniform(st: StiffnessMetrics | None, c: Criteria) -> Claim:
     """S1: FE stock-rail K_z within ``stock_uniform`` of its plain-track value."""
     s = _statements(st)
     text = (
@@ -530,19 +490,19 @@ def claim_stock_uniform(st: Mapping, c: Criteria) -> Claim:
     )
     if s is None:
         return _no_profile("S1", text, criterion)
-    lo, hi = s["stock_K_z_spread"]
+    lo, hi = s.stock_K_z_spread
     return Claim(
         "S1",
         "track stiffness",
         text,
         criterion,
         _verdict(max(-lo, hi) <= c.stock_uniform),
-        f"{s['stock_rail']}: {lo:+.1%} to {hi:+.1%} of {s['stock_plain_K_z'] / 1e6:.1f} MN/m",
-        {"spread": [lo, hi], "plain_K_z": s["stock_plain_K_z"]},
+        f"{s.stock_rail}: {lo:+.1%} to {hi:+.1%} of {s.stock_plain_K_z / 1e6:.1f} MN/m",
+        {"spread": [lo, hi], "plain_K_z": s.stock_plain_K_z},
     )
 
 
-def claim_switch_toe(st: Mapping, c: Criteria) -> Claim:
+def claim_switch_toe(st: StiffnessMetrics | None, c: Criteria) -> Claim:
     """S2: FE switch-rail K_z below the stock rail's at the toe and higher at the end of Eq 10.
 
     The end is the turnout file's ``K_sw.x_max`` (22 m for the UIC60 turnout: "until about
@@ -553,7 +513,7 @@ def claim_switch_toe(st: Mapping, c: Criteria) -> Claim:
         "The switch rail's vertical stiffness is lower than the stock rail's at the toe and "
         "increases gradually (Sec. 2)"
     )
-    x = s["switch_plateau"]["x_m"] if s is not None else math.nan
+    x = s.switch_plateau.x_m if s is not None else math.nan
     where = f"{x:g} m" if math.isfinite(x) else "the end of Eq 10"
     criterion = (
         f"K_z(switch rail, first sleeper) < K_z(stock rail, same x), and K_z(switch rail, {where}, "
@@ -561,21 +521,21 @@ def claim_switch_toe(st: Mapping, c: Criteria) -> Claim:
     )
     if s is None:
         return _no_profile("S2", text, criterion)
-    toe, plateau = s["switch_toe"], s["switch_plateau"]
-    ok = toe["K_z"] < toe["stock_K_z"] and plateau["K_z"] > toe["K_z"]
+    toe, plateau = s.switch_toe, s.switch_plateau
+    ok = toe.K_z < toe.stock_K_z and plateau.K_z > toe.K_z
     return Claim(
         "S2",
         "track stiffness",
         text,
         criterion,
         _verdict(ok),
-        f"toe (x = {toe['x_m']:.1f} m) {toe['K_z'] / 1e6:.1f} vs stock "
-        f"{toe['stock_K_z'] / 1e6:.1f} MN/m; {where} {plateau['K_z'] / 1e6:.1f} MN/m",
-        {"toe": dict(toe), "plateau": dict(plateau)},
+        f"toe (x = {toe.x_m:.1f} m) {toe.K_z / 1e6:.1f} vs stock "
+        f"{toe.stock_K_z / 1e6:.1f} MN/m; {where} {plateau.K_z / 1e6:.1f} MN/m",
+        {"toe": toe.to_dict(), "plateau": plateau.to_dict()},
     )
 
 
-def claim_crossing_stiff(st: Mapping, c: Criteria) -> Claim:
+def claim_crossing_stiff(st: StiffnessMetrics | None, c: Criteria) -> Claim:
     """S3: FE crossing K_z at least ``much_higher`` times the stock rail's in the crossing panel."""
     s = _statements(st)
     text = "The vertical stiffness at the crossing nose (crossing panel) is much higher (Sec. 2)"
@@ -584,8 +544,8 @@ def claim_crossing_stiff(st: Mapping, c: Criteria) -> Claim:
     )
     if s is None:
         return _no_profile("S3", text, criterion)
-    r = s["crossing_over_stock_K_z"]
-    lo, hi = s["crossing_x_range_m"]
+    r = s.crossing_over_stock_K_z
+    lo, hi = s.crossing_x_range_m
     return Claim(
         "S3",
         "track stiffness",
@@ -597,7 +557,7 @@ def claim_crossing_stiff(st: Mapping, c: Criteria) -> Claim:
     )
 
 
-def claim_lateral_increase(st: Mapping, c: Criteria) -> Claim:
+def claim_lateral_increase(st: StiffnessMetrics | None, c: Criteria) -> Claim:
     """S4: FE K_y end / start of the turnout within ``lateral_increase``, stock and switch rails."""
     s = _statements(st)
     text = (
@@ -611,7 +571,7 @@ def claim_lateral_increase(st: Mapping, c: Criteria) -> Claim:
     )
     if s is None:
         return _no_profile("S4", text, criterion)
-    measured = s["lateral_end_over_start"]
+    measured = s.lateral_end_over_start
     return Claim(
         "S4",
         "track stiffness",
@@ -623,16 +583,16 @@ def claim_lateral_increase(st: Mapping, c: Criteria) -> Claim:
     )
 
 
-def claim_check_lateral(st: Mapping, c: Criteria) -> Claim:
+def claim_check_lateral(st: StiffnessMetrics | None, c: Criteria) -> Claim:
     """S5: FE check-rail K_y at least ``much_higher`` times the running rail's."""
     s = _statements(st)
     text = "Check rails (stiff L-brackets) have a much higher lateral stiffness (Sec. 2)"
     criterion = (
         f"mean K_y of each check rail over the running rail's at the same x >= {c.much_higher:g}"
     )
-    if s is None or not s["check_over_running_K_y"]:
+    if s is None or not s.check_over_running_K_y:
         return _no_profile("S5", text, criterion)
-    measured = s["check_over_running_K_y"]
+    measured = s.check_over_running_K_y
     return Claim(
         "S5",
         "track stiffness",
@@ -644,8 +604,9 @@ def claim_check_lateral(st: Mapping, c: Criteria) -> Claim:
     )
 
 
-#: (metrics key, claim function) in report order.
-CLAIM_FUNCTIONS: tuple[tuple[str, Callable[[Mapping, Criteria], Claim]], ...] = (
+#: (metrics section, claim function) in report order; the function takes the section's
+#: record (:mod:`~exudyn_turnout.report.metrics_types`), None when the section is missing.
+CLAIM_FUNCTIONS: tuple[tuple[str, Callable[[Any, Criteria], Claim]], ...] = (
     ("stiffness", claim_stock_uniform),
     ("stiffness", claim_switch_toe),
     ("stiffness", claim_crossing_stiff),
@@ -667,27 +628,53 @@ CLAIM_FUNCTIONS: tuple[tuple[str, Callable[[Mapping, Criteria], Claim]], ...] = 
     ("cost", claim_fe_slower),
 )
 
+#: The sections the claims judge, by their key in the metrics.
+_SECTIONS: dict[str, type[Record]] = {
+    "stiffness": StiffnessMetrics,
+    "receptance": ReceptanceMetrics,
+    "passage": PassageMetrics,
+    "cost": CostMetrics,
+}
+
+
+def _sections(metrics: ReportMetrics | Mapping[str, Any]) -> dict[str, Record | None]:
+    """The typed sections the claims judge (None where missing)."""
+    if isinstance(metrics, ReportMetrics):
+        return {key: getattr(metrics, key) for key in _SECTIONS}
+    return {
+        key: record.from_dict(metrics[key], key) if key in metrics else None
+        for key, record in _SECTIONS.items()
+    }
+
 
 def evaluate_claims(
-    metrics: Mapping[str, Mapping],
-    criteria: Criteria = Criteria(),
+    metrics: ReportMetrics | Mapping[str, Any],
+    criteria: Criteria | None = None,
     functions: Sequence = CLAIM_FUNCTIONS,
 ) -> list[Claim]:
     """Every claim's verdict from the report metrics ("stiffness", "receptance", "passage", "cost").
 
     Parameters
     ----------
-    metrics : mapping
-        The report's metrics (``report.metrics``); missing sections make their claims
-        "not checked".
-    criteria : Criteria
-        Thresholds of the verdicts.
+    metrics : ReportMetrics or mapping
+        The report's metrics, typed, or as ``metrics.json`` holds them (each section present
+        is read as its record of :mod:`~exudyn_turnout.report.metrics_types`; a missing
+        section makes its claims "not checked").
+    criteria : Criteria, optional
+        Thresholds of the verdicts (default: :class:`~exudyn_turnout.report.criteria.Criteria`).
     functions : sequence of (str, callable)
-        (metrics key, claim function) pairs; default :data:`CLAIM_FUNCTIONS`.
+        (metrics section, claim function) pairs; default :data:`CLAIM_FUNCTIONS`.
 
     Returns
     -------
     list of Claim
         In the order of ``functions``.
+
+    Raises
+    ------
+    ValueError
+        A section that does not match its record (an unknown or a missing key).
     """
-    return [fn(metrics.get(key, {}), criteria) for key, fn in functions]
+    criteria = criteria or Criteria()
+    sections = _sections(metrics)
+    return [fn(sections.get(key), criteria) for key, fn in functions]

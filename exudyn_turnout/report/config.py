@@ -18,14 +18,15 @@ import numpy as np
 
 from exudyn_turnout.fe.mesh import FEOptions
 from exudyn_turnout.inputs.turnout import Turnout, load_turnout
-from exudyn_turnout.passage.results import PassageResult
 from exudyn_turnout.receptance import Receptance, log_frequencies
 from exudyn_turnout.report.cache import (
     default_cache_dir,
     file_fingerprint,
     input_key,
 )
-from exudyn_turnout.report.claims import Claim, Criteria
+from exudyn_turnout.report.criteria import Claim, Criteria
+from exudyn_turnout.report.metrics_types import ReportMetrics
+from exudyn_turnout.report.passage_api import PassageResult
 from exudyn_turnout.report.settings import (
     ReportSettings,
     quick_passage_x,
@@ -38,11 +39,9 @@ __all__ = [
     "resolve_config",
     "Report",
     "VEHICLES",
+    "log",
+    "turnout_fingerprint",
 ]
-
-#: Modules whose source is part of the cache key of FE results.
-_FE_CODE = ("exudyn_turnout.fe", "exudyn_turnout.inputs.turnout", "exudyn_turnout.receptance")
-
 
 #: Vehicles the report can run: the full Manchester vehicle (front wheelset's wheel plotted,
 #: as the paper) or the single benchmark wheelset under its sprung share (fast).
@@ -190,11 +189,39 @@ class Report:
     stiffness: Any = None
     settings: ReportSettings | None = None  #: the turnout's report settings
 
+    @property
+    def typed_metrics(self) -> ReportMetrics:
+        """``metrics`` read as typed records (a new object per call: ``metrics`` may grow).
 
-def _log(message: str) -> None:
+        Returns
+        -------
+        ReportMetrics
+        """
+        return ReportMetrics.from_dict(self.metrics)
+
+
+def log(message: str) -> None:
+    """Print a progress line of the report on stderr.
+
+    Parameters
+    ----------
+    message : str
+        One line, printed after ``[report]``.
+    """
     print(f"[report] {message}", file=sys.stderr, flush=True)
 
 
-def _fingerprint(turnout: Turnout) -> str:
+def turnout_fingerprint(turnout: Turnout) -> str:
+    """SHA-256 of the turnout's file, or of its parsed content when it has no file.
+
+    Parameters
+    ----------
+    turnout : Turnout
+
+    Returns
+    -------
+    str
+        Hex digits (part of the cache keys and of ``metrics.json``).
+    """
     path = Path(str(turnout.source))
     return file_fingerprint(path) if path.is_file() else input_key(dict(turnout.raw))

@@ -42,11 +42,11 @@ def receptance_panels(report, direction: str) -> list[tuple[str, Mapping, float]
     -------
     list of (str, dict, float)
     """
-    cases = report.metrics["receptance"]["cases"]
+    cases = report.typed_metrics.receptance.cases
     return [
-        (f"{case} at x = {c['x_m']:.2f} m", report.receptances[case], c["pinned_pinned_hz"])
+        (f"{case} at x = {c.x_m:.2f} m", report.receptances[case], c.pinned_pinned_hz)
         for case, c in cases.items()
-        if c["direction"] == direction
+        if c.direction == direction
     ]
 
 
@@ -64,7 +64,7 @@ def crossing_window(report) -> tuple[float, float]:
     (float, float)
         m, x_from and x_to.
     """
-    x = report.metrics["receptance"]["positions"]["crossing rail"]["x_m"]
+    x = report.typed_metrics.receptance.positions["crossing rail"].x_m
     settings = getattr(report, "settings", None)
     window = settings.crossing_plot_window if settings is not None else _DEFAULT_CROSSING_WINDOW
     before, after = window
@@ -109,23 +109,21 @@ def force_grid(
         (title, model -> PassageResult, column, x range) or None (outside the x range, or a
         signal the metrics do not have).
     """
-    p = report.metrics["passage"]
-    lo, hi = p["x_range_m"]
-    rt = p["routes"][route]
-    wheel = rt.get("wheel", "right")
-    signals = set(rt.get("all_signals", rt["signals"]))
+    p = report.typed_metrics.passage
+    lo, hi = p.x_range_m
+    rt = p.routes[route]
+    wheel = rt.wheel or "right"
+    signals = set(rt.all_signals if rt.all_signals is not None else rt.signals)
     grid: list[list[_Panel | None]] = []
     for quantity, what in (("Fz", "vertical"), ("Fy", "lateral (+ left)")):
         row: list[_Panel | None] = []
         for region in ("switch", "crossing"):
-            x0, x1 = crossing_window(report) if region == "crossing" else p["regions_m"][region]
+            x0, x1 = crossing_window(report) if region == "crossing" else p.regions_m[region]
             x0, x1 = max(x0, lo), min(x1, hi)
             if f"{quantity}_{region}" not in signals or not x1 > x0:
                 row.append(None)
                 continue
-            title = (
-                f"{route}, {p['speeds_kmh'][route]:g} km/h: {what} force, {wheel} wheel, {region}"
-            )
+            title = f"{route}, {p.speeds_kmh[route]:g} km/h: {what} force, {wheel} wheel, {region}"
             column = f"{quantity}_{wheel}_N"
             results = {
                 m: r
@@ -202,12 +200,12 @@ def write_model_figure(report, turnout, out_dir: str | Path, dpi: int = 100) -> 
     from exudyn_turnout.plotting.curves import save_figure
     from exudyn_turnout.plotting.model import draw_cross_section
 
-    receptance = report.metrics.get("receptance") or {}
-    position = receptance.get("positions", {}).get("crossing rail")
-    if not position:
+    receptance = report.typed_metrics.receptance
+    position = receptance.positions.get("crossing rail")
+    if position is None:
         return {}
-    x = float(position["x_m"])
-    route = receptance.get("route")
+    x = float(position.x_m)
+    route = receptance.route
     params = co_running_parameters(turnout, x=x, layers=3)
     ax = draw_cross_section(
         params, x, route=load_route(turnout, route) if route else None, vehicle=load_vehicle()
@@ -240,7 +238,8 @@ def stiffness_panels(report) -> list[tuple[str, list]]:
     list of (str, list)
         Title and series (label, x, y, kind) per panel.
     """
-    data, paper = report.stiffness, report.metrics["stiffness"]["paper"]
+    stiffness = report.typed_metrics.stiffness
+    data, paper = report.stiffness, stiffness.paper
     profile, fits = data["profile"], data["fits"]
     panels = []
     for direction, fit, eq, idx in (
@@ -260,8 +259,8 @@ def stiffness_panels(report) -> list[tuple[str, list]]:
                 "fit",
             )
         )
-        series.append((f"paper {eq[0]}", paper["x_m"], paper[eq[1]], "paper"))
-        slot = report.metrics["stiffness"].get("co_running_slot", "r2")
+        series.append((f"paper {eq[0]}", paper.x_m, getattr(paper, eq[1]), "paper"))
+        slot = stiffness.co_running_slot or "r2"
         series.append(
             (
                 f"2-layer co-running {slot}, 1/|H(1 Hz)|",

@@ -19,21 +19,25 @@ import numpy as np
 from exudyn_turnout.inputs.routes import load_route
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
-from exudyn_turnout.passage.results import PassageResult, PassageSettings
-from exudyn_turnout.passage.run import simulate_passage
 from exudyn_turnout.report import agreement as ag
 from exudyn_turnout.report.cache import (
+    RESULT_STAGES,
     ResultCache,
+    code_fingerprint,
     input_key,
-    source_fingerprint,
 )
-from exudyn_turnout.report.claims import Criteria
 from exudyn_turnout.report.config import (
-    _FE_CODE,
     FENotAvailable,
     ReportConfig,
-    _fingerprint,
-    _log,
+    log,
+    turnout_fingerprint,
+)
+from exudyn_turnout.report.criteria import Criteria
+from exudyn_turnout.report.passage_api import (
+    PassageResult,
+    PassageSettings,
+    fe_passage_options,
+    run_track_passage,
 )
 from exudyn_turnout.report.settings import (
     FORCES,
@@ -50,31 +54,15 @@ __all__ = [
     "run_passage",
     "fe_passage_cache_key",
     "FE_PASSAGE_VERSION",
+    "signal_key",
+    "peak_key",
+    "summary_float",
+    "vehicle_mass",
 ]
-
-#: The FE passage with the profile contact and the vehicles it carries: every module whose
-#: code changes its result (the wheel/rail package contributes all its files).
-_FE_PASSAGE_CODE = _FE_CODE + (
-    "exudyn_turnout.passage.fe_track.wheelset",
-    "exudyn_turnout.passage.fe_track.coupling",
-    "exudyn_turnout.passage.fe_track.vehicle",
-    "exudyn_turnout.passage.fe_track.vertical_legacy",
-    "exudyn_turnout.passage.corunning_track.wheelset",
-    "exudyn_turnout.passage.results",
-    "exudyn_turnout.passage.contact.profile",
-    "exudyn_turnout.passage.vehicle.wheelset",
-    "exudyn_turnout.passage.corunning_track.vehicle",
-    "exudyn_turnout.passage.vehicle.builder",
-    "exudyn_turnout.inputs.vehicle",
-    "exudyn_turnout.inputs.vehicle_model",
-    "exudyn_turnout.inputs.routes",
-    "exudyn_turnout.wheel_rail",
-)
-
 
 #: Version of the report's FE passage (a new value invalidates every cached FE passage):
 #: 2 = the FE track under the co-running passage's vehicle and profile contact, vertical and
-#: lateral (:mod:`exudyn_turnout.passage.fe_track.wheelset`); 1 was the vertical height-table one.
+#: lateral (:mod:`exudyn_turnout.passage.fe_passage`); 1 was the vertical height-table one.
 FE_PASSAGE_VERSION = 2
 
 
@@ -96,20 +84,7 @@ def _settings(turnout: Turnout, config: ReportConfig, route: str, layers: int) -
 
 def _fe_options(config: ReportConfig):
     """The FE passage's options with the report's FE mesh."""
-    from exudyn_turnout.passage.fe_track.options import FEPassageOptions
-
-    return FEPassageOptions(mesh=config.fe_options)
-
-
-def _full_vehicle_track_keywords() -> set[str]:
-    """Keywords of ``simulate_passage`` among ``track`` and ``fe_options``."""
-    import inspect
-
-    return {"track", "fe_options"} & set(inspect.signature(simulate_passage).parameters)
-
-
-#: Why the full vehicle's FE passage is n/a where the package has no ``track`` keyword for it.
-_NO_FULL_FE = "the full vehicle on the FE track is not available in this version"
+    return fe_passage_options(config.fe_options)
 
 
 def fe_availability(config: ReportConfig) -> tuple[bool, str]:
@@ -127,8 +102,6 @@ def fe_availability(config: ReportConfig) -> tuple[bool, str]:
     """
     if not config.fe_passage:
         return False, "FE passage switched off in this report"
-    if config.vehicle == "full" and "track" not in _full_vehicle_track_keywords():
-        return False, _NO_FULL_FE
     return True, ""
 
 
@@ -156,36 +129,10 @@ def run_passage(
         The single wheelset's, or the full vehicle's (the front wheelset's forces under the
         single-wheelset column names).
 
-    Raises
-    ------
-    FENotAvailable
-        ``track="fe"`` with the full vehicle in a version whose
-        ``simulate_passage`` has no ``track`` keyword.
     """
     layers = 3 if track == "fe" else int(track[0])
-    settings = settings or _settings(turnout, config, route, layers)
-    fe = {"fe_options": _fe_options(config)} if track == "fe" else {}
-    if config.vehicle == "wheelset":
-        return simulate_passage(turnout, settings, track=track, **fe)
-    from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
-
-    model = load_vehicle_model()
-    settings = replace(settings, layers=layers)
-    keywords = _full_vehicle_track_keywords()
-    if track != "fe":
-        return simulate_passage(turnout, settings, model)
-    if "track" not in keywords:
-        raise FENotAvailable(_NO_FULL_FE)
-    # keywords by name: the package may or may not have them (checked above)
-    extra: dict[str, Any] = {k: v for k, v in fe.items() if k in keywords}
-    extra["track"] = "fe"
-    import inspect
-
-    try:  # the call checked against the signature only: a TypeError in the run is a failure
-        inspect.signature(simulate_passage).bind(turnout, settings, model, **extra)
-    except TypeError as err:
-        raise FENotAvailable(f"{_NO_FULL_FE} ({err})") from None
-    return simulate_passage(turnout, settings, model, **extra)
+    settings = replace(settings or _settings(turnout, config, route, layers), layers=layers)
+    return run_track_passage(turnout, settings, config.vehicle, track, config.fe_options)
 
 
 def _timed_co_running(
@@ -201,8 +148,8 @@ def _timed_co_running(
     for _ in range(config.timing_repeats):
         for name in ("2-layer", "3-layer"):
             r = run_passage(turnout, config, route, name)
-            walls[name].append(_summary_float(r.summary, "wall_time_s"))
-            if name not in best or _summary_float(r.summary, "wall_time_s") < _summary_float(
+            walls[name].append(summary_float(r.summary, "wall_time_s"))
+            if name not in best or summary_float(r.summary, "wall_time_s") < summary_float(
                 best[name].summary, "wall_time_s"
             ):
                 best[name] = r
@@ -224,8 +171,10 @@ def fe_passage_cache_key(
     The turnout file's content, the passage settings (route, speed, x range, time step and
     the contact model), the vehicle (``config.vehicle`` and, for the full vehicle, its
     packaged file's content), the FE passage's options (mesh), :data:`FE_PASSAGE_VERSION`
-    and the source of every module that computes the result: a height-table FE result, or
-    one of another vehicle, is never reused.
+    and every file of the stage folders a passage can execute
+    (:func:`~exudyn_turnout.report.cache.code_fingerprint` of
+    :data:`~exudyn_turnout.report.cache.RESULT_STAGES`): a height-table FE result, one of
+    another vehicle, or one of other code, is never reused.
 
     Parameters
     ----------
@@ -247,13 +196,11 @@ def fe_passage_cache_key(
     return input_key(
         "fe_passage",
         FE_PASSAGE_VERSION,
-        _fingerprint(turnout),
-        source_fingerprint(_FE_PASSAGE_CODE),
+        turnout_fingerprint(turnout),
+        code_fingerprint(RESULT_STAGES),
         settings,
         config.vehicle,
         _vehicle_fingerprint(config.vehicle),
-        # whether the full vehicle's FE passage takes the report's mesh (fe_options) or not
-        sorted(_full_vehicle_track_keywords()) if config.vehicle == "full" else [],
         _fe_options(config),
         *parts,
     )
@@ -303,7 +250,20 @@ def _cached_fe_passage(
     return result, info
 
 
-def _signal_key(q: str, where: str) -> str:
+def signal_key(q: str, where: str) -> str:
+    """Name of a force signal in the metrics, e.g. ``"Fz_crossing"``.
+
+    Parameters
+    ----------
+    q : {"Fz", "Fy"}
+        The force.
+    where : {"switch", "crossing"}
+        The region.
+
+    Returns
+    -------
+    str
+    """
     return f"{q}_{where}"
 
 
@@ -312,8 +272,22 @@ def _column(q: str, wheel: str) -> str:
     return f"{q}_{wheel}_N"
 
 
-def _peak_key(q: str, where: str, wheel: str) -> str:
-    """Passage summary key of the peak of ``q`` in region ``where`` for ``wheel``."""
+def peak_key(q: str, where: str, wheel: str) -> str:
+    """Passage summary key of the peak of ``q`` in region ``where`` for ``wheel``.
+
+    Parameters
+    ----------
+    q : {"Fz", "Fy"}
+        The force.
+    where : {"switch", "crossing"}
+        The region.
+    wheel : {"right", "left"}
+
+    Returns
+    -------
+    str
+        E.g. ``"peak_Fz_crossing_N"`` (right wheel), ``"peak_Fz_crossing_left_N"``.
+    """
     return f"peak_{q}_{where}_N" if wheel == "right" else f"peak_{q}_{where}_{wheel}_N"
 
 
@@ -352,10 +326,10 @@ def passage_model_metrics(
     s, c, w = result.summary, result.columns, criteria.trend_window
     out: dict[str, Any] = {
         "peaks_N": {
-            _signal_key(q, r): _number(s, _peak_key(q, r, wheel)) for q in FORCES for r in REGIONS
+            signal_key(q, r): _number(s, peak_key(q, r, wheel)) for q in FORCES for r in REGIONS
         },
         "dynamic_rms_N": {
-            _signal_key(q, r): ag.dynamic_rms(c["x_m"], c[_column(q, wheel)], w, regions[r])
+            signal_key(q, r): ag.dynamic_rms(c["x_m"], c[_column(q, wheel)], w, regions[r])
             if _column(q, wheel) in c
             else math.nan
             for q, r in signals
@@ -370,8 +344,20 @@ def passage_model_metrics(
     return out
 
 
-def _summary_float(summary: Mapping[str, object], key: str) -> float:
-    """summary[key] as a float: a passage summary holds numbers and text, this key a number."""
+def summary_float(summary: Mapping[str, object], key: str) -> float:
+    """summary[key] as a float: a passage summary holds numbers and text, this key a number.
+
+    Parameters
+    ----------
+    summary : mapping
+        A passage's summary.
+    key : str
+        A key of a number.
+
+    Returns
+    -------
+    float
+    """
     return float(cast(SupportsFloat, summary[key]))
 
 
@@ -393,9 +379,9 @@ def _vs_reference(
     """Differences from the reference for the signals it has (a finite peak and the column)."""
     c, rc, rs = result.columns, reference.columns, reference.summary
     pairs = [
-        (_signal_key(q, r), _column(q, wheel), regions[r], _peak_key(q, r, wheel))
+        (signal_key(q, r), _column(q, wheel), regions[r], peak_key(q, r, wheel))
         for q, r in signals
-        if _column(q, wheel) in rc and math.isfinite(_number(rs, _peak_key(q, r, wheel)))
+        if _column(q, wheel) in rc and math.isfinite(_number(rs, peak_key(q, r, wheel)))
     ]
     return {
         # |peak| / |peak_FE| - 1: the lateral peaks are signed (largest magnitude), so a
@@ -462,7 +448,7 @@ def passage_section(
         "vehicle": config.vehicle,
         "vehicle_name": _vehicle_name(config.vehicle),
         "static_wheel_load_N": static,
-        "fe_coupling": "exact one-step co-simulation (exudyn_turnout.passage.fe_track.coupling)",
+        "fe_coupling": "exact one-step co-simulation (exudyn_turnout.passage.fe_coupling)",
     }
     results: dict[str, dict[str, PassageResult]] = {}
     for rr in settings.routes:
@@ -483,15 +469,15 @@ def passage_section(
             for m, res in results[route].items()
         }
         metrics["routes"][route] = {
-            "signals": [_signal_key(q, r) for q, r in rr.signals],
-            "all_signals": [_signal_key(q, r) for q, r in every],
+            "signals": [signal_key(q, r) for q, r in rr.signals],
+            "all_signals": [signal_key(q, r) for q, r in every],
             "fe": fe_info,
             "models": models,
             "wheel": rr.wheel,
             "fe_compared": list(models["2-layer"].get("vs_FE", {}).get("peak_relative", {})),
             "co_running_wall_times_s": walls,
         }
-        _log(
+        log(
             f"passages {route}: "
             + ", ".join(f"{m} {r.summary['wall_time_s']:.1f} s" for m, r in results[route].items())
         )
@@ -518,8 +504,18 @@ def vehicle_static_load(vehicle: str) -> float:
     return float(load_vehicle().static_wheel_load)
 
 
-def _vehicle_mass(vehicle: str) -> float:
-    """kg, the full vehicle's total mass, or the single wheelset's m_w + m_s."""
+def vehicle_mass(vehicle: str) -> float:
+    """The mass the report's vehicle puts on the track.
+
+    Parameters
+    ----------
+    vehicle : {"full", "wheelset"}
+
+    Returns
+    -------
+    float
+        kg, the full vehicle's total mass, or the single wheelset's m_w + m_s.
+    """
     if vehicle == "full":
         from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
 
@@ -550,10 +546,10 @@ def _run_fe_passage(turnout, settings, config, cache, fe_slots=None):
     try:
         return _cached_fe_passage(turnout, settings, config, cache, fe_slots)
     except FENotAvailable as err:
-        _log(f"FE passage n/a: {err}")
+        log(f"FE passage n/a: {err}")
         return None, {"note": str(err)}
     except Exception as err:  # an FE passage that fails must not stop the report
-        _log(f"FE passage failed: {err!r}")
+        log(f"FE passage failed: {err!r}")
         return None, {"error": _one_line(err)}
 
 

@@ -56,7 +56,8 @@ from pathlib import Path
 from typing import Any
 
 from exudyn_turnout.inputs.routes import WHEELS, dip_angle, load_route, route_names
-from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Turnout, TurnoutFileError, _Reader
+from exudyn_turnout.inputs.toml_fields import FieldReader
+from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Turnout, TurnoutFileError
 
 __all__ = [
     "quick_passage_x",
@@ -195,7 +196,7 @@ def regions(turnout: Turnout) -> dict[str, tuple[float, float]]:
     TurnoutFileError
         A region that is not two increasing finite numbers.
     """
-    r = _Reader(_filename(turnout), turnout.raw)
+    r = FieldReader(_filename(turnout), turnout.raw)
     defaults = {"switch": (0.0, 10.0), "crossing": (turnout.zones[-1].x_start, turnout.x_max)}
     out = {}
     for name in REGIONS:
@@ -224,7 +225,7 @@ def _default_speed(radius: float, a_lat: float) -> float:
     return min(_STRAIGHT_SPEED_KMH, max(5.0, 5.0 * math.floor(v / 5.0 + 1e-9)))
 
 
-def _names(r: _Reader, field: str) -> tuple[str, ...] | None:
+def _names(r: FieldReader, field: str) -> tuple[str, ...] | None:
     value = r.get(field, None)
     if value is None:
         return None
@@ -234,13 +235,13 @@ def _names(r: _Reader, field: str) -> tuple[str, ...] | None:
 
 
 def _pair(
-    r: _Reader, field: str, default: tuple[float, float], positive: bool
+    r: FieldReader, field: str, default: tuple[float, float], positive: bool
 ) -> tuple[float, float]:
     pair = _optional_pair(r, field, positive)
     return default if pair is None else pair
 
 
-def _optional_pair(r: _Reader, field: str, positive: bool) -> tuple[float, float] | None:
+def _optional_pair(r: FieldReader, field: str, positive: bool) -> tuple[float, float] | None:
     """Two numbers [a, b] from ``field`` (lengths >= 0 if ``positive``), None when absent."""
     value = r.get(field, None)
     if value is None:
@@ -253,7 +254,7 @@ def _optional_pair(r: _Reader, field: str, positive: bool) -> tuple[float, float
     return a, b
 
 
-def _route(r: _Reader, turnout: Turnout, name: str, a_lat: float) -> ReportRoute:
+def _route(r: FieldReader, turnout: Turnout, name: str, a_lat: float) -> ReportRoute:
     p = f"report.routes.{name}"
     if name not in route_names(turnout):
         raise r.fail(
@@ -333,7 +334,7 @@ def report_settings(turnout: Turnout) -> ReportSettings:
         A field of ``[report]`` (or ``[regions]``) that cannot be right; the message names
         the file and the field.
     """
-    r = _Reader(_filename(turnout), turnout.raw)
+    r = FieldReader(_filename(turnout), turnout.raw)
     section = r.get("report", {})
     if not isinstance(section, Mapping):
         raise r.fail("report", "must be a table")
