@@ -17,8 +17,8 @@ import scipy.sparse.linalg as sla
 from exudyn_turnout.fe.rail_head import rail_head_point
 from exudyn_turnout.fe.timoshenko import lagrange_shape_functions
 from exudyn_turnout.inputs.vehicle import GRAVITY, load_vehicle
-from exudyn_turnout.passage.fe_track.coupling import (
-    _Plane,
+from exudyn_turnout.passage.fe_track.planes import (
+    PlaneStepper,
     build_fe_planes,
     generalized_alpha,
     lagrange_weights,
@@ -111,7 +111,7 @@ def test_generalized_alpha_update_is_exudyns(turnout):
 
     ga = generalized_alpha(rho)
     model = SimpleNamespace(M=sp.csc_matrix([[1.0]]), K=sp.csc_matrix([[k]]), n_dof=1)
-    plane = _Plane(model, sp.csc_matrix([[c]]), h, ga)
+    plane = PlaneStepper(model, sp.csc_matrix([[c]]), h, ga)
     plane.u[:] = q0
     plane.qdd[:] = plane.a[:] = force(0.0) - k * q0
     ours = [q0]

@@ -168,7 +168,7 @@ def equivalent_track(turnout, fe_options):
     """K_t, M_t, C_t per wheel: Ritz reduction of the FE track's vertical plane on its static
     shape under both wheels at X_DIP (u = K^-1 (b_r + b_l), K_t = u.K.u / (2 w0^2), etc.),
     with the passage's damping matrix (viscous + structural at ``loss_reference_hz``)."""
-    from exudyn_turnout.passage.fe_track.coupling import build_fe_planes
+    from exudyn_turnout.passage.fe_track.planes import build_fe_planes
 
     planes = build_fe_planes(turnout, fe_options)
     m = planes.vertical

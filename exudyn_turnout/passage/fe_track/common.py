@@ -10,7 +10,7 @@ import numpy as np
 
 from exudyn_turnout.inputs.routes import Route
 from exudyn_turnout.inputs.vehicle import Vehicle
-from exudyn_turnout.passage.fe_track.coupling import generalized_alpha
+from exudyn_turnout.passage.fe_track.planes import generalized_alpha
 from exudyn_turnout.passage.results import PassageError, PassageSettings
 
 __all__ = [

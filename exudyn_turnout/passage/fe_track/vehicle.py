@@ -51,13 +51,9 @@ from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
 from exudyn_turnout.passage.contact.profile import RouteContact
-from exudyn_turnout.passage.fe_track.coupling import (
-    FEContactElement,
-    FECoSimulation,
-    build_fe_planes,
-    run_progress,
-)
+from exudyn_turnout.passage.fe_track.coupling import FEContactElement, FECoSimulation, run_progress
 from exudyn_turnout.passage.fe_track.options import FEPassageOptions
+from exudyn_turnout.passage.fe_track.planes import build_fe_planes
 from exudyn_turnout.passage.results import (
     PassageFailure,
     PassageResult,

@@ -41,14 +41,9 @@ from exudyn_turnout.passage.fe_track.common import (
     fe_contact_element,
     fe_summary,
 )
-from exudyn_turnout.passage.fe_track.coupling import (
-    FEContactElement,
-    FECoSimulation,
-    FETrackPlanes,
-    build_fe_planes,
-    run_progress,
-)
+from exudyn_turnout.passage.fe_track.coupling import FEContactElement, FECoSimulation, run_progress
 from exudyn_turnout.passage.fe_track.options import FEPassageOptions
+from exudyn_turnout.passage.fe_track.planes import FETrackPlanes, build_fe_planes
 from exudyn_turnout.passage.results import (
     PassageError,
     PassageFailure,
