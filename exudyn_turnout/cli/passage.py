@@ -81,9 +81,10 @@ def _run(args: argparse.Namespace) -> int:
     model = _full_vehicle(args.vehicle)
     vehicle = load_vehicle(args.vehicle) if model is None else None
     args.route = route_from_args(args, turnout)
-    track = args.track or f"{args.layers}-layer"
-    layers = args.layers if track == "fe" else int(track[0])
-    settings = settings_from_args(args, layers=layers, source=args.source)
+    from exudyn_turnout.passage.run import track_of
+
+    settings = settings_from_args(args, layers=args.layers, source=args.source)
+    track, settings = track_of(settings, args.track)  # the track is the one source of truth
     if track == "fe" and (
         settings.contact != "profile" or getattr(args, "parameters", None) is not None
     ):
@@ -115,13 +116,22 @@ def _run(args: argparse.Namespace) -> int:
         ("FE track, " if track == "fe" else "")
         + ("" if model is None else "full vehicle, front wheelset: "),
         turnout=turnout,
-        vehicle=vehicle if model is None else args.vehicle,
+        vehicle=vehicle if model is None else _vehicle_file(args.vehicle),
         extra_settings={
             "model": "FE" if track == "fe" else "co-running",
             "profiles": args.profiles,
             "parameters": file_record(getattr(args, "parameters", None)),
         },
     )
+
+
+def _vehicle_file(name_or_path: str) -> str:
+    """The file of ``--vehicle``: a packaged vehicle's file for its name, else the path."""
+    from exudyn_turnout.inputs.vehicle_names import PACKAGED_VEHICLES, packaged_vehicle_path
+
+    if name_or_path in PACKAGED_VEHICLES:
+        return str(packaged_vehicle_path(name_or_path))
+    return name_or_path
 
 
 def _full_vehicle(path: str | None):

@@ -56,14 +56,13 @@ from typing import Any
 from exudyn_turnout.inputs.irregularity import Irregularity, irregularity_from_spec
 from exudyn_turnout.inputs.turnout import default_turnout_path
 from exudyn_turnout.inputs.vehicle import default_vehicle_path
+from exudyn_turnout.passage.results import TRACKS
 from exudyn_turnout.studies.toml_writer import dumps, set_dotted
 
 __all__ = ["StudyError", "Case", "Study", "load_study", "study_from_dict", "FILE_FACTORS"]
 
 #: Factors that are not PassageSettings fields nor dotted file fields.
 FILE_FACTORS = ("turnout", "vehicle", "track", "irregularity", "parameters")
-
-_TRACKS = ("2-layer", "3-layer", "fe")
 
 
 class StudyError(ValueError):
@@ -457,8 +456,8 @@ def _check_value(name: str, value: Any, where: str, error) -> None:
     fields = _settings_fields()
     text = f"{where}: {name} = {value!r}"
     if name == "track":
-        if value not in _TRACKS:
-            raise error(f"{text}: must be one of {', '.join(_TRACKS)}")
+        if value not in TRACKS:
+            raise error(f"{text}: must be one of {', '.join(TRACKS)}")
     elif name in ("turnout", "vehicle", "irregularity", "parameters") or "str" in fields.get(
         name, ""
     ):
