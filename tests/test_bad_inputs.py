@@ -423,6 +423,7 @@ def test_table_size():
     assert len(CASES) >= 45
 
 
+@pytest.mark.slow
 def test_implausible_run_exit_3_and_no_stale_output(tmp_path, capsys):
     """Ballast 1e3 times too soft: the static state sinks far beyond any physical state; exit 3
     with x and what; the summary of an earlier run in --out is gone (never left to look valid)."""

@@ -76,6 +76,7 @@ def test_bad_input_one_line_exit_2(capsys, argv, fragment):
     assert err.count("\n") == 1 and fragment in err
 
 
+@pytest.mark.slow
 def test_fe_fitted_profiles(capsys):
     """--profiles fe-fit: Delta_z(x) = K_sw,fit(x) / K_st, the FE fit (fe/fits.py) for Eq 10."""
     from exudyn_turnout.corunning.parameters import reference_support

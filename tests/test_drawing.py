@@ -181,6 +181,7 @@ def test_passage_frames():
         passage_frames(0)
 
 
+@pytest.mark.slow
 def test_passage_gif(turnout, tmp_path):
     result = simulate_passage(turnout, PassageSettings(x_start=-5.0, x_end=-4.0))
     n = len(result.columns["t_s"])

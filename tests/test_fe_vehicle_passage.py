@@ -22,6 +22,7 @@ def fe_run(turnout):
     return simulate_passage(turnout, SETTINGS, load_vehicle_model(), track="fe")
 
 
+@pytest.mark.slow
 def test_static_wheel_loads_carry_the_vehicle(fe_run):
     weight_share = 44482.0 * 9.81 / 8.0
     for k in range(1, 5):
@@ -30,6 +31,7 @@ def test_static_wheel_loads_carry_the_vehicle(fe_run):
             assert load == pytest.approx(weight_share, rel=1e-3)
 
 
+@pytest.mark.slow
 def test_static_wheel_loads_equal_the_co_running_ones(turnout, fe_run):
     co = simulate_passage(turnout, SETTINGS, load_vehicle_model(), track="3-layer")
     for k in range(1, 5):
@@ -38,10 +40,12 @@ def test_static_wheel_loads_equal_the_co_running_ones(turnout, fe_run):
             assert fe_run.summary[key] == pytest.approx(co.summary[key], rel=1e-3)
 
 
+@pytest.mark.slow
 def test_wheelsets_do_not_couple_within_a_step(fe_run):
     assert 0.0 <= fe_run.summary["cross_compliance"] < 1e-6
 
 
+@pytest.mark.slow
 def test_every_wheel_stays_loaded_on_plain_track(fe_run):
     W = 44482.0 * 9.81 / 8.0
     for k in range(1, 5):

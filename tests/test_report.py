@@ -339,6 +339,7 @@ def quick_report(tmp_path_factory):
     return code, out
 
 
+@pytest.mark.slow
 def test_quick_report_writes_its_files(quick_report):
     code, out = quick_report
     assert code == 0
@@ -373,6 +374,7 @@ def test_quick_report_writes_its_files(quick_report):
     assert all(c["id"] in md for c in metrics["claims"]) and "## Summary" in md
 
 
+@pytest.mark.slow
 def test_quick_report_has_fe_lateral_references(quick_report):
     """Profile contact and the same single wheelset on all three tracks; the FE passage gives
     finite vertical and lateral peaks at the crossing on both routes (the quick window covers
@@ -404,6 +406,7 @@ def test_quick_report_has_fe_lateral_references(quick_report):
     assert "torsion-aware" in md
 
 
+@pytest.mark.slow
 def test_report_opens_with_the_summary_and_ends_with_the_appendix(quick_report):
     """Top-down: title, a one-screen summary (every claim's verdict, headline numbers and
     figures), the sections, and the long parameter table last as an appendix."""
@@ -426,6 +429,7 @@ def test_report_opens_with_the_summary_and_ends_with_the_appendix(quick_report):
     assert "Static stiffness against FE" in receptance and "K / K_FE" in receptance
 
 
+@pytest.mark.slow
 def test_every_number_in_the_tables_is_in_metrics(quick_report):
     _, out = quick_report
     values = np.array(list(_leaves(json.loads((out / "metrics.json").read_text()))))
@@ -439,6 +443,7 @@ def test_every_number_in_the_tables_is_in_metrics(quick_report):
     assert not missing, f"numbers in report.md tables not in metrics.json: {missing[:10]}"
 
 
+@pytest.mark.slow
 def test_tables_keep_their_columns(quick_report):
     """Every row of a Markdown table has its header's number of cells.
 

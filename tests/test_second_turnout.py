@@ -132,6 +132,7 @@ def test_frf(tmp_path, capsys):
     assert len(rows) == 20 and all(float(r["magnitude"]) > 0 for r in rows)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "route, speed, x_range", [("main", 100, (22.8, 24.8)), ("branch", 40, (-2.0, 3.0))]
 )
@@ -172,6 +173,7 @@ def test_simulate(tmp_path, capsys, route, speed, x_range):
 # --- FE ------------------------------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_fe_stiffness(tmp_path, capsys):
     out = tmp_path / "stiffness.csv"
     code, _, err = _run(["fe", "stiffness", "--turnout", SECOND, "--out", out], capsys)
@@ -188,6 +190,7 @@ def test_fe_stiffness(tmp_path, capsys):
     assert blade[0, 1] < plain < blade[in_crossing, 1].mean()  # slender blade tip, stiff crossing
 
 
+@pytest.mark.slow
 def test_fe_frf(tmp_path, capsys):
     out = tmp_path / "fe_frf.csv"
     code, _, err = _run(
@@ -235,6 +238,7 @@ def test_fe_frf(tmp_path, capsys):
     assert code == 0, err
 
 
+@pytest.mark.slow
 def test_fe_simulate(tmp_path, capsys):
     out = tmp_path / "fe"
     code, _, err = _run(
@@ -264,6 +268,7 @@ def test_fe_simulate(tmp_path, capsys):
 # --- validate ------------------------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_validate_quick(tmp_path, capsys):
     out = tmp_path / "report"
     code, _, err = _run(

@@ -104,6 +104,7 @@ def test_serial_study_table(serial):
         assert "package_version" in str(data["provenance"])
 
 
+@pytest.mark.slow
 def test_process_pool_gives_identical_numbers(serial, tmp_path):
     tmp, reference = serial
     pool = run_study(tmp / "study.toml", workers=2, out=tmp_path / "pool")
@@ -111,6 +112,7 @@ def test_process_pool_gives_identical_numbers(serial, tmp_path):
     _assert_same_numbers(reference.table, pool.table)
 
 
+@pytest.mark.slow
 def test_dask_local_cluster_gives_identical_numbers(serial, tmp_path):
     tmp, reference = serial
     try:
