@@ -8,7 +8,7 @@ Run: ``python validation/fe_force_balance.py``; writes ``validation/fe_force_bal
 - The diverging route's 760 m curve without cant (80 km/h, x = 10 to 32 m, averaged over
   22-32 m after the start's transient): the sum of the lateral forces on the rails equals
   the quasi-static (m_w + m_s) v^2 / R of the single wheelset (the co-running passage's
-  test, tests/test_passage.py, uses the same window on its own track).
+  test, tests/test_corunning_track_wheelset.py, uses the same window on its own track).
 """
 
 from __future__ import annotations
