@@ -29,6 +29,7 @@ import numpy as np
 
 from exudyn_turnout.inputs.routes import ContactPair, Route
 from exudyn_turnout.inputs.vehicle import Vehicle
+from exudyn_turnout.passage.contact.protocol import ContactElement
 from exudyn_turnout.passage.results import PassageError
 from exudyn_turnout.wheel_rail.laws import (
     creep_coefficient,
@@ -83,7 +84,7 @@ def _interp(xs: tuple, zs: tuple, x: float) -> float:
     return zs[i - 1] + (zs[i] - zs[i - 1]) * (x - x0) / (x1 - x0)
 
 
-class WheelRailElement:
+class WheelRailElement(ContactElement):
     """Force function of the wheel/rail contact element (see the module docstring).
 
     Parameters
@@ -115,21 +116,6 @@ class WheelRailElement:
         self.n = 6 + 2 * len({(p.i_y, p.i_z) for p in self.pairs})
         self._cached_t = math.nan
         self._geometry: tuple = ()
-
-    def x_at(self, t: float) -> float:
-        """Position of the wheelset along the route at time t: x0 + v t.
-
-        Parameters
-        ----------
-        t : float
-            s, simulation time.
-
-        Returns
-        -------
-        float
-            m, position along the route.
-        """
-        return self.x0 + self.v * t
 
     def force_columns(
         self, t: np.ndarray, q: np.ndarray, force: np.ndarray, rails: Mapping[str, int]

@@ -30,6 +30,7 @@ import numpy as np
 
 from exudyn_turnout.inputs.routes import Route
 from exudyn_turnout.inputs.vehicle import Vehicle
+from exudyn_turnout.passage.contact.protocol import ContactElement
 from exudyn_turnout.wheel_rail.kernel import (
     DETAIL_FIELDS,
     PackedTables,
@@ -85,7 +86,7 @@ class _Body:
     i_z: int  #: index of its vertical coordinate
 
 
-class ProfileContactElement:
+class ProfileContactElement(ContactElement):
     """Force function of the profile contact element (see the module docstring).
 
     Parameters
@@ -152,21 +153,6 @@ class ProfileContactElement:
         self._curvature_v = np.asarray(curvature.value, float)
         self._curvature_xs = tuple(float(a) for a in curvature.x)
         self._curvature_vs = tuple(float(a) for a in curvature.value)
-
-    def x_at(self, t: float) -> float:
-        """Position of the wheelset along the route at time t: x0 + v t.
-
-        Parameters
-        ----------
-        t : float
-            s, simulation time.
-
-        Returns
-        -------
-        float
-            m, position along the route.
-        """
-        return self.x0 + self.v * t
 
     def _prepare(self, x: float) -> None:
         self._kappa = _interp(self._curvature_xs, self._curvature_vs, x)

@@ -25,7 +25,9 @@ __all__ = ["Contact", "ContactElement"]
 
 
 class ContactElement(Protocol):
-    """A wheelset's contact element: Exudyn's force function and what the drivers read."""
+    """A wheelset's contact element: Exudyn's force function and what the drivers read.
+
+    The package's elements subclass it and inherit :meth:`x_at` (constant speed)."""
 
     vehicle: Vehicle  #: the wheelset whose contact it is
     x0: float  #: m, position at t = 0
@@ -41,7 +43,7 @@ class ContactElement(Protocol):
         """Exudyn ``forceUserFunction``: the generalised forces on the coordinates."""
 
     def x_at(self, t: float) -> float:
-        """The wheelset's position at time t.
+        """The wheelset's position at time t: x0 + v t (the implementations inherit it).
 
         Parameters
         ----------
@@ -53,6 +55,7 @@ class ContactElement(Protocol):
         float
             m.
         """
+        return self.x0 + self.v * t
 
     def wheel_loads(self, x: float, q: np.ndarray) -> dict[str, float]:
         """The normal force on each wheel.
