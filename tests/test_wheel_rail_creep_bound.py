@@ -164,3 +164,60 @@ def test_spin_uses_up_adhesion():
     for spin in (0.5, 2.0, -2.0):
         spun = polach_creep_forces(xi, 0.0, spin, A, B, LOAD, MU, G).longitudinal
         assert np.all(np.abs(spun) <= np.abs(plain) * (1.0 + 1e-12))
+
+
+def test_every_contact_of_the_compiled_kernel_keeps_the_bound(tmp_path):
+    """Property test through the whole kernel (issue 22: 1.31 mu N at a flange root in a
+    full-vehicle curving run): random wheelset states on plain track and on a crossing
+    (two-point contact, rows blended from several table nodes), every contact row
+    |(F_x, F_t)| <= mu N."""
+    from exudyn_turnout.wheel_rail.data import s1002_wheel, standard_track, uic60_rail
+    from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
+    from exudyn_turnout.wheel_rail.sections import (
+        CrossingDesign,
+        SectionGrid,
+        crossing_sections,
+        lateral_grid,
+    )
+    from exudyn_turnout.wheel_rail.tables import build_contact_table
+
+    setup = WheelsetSetup()
+    wheel = s1002_wheel(setup)
+    plain = build_contact_table(
+        wheel, standard_track(setup, np.array([-10.0, 70.0])), setup.taping_line, cache_dir=tmp_path
+    )
+    grid = lateral_grid(setup.taping_line - 0.11, setup.taping_line + 0.09, setup.grid_step)
+    x = np.linspace(-0.2, 0.6, 9)
+    rails = crossing_sections(
+        CrossingDesign(nose_tip=0.0), uic60_rail(setup), x, grid, gauge=setup.gauge
+    )
+    crossing = SectionGrid(x=x, y=grid, z=np.fmax(rails["wing"].z, rails["nose"].z), name="x")
+    crossing_table = build_contact_table(wheel, crossing, setup.taping_line, cache_dir=tmp_path)
+    packed = kernel.pack_tables(
+        [plain, crossing_table], [1, -1], [(7, 8), (9, 10)], [(-10.0, 70.0), (-0.2, 0.6)]
+    )
+    rng = np.random.default_rng(11)
+    n_q, columns = 11, kernel.DETAIL_FIELDS
+    normal, fx, ft = (columns.index(c) for c in ("normal", "Fx", "Ft"))
+    loaded = 0
+    for _ in range(3000):
+        q = np.zeros(n_q)
+        q[0] = rng.uniform(-0.011, 0.011)  # lateral: tread to flange on either side
+        q[1] = rng.uniform(-3e-4, 0.0)  # down: penetrations up to a heavy load's
+        q[2], q[3] = rng.normal(0.0, 2e-3), rng.normal(0.0, 0.01)  # roll, yaw
+        q_t = np.zeros(n_q)
+        q_t[0], q_t[2], q_t[3], q_t[4] = rng.normal(0.0, [0.3, 0.05, 0.3, 3.0])
+        speed, friction = rng.uniform(1.0, 40.0), rng.uniform(0.1, 0.6)
+        curvature = rng.uniform(-1.0 / 150.0, 1.0 / 150.0)
+        constants = np.array([speed, 0.46, friction, G, 0.0, curvature])
+        forces = np.zeros(n_q)
+        details = np.zeros((packed.n_bodies * packed.n_candidates, len(columns)))
+        kernel.contact_forces(
+            rng.uniform(-0.2, 0.6), q, q_t, np.zeros(4), packed.values, packed.blendable,
+            packed.x, packed.layout, packed.bounds, constants, forces, details,
+        )  # fmt: skip
+        rows = details[details[:, normal] > 0.0]
+        loaded += len(rows)
+        resultant = np.hypot(rows[:, fx], rows[:, ft])
+        assert np.all(resultant <= friction * rows[:, normal] * (1.0 + ROUND_OFF) + 1e-9)
+    assert loaded > 3000  # most states load one or two contacts per wheel
