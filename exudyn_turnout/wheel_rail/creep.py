@@ -36,19 +36,55 @@ Provenance of the numbers (checked 2026-11):
 Saturation: Polach's method
 ---------------------------
 O. Polach, "A fast wheel-rail forces calculation computer code", VSD 33 Suppl. (1999)
-728-739, with the reduction factors of O. Polach, "Creep forces in simulations of traction
-vehicles running on adhesion limit", Wear 258 (2005) 992-1000:
+728-739 (its Fortran listing is the reference for the formulas below), with the reduction
+factors of O. Polach, "Creep forces in simulations of traction vehicles running on adhesion
+limit", Wear 258 (2005) 992-1000.  Spin enters through the lateral creepage corrected for
+spin and the resultant creepage that includes it,
+
+    s_yC = eta + phi a   if |eta + phi a| > |eta|,  else eta,
+    s_C = sqrt(xi^2 + s_yC^2),
+
+and the tangential force of the translational creepages is saturated with s_C (spin uses up
+adhesion, so the translational force saturates earlier):
 
     F = 2 Q mu / pi (k_A eps / (1 + (k_A eps)^2) + arctan(k_S eps)),
-    eps = pi G a b c_jj s / (4 Q mu),  c_jj = sqrt((C11 xi / s)^2 + (C22 eta / s)^2),
+    eps = pi G a b c_jj s_C / (4 Q mu),  c_jj = sqrt((C11 xi / s)^2 + (C22 eta / s)^2),
+    F_x = -F xi / s_C,  F_y = -F eta / s_C + F_yS,
 
-plus the lateral force of spin from the same paper (``F_yS``, with the spin-reduced
-creepage ``s_C``).  Why Polach and not FASTSIM: it is closed form (a few dozen flops per
-contact, no strip discretisation), smooth in the creepages (good for the implicit
-integrator's Newton iterations), vectorises over all contacts of a step, and reproduces
-Kalker's linear theory for small creepage and Coulomb saturation at large creepage,
-including spin, which the flange and crossing contacts need.  FASTSIM would give the
-traction distribution (for wear maps) at ~100 times the cost; not needed here.
+with s = sqrt(xi^2 + eta^2) and the lateral force of spin
+
+    F_yS = (9/16) a Q mu K_M (1 + 6.3 (1 - exp(-a/b))) phi / s_C,
+    K_M = |eps_M| (delta^3/3 - delta^2/2 + 1/6) - sqrt((1 - delta^2)^3) / 3  (<= 0),
+    delta = (eps_M^2 - 1) / (eps_M^2 + 1),
+    eps_M = (8/3) G b sqrt(a b) C23 s_yC / (Q mu (1 + 6.3 (1 - exp(-a/b)))).
+
+Friction bound.  Coulomb's law holds at every point of the patch, |tau| <= mu p, so the
+resultant obeys |F| <= integral |tau| dA <= mu Q (Kalker's exact theory and FASTSIM never
+exceed it).  Dividing the translational part by s_C (not s) is what keeps Polach's sum
+within it: in full slip F -> mu Q and (F_x, F_y) -> -mu Q (xi, eta + k phi a) / s_C with
+k = -(9/16) K_M (1 + 6.3 (1 - exp(-a/b))) in [0, 0.72], and eta + k phi a lies between
+eta and eta + phi a, so |eta + k phi a| <= |s_yC| and |F| <= mu Q.  (Dividing by s and
+saturating with s, then adding F_yS, gives up to 1.47 mu Q at phi = -0.3 1/m.)  For the
+mixed, partly saturated range no proof is at hand; a search over 2 million random
+creepages, spins, semi-axes and loads plus a numerical maximisation found no |F| above
+mu Q (1 + 1e-12).  The resultant is therefore projected onto the friction disc,
+``F <- F min(1, mu Q / |F|)``, as a guard that holds the bound by construction; with
+k_A = k_S = 1 it is inactive to round-off (tests/test_wheel_rail_creep_bound.py).  With
+k_S > k_A Polach's saturation function itself exceeds 1 (by up to 1/pi) and the guard
+bites.
+
+Small creepage: for xi = 0, or without spin, the forces tend to Kalker's linear theory
+exactly (``-G a b C11 xi``, ``-G a b C22 eta - G (a b)^1.5 C23 phi``); with xi and eta
+both non-zero the magnitude is Kalker's and the direction that of (xi, eta).  With xi and
+spin both non-zero the linear spin force is Kalker's times |s_yC| / s_C (Polach's
+approximation; smaller than Kalker's where |xi| >> |phi a|).
+
+Why Polach and not FASTSIM: it is closed form (a few dozen flops per contact, no strip
+discretisation), smooth in the creepages (good for the implicit integrator's Newton
+iterations), vectorises over all contacts of a step, and reproduces Kalker's linear
+theory for small creepage and Coulomb saturation at large creepage, including spin, which
+the flange and crossing contacts need.  FASTSIM would give the traction distribution (for
+wear maps) at ~100 times the cost; not needed here.
 
 Sign convention: forces on the wheel, opposing the creepages (Kalker's convention).
 """
@@ -159,6 +195,7 @@ def polach_creep_forces(
     poisson: float = 0.28,
     reduction_adhesion: float = 1.0,
     reduction_slip: float = 1.0,
+    bound_resultant: bool = True,
 ) -> CreepForces:
     """Creep forces by Polach's method (1999, with 2005's reduction factors).
 
@@ -180,11 +217,15 @@ def polach_creep_forces(
         Poisson's ratio for Kalker's coefficients.
     reduction_adhesion, reduction_slip : float
         Polach's k_A and k_S (1 and 1: the 1999 model, Kalker's linear slope).
+    bound_resultant : bool
+        Project the resultant onto the friction disc, ``|F| <= mu Q`` (default).  False
+        gives Polach's closed form alone (for testing that it keeps the bound itself).
 
     Returns
     -------
     CreepForces
-        On the wheel; for small creepages equal to Kalker's linear theory.
+        On the wheel, ``|F| <= mu Q``; for small creepages Kalker's linear theory (see the
+        module docstring for the combined cases).
     """
     xi = np.asarray(creep_longitudinal, float)
     eta = np.asarray(creep_lateral, float)
@@ -196,19 +237,21 @@ def polach_creep_forces(
     coeff = kalker_coefficients(a, b, poisson)
     loaded = q > 0.0
     q_mu = np.where(loaded, q * mu, 1.0)
-    # spin-corrected lateral creepage (Polach 1999, Eq. 17)
+    # lateral creepage corrected for spin and the resultant creepage (Polach 1999)
     eta_spin = eta + phi * a
     eta_c = np.where(np.abs(eta_spin) > np.abs(eta), eta_spin, eta)
     s = np.hypot(xi, eta)
     s_c = np.hypot(xi, eta_c)
     safe_s = np.where(s > 0.0, s, 1.0)
+    safe_sc = np.where(s_c > 0.0, s_c, 1.0)
     c_jj = np.where(s > 0.0, np.hypot(coeff.c11 * xi / safe_s, coeff.c22 * eta / safe_s), coeff.c11)
-    eps = np.pi * shear_modulus * a * b * c_jj * s / (4.0 * q_mu)
+    # translational force, saturated with the resultant creepage s_C
+    eps = np.pi * shear_modulus * a * b * c_jj * s_c / (4.0 * q_mu)
     ka_eps = reduction_adhesion * eps
     force = 2.0 * q_mu / np.pi * (ka_eps / (1.0 + ka_eps**2) + np.arctan(reduction_slip * eps))
-    fx = -force * np.where(s > 0.0, xi / safe_s, 0.0)
-    fy = -force * np.where(s > 0.0, eta / safe_s, 0.0)
-    # lateral force of spin (Polach 1999, Eqs 18-21)
+    fx = -force * xi / safe_sc
+    fy = -force * eta / safe_sc
+    # lateral force of spin (Polach 1999)
     growth = 1.0 + 6.3 * (1.0 - np.exp(-a / b))
     eps_m = (8.0 / 3.0) * shear_modulus * b * np.sqrt(a * b) / q_mu * coeff.c23 * eta_c / growth
     delta = (eps_m**2 - 1.0) / (eps_m**2 + 1.0)
@@ -216,7 +259,9 @@ def polach_creep_forces(
         np.abs(eps_m) * (delta**3 / 3.0 - delta**2 / 2.0 + 1.0 / 6.0)
         - np.sqrt(np.maximum(1.0 - delta**2, 0.0) ** 3) / 3.0
     )
-    safe_sc = np.where(s_c > 0.0, s_c, 1.0)
-    fy_spin = np.where(s_c > 0.0, (9.0 / 16.0) * a * q_mu * k_m * growth * phi / safe_sc, 0.0)
-    fy = fy + fy_spin
+    fy = fy + (9.0 / 16.0) * a * q_mu * k_m * growth * phi / safe_sc
+    if bound_resultant:  # Coulomb: |F| <= mu Q (module docstring: inactive for k_A = k_S)
+        resultant = np.hypot(fx, fy)
+        scale = np.where(resultant > q_mu, q_mu / np.where(resultant > 0.0, resultant, 1.0), 1.0)
+        fx, fy = fx * scale, fy * scale
     return CreepForces(longitudinal=np.where(loaded, fx, 0.0), lateral=np.where(loaded, fy, 0.0))

@@ -33,6 +33,10 @@ wheel, the right field side for the right one), height and roll (left side up po
 :func:`solve_wheelset` finds roll and height at which both wheels touch for every lateral
 position, EN 15302's rolling-radius difference and :func:`equivalent_conicity` (regression)
 or :func:`equivalent_conicity_klingel` (integration of the kinematic motion) follow.
+
+Modules: the gridded profiles and their derivatives live in :mod:`.profile_grid`, the
+minima and envelope helpers in :mod:`.gap_minima`, the conicity and flange-climb
+characteristics in :mod:`.conicity`; their public names are re-exported here.
 """
 
 from __future__ import annotations
@@ -42,10 +46,34 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from scipy.signal import savgol_filter
+from scipy.optimize import brentq
 
-from exudyn_turnout.wheel_rail.profiles import Profile
-from exudyn_turnout.wheel_rail.sections import SectionGrid, surface_on_grid
+from exudyn_turnout.wheel_rail.conicity import (
+    equivalent_conicity,
+    equivalent_conicity_klingel,
+    flange_angle,
+    nadal_limit,
+)
+from exudyn_turnout.wheel_rail.gap_minima import (
+    _batch_local_minima,
+    _envelope,
+    _finite_runs,
+    _lower_envelope,
+    _refine,
+    _rotate,
+)
+from exudyn_turnout.wheel_rail.profile_grid import (
+    CURVATURE_WINDOW,
+    SurfaceDerivatives,
+    WheelGrid,
+    WheelsetSetup,
+    _derivatives,
+    _wheel_points,
+    grid_wheel,
+    surface_derivatives,
+    wheel_heights_on_grid,
+)
+from exudyn_turnout.wheel_rail.sections import SectionGrid
 
 __all__ = [
     "WheelsetSetup",
@@ -80,45 +108,6 @@ _NO_GAP = 1.0  # m, gap written where a candidate slot is empty
 RailRow = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
 
 
-@dataclass(frozen=True)
-class WheelsetSetup:
-    """Track and wheelset dimensions that place the profiles (SI)."""
-
-    gauge: float = 1.435  #: m, track gauge at the gauge points (standard gauge)
-    back_to_back: float = 1.360  #: m, wheelset back-to-back distance (EN 13260 nominal)
-    #: m, lateral distance from the back of the flange to the taping line (S1002, EN 13715)
-    flange_back: float = 0.070
-    #: tangent of the rail inclination still to apply to the rail profile (1/40 standard)
-    inclination: float = 1.0 / 40.0
-    gauge_depth: float = 0.014  #: m, gauge point below the top of rail (EN 15302)
-    nominal_radius: float = 0.46  #: m, wheel radius at the taping line (Manchester)
-    grid_step: float = 1e-4  #: m, lateral grid step
-
-    @property
-    def taping_line(self) -> float:
-        """m, nominal distance of the taping line from the track centre."""
-        return 0.5 * self.back_to_back + self.flange_back
-
-
-@dataclass(frozen=True, eq=False)
-class WheelGrid:
-    """A wheel profile's lower surface on a uniform grid of its own lateral coordinate."""
-
-    s: np.ndarray  #: m, lateral coordinate from the taping line, towards the field side
-    z: np.ndarray  #: m, surface height above the taping circle's lowest point (NaN: none)
-    slope: np.ndarray  #: dz/ds (-)
-    curvature: np.ndarray  #: 1/m, lateral curvature, positive convex towards the rail
-    nominal_radius: float  #: m, radius at s = 0
-
-
-@dataclass(frozen=True, eq=False)
-class SurfaceDerivatives:
-    """Slope and curvature of gridded rail surfaces (same shape as the heights)."""
-
-    slope: np.ndarray  #: dz/dy (-)
-    curvature: np.ndarray  #: 1/m, positive convex (crown)
-
-
 @dataclass(frozen=True, eq=False)
 class Candidates:
     """Candidate contact points of one wheel on one rail (arrays over candidates)."""
@@ -133,189 +122,12 @@ class Candidates:
     curvature_wheel: np.ndarray  #: 1/m, wheel lateral curvature (convex positive)
 
 
-def _derivatives(z: np.ndarray, step: float, window: float) -> tuple[np.ndarray, np.ndarray]:
-    points = max(5, int(round(window / step)) | 1)
-    filled = np.where(np.isfinite(z), z, np.nan)
-    finite = np.isfinite(filled)
-    slope = np.full(z.shape, np.nan)
-    second = np.full(z.shape, np.nan)
-    if finite.sum() <= points:
-        return slope, second
-    idx = np.arange(z.shape[-1])
-    padded = np.interp(idx, idx[finite], filled[finite])
-    slope = savgol_filter(padded, points, 3, deriv=1, delta=step)
-    second = savgol_filter(padded, points, 3, deriv=2, delta=step)
-    slope[~finite] = np.nan
-    second[~finite] = np.nan
-    return slope, second
-
-
-def grid_wheel(
-    profile: Profile, step: float = 1e-4, nominal_radius: float = 0.46, window: float = 1.5e-3
-) -> WheelGrid:
-    """Grid a wheel profile and compute its slope and lateral curvature.
-
-    Parameters
-    ----------
-    profile : Profile
-        Wheel profile (kind "wheel").
-    step : float
-        m, grid step (the rail grid must use the same).
-    nominal_radius : float
-        m, radius at the taping line.
-    window : float
-        m, Savitzky-Golay window for the derivatives.
-
-    Returns
-    -------
-    WheelGrid
-    """
-    s = np.round(np.min(profile.y) / step) * step + step * np.arange(
-        int((np.max(profile.y) - np.min(profile.y)) / step) + 1
-    )
-    z = surface_on_grid(profile, s)
-    slope, second = _derivatives(z, step, window)
-    curvature = second / (1.0 + slope**2) ** 1.5
-    return WheelGrid(s=s, z=z, slope=slope, curvature=curvature, nominal_radius=nominal_radius)
-
-
-def surface_derivatives(sections: SectionGrid, window: float = 1.5e-3) -> SurfaceDerivatives:
-    """Slopes and curvatures of every gridded rail section.
-
-    Parameters
-    ----------
-    sections : SectionGrid
-        Gridded rail sections.
-    window : float
-        m, Savitzky-Golay window.
-
-    Returns
-    -------
-    SurfaceDerivatives
-        Arrays shaped like ``sections.z``.
-    """
-    step = float(sections.y[1] - sections.y[0])
-    slopes, curvatures = [], []
-    for row in np.atleast_2d(sections.z):
-        slope, second = _derivatives(row, step, window)
-        slopes.append(slope)
-        curvatures.append(-second / (1.0 + slope**2) ** 1.5)
-    return SurfaceDerivatives(slope=np.array(slopes), curvature=np.array(curvatures))
-
-
-def wheel_heights_on_grid(
-    wheel: WheelGrid,
-    y_grid: np.ndarray,
-    taping_line: float,
-    shift: float = 0.0,
-    lift: float = 0.0,
-    roll: float = 0.0,
-) -> tuple[np.ndarray, np.ndarray]:
-    """Wheel surface height and its lateral coordinate at every rail grid point.
-
-    Parameters
-    ----------
-    wheel : WheelGrid
-        Gridded wheel.
-    y_grid : numpy.ndarray
-        m, rail grid (side coordinates, or any frame in which the wheel's taping line is at
-        ``taping_line + shift``).
-    taping_line : float
-        m, nominal lateral position of the taping line in the grid's frame.
-    shift : float
-        m, lateral displacement of the wheel towards the field side.
-    lift : float
-        m, height of the taping circle's lowest point above z = 0.
-    roll : float
-        rad, rotation about the wheelset centre, which lies ``taping_line`` towards the track
-        centre and ``nominal_radius`` above the taping circle's lowest point; positive lifts
-        the field side of this wheel.
-
-    Returns
-    -------
-    heights : numpy.ndarray
-        m, wheel surface height on the grid (NaN outside the wheel).
-    s_wheel : numpy.ndarray
-        m, wheel lateral coordinate at each grid point.
-    """
-    y_points, z_points = _wheel_points(wheel, taping_line, shift, lift, roll)
-    finite = np.isfinite(z_points)
-    inside = (y_grid >= y_points[finite][0]) & (y_grid <= y_points[finite][-1])
-    heights = np.full(y_grid.shape, np.nan)
-    heights[inside] = np.interp(y_grid[inside], y_points[finite], z_points[finite])
-    s_wheel = np.interp(y_grid, y_points[finite], wheel.s[finite])
-    return heights, s_wheel
-
-
-def _local_minima(gap: np.ndarray, prominence: float) -> list[int]:
-    """Indices of local minima of ``gap`` that lie in separate regions (lowest first)."""
-    return _batch_local_minima(gap[None, :], prominence)[0]
-
-
-def _merge_minima(g: np.ndarray, minima: list, prominence: float) -> list[int]:
-    minima = sorted(minima, key=lambda i: g[i])
-    kept: list[int] = []
-    for i in minima:
-        separate = True
-        for j in kept:
-            lo, hi = (i, j) if i < j else (j, i)
-            if np.max(g[lo : hi + 1]) - g[i] < prominence:
-                separate = False
-                break
-        if separate:
-            kept.append(i)
-    return kept
-
-
-def _batch_local_minima(gap: np.ndarray, prominence: float) -> list[list[int]]:
-    """Separate local minima of every row of a 2-D gap array (see :func:`_local_minima`)."""
-    g = np.where(np.isfinite(gap), gap, np.inf)
-    interior = (g[:, 1:-1] <= g[:, :-2]) & (g[:, 1:-1] < g[:, 2:]) & np.isfinite(g[:, 1:-1])
-    rows, cols = np.nonzero(interior)
-    result: list[list[int]] = [[] for _ in range(gap.shape[0])]
-    for row, col in zip(rows.tolist(), (cols + 1).tolist()):
-        result[row].append(col)
-    return [
-        (_merge_minima(g[r], found, prominence) if len(found) > 1 else found)
-        for r, found in enumerate(result)
-    ]
-
-
-def _refine(gap: np.ndarray, i: int) -> tuple[float, float]:
-    """Sub-grid offset (in steps) and value of a minimum by a parabola through 3 points."""
-    left, mid, right = gap[i - 1], gap[i], gap[i + 1]
-    if not (np.isfinite(left) and np.isfinite(right)):
-        return 0.0, float(mid)  # at the edge of a rail: no parabola
-    curvature = left - 2.0 * mid + right
-    offset = 0.5 * (left - right) / curvature if curvature > 0 else 0.0
-    offset = min(max(offset, -0.5), 0.5)
-    return offset, mid - 0.25 * (left - right) * offset
-
-
-def _finite_runs(values: np.ndarray) -> list[slice]:
-    finite = np.concatenate(([False], np.isfinite(values), [False]))
-    edges = np.flatnonzero(finite[1:] != finite[:-1])
-    return [slice(int(a), int(b)) for a, b in zip(edges[::2], edges[1::2]) if b - a >= 3]
-
-
-def _rotate(y: np.ndarray, z: np.ndarray, theta: float) -> tuple[np.ndarray, np.ndarray]:
-    c, s = math.cos(theta), math.sin(theta)
-    return c * y + s * z, -s * y + c * z
-
-
-def _envelope(v: np.ndarray, w: np.ndarray, grid: np.ndarray, upper: bool) -> np.ndarray:
-    profile = Profile(y=v, z=w, kind="rail" if upper else "wheel", source="")
-    return surface_on_grid(profile, grid)
-
-
 #: rad, default extra search direction: finds a flange millimetres away from the gauge corner
 FLANGE_DIRECTION = math.radians(60.0)
 #: rad, search direction for the back of the flange against a check rail
 CHECK_RAIL_DIRECTION = math.radians(-70.0)
 #: m, height of the wheel's inner face added above the profile's first (flange back) point
 INNER_FACE_HEIGHT = 0.06
-#: m, Savitzky-Golay window for profile slopes and curvatures
-CURVATURE_WINDOW = 1.5e-3
 
 
 @dataclass(frozen=True, eq=False)
@@ -432,8 +244,9 @@ def prepare_wheel(
     for theta in directions:
         v, w = _rotate(face_y, face_z, theta)
         v_grid = np.arange(float(np.min(v)), float(np.max(v)), step)
-        lower = _envelope(v, w, v_grid, upper=False)
-        s_at = np.interp(v_grid, *_increasing(v, face_s))
+        # the rotated profile folds over itself (flange, inner face): s is that of the
+        # point forming the lower envelope, not an interpolation across the folds
+        lower, s_at = _lower_envelope(v, w, face_s, v_grid)
         slope, second = _derivatives(lower, step, CURVATURE_WINDOW)
         prepared.append((theta, v_grid, lower, s_at, second / (1.0 + slope**2) ** 1.5))
     return PreparedWheel(
@@ -444,11 +257,6 @@ def prepare_wheel(
         surface_z=wheel.z[finite],
         directions=tuple(prepared),
     )
-
-
-def _increasing(v: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    order = np.argsort(v, kind="stable")
-    return v[order], values[order]
 
 
 def _vertical_minima(
@@ -471,8 +279,10 @@ def _vertical_minima(
             y = float(y_grid[i] + offset * step)
             s = float(np.interp(y - shift, wheel.y, wheel.s))
             k = min(max(int(round((s - wheel_s[0]) / wheel_step)), 0), len(wheel_s) - 1)
-            wheel_slope = float(wheel.wheel.slope[k])
-            rail_slope = float(rail.slope[i])
+            # slopes at the refined point (the grid point's would step the angle by up to
+            # 2.5 deg per grid step on the flange root)
+            wheel_slope = float(np.interp(s, wheel_s, wheel.wheel.slope))
+            rail_slope = float(np.interp(y, y_grid, rail.slope))
             rail_slope = rail_slope if math.isfinite(rail_slope) else 0.0
             slope = 0.5 * (rail_slope + wheel_slope) if math.isfinite(wheel_slope) else rail_slope
             angle = math.atan(slope)
@@ -511,11 +321,11 @@ def _directional_minima(
         rail_w_filled = np.nan_to_num(rail_w)
         for row, minima in enumerate(_batch_local_minima(gap, prominence)):
             for i in minima:
-                angle = theta + math.atan(float(rail_dw[i]))
-                if abs(angle - theta) >= limit:
+                if abs(math.atan(float(rail_dw[i]))) >= limit:
                     continue
                 offset, value = _refine(gap[row], i)
                 v = float(v_grid[i] + offset * step)
+                angle = theta + math.atan(float(np.interp(v, v_grid, rail_dw)))
                 w_rail = float(np.interp(v, v_grid, rail_w_filled))
                 results[row].append(
                     (
@@ -672,20 +482,42 @@ def find_candidates(
     return search_candidates(rail, prepared, shift, lift, max_candidates, prominence, max_gap)
 
 
-def _wheel_points(
-    wheel: WheelGrid, taping_line: float, shift: float, lift: float, roll: float
-) -> tuple[np.ndarray, np.ndarray]:
-    r0 = wheel.nominal_radius
-    y_points = taping_line + wheel.s
-    z_points = wheel.z - r0
-    if roll:
-        c, s = math.cos(roll), math.sin(roll)
-        y_points, z_points = c * y_points - s * z_points, s * y_points + c * z_points
-    return y_points + shift, z_points + r0 + lift
-
-
 def _vertical_gap(found: Candidates) -> float:
     return float(found.gap[0] / math.cos(found.angle[0]))
+
+
+def _solve_roll(
+    gaps: Any, lever: float, evaluations: int, tolerance: float, start: float = 0.0
+) -> float:
+    """Roll at which the two wheels' vertical gaps are equal (``gaps(roll)`` -> both gaps).
+
+    The difference increases with the roll (it lifts the left wheel and lowers the right
+    one).  From ``start`` a first step with the tread's slope ``2 lever``, then steps
+    doubling until the difference changes sign, then Brent's method on the bracket.
+    """
+
+    def difference(roll: float) -> float:
+        left, right = gaps(roll)
+        return left - right
+
+    low, f_low = start, difference(start)
+    if abs(f_low) <= tolerance:
+        return start
+    step = -f_low / (2.0 * lever)
+    high, f_high = low + step, difference(low + step)
+    used = 2
+    while f_high * f_low > 0.0 and abs(f_high) > tolerance:
+        if used >= evaluations:
+            raise RuntimeError("solve_wheelset: no roll found at which the wheel gaps agree")
+        step *= 2.0
+        low, f_low = high, f_high
+        high, f_high = low + step, difference(low + step)
+        used += 1
+    if abs(f_high) <= tolerance:
+        return high
+    return float(
+        brentq(difference, min(low, high), max(low, high), xtol=1e-12, maxiter=evaluations)
+    )
 
 
 @dataclass(frozen=True, eq=False)
@@ -718,9 +550,10 @@ def solve_wheelset(
     left_rail: RailRow,
     right_rail: RailRow,
     setup: WheelsetSetup,
-    iterations: int = 8,
+    iterations: int = 60,
     max_candidates: int = 3,
     max_gap: float = 0.005,
+    tolerance: float = 1e-10,
 ) -> WheelsetContact:
     """Roll and height of a rigid wheelset touching both rails, for each lateral displacement.
 
@@ -736,15 +569,27 @@ def solve_wheelset(
     setup : WheelsetSetup
         Dimensions.
     iterations : int
-        Roll iterations (the gap difference converges by a factor ~100 per iteration).
+        Most evaluations of the two vertical gaps per lateral position in the roll search.
     max_candidates : int
         Candidates kept per wheel.
     max_gap : float
         m, candidates with a larger gap (at equilibrium) are dropped.
+    tolerance : float
+        m, the roll is solved until the two wheels' vertical gaps differ by less.
 
     Returns
     -------
     WheelsetContact
+
+    Notes
+    -----
+    The roll makes the two wheels' vertical gaps equal (then the lift closes both).  The
+    difference grows with the roll by about twice the half track width while both wheels run
+    on their treads, but far less once one flange is in contact (the roll also moves that
+    wheel sideways, against the flange); a fixed-point step with the tread's slope then
+    converges by a factor of only ~0.85 per step and left the wheelset interpenetrating the
+    rail by up to 0.13 mm after 8 steps.  :func:`_solve_roll` brackets the root and
+    refines it with Brent's method instead.
     """
     taping = setup.taping_line
     lever = taping
@@ -765,54 +610,42 @@ def solve_wheelset(
             "candidates_right",
         )
     }
+    rails = [
+        (prepare_rail(*rail, directions=()), prepare_rail(*rail), side)
+        for rail, side in ((left_rail, 1.0), (right_rail, -1.0))
+    ]
+    roll = 0.0
     for y in np.asarray(y_values, float):
-        roll = 0.0
-        for _ in range(iterations):
-            gap_left = _vertical_gap(
-                find_candidates(
-                    *left_rail,
-                    wheel,
-                    taping,
-                    shift=y,
-                    roll=roll,
-                    max_candidates=1,
-                    max_gap=1.0,
-                    directions=(),
+
+        def gaps(roll: float, y: float = y) -> tuple[float, float]:
+            left, right = (
+                _vertical_gap(
+                    search_candidates(
+                        vertical,
+                        prepare_wheel(wheel, taping, side * roll, ()),
+                        shift=side * y,
+                        max_candidates=1,
+                        max_gap=1.0,
+                    )  # fmt: skip
                 )
+                for vertical, _full, side in rails
             )
-            gap_right = _vertical_gap(
-                find_candidates(
-                    *right_rail,
-                    wheel,
-                    taping,
-                    shift=-y,
-                    roll=-roll,
-                    max_candidates=1,
-                    max_gap=1.0,
-                    directions=(),
-                )
-            )
-            roll -= (gap_left - gap_right) / (2.0 * lever)
+            return left, right
+
+        # the previous position's roll starts the search (the roll changes little per step)
+        roll = _solve_roll(gaps, lever, iterations, tolerance, start=roll)
+        gap_left, gap_right = gaps(roll)
         lift = -0.5 * (gap_left + gap_right)
-        left = find_candidates(
-            *left_rail,
-            wheel,
-            taping,
-            shift=y,
-            lift=lift,
-            roll=roll,
-            max_candidates=max_candidates,
-            max_gap=max_gap,
-        )
-        right = find_candidates(
-            *right_rail,
-            wheel,
-            taping,
-            shift=-y,
-            lift=lift,
-            roll=-roll,
-            max_candidates=max_candidates,
-            max_gap=max_gap,
+        left, right = (
+            search_candidates(
+                full,
+                prepare_wheel(wheel, taping, side * roll),
+                shift=side * y,
+                lift=lift,
+                max_candidates=max_candidates,
+                max_gap=max_gap,
+            )  # fmt: skip
+            for _vertical, full, side in rails
         )
         results["roll"].append(roll)
         results["lift"].append(lift)
@@ -862,167 +695,3 @@ def rail_row(sections: SectionGrid, derivatives: SurfaceDerivatives, index: int 
         curvature (1/m) of section ``index`` on the lateral grid ``y_grid`` (m).
     """
     return (sections.z[index], derivatives.slope[index], derivatives.curvature[index], sections.y)
-
-
-def equivalent_conicity(
-    y: np.ndarray, delta_r: np.ndarray, amplitude: float, samples: int = 2000
-) -> float:
-    """Equivalent conicity by EN 15302's linear regression of the Delta r function.
-
-    The wheelset moves sinusoidally, ``y = amplitude sin(theta)``, sampled uniformly in time
-    over one period; the regression line of Delta r on y through the origin has slope
-    ``2 gamma_e`` (EN 15302:2008+A1:2010, Annex C; for a sinusoid this is the first-harmonic
-    (describing-function) linearisation).
-
-    Parameters
-    ----------
-    y : numpy.ndarray
-        m, lateral displacements where Delta r is known (increasing, covering +-amplitude).
-    delta_r : numpy.ndarray
-        m, rolling-radius difference r_left - r_right at ``y``.
-    amplitude : float
-        m, amplitude of the wheelset's lateral motion (3 mm for EN 15302's reference value).
-    samples : int
-        Samples over one period.
-
-    Returns
-    -------
-    float
-        Equivalent conicity gamma_e (-).
-
-    Notes
-    -----
-    The regression line passes through the origin, so ``delta_r`` must be odd in ``y``
-    (symmetric wheelset and track).  Where the amplitude just reaches a jump of Delta r
-    (contact moving to the flange root) the regression overestimates the conicity of the
-    kinematic motion: on EN 15302's reference function E2 (Annex E) it gives 0.090 at 3 mm
-    against the reference 0.058, and on E4 0.372 at 2 mm against 0.293, outside the
-    standard's tolerance band.  :func:`equivalent_conicity_klingel` reproduces all nine
-    reference functions; for S1002 on UIC60 1:40 (1435 / 1360 mm) the two agree to 0.002
-    at 3 mm.
-    """
-    theta = 2.0 * np.pi * (np.arange(samples) + 0.5) / samples
-    motion = amplitude * np.sin(theta)
-    dr = np.interp(motion, y, delta_r)
-    return float(np.sum(dr * motion) / (2.0 * np.sum(motion * motion)))
-
-
-def equivalent_conicity_klingel(
-    y: np.ndarray, delta_r: np.ndarray, amplitude: float, samples: int = 2000, refine: int = 20
-) -> float:
-    """Equivalent conicity from the wavelength of the kinematic motion (EN 15302, Annex B).
-
-    The wheelset's kinematic (Klingel) motion obeys ``y'' = -Delta r(y) / (2 e r0)``; its
-    energy integral gives the yaw angle ``psi(y)^2 = F(y) / (e r0)`` with
-    ``F(y) = integral from y to y_max of Delta r``, and the wavelength is
-    ``lambda = 2 integral from y_min to y_max of dy / psi``.  The equivalent conicity is the
-    cone with Klingel's wavelength ``2 pi sqrt(e r0 / gamma_e)``, so
-    ``gamma_e = (pi / integral dy / sqrt(F))^2``, independent of ``e`` and ``r0``.  The
-    turning points are ``y_min, y_max = c -+ amplitude``, the centre ``c`` chosen so that
-    the integral of Delta r between them vanishes (``c = 0`` for an odd Delta r; not zero
-    for unequal wheel radii).  The substitution ``y = c - amplitude cos(theta)`` removes the
-    square-root singularities at the turning points.
-
-    Parameters
-    ----------
-    y : numpy.ndarray
-        Lateral displacements where Delta r is known (increasing; any length unit).
-    delta_r : numpy.ndarray
-        Rolling-radius difference r_left - r_right at ``y`` (same unit), increasing through
-        zero over the motion.
-    amplitude : float
-        Half the peak-to-peak lateral motion (same unit; 3 mm for EN 15302's value).
-    samples : int
-        Midpoint samples in ``theta`` over the half period.
-    refine : int
-        Sub-intervals per interval of ``y`` for the running integral of Delta r (linear
-        interpolation between the given points, as for :func:`equivalent_conicity`).
-
-    Returns
-    -------
-    float
-        Equivalent conicity gamma_e (-).
-
-    Raises
-    ------
-    ValueError
-        If the motion does not fit into ``y`` or Delta r does not change sign over it.
-
-    Notes
-    -----
-    Checked against the nine reference Delta r functions of EN 15302:2008+A1:2010, Annex E
-    and their reference conicities (amplitudes 1-6 mm every 0.1 mm, where the motion fits
-    the tabulated range): within 0.001 for eight cases, 0.007 for E5 (unequal wheel radii,
-    at 1-2 mm).
-    """
-    y = np.asarray(y, float)
-    delta_r = np.asarray(delta_r, float)
-    fine = np.linspace(y[0], y[-1], refine * (len(y) - 1) + 1)
-    values = np.interp(fine, y, delta_r)
-    running = np.concatenate(([0.0], np.cumsum(0.5 * (values[1:] + values[:-1]) * np.diff(fine))))
-
-    def window(centre: float) -> float:
-        return float(
-            np.interp(centre + amplitude, fine, running)
-            - np.interp(centre - amplitude, fine, running)
-        )
-
-    low, high = y[0] + amplitude, y[-1] - amplitude
-    if not low < high or not window(low) < 0.0 < window(high):
-        raise ValueError(
-            f"a motion of amplitude {amplitude} does not fit into y = "
-            f"[{y[0]}, {y[-1]}] with Delta r changing sign over it"
-        )
-    for _ in range(100):  # bisection: the window integral increases with the centre
-        middle = 0.5 * (low + high)
-        if window(middle) < 0.0:
-            low = middle
-        else:
-            high = middle
-    centre = 0.5 * (low + high)
-    theta = np.pi * (np.arange(samples) + 0.5) / samples
-    position = centre - amplitude * np.cos(theta)
-    remaining = np.interp(centre + amplitude, fine, running) - np.interp(position, fine, running)
-    integral = np.sum(amplitude * np.sin(theta) / np.sqrt(np.maximum(remaining, 1e-300)))
-    integral *= np.pi / samples
-    return float((np.pi / integral) ** 2)
-
-
-def flange_angle(wheel: WheelGrid, s_range: tuple = (-0.065, -0.020)) -> float:
-    """Largest contact angle on the flange flank of a wheel (the flange angle).
-
-    Parameters
-    ----------
-    wheel : WheelGrid
-        Gridded wheel.
-    s_range : tuple
-        m, lateral range of the flange flank (S1002: the flank lies between the flange tip,
-        about 55 mm, and the flange root, about 25 mm, on the gauge side of the taping line).
-
-    Returns
-    -------
-    float
-        rad, ``max atan(-dz/ds)``... expressed as a positive angle of the flank to the
-        horizontal.
-    """
-    inside = (wheel.s >= s_range[0]) & (wheel.s <= s_range[1]) & np.isfinite(wheel.slope)
-    return float(np.max(np.arctan(wheel.slope[inside])))
-
-
-def nadal_limit(flange_angle_rad: float, friction: float) -> float:
-    """Nadal's flange-climb limit Y/Q = (tan g - mu) / (1 + mu tan g).
-
-    Parameters
-    ----------
-    flange_angle_rad : float
-        rad, flange angle g.
-    friction : float
-        Friction coefficient mu at the flange.
-
-    Returns
-    -------
-    float
-        Limit ratio of lateral to vertical wheel force.
-    """
-    t = math.tan(flange_angle_rad)
-    return (t - friction) / (1.0 + friction * t)

@@ -291,8 +291,9 @@ def pack_tables(
 def polach_scalar(xi, eta, phi, a, b, Q, mu, G, c11, c22, c23):  # pragma: no cover (compiled)
     """Polach's creep forces (1999) for one contact, compiled: (F_x, F_y) on the wheel.
 
-    The formulas of :func:`.creep.polach_creep_forces` with ``k_A = k_S = 1`` (tested equal
-    to it), for scalar inputs and Kalker's coefficients given.
+    The formulas of :func:`.creep.polach_creep_forces` with ``k_A = k_S = 1`` and the
+    resultant bounded by ``mu Q`` (tested equal to it), for scalar inputs and Kalker's
+    coefficients given.
 
     Parameters
     ----------
@@ -323,23 +324,28 @@ def polach_scalar(xi, eta, phi, a, b, Q, mu, G, c11, c22, c23):  # pragma: no co
     eta_c = eta_spin if abs(eta_spin) > abs(eta) else eta
     s = math.hypot(xi, eta)
     s_c = math.hypot(xi, eta_c)
+    if s_c <= 0.0:
+        return 0.0, 0.0
     fx = 0.0
     fy = 0.0
-    if s > 0.0:
+    if s > 0.0:  # translational force, saturated with the resultant creepage s_C
         c_jj = math.hypot(c11 * xi / s, c22 * eta / s)
-        eps = math.pi * G * a * b * c_jj * s / (4.0 * q_mu)
+        eps = math.pi * G * a * b * c_jj * s_c / (4.0 * q_mu)
         force = 2.0 * q_mu / math.pi * (eps / (1.0 + eps * eps) + math.atan(eps))
-        fx = -force * xi / s
-        fy = -force * eta / s
-    if s_c > 0.0:
-        growth = 1.0 + 6.3 * (1.0 - math.exp(-a / b))
-        eps_m = (8.0 / 3.0) * G * b * math.sqrt(a * b) / q_mu * c23 * eta_c / growth
-        delta = (eps_m * eps_m - 1.0) / (eps_m * eps_m + 1.0)
-        k_m = (
-            abs(eps_m) * (delta**3 / 3.0 - delta * delta / 2.0 + 1.0 / 6.0)
-            - math.sqrt(max(1.0 - delta * delta, 0.0) ** 3) / 3.0
-        )
-        fy += (9.0 / 16.0) * a * q_mu * k_m * growth * phi / s_c
+        fx = -force * xi / s_c
+        fy = -force * eta / s_c
+    growth = 1.0 + 6.3 * (1.0 - math.exp(-a / b))
+    eps_m = (8.0 / 3.0) * G * b * math.sqrt(a * b) / q_mu * c23 * eta_c / growth
+    delta = (eps_m * eps_m - 1.0) / (eps_m * eps_m + 1.0)
+    k_m = (
+        abs(eps_m) * (delta**3 / 3.0 - delta * delta / 2.0 + 1.0 / 6.0)
+        - math.sqrt(max(1.0 - delta * delta, 0.0) ** 3) / 3.0
+    )
+    fy += (9.0 / 16.0) * a * q_mu * k_m * growth * phi / s_c
+    resultant = math.hypot(fx, fy)
+    if resultant > q_mu:  # Coulomb: |F| <= mu Q (guard, see creep's docstring)
+        fx *= q_mu / resultant
+        fy *= q_mu / resultant
     return fx, fy
 
 

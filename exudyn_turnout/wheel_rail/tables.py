@@ -54,7 +54,7 @@ __all__ = [
     "normal_force",
 ]
 
-_FORMAT_VERSION = "wheel_rail-table-8"
+_FORMAT_VERSION = "wheel_rail-table-9"
 _FIELDS = (
     "gap",
     "y_rail",
