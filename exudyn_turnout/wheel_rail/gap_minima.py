@@ -14,14 +14,21 @@ import math
 import numpy as np
 
 from exudyn_turnout.wheel_rail.profiles import Profile
-from exudyn_turnout.wheel_rail.sections import _monotone_runs, surface_on_grid
+from exudyn_turnout.wheel_rail.sections import monotone_runs, surface_on_grid
 
-__all__: list[str] = []
+__all__ = [
+    "batch_local_minima",
+    "refine_minimum",
+    "finite_runs",
+    "rotate_profile",
+    "profile_envelope",
+    "lower_envelope",
+]
 
 
 def _local_minima(gap: np.ndarray, prominence: float) -> list[int]:
     """Indices of local minima of ``gap`` that lie in separate regions (lowest first)."""
-    return _batch_local_minima(gap[None, :], prominence)[0]
+    return batch_local_minima(gap[None, :], prominence)[0]
 
 
 def _merge_minima(g: np.ndarray, minima: list, prominence: float) -> list[int]:
@@ -39,8 +46,22 @@ def _merge_minima(g: np.ndarray, minima: list, prominence: float) -> list[int]:
     return kept
 
 
-def _batch_local_minima(gap: np.ndarray, prominence: float) -> list[list[int]]:
-    """Separate local minima of every row of a 2-D gap array (see :func:`_local_minima`)."""
+def batch_local_minima(gap: np.ndarray, prominence: float) -> list[list[int]]:
+    """Separate local minima of every row of a 2-D gap array (see :func:`_local_minima`).
+
+    Parameters
+    ----------
+    gap : numpy.ndarray
+        (rows, n) m, gaps on a grid; non-finite where there is no surface.
+    prominence : float
+        m, a minimum counts separately when the gap between it and every kept lower one
+        rises by at least this much.
+
+    Returns
+    -------
+    list of list of int
+        Per row, the indices of its separate minima, lowest first.
+    """
     g = np.where(np.isfinite(gap), gap, np.inf)
     interior = (g[:, 1:-1] <= g[:, :-2]) & (g[:, 1:-1] < g[:, 2:]) & np.isfinite(g[:, 1:-1])
     rows, cols = np.nonzero(interior)
@@ -53,8 +74,24 @@ def _batch_local_minima(gap: np.ndarray, prominence: float) -> list[list[int]]:
     ]
 
 
-def _refine(gap: np.ndarray, i: int) -> tuple[float, float]:
-    """Sub-grid offset (in steps) and value of a minimum by a parabola through 3 points."""
+def refine_minimum(gap: np.ndarray, i: int) -> tuple[float, float]:
+    """Sub-grid offset (in steps) and value of a minimum by a parabola through 3 points.
+
+    Parameters
+    ----------
+    gap : numpy.ndarray
+        m, the gap on a grid.
+    i : int
+        Index of the grid minimum (not at either end).
+
+    Returns
+    -------
+    offset : float
+        Grid steps from ``i`` to the parabola's minimum, within [-0.5, 0.5] (0 at a rail's
+        edge).
+    value : float
+        m, the gap there.
+    """
     left, mid, right = gap[i - 1], gap[i], gap[i + 1]
     if not (np.isfinite(left) and np.isfinite(right)):
         return 0.0, float(mid)  # at the edge of a rail: no parabola
@@ -64,23 +101,63 @@ def _refine(gap: np.ndarray, i: int) -> tuple[float, float]:
     return offset, mid - 0.25 * (left - right) * offset
 
 
-def _finite_runs(values: np.ndarray) -> list[slice]:
+def finite_runs(values: np.ndarray) -> list[slice]:
+    """Runs of at least three consecutive finite values.
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+
+    Returns
+    -------
+    list of slice
+    """
     finite = np.concatenate(([False], np.isfinite(values), [False]))
     edges = np.flatnonzero(finite[1:] != finite[:-1])
     return [slice(int(a), int(b)) for a, b in zip(edges[::2], edges[1::2]) if b - a >= 3]
 
 
-def _rotate(y: np.ndarray, z: np.ndarray, theta: float) -> tuple[np.ndarray, np.ndarray]:
+def rotate_profile(y: np.ndarray, z: np.ndarray, theta: float) -> tuple[np.ndarray, np.ndarray]:
+    """A profile's points in axes turned by theta (v along the new lateral axis).
+
+    Parameters
+    ----------
+    y, z : numpy.ndarray
+        m, the points.
+    theta : float
+        rad.
+
+    Returns
+    -------
+    v, w : numpy.ndarray
+        m.
+    """
     c, s = math.cos(theta), math.sin(theta)
     return c * y + s * z, -s * y + c * z
 
 
-def _envelope(v: np.ndarray, w: np.ndarray, grid: np.ndarray, upper: bool) -> np.ndarray:
+def profile_envelope(v: np.ndarray, w: np.ndarray, grid: np.ndarray, upper: bool) -> np.ndarray:
+    """The surface of the polyline (v, w) on ``grid`` (:func:`.sections.surface_on_grid`).
+
+    Parameters
+    ----------
+    v, w : numpy.ndarray
+        m, the polyline.
+    grid : numpy.ndarray
+        m, where the surface is wanted.
+    upper : bool
+        True: a rail (the upper envelope); False: a wheel (the lower one).
+
+    Returns
+    -------
+    numpy.ndarray
+        m, NaN where the polyline does not reach.
+    """
     profile = Profile(y=v, z=w, kind="rail" if upper else "wheel", source="")
     return surface_on_grid(profile, grid)
 
 
-def _lower_envelope(
+def lower_envelope(
     v: np.ndarray, w: np.ndarray, attribute: np.ndarray, grid: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
     """Lower envelope of the polyline (v, w) on ``grid`` and ``attribute`` of the point forming it.
@@ -89,10 +166,24 @@ def _lower_envelope(
     interpolated on its own and the lowest run wins at every grid point, so the envelope
     equals :func:`.sections.surface_on_grid`'s and the attribute (e.g. the wheel coordinate
     s) belongs to the same point of the profile.  NaN where no run covers the grid point.
+
+    Parameters
+    ----------
+    v, w : numpy.ndarray
+        m, the polyline.
+    attribute : numpy.ndarray
+        A value per polyline point (e.g. the wheel coordinate s).
+    grid : numpy.ndarray
+        m.
+
+    Returns
+    -------
+    height, value : numpy.ndarray
+        m, the envelope, and the attribute of the point forming it.
     """
     height = np.full(grid.shape, np.inf)
     value = np.full(grid.shape, np.nan)
-    for run in _monotone_runs(v):
+    for run in monotone_runs(v):
         vr, wr, ar = v[run], w[run], attribute[run]
         if vr[-1] < vr[0]:
             vr, wr, ar = vr[::-1], wr[::-1], ar[::-1]

@@ -55,23 +55,23 @@ from exudyn_turnout.wheel_rail.conicity import (
     nadal_limit,
 )
 from exudyn_turnout.wheel_rail.gap_minima import (
-    _batch_local_minima,
-    _envelope,
-    _finite_runs,
-    _lower_envelope,
-    _refine,
-    _rotate,
+    batch_local_minima,
+    finite_runs,
+    lower_envelope,
+    profile_envelope,
+    refine_minimum,
+    rotate_profile,
 )
 from exudyn_turnout.wheel_rail.profile_grid import (
     CURVATURE_WINDOW,
     SurfaceDerivatives,
     WheelGrid,
     WheelsetSetup,
-    _derivatives,
-    _wheel_points,
     grid_wheel,
+    savgol_derivatives,
     surface_derivatives,
     wheel_heights_on_grid,
+    wheel_points,
 )
 from exudyn_turnout.wheel_rail.sections import SectionGrid
 
@@ -181,17 +181,19 @@ def prepare_rail(
     step = float(y_grid[1] - y_grid[0])
     prepared = []
     for theta in directions:
-        runs = _finite_runs(rail_z)
+        runs = finite_runs(rail_z)
         if not runs:
             continue
-        rotated = [_rotate(*_with_side_faces(y_grid[run], rail_z[run]), theta) for run in runs]
+        rotated = [
+            rotate_profile(*_with_side_faces(y_grid[run], rail_z[run]), theta) for run in runs
+        ]
         low = min(float(np.min(v)) for v, _w in rotated)
         high = max(float(np.max(v)) for v, _w in rotated)
         v_grid = np.arange(low, high + step, step)
         surface = np.full(v_grid.shape, np.nan)
         for v, w in rotated:
-            surface = np.fmax(surface, _envelope(v, w, v_grid, upper=True))
-        slope, second = _derivatives(surface, step, CURVATURE_WINDOW)
+            surface = np.fmax(surface, profile_envelope(v, w, v_grid, upper=True))
+        slope, second = savgol_derivatives(surface, step, CURVATURE_WINDOW)
         curvature = -second / (1.0 + slope**2) ** 1.5
         prepared.append((theta, v_grid, surface, np.nan_to_num(slope), curvature))
     return PreparedRail(
@@ -229,7 +231,7 @@ def prepare_wheel(
     -------
     PreparedWheel
     """
-    y_points, z_points = _wheel_points(wheel, taping_line, 0.0, 0.0, roll)
+    y_points, z_points = wheel_points(wheel, taping_line, 0.0, 0.0, roll)
     finite = np.isfinite(z_points)
     y_points, z_points, s_points = y_points[finite], z_points[finite], wheel.s[finite]
     step = float(wheel.s[1] - wheel.s[0])
@@ -242,12 +244,12 @@ def prepare_wheel(
     face_s = np.concatenate((np.full(rise.shape, s_points[0]), s_points))
     prepared = []
     for theta in directions:
-        v, w = _rotate(face_y, face_z, theta)
+        v, w = rotate_profile(face_y, face_z, theta)
         v_grid = np.arange(float(np.min(v)), float(np.max(v)), step)
         # the rotated profile folds over itself (flange, inner face): s is that of the
         # point forming the lower envelope, not an interpolation across the folds
-        lower, s_at = _lower_envelope(v, w, face_s, v_grid)
-        slope, second = _derivatives(lower, step, CURVATURE_WINDOW)
+        lower, s_at = lower_envelope(v, w, face_s, v_grid)
+        slope, second = savgol_derivatives(lower, step, CURVATURE_WINDOW)
         prepared.append((theta, v_grid, lower, s_at, second / (1.0 + slope**2) ** 1.5))
     return PreparedWheel(
         wheel=wheel,
@@ -271,11 +273,11 @@ def _vertical_minima(
     wheel_s = wheel.wheel.s
     wheel_step = float(wheel_s[1] - wheel_s[0])
     results = []
-    for row, minima in enumerate(_batch_local_minima(gap, prominence)):
+    for row, minima in enumerate(batch_local_minima(gap, prominence)):
         found = []
         shift = float(shifts[row])
         for i in minima:
-            offset, value = _refine(gap[row], i)
+            offset, value = refine_minimum(gap[row], i)
             y = float(y_grid[i] + offset * step)
             s = float(np.interp(y - shift, wheel.y, wheel.s))
             k = min(max(int(round((s - wheel_s[0]) / wheel_step)), 0), len(wheel_s) - 1)
@@ -319,11 +321,11 @@ def _directional_minima(
         step = float(v_grid[1] - v_grid[0])
         limit = math.radians(30.0)
         rail_w_filled = np.nan_to_num(rail_w)
-        for row, minima in enumerate(_batch_local_minima(gap, prominence)):
+        for row, minima in enumerate(batch_local_minima(gap, prominence)):
             for i in minima:
                 if abs(math.atan(float(rail_dw[i]))) >= limit:
                     continue
-                offset, value = _refine(gap[row], i)
+                offset, value = refine_minimum(gap[row], i)
                 v = float(v_grid[i] + offset * step)
                 angle = theta + math.atan(float(np.interp(v, v_grid, rail_dw)))
                 w_rail = float(np.interp(v, v_grid, rail_w_filled))

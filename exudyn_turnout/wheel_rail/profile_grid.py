@@ -27,6 +27,8 @@ __all__ = [
     "grid_wheel",
     "surface_derivatives",
     "wheel_heights_on_grid",
+    "savgol_derivatives",
+    "wheel_points",
 ]
 
 #: m, Savitzky-Golay window for profile slopes and curvatures
@@ -72,7 +74,23 @@ class SurfaceDerivatives:
     curvature: np.ndarray  #: 1/m, positive convex (crown)
 
 
-def _derivatives(z: np.ndarray, step: float, window: float) -> tuple[np.ndarray, np.ndarray]:
+def savgol_derivatives(z: np.ndarray, step: float, window: float) -> tuple[np.ndarray, np.ndarray]:
+    """First and second derivatives of a gridded surface by Savitzky-Golay filters (cubic).
+
+    Parameters
+    ----------
+    z : numpy.ndarray
+        m, heights on a uniform grid; non-finite where there is no surface.
+    step : float
+        m, grid step.
+    window : float
+        m, the filter's window (at least 5 points).
+
+    Returns
+    -------
+    slope, second : numpy.ndarray
+        -, 1/m; NaN where ``z`` is not finite.
+    """
     points = max(5, int(round(window / step)) | 1)
     filled = np.where(np.isfinite(z), z, np.nan)
     finite = np.isfinite(filled)
@@ -113,7 +131,7 @@ def grid_wheel(
         int((np.max(profile.y) - np.min(profile.y)) / step) + 1
     )
     z = surface_on_grid(profile, s)
-    slope, second = _derivatives(z, step, window)
+    slope, second = savgol_derivatives(z, step, window)
     curvature = second / (1.0 + slope**2) ** 1.5
     return WheelGrid(s=s, z=z, slope=slope, curvature=curvature, nominal_radius=nominal_radius)
 
@@ -136,7 +154,7 @@ def surface_derivatives(sections: SectionGrid, window: float = 1.5e-3) -> Surfac
     step = float(sections.y[1] - sections.y[0])
     slopes, curvatures = [], []
     for row in np.atleast_2d(sections.z):
-        slope, second = _derivatives(row, step, window)
+        slope, second = savgol_derivatives(row, step, window)
         slopes.append(slope)
         curvatures.append(-second / (1.0 + slope**2) ** 1.5)
     return SurfaceDerivatives(slope=np.array(slopes), curvature=np.array(curvatures))
@@ -177,7 +195,7 @@ def wheel_heights_on_grid(
     s_wheel : numpy.ndarray
         m, wheel lateral coordinate at each grid point.
     """
-    y_points, z_points = _wheel_points(wheel, taping_line, shift, lift, roll)
+    y_points, z_points = wheel_points(wheel, taping_line, shift, lift, roll)
     finite = np.isfinite(z_points)
     inside = (y_grid >= y_points[finite][0]) & (y_grid <= y_points[finite][-1])
     heights = np.full(y_grid.shape, np.nan)
@@ -186,9 +204,24 @@ def wheel_heights_on_grid(
     return heights, s_wheel
 
 
-def _wheel_points(
+def wheel_points(
     wheel: WheelGrid, taping_line: float, shift: float, lift: float, roll: float
 ) -> tuple[np.ndarray, np.ndarray]:
+    """A wheel's profile points in the track frame for a wheelset position.
+
+    Parameters
+    ----------
+    wheel : WheelGrid
+    taping_line : float
+        m, lateral position of the wheel's taping line on the centred wheelset.
+    shift, lift, roll : float
+        m, m, rad: the wheelset's lateral shift, lift and roll (about its centre).
+
+    Returns
+    -------
+    y, z : numpy.ndarray
+        m.
+    """
     r0 = wheel.nominal_radius
     y_points = taping_line + wheel.s
     z_points = wheel.z - r0

@@ -32,6 +32,7 @@ import numpy as np
 from exudyn_turnout.wheel_rail.profiles import Profile, SliceSet
 
 __all__ = [
+    "monotone_runs",
     "SectionGrid",
     "surface_on_grid",
     "incline_profile",
@@ -85,7 +86,18 @@ def lateral_grid(y_min: float, y_max: float, step: float = DEFAULT_GRID_STEP) ->
     return y_min + step * np.arange(count)
 
 
-def _monotone_runs(y: np.ndarray) -> list[slice]:
+def monotone_runs(y: np.ndarray) -> list[slice]:
+    """Runs over which ``y`` does not change direction (a folded polyline's branches).
+
+    Parameters
+    ----------
+    y : numpy.ndarray
+
+    Returns
+    -------
+    list of slice
+        Consecutive runs sharing their end points.
+    """
     direction = np.sign(np.diff(y))
     nonzero = np.flatnonzero(direction)
     if nonzero.size == 0:
@@ -124,7 +136,7 @@ def surface_on_grid(
     y = profile.y + y_offset
     z = sign * (profile.z + z_offset)
     result = np.full(y_grid.shape, -np.inf)
-    for run in _monotone_runs(y):
+    for run in monotone_runs(y):
         yr, zr = y[run], z[run]
         if yr[-1] < yr[0]:
             yr, zr = yr[::-1], zr[::-1]
