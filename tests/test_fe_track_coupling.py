@@ -1,4 +1,4 @@
-"""The FE track under the one vehicle and contact: co-simulation (passage/fe_coupling.py).
+"""The FE track under the one vehicle and contact: co-simulation (passage/fe_track/coupling.py).
 
 References: Exudyn's own time integration (the coupling must use its constants), the FE
 model's static solution computed independently (scipy spsolve on the assembled planes with

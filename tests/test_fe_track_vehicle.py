@@ -1,4 +1,4 @@
-"""The full vehicle on the FE track (passage/fe_vehicle_passage.py).
+"""The full vehicle on the FE track (passage/fe_track/vehicle.py).
 
 References: the vehicle's weight, 44 482 kg x 9.81 m/s^2 / 8 = 54 546 N per wheel
 (data/manchester_vehicle.toml, Iwnicki 1998), issue 14's "static wheel loads on the FE track

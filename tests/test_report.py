@@ -402,7 +402,7 @@ def test_quick_report_has_fe_lateral_references(quick_report):
     for cid in ("F2", "F5"):  # judged on every plotted signal, the diverging Fy among them
         assert claims[cid]["verdict"] in (HOLDS, FAILS)
         assert "diverging Fy_crossing" in claims[cid]["evidence"]
-    assert "profile contact for all three tracks" in md and "fe_coupling.py" in md
+    assert "profile contact for all three tracks" in md and "fe_track/coupling.py" in md
     assert "torsion-aware" in md
 
 

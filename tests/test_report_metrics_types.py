@@ -84,7 +84,8 @@ def _markdown(directory: Path) -> str:
     figures = {p.stem: p.name for p in directory.glob("*.png")}
     if "model_cross_section" in figures:
         figures["model"] = figures.pop("model_cross_section")
-    links = {"exudyn_turnout/passage/fe_coupling.py": "../../exudyn_turnout/passage/fe_coupling.py"}
+    module = "exudyn_turnout/passage/fe_track/coupling.py"
+    links = {module: f"../../{module}"}
     return render_markdown(Report(ReportConfig(), metrics, claims), figures, links)
 
 

@@ -154,7 +154,7 @@ def main() -> None:
         "## Conditions",
         "",
         f"- Vehicle: `{model.source}` ({model.name}; Iwnicki (ed.) 1998, Veh. Syst. Dyn. "
-        "30(3-4) 295-313), the linear representation of `passage/vehicle_builder.py` "
+        "30(3-4) 295-313), the linear representation of `passage/vehicle/builder.py` "
         "(linearised at the static equilibrium; primary yaw stiffness from k_x = 31.4 MN/m "
         "per axlebox at +-1 m, no primary lateral or longitudinal damping in the data), "
         "lateral bumpstops (25 mm clearance), wheelset spin free.",
@@ -162,7 +162,7 @@ def main() -> None:
         f"through route at its start x_min = {turnout.x_min:g} m (UIC60, inclination 1:40, "
         "gauge 1435 mm), the same section all along (no irregularities, no track "
         "flexibility, no co-running track).",
-        f"- Contact: the package's profile contact (`passage/profile_contact.py`): wheel "
+        f"- Contact: the package's profile contact (`passage/contact/profile.py`): wheel "
         f"{base.wheel_profile} (S1002), back-to-back {base.back_to_back} m, r0 = 0.46 m; "
         "contact points from the packed contact tables, Hertz normal force per point "
         "from its curvatures, creep forces by Polach's method (k_A = k_S = 1) with spin, "

@@ -151,7 +151,7 @@ def render_markdown(
     figures : mapping
         Figure name -> file name relative to report.md.
     links : mapping, optional
-        Repository path of a source file (e.g. ``exudyn_turnout/passage/fe_coupling.py``)
+        Repository path of a source file (e.g. ``exudyn_turnout/passage/fe_track/coupling.py``)
         -> its path relative to report.md; files without one are named, not linked.
 
     Returns

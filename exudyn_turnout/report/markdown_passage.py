@@ -116,7 +116,7 @@ def _vehicle_text(passage: PassageMetrics) -> str:
 
 def _fe_coupling_line(links: Mapping[str, str]) -> str:
     """One line: how the FE track is coupled to the vehicle, with a link to the module."""
-    module = "exudyn_turnout/passage/fe_coupling.py"
+    module = "exudyn_turnout/passage/fe_track/coupling.py"
     where = f"[`{module}`]({links[module]})" if module in links else f"`{module}`"
     return (
         "**FE track coupling**: the FE turnout (vertical and lateral planes, rail torsion) "

@@ -172,7 +172,7 @@ def write_report(
     figures.update(write_model_figure(report, turnout or load_turnout(), out))
     report.metrics["report_wall_time_s"] = time.perf_counter() - t0
     (out / "metrics.json").write_text(to_json(report.metrics), encoding="utf-8")
-    links = _source_links(out, ("exudyn_turnout/passage/fe_coupling.py",))
+    links = _source_links(out, ("exudyn_turnout/passage/fe_track/coupling.py",))
     (out / "report.md").write_text(render_markdown(report, figures, links), encoding="utf-8")
     log(f"wrote {out / 'report.md'} in {report.metrics['report_wall_time_s']:.0f} s")
     return report

@@ -448,7 +448,7 @@ def passage_section(
         "vehicle": config.vehicle,
         "vehicle_name": _vehicle_name(config.vehicle),
         "static_wheel_load_N": static,
-        "fe_coupling": "exact one-step co-simulation (exudyn_turnout.passage.fe_coupling)",
+        "fe_coupling": "exact one-step co-simulation (exudyn_turnout.passage.fe_track.coupling)",
     }
     results: dict[str, dict[str, PassageResult]] = {}
     for rr in settings.routes:

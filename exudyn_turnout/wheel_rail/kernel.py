@@ -46,7 +46,7 @@ Known approximation: the lateral component of a normal force uses the contact an
 the table (interpolated), whereas the tabulated gap changes with the shift by the secant
 of its nodes; where the angle changes fast with the shift (flange root: ~0.1 rad per
 0.2 mm step) the two differ by up to ~17 %, on the tread by < 2 %
-(tests/test_profile_contact.py).
+(tests/test_wheel_rail_kernel.py).
 
 Left out (small here, named so a reader can judge): the longitudinal offset of a leading
 flange contact in the creepages (its vertical sliding), the rail's own roll, the wheel's
