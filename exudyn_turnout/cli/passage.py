@@ -148,13 +148,17 @@ def _full_vehicle(path: str | None):
     """
     if path is None:
         return None
-    from exudyn_turnout.inputs.vehicle_names import PACKAGED_VEHICLES
+    from exudyn_turnout.inputs.vehicle_names import (
+        FULL_VEHICLE,
+        PACKAGED_VEHICLES,
+        packaged_vehicle_kind,
+        packaged_vehicle_path,
+    )
 
-    if path in PACKAGED_VEHICLES:  # a packaged vehicle by name
-        from exudyn_turnout.inputs.vehicles import packaged_vehicle
-
-        named = packaged_vehicle(path)
-        return named if hasattr(named, "car_body") else None
+    if path in PACKAGED_VEHICLES:  # a packaged vehicle by name: its kind is known
+        if packaged_vehicle_kind(path) != FULL_VEHICLE:
+            return None  # load_vehicle reads it by name
+        path = str(packaged_vehicle_path(path))
     import tomllib
 
     try:

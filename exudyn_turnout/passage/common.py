@@ -23,7 +23,6 @@ __all__ = [
     "max_time_step",
     "lightest_rail_mass",
     "check_settings",
-    "check_output_step",
     "join_segments",
     "progress_function",
     "QuietExudyn",
@@ -125,7 +124,7 @@ def check_settings(
 
     Contact model, irregularity (profile contact only), speed (0..400 km/h), x range inside
     the turnout, time step against the wheel/rail contact resonance with the lightest rail
-    (:func:`max_time_step`) and output step (:func:`check_output_step`).
+    (:func:`max_time_step`) and output step (:func:`_check_output_step`).
 
     Parameters
     ----------
@@ -165,11 +164,11 @@ def check_settings(
             f"(~{contact_resonance(vehicle, m_rail):.0f} Hz with the lightest rail, "
             f"{m_rail:.4g} kg): use a step <= {h_max:.2g} s"
         )
-    check_output_step(s, (x_b - x_a) / s.v)
+    _check_output_step(s, (x_b - x_a) / s.v)
     return x_a, x_b
 
 
-def check_output_step(s: PassageSettings, duration: float) -> None:
+def _check_output_step(s: PassageSettings, duration: float) -> None:
     """Check the output step: at least the time step, at most the run's duration.
 
     Parameters

@@ -30,7 +30,7 @@ from exudyn_turnout.inputs.turnout import Turnout, TurnoutFileError
 from exudyn_turnout.inputs.vehicle import Vehicle, load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
 from exudyn_turnout.inputs.vehicles import packaged_vehicle
-from exudyn_turnout.passage.common import QuietExudyn, check_settings, check_vehicle_settings
+from exudyn_turnout.passage.common import check_settings, check_vehicle_settings
 from exudyn_turnout.passage.results import (
     DEFAULT_SETTINGS,
     TRACKS,
@@ -169,10 +169,9 @@ def simulate_passage(
         x_range = check_vehicle_settings(settings, turnout, model, base)
         route = _route(turnout, settings, x_range)
         contact = _contact(turnout, settings, route.name, base)
-        with QuietExudyn():
-            return implementation.simulate_vehicle(
-                turnout, settings, model, contact, route, x_range, progress, fe_options
-            )
+        return implementation.simulate_vehicle(
+            turnout, settings, model, contact, route, x_range, progress, fe_options
+        )
     if track == "fe" and settings.contact != "profile":
         raise PassageError(
             "the FE track runs with the profile contact only (the height-table contact "
@@ -181,10 +180,9 @@ def simulate_passage(
     x_range = check_settings(settings, turnout, model)
     route = _route(turnout, settings, x_range)
     contact = _contact(turnout, settings, route.name, model)
-    with QuietExudyn():
-        return implementation.simulate_wheelset(
-            turnout, settings, model, contact, route, x_range, progress, fe_options
-        )
+    return implementation.simulate_wheelset(
+        turnout, settings, model, contact, route, x_range, progress, fe_options
+    )
 
 
 def _implementation(track: str) -> TrackImplementation:

@@ -6,7 +6,8 @@ A track implementation is a sub-package of :mod:`exudyn_turnout.passage` (today
 two functions of :class:`TrackImplementation`, with the same signature in every
 implementation. Each builds the track under the vehicle's wheelsets, couples it (zone
 carry-over on the co-running track, one-step co-simulation on the FE track), and returns
-the same :class:`~exudyn_turnout.passage.results.PassageResult` columns. The door,
+the same :class:`~exudyn_turnout.passage.results.PassageResult` columns, with Exudyn's
+console output silenced during the run. The door,
 :func:`exudyn_turnout.passage.run.simulate_passage`, has checked the settings and made the
 route's contact before it calls one. Implementations never import each other; a new track
 (rigid, a measured receptance) is one more sub-package and one line in ``run.py``.

@@ -16,7 +16,6 @@ from exudyn_turnout.corunning.parameters import CoRunningParameters
 from exudyn_turnout.inputs.turnout import Zone
 
 __all__ = [
-    "NODE_DOF",
     "dof_of",
     "static_deflection",
     "vehicle_shift",
@@ -24,7 +23,7 @@ __all__ = [
     "rebase_track",
 ]
 
-NODE_DOF = {"sleeper": ("y_t", "z_t", "phi_t")}
+_NODE_DOF = {"sleeper": ("y_t", "z_t", "phi_t")}
 
 
 def dof_of(name: str) -> tuple[str, ...]:
@@ -39,8 +38,8 @@ def dof_of(name: str) -> tuple[str, ...]:
     -------
     tuple of str
     """
-    if name in NODE_DOF:
-        return NODE_DOF[name]
+    if name in _NODE_DOF:
+        return _NODE_DOF[name]
     kind, _, slot = name.partition("_")
     return (f"y_{slot}", f"z_{slot}") if kind == "rail" else (f"y_m0_{slot}", f"z_m0_{slot}")
 

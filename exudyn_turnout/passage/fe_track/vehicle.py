@@ -50,6 +50,7 @@ from exudyn_turnout.inputs.routes import Route
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
+from exudyn_turnout.passage.common import QuietExudyn
 from exudyn_turnout.passage.contact.profile import RouteContact
 from exudyn_turnout.passage.fe_track.coupling import FEContactElement, FECoSimulation, run_progress
 from exudyn_turnout.passage.fe_track.options import FEPassageOptions
@@ -229,7 +230,7 @@ def _cross_compliance(track: FECoSimulation, elements: list) -> float:
 def simulate_vehicle(
     turnout: Turnout,
     settings: PassageSettings,
-    vehicle_model: VehicleModel,
+    model: VehicleModel,
     contact: RouteContact,
     route: Route,
     x_range: tuple[float, float],
@@ -238,8 +239,7 @@ def simulate_vehicle(
 ) -> PassageResult:
     """Run the full vehicle over the FE track (module docstring).
 
-    Called by :func:`~exudyn_turnout.passage.run.simulate_passage`
-    with ``track="fe"`` (which checks the settings and silences Exudyn).
+    The door, :func:`~exudyn_turnout.passage.run.simulate_passage`, checks the settings.
 
     Parameters
     ----------
@@ -247,7 +247,7 @@ def simulate_vehicle(
     settings : PassageSettings
         As for the co-running full vehicle; ``layers``, ``source`` and ``track_mechanism``
         do not apply.
-    vehicle_model : VehicleModel
+    model : VehicleModel
         A full vehicle.
     contact : RouteContact
         The route's profile contact, made for the single-wheelset file's contact law and
@@ -274,6 +274,14 @@ def simulate_vehicle(
     PassageFailure
         A solver failure (time and position), or no steady start.
     """
+    with QuietExudyn():
+        return _simulate(
+            turnout, settings, model, contact, route, x_range, progress, options
+        )
+
+
+def _simulate(turnout, settings, model, contact, route, x_range, progress, options):
+    """:func:`simulate_vehicle` with Exudyn silenced."""
     from exudyn_turnout.passage.contact.vehicle_contacts import wheelset_columns
     from exudyn_turnout.passage.fe_track.common import (
         failure_reason,
@@ -286,10 +294,10 @@ def simulate_vehicle(
 
     wall = time.perf_counter()
     options = options or FEPassageOptions()
-    length = -min(vehicle_model.wheelset.x)
+    length = -min(model.wheelset.x)
     if options.mesh.extension < length + EXTENSION_MARGIN:
         options = replace(options, mesh=replace(options.mesh, extension=length + EXTENSION_MARGIN))
-    vehicle = contact_vehicle(load_vehicle(), vehicle_model)
+    vehicle = contact_vehicle(load_vehicle(), model)
     x_a, x_b = x_range
     v = settings.v
     duration = (x_b - x_a) / v
@@ -297,8 +305,8 @@ def simulate_vehicle(
     h = duration / n_steps
     planes = build_fe_planes(turnout, options)
     track = FECoSimulation(planes, route.name, h, settings.spectral_radius)
-    covered = (x_a + min(vehicle_model.wheelset.x), x_b)
-    args = (turnout, route, vehicle_model, vehicle, contact, settings, track, covered, x_a)
+    covered = (x_a + min(model.wheelset.x), x_b)
+    args = (turnout, route, model, vehicle, contact, settings, track, covered, x_a)
     t0 = time.perf_counter()
     rest = _build(*args, 0.0, True)
     forces = _static(rest, track, "static equilibrium at rest", x_a)
@@ -378,9 +386,9 @@ def simulate_vehicle(
             "Fz_right_N": own[f"Fz_{label}_right_N"],
             "Fz_left_N": own[f"Fz_{label}_left_N"],
         }
-        check_plausible(plausible, vehicle_model.static_wheel_load, f"wheelset {i + 1}")
+        check_plausible(plausible, model.static_wheel_load, f"wheelset {i + 1}")
         columns.update(own)
-    summary = vehicle_summary(turnout, settings, vehicle_model, columns, static_loads, wall)
+    summary = vehicle_summary(turnout, settings, model, columns, static_loads, wall)
     summary.update(fe_summary(planes, settings, track, h, n_steps, static_s, steps_s))
     summary["cross_compliance"] = cross
     summary["start"] = start

@@ -16,11 +16,8 @@ from exudyn_turnout.inputs.vehicle_model import VehicleModel
 __all__ = [
     "DUMMY_MASS",
     "DUMMY_STIFFNESS",
-    "GEOMETRY_STEP",
     "contact_vehicle",
     "curve_geometry",
-    "integrated_curvature",
-    "curve_offsets",
     "BodyLoads",
     "add_vehicle_loads",
     "set_initial_vehicle",
@@ -33,7 +30,7 @@ DUMMY_MASS = 1.0
 DUMMY_STIFFNESS = 1e6
 
 #: m, grid step of the route's integrated curvature (heading and lateral offset).
-GEOMETRY_STEP = 0.01
+_GEOMETRY_STEP = 0.01
 
 
 def contact_vehicle(base: Vehicle, model: VehicleModel) -> Vehicle:
@@ -89,10 +86,10 @@ def curve_geometry(
     theta : numpy.ndarray
         rad, heading of the centreline relative to the tangent at x_ref.
     """
-    return curve_offsets(x, *integrated_curvature(x, kappa), x_points, x_ref)
+    return _curve_offsets(x, *_integrated_curvature(x, kappa), x_points, x_ref)
 
 
-def integrated_curvature(x: np.ndarray, kappa: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _integrated_curvature(x: np.ndarray, kappa: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Heading int kappa and lateral offset int heading from x[0] (trapezoidal rule).
 
     Parameters
@@ -112,10 +109,10 @@ def integrated_curvature(x: np.ndarray, kappa: np.ndarray) -> tuple[np.ndarray, 
     return heading, lateral
 
 
-def curve_offsets(
+def _curve_offsets(
     x: np.ndarray, heading: np.ndarray, lateral: np.ndarray, x_points: np.ndarray, x_ref: float
 ) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`curve_geometry` from the integrated curvature (:func:`integrated_curvature`).
+    """:func:`curve_geometry` from the integrated curvature (:func:`_integrated_curvature`).
 
     Parameters
     ----------
@@ -147,10 +144,10 @@ class BodyLoads:
         self.x_f0, self.v, self.frozen = float(x_f0), float(v), False
         self.d = np.asarray(damping)
         curvature = route.curvature
-        self.x = np.arange(x_lo - 1.0, x_hi + 1.0 + GEOMETRY_STEP, GEOMETRY_STEP)
+        self.x = np.arange(x_lo - 1.0, x_hi + 1.0 + _GEOMETRY_STEP, _GEOMETRY_STEP)
         self.kappa = np.interp(self.x, np.asarray(curvature.x), np.asarray(curvature.value))
         self.curved = bool(np.any(self.kappa != 0.0))
-        self.heading, self.lateral = integrated_curvature(self.x, self.kappa)
+        self.heading, self.lateral = _integrated_curvature(self.x, self.kappa)
         self.k = np.asarray(stiffness)
         bodies = build.bodies()
         #: node names of the bodies in coordinate order ("car_body", "bogie1", "ws1", ...)
@@ -200,7 +197,7 @@ class BodyLoads:
             return
         key = (float(self.x[0]), self.x.size, self.v)
         if key not in cache:
-            h = GEOMETRY_STEP
+            h = _GEOMETRY_STEP
             q_geo = self.geometries(self.x)
             rate = (self.geometries(self.x + h) - self.geometries(self.x - h)) * (self.v / (2 * h))
             f = q_geo @ self.k.T + rate @ self.d.T
@@ -213,7 +210,7 @@ class BodyLoads:
         """Running loads and q_geo at x_front from the table (:meth:`tabulate`)."""
         assert self._table is not None
         f, q_geo = self._table
-        s = (x_front - self.x[0]) / GEOMETRY_STEP
+        s = (x_front - self.x[0]) / _GEOMETRY_STEP
         i = min(max(int(s), 0), self.x.size - 2)
         w = s - i
         return f[i] + w * (f[i + 1] - f[i]), q_geo[i] + w * (q_geo[i + 1] - q_geo[i])
@@ -293,7 +290,7 @@ class BodyLoads:
         numpy.ndarray
         """
         if self.curved and not self.frozen:  # damping: D q_geo_t, q_geo_t = v dq_geo/dx
-            h = GEOMETRY_STEP
+            h = _GEOMETRY_STEP
             q_geo, ahead, behind = self.geometries(np.array([x_front, x_front + h, x_front - h]))
             f = self.k @ q_geo
             rate = (ahead - behind) * (self.v / (2 * h))
