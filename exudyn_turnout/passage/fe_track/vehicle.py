@@ -275,9 +275,7 @@ def simulate_vehicle(
         A solver failure (time and position), or no steady start.
     """
     with QuietExudyn():
-        return _simulate(
-            turnout, settings, model, contact, route, x_range, progress, options
-        )
+        return _simulate(turnout, settings, model, contact, route, x_range, progress, options)
 
 
 def _simulate(turnout, settings, model, contact, route, x_range, progress, options):
