@@ -43,7 +43,9 @@ warping stiffness, roll inertia about the shear centre, the mass coupling rho A 
 centroid's offset, the rail's loss factor on all of it. The lateral pad then acts at the
 rail foot, ``foot_depth`` below the shear centre (it stretches by v + d phi - u_sleeper),
 and a roll spring k_z b^2 / 12 (damping c_z b^2 / 12) of the vertical pad joins phi to
-ground. Without ``torsion`` the lateral model is the planar one, unchanged.
+ground; a check rail's lateral support acts at its L-bracket's bolts instead,
+with the bracket's roll spring added (:mod:`~exudyn_turnout.fe.check_rail`).
+Without ``torsion`` the lateral model is the planar one, unchanged.
 """
 
 from __future__ import annotations
@@ -55,6 +57,7 @@ import scipy.sparse as sp
 from numpy.typing import ArrayLike
 
 from exudyn_turnout.fe import timoshenko as tim
+from exudyn_turnout.fe.check_rail import check_rail_support, check_rail_types
 from exudyn_turnout.fe.mesh import Mesh
 from exudyn_turnout.fe.torsion import (
     RailTorsionSection,
@@ -461,20 +464,37 @@ def _add_torsion_pads(
     sleeper_offset: int,
     offset: int,
 ) -> None:
-    """Lateral pads at the rail foot (v + d phi - u) and the pads' roll springs (T5)."""
+    """Lateral pads at the rail foot (v + d phi - u) and the pads' roll springs (T5).
+
+    Check rails (:func:`~exudyn_turnout.fe.check_rail.check_rail_types`): the lateral
+    support at the bracket's height instead of the foot, and the bracket's roll spring
+    (:class:`~exudyn_turnout.fe.check_rail.CheckRailSupport`).
+    """
     pads = [turnout.rail_types[rail_type].pad for rail_type in mesh.pad_type]
     k_y, c_y = np.array([pad.k_y for pad in pads]), np.array([pad.c_y for pad in pads])
     k_z, c_z = np.array([pad.k_z for pad in pads]), np.array([pad.c_z for pad in pads])
     roll = offset + section.dofs_per_node * mesh.pad_rail_node
-    a = np.array([1.0, section.foot_depth, -1.0])
-    lever = a[:, None] * a[None, :]
+    # check rails: the lateral support acts at the bracket's bolts, and the bracket's leg
+    # adds a roll spring (fe/check_rail.py); other rails: at the foot, u_y = v + d phi
+    support = check_rail_support(turnout)
+    on_bracket = np.isin(np.array(mesh.pad_type), list(check_rail_types(turnout)))
+    z = np.where(on_bracket, support.height - section.shear_centre_height, -section.foot_depth)
+    a = np.stack([np.ones_like(z), -z, -np.ones_like(z)], axis=1)
+    lever = a[:, :, None] * a[:, None, :]
     dofs = np.column_stack([2 * mesh.pad_rail_node, roll, sleeper_offset + mesh.pad_sleeper_node])
     triplets.add(dofs, K=k_y[:, None, None] * lever, D=c_y[:, None, None] * lever)
     b = section.foot_width
+    c_leg = np.where(
+        c_y > 0,
+        support.k_roll * c_y / np.where(k_y > 0, k_y, 1.0),
+        0.0,
+    )
+    if support.c_roll is not None:
+        c_leg = np.full_like(c_leg, support.c_roll)
     triplets.add(
         roll[:, None],
-        K=pad_roll_stiffness(k_z, b)[:, None, None],
-        D=pad_roll_stiffness(c_z, b)[:, None, None],
+        K=(pad_roll_stiffness(k_z, b) + np.where(on_bracket, support.k_roll, 0.0))[:, None, None],
+        D=(pad_roll_stiffness(c_z, b) + np.where(on_bracket, c_leg, 0.0))[:, None, None],
     )
 
 
