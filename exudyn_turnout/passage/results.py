@@ -17,6 +17,7 @@ import numpy as np
 
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
+from exudyn_turnout.passage.events import event_summary
 
 __all__ = [
     "settings_record",
@@ -434,6 +435,7 @@ def passage_summary(
             out[f"peak_Fz_{where}{suffix}_N"] = _peak(columns, f"Fz_{wheel}_N", rng)
             out[f"peak_Fy_{where}{suffix}_N"] = _peak(columns, f"Fy_{wheel}_N", rng, signed=True)
     out.update(_contact_peaks(columns, regions))
+    out.update(event_summary(columns, turnout, settings.route, static_loads))
     out["contact_losses"] = sum(_contact_losses(columns[f"Fz_{w}_N"]) for w in ("right", "left"))
     out["time_step_s"] = settings.time_step
     h_out = settings.output_step

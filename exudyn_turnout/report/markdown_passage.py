@@ -48,8 +48,8 @@ def _fe_rows(passage: PassageMetrics) -> list[list[str]]:
                         m,
                         sig,
                         fmt(v.peak_relative[sig], "+.1%"),
-                        fmt(v.rms_difference_N[sig], ".2f", 1e-3),
-                        fmt(v.trend_deviation[sig], ".1%"),
+                        fmt(v.rms_difference_N.get(sig, math.nan), ".2f", 1e-3),
+                        fmt(v.trend_deviation.get(sig, math.nan), ".1%"),
                     ]
                 )
     return rows
@@ -238,4 +238,93 @@ def passage_lines(
             ["route", "model", "signal", "|peak| vs FE", "RMS difference (kN)", "trend difference"],
             fe,
         )
+    lines += _event_lines(passage)
     return lines + claims_table(claims, "contact forces")
+
+
+#: Goal of issue 23 for the check-rail event: 3-layer peak within this fraction of FE's.
+CHECK_RAIL_GOAL = 0.15
+
+
+def _event_lines(passage: PassageMetrics) -> list[str]:
+    """The events taken from the geometry: the crossing nose and the check rail, 2L/3L/FE."""
+    nose = [
+        [route, m]
+        + [fmt(d.peaks_N.get(k, math.nan), ".1f", 1e-3) for k in ("Fz_nose", "Fy_nose")]
+        + [
+            fmt(d.vs_FE.peak_relative.get(k, math.nan), "+.1%") if d.vs_FE else "-"
+            for k in ("Fz_nose", "Fy_nose")
+        ]
+        for route, rt in passage.routes.items()
+        for m, d in rt.models.items()
+        if "Fz_nose" in d.peaks_N
+    ]
+    lines: list[str] = []
+    if nose:
+        region = passage.regions_m.get("nose")
+        where = f" ({region[0]:.2f}-{region[1]:.2f} m)" if region else ""
+        lines += [
+            f"**At the crossing nose**{where}: from 1 m before the nose tip of the plan to 2 m "
+            "after it (`exudyn_turnout.passage.events`), where the paper's Figs 7 and 8 look; "
+            "the file's crossing region above also holds the check rail's entry. Peak forces "
+            "(kN) of the plotted wheel, and |peak| / |peak_FE| - 1.",
+            "",
+        ]
+        lines += table(["route", "model", "Fz nose", "Fy nose", "Fz vs FE", "Fy vs FE"], nose)
+    rows = []
+    for route, rt in passage.routes.items():
+        fe = rt.models.get("FE")
+        fe_event = fe.check_rail if fe is not None else None
+        for m, d in rt.models.items():
+            ev = d.check_rail
+            if ev is None:
+                continue
+            rel = (
+                abs(ev.peak_Fy_N) / abs(fe_event.peak_Fy_N) - 1.0
+                if fe_event is not None and m != "FE" and fe_event.peak_Fy_N
+                else math.nan
+            )
+            rel_impulse = (
+                ev.impulse_Ns / fe_event.impulse_Ns - 1.0
+                if fe_event is not None and m != "FE" and fe_event.impulse_Ns
+                else math.nan
+            )
+            rows.append(
+                [
+                    route,
+                    m,
+                    f"{ev.wheel} on {ev.rail}",
+                    fmt(ev.peak_Fy_N, "+.1f", 1e-3),
+                    fmt(ev.x_m, ".2f"),
+                    fmt(ev.impulse_Ns, ".0f"),
+                    fmt(ev.min_tread_Fz_N, ".1f", 1e-3),
+                    "yes" if ev.tread_unloaded else "no",
+                    fmt(rel, "+.1%"),
+                    fmt(rel_impulse, "+.1%"),
+                ]
+            )
+    if rows:
+        lines += [
+            "**The check-rail event** (the check range of the route's check-rail contact, "
+            "`exudyn_turnout.passage.events`): the largest lateral force on the check rail, "
+            "where, its impulse (the integral of |Fy| over time), the least vertical force on "
+            "the same wheel's tread meanwhile, whether the tread unloaded, and the peak and "
+            f"impulse against FE's (goal: 3-layer peak within {CHECK_RAIL_GOAL:.0%} of FE).",
+            "",
+        ]
+        lines += table(
+            [
+                "route",
+                "model",
+                "wheel",
+                "peak Fy (kN)",
+                "x (m)",
+                "impulse (N s)",
+                "min tread Fz (kN)",
+                "tread unloaded",
+                "|peak| vs FE",
+                "impulse vs FE",
+            ],
+            rows,
+        )
+    return lines

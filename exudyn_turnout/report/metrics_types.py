@@ -20,6 +20,7 @@ from exudyn_turnout.report.criteria import Claim, Criteria
 from exudyn_turnout.report.record import Record, optional
 
 __all__ = [
+    "CheckRailEvent",
     "ReportMetrics",
     "ConfigMetrics",
     "ParameterRow",
@@ -271,6 +272,20 @@ class VsFE(Record):
 
 
 @dataclass(frozen=True, kw_only=True)
+class CheckRailEvent(Record):
+    """A passage's check-rail event (:func:`~exudyn_turnout.passage.events.event_summary`)."""
+
+    wheel: str  #: the wheel whose flange back meets the check rail
+    rail: str  #: rail slot of the check rail
+    region_m: list[float]  #: m, the check range
+    peak_Fy_N: float  #: N, signed, largest |Fy| on the check rail
+    x_m: float  #: m, where
+    impulse_Ns: float  #: N s, integral of |Fy| on the check rail over time
+    min_tread_Fz_N: float  #: N, least vertical force on that wheel's other contacts
+    tread_unloaded: bool  #: whether that tread unloaded (below 1 % of its static load)
+
+
+@dataclass(frozen=True, kw_only=True)
 class PassageModel(Record):
     """One passage (a route on one track)."""
 
@@ -281,6 +296,7 @@ class PassageModel(Record):
     wall_time_s: float  #: s
     simulated_time_s: float  #: s
     vs_FE: VsFE | None = optional()  #: co-running passages with an FE reference
+    check_rail: CheckRailEvent | None = optional()  #: the check-rail event, if the run has one
 
 
 @dataclass(frozen=True, kw_only=True)

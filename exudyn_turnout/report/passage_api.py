@@ -10,9 +10,16 @@ from __future__ import annotations
 
 from exudyn_turnout.fe.mesh import FEOptions
 from exudyn_turnout.inputs.turnout import Turnout
+from exudyn_turnout.passage.events import nose_region
 from exudyn_turnout.passage.results import PassageResult, PassageSettings
 
-__all__ = ["PassageResult", "PassageSettings", "fe_passage_options", "run_track_passage"]
+__all__ = [
+    "PassageResult",
+    "PassageSettings",
+    "fe_passage_options",
+    "nose_region",
+    "run_track_passage",
+]
 
 
 def fe_passage_options(mesh: FEOptions):

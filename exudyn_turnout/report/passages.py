@@ -37,6 +37,7 @@ from exudyn_turnout.report.passage_api import (
     PassageResult,
     PassageSettings,
     fe_passage_options,
+    nose_region,
     run_track_passage,
 )
 from exudyn_turnout.report.settings import (
@@ -54,6 +55,7 @@ __all__ = [
     "run_passage",
     "fe_passage_cache_key",
     "FE_PASSAGE_VERSION",
+    "EVENT_REGIONS",
     "signal_key",
     "peak_key",
     "summary_float",
@@ -250,6 +252,11 @@ def _cached_fe_passage(
     return result, info
 
 
+#: Event regions taken from the geometry (:mod:`exudyn_turnout.passage.events`) whose peaks
+#: the passage summary carries beside the file's ``[regions]``: the crossing nose.
+EVENT_REGIONS = ("nose",)
+
+
 def signal_key(q: str, where: str) -> str:
     """Name of a force signal in the metrics, e.g. ``"Fz_crossing"``.
 
@@ -324,9 +331,12 @@ def passage_model_metrics(
         with a reference, ``vs_FE``.
     """
     s, c, w = result.summary, result.columns, criteria.trend_window
+    events = tuple(e for e in EVENT_REGIONS if f"{e}_region_m" in s)
     out: dict[str, Any] = {
         "peaks_N": {
-            signal_key(q, r): _number(s, peak_key(q, r, wheel)) for q in FORCES for r in REGIONS
+            signal_key(q, r): _number(s, peak_key(q, r, wheel))
+            for q in FORCES
+            for r in REGIONS + events
         },
         "dynamic_rms_N": {
             signal_key(q, r): ag.dynamic_rms(c["x_m"], c[_column(q, wheel)], w, regions[r])
@@ -339,8 +349,26 @@ def passage_model_metrics(
         "wall_time_s": _number(s, "wall_time_s"),
         "simulated_time_s": _number(s, "simulated_time_s"),
     }
+    if "peak_Fy_check_rail_N" in s:
+        out["check_rail"] = {
+            "wheel": s["check_rail_wheel"],
+            "rail": s["check_rail_rail"],
+            "region_m": list(cast(list, s["check_rail_region_m"])),
+            "peak_Fy_N": _number(s, "peak_Fy_check_rail_N"),
+            "x_m": _number(s, "peak_Fy_check_rail_x_m"),
+            "impulse_Ns": _number(s, "check_rail_impulse_Ns"),
+            "min_tread_Fz_N": _number(s, "check_rail_min_tread_Fz_N"),
+            "tread_unloaded": bool(s.get("check_rail_tread_unloaded")),
+        }
     if reference is not None:
         out["vs_FE"] = _vs_reference(result, reference, signals, regions, w, static_load, wheel)
+        for e in events:  # the events' peaks against FE (F6 is judged at the nose)
+            for q in FORCES:
+                key, ref = peak_key(q, e, wheel), _number(reference.summary, peak_key(q, e, wheel))
+                if math.isfinite(ref) and math.isfinite(_number(s, key)):
+                    out["vs_FE"]["peak_relative"][signal_key(q, e)] = ag.relative_difference(
+                        abs(_number(s, key)), abs(ref)
+                    )
     return out
 
 
@@ -429,11 +457,12 @@ def passage_section(
     settings = settings or report_settings(turnout)
     fe_ok, why = fe_availability(config)
     regions = dict(settings.regions)
+    nose = nose_region(turnout)
     static = vehicle_static_load(config.vehicle)
     every = tuple((q, r) for q in FORCES for r in REGIONS)
     metrics: dict[str, Any] = {
         "speeds_kmh": _speeds(config),
-        "regions_m": regions,
+        "regions_m": {**regions, **({"nose": nose} if nose is not None else {})},
         "routes": {},
         "steady_lateral_acceleration_m_s2": _lateral_acceleration(turnout, config),
         "radius_m": {r.name: r.radius for r in settings.routes},
