@@ -579,6 +579,7 @@ OUTPUT_FILES = (
     "summary.json",
     "forces.png",
     "contact_band.png",
+    "safety.png",
 )
 
 
