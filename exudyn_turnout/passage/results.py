@@ -22,6 +22,7 @@ from exudyn_turnout.passage.safety import (
     SafetyLimits,
     SafetyStop,
     check_safety,
+    first_derailment,
     limits_record,
     safety_columns,
     safety_summary,
@@ -342,7 +343,8 @@ def check_plausible(columns: Mapping[str, np.ndarray], static_load: float, what:
             bad = np.nonzero(np.abs(np.nan_to_num(values, nan=0.0)) > bound)[0]
         if bad.size and (first is None or bad[0] < first[0]):
             first = (int(bad[0]), label, float(values[bad[0]]), bound, unit)
-    if first is not None:
+    derailment = first_derailment(columns, static_load) if static_load > 0 else None
+    if first is not None and (derailment is None or t[first[0]] <= derailment[0]):
         i, label, value, bound, unit = first
         where = f" ({what})" if what else ""
         raise PassageFailure(

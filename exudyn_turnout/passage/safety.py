@@ -82,6 +82,7 @@ __all__ = [
     "safety_columns",
     "safety_summary",
     "check_safety",
+    "first_derailment",
     "limits_record",
 ]
 
@@ -467,7 +468,8 @@ def safety_summary(
         largest magnitude with its sign) and ``prudhomme_limit_[L_]N``; ``nadal_limit``.
         A quantity a region's samples cannot give is None.
     exceeded : list of dict
-        One entry per wheel (or wheelset), region and quantity beyond its limit:
+        One entry per wheel (or wheelset), region and quantity beyond its limit (``run``
+        only where its peak lies outside every region):
         ``wheel``, ``region``, ``quantity``, ``value``, ``limit``, ``x_m``.
     """
     derived = safety_columns(columns, static_loads, limits)
@@ -481,6 +483,9 @@ def safety_summary(
         out[key] = value if math.isfinite(value) else None
 
     def flag(who: str, where: str, quantity: str, value: float, limit: float, x: float):
+        in_region = any(lo <= x <= hi for lo, hi in regions.values())
+        if where == "run" and in_region:  # listed under its region
+            return
         if math.isfinite(value) and abs(value) > limit:
             exceeded.append(
                 {"wheel": who, "region": where, "quantity": quantity, "value": value,
@@ -517,8 +522,7 @@ def safety_summary(
             put(_name(f"sumY_peak_{where}", label, unit="N"), value)
             value, x_at = _argmax_abs(sum_y_2m, x, sel)
             put(_name(f"sumY_2m_peak_{where}", label, unit="N"), value)
-            if where != "run":
-                flag(who_set, where, "sum Y (2 m mean), N", value, prud, x_at)
+            flag(who_set, where, "sum Y (2 m mean), N", value, prud, x_at)
             for wheel, (q0, q, yq, yq_2m, angle, tgamma) in per_wheel.items():
                 who = f"{label} {wheel} wheel".strip()
                 value, x_at = _argmax_abs(yq, x, sel)
@@ -527,16 +531,14 @@ def safety_summary(
                 value, x_at = _argmax_abs(yq_2m, x, sel)
                 put(_name(f"YQ_2m_peak_{where}", label, wheel), value)
                 put(_name(f"YQ_2m_peak_{where}", label, wheel, "x_m"), x_at)
-                if where != "run":
-                    flag(who, where, "Y/Q (2 m mean)", value, nadal, x_at)
+                flag(who, where, "Y/Q (2 m mean)", value, nadal, x_at)
                 unloading = np.where(sel, wheel_unloading(q, q0), np.nan)
                 value, x_at = math.nan, math.nan
                 if np.isfinite(unloading).any():
                     i = int(np.nanargmax(unloading))
                     value, x_at = float(unloading[i]), float(x[i])
                 put(_name(f"dQ_Q0_max_{where}", label, wheel), value)
-                if where != "run":
-                    flag(who, where, "Delta Q/Q0", value, limits.unloading, x_at)
+                flag(who, where, "Delta Q/Q0", value, limits.unloading, x_at)
                 loss = contact_loss_length(x[sel], q[sel]) if sel.any() else math.nan
                 put(_name(f"contact_loss_{where}", label, wheel, "m"), loss)
                 if angle is not None:
@@ -577,6 +579,35 @@ def check_safety(
     SafetyStop
         At the first sample beyond a limit: its time, x, the wheel and the quantity.
     """
+    found = first_derailment(columns, static_load, limits)
+    if found is not None:
+        where = f" ({what})" if what else ""
+        t_i, x_i, message = found
+        raise SafetyStop(
+            f"derailment stopped at t = {t_i:.5f} s, x = {x_i:.3f} m{where}: {message}"
+        )
+
+
+def first_derailment(
+    columns: Mapping[str, np.ndarray],
+    static_load: float,
+    limits: SafetyLimits = SAFETY_LIMITS,
+) -> tuple[float, float, str] | None:
+    """The first lifting or climbing wheel of :func:`check_safety`, or None.
+
+    Parameters
+    ----------
+    columns : mapping
+        As :func:`check_safety`.
+    static_load : float
+        N, static wheel load Q0.
+    limits : SafetyLimits
+
+    Returns
+    -------
+    (t, x, what) or None
+        s, m, and the wheel and quantity in words.
+    """
     t = np.asarray(columns["t_s"])
     first: tuple[float, int, str, float] | None = None  # (t, sample, message, x)
     for label in wheel_labels(columns) or [""]:
@@ -607,11 +638,9 @@ def check_safety(
                 k = int(hits[0])
                 message = (
                     f"{who} climbing its flange: Y/Q over the last {limits.window_m:g} m "
-                    f"{mean[k]:.3f} is above Nadal's limit {limits.nadal:.3f}"
+                    f"{mean[k]:.4f} is above Nadal's limit {limits.nadal:.4f}"
                 )
                 first = (float(t[k]), k, message, float(x[k]))
     if first is None:
-        return
-    t_i, _, message, x_i = first
-    where = f" ({what})" if what else ""
-    raise SafetyStop(f"derailment stopped at t = {t_i:.5f} s, x = {x_i:.3f} m{where}: {message}")
+        return None
+    return first[0], first[3], first[2]
