@@ -448,14 +448,21 @@ def safety_text(summary: dict, most: int = 6) -> str:
     if not exceeded:
         return "safety limits: none exceeded"
 
+    def number(value: object) -> float:
+        return float(value) if isinstance(value, (int, float)) else float("nan")
+
     def over(e: dict) -> float:
-        value, limit = e.get("value"), e.get("limit")
-        ok = isinstance(value, (int, float)) and isinstance(limit, (int, float)) and limit
-        return abs(value) / limit if ok else 0.0  # type: ignore[operator]
+        limit = number(e.get("limit"))
+        ratio = abs(number(e.get("value"))) / limit if limit else float("nan")
+        return ratio if ratio == ratio else 0.0  # NaN last
 
     parts = []
     for e in sorted(exceeded, key=over, reverse=True)[:most]:
-        quantity, value, limit = e.get("quantity", "?"), e.get("value"), e.get("limit")
+        quantity, value, limit = (
+            e.get("quantity", "?"),
+            number(e.get("value")),
+            number(e.get("limit")),
+        )
         text = f"{e.get('wheel', '?')}, {e.get('region', '?')}, {quantity} "
         if str(quantity).endswith(", N"):  # a force: in kN
             text = text.replace(", N ", " ")

@@ -563,7 +563,7 @@ def static_loads_of(
         only labels whose loads are in the summary and are > 0.
     """
     out: dict[str, dict[str, float]] = {}
-    keys = {"": ("static_wheel_load_N", "static_wheel_load_left_N")}
+    keys: dict[str, tuple[str, ...]] = {"": ("static_wheel_load_N", "static_wheel_load_left_N")}
     for label in wheel_labels(columns):
         if label:
             keys[label] = tuple(f"static_wheel_load_{label}_{w}_N" for w in ("right", "left"))
