@@ -218,6 +218,7 @@ def test_cli_simulate_writes_files(tmp_path, capsys):
         "summary.json",
         "forces.png",
         "contact_band.png",  # profile contact: where the wheel touches, along x
+        "safety.png",  # Y/Q with Nadal, sum Y with Prud'homme, Delta Q/Q0
     }
     out = capsys.readouterr().out
     assert "peak Fz n/a (region not in the run) at the switch" in out and "nan" not in out

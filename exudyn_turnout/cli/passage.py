@@ -21,6 +21,9 @@ from exudyn_turnout.passage.run import simulate_passage
 __all__ = [
     "build",
     "run_passage_command",
+    "start_out_dir",
+    "safety_text",
+    "RUNNING_MARKER",
     "add_passage_options",
     "route_from_args",
     "settings_from_args",
@@ -73,10 +76,18 @@ def settings_from_args(args: argparse.Namespace, **track_options):
 
 
 def _run(args: argparse.Namespace) -> int:
+    out = start_out_dir(args.out)  # first: an earlier run's files never outlive a killed start
+    try:
+        return _simulate_command(args)
+    except (UsageError, RunFailure):
+        _end_running(out)
+        raise
+
+
+def _simulate_command(args: argparse.Namespace) -> int:
     from exudyn_turnout.inputs.vehicle import load_vehicle
     from exudyn_turnout.provenance import file_record
 
-    check_out_dir(args.out)
     turnout = turnout_from_args(args)
     model = _full_vehicle(args.vehicle)
     vehicle = load_vehicle(args.vehicle) if model is None else None
@@ -222,6 +233,61 @@ def _checked_route(turnout, name: str) -> str:
     return name
 
 
+#: File a passage command writes into an existing ``--out`` before anything else and removes
+#: when the run has ended (written, or failed with exit 2 or 3): left behind, it says that
+#: the run was killed, and that the directory holds no finished result.
+RUNNING_MARKER = "RUNNING"
+
+
+def start_out_dir(path: str) -> Path:
+    """Check ``--out``, remove an earlier run's files and mark the directory as running.
+
+    Called first thing by a passage command, before any file is read, so that a run killed
+    in its first seconds leaves no finished-looking earlier ``summary.json``: the earlier
+    files are gone and :data:`RUNNING_MARKER` says that a run was started and did not end.
+    A directory that does not exist is not created here (a bad input leaves nothing).
+
+    Parameters
+    ----------
+    path : str
+        ``--out``.
+
+    Returns
+    -------
+    Path
+        The directory.
+
+    Raises
+    ------
+    UsageError
+        ``--out`` is a file or not writable, or an earlier file cannot be removed.
+    """
+    import os
+    import time
+
+    out = check_out_dir(path)
+    _clear_outputs(out)
+    if out.is_dir():
+        try:
+            (out / RUNNING_MARKER).write_text(
+                f"exudyn-turnout run started {time.strftime('%Y-%m-%d %H:%M:%S')} (pid "
+                f"{os.getpid()}); this file is removed when the run ends. If it is here, the "
+                "run was killed and this directory holds no finished result.\n",
+                encoding="utf-8",
+            )
+        except OSError as err:
+            raise UsageError(f"--out {path}: cannot write: {err.strerror or err}") from None
+    return out
+
+
+def _end_running(out: Path) -> None:
+    """Remove the running marker (the run ended: written, or failed with a message)."""
+    try:
+        (out / RUNNING_MARKER).unlink(missing_ok=True)
+    except OSError:
+        pass
+
+
 def _clear_outputs(out: Path) -> None:
     """Remove the files an earlier run left in ``out`` (so a failure leaves nothing stale)."""
     from exudyn_turnout.passage.results import OUTPUT_FILES
@@ -259,7 +325,8 @@ def run_passage_command(
     """Run a passage with a progress bar; write its files and print one summary line.
 
     Shared by ``simulate`` and ``fe simulate``. Before the run the files of an earlier run
-    are removed from ``--out``; the new ones are written into a temporary directory and
+    are removed from ``--out`` and :data:`RUNNING_MARKER` is written there (removed when the
+    run ends; :func:`start_out_dir`); the new ones are written into a temporary directory and
     moved into place. Bad settings (PassageError) are exit 2, a failed, diverged or
     implausible run (PassageFailure) exit 3; neither leaves output.
 
@@ -281,8 +348,19 @@ def run_passage_command(
     Returns
     -------
     int
-        Exit code 0.
+        Exit code 0. A second console line lists the safety limits exceeded
+        (:func:`safety_text`).
     """
+    out = start_out_dir(args.out)
+    try:
+        return _run_and_write(args, out, simulate, title, what, turnout, vehicle, extra_settings)
+    except (UsageError, RunFailure):
+        _end_running(out)
+        raise
+
+
+def _run_and_write(args, out, simulate, title, what, turnout, vehicle, extra_settings) -> int:
+    """The body of :func:`run_passage_command` after ``--out`` was prepared."""
     from exudyn_turnout.passage.results import (
         PassageError,
         PassageFailure,
@@ -291,8 +369,6 @@ def run_passage_command(
     )
     from exudyn_turnout.provenance import provenance
 
-    out = check_out_dir(args.out)
-    _clear_outputs(out)
     bar = progress_bar(sys.stderr)
     try:
         result = simulate(bar)
@@ -319,9 +395,12 @@ def run_passage_command(
 
         def figure(directory: Path) -> None:
             from exudyn_turnout.plotting.curves import plot_passage_forces, save_figure
+            from exudyn_turnout.plotting.safety import plot_passage_safety
 
             fig, _ = plot_passage_forces([result], wheel="right", title=title)
             save_figure(fig, str(directory / "forces.png"), dpi=120)
+            fig, _ = plot_passage_safety(result, title=title)
+            save_figure(fig, str(directory / "safety.png"), dpi=110)
             if len(result.contact_points("right")["x"]):  # profile contact
                 result.plot_contact_band(
                     directory / "contact_band.png", "right", title=f"{title}, right wheel"
@@ -343,7 +422,57 @@ def run_passage_command(
         f"{summary['simulated_time_s']:.2f} s simulated "
         f"in {summary['wall_time_s']:.1f} s"
     )
+    print(safety_text(summary))
+    _end_running(out)
     return 0
+
+
+def safety_text(summary: dict, most: int = 6) -> str:
+    """The console line of the safety limits exceeded (``summary["safety_exceeded"]``).
+
+    Parameters
+    ----------
+    summary : dict
+        A passage's summary.
+    most : int
+        At most this many entries are named, largest value over limit first; the rest
+        counted.
+
+    Returns
+    -------
+    str
+        ``"safety limits: none exceeded"``, or ``"safety limits exceeded: right wheel,
+        crossing, Delta Q/Q0 0.92 > 0.6 at x = 47.43 m; ..."``.
+    """
+    exceeded = [e for e in summary.get("safety_exceeded") or [] if isinstance(e, dict)]
+    if not exceeded:
+        return "safety limits: none exceeded"
+
+    def number(value: object) -> float:
+        return float(value) if isinstance(value, (int, float)) else float("nan")
+
+    def over(e: dict) -> float:
+        limit = number(e.get("limit"))
+        ratio = abs(number(e.get("value"))) / limit if limit else float("nan")
+        return ratio if ratio == ratio else 0.0  # NaN last
+
+    parts = []
+    for e in sorted(exceeded, key=over, reverse=True)[:most]:
+        quantity, value, limit = (
+            e.get("quantity", "?"),
+            number(e.get("value")),
+            number(e.get("limit")),
+        )
+        text = f"{e.get('wheel', '?')}, {e.get('region', '?')}, {quantity} "
+        if str(quantity).endswith(", N"):  # a force: in kN
+            text = text.replace(", N ", " ")
+            text += f"{kilonewtons(value)} > {kilonewtons(limit)}"
+        else:
+            text += f"{value:.3g} > {limit:.3g}"
+        x = e.get("x_m")
+        parts.append(text + (f" at x = {x:.2f} m" if isinstance(x, (int, float)) else ""))
+    rest = len(exceeded) - len(parts)
+    return "safety limits exceeded: " + "; ".join(parts) + (f"; {rest} more" if rest > 0 else "")
 
 
 def add_passage_options(p: argparse.ArgumentParser) -> None:

@@ -18,6 +18,17 @@ import numpy as np
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
 from exudyn_turnout.passage.events import event_summary
+from exudyn_turnout.passage.safety import (
+    SAFETY_LIMITS,
+    SafetyLimits,
+    SafetyStop,
+    check_safety,
+    first_derailment,
+    limits_record,
+    safety_columns,
+    safety_summary,
+    wheel_labels,
+)
 
 __all__ = [
     "settings_record",
@@ -30,9 +41,12 @@ __all__ = [
     "DEFAULT_SETTINGS",
     "PassageResult",
     "check_plausible",
+    "stop_on_derailment",
     "passage_summary",
     "write_passage",
     "peaks_table",
+    "vehicle_summary",
+    "static_loads_of",
 ]
 
 
@@ -124,6 +138,20 @@ class PassageResult:
     summary: Mapping[str, object]
     #: m, x where each run segment began
     zone_starts: tuple[float, ...] = field(default_factory=tuple)
+
+    def __post_init__(self) -> None:
+        """Add the safety columns (Y/Q per wheel, sum Y per wheelset) if they are missing.
+
+        Derived from the wheel forces and the summary's static wheel loads
+        (:func:`~exudyn_turnout.passage.safety.safety_columns`), so that every track's
+        result, its CSV and its NPZ carry the same names.
+        """
+        loads = static_loads_of(self.summary, self.columns)
+        extra = {
+            k: v for k, v in safety_columns(self.columns, loads).items() if k not in self.columns
+        }
+        if extra:
+            object.__setattr__(self, "columns", {**self.columns, **extra})
 
     @property
     def model(self) -> str:
@@ -291,7 +319,10 @@ def check_plausible(columns: Mapping[str, np.ndarray], static_load: float, what:
     Raises
     ------
     PassageFailure
-        At the first sample beyond a limit: its time, x, the quantity and its value.
+        At the first sample beyond a limit: its time, x, the quantity and its value; or a
+        lifting or climbing wheel (:func:`~exudyn_turnout.passage.safety.check_safety`:
+        no contact over more than 2 m of track, or Y/Q over the last 2 m above Nadal's
+        limit with the flange in contact), naming the wheel.
     """
     t, x = columns["t_s"], columns["x_m"]
     checks = []
@@ -313,14 +344,46 @@ def check_plausible(columns: Mapping[str, np.ndarray], static_load: float, what:
             bad = np.nonzero(np.abs(np.nan_to_num(values, nan=0.0)) > bound)[0]
         if bad.size and (first is None or bad[0] < first[0]):
             first = (int(bad[0]), label, float(values[bad[0]]), bound, unit)
-    if first is None:
+    derailment = first_derailment(columns, static_load) if static_load > 0 else None
+    if first is not None and (derailment is None or t[first[0]] <= derailment[0]):
+        i, label, value, bound, unit = first
+        where = f" ({what})" if what else ""
+        raise PassageFailure(
+            f"implausible run stopped at t = {t[i]:.5f} s, x = {x[i]:.3f} m{where}: "
+            f"{label} {value:.4g} {unit} is beyond the physical limit {bound:.4g} {unit}"
+        )
+    stop_on_derailment(columns, static_load, what)
+
+
+def stop_on_derailment(
+    columns: Mapping[str, np.ndarray],
+    static_load: float,
+    what: str = "",
+    limits: SafetyLimits = SAFETY_LIMITS,
+) -> None:
+    """Stop a lifting or climbing wheel (:func:`~exudyn_turnout.passage.safety.check_safety`).
+
+    Parameters
+    ----------
+    columns : mapping
+        ``t_s``, ``x_m`` and the wheel forces of a passage or of a part of it.
+    static_load : float
+        N, static wheel load.
+    what : str
+        Where, put into the message.
+    limits : SafetyLimits
+
+    Raises
+    ------
+    PassageFailure
+        Naming t, x, the wheel and the quantity (the CLI's exit 3).
+    """
+    if static_load <= 0 or "t_s" not in columns:
         return
-    i, label, value, bound, unit = first
-    where = f" ({what})" if what else ""
-    raise PassageFailure(
-        f"implausible run stopped at t = {t[i]:.5f} s, x = {x[i]:.3f} m{where}: "
-        f"{label} {value:.4g} {unit} is beyond the physical limit {bound:.4g} {unit}"
-    )
+    try:
+        check_safety(columns, static_load, what, limits)
+    except SafetyStop as err:
+        raise PassageFailure(str(err)) from None
 
 
 def _peak(
@@ -394,8 +457,9 @@ def passage_summary(
     settings: PassageSettings,
     static_loads: Mapping[str, float],
     wall_time: float,
+    limits: SafetyLimits = SAFETY_LIMITS,
 ) -> dict[str, object]:
-    """Peaks at the switch and crossing, per wheel and per contact, and the run's settings.
+    """Peaks at the switch and crossing, per wheel and per contact, safety, the settings.
 
     ``peak_Fz_switch_N`` etc. are the right wheel's (as the paper's Figs 7, 8), ``_left``
     keys the left wheel's; per wheel ``peak_Fz_crossing_<wheel>_N``, per wheel and contact
@@ -415,10 +479,23 @@ def passage_summary(
         Static load (N) of each wheel, "left" and "right".
     wall_time : float
         s.
+    limits : SafetyLimits
+        Limits of the safety quantities and of the derailment stop.
 
     Returns
     -------
     dict
+        Also the safety and wear quantities per wheel and region (``run`` the whole run) of
+        :func:`~exudyn_turnout.passage.safety.safety_summary` (``YQ_peak_<region>_<wheel>``,
+        ``YQ_2m_peak_...``, ``sumY_2m_peak_<region>_N``, ``dQ_Q0_max_...``,
+        ``contact_loss_..._m``, ``Tgamma_peak_..._N``...), ``safety_exceeded`` (list of
+        the limits exceeded: wheel, region, quantity, value, limit, x_m) and
+        ``safety_limits``.
+
+    Raises
+    ------
+    PassageFailure
+        A wheel lifted or climbing (:func:`stop_on_derailment` on the whole run).
     """
 
     regions = _regions(turnout)
@@ -448,6 +525,54 @@ def passage_summary(
         list(regions["crossing"]),
     )
     out["settings"] = settings_record(settings)
+    loads = {"": {w: float(static_loads[w]) for w in ("right", "left")}}
+    _add_safety(out, columns, loads, regions, limits)
+    stop_on_derailment(columns, 0.5 * (loads[""]["right"] + loads[""]["left"]), "", limits)
+    return out
+
+
+def _add_safety(
+    out: dict[str, object],
+    columns: Mapping[str, np.ndarray],
+    loads: Mapping[str, Mapping[str, float]],
+    regions: Mapping[str, tuple[float, float]],
+    limits: SafetyLimits,
+) -> None:
+    """Put the safety quantities, the limits exceeded and the limits into a summary."""
+    values, exceeded = safety_summary(columns, loads, regions, limits)
+    out.update(values)
+    out["safety_exceeded"] = exceeded
+    out["safety_limits"] = limits_record(limits)
+
+
+def static_loads_of(
+    summary: Mapping[str, object], columns: Mapping[str, np.ndarray]
+) -> dict[str, dict[str, float]]:
+    """Static wheel loads per wheelset label, as the summary records them.
+
+    Parameters
+    ----------
+    summary : mapping
+        ``static_wheel_load_N``, ``static_wheel_load_left_N`` and (full vehicle)
+        ``static_wheel_load_ws<i>_<wheel>_N``.
+    columns : mapping
+        The passage's columns (which wheelsets there are).
+
+    Returns
+    -------
+    dict
+        ``""`` (the single or front wheelset) and ``ws<i>`` -> {"right", "left"} -> N;
+        only labels whose loads are in the summary and are > 0.
+    """
+    out: dict[str, dict[str, float]] = {}
+    keys: dict[str, tuple[str, ...]] = {"": ("static_wheel_load_N", "static_wheel_load_left_N")}
+    for label in wheel_labels(columns):
+        if label:
+            keys[label] = tuple(f"static_wheel_load_{label}_{w}_N" for w in ("right", "left"))
+    for label, (right, left) in keys.items():
+        r, lft = summary.get(right), summary.get(left)
+        if isinstance(r, (int, float)) and isinstance(lft, (int, float)) and r > 0 and lft > 0:
+            out[label] = {"right": float(r), "left": float(lft)}
     return out
 
 
@@ -458,6 +583,7 @@ OUTPUT_FILES = (
     "summary.json",
     "forces.png",
     "contact_band.png",
+    "safety.png",
 )
 
 
@@ -591,7 +717,13 @@ def vehicle_summary(
     dict
         :func:`~exudyn_turnout.passage.results.passage_summary` of the front wheelset plus
         ``peak_<Fz|Fy>_<region>_wsk_<wheel>_N``, ``static_wheel_load_wsk_<wheel>_N``,
-        ``vehicle`` and ``wheelsets``.
+        the safety quantities of every wheelset (``YQ_peak_<region>_wsk_<wheel>``...,
+        ``safety_exceeded`` naming ``wsk``), ``vehicle`` and ``wheelsets``.
+
+    Raises
+    ------
+    PassageFailure
+        A wheel of any wheelset lifted or climbing (:func:`stop_on_derailment`).
     """
     front = static_loads[0]
     summary = passage_summary(columns, turnout, settings, front, time.perf_counter() - wall)
@@ -607,6 +739,17 @@ def vehicle_summary(
                     summary[f"peak_{q}_{where}_{label}_{wheel}_N"] = _peak(
                         own, f"{q}_{wheel}", rng, signed
                     )
+    loads = {
+        f"ws{i + 1}": {w: float(ld[w]) for w in ("right", "left")}
+        for i, ld in enumerate(static_loads)
+    }
+    _add_safety(summary, columns, loads, regions, SAFETY_LIMITS)  # the list: per wsk
+    for label, ld in loads.items():
+        own = {"t_s": columns["t_s"], "x_m": columns[f"x_{label}_m"]}
+        for q in ("Fz", "Fy"):
+            for wheel in ("right", "left"):
+                own[f"{q}_{wheel}_N"] = columns[f"{q}_{label}_{wheel}_N"]
+        stop_on_derailment(own, 0.5 * (ld["right"] + ld["left"]), f"wheelset {label[2:]}")
     summary["vehicle"] = model.name
     summary["wheelsets"] = len(static_loads)
     return summary
