@@ -16,6 +16,7 @@ from exudyn_turnout.cli.main import (
     progress_bar,
     turnout_from_args,
 )
+from exudyn_turnout.passage.events import event_line
 from exudyn_turnout.passage.run import simulate_passage
 
 __all__ = [
@@ -422,6 +423,9 @@ def _run_and_write(args, out, simulate, title, what, turnout, vehicle, extra_set
         f"{summary['simulated_time_s']:.2f} s simulated "
         f"in {summary['wall_time_s']:.1f} s"
     )
+    event = event_line(summary)
+    if event is not None:
+        print(event)
     print(safety_text(summary))
     _end_running(out)
     return 0

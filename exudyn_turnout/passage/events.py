@@ -35,7 +35,7 @@ from typing import SupportsFloat, cast
 import numpy as np
 
 from exudyn_turnout.inputs.geometry import turnout_plan
-from exudyn_turnout.inputs.routes import load_route
+from exudyn_turnout.inputs.routes import load_route, route_names
 from exudyn_turnout.inputs.turnout import Turnout, TurnoutFileError
 
 __all__ = [
@@ -71,13 +71,20 @@ def nose_region(turnout: Turnout) -> tuple[float, float] | None:
     Returns
     -------
     (float, float) or None
-        m, ``(nose_tip - NOSE_BEFORE, nose_tip + NOSE_AFTER)``.
+        m, ``(nose_tip - NOSE_BEFORE, nose_tip + NOSE_AFTER)``; it starts later where a
+        check rail's entry flare ends later (the EW54-190-1:9's: 22.75 m, 0.84 m before its
+        nose tip), so that no entry impact falls inside it.
     """
     try:
         tip = turnout_plan(turnout).nose_tip_x
     except TurnoutFileError:
         return None
-    return (tip - NOSE_BEFORE, tip + NOSE_AFTER)
+    start = tip - NOSE_BEFORE
+    for route in route_names(turnout):
+        check = check_rail_event(turnout, route)
+        if check is not None and check["entry_m"][0] < tip:  # type: ignore[index]
+            start = max(start, float(check["entry_m"][1]))  # type: ignore[index]
+    return (start, tip + NOSE_AFTER)
 
 
 def check_rail_event(turnout: Turnout, route: str) -> dict[str, object] | None:
