@@ -517,11 +517,11 @@ def read_fitted(path: str | Path, turnout: Turnout | None = None) -> FittedSet:
         raise check.fail(unknown[0], "is not a section of a fitted file ([fitted], [zoneN])")
     if not zone_keys:
         raise check.fail("[zoneN]", "is missing: the file holds no fitted zone")
+    if turnout is not None:  # first: another turnout's zones would not fit either
+        _check_turnout(check, head, turnout)
     for key in zone_keys:
         index, zone_entries, where, rows = _read_zone(check, turnout, key, data[key], layers)
         entries[index], positions[index], residuals[index] = zone_entries, where, rows
-    if turnout is not None:
-        _check_turnout(check, head, turnout)
     provenance = {k: v for k, v in head.items() if k not in ("layers", "band_centres_hz")}
     return FittedSet(
         layers,
