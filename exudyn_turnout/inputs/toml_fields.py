@@ -50,7 +50,6 @@ def did_you_mean(name: str, known: Iterable[str]) -> str:
     return f" (known: {', '.join(names)})"
 
 
-
 class TurnoutFileError(ValueError):
     """A turnout file is missing a field or holds a value that cannot be right."""
 

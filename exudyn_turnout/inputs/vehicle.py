@@ -128,7 +128,8 @@ def load_vehicle(path: str | Path | None = None) -> Vehicle:
     """Load and validate a vehicle file (default: the packaged Manchester benchmark wheelset).
 
     Every number must be finite and > 0 (dampings >= 0) and within a plausibility bound:
-    primary stiffnesses >= :data:`PRIMARY_STIFFNESS_MIN`, masses <= 1e6 kg, inertias <= 1e7 kg m^2, wheel radius 0.1..2 m, semi-spacings <= 5 m,
+    primary stiffnesses >= :data:`PRIMARY_STIFFNESS_MIN`, masses <= 1e6 kg, inertias
+    <= 1e7 kg m^2, wheel radius 0.1..2 m, semi-spacings <= 5 m,
     stiffnesses <= 1e12 N/m, dampings <= 1e10 N s/m; contact: C_H <= 1e14 N/m^1.5,
     creep coefficients and N_ref <= 1e10 N, mu <= 2, conicity <= 1, flange clearance <= 0.1 m.
 

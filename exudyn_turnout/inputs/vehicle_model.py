@@ -28,6 +28,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
+from exudyn_turnout.inputs.vehicle import PRIMARY_STIFFNESS_MIN
 from exudyn_turnout.inputs.vehicle_data import (
     GRAVITY,
     BodyData,
@@ -51,7 +52,6 @@ from exudyn_turnout.inputs.vehicle_frequencies import (
     sway_frequencies,
     wheelset_bounce_frequency,
 )
-from exudyn_turnout.inputs.vehicle import PRIMARY_STIFFNESS_MIN
 from exudyn_turnout.inputs.vehicle_names import PACKAGED_VEHICLES, packaged_vehicle_path
 
 __all__ = [

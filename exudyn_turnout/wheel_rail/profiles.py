@@ -350,9 +350,7 @@ def read_plain_profile(path: str | Path, kind: str = "rail", length_unit: str = 
     return Profile(y=points[:, 0], z=-points[:, 1], kind=kind, source=str(path))
 
 
-def read_profile(
-    path: str | Path, kind: str | None = None, length_unit: str = "auto"
-) -> Profile:
+def read_profile(path: str | Path, kind: str | None = None, length_unit: str = "auto") -> Profile:
     """Read a profile in Simpack format (``.prr``/``.prw``) or plain text (anything else).
 
     Parameters

@@ -31,6 +31,7 @@ import uuid
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -446,9 +447,7 @@ def _read_cached(
                 )
     except Exception as err:  # any file numpy cannot read is a damaged cache entry
         problem = f"cannot be read ({type(err).__name__}: {err})".replace("\n", " ")
-    warnings.warn(
-        f"contact-table cache {path}: {problem}; the table is rebuilt", RuntimeWarning, 2
-    )
+    warnings.warn(f"contact-table cache {path}: {problem}; the table is rebuilt", RuntimeWarning, 2)
     return None
 
 
@@ -460,7 +459,9 @@ def _write_cached(path: Path, key: str, arrays: dict[str, np.ndarray]) -> None:
     temporary = path.with_name(f"{path.stem}.{os.getpid()}-{uuid.uuid4().hex[:8]}.tmp.npz")
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        np.savez(temporary, key=np.array(key), checksum=np.array(_checksum(arrays)), **arrays)
+        content: dict[str, Any] = dict(arrays, key=np.array(key))
+        content["checksum"] = np.array(_checksum(arrays))
+        np.savez(temporary, **content)
         os.replace(temporary, path)
     except OSError as err:
         _UNUSABLE.add(str(path.parent))
