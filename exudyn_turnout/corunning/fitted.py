@@ -431,8 +431,11 @@ def _read_zone(
     return index, entries, (tuple(s), x), tuple(dict(r) for r in residuals)
 
 
-def _check_turnout(check: _Check, head: Mapping[str, Any], turnout: Turnout) -> None:
-    """The set must have been fitted to this turnout (its name and model hash)."""
+def _check_turnout(check: _Check, head: Mapping[str, Any], turnout: Turnout) -> str | None:
+    """The set must have been fitted to this turnout (its name and model hash).
+
+    Returns the warning for a file without the hash (given once the rest is checked).
+    """
     source = Path(str(turnout.source)).name
     name = head.get("turnout")
     if isinstance(name, str) and name != turnout.name:
@@ -443,13 +446,11 @@ def _check_turnout(check: _Check, head: Mapping[str, Any], turnout: Turnout) -> 
         )
     sha = head.get("turnout_model_sha256")
     if sha is None:
-        warnings.warn(
+        return (
             f"{check.filename} has no fitted.turnout_model_sha256 (written before format 2): "
             f"whether it was fitted to this {source} cannot be checked; refit with "
-            "exudyn-turnout fit",
-            stacklevel=3,
+            "exudyn-turnout fit"
         )
-        return
     if sha != turnout_model_sha256(turnout):
         raise check.fail(
             "fitted.turnout_model_sha256",
@@ -457,6 +458,7 @@ def _check_turnout(check: _Check, head: Mapping[str, Any], turnout: Turnout) -> 
             "sleepers, ballast, zones or layout differ; refit with exudyn-turnout fit "
             f"--turnout {source}",
         )
+    return None
 
 
 def read_fitted(path: str | Path, turnout: Turnout | None = None) -> FittedSet:
@@ -517,11 +519,14 @@ def read_fitted(path: str | Path, turnout: Turnout | None = None) -> FittedSet:
         raise check.fail(unknown[0], "is not a section of a fitted file ([fitted], [zoneN])")
     if not zone_keys:
         raise check.fail("[zoneN]", "is missing: the file holds no fitted zone")
-    if turnout is not None:  # first: another turnout's zones would not fit either
-        _check_turnout(check, head, turnout)
+    unchecked = None  # first: another turnout's zones would not fit either
+    if turnout is not None:
+        unchecked = _check_turnout(check, head, turnout)
     for key in zone_keys:
         index, zone_entries, where, rows = _read_zone(check, turnout, key, data[key], layers)
         entries[index], positions[index], residuals[index] = zone_entries, where, rows
+    if unchecked:
+        warnings.warn(unchecked, stacklevel=2)
     provenance = {k: v for k, v in head.items() if k not in ("layers", "band_centres_hz")}
     return FittedSet(
         layers,
