@@ -258,7 +258,7 @@ def _zones_and_positions(
 
 def _run(args: argparse.Namespace) -> int:
     from exudyn_turnout.corunning.fit import FitOptions, fit_zone, fitted_set
-    from exudyn_turnout.corunning.fitted import file_sha256, write_fitted
+    from exudyn_turnout.corunning.fitted import file_sha256, turnout_model_sha256, write_fitted
     from exudyn_turnout.corunning.parameters import co_running_parameters
     from exudyn_turnout.fe.mesh import FEOptions
     from exudyn_turnout.inputs.turnout import load_turnout
@@ -303,6 +303,7 @@ def _run(args: argparse.Namespace) -> int:
         "turnout": turnout.name,
         "turnout_file": record["inputs"]["turnout"]["name"],
         "turnout_sha256": file_sha256(turnout.source),
+        "turnout_model_sha256": turnout_model_sha256(turnout),
         "route": args.route,
         "f_min_hz": args.fmin,
         "f_max_hz": args.fmax,

@@ -24,6 +24,9 @@ from typing import NoReturn
 
 from exudyn_turnout.corunning.parameters import SOURCES, CoRunningParameters, co_running_parameters
 from exudyn_turnout.inputs.turnout import Turnout, TurnoutFileError, load_turnout
+from exudyn_turnout.inputs.vehicle_model import VehicleModelError
+from exudyn_turnout.passage.results import PassageError, PassageFailure
+from exudyn_turnout.wheel_rail.profiles import ProfileFormatError
 
 __all__ = [
     "main",
@@ -604,12 +607,18 @@ def _main(argv: list[str]) -> int:
         code = args.run(args)
         sys.stdout.flush()
         return code
-    except (UsageError, TurnoutFileError) as err:
-        print(f"error: {err}", file=sys.stderr)
-        return EXIT_USAGE
-    except RunFailure as err:
+    except (RunFailure, PassageFailure) as err:
         print(f"error: {err}", file=sys.stderr)
         return EXIT_RUN_FAILED
+    except (
+        UsageError,
+        TurnoutFileError,
+        VehicleModelError,
+        ProfileFormatError,
+        PassageError,
+    ) as err:  # every command: a bad input file is one line, whichever stage finds it
+        print(f"error: {err}", file=sys.stderr)
+        return EXIT_USAGE
     except BrokenPipeError:
         _quiet_stdout()
         return 0

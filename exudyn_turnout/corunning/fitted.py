@@ -10,7 +10,10 @@ are constant per zone, as in the paper.
 The file (``exudyn-turnout fit --out fitted.toml``) is plain TOML::
 
     [fitted]                     # provenance: turnout file and its SHA-256, layers, route,
-    turnout_sha256 = "..."       # frequency range, FE options, optimiser, weights, date
+    format = 2                   # frequency range, FE options, optimiser, weights, date
+    turnout = "UIC60-760-1:15"
+    turnout_sha256 = "..."       # the turnout file's bytes (provenance only)
+    turnout_model_sha256 = "..." # what the fit depends on: turnout_model_sha256(turnout)
     layers = 3
     band_centres_hz = [...]      # 1/3-octave centres of the residuals below
     [fitted.fe_options]
@@ -39,6 +42,7 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
+import json
 import math
 import tomllib
 import warnings
@@ -56,6 +60,8 @@ __all__ = [
     "FittedSet",
     "FITTED_FORMAT",
     "file_sha256",
+    "MODEL_SECTIONS",
+    "turnout_model_sha256",
     "fitted_toml",
     "write_fitted",
     "read_fitted",
@@ -63,8 +69,24 @@ __all__ = [
     "load_fitted",
 ]
 
-#: Version of the fitted-file format written by :func:`write_fitted`.
-FITTED_FORMAT = 1
+#: Version of the fitted-file format written by :func:`write_fitted` (2: with
+#: ``fitted.turnout_model_sha256``; 1, without it, is still read, with a warning).
+FITTED_FORMAT = 2
+
+#: Sections of a turnout file that a fitted set depends on (the FE model it was fitted to
+#: and the co-running model it starts from): rails, pads, sleepers, ballast, the support
+#: polynomials, the third layer, the zones and the layout. Comments, formatting and the
+#: other sections (routes, regions, check rail, wheel/rail design, report, Table 2) do not
+#: enter :func:`turnout_model_sha256`, so editing them keeps a fitted file valid.
+MODEL_SECTIONS = (
+    "rail_types",
+    "sleeper",
+    "ballast",
+    "stiffness_profiles",
+    "extra_layer",
+    "zones",
+    "layout",
+)
 
 #: SI upper bounds of fitted values (those of the turnout file, ``inputs.turnout.BOUNDS``).
 _UPPER = {"k": 1e12, "c": 1e10, "m": 1e5, "J": 1e5}
@@ -183,6 +205,25 @@ def file_sha256(path: str | Path) -> str:
         64 hex digits.
     """
     return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+def turnout_model_sha256(turnout: Turnout) -> str:
+    """SHA-256 (hex) of the turnout's :data:`MODEL_SECTIONS`, as parsed (canonical JSON).
+
+    Parameters
+    ----------
+    turnout : Turnout
+        A loaded turnout (its ``raw`` sections are hashed, keys sorted).
+
+    Returns
+    -------
+    str
+        64 hex digits; the same for two files that differ only in comments, layout of the
+        text or sections outside :data:`MODEL_SECTIONS`.
+    """
+    model = {name: turnout.raw.get(name) for name in MODEL_SECTIONS}
+    text = json.dumps(model, sort_keys=True, separators=(",", ":"), default=repr)
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
 def _toml_value(value: Any) -> str:
@@ -322,6 +363,24 @@ def _positions(check: _Check, where: str, s_raw: Any) -> list[float]:
     return s
 
 
+def _x_positions(check: _Check, where: str, raw: Any, n: int) -> tuple[float, ...]:
+    """The fit positions (m): empty, or one finite number per s, strictly increasing."""
+    if not isinstance(raw, list):
+        raise check.fail(where, f"must be a list of positions (m), got {raw!r}")
+    if not raw:
+        return ()
+    if len(raw) != n:
+        raise check.fail(where, f"must hold one position per s ({n}), got {len(raw)}")
+    x: list[float] = []
+    for i, v in enumerate(raw):
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            raise check.fail(f"{where}[{i}]", f"must be a finite number (m), got {v!r}")
+        if x and v <= x[-1]:
+            raise check.fail(where, f"must increase (as s does), got {raw!r}")
+        x.append(float(v))
+    return tuple(x)
+
+
 def _read_zone(
     check: _Check, turnout: Turnout | None, zone_key: str, data: Any, layers: int
 ) -> tuple[int, dict[str, Entry], tuple[tuple[float, ...], tuple[float, ...]], tuple]:
@@ -333,8 +392,15 @@ def _read_zone(
             zone_key, f"names no zone of {turnout.name} (zones 1..{len(turnout.zones)})"
         )
     s = _positions(check, f"{zone_key}.s", data.get("s"))
-    x_raw = data.get("x_m", [])
-    x = tuple(float(v) for v in x_raw) if isinstance(x_raw, list) else ()
+    x = _x_positions(check, f"{zone_key}.x_m", data.get("x_m", []), len(s))
+    if turnout is not None and x:
+        zone = turnout.zone(index)
+        if x[0] < zone.x_start - 1e-6 or x[-1] > zone.x_end + 1e-6:
+            raise check.fail(
+                f"{zone_key}.x_m",
+                f"must lie inside zone {index} ({zone.x_start:g}..{zone.x_end:g} m), "
+                f"got {x[0]:g}..{x[-1]:g}",
+            )
     entries_raw = data.get("entries")
     if not isinstance(entries_raw, Mapping) or not entries_raw:
         raise check.fail(f"{zone_key}.entries", "is missing or empty")
@@ -365,6 +431,36 @@ def _read_zone(
     return index, entries, (tuple(s), x), tuple(dict(r) for r in residuals)
 
 
+def _check_turnout(check: _Check, head: Mapping[str, Any], turnout: Turnout) -> str | None:
+    """The set must have been fitted to this turnout (its name and model hash).
+
+    Returns the warning for a file without the hash (given once the rest is checked).
+    """
+    source = Path(str(turnout.source)).name
+    name = head.get("turnout")
+    if isinstance(name, str) and name != turnout.name:
+        raise check.fail(
+            "fitted.turnout",
+            f"= {name!r}: the set was fitted to another turnout, not to {turnout.name} "
+            f"({source}); fit this one with exudyn-turnout fit --turnout {source}",
+        )
+    sha = head.get("turnout_model_sha256")
+    if sha is None:
+        return (
+            f"{check.filename} has no fitted.turnout_model_sha256 (written before format 2): "
+            f"whether it was fitted to this {source} cannot be checked; refit with "
+            "exudyn-turnout fit"
+        )
+    if sha != turnout_model_sha256(turnout):
+        raise check.fail(
+            "fitted.turnout_model_sha256",
+            f"does not match {source}: the set was fitted to a turnout whose rails, pads, "
+            "sleepers, ballast, zones or layout differ; refit with exudyn-turnout fit "
+            f"--turnout {source}",
+        )
+    return None
+
+
 def read_fitted(path: str | Path, turnout: Turnout | None = None) -> FittedSet:
     """Read and check a fitted parameter file.
 
@@ -373,9 +469,10 @@ def read_fitted(path: str | Path, turnout: Turnout | None = None) -> FittedSet:
     path : str or Path
         The TOML file written by :func:`write_fitted`.
     turnout : Turnout, optional
-        The turnout the set is for: its zones bound the zone numbers, and a SHA-256 that
-        differs from the file's ``fitted.turnout_sha256`` gives a warning (the set was fitted
-        to another version of the turnout file).
+        The turnout the set is for: its zones bound the zone numbers and the fit
+        positions; the file's ``fitted.turnout`` must be its name and
+        ``fitted.turnout_model_sha256`` its :func:`turnout_model_sha256` (a file without
+        the hash, format 1, gives a warning).
 
     Returns
     -------
@@ -385,8 +482,9 @@ def read_fitted(path: str | Path, turnout: Turnout | None = None) -> FittedSet:
     Raises
     ------
     TurnoutFileError
-        The file cannot be read, is not TOML, or a field is missing or out of range; the
-        message names the file and the field.
+        The file cannot be read, is not TOML, or a field is missing or out of range (an
+        unknown ``format``, fit positions that do not increase); it was fitted to another
+        turnout. The message names the file and the field.
     """
     path = Path(path)
     check = _Check(path.name)
@@ -401,6 +499,15 @@ def read_fitted(path: str | Path, turnout: Turnout | None = None) -> FittedSet:
     head = data.get("fitted")
     if not isinstance(head, Mapping):
         raise check.fail("[fitted]", "is missing (not a fitted parameter file)")
+    version = head.get("format", 1)  # hand-written files may leave it out: format 1
+    if isinstance(version, bool) or not isinstance(version, int):
+        raise check.fail("fitted.format", f"must be an integer, got {version!r}")
+    if not 1 <= version <= FITTED_FORMAT:
+        raise check.fail(
+            "fitted.format",
+            f"= {version} is not a format this version reads (1..{FITTED_FORMAT}); "
+            "refit with exudyn-turnout fit or update exudyn_turnout",
+        )
     layers = head.get("layers")
     if layers not in (2, 3) or isinstance(layers, bool):
         raise check.fail("fitted.layers", f"must be 2 or 3, got {layers!r}")
@@ -412,18 +519,14 @@ def read_fitted(path: str | Path, turnout: Turnout | None = None) -> FittedSet:
         raise check.fail(unknown[0], "is not a section of a fitted file ([fitted], [zoneN])")
     if not zone_keys:
         raise check.fail("[zoneN]", "is missing: the file holds no fitted zone")
+    unchecked = None  # first: another turnout's zones would not fit either
+    if turnout is not None:
+        unchecked = _check_turnout(check, head, turnout)
     for key in zone_keys:
         index, zone_entries, where, rows = _read_zone(check, turnout, key, data[key], layers)
         entries[index], positions[index], residuals[index] = zone_entries, where, rows
-    if turnout is not None:
-        sha = head.get("turnout_sha256")
-        source = Path(str(turnout.source))
-        if isinstance(sha, str) and source.is_file() and file_sha256(source) != sha:
-            warnings.warn(
-                f"{path.name} was fitted to another version of {source.name} "
-                "(fitted.turnout_sha256 differs); refit with exudyn-turnout fit",
-                stacklevel=2,
-            )
+    if unchecked:
+        warnings.warn(unchecked, stacklevel=2)
     provenance = {k: v for k, v in head.items() if k not in ("layers", "band_centres_hz")}
     return FittedSet(
         layers,

@@ -34,7 +34,8 @@ from typing import Any
 import numpy as np
 from scipy.optimize import brentq
 
-from exudyn_turnout.inputs.turnout import Turnout, TurnoutFileError
+from exudyn_turnout.inputs.toml_fields import TurnoutFileError
+from exudyn_turnout.inputs.turnout_data import Turnout
 
 __all__ = [
     "Centreline",

@@ -30,6 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
+from exudyn_turnout.inputs.toml_fields import X_LIMIT
 from exudyn_turnout.inputs.track_spectra import (
     PSD_COMPONENTS,
     SPECTRUM_NAMES,
@@ -527,7 +528,17 @@ def _band(kind: str, text: str) -> tuple[float, float]:
     return _number(kind, "band", low), _number(kind, "band", high)
 
 
-def _one_spec(text: str, base_dir: Path | None) -> Irregularity:
+def _inside(kind: str, x: float, x_range: tuple[float, float] | None) -> None:
+    """A defect's position: within the run's x range if given, else within |x| <= X_LIMIT."""
+    lo, hi = x_range if x_range is not None else (-X_LIMIT, X_LIMIT)
+    if not lo <= x <= hi:
+        where = "the route" if x_range is not None else "any turnout"
+        raise ValueError(f"{kind}: x={x:g} m is outside {where} ({lo:g}..{hi:g} m)")
+
+
+def _one_spec(
+    text: str, base_dir: Path | None, x_range: tuple[float, float] | None = None
+) -> Irregularity:
     kind, colon, rest = text.partition(":")
     kind = kind.strip().lower()
     if colon and kind == "psd":
@@ -562,6 +573,7 @@ def _one_spec(text: str, base_dir: Path | None) -> Irregularity:
         size = "angle" if kind == "joint" else "depth"
         f = _fields(rest, kind, ("x", size, "length"), (size,) + common)
         x, length = _number(kind, "x", f["x"]), _number(kind, "length", f["length"])
+        _inside(kind, x, x_range)
         value = _number(kind, size, f[size])
         rail, direction = f.get("rail", "both"), f.get("direction", "vertical")
         try:
@@ -578,7 +590,15 @@ def _one_spec(text: str, base_dir: Path | None) -> Irregularity:
     if path.suffix.lower() == ".csv" or path.exists():
         if not path.is_file():
             raise ValueError(f"irregularity file {text.strip()}: no such file")
-        return irregularity_from_csv(path)
+        measured = irregularity_from_csv(path)
+        lo, hi = x_range if x_range is not None else (-X_LIMIT, X_LIMIT)
+        if measured.x[-1] < lo or measured.x[0] > hi:
+            where = "the route" if x_range is not None else "any turnout"
+            raise ValueError(
+                f"{path.name}: x {measured.x[0]:g}..{measured.x[-1]:g} m lies outside "
+                f"{where} ({lo:g}..{hi:g} m)"
+            )
+        return measured
     raise ValueError(
         f"irregularity {text.strip()!r}: not a CSV file nor a spec "
         "(psd:NAME,seed=N[,band=1-70] | dip:x=..,depth=..,length=.. | "
@@ -586,7 +606,9 @@ def _one_spec(text: str, base_dir: Path | None) -> Irregularity:
     )
 
 
-def irregularity_from_spec(text: str, base_dir: str | Path | None = None) -> Irregularity:
+def irregularity_from_spec(
+    text: str, base_dir: str | Path | None = None, x_range: tuple[float, float] | None = None
+) -> Irregularity:
     """An irregularity from a compact text spec (the ``--irregularity`` option).
 
     Forms, several joined by ``;`` are summed:
@@ -605,6 +627,9 @@ def irregularity_from_spec(text: str, base_dir: str | Path | None = None) -> Irr
         The spec.
     base_dir : str or Path, optional
         Directory relative CSV paths are taken from (default: the working directory).
+    x_range : (float, float), optional
+        m, the x range of the route or run: a dip, bump or joint must lie inside it, a CSV
+        file overlap it. Without it the bound is that of any turnout, ``|x| <= X_LIMIT``.
 
     Returns
     -------
@@ -624,4 +649,4 @@ def irregularity_from_spec(text: str, base_dir: str | Path | None = None) -> Irr
     if not parts:
         raise ValueError("irregularity: empty spec")
     base = Path(base_dir) if base_dir is not None else None
-    return sum_irregularities(_one_spec(p, base) for p in parts)
+    return sum_irregularities(_one_spec(p, base, x_range) for p in parts)

@@ -19,14 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from exudyn_turnout.inputs.geometry import TurnoutPlan, resolve_position, turnout_plan
-from exudyn_turnout.inputs.turnout import (
-    RAIL_SLOTS,
-    FieldReader,
-    Table1D,
-    Turnout,
-    TurnoutFileError,
-    Zone,
-)
+from exudyn_turnout.inputs.toml_fields import FieldReader, TurnoutFileError
+from exudyn_turnout.inputs.turnout_data import RAIL_SLOTS, Table1D, Turnout, Zone
 
 __all__ = [
     "ContactPair",

@@ -9,9 +9,10 @@ single-wheelset vehicle file (:mod:`.vehicle`) are read with them.
 
 from __future__ import annotations
 
+import difflib
 import math
 import tomllib
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -22,7 +23,31 @@ __all__ = [
     "FieldReader",
     "X_LIMIT",
     "read_toml",
+    "did_you_mean",
 ]
+
+
+def did_you_mean(name: str, known: Iterable[str]) -> str:
+    """``" (did you mean 'x'?)"`` for the closest of ``known`` to ``name``, else the list.
+
+    Parameters
+    ----------
+    name : str
+        The unknown name.
+    known : iterable of str
+        The names allowed there.
+
+    Returns
+    -------
+    str
+        A suffix for a message: the close match (:func:`difflib.get_close_matches`), or the
+        allowed names when none is close.
+    """
+    names = sorted(known)
+    close = difflib.get_close_matches(name, names, n=1, cutoff=0.6)
+    if close:
+        return f" (did you mean {close[0]!r}?)"
+    return f" (known: {', '.join(names)})"
 
 
 class TurnoutFileError(ValueError):
@@ -85,6 +110,32 @@ class FieldReader:
         """
         return TurnoutFileError(f"{self.filename}: {field} {problem}")
 
+    def keys(self, field: str, known: Iterable[str]) -> None:
+        """Refuse a key of table ``field`` that is not in ``known`` (one line, did you mean).
+
+        Parameters
+        ----------
+        field : str
+            Dotted name of the table (``""``: the file's top level). A missing table or a
+            value that is not a table is left to the field's own check.
+        known : iterable of str
+            The keys allowed in the table.
+
+        Raises
+        ------
+        TurnoutFileError
+            The first unknown key, named with the closest known one.
+        """
+        table = self.get(field, None) if field else self.data
+        if not isinstance(table, Mapping):
+            return
+        allowed = set(known)
+        for key in table:
+            if key not in allowed:
+                name = f"{field}.{key}" if field else f"[{key}]"
+                what = "key" if field else "section"
+                raise self.fail(name, f"is not a {what} of this file{did_you_mean(key, allowed)}")
+
     def get(self, field: str, default: Any = ...) -> Any:
         """The value of a dotted field.
 
@@ -115,7 +166,12 @@ class FieldReader:
         return node
 
     def number(
-        self, field: str, positive: bool = True, default: Any = ..., upper: float | None = None
+        self,
+        field: str,
+        positive: bool = True,
+        default: Any = ...,
+        upper: float | None = None,
+        lower: float | None = None,
     ) -> float:
         """Field ``field`` as a float (> 0 if ``positive``, <= ``upper`` if given).
 
@@ -129,16 +185,23 @@ class FieldReader:
             Value of a missing field; without it a missing field is an error.
         upper : float, optional
             Plausibility bound on the magnitude.
+        lower : float, optional
+            Smallest value allowed (e.g. 0 for a damping, which may be zero).
 
         Returns
         -------
         float
             The value.
         """
-        return self.check(field, self.get(field, default), positive, upper)
+        return self.check(field, self.get(field, default), positive, upper, lower)
 
     def check(
-        self, field: str, value: Any, positive: bool = True, upper: float | None = None
+        self,
+        field: str,
+        value: Any,
+        positive: bool = True,
+        upper: float | None = None,
+        lower: float | None = None,
     ) -> float:
         """``value`` as a float, or an error naming ``field`` if it is not a (positive) number.
 
@@ -152,6 +215,8 @@ class FieldReader:
             The value must be > 0.
         upper : float, optional
             A plausibility bound (see ``turnout.BOUNDS``); larger magnitudes are an error.
+        lower : float, optional
+            Smallest value allowed; smaller values are an error.
 
         Returns
         -------
@@ -164,6 +229,8 @@ class FieldReader:
             raise self.fail(field, f"must be finite, got {value!r}")
         if positive and value <= 0:
             raise self.fail(field, f"must be > 0, got {value:g}")
+        if lower is not None and value < lower:
+            raise self.fail(field, f"must be >= {lower:g}, got {value:g}")
         if upper is not None and abs(value) > upper:
             raise self.fail(
                 field, f"must be <= {upper:g} (physically plausible bound), got {value:g}"

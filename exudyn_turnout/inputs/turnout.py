@@ -23,7 +23,14 @@ from typing import Any
 
 import numpy as np
 
-from exudyn_turnout.inputs.toml_fields import X_LIMIT, FieldReader, TurnoutFileError, read_toml
+from exudyn_turnout.inputs.routes import load_route, route_names
+from exudyn_turnout.inputs.toml_fields import (
+    X_LIMIT,
+    FieldReader,
+    TurnoutFileError,
+    did_you_mean,
+    read_toml,
+)
 from exudyn_turnout.inputs.turnout_data import (
     PARAMETER_NAMES,
     RAIL_SLOTS,
@@ -58,6 +65,8 @@ __all__ = [
     "default_turnout_path",
     "load_turnout",
     "read_toml",
+    "SECTIONS",
+    "REQUIRED_REGIONS",
 ]
 
 #: Plausibility bounds (upper limits, SI) of turnout-file quantities; every value must also
@@ -82,6 +91,85 @@ BOUNDS = {
 }
 
 
+#: Sections of a turnout file (the top-level tables), each with the module that reads it:
+#: this one (turnout .. published, routes' generic checks, regions, check_rail), routes
+#: (:mod:`.routes`), the plan and FE layout (``layout``), the rail sections
+#: (``wheel_rail``, ``check_rail``: :mod:`exudyn_turnout.wheel_rail.turnout_design`) and the
+#: validation report (``report``). Any other section is an error naming the closest.
+SECTIONS = (
+    "turnout",
+    "rail_types",
+    "sleeper",
+    "ballast",
+    "stiffness_profiles",
+    "extra_layer",
+    "zones",
+    "published",
+    "routes",
+    "regions",
+    "check_rail",
+    "wheel_rail",
+    "layout",
+    "report",
+)
+
+#: Keys of the tables this module reads in full (an unknown key is an error with a "did
+#: you mean"); ``wheel_rail``, ``check_rail``, ``layout`` and ``report`` are checked by
+#: their readers.
+_KEYS = {
+    "turnout": ("name", "description", "reference_rail_type"),
+    "rail_type": (
+        "density",
+        "youngs_modulus",
+        "shear_coefficient",
+        "poisson",
+        "area",
+        "I_z",
+        "I_y",
+        "sleeper_length",
+        "support",
+        "rails_per_sleeper",
+        "pad",
+        "vertical_factor",
+        "lateral_factor",
+        "equivalent_to",
+    ),
+    "pad": ("k_z", "c_z", "k_y", "c_y"),
+    "sleeper": ("density", "youngs_modulus", "area", "I", "spacing", "length"),
+    "ballast": ("s_b_z", "d_b_z", "s_b_y", "d_b_y"),
+    "extra_layer": ("m_0", "k_0_z_over_k_rt_z", "k_0_y_over_k_rt_y"),
+    "stiffness_profiles": ("K_sw", "K_sh"),
+    "polynomial": ("coefficients", "x_min", "x_max", "plain_track_end"),
+    "zone": (
+        "name",
+        "x_start",
+        "x_end",
+        "rail_types",
+        "active_rails",
+        "ballast_rail_type",
+        "mass_at_x",
+        "rail_y",
+        "ballast_y",
+        "sleeper_y",
+    ),
+    "route": (
+        "description",
+        "curvature",
+        "cant",
+        "permitted_speed_kmh",
+        "permitted_cant_deficiency",
+        "rail_y",
+        "continues",
+        "contacts",
+    ),
+    "contact": ("name", "wheel", "rail", "x", "z", "flange", "check", "sections"),
+}
+
+#: Regions a ``[regions]`` table must name (where the report takes the peaks "at the
+#: switch" and "at the crossing"); further names are the file's own.
+REQUIRED_REGIONS = ("switch", "crossing")
+
+
 def default_turnout_path() -> Path:
     """Path of the packaged UIC60-760-1:15 turnout file.
 
@@ -95,6 +183,8 @@ def default_turnout_path() -> Path:
 
 def _rail_type(r: FieldReader, name: str) -> RailType:
     p = f"rail_types.{name}"
+    r.keys(p, _KEYS["rail_type"])
+    r.keys(p + ".pad", _KEYS["pad"])
     factor_options = (None, "Delta_z", "Delta_y")
     b = BOUNDS
     pad_bounds = {
@@ -121,8 +211,20 @@ def _rail_type(r: FieldReader, name: str) -> RailType:
         sleeper_length=r.number(p + ".sleeper_length", upper=b["length"]),
         support=r.choice(p + ".support", ("edge", "middle")),
         rails_per_sleeper=r.integer(p + ".rails_per_sleeper", 1, 10),
+        # an undamped pad (c = 0) is a legitimate limiting case: the track keeps the
+        # ballast's damping (Eqs 5-9: c_rt and the k_0 layer's damping then come from the
+        # ballast only) and every spring-damper stays well defined; a negative damping
+        # would feed energy in, and is refused
         pad=RailPad(
-            *(r.number(f"{p}.pad.{k}", upper=pad_bounds[k]) for k in ("k_z", "c_z", "k_y", "c_y"))
+            *(
+                r.number(
+                    f"{p}.pad.{k}",
+                    positive=k.startswith("k"),
+                    upper=pad_bounds[k],
+                    lower=None if k.startswith("k") else 0.0,
+                )
+                for k in ("k_z", "c_z", "k_y", "c_y")
+            )
         ),
         vertical_factor=r.choice(p + ".vertical_factor", factor_options, None),
         lateral_factor=r.choice(p + ".lateral_factor", factor_options, None),
@@ -132,6 +234,7 @@ def _rail_type(r: FieldReader, name: str) -> RailType:
 
 def _polynomial(r: FieldReader, name: str) -> Polynomial:
     p = f"stiffness_profiles.{name}"
+    r.keys(p, _KEYS["polynomial"])
     coefficients = r.get(p + ".coefficients")
     if not isinstance(coefficients, list) or not coefficients:
         raise r.fail(p + ".coefficients", "must be a non-empty list of numbers")
@@ -161,6 +264,7 @@ def _zones(r: FieldReader, rail_types: Mapping[str, RailType]) -> tuple[Zone, ..
     for i, _ in enumerate(raw, start=1):
         p = f"zones[{i}]"
         zr = r.sub(p, raw[i - 1])
+        zr.keys(p, _KEYS["zone"])
         x0 = zr.number(p + ".x_start", False, upper=X_LIMIT)
         x1 = zr.number(p + ".x_end", False, upper=X_LIMIT)
         if not x1 > x0:
@@ -300,6 +404,13 @@ def _regions(r: FieldReader, zones: tuple[Zone, ...]) -> dict[str, tuple[float, 
         return out
     if not isinstance(regions, Mapping):
         raise r.fail("regions", "must be a table of name = [x_from, x_to]")
+    for name in REQUIRED_REGIONS:
+        if name not in regions:
+            raise r.fail(
+                f"regions.{name}",
+                "is missing: a [regions] table names the switch and the crossing "
+                f"[x_from, x_to] (m){did_you_mean(name, regions) if regions else ''}",
+            )
     for name, value in regions.items():
         f = f"regions.{name}"
         if not isinstance(value, list) or len(value) != 2:
@@ -363,6 +474,7 @@ def _routes(r: FieldReader, n_zones: int) -> None:
         p = f"routes.{name}"
         if not isinstance(route, Mapping):
             raise r.fail(p, "must be a table")
+        r.keys(p, _KEYS["route"])
         curvature = route.get("curvature", 0.0)
         if isinstance(curvature, Mapping):
             xs = _increasing(r, p + ".curvature.x", curvature.get("x"), 2)
@@ -395,6 +507,15 @@ def _routes(r: FieldReader, n_zones: int) -> None:
             f = f"{p}.contacts[{i}]"
             if not isinstance(c, Mapping):
                 raise r.fail(f, "must be a table")
+            r.sub(f, c).keys(f, _KEYS["contact"])
+            sections = c.get("sections")
+            if not isinstance(sections, list) or not sections:
+                raise r.fail(
+                    f + ".sections",
+                    "is missing: every contact lists the rail bodies it runs on, "
+                    "sections = [{ kind = ..., x = [x_from, x_to] }, ...] (a turnout file of "
+                    "the previous format: see the packaged uic60_760_1_15.toml)",
+                )
             if c.get("wheel") not in ("left", "right"):
                 raise r.fail(f + ".wheel", f"must be one of left, right, got {c.get('wheel')!r}")
             if c.get("rail") not in RAIL_SLOTS:
@@ -458,6 +579,9 @@ def load_turnout(path: str | Path | None = None) -> Turnout:
     path = Path(path) if path is not None else default_turnout_path()
     data = read_toml(path)
     r = FieldReader(path.name, data)
+    r.keys("", SECTIONS)
+    for section in ("turnout", "sleeper", "ballast", "extra_layer", "stiffness_profiles"):
+        r.keys(section, _KEYS[section])
     names = r.get("rail_types")
     if not isinstance(names, Mapping) or not names:
         raise r.fail("rail_types", "must define at least one rail type")
@@ -502,7 +626,7 @@ def load_turnout(path: str | Path | None = None) -> Turnout:
     _routes(r, len(zones))
     _check_rail(r)
     _layout_numbers(r)
-    return Turnout(
+    turnout = Turnout(
         name=str(r.get("turnout.name")),
         description=str(r.get("turnout.description", "")),
         source=str(path),
@@ -518,3 +642,6 @@ def load_turnout(path: str | Path | None = None) -> Turnout:
         reference_rail_type=reference,
         regions=regions,
     )
+    for route in route_names(turnout):  # each contact within the turnout, on active rails
+        load_route(turnout, route)
+    return turnout

@@ -28,9 +28,46 @@ __all__ = [
     "default_vehicle_path",
     "resolve_vehicle_path",
     "GRAVITY",
+    "PRIMARY_STIFFNESS_MIN",
 ]
 
 GRAVITY = 9.81  #: m/s^2
+
+#: N/m, smallest primary stiffness (k_x, k_y, k_z per axlebox) a vehicle file may give.
+#: Primary springs of railway vehicles are stiff: 0.5-30 MN/m per axlebox (the Manchester
+#: benchmark vehicle: 1.22 MN/m vertical, 3.9 MN/m lateral, 31.4 MN/m longitudinal, Iwnicki
+#: 1998; passenger bogies ~1 MN/m vertical, Iwnicki (ed.), Handbook of Railway Vehicle
+#: Dynamics, 2006, ch. 3). Below 1e5 N/m a 5 t axlebox load (50 kN) would compress the
+#: spring by 0.5 m: a unit slip (kN/m for N/m), not a design.
+PRIMARY_STIFFNESS_MIN = 1e5
+
+#: Sections and keys of a single-wheelset vehicle file (others are errors, did you mean).
+_KEYS = {
+    "wheelset": (
+        "mass",
+        "roll_inertia",
+        "yaw_inertia",
+        "spin_inertia",
+        "wheel_radius",
+        "contact_semi_spacing",
+        "back_to_back",
+        "wheel_profile",
+    ),
+    "sprung_mass": ("mass",),
+    "primary_suspension": ("k_x", "k_y", "k_z", "c_y", "c_z", "semi_spacing"),
+    "contact": (
+        "C_H",
+        "damping",
+        "f11_ref",
+        "f22_ref",
+        "N_ref",
+        "mu",
+        "conicity",
+        "flange_stiffness",
+        "flange_damping",
+        "flange_clearance",
+    ),
+}
 
 
 @dataclass(frozen=True)
@@ -91,7 +128,8 @@ def load_vehicle(path: str | Path | None = None) -> Vehicle:
     """Load and validate a vehicle file (default: the packaged Manchester benchmark wheelset).
 
     Every number must be finite and > 0 (dampings >= 0) and within a plausibility bound:
-    masses <= 1e6 kg, inertias <= 1e7 kg m^2, wheel radius 0.1..2 m, semi-spacings <= 5 m,
+    primary stiffnesses >= :data:`PRIMARY_STIFFNESS_MIN`, masses <= 1e6 kg, inertias
+    <= 1e7 kg m^2, wheel radius 0.1..2 m, semi-spacings <= 5 m,
     stiffnesses <= 1e12 N/m, dampings <= 1e10 N s/m; contact: C_H <= 1e14 N/m^1.5,
     creep coefficients and N_ref <= 1e10 N, mu <= 2, conicity <= 1, flange clearance <= 0.1 m.
 
@@ -118,6 +156,9 @@ def load_vehicle(path: str | Path | None = None) -> Vehicle:
     data = read_toml(path)
     _refuse_vehicle_model_file(path, data)
     r = FieldReader(path.name, data)
+    r.keys("", _KEYS)
+    for table, keys in _KEYS.items():
+        r.keys(table, keys)
     w, p = "wheelset", "primary_suspension"  # table names
     k_max, c_max = 1e12, 1e10  # N/m, N s/m: plausibility bounds
     radius = r.number(f"{w}.wheel_radius", upper=2.0)
@@ -136,7 +177,9 @@ def load_vehicle(path: str | Path | None = None) -> Vehicle:
         "flange_clearance": (True, 0.1),
     }
     for name, (positive, upper) in contact_bounds.items():
-        r.number(f"contact.{name}", positive, upper=upper)
+        r.number(f"contact.{name}", positive, upper=upper, lower=None if positive else 0.0)
+    for k in ("k_x", "k_y", "k_z"):
+        _primary_stiffness(r, f"{p}.{k}", k_max)
     return Vehicle(
         r.number(f"{w}.mass", upper=1e6),
         r.number(f"{w}.roll_inertia", upper=1e7),
@@ -147,13 +190,25 @@ def load_vehicle(path: str | Path | None = None) -> Vehicle:
         r.number(f"{p}.k_x", upper=k_max),
         r.number(f"{p}.k_y", upper=k_max),
         r.number(f"{p}.k_z", upper=k_max),
-        r.number(f"{p}.c_y", positive=False, upper=c_max),
-        r.number(f"{p}.c_z", positive=False, upper=c_max),
+        r.number(f"{p}.c_y", positive=False, upper=c_max, lower=0.0),
+        r.number(f"{p}.c_z", positive=False, upper=c_max, lower=0.0),
         r.number(f"{p}.semi_spacing", upper=5.0),
         load_contact_law(data, str(path)),
         str(path),
         *_profile_fields(r, data, path),
     )
+
+
+def _primary_stiffness(r: FieldReader, field: str, upper: float) -> float:
+    """A primary stiffness (N/m) in [PRIMARY_STIFFNESS_MIN, upper]."""
+    value = r.number(field, upper=upper)
+    if value < PRIMARY_STIFFNESS_MIN:
+        raise r.fail(
+            field,
+            f"must be >= {PRIMARY_STIFFNESS_MIN:g} N/m (primary springs are 0.5-30 MN/m per "
+            f"axlebox; a unit slip?), got {value:g}",
+        )
+    return value
 
 
 def resolve_vehicle_path(path: str | Path | None) -> Path:

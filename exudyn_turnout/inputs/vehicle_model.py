@@ -28,6 +28,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
+from exudyn_turnout.inputs.vehicle import PRIMARY_STIFFNESS_MIN
 from exudyn_turnout.inputs.vehicle_data import (
     GRAVITY,
     BodyData,
@@ -209,10 +210,19 @@ def _body(reader: _Fields, table: str, count: int | None) -> BodyData:
 
 
 def _suspension(reader: _Fields, table: str) -> SuspensionData:
+    k = {name: reader.number(f"{table}.{name}", "stiffness") for name in ("k_x", "k_y", "k_z")}
+    if table == "primary_suspension":  # the bound and its source: vehicle.PRIMARY_STIFFNESS_MIN
+        for name, value in k.items():
+            if value < PRIMARY_STIFFNESS_MIN:
+                raise reader.fail(
+                    f"{table}.{name}",
+                    f"must be >= {PRIMARY_STIFFNESS_MIN:g} N/m (primary springs are 0.5-30 "
+                    f"MN/m per axlebox; a unit slip?), got {value:g}",
+                )
     return SuspensionData(
-        k_x=reader.number(f"{table}.k_x", "stiffness"),
-        k_y=reader.number(f"{table}.k_y", "stiffness"),
-        k_z=reader.number(f"{table}.k_z", "stiffness"),
+        k_x=k["k_x"],
+        k_y=k["k_y"],
+        k_z=k["k_z"],
         c_x=reader.number(f"{table}.c_x", "damping", positive=False),
         c_y=reader.number(f"{table}.c_y", "damping", positive=False),
         c_z=reader.number(f"{table}.c_z", "damping", positive=False),

@@ -86,7 +86,7 @@ def s1002_wheel(setup: WheelsetSetup = _BENCHMARK_SETUP) -> WheelGrid:
     -------
     WheelGrid
     """
-    profile = read_simpack_profile(profile_path("MBench_S1002_v3.prw"))
+    profile = read_simpack_profile(profile_path("MBench_S1002_v3.prw"), kind="wheel")
     return grid_wheel(profile, step=setup.grid_step, nominal_radius=setup.nominal_radius)
 
 
@@ -106,7 +106,7 @@ def uic60_rail(setup: WheelsetSetup = _BENCHMARK_SETUP) -> Profile:
     Profile
         Top at z = 0, gauge point at ``gauge / 2``.
     """
-    profile = read_simpack_profile(profile_path("MBench_UIC60_v3.prr"))
+    profile = read_simpack_profile(profile_path("MBench_UIC60_v3.prr"), kind="rail")
     extra = float(np.tan(np.arctan(setup.inclination) - np.arctan(1.0 / 40.0)))
     return place_rail(profile, gauge=setup.gauge, inclination=extra, gauge_depth=setup.gauge_depth)
 

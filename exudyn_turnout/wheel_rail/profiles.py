@@ -53,6 +53,7 @@ __all__ = [
     "read_plain_profile",
     "read_profile",
     "read_slices",
+    "PROFILE_SIZE",
 ]
 
 _MIN_POINTS = 5
@@ -120,6 +121,7 @@ def _parse_simpack(path: Path) -> tuple[dict, dict, np.ndarray]:
     spline: dict = {}
     rows: list[list[float]] = []
     section = ""
+    closed: set[str] = set()
     for number, raw in enumerate(_read_text(path), start=1):
         line = _strip_comment(raw, "!")
         if not line:
@@ -129,6 +131,10 @@ def _parse_simpack(path: Path) -> tuple[dict, dict, np.ndarray]:
             name, edge = match.groups()
             if name not in ("header", "spline", "point"):
                 raise _fail(path, f"line {number}: unknown block '{name}'")
+            if edge == "end" and section != name:
+                raise _fail(path, f"line {number}: {name}.end outside its block")
+            if edge == "end":
+                closed.add(name)
             section = name if edge == "begin" else {"point": "spline"}.get(name, "")
             continue
         if "=" in line:
@@ -151,6 +157,13 @@ def _parse_simpack(path: Path) -> tuple[dict, dict, np.ndarray]:
         rows.append(values[:2])
     if not rows:
         raise _fail(path, "no profile points (point.begin ... point.end)")
+    # a file cut short ends inside its point block (the points come last)
+    if "point" not in closed and len(rows) >= _MIN_POINTS:  # else: "only N points"
+        raise _fail(
+            path,
+            f"is cut short: no point.end after its {len(rows)} points (the file ends inside "
+            "the point block)",
+        )
     return header, spline, np.asarray(rows, dtype=float)
 
 
@@ -197,23 +210,55 @@ def _apply_simpack_options(points: np.ndarray, spline: dict, path: Path) -> np.n
     return np.column_stack((y / length_factor, z / length_factor))
 
 
-def _checked(points: np.ndarray, path: Path) -> np.ndarray:
+#: m, plausible extent of a profile, (y span min, y span max, z span min, z span max):
+#: a wheel profile runs from the back of the flange over the tread (S1002: 130 mm wide, its
+#: flange 28 mm high, EN 13715 flange heights 28-32 mm); a rail profile may be a narrow
+#: piece of a crossing's slice (a few mm) and is at most a whole crossing or rail section
+#: (well within 0.5 m wide, 0.3 m high). Outside: a cut-short file or a wrong unit.
+PROFILE_SIZE = {"wheel": (0.08, 0.25, 0.015, 0.08), "rail": (0.005, 0.5, 0.0, 0.3)}
+
+
+def _checked(points: np.ndarray, path: Path, kind: str | None = None) -> np.ndarray:
     if len(points) < _MIN_POINTS:
         raise _fail(path, f"only {len(points)} profile points (at least {_MIN_POINTS} needed)")
     if not np.all(np.isfinite(points)):
         raise _fail(path, "profile points contain NaN or infinity")
-    if np.any(np.hypot(*np.diff(points, axis=0).T) > 0.05):
+    step = np.diff(points, axis=0)
+    if np.any(np.hypot(*step.T) > 0.05):
         raise _fail(path, "consecutive profile points more than 50 mm apart (wrong unit?)")
+    if not (np.all(step[:, 0] >= 0.0) or np.all(step[:, 0] <= 0.0)):
+        i = int(np.argmax(step[:, 0] * np.sign(points[-1, 0] - points[0, 0]) < 0.0))
+        raise _fail(
+            path,
+            f"profile points are not monotonic in y (point {i + 2} goes back, y = "
+            f"{points[i + 1, 0]:.6g} after {points[i, 0]:.6g} m)",
+        )
+    if kind is not None:
+        y_lo, y_hi, z_lo, z_hi = PROFILE_SIZE[kind]
+        width, height = float(np.ptp(points[:, 0])), float(np.ptp(points[:, 1]))
+        if not (y_lo <= width <= y_hi and z_lo <= height <= z_hi):
+            raise _fail(
+                path,
+                f"a {kind} profile {1e3 * width:.1f} mm wide and {1e3 * height:.1f} mm high "
+                f"is implausible (expected {1e3 * y_lo:g}-{1e3 * y_hi:g} mm wide, "
+                f"{1e3 * z_lo:g}-{1e3 * z_hi:g} mm high): cut short, or a wrong unit?",
+            )
     return points
 
 
-def read_simpack_profile(path: str | Path) -> Profile:
-    """Read a Simpack ``.prw``/``.prr`` profile.
+def read_simpack_profile(path: str | Path, kind: str | None = None) -> Profile:
+    """Read a Simpack ``.prw``/``.prr`` profile, checking what it is.
+
+    The file must be complete (its ``point.end``), its points monotonic
+    in y, its extent plausible for its kind (:data:`PROFILE_SIZE`), its header type agree
+    with its suffix (``.prw`` wheel, ``.prr`` rail) and with ``kind`` if given.
 
     Parameters
     ----------
     path : str or Path
         The profile file.
+    kind : {"wheel", "rail"}, optional
+        What the caller needs; a file of the other kind is an error.
 
     Returns
     -------
@@ -225,7 +270,8 @@ def read_simpack_profile(path: str | Path) -> Profile:
     ------
     ProfileFormatError
         Missing file, unknown block, text that is not a number, no or too few points,
-        an unknown profile type.
+        an unknown profile type; a file cut short, points that go back in y, an
+        implausible size; a wheel profile where a rail profile is needed or vice versa.
     """
     path = Path(path)
     header, spline, points = _parse_simpack(path)
@@ -233,11 +279,23 @@ def read_simpack_profile(path: str | Path) -> Profile:
     kinds = {"0": "rail", "1": "wheel"}
     if kind_code.strip() not in kinds:
         raise _fail(path, f"header type = {kind_code!r} (0 rail or 1 wheel expected)")
-    points = _checked(_apply_simpack_options(points, spline, path), path)
+    found = kinds[kind_code.strip()]
+    by_suffix = {".prr": "rail", ".prw": "wheel"}.get(path.suffix.lower(), found)
+    if by_suffix != found:
+        raise _fail(
+            path, f"header type = {kind_code.strip()} says {found}, the suffix says {by_suffix}"
+        )
+    if kind is not None and kind != found:
+        raise _fail(
+            path,
+            f"is a {found} profile (header type = {kind_code.strip()}), "
+            f"a {kind} profile is needed here",
+        )
+    points = _checked(_apply_simpack_options(points, spline, path), path, found)
     return Profile(
         y=points[:, 0],
         z=-points[:, 1],
-        kind=kinds[kind_code.strip()],
+        kind=found,
         source=str(path),
         comment=spline.get("comment", ""),
     )
@@ -288,19 +346,21 @@ def read_plain_profile(path: str | Path, kind: str = "rail", length_unit: str = 
         raise _fail(path, f"length unit {length_unit!r} (m or mm expected)")
     if length_unit == "mm":
         points = points * _METRES_PER_MM
-    points = _checked(points, path)
+    points = _checked(points, path, kind if kind in PROFILE_SIZE else None)
     return Profile(y=points[:, 0], z=-points[:, 1], kind=kind, source=str(path))
 
 
-def read_profile(path: str | Path, kind: str = "rail", length_unit: str = "auto") -> Profile:
+def read_profile(path: str | Path, kind: str | None = None, length_unit: str = "auto") -> Profile:
     """Read a profile in Simpack format (``.prr``/``.prw``) or plain text (anything else).
 
     Parameters
     ----------
     path : str or Path
         The profile file.
-    kind : {"rail", "wheel"}
-        Used for plain text files only (Simpack files say it in their header).
+    kind : {"rail", "wheel"}, optional
+        What the caller needs: a Simpack file of the other kind is an error (its header
+        says what it is); a plain text file is read as this kind (default rail) and its
+        size checked for it.
     length_unit : {"auto", "m", "mm"}
         Used for plain text files only, see :func:`read_plain_profile`.
 
@@ -309,8 +369,8 @@ def read_profile(path: str | Path, kind: str = "rail", length_unit: str = "auto"
     Profile
     """
     if Path(path).suffix.lower() in (".prr", ".prw"):
-        return read_simpack_profile(path)
-    return read_plain_profile(path, kind=kind, length_unit=length_unit)
+        return read_simpack_profile(path, kind)
+    return read_plain_profile(path, kind=kind or "rail", length_unit=length_unit)
 
 
 def _slices_header(lines: list[tuple[int, str]], path: Path) -> tuple[float, float, int, int, int]:

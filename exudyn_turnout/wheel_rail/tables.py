@@ -16,7 +16,10 @@ in a cell that is not interpolated also to its shift, ``- sin(gamma) (shift - sh
 
 Tables are cached as ``.npz`` under a directory (default ``$XDG_CACHE_HOME/exudyn_turnout``
 or ``~/.cache/exudyn_turnout``, never the working directory) keyed by a SHA-256 of every
-input.
+input. A cached file holds its key and a SHA-256 of its arrays: one that cannot be read,
+misses an array, has the wrong shapes, a non-finite value or a wrong checksum is named in
+one warning and rebuilt. A cache directory that cannot be made or written (an unwritable
+home, a file in its place) means running without a cache, with one warning.
 """
 
 from __future__ import annotations
@@ -25,8 +28,10 @@ import hashlib
 import os
 import time
 import uuid
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -54,7 +59,7 @@ __all__ = [
     "normal_force",
 ]
 
-_FORMAT_VERSION = "wheel_rail-table-9"
+_FORMAT_VERSION = "wheel_rail-table-10"  # 10: key and checksum stored in the file
 _FIELDS = (
     "gap",
     "y_rail",
@@ -345,29 +350,23 @@ def build_contact_table(
     )
     key = table_key(wheel, sections, taping_line, settings)
     path = Path(cache_dir or default_cache_dir()) / f"contact_table_{key[:24]}.npz"
-    if use_cache and path.exists():
-        with np.load(path) as data:
-            return ContactTable(
-                x=data["x"],
-                shift=data["shift"],
-                values=data["values"],
-                count=data["count"],
-                blendable=data["blendable"],
-                coefficients=cell_coefficients(data["values"], data["blendable"], data["shift"]),
-                key=key,
-                build_seconds=0.0,
-            )
+    shape = (len(sections.x), len(shifts), settings.max_candidates, len(_FIELDS) + 2)
+    if use_cache and path.is_file():
+        cached = _read_cached(path, key, np.asarray(sections.x, float), shifts, shape)
+        if cached is not None:
+            return cached
     start = time.perf_counter()
     values, count, blendable = _build_values(wheel, sections, taping_line, settings, shifts)
     elapsed = time.perf_counter() - start
     if use_cache:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        # a name of its own per writer: parallel workers may build the same table at once
-        temporary = path.with_name(f"{path.stem}.{os.getpid()}-{uuid.uuid4().hex[:8]}.tmp.npz")
-        np.savez(
-            temporary, x=sections.x, shift=shifts, values=values, count=count, blendable=blendable
-        )
-        os.replace(temporary, path)
+        arrays = {
+            "x": np.asarray(sections.x, float),
+            "shift": shifts,
+            "values": values,
+            "count": count,
+            "blendable": blendable,
+        }
+        _write_cached(path, key, arrays)
     return ContactTable(
         x=np.asarray(sections.x, float),
         shift=shifts,
@@ -378,6 +377,105 @@ def build_contact_table(
         key=key,
         build_seconds=elapsed,
     )
+
+
+#: Arrays of a cached table file (besides ``key`` and ``checksum``).
+_ARRAYS = ("x", "shift", "values", "count", "blendable")
+
+#: Cache directories found unusable in this process (warned about once each).
+_UNUSABLE: set[str] = set()
+
+
+def _checksum(arrays: dict[str, np.ndarray]) -> str:
+    """SHA-256 of the arrays' dtypes, shapes and bytes, in :data:`_ARRAYS` order."""
+    digest = hashlib.sha256()
+    for name in _ARRAYS:
+        a = np.ascontiguousarray(arrays[name])
+        digest.update(f"{name}:{a.dtype.str}:{a.shape}".encode())
+        digest.update(a.tobytes())
+    return digest.hexdigest()
+
+
+def _cache_problem(
+    data, key: str, x: np.ndarray, shifts: np.ndarray, shape: tuple[int, ...]
+) -> str | None:
+    """What is wrong with a loaded cache file (None: nothing)."""
+    missing = [n for n in (*_ARRAYS, "key", "checksum") if n not in data.files]
+    if missing:
+        return f"misses {', '.join(missing)}"
+    if str(data["key"]) != key:
+        return "holds another table (its key differs)"
+    arrays = {n: data[n] for n in _ARRAYS}
+    expected = {
+        "x": x.shape,
+        "shift": shifts.shape,
+        "values": shape,
+        "count": shape[:2],
+        "blendable": shape[:2],
+    }
+    for name, want in expected.items():
+        if arrays[name].shape != want:
+            return f"has {name} of shape {arrays[name].shape}, expected {want}"
+    if _checksum(arrays) != str(data["checksum"]):
+        return "fails its checksum"
+    if not np.all(np.isfinite(arrays["values"])):
+        return "holds NaN or infinite values"
+    if not (np.allclose(arrays["x"], x, atol=1e-12) and np.allclose(arrays["shift"], shifts)):
+        return "has other x or shift nodes"
+    return None
+
+
+def _read_cached(
+    path: Path, key: str, x: np.ndarray, shifts: np.ndarray, shape: tuple[int, ...]
+) -> ContactTable | None:
+    """The cached table, or None (with one warning naming the file) if it is damaged."""
+    try:
+        # opened here: np.load leaves its own handle open when the zip is damaged
+        with open(path, "rb") as handle, np.load(handle, allow_pickle=False) as data:
+            problem = _cache_problem(data, key, x, shifts, shape)
+            if problem is None:
+                values, blendable = data["values"], data["blendable"]
+                return ContactTable(
+                    x=data["x"],
+                    shift=data["shift"],
+                    values=values,
+                    count=data["count"],
+                    blendable=blendable,
+                    coefficients=cell_coefficients(values, blendable, data["shift"]),
+                    key=key,
+                    build_seconds=0.0,
+                )
+    except Exception as err:  # any file numpy cannot read is a damaged cache entry
+        problem = f"cannot be read ({type(err).__name__}: {err})".replace("\n", " ")
+    warnings.warn(f"contact-table cache {path}: {problem}; the table is rebuilt", RuntimeWarning, 2)
+    return None
+
+
+def _write_cached(path: Path, key: str, arrays: dict[str, np.ndarray]) -> None:
+    """Write a table to the cache; an unusable cache directory: one warning, no cache."""
+    if str(path.parent) in _UNUSABLE:
+        return
+    # a name of its own per writer: parallel workers may build the same table at once
+    temporary = path.with_name(f"{path.stem}.{os.getpid()}-{uuid.uuid4().hex[:8]}.tmp.npz")
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        content: dict[str, Any] = dict(arrays, key=np.array(key))
+        content["checksum"] = np.array(_checksum(arrays))
+        np.savez(temporary, **content)
+        os.replace(temporary, path)
+    except OSError as err:
+        _UNUSABLE.add(str(path.parent))
+        warnings.warn(
+            f"contact-table cache {path.parent}: cannot be written "
+            f"({err.strerror or err}); running without a cache",
+            RuntimeWarning,
+            2,
+        )
+    finally:
+        try:
+            temporary.unlink(missing_ok=True)
+        except OSError:
+            pass
 
 
 def lookup(table: ContactTable, x, shift, lift=0.0) -> ContactLookup:

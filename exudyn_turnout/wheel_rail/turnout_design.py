@@ -189,7 +189,7 @@ _BOUNDS = {
     "gauge": (0.6, 2.0, True),
     "gauge_depth": (0.005, 0.03, True),
     "back_to_back": (0.5, 2.0, True),
-    "stock_set_length": (0.0, 10.0, False),
+    "stock_set_length": (0.0, 10.0, True),  # 0 would step the stock rail at the toe
     "grid_step": (1e-5, 1e-3, False),
     "section_tolerance": (1e-6, 1e-3, False),
     "min_step": (1e-3, 1.0, False),
