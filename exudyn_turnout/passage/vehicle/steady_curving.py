@@ -28,13 +28,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
 
 from exudyn_turnout.inputs.routes import load_route
+from exudyn_turnout.inputs.turnout_data import Table1D
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel, load_vehicle_model
@@ -256,6 +257,7 @@ def build_rigid_curve(
     model: VehicleModel,
     v: float,
     x_front: float,
+    curvature: float | None = None,
 ) -> RigidCurveSystem:
     """Build the vehicle on rigid rails of the route, its position frozen at x_front.
 
@@ -284,6 +286,9 @@ def build_rigid_curve(
         m/s, speed (> 0).
     x_front : float
         m, position of the front wheelset (every wheelset within the turnout).
+    curvature : float, optional
+        1/m: replaces the route's curvature by this constant (a study of the radius with the
+        same rail sections: the curvature enters the creepages and the curving loads only).
 
     Returns
     -------
@@ -312,6 +317,8 @@ def build_rigid_curve(
     base = load_vehicle()
     route = load_route(turnout, route_name)
     contact = route_contact(turnout, route.name, base)
+    if curvature is not None:
+        route = replace(route, curvature=Table1D((0.0,), (float(curvature),)))
     vehicle = contact_vehicle(base, model)
     container = exu.SystemContainer()
     mbs = container.AddSystem()
@@ -566,6 +573,7 @@ def steady_curving(
     route: str = "diverging",
     vehicle_model: VehicleModel | None = None,
     speeds: Sequence[float] = (),
+    curvature: float | None = None,
 ) -> SteadyCurving:
     """Steady curving of the full vehicle with its front wheelset at x_front (rigid rails).
 
@@ -584,6 +592,8 @@ def steady_curving(
         Default: the packaged Manchester vehicle 1.
     speeds : sequence of float
         km/h, continuation speeds.
+    curvature : float, optional
+        1/m, replaces the route's curvature (:func:`build_rigid_curve`).
 
     Returns
     -------
@@ -600,7 +610,7 @@ def steady_curving(
     state = None
     result = None
     for kmh in [*speeds, speed_kmh]:
-        system = build_rigid_curve(turnout, route, model, kmh / 3.6, x_front)
+        system = build_rigid_curve(turnout, route, model, kmh / 3.6, x_front, curvature)
         if state is not None:
             system.mbs.systemData.SetODE2Coordinates(state, exu.ConfigurationType.Initial)
         result = solve_steady_state(system)
