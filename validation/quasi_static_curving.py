@@ -129,20 +129,26 @@ def main() -> None:
     totals = {2: 0.0, 3: 0.0}
     for i in range(len(steady.y)):
         w = f"ws{i + 1}"
-        rows = {
-            "y mm": (1e3 * steady.y[i], lambda c: 1e3 * c[f"y_{w}_m"][-1]),
-            "yaw mrad": (1e3 * steady.yaw[i], lambda c: 1e3 * c[f"yaw_{w}_rad"][-1]),
-            "H kN": (
-                steady.H[i] / 1e3,
-                lambda c: (c[f"Fy_{w}_right_N"][-1] + c[f"Fy_{w}_left_N"][-1]) / 1e3,
-            ),
-            "Y right kN": (steady.Y[i, 0] / 1e3, lambda c: c[f"Fy_{w}_right_N"][-1] / 1e3),
-            "Y left kN": (steady.Y[i, 1] / 1e3, lambda c: c[f"Fy_{w}_left_N"][-1] / 1e3),
+
+        def ends(c, w=w):
+            return {
+                "y mm": 1e3 * c[f"y_{w}_m"][-1],
+                "yaw mrad": 1e3 * c[f"yaw_{w}_rad"][-1],
+                "H kN": (c[f"Fy_{w}_right_N"][-1] + c[f"Fy_{w}_left_N"][-1]) / 1e3,
+                "Y right kN": c[f"Fy_{w}_right_N"][-1] / 1e3,
+                "Y left kN": c[f"Fy_{w}_left_N"][-1] / 1e3,
+            }
+
+        refs = {
+            "y mm": 1e3 * steady.y[i],
+            "yaw mrad": 1e3 * steady.yaw[i],
+            "H kN": steady.H[i] / 1e3,
+            "Y right kN": steady.Y[i, 0] / 1e3,
+            "Y left kN": steady.Y[i, 1] / 1e3,
         }
-        for name, (ref, get) in rows.items():
-            lines.append(
-                f"| {i + 1} | {name} | {ref:.2f} | {get(runs[2]):.2f} | {get(runs[3]):.2f} |"
-            )
+        two, three = ends(runs[2]), ends(runs[3])
+        for name, ref in refs.items():
+            lines.append(f"| {i + 1} | {name} | {ref:.2f} | {two[name]:.2f} | {three[name]:.2f} |")
         for layers in (2, 3):
             c = runs[layers]
             totals[layers] += c[f"Fy_{w}_right_N"][-1] + c[f"Fy_{w}_left_N"][-1]
@@ -150,9 +156,7 @@ def main() -> None:
     for x in (25.0, 30.0, 35.0, X_FRONT):
         c = runs[3]
         k = int(np.argmin(np.abs(c["x_m"] - x)))
-        total = sum(
-            c[f"Fy_ws{i + 1}_right_N"][k] + c[f"Fy_ws{i + 1}_left_N"][k] for i in range(4)
-        )
+        total = sum(c[f"Fy_ws{i + 1}_right_N"][k] + c[f"Fy_ws{i + 1}_left_N"][k] for i in range(4))
         history.append(f"{total / 1e3:.2f} kN at x = {c['x_m'][k]:.1f} m")
     lines += [
         f"| all | sum H kN | {steady.total_lateral / 1e3:.2f} | {totals[2] / 1e3:.2f} | "
@@ -184,8 +188,9 @@ def main() -> None:
         f"| a (H2 - H1): couple of the lateral forces | {lateral_couple / 1e3:.2f} |",
         f"| -(M_long,1 + M_long,2): longitudinal creep, wheelset 1 {_kn(steady.yaw_moment[0])}"
         f", wheelset 2 {_kn(steady.yaw_moment[1])} | {-m_long / 1e3:.2f} |",
-        f"| remainder = -M_secondary: secondary suspension (longitudinal springs 2 x 160 kN/m at +-1 m and "
-        f"10.5 kN m/rad; the bogie turns 12.5 mrad against the car body) | "
+        "| remainder = -M_secondary: secondary suspension (longitudinal springs "
+        "2 x 160 kN/m at +-1 m and 10.5 kN m/rad; the bogie turns 12.5 mrad against the "
+        "car body) | "
         f"{(lateral_couple + m_long) / 1e3:.2f} |",
         "",
         "Steady state with the radius changed (same rail sections and vehicle; front "
@@ -216,7 +221,8 @@ def main() -> None:
         "- On the 760 m curve the leading wheelset runs at the flange root (y1 = 6.1 mm, "
         "contact angle ~27 deg), where the rolling-radius difference far exceeds the "
         "0.9 mm (2 b r0 / R) that pure rolling needs. Its longitudinal creep forces "
-        "(+-13 kN: 70 % of mu Q on the inner wheel) turn the bogie's nose inwards with 19 kN m. The "
+        "(+-13 kN: 70 % of mu Q on the inner wheel) turn the bogie's nose inwards with "
+        "19 kN m. The "
         "stiff primary yaw (k_x = 31.4 MN/m at +-1 m) makes the bogie nearly rigid, so both "
         "wheelsets keep about a/R = 1.7 mrad of angle of attack either side of the bogie's: "
         "the leading one +2.3 mrad (lateral creep outwards on the wheelset), the trailing "

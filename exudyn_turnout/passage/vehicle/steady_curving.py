@@ -35,8 +35,8 @@ from typing import Any
 import numpy as np
 
 from exudyn_turnout.inputs.routes import load_route
-from exudyn_turnout.inputs.turnout_data import Table1D
 from exudyn_turnout.inputs.turnout import Turnout
+from exudyn_turnout.inputs.turnout_data import Table1D
 from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel, load_vehicle_model
 from exudyn_turnout.passage.contact.profile import ProfileContactElement, route_contact
@@ -272,9 +272,7 @@ def build_rigid_curve(
 
     The same vehicle model (linear representation, spin free, bumpstops on q - q_geo) and
     curving loads (:class:`~exudyn_turnout.passage.vehicle.track_frame.BodyLoads`, frozen) as
-    the co-running passage, the same contact element, with the rails fixed. Initial state:
-    the static equilibrium of :func:`~exudyn_turnout.passage.vehicle.track_frame.set_initial_vehicle`
-    plus q_geo.
+    the co-running passage, the same contact element, with the rails fixed.
 
     Parameters
     ----------
@@ -342,7 +340,10 @@ def build_rigid_curve(
         zero = np.zeros((force.n, force.n))
         mbs.AddObject(
             ObjectGenericODE2(
-                nodeNumbers=[ws.node], massMatrix=zero, stiffnessMatrix=zero, forceUserFunction=force
+                nodeNumbers=[ws.node],
+                massMatrix=zero,
+                stiffnessMatrix=zero,
+                forceUserFunction=force,
             )
         )
         contacts.append(force)
@@ -424,7 +425,7 @@ def _rhs_function(system: RigidCurveSystem):
     from exudyn_turnout.passage.vehicle.builder import static_settings
 
     mbs, data = system.mbs, system.mbs.systemData
-    solver = exu.MainSolverStatic()
+    solver: Any = exu.MainSolverStatic()  # Exudyn's stubs type its methods as unbound
     previous = exu.config.printToConsole
     exu.config.printToConsole = False
     try:
@@ -519,7 +520,10 @@ def _steady_result(system: RigidCurveSystem, q, q_t, residual: float, result) ->
         spins.append(qw_t[4])
         H.append(-forces[0])
         n_c = c.element.tables.n_candidates
-        y_wheel, q_wheel, fx_wheel, ang = {}, {}, {}, {}
+        y_wheel: dict[str, float] = {}
+        q_wheel: dict[str, float] = {}
+        fx_wheel: dict[str, float] = {}
+        ang: dict[str, float] = {}
         m = 0.0
         for k, body in enumerate(c.element.bodies):
             rows = details[k * n_c : (k + 1) * n_c]
@@ -532,13 +536,13 @@ def _steady_result(system: RigidCurveSystem, q, q_t, residual: float, result) ->
             found = np.maximum(rows[:, col["found"]], 1e-12)  # the fields are weight sums
             y_c = s * rows[:, col["y_rail"]] / found - qw[0]
             m += float(np.sum(-y_c * rows[:, col["Fx"]]))
-            ang[w] = ang.get(w, 0.0) + float(np.sum(rows[:, col["Fz"]] * rows[:, col["angle"]] / found))
+            ang[w] = ang.get(w, 0.0) + float(
+                np.sum(rows[:, col["Fz"]] * rows[:, col["angle"]] / found)
+            )
         Y.append([y_wheel.get("right", 0.0), y_wheel.get("left", 0.0)])
         Q.append([q_wheel.get("right", 0.0), q_wheel.get("left", 0.0)])
         FX.append([fx_wheel.get("right", 0.0), fx_wheel.get("left", 0.0)])
-        angle.append(
-            [ang.get(w, 0.0) / max(q_wheel.get(w, 0.0), 1e-9) for w in ("right", "left")]
-        )
+        angle.append([ang.get(w, 0.0) / max(q_wheel.get(w, 0.0), 1e-9) for w in ("right", "left")])
         moment.append(m)
     bodies = {}
     for b in build.bodies():
