@@ -236,8 +236,8 @@ def main() -> None:
         "- Sharper curves need a larger steering moment than the leading wheelset's "
         "saturating longitudinal creep can give (M_long,1 falls from 19 to 4-7 kN m as the "
         "lateral creep takes the friction); the flange then supplies the couple and the "
-        "classic order appears: H1 > H2 from R = 500 m at 80 km/h, and at 1 km/h from "
-        "R ~ 500 m down (H1 = +8 / -7.9 kN at 350 m).",
+        "classic order appears: H1 > H2 from R = 350 m down at 80 km/h, from R = 500 m "
+        "down at 1 and 40 km/h (H1 = +8.0, H2 = -7.9 kN at 350 m, 1 km/h).",
         "",
         "So H1 < H2 on the 760 m curve at 80 km/h is the physics of this stiff bogie in a "
         "large-radius curve, not a sign or frame error: the steady-state solve (no time "
