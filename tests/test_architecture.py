@@ -30,6 +30,7 @@ EXUDYN_BUILDERS = {
     "passage/vehicle/builder.py",
     "passage/vehicle/analysis.py",
     "passage/vehicle/track_frame.py",
+    "passage/vehicle/steady_curving.py",
     "passage/corunning_track/wheelset.py",
     "passage/corunning_track/vehicle.py",
     "passage/fe_track/wheelset.py",

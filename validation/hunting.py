@@ -275,9 +275,13 @@ def main() -> None:
             f"{kinematic_frequency(v, 0.372, 0.46, 0.75):.2f} Hz for a free wheelset and "
             f"{bogie_kinematic_frequency(v, 0.372, 0.46, 0.75, 1.28):.2f} Hz for a rigid "
             "bogie: the limit cycle lies between the two, as a bogie whose primary yaw "
-            "stiffness lets the wheelsets steer partly on their own. At 50 km/h the "
-            "leading wheelset's decaying oscillation is at the rigid bogie's kinematic "
-            "frequency for 0.18 (table: ws1 Hz against Klingel bogie Hz).",
+            "stiffness lets the wheelsets steer partly on their own. Below the onset the "
+            "decaying motion (0.60-0.61 Hz, rate 0.81-0.85 1/s at every speed of the sweep) "
+            "is the car body's lower sway (linear model: 0.60-0.61 Hz, damping ratio 0.20-"
+            "0.21, decay rate 0.78-0.83 1/s; root locus in validation/vehicle_modes.md), not "
+            "the kinematic mode: the leading wheelset's 0.76 Hz at 50 km/h lies near "
+            "Klingel's rigid-bogie 0.81 Hz for lambda = 0.18 by coincidence of one speed "
+            "(the sway's frequency does not grow with v, Klingel's does).",
             "",
         ]
     lines += [

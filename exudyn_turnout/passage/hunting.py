@@ -64,6 +64,9 @@ __all__ = [
     "HuntingOnset",
     "linear_hunting",
     "linear_critical_speed",
+    "LinearMode",
+    "mode_name",
+    "linear_modes",
     "OFFSET_WHEELSETS",
     "MIN_DECAY_RATE",
 ]
@@ -678,6 +681,131 @@ def linear_hunting(
         float(worst.imag / (2.0 * math.pi)),
         float(-worst.real / abs(worst)),
     )
+
+
+@dataclass(frozen=True, eq=False)
+class LinearMode:
+    """One oscillatory mode of the vehicle linearised on straight rigid track at speed v."""
+
+    speed_kmh: float  #: km/h
+    eigenvalue: complex  #: 1/s, lambda (Im > 0)
+    frequency_hz: float  #: Hz, Im(lambda) / 2 pi (damped)
+    damping_ratio: float  #: -, -Re(lambda) / |lambda|
+    name: str  #: mode name from the energy shares (:func:`mode_name`)
+    shares: dict  #: "car_body.y", "bogie.yaw", "wheelset.y", ... -> kinetic-energy share
+
+
+def mode_name(shares: dict) -> str:
+    """Name a lateral mode of the vehicle from its kinetic-energy shares.
+
+    Running gear = the wheelsets' and bogies' y and yaw. Rules, in order: car body y, roll
+    or yaw the largest share: car body lower sway, upper sway, yaw; wheelsets (y + yaw)
+    >= 0.7: wheelset kinematic; wheelsets >= 0.25 and bogies (y + yaw) >= 0.15: bogie
+    hunting (the kinematic mode of the bogie with its wheelsets); then the bogies' largest
+    share: bogie lateral, bogie yaw, bogie sway (roll); anything else (z, pitch, spin):
+    vertical/other.
+
+    Parameters
+    ----------
+    shares : dict
+        "<kind>.<direction>" -> share (kinds car_body, bogie, wheelset), summing to 1.
+
+    Returns
+    -------
+    str
+    """
+    top = max(shares, key=lambda k: shares[k])
+    car = {"car_body.y": "car body lower sway", "car_body.roll": "car body upper sway"}
+    car["car_body.yaw"] = "car body yaw"
+    if top in car:
+        return car[top]
+    wheelsets = shares.get("wheelset.y", 0.0) + shares.get("wheelset.yaw", 0.0)
+    bogies = shares.get("bogie.y", 0.0) + shares.get("bogie.yaw", 0.0)
+    if wheelsets >= 0.7:
+        return "wheelset kinematic"
+    if wheelsets >= 0.25 and bogies >= 0.15:
+        return "bogie hunting"
+    bogie = {"bogie.y": "bogie lateral", "bogie.yaw": "bogie yaw", "bogie.roll": "bogie sway"}
+    return bogie.get(top, "vertical/other")
+
+
+def linear_modes(
+    turnout: Turnout,
+    speed_kmh: float,
+    vehicle_model: VehicleModel | None = None,
+    route: str = "through",
+    band_hz: tuple[float, float] = (0.1, 20.0),
+) -> tuple[LinearMode, ...]:
+    """Oscillatory modes of the vehicle linearised at the centred steady state (named).
+
+    As :func:`linear_hunting` (Exudyn's ``ComputeLinearizedSystem`` of the straight-track
+    system); each state-space eigenvector's displacement part v gives the kinetic-energy
+    share of each coordinate, |conj(v_i) (M v)_i|, summed per body kind and direction.
+
+    Parameters
+    ----------
+    turnout : Turnout
+    speed_kmh : float
+        km/h.
+    vehicle_model : VehicleModel, optional
+        Default: the packaged Manchester vehicle 1.
+    route : str
+    band_hz : (float, float)
+        Hz, frequency band kept.
+
+    Returns
+    -------
+    tuple of LinearMode
+        By increasing frequency.
+
+    Raises
+    ------
+    ValueError
+        As :func:`linear_hunting`.
+    """
+    from exudyn_turnout.passage.vehicle.builder import static_settings
+
+    if not (math.isfinite(speed_kmh) and speed_kmh > 0.0):
+        raise ValueError(f"linear modes: speed_kmh = {speed_kmh!r} must be > 0 km/h")
+    model = load_vehicle_model() if vehicle_model is None else vehicle_model
+    with _Quiet():
+        system = _straight(turnout, route, model, speed_kmh / 3.6)
+        mbs = system.mbs
+        m, k, d = (np.asarray(a) for a in mbs.ComputeLinearizedSystem(static_settings()))
+    n = len(m)
+    groups = [""] * n
+    for body in system.build.bodies():
+        start = mbs.GetNodeODE2Index(body.node)
+        kind = "wheelset" if body.name.startswith("wheelset") else body.name.rstrip("0123456789")
+        for dname, j in body.dof.items():
+            if start + j < n:
+                groups[start + j] = f"{kind}.{dname}"
+    a = np.block([[np.zeros((n, n)), np.eye(n)], [-np.linalg.solve(m, k), -np.linalg.solve(m, d)]])
+    lam, vec = np.linalg.eig(a)
+    out = []
+    for i in np.flatnonzero(lam.imag > 0.0):
+        f = lam[i].imag / (2.0 * math.pi)
+        if not band_hz[0] <= f <= band_hz[1]:
+            continue
+        v = vec[:n, i]
+        energy = np.abs(np.conj(v) * (m @ v))
+        shares: dict[str, float] = {}
+        for g, e in zip(groups, energy):
+            if g:
+                shares[g] = shares.get(g, 0.0) + float(e)
+        total = sum(shares.values()) or 1.0
+        shares = {g: e / total for g, e in shares.items() if e / total >= 0.01}
+        out.append(
+            LinearMode(
+                float(speed_kmh),
+                complex(lam[i]),
+                float(f),
+                float(-lam[i].real / abs(lam[i])),
+                mode_name(shares),
+                dict(sorted(shares.items(), key=lambda kv: -kv[1])),
+            )
+        )
+    return tuple(sorted(out, key=lambda mode: mode.frequency_hz))
 
 
 def _state_space_eigenvalues(m: np.ndarray, k: np.ndarray, d: np.ndarray) -> np.ndarray:
