@@ -82,9 +82,9 @@ def test_support_fields_are_checked():
     turnout = load_turnout()
     assert check_rail_support(turnout) == CheckRailSupport()
     assert check_rail_support(_with_support(turnout, k_roll=2e5)).k_roll == 2e5
-    with pytest.raises(TurnoutFileError, match=r"check_rail\.support\.hieght is not a field"):
+    with pytest.raises(TurnoutFileError, match=r"check_rail\.support: hieght is not a field"):
         check_rail_support(_with_support(turnout, hieght=0.1))
-    with pytest.raises(TurnoutFileError, match=r"check_rail\.support\.height must be within"):
+    with pytest.raises(TurnoutFileError, match=r"check_rail\.support: height must be within"):
         check_rail_support(_with_support(turnout, height=0.5))
-    with pytest.raises(TurnoutFileError, match=r"check_rail\.support\.k_roll must be a number"):
+    with pytest.raises(TurnoutFileError, match=r"check_rail\.support: k_roll must be a number"):
         check_rail_support(_with_support(turnout, k_roll="stiff"))

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from exudyn_turnout.inputs.check_rail import FLARE_SHAPES, flare_opening
 from exudyn_turnout.inputs.geometry import TurnoutPlan, resolve_position, turnout_plan
 from exudyn_turnout.inputs.toml_fields import FieldReader, TurnoutFileError
 from exudyn_turnout.inputs.turnout_data import RAIL_SLOTS, Table1D, Turnout, Zone
@@ -132,6 +133,7 @@ class Route:
     cant: float = 0.0  #: m, cant of the route's curve (height difference of the rails)
     permitted_speed_kmh: float | None = None  #: km/h, the file's permitted speed; None: none
     permitted_cant_deficiency: float | None = None  #: m, the file's limit; None: none
+    check_flare_shape: str = "straight"  #: run-in shape of the flares (inputs/check_rail.py)
 
     def max_curvature(self, x_from: float, x_to: float) -> float:
         """Largest curvature of the route over an x range (table points and ends).
@@ -167,10 +169,8 @@ class Route:
         if not pair.check or not pair.check[0] <= x <= pair.check[1]:
             return None
         length, opening = self.check_flare
-        if length <= 0.0:
-            return self.check_clearance
-        into = min(x - pair.check[0], pair.check[1] - x) / length
-        return self.check_clearance + opening * max(0.0, 1.0 - into)
+        into = min(x - pair.check[0], pair.check[1] - x)
+        return self.check_clearance + flare_opening(into, length, opening, self.check_flare_shape)
 
     def zone(self, zone: Zone) -> Zone:
         """The zone with this route's rail positions.
@@ -373,6 +373,11 @@ def load_route(turnout: Turnout, name: str) -> Route:
         if has_check
         else (0.0, 0.0)
     )
+    shape = (
+        r.choice("check_rail.flare_shape", FLARE_SHAPES, default="straight")
+        if has_check
+        else "straight"
+    )
     limit_speed = r.get(p + ".permitted_speed_kmh", None)
     limit_deficiency = r.get(p + ".permitted_cant_deficiency", None)
     return Route(
@@ -387,6 +392,7 @@ def load_route(turnout: Turnout, name: str) -> Route:
         r.number(p + ".cant", positive=False, default=0.0),
         None if limit_speed is None else r.number(p + ".permitted_speed_kmh"),
         None if limit_deficiency is None else r.number(p + ".permitted_cant_deficiency"),
+        shape,
     )
 
 

@@ -15,6 +15,7 @@ field, e.g. ``uic60.toml: sleeper.spacing must be > 0, got -0.6``.
 
 from __future__ import annotations
 
+import difflib
 import re
 from collections.abc import Mapping
 from importlib import resources
@@ -23,6 +24,7 @@ from typing import Any
 
 import numpy as np
 
+from exudyn_turnout.inputs.check_rail import CHECK_RAIL_KEYS, FLARE_SHAPES, support_from_section
 from exudyn_turnout.inputs.routes import load_route, route_names
 from exudyn_turnout.inputs.toml_fields import (
     X_LIMIT,
@@ -555,6 +557,19 @@ def _check_rail(r: FieldReader) -> None:
     r.number("check_rail.clearance", upper=0.1)
     r.number("check_rail.flare_length", False, 0.0, upper=100.0)
     r.number("check_rail.flare_opening", False, 0.0, upper=0.1)
+    r.choice("check_rail.flare_shape", FLARE_SHAPES, default="straight")
+    section = r.get("check_rail")
+    if isinstance(section, Mapping):
+        known = CHECK_RAIL_KEYS
+        for key in section:
+            if key not in known:
+                close = difflib.get_close_matches(str(key), known, n=1)
+                hint = f" (did you mean {close[0]!r}?)" if close else ""
+                raise r.fail(f"check_rail.{key}", f"is not a field of [check_rail]{hint}")
+    try:
+        support_from_section(section if isinstance(section, Mapping) else {})
+    except ValueError as err:
+        raise r.fail("check_rail.support", str(err)) from None
 
 
 def load_turnout(path: str | Path | None = None) -> Turnout:

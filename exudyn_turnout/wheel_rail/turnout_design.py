@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from exudyn_turnout.inputs.check_rail import flare_opening
 from exudyn_turnout.inputs.geometry import TurnoutPlan, turnout_plan
 from exudyn_turnout.inputs.turnout import Turnout, TurnoutFileError
 from exudyn_turnout.wheel_rail.data import profile_path
@@ -67,6 +68,9 @@ class CheckRailDesign:
     #: m, top of the check rail above the running rail's top.  0: a running-rail section on
     #: the same chairs (the turnout files' check rail type is the stock rail's section)
     height: float = 0.0
+    #: run-in shape of the flares, "straight" or "tangential" (``[check_rail] flare_shape``,
+    #: :mod:`exudyn_turnout.inputs.check_rail`)
+    flare_shape: str = "straight"
 
 
 @dataclass(frozen=True)
@@ -291,11 +295,13 @@ def rail_geometry(turnout: Turnout) -> RailGeometry:
             "tip_width": plan.nose_tip_width,
         }
     check = turnout.raw.get("check_rail", {})
-    check_defaults = {
+    check_defaults: dict[str, float | str] = {
         k: float(check[k])
         for k in ("clearance", "flare_length", "flare_opening")
         if isinstance(check, Mapping) and k in check
     }
+    if isinstance(check, Mapping) and "flare_shape" in check:
+        check_defaults["flare_shape"] = str(check["flare_shape"])
     geometry = RailGeometry(
         profile=profile,
         switch=SwitchDesign(**{**switch_defaults, **parts["switch"]}),
@@ -525,8 +531,8 @@ def wing_flare(x: float, design: CrossingDesign) -> float:
 def check_face(x: float, x_from: float, x_to: float, check: CheckRailDesign) -> float:
     """Distance of the check rail's face from the back of the flange of a centred wheelset.
 
-    ``clearance + flare_opening * max(0, 1 - d / flare_length)``, d the distance from the
-    nearer end of the check rail (a linear flare, as
+    ``clearance`` plus the flare's opening at d, the distance from the nearer end of the
+    check rail (:func:`exudyn_turnout.inputs.check_rail.flare_opening`, as
     :meth:`exudyn_turnout.inputs.routes.Route.check_clearance_at`).
 
     Parameters
@@ -543,7 +549,6 @@ def check_face(x: float, x_from: float, x_to: float, check: CheckRailDesign) -> 
     float
         m, clearance at x.
     """
-    if check.flare_length <= 0.0:
-        return check.clearance
-    into = min(x - x_from, x_to - x) / check.flare_length
-    return check.clearance + check.flare_opening * max(0.0, 1.0 - into)
+    into = min(x - x_from, x_to - x)
+    opening = flare_opening(into, check.flare_length, check.flare_opening, check.flare_shape)
+    return check.clearance + opening
