@@ -192,5 +192,16 @@ def fe_summary(planes, settings, track, h, n_steps, static_s, steps_s) -> dict[s
         "time_step_s": float(h),
         "n_steps": int(n_steps),
         "fe_options": asdict(planes.vertical.mesh.options),
+        "fe_window": (
+            "whole model"
+            if track.window is None
+            else (
+                f"{track.window.window_length:g} m about each wheelset, cut every "
+                f"{track.window.window_shift:g} m ({track.window_cuts} cuts, "
+                f"{min(track.window_dofs)}-{max(track.window_dofs)} DOFs), absorbing ends "
+                f"{track.window.window_absorbing_length:g} m to loss factor "
+                f"{track.window.window_eta_max:g}"
+            )
+        ),
         "wall_time_parts_s": {k.removesuffix("_s"): float(t) for k, t in parts.items()},
     }

@@ -302,7 +302,7 @@ def _simulate(turnout, settings, model, contact, route, x_range, progress, optio
     n_steps = max(1, math.ceil(duration / settings.time_step - 1e-9))
     h = duration / n_steps
     planes = build_fe_planes(turnout, options)
-    track = FECoSimulation(planes, route.name, h, settings.spectral_radius)
+    track = FECoSimulation(planes, route.name, h, settings.spectral_radius, options)
     covered = (x_a + min(model.wheelset.x), x_b)
     args = (turnout, route, model, vehicle, contact, settings, track, covered, x_a)
     t0 = time.perf_counter()

@@ -213,11 +213,13 @@ def simulate_wheelset(
         )
     with QuietExudyn():
         return _simulate(
-            turnout, settings, vehicle, route, contact, planes, x_a, x_b, progress, wall
+            turnout, settings, vehicle, route, contact, planes, x_a, x_b, progress, wall, options
         )
 
 
-def _simulate(turnout, settings, vehicle, route, contact, planes, x_a, x_b, progress, wall):
+def _simulate(
+    turnout, settings, vehicle, route, contact, planes, x_a, x_b, progress, wall, options
+):
     import exudyn as exu
 
     from exudyn_turnout.passage.common import NEWTON_ABSOLUTE_TOLERANCE
@@ -227,7 +229,7 @@ def _simulate(turnout, settings, vehicle, route, contact, planes, x_a, x_b, prog
     n_steps = max(1, math.ceil(duration / settings.time_step - 1e-9))
     h = duration / n_steps
     every = max(1, round((settings.output_step or h) / h))
-    track = FECoSimulation(planes, route.name, h, settings.spectral_radius)
+    track = FECoSimulation(planes, route.name, h, settings.spectral_radius, options)
     irr = settings.irregularity
     t0 = time.perf_counter()
     rest = static_equilibrium(track, contact, vehicle, route, x_a, irr)
