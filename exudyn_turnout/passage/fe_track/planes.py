@@ -46,7 +46,6 @@ __all__ = [
 ]
 
 
-
 #: The live factors: freed before the interpreter's shutdown (nanobind, cholespy's binding,
 #: otherwise reports every factor still referenced then, e.g. from an Exudyn user function, as
 #: a leak on stderr).
