@@ -212,7 +212,7 @@ class FECoSimulation:
         t0 = time.perf_counter()
         if self._dof_x is None:
             self._dof_x = (dof_positions(self.planes.lateral), dof_positions(self.planes.vertical))
-        half = 0.5 * self.window.window_length
+        half = 0.5 * float(self.window.window_length or 0.0)
         intervals: list[list[float]] = []
         for x in xs:
             lo = max(x - half, self._model_range[0])

@@ -276,7 +276,7 @@ def _relax(system: _Vehicle, track: FECoSimulation, model: VehicleModel, x: floa
     for body in build.bodies():
         if body.name == "car_body" and model.car_body is not None:
             mass = model.car_body.mass
-        elif body.name.startswith("bogie"):
+        elif body.name.startswith("bogie") and model.bogie is not None:
             mass = model.bogie.mass
         elif body.name.startswith("wheelset"):
             mass = model.wheelset.mass
