@@ -13,6 +13,10 @@ UIC60-760-1:15 turnout with the default FE options:
 - the static stiffness profile of every rail at every sleeper, both planes;
 - the peak memory of the process (ru_maxrss). Targets: receptance <= 10 s,
   < 2 GB; profile <= 60 s. The timings are of this one run on this machine.
+
+``--solver``: only the passage's step-matrix solves, SuperLU (minimum degree on A + A^T, no
+pivoting: the passage's factor before issue 24) against CHOLMOD (``cholespy``, the
+passage's factor now), interleaved in this process; the ratio is what carries over.
 """
 
 from __future__ import annotations
@@ -123,14 +127,61 @@ def torsion_rows(turnout, layout, x, f, planar_wall: float) -> list[tuple[str, s
     ]
 
 
+def solver_rows(turnout, repeats: int = 20) -> list[tuple[str, str]]:
+    """SuperLU vs CHOLMOD on the FE passage's step matrices (h = 1e-4 s, rho_inf 0.8)."""
+    from exudyn_turnout.passage.fe_track.planes import (
+        CholeskyFactor,
+        build_fe_planes,
+        generalized_alpha,
+    )
+
+    planes = build_fe_planes(turnout)
+    ga, h = generalized_alpha(0.8), 1e-4
+    rows = []
+    for name, m, D in (
+        ("vertical", planes.vertical, planes.D_vertical),
+        ("lateral", planes.lateral, planes.D_lateral),
+    ):
+        A = (m.M + ga.gamma_eff * h * D + ga.beta_eff * h * h * m.K).tocsc()
+        lu = sla.splu(
+            A,
+            permc_spec="MMD_AT_PLUS_A",
+            options=dict(SymmetricMode=True, DiagPivotThresh=0.0),
+        )
+        chol = CholeskyFactor(A)
+        b = np.random.default_rng(0).standard_normal(m.n_dof)
+        t_lu = t_ch = 0.0
+        for _ in range(repeats):  # interleaved: both see the same machine load
+            with Clock() as c:
+                x_lu = lu.solve(b)
+            t_lu += c.cpu
+            with Clock() as c:
+                x_ch = chol.solve(b)
+            t_ch += c.cpu
+        dev = np.max(np.abs(x_ch - x_lu)) / np.max(np.abs(x_lu))
+        rows.append(
+            (
+                f"step matrix {name} ({m.n_dof} DOFs): CHOLMOD / SuperLU solve CPU",
+                f"{t_ch / t_lu:.2f} ({1e3 * t_ch / repeats:.2f} / {1e3 * t_lu / repeats:.2f} "
+                f"ms), solutions equal to {dev:.1e}",
+            )
+        )
+    return rows
+
+
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--n", type=int, default=400, help="frequencies, 1-2000 Hz (default 400)")
     parser.add_argument(
         "--x", type=float, default=46.0, help="position of the r2 receptance (m, default 46)"
     )
+    parser.add_argument("--solver", action="store_true", help="only SuperLU vs CHOLMOD")
     args = parser.parse_args(argv)
     turnout = load_turnout()
+    if args.solver:
+        for k, v in solver_rows(turnout):
+            print(f"{k:<62}  {v}")
+        return
     layout = load_layout(turnout)
     f = log_frequencies(1.0, 2000.0, args.n)
     rows = [("FE options", str(FEOptions()))]

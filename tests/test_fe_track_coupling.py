@@ -117,7 +117,7 @@ def test_generalized_alpha_update_is_exudyns(turnout):
     ours = [q0]
     for step in range(1, n + 1):
         plane.predict()
-        plane.complete(plane.lu.solve(np.array([force(step * h)])))
+        plane.complete(plane.factor.solve(np.array([force(step * h)])))
         ours.append(plane.u[0])
     assert np.max(np.abs(exudyn_q - np.array(ours))) < 1e-12 * np.max(np.abs(ours))
 

@@ -74,21 +74,22 @@ accelerations from its equations of motion (Exudyn computes the vehicle's).
 from __future__ import annotations
 
 import math
-import threading
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.sparse.linalg as sla
 
 from exudyn_turnout.fe.rail_head import RailHeadPoint, rail_head_point
+from exudyn_turnout.passage.fe_track.options import FEPassageOptions
 from exudyn_turnout.passage.fe_track.planes import (
-    SUPERLU_OPTIONS,
+    CholeskyFactor,
     FETrackPlanes,
     PlaneStepper,
+    dof_positions,
     generalized_alpha,
     lagrange_weights,
+    window_dofs,
 )
 
 __all__ = [
@@ -140,14 +141,33 @@ class FECoSimulation:
         s, time step (the Exudyn solver's).
     spectral_radius : float
         rho_inf of Exudyn's generalized-alpha solver.
+    window : FEPassageOptions, optional
+        Its ``window_*`` fields: step only a window of the FE track around the wheelsets,
+        moved with them (module docstring); default: the whole model.
     """
 
-    def __init__(self, planes: FETrackPlanes, route: str, h: float, spectral_radius: float):
+    def __init__(
+        self,
+        planes: FETrackPlanes,
+        route: str,
+        h: float,
+        spectral_radius: float,
+        window: FEPassageOptions | None = None,
+    ):
         t0 = time.perf_counter()
         self.planes, self.route, self.h = planes, route, float(h)
         self.ga = generalized_alpha(spectral_radius)
-        self.vertical = PlaneStepper(planes.vertical, planes.D_vertical, self.h, self.ga)
-        self.lateral = PlaneStepper(planes.lateral, planes.D_lateral, self.h, self.ga)
+        self.window = window if window is not None and window.window_length else None
+        self._omega_ref = 2.0 * math.pi * (window or FEPassageOptions()).loss_reference_hz
+        self._dof_x: tuple | None = None  #: (lateral, vertical) DOF positions, m
+        self._anchors: np.ndarray | None = None  #: m, wheelset x at the window's last cut
+        self.window_cuts = 0  #: times the window was cut
+        self.window_dofs: list[int] = []  #: DOFs of both planes at each cut
+        mesh = planes.vertical.mesh
+        self._model_range = (mesh.x_min, mesh.x_max)
+        first = None if self.window is None else np.zeros(0, dtype=np.int64)  # see place()
+        self.vertical = PlaneStepper(planes.vertical, planes.D_vertical, self.h, self.ga, first)
+        self.lateral = PlaneStepper(planes.lateral, planes.D_lateral, self.h, self.ga, first)
         self.t = 0.0  #: s, time of the current state
         self.t_next = math.nan  #: s, time of the predicted step (nan: none predicted)
         self.static = False  #: True: couple to the static compliance (static solve)
@@ -157,7 +177,69 @@ class FECoSimulation:
         self._static_forces: dict[int, np.ndarray] = {}
         self._grids: dict[str, tuple] = {}
         self.timings = {"factorise_s": time.perf_counter() - t0, "predict_s": 0.0}
-        self.timings.update({"complete_s": 0.0, "coupling_s": 0.0})
+        self.timings.update({"complete_s": 0.0, "coupling_s": 0.0, "window_s": 0.0})
+
+    # --- the window ---------------------------------------------------------------------
+
+    def place(self, x_wheelsets: Sequence[float]) -> bool:
+        """Cut the window anew if a wheelset has moved ``window_shift`` since the last cut.
+
+        The window holds, about each wheelset at x_i, the track from x_i - L/2 to
+        x_i + L/2 + s (L ``window_length``, s ``window_shift``): until it is cut again every
+        wheelset has at least L/2 of track behind and ahead of it. Overlapping ranges merge.
+
+        Parameters
+        ----------
+        x_wheelsets : sequence of float
+            m, the wheelsets' positions on the FE track.
+
+        Returns
+        -------
+        bool
+            True if the window was cut (the influence columns and predictions are void).
+        """
+        if self.window is None:
+            return False
+        xs = np.sort(np.asarray(x_wheelsets, float))
+        shift = self.window.window_shift
+        if (
+            self._anchors is not None
+            and len(self._anchors) == len(xs)
+            and np.all(xs - self._anchors <= shift + 1e-9)
+            and np.all(xs >= self._anchors - 1e-9)
+        ):
+            return False
+        t0 = time.perf_counter()
+        if self._dof_x is None:
+            self._dof_x = (dof_positions(self.planes.lateral), dof_positions(self.planes.vertical))
+        half = 0.5 * float(self.window.window_length or 0.0)
+        intervals: list[list[float]] = []
+        for x in xs:
+            lo = max(x - half, self._model_range[0])
+            hi = min(x + half + shift, self._model_range[1])
+            if intervals and lo <= intervals[-1][1]:
+                intervals[-1][1] = max(intervals[-1][1], hi)
+            else:
+                intervals.append([lo, hi])
+        ranges = [(lo, hi) for lo, hi in intervals]
+        sizes = []
+        for plane, x_dof in zip((self.lateral, self.vertical), self._dof_x):
+            dofs, eta = window_dofs(
+                x_dof,
+                ranges,
+                self._model_range,
+                self.window.window_absorbing_length,
+                self.window.window_eta_max,
+            )
+            plane.set_window(dofs, eta, self._omega_ref)
+            sizes.append(len(dofs))
+        self._anchors = xs
+        self._static_lu = None
+        self._predicted = {}
+        self.window_cuts += 1
+        self.window_dofs.append(sum(sizes))
+        self.timings["window_s"] += time.perf_counter() - t0
+        return True
 
     # --- where the wheels touch ---------------------------------------------------------
 
@@ -229,17 +311,22 @@ class FECoSimulation:
         xi = min(max((x - x0[k]) / (x1[k] - x0[k]), 0.0), 1.0)
         nodes = self.planes.vertical.rail_elem_nodes[elements[k]]
         lateral = self.planes.lateral
+        w_dofs = self.vertical.local[2 * nodes]
+        v_dofs = self.lateral.local[2 * nodes]
+        roll = self.lateral.local[lateral.roll_dof(nodes)] if lateral.torsion is not None else None
+        if np.any(w_dofs < 0) or np.any(v_dofs < 0) or (roll is not None and np.any(roll < 0)):
+            raise ValueError(f"x = {x:.3f} m on rail {rail_id} is outside the FE window")
         return RailHeadPoint(
             rail_id,
             float(x),
             0.0,
             float(z),
             lagrange_weights(self.planes.vertical.order, xi),
-            2 * nodes,
-            2 * nodes,
-            lateral.roll_dof(nodes) if lateral.torsion is not None else None,
-            self.planes.vertical.n_dof,
-            lateral.n_dof,
+            w_dofs,
+            v_dofs,
+            roll,
+            self.vertical.n,
+            self.lateral.n,
         )
 
     def _influence(self, point: RailHeadPoint) -> tuple[np.ndarray, np.ndarray]:
@@ -299,13 +386,10 @@ class FECoSimulation:
         elements : sequence of FEContactElement
             The elements coupled to this track.
         """
+        self.place([el.positions(t_next)[1] for el in elements])
         t0 = time.perf_counter()
-        # the two planes' solves in parallel: SuperLU releases the GIL (measured 1.5 x on
-        # two cores); the results are the same as one after the other
-        worker = threading.Thread(target=self.lateral.predict)
-        worker.start()
+        self.lateral.predict()
         self.vertical.predict()
-        worker.join()
         h, ga = self.h, self.ga
         bh2 = ga.beta_eff * h * h
         keep: set = set()
@@ -369,8 +453,8 @@ class FECoSimulation:
             Per element, the forces on its coupled rail coordinates (y, z per body, N).
         """
         t0 = time.perf_counter()
-        add_ver = np.zeros(self.vertical.model.n_dof)
-        add_lat = np.zeros(self.lateral.model.n_dof)
+        add_ver = np.zeros(self.vertical.n)
+        add_lat = np.zeros(self.lateral.n)
         for el, F in forces:
             coupled, _, _, _, influence = self._predicted[id(el)]
             for k, (x_y, x_z) in enumerate(influence):
@@ -385,15 +469,12 @@ class FECoSimulation:
 
     def _static_factors(self) -> tuple:
         if self._static_lu is None:
-            self._static_lu = (
-                sla.splu(self.lateral.model.K.tocsc(), **SUPERLU_OPTIONS),
-                sla.splu(self.vertical.model.K.tocsc(), **SUPERLU_OPTIONS),
-            )
+            self._static_lu = (CholeskyFactor(self.lateral.K), CholeskyFactor(self.vertical.K))
         return self._static_lu
 
     def _static_loads(self, coupled: _Coupled, F: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        f_lat = np.zeros(self.lateral.model.n_dof)
-        f_ver = np.zeros(self.vertical.model.n_dof)
+        f_lat = np.zeros(self.lateral.n)
+        f_ver = np.zeros(self.vertical.n)
         for k, p in enumerate(coupled.points):
             fv, fl = p.loads(F[2 * k], F[2 * k + 1])
             f_lat += fl
@@ -407,8 +488,8 @@ class FECoSimulation:
 
     def _loads_sum(self, coupled: Sequence[_Coupled], forces: Sequence[np.ndarray]) -> tuple:
         """Load vectors (lateral, vertical) of several elements' forces together."""
-        f_lat = np.zeros(self.lateral.model.n_dof)
-        f_ver = np.zeros(self.vertical.model.n_dof)
+        f_lat = np.zeros(self.lateral.n)
+        f_ver = np.zeros(self.vertical.n)
         for c, F in zip(coupled, forces):
             fl, fv = self._static_loads(c, F)
             f_lat += fl
@@ -433,6 +514,7 @@ class FECoSimulation:
         elements : sequence of FEContactElement
             At their positions at t = 0 (the static solve does not move them).
         """
+        self.place([el.positions(0.0)[1] for el in elements])
         coupled = [self.points(el.element, *el.positions(0.0)) for el in elements]
         fields = []
         for c in coupled:
@@ -484,6 +566,7 @@ class FECoSimulation:
         v : float
             m/s, speed: the field moves with the vehicle, u_t = v du/dx.
         """
+        self.place([el.positions(0.0)[1] for el in elements])
         here, ahead = [], []
         for el in elements:
             x, x_fe = el.positions(0.0)
@@ -499,7 +582,7 @@ class FECoSimulation:
         f_lat, f_ver = self._loads_sum(here, forces)
         for plane, f in ((self.lateral, f_lat), (self.vertical, f_ver)):
             rhs = f - plane.D @ plane.v - plane.K @ plane.u
-            plane.qdd = sla.splu(plane.model.M.tocsc(), **SUPERLU_OPTIONS).solve(rhs)
+            plane.qdd = CholeskyFactor(plane.M).solve(rhs)
             plane.a = plane.qdd.copy()
         self.t, self.t_next, self.static = 0.0, math.nan, False
 

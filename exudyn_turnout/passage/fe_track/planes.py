@@ -1,17 +1,31 @@
 """The FE track's two planes as the passage steps them: Exudyn's generalized-alpha constants,
-the planes' assembled matrices (vertical; lateral with rail torsion) and the time stepper
-of one plane (factorised effective matrix, free prediction, completion with the contact
-forces, influence columns). The coupling to the vehicle is :mod:`.coupling`."""
+the planes' assembled matrices (vertical; lateral with rail torsion), the sparse Cholesky
+factor of their SPD matrices, the moving window of DOFs a passage steps, and the time
+stepper of one plane (factorised effective matrix, free prediction, completion with the
+contact forces, influence columns). The coupling to the vehicle is :mod:`.coupling`.
+
+Why CHOLMOD (the ``cholespy`` wheel): the step matrices A = M + gamma' h D + beta' h^2 K,
+the stiffness K and the mass M are symmetric positive definite, and nearly all of a step is
+the two triangular solves with A. Measured on the packaged turnout (h = 1e-4 s, one process,
+``benchmarks/bench_fe.py --solver``): a solve with CHOLMOD's supernodal factor takes 0.3-0.5 of
+SuperLU's with its best ordering (minimum degree on A + A^T, no pivoting), equal to 1e-13
+relative; PARDISO (``pypardiso``) was 2-2.4x slower than SuperLU (issue 24) and
+scikit-sparse has no wheel. ``cholespy`` ships wheels for Linux, macOS and Windows
+(CPython 3.8-3.13) and bundles CHOLMOD. No SuperLU fallback is kept: the dependency is a
+wheel, and two paths would be two sets of numbers to defend. Its solves hold the GIL, so
+the two planes are solved one after the other."""
 
 from __future__ import annotations
 
+import atexit
 import math
 import time
+import weakref
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as sla
 
 from exudyn_turnout.fe.layout import Layout, load_layout
 from exudyn_turnout.fe.mesh import build_mesh
@@ -20,7 +34,9 @@ from exudyn_turnout.fe.torsion import UIC60_SECTION, RailTorsionSection
 from exudyn_turnout.inputs.turnout import Turnout
 
 __all__ = [
-    "SUPERLU_OPTIONS",
+    "CholeskyFactor",
+    "dof_positions",
+    "window_dofs",
     "GeneralizedAlpha",
     "generalized_alpha",
     "FETrackPlanes",
@@ -30,12 +46,150 @@ __all__ = [
 ]
 
 
-#: SuperLU options for the symmetric positive definite matrices A and K: minimum degree on
-#: A + A^T, no pivoting. Against COLAMD a quarter of the fill and half the solve time
-#: (turnout, h = 1e-4 s: vertical 0.48 vs 1.80 million nonzeros in L + U, lateral 0.93 vs 2.97).
-SUPERLU_OPTIONS = dict(
-    permc_spec="MMD_AT_PLUS_A", options=dict(SymmetricMode=True, DiagPivotThresh=0.0)
-)
+#: The live factors: freed before the interpreter's shutdown (nanobind, cholespy's binding,
+#: otherwise reports every factor still referenced then, e.g. from an Exudyn user function, as
+#: a leak on stderr).
+_FACTORS: weakref.WeakSet = weakref.WeakSet()
+
+
+@atexit.register
+def _free_factors() -> None:
+    for factor in list(_FACTORS):
+        factor._solver = None
+
+
+class CholeskyFactor:
+    """Sparse Cholesky factor (CHOLMOD through ``cholespy``) of a symmetric positive
+    definite matrix (module docstring: why).
+
+    Parameters
+    ----------
+    A : scipy.sparse matrix
+        (n, n) symmetric positive definite.
+    """
+
+    def __init__(self, A: sp.spmatrix):
+        from cholespy import CholeskySolverD, MatrixType
+
+        C = sp.coo_matrix(A)
+        self.n = C.shape[0]
+        self._solver = CholeskySolverD(
+            self.n,
+            C.row.astype(np.int32),
+            C.col.astype(np.int32),
+            C.data.astype(np.float64),
+            MatrixType.COO,
+        )
+        _FACTORS.add(self)
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        """x = A^-1 b.
+
+        Parameters
+        ----------
+        b : numpy.ndarray
+            (n,) or (n, k) right-hand sides.
+
+        Returns
+        -------
+        numpy.ndarray
+            x, of the shape of b.
+        """
+        rhs = np.ascontiguousarray(b, dtype=np.float64)
+        x = np.empty_like(rhs)
+        self._solver.solve(rhs, x)
+        return x
+
+
+def dof_positions(model) -> np.ndarray:
+    """x (m) of every DOF of a plane: its node's x; a sleeper's DOFs the x of its rail nodes.
+
+    Rail DOFs (deflection, rotation, roll and warping of a vertex or interior node) take the
+    node's x (interior nodes evenly spaced in their element, as the elements are built);
+    every other DOF (sleepers) takes the mean x of the DOFs it is coupled to in K, repeated
+    until all have one (a sleeper lies at one x under all its rails).
+
+    Parameters
+    ----------
+    model : PlaneModel
+
+    Returns
+    -------
+    numpy.ndarray
+        (n_dof,) m.
+    """
+    mesh, p = model.mesh, model.order
+    x = np.full(model.n_dof, np.nan)
+    nodes = np.asarray(model.rail_elem_nodes)
+    x0 = mesh.node_x[mesh.elem_nodes[:, 0]]
+    x1 = mesh.node_x[mesh.elem_nodes[:, 1]]
+    n_t = model.torsion_dofs_per_node
+    for j in range(p + 1):
+        node, xn = nodes[:, j], x0 + (j / p) * (x1 - x0)
+        x[2 * node] = x[2 * node + 1] = xn
+        for k in range(n_t):
+            x[model.roll_dof(node) + k] = xn
+    pattern = sp.csr_matrix(model.K, copy=True)
+    pattern.data[:] = 1.0
+    for _ in range(model.n_dof):
+        known = np.isfinite(x)
+        if known.all():
+            break
+        total = pattern @ np.where(known, x, 0.0)
+        count = pattern @ known.astype(float)
+        new = ~known & (count > 0)
+        if not new.any():
+            raise ValueError("FE plane: DOFs not connected to any rail (no position)")
+        x[new] = total[new] / count[new]
+    return x
+
+
+def window_dofs(
+    x_dof: np.ndarray,
+    intervals: Sequence[tuple[float, float]],
+    model_range: tuple[float, float],
+    absorbing_length: float,
+    eta_max: float,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The DOFs of a window and the loss factor of its absorbing ends.
+
+    Inside a cut end (not at the model's own end), over ``absorbing_length`` the loss factor
+    grows quadratically from 0 to ``eta_max`` towards the cut, as the model's own absorbing
+    ends (:mod:`~exudyn_turnout.fe.mesh`): eta = eta_max (d / a)^2, d the depth into the zone.
+
+    Parameters
+    ----------
+    x_dof : numpy.ndarray
+        m, the DOFs' positions (:func:`dof_positions`).
+    intervals : sequence of (float, float)
+        m, disjoint x ranges of the window, increasing.
+    model_range : tuple of float
+        m, the model's first and last x (an interval end there is not a cut).
+    absorbing_length : float
+        m, a.
+    eta_max : float
+        Loss factor at a cut (-).
+
+    Returns
+    -------
+    dofs : numpy.ndarray
+        Global DOF indices in the window, increasing.
+    eta : numpy.ndarray
+        Added loss factor of each (-).
+    """
+    inside = np.zeros(len(x_dof), dtype=bool)
+    eta = np.zeros(len(x_dof))
+    for lo, hi in intervals:
+        here = (x_dof >= lo) & (x_dof <= hi)
+        inside |= here
+        depth = np.zeros(len(x_dof))
+        if lo > model_range[0] + 1e-9:
+            depth = np.maximum(depth, (lo + absorbing_length - x_dof) / absorbing_length)
+        if hi < model_range[1] - 1e-9:
+            depth = np.maximum(depth, (x_dof - hi + absorbing_length) / absorbing_length)
+        eta[here] = eta_max * np.clip(depth[here], 0.0, 1.0) ** 2
+    dofs = np.nonzero(inside)[0]
+    return dofs, eta[dofs]
 
 
 @dataclass(frozen=True)
@@ -142,9 +296,21 @@ def build_fe_planes(
 
 
 class PlaneStepper:
-    """State, factorised effective matrix and influence columns of one FE plane."""
+    """State, factorised effective matrix and influence columns of one FE plane.
 
-    def __init__(self, model: PlaneModel, D: sp.spmatrix, h: float, ga: GeneralizedAlpha):
+    The plane is stepped on a window of its DOFs (all by default): the DOFs outside are held
+    at rest (u = 0), the window's state vectors, matrices and influence columns are indexed
+    by local DOF numbers (``local`` maps a global DOF to its local one, -1 outside).
+    """
+
+    def __init__(
+        self,
+        model: PlaneModel,
+        D: sp.spmatrix,
+        h: float,
+        ga: GeneralizedAlpha,
+        dofs: np.ndarray | None = None,
+    ):
         """Factorise A = M + gamma' h D + beta' h^2 K and start at rest.
 
         Parameters
@@ -157,15 +323,65 @@ class PlaneStepper:
             s, the time step.
         ga : GeneralizedAlpha
             The integrator's constants.
+        dofs : numpy.ndarray, optional
+            The first window (:meth:`set_window`, no absorbing ends); default all DOFs;
+            empty: none until :meth:`set_window`.
         """
         self.model, self.h, self.ga = model, h, ga
-        A = model.M + ga.gamma_eff * h * D + ga.beta_eff * h * h * model.K
-        self.lu = sla.splu(sp.csc_matrix(A), **SUPERLU_OPTIONS)
-        self.M, self.D, self.K = model.M.tocsr(), sp.csr_matrix(D), model.K.tocsr()
+        self._M, self._D = sp.csr_matrix(model.M), sp.csr_matrix(D)
+        self._K = sp.csr_matrix(model.K)
         n = model.n_dof
+        self.dofs = np.arange(n)
+        self.local = np.arange(n)
+        self.n = n
         self.u, self.v, self.qdd, self.a = (np.zeros(n) for _ in range(4))
-        self.u_hat, self.v_hat, self.qdd_star = np.zeros(n), np.zeros(n), np.zeros(n)
+        self.factor: CholeskyFactor | None = None
+        self.set_window(self.dofs if dofs is None else dofs, None, 1.0)
+
+    def set_window(self, dofs: np.ndarray, eta: np.ndarray | None, omega_ref: float) -> None:
+        """Step the DOFs ``dofs`` from now on, carrying the state of those already stepped.
+
+        DOFs entering the window start at rest (they were held at rest), DOFs leaving it are
+        held at rest. The window's damping adds S K S / omega_ref, S = diag(sqrt(eta)),
+        eta > 0 in the absorbing ends (:func:`window_dofs`): the structural loss eta K in
+        its viscous equivalent, as the model's own, graded per DOF.
+
+        Parameters
+        ----------
+        dofs : numpy.ndarray
+            Global DOF indices, increasing.
+        eta : numpy.ndarray or None
+            Added loss factor per window DOF (-); None: none.
+        omega_ref : float
+            rad/s, reference circular frequency of the viscous equivalent.
+        """
+        ga, h = self.ga, self.h
+        dofs = np.asarray(dofs, dtype=np.int64)
+        local = np.full(self.model.n_dof, -1, dtype=np.int64)
+        local[dofs] = np.arange(len(dofs))
+        state = []
+        for vec in (self.u, self.v, self.qdd, self.a):
+            new = np.zeros(len(dofs))
+            both = local[self.dofs] >= 0
+            new[local[self.dofs[both]]] = vec[both]
+            state.append(new)
+        self.u, self.v, self.qdd, self.a = state
+        self.dofs, self.local, self.n = dofs, local, len(dofs)
+        whole = len(dofs) == self.model.n_dof
+        pick = (lambda m: m) if whole else (lambda m: m[dofs][:, dofs])
+        self.M, self.D, self.K = pick(self._M), pick(self._D), pick(self._K)
+        if eta is not None and np.any(eta > 0):
+            s = sp.diags(np.sqrt(np.asarray(eta, float) / omega_ref))
+            self.D = (self.D + s @ self.K @ s).tocsr()
+        A = self.M + ga.gamma_eff * h * self.D + ga.beta_eff * h * h * self.K
+        self.factor = CholeskyFactor(A) if self.n else None
+        self.u_hat, self.v_hat, self.qdd_star = (np.zeros(self.n) for _ in range(3))
         self._columns: dict[tuple, np.ndarray] = {}  #: (dofs, other, factor) -> A^-1 E
+
+    def _factor(self) -> CholeskyFactor:
+        if self.factor is None:
+            raise RuntimeError("the FE plane has no window yet (FECoSimulation.place)")
+        return self.factor
 
     def columns(
         self, dofs: np.ndarray, other: np.ndarray | None = None, factor: float = 0.0
@@ -175,7 +391,7 @@ class PlaneStepper:
         Parameters
         ----------
         dofs : numpy.ndarray
-            (k,) DOF indices.
+            (k,) local DOF indices.
         other : numpy.ndarray, optional
             (k,) DOFs whose unit vectors are added, times ``factor``, column by column
             (a rail node's lateral displacement and roll: the head's lateral motion).
@@ -193,11 +409,11 @@ class PlaneStepper:
         cols = self._columns.get(key)
         if cols is None:
             k = len(first)
-            E = np.zeros((self.model.n_dof, k))
+            E = np.zeros((self.n, k))
             E[list(first), np.arange(k)] = 1.0
             if second:
                 E[list(second), np.arange(k)] += factor
-            cols = self._columns[key] = self.lu.solve(E)
+            cols = self._columns[key] = self._factor().solve(E)
         return cols
 
     def forget(self, keep: set) -> None:
@@ -217,7 +433,7 @@ class PlaneStepper:
         carry = (ga.alpha_f * self.qdd - ga.alpha_m * self.a) / (1.0 - ga.alpha_m)
         self.u_hat = self.u + h * self.v + h * h * ((0.5 - ga.beta) * self.a + ga.beta * carry)
         self.v_hat = self.v + h * ((1.0 - ga.gamma) * self.a + ga.gamma * carry)
-        self.qdd_star = self.lu.solve(-(self.D @ self.v_hat) - self.K @ self.u_hat)
+        self.qdd_star = self._factor().solve(-(self.D @ self.v_hat) - self.K @ self.u_hat)
 
     def complete(self, qdd_contact: np.ndarray) -> None:
         """Finish the step with the contact forces' part A^-1 G F of the acceleration.

@@ -32,14 +32,20 @@ lengthened to the vehicle's length plus 3 m where the default is shorter.
 The start is the co-running full vehicle's: static equilibrium at rest (lateral position
 and spin held), then the static solve with the creep forces at speed (spin held), all with
 the FE's static compliance; the FE field then moves with the vehicle (convected velocity).
-A start in a curve that needs the dynamic relaxation of the co-running passage is refused
-(start the run where the vehicle stands on straight track).
+Where the static solve at speed fails (in a curve: saturated creep; the coupling's Newton on
+the static compliance diverges where creep forces push a flexible blade), a dynamic
+relaxation with x frozen (:data:`RELAX_TIME` s at :data:`RELAX_STEP` s, the FE track stepped
+alongside with rho_inf 0) reaches the steady curving state, as on the co-running track.
+``summary["start"]`` says which, ``summary["start_residual"]`` (N) what is left unbalanced;
+a :class:`~exudyn_turnout.passage.fe_track.common.StartWarning` is issued when the first
+region begins before an unsettled start has settled.
 """
 
 from __future__ import annotations
 
 import math
 import time
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import Any
@@ -51,7 +57,12 @@ from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
 from exudyn_turnout.passage.common import QuietExudyn
-from exudyn_turnout.passage.contact.profile import RouteContact
+from exudyn_turnout.passage.contact.profile import STATIC_SPIN_STIFFNESS, RouteContact
+from exudyn_turnout.passage.fe_track.common import (
+    StartWarning,
+    steady_description,
+    unsettled_warning,
+)
 from exudyn_turnout.passage.fe_track.coupling import FEContactElement, FECoSimulation, run_progress
 from exudyn_turnout.passage.fe_track.options import FEPassageOptions
 from exudyn_turnout.passage.fe_track.planes import build_fe_planes
@@ -66,6 +77,12 @@ __all__ = ["simulate_vehicle", "EXTENSION_MARGIN"]
 
 #: m, the FE model's plain-track extension reaches this far beyond the vehicle's length.
 EXTENSION_MARGIN = 3.0
+#: s, the dynamic relaxation to the steady state at speed where the static solve fails (in a
+#: curve): as the co-running full vehicle's (the car body's lateral mode, ~0.7 Hz, damping
+#: ratio ~0.45, settles in it; curving loads ramped up over the first second)
+RELAX_TIME = 8.0
+#: s, its time step (implicit, numerically damped: only the end state matters)
+RELAX_STEP = 5e-3
 
 
 @dataclass
@@ -198,14 +215,80 @@ def _static(system: _Vehicle, track: FECoSimulation, what: str, x: float, load_s
     return forces
 
 
-def _copy(source: _Vehicle, target: _Vehicle) -> None:
+def _copy(source: _Vehicle, target: _Vehicle, current: bool = False) -> None:
     import exudyn as exu
 
     data_s, data_t = source.mbs.systemData, target.mbs.systemData
-    kind = exu.ConfigurationType.Initial
+    kind = exu.ConfigurationType.Current if current else exu.ConfigurationType.Initial
     q = np.asarray(data_s.GetODE2Coordinates(kind)).copy()
-    data_t.SetODE2Coordinates(q, kind)
-    data_t.SetODE2Coordinates_t(np.zeros_like(q), kind)
+    data_t.SetODE2Coordinates(q, exu.ConfigurationType.Initial)
+    data_t.SetODE2Coordinates_t(np.zeros_like(q), exu.ConfigurationType.Initial)
+
+
+def _held_spin_torque(system: _Vehicle) -> float:
+    """N m: the largest torque the static solve's spin holds carry (what the run releases)."""
+    torque = 0.0
+    for i in range(len(system.coupled)):
+        q, _ = _coordinates(system, i, initial=True)
+        torque = max(torque, STATIC_SPIN_STIFFNESS * abs(float(q[4])))
+    return torque
+
+
+def _relax(system: _Vehicle, track: FECoSimulation, model: VehicleModel, x: float) -> tuple:
+    """Integrate the vehicle with x frozen, coupled to the FE track stepped alongside (rho_inf
+    0, step :data:`RELAX_STEP`), until it is at rest in the track-following frame (the
+    steady state at speed); the rail forces per wheelset and the residual (N: the largest
+    mass x acceleration left on a body). The FE track settles to the static field of the
+    steady forces; its one-step compliance, unlike the static one, keeps the coupling's
+    Newton well conditioned where creep forces push a flexible blade."""
+    from exudyn_turnout.passage.common import NEWTON_ABSOLUTE_TOLERANCE
+    from exudyn_turnout.passage.fe_track.common import coupled_run_settings, failure_reason
+
+    n_steps = round(RELAX_TIME / RELAX_STEP)
+    relax_settings = PassageSettings(spectral_radius=0.0)
+    sim = coupled_run_settings(RELAX_TIME, n_steps, relax_settings, NEWTON_ABSOLUTE_TOLERANCE)
+    forces: list = []
+
+    def pre_step(mbs, t):
+        track.predict(t, system.coupled)
+        return True
+
+    def post_step(mbs, t):
+        states = [_coordinates(system, i) for i in range(len(system.coupled))]
+        done = [(c, c.solve(t, q, q_t)) for c, (q, q_t) in zip(system.coupled, states)]
+        if t == track.t_next:
+            track.complete(done)
+        forces[:] = [F for _, F in done]
+        return True
+
+    system.mbs.SetPreStepUserFunction(pre_step)
+    system.mbs.SetPostStepUserFunction(post_step)
+    try:
+        system.mbs.SolveDynamic(sim)
+    except Exception as err:  # Exudyn's SolverError, or ModelError from a user function
+        raise PassageFailure(
+            f"steady state at speed on the FE track not found with the front wheelset at "
+            f"x = {x:g} m: {failure_reason(err)}"
+        ) from None
+    a = np.asarray(system.mbs.systemData.GetODE2Coordinates_tt())
+    residual = 0.0
+    build = system.build
+    for body in build.bodies():
+        if body.name == "car_body" and model.car_body is not None:
+            mass = model.car_body.mass
+        elif body.name.startswith("bogie") and model.bogie is not None:
+            mass = model.bogie.mass
+        elif body.name.startswith("wheelset"):
+            mass = model.wheelset.mass
+        else:
+            continue
+        start = system.mbs.GetNodeODE2Index(body.node)
+        dof = getattr(body, "dof", {"y": 0, "z": 1})  # a wheelset's node: y, z, roll, ...
+        for name in ("y", "z"):
+            if name in dof:
+                residual = max(residual, mass * abs(float(a[start + dof[name]])))
+    _copy(system, system, current=True)
+    return forces, residual
 
 
 def _cross_compliance(track: FECoSimulation, elements: list) -> float:
@@ -302,7 +385,7 @@ def _simulate(turnout, settings, model, contact, route, x_range, progress, optio
     n_steps = max(1, math.ceil(duration / settings.time_step - 1e-9))
     h = duration / n_steps
     planes = build_fe_planes(turnout, options)
-    track = FECoSimulation(planes, route.name, h, settings.spectral_radius)
+    track = FECoSimulation(planes, route.name, h, settings.spectral_radius, options)
     covered = (x_a + min(model.wheelset.x), x_b)
     args = (turnout, route, model, vehicle, contact, settings, track, covered, x_a)
     t0 = time.perf_counter()
@@ -313,11 +396,20 @@ def _simulate(turnout, settings, model, contact, route, x_range, progress, optio
     _copy(rest, moving)
     for el in moving.elements:
         el.hold_spin = True
-    start = "steady state at speed (static solve with the creep forces, spin held)"
+    curvature = max(abs(float(route.curvature(el.x_at(0.0)))) for el in moving.elements)
+    start = steady_description(settings.speed_kmh, curvature)
     try:
         forces = _static(moving, track, "steady state at speed", x_a, 10)
-    except PassageFailure as err:  # start from rest at speed: a short creep transient
-        moving, start = rest, f"static state at rest (the steady state at speed failed: {err})"
+        start += " (static solve at speed, spin held)"
+        residual = _held_spin_torque(moving)
+    except PassageFailure:  # in a curve (saturated creep): relax dynamically with x frozen
+        relax_track = FECoSimulation(planes, route.name, RELAX_STEP, 0.0, options)
+        relax_args = (turnout, route, model, vehicle, contact, settings, relax_track, covered)
+        moving = _build(*relax_args, x_a, v, True)
+        _copy(rest, moving)
+        relax_track.start(moving.coupled, forces, 0.0)
+        forces, residual = _relax(moving, relax_track, model, x_a)
+        start += f" (relaxed {RELAX_TIME:g} s with x frozen, FE track stepped alongside)"
     system = _build(*args, v, False)
     _copy(moving, system)
     track.start(system.coupled, forces, v)
@@ -389,5 +481,8 @@ def _simulate(turnout, settings, model, contact, route, x_range, progress, optio
     summary = vehicle_summary(turnout, settings, model, columns, static_loads, wall)
     summary.update(fe_summary(planes, settings, track, h, n_steps, static_s, steps_s))
     summary["cross_compliance"] = cross
-    summary["start"] = start
+    summary["start"], summary["start_residual"] = start, float(residual)
+    warning = unsettled_warning(turnout, x_a, v, start, residual)
+    if warning is not None:
+        warnings.warn(warning, StartWarning, stacklevel=4)
     return PassageResult(replace(settings, x_start=x_a, x_end=x_b), columns, summary, (x_a,))
