@@ -475,6 +475,8 @@ def _simulate(turnout, settings, model, contact, route, x_range, progress, optio
             "z_wheelset_m": q[:, 1],
             "Fz_right_N": own[f"Fz_{label}_right_N"],
             "Fz_left_N": own[f"Fz_{label}_left_N"],
+            "Fy_right_N": own[f"Fy_{label}_right_N"],
+            "Fy_left_N": own[f"Fy_{label}_left_N"],
         }
         check_plausible(plausible, model.static_wheel_load, f"wheelset {i + 1}")
         columns.update(own)
