@@ -51,8 +51,8 @@ def _file(tmp_path, text_from, text_to):
 def test_route_uses_the_flare_shape(tmp_path):
     path = _file(
         tmp_path,
-        "flare_opening = 0.015   # m\n",
-        'flare_opening = 0.015\nflare_shape = "tangential"\n',
+        'flare_shape = "straight"',
+        'flare_shape = "tangential"',
     )
     route = load_route(load_turnout(path), "diverging")
     pair = [p for p in route.pairs if p.check][0]
@@ -64,14 +64,14 @@ def test_route_uses_the_flare_shape(tmp_path):
 
 
 @pytest.mark.parametrize(
-    "text_to, message",
+    "text_from, text_to, message",
     [
-        ('flare_opening = 0.015\nflare_shape = "curvy"\n', "check_rail.flare_shape must be one of"),
-        ("flare_opening = 0.015\nflare_lenght = 2.0\n", "did you mean 'flare_length'"),
+        ('flare_shape = "straight"', 'flare_shape = "curvy"', "check_rail.flare_shape must be one"),
+        ("flare_length = 1.0 ", "flare_lenght = 1.0 ", "did you mean 'flare_length'"),
     ],
 )
-def test_bad_check_rail_fields(tmp_path, capsys, text_to, message):
-    path = _file(tmp_path, "flare_opening = 0.015   # m\n", text_to)
+def test_bad_check_rail_fields(tmp_path, capsys, text_from, text_to, message):
+    path = _file(tmp_path, text_from, text_to)
     with pytest.raises(TurnoutFileError, match=message.replace(".", r"\.").replace("(", r"\(")):
         load_turnout(path)
     assert main(["params", "--turnout", str(path), "--zone", "1"]) == 2

@@ -290,7 +290,12 @@ def test_validate_quick(tmp_path, capsys):
     assert m["receptance"]["route"] == "main"
     # the FE passage runs on both routes (through the [report] fe_slots mapping), with the
     # profile contact vertical and lateral (issue 14)
-    assert p["routes"]["main"]["fe_compared"] == ["Fz_crossing", "Fy_crossing"]
+    assert p["routes"]["main"]["fe_compared"] == [
+        "Fz_crossing",
+        "Fy_crossing",
+        "Fz_nose",  # the nose event (passage/events.py), F6 is judged there
+        "Fy_nose",
+    ]
     assert "Fz_crossing" in p["routes"]["branch"]["fe_compared"]
     verdicts = {c["id"]: c["verdict"] for c in m["claims"]}
     assert verdicts["F4"] != "not checked" and verdicts["S2"] != "not checked"

@@ -320,17 +320,6 @@ def load_contact_law(data: dict, filename: str) -> ContactLaw:
         A field is missing or not a valid number.
     """
     r = FieldReader(Path(filename).name, data)
-    names = (
-        "C_H",
-        "damping",
-        "f11_ref",
-        "f22_ref",
-        "N_ref",
-        "mu",
-        "conicity",
-        "flange_stiffness",
-        "flange_damping",
-        "flange_clearance",
-    )
+    names = _KEYS["contact"]
     positive = {"damping": False, "flange_damping": False}
     return ContactLaw(*(r.number(f"contact.{name}", positive.get(name, True)) for name in names))
