@@ -58,6 +58,7 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 from typing import Any
@@ -76,7 +77,7 @@ from exudyn_turnout.passage.common import (
     newton_tolerance,
     progress_function,
 )
-from exudyn_turnout.passage.contact.profile import RouteContact
+from exudyn_turnout.passage.contact.profile import STATIC_SPIN_STIFFNESS, RouteContact
 from exudyn_turnout.passage.contact.vehicle_contacts import (
     VehicleContacts,
     WheelsetContactElement,
@@ -95,6 +96,11 @@ from exudyn_turnout.passage.results import (
     PassageSettings,
     check_plausible,
     vehicle_summary,
+)
+from exudyn_turnout.passage.vehicle.start import (
+    StartWarning,
+    steady_description,
+    unsettled_warning,
 )
 from exudyn_turnout.passage.vehicle.track_frame import (
     DUMMY_MASS,
@@ -393,9 +399,10 @@ def _solve_static(system: _System, what: str, load_steps: int = 1) -> None:
         ) from None
 
 
-def _relax(system: _System, duration: float, h: float) -> None:
+def _relax(system: _System, model: VehicleModel, duration: float, h: float) -> float:
     """Integrate with x frozen (the curving loads ramped up over the first second) until the
-    vehicle is at rest in the track-following frame: the steady state at speed."""
+    vehicle is at rest in the track-following frame: the steady state at speed. Return the
+    residual (N): the largest mass x lateral acceleration left on a body."""
     import exudyn as exu
 
     from exudyn_turnout.corunning.track import simulation_settings
@@ -410,6 +417,34 @@ def _relax(system: _System, duration: float, h: float) -> None:
             f"steady state at speed not found with the front wheelset at x = "
             f"{system.x_front:g} m: {str(err).strip()}"
         ) from None
+    a = np.asarray(system.mbs.systemData.GetODE2Coordinates_tt())
+    loads = system.body_loads
+    residual = 0.0
+    for name, start, i_y in zip(loads.names, loads.starts, loads.i_y):
+        if name == "car_body" and model.car_body is not None:
+            mass = model.car_body.mass
+        elif name.startswith("bogie"):
+            mass = model.bogie.mass
+        else:
+            mass = model.wheelset.mass
+        i = system.mbs.GetNodeODE2Index(system.names[name]) + int(i_y - start)
+        residual = max(residual, mass * abs(float(a[i])))
+    return residual
+
+
+def _held_spin_torque(system: _System) -> float:
+    """N m: the largest torque the static solve's spin holds carry (what the run releases)."""
+    torque = 0.0
+    for i in range(len(system.elements)):
+        beta = system.mbs.GetNodeOutput(system.names[f"ws{i + 1}"], _coordinates())
+        torque = max(torque, STATIC_SPIN_STIFFNESS * abs(float(np.atleast_1d(beta)[4])))
+    return torque
+
+
+def _coordinates():
+    import exudyn as exu
+
+    return exu.OutputVariableType.Coordinates
 
 
 def _copy_state(state: Mapping, system: _System) -> None:
@@ -595,14 +630,19 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
     ]
     moving = _build(*args, first, x_a, v, True, x_range)
     _copy_state(state, moving)  # the rest state has K q_geo balanced already
+    curvature = max(abs(float(route.curvature(x_a + o))) for o in offsets)
+    start = steady_description(settings.speed_kmh, curvature)
     try:
         for el in moving.elements:
             el.hold_spin = True
         _solve_static(moving, "steady state at speed", 10)
+        residual = _held_spin_torque(moving)
+        start += " (static solve at speed, spin held)"
     except PassageFailure:  # e.g. in a curve: relax dynamically with x frozen
         moving = _build(*args, first, x_a, v, True, x_range)
         _copy_state(state, moving)
-        _relax(moving, RELAX_TIME, RELAX_STEP)
+        residual = _relax(moving, model, RELAX_TIME, RELAX_STEP)
+        start += f" (relaxed {RELAX_TIME:g} s with x frozen)"
     state, previous = _state(moving), moving
     t_prev = 0.0
     segments, t_offset, total = [], 0.0, (x_b - x_a) / v
@@ -620,4 +660,8 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
         t_offset += duration
     columns = join_segments(segments)
     summary = vehicle_summary(turnout, settings, model, columns, static_loads, wall)
+    summary["start"], summary["start_residual"] = start, float(residual)
+    warning = unsettled_warning(turnout, x_a, v, start, residual)
+    if warning is not None:
+        warnings.warn(warning, StartWarning, stacklevel=4)
     return PassageResult(settings, columns, summary, tuple(starts))
