@@ -545,8 +545,10 @@ def _simulate(
         state = _node_state(static)
         start = steady_description(settings.speed_kmh, curvature)
     else:  # straight: at rest is the steady state up to what the holds carry
-        y_w, beta = state["wheelset"][0][0], state["yaw"][0][1:]
-        residual = max(STATIC_LATERAL_STIFFNESS * abs(y_w), *(STATIC_SPIN_STIFFNESS * abs(beta)))
+        y_w, beta = float(state["wheelset"][0][0]), np.abs(state["yaw"][0][1:])
+        residual = max(
+            STATIC_LATERAL_STIFFNESS * abs(y_w), STATIC_SPIN_STIFFNESS * beta.max(initial=0.0)
+        )
         start = "static at rest"
     segments, x, t_offset, previous, total = [], x_a, 0.0, static, (x_b - x_a) / v
     for k, zone in enumerate(zones):
