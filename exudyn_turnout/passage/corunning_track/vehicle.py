@@ -428,7 +428,7 @@ def _relax(system: _System, model: VehicleModel, duration: float, h: float) -> t
     for name, start, i_y, size in zip(loads.names, loads.starts, loads.i_y, sizes):
         if name == "car_body" and model.car_body is not None:
             mass = model.car_body.mass
-        elif name.startswith("bogie"):
+        elif name.startswith("bogie") and model.bogie is not None:
             mass = model.bogie.mass
         else:
             mass = model.wheelset.mass
