@@ -10,9 +10,12 @@ A run starts either
   relaxation with x frozen.
 
 Every run records ``summary["start"]`` (a string beginning with ``"steady"`` or
-``"static"``) and ``summary["start_residual"]`` (N, or N m for a rotation: the largest
-generalised force the run's equations leave unbalanced at its start, :data:`START_TOLERANCE`
-decides whether it counts as settled).
+``"static"``) and ``summary["start_residual"]`` (N: the largest lateral force the run's
+equations leave unbalanced at its start, :data:`START_TOLERANCE` decides whether it counts
+as settled): after a static start the lateral hold's force, after a relaxation the largest
+mass x lateral acceleration left on a body, after a static solve at speed its tolerance.
+The spin holds' torque is not counted: released, it settles in about 1 ms (the spin
+inertia over the creep's damping 2 r0^2 f11 / v, 112 kg m^2 / 1.5e5 N m s at 100 km/h).
 
 A run that is not settled at its start needs :data:`SETTLING_TIME` to forget its start;
 :func:`unsettled_warning` says so when one of the turnout's regions (``[regions]``: switch,
@@ -37,7 +40,7 @@ __all__ = [
     "unsettled_warning",
 ]
 
-#: N (N m): a start whose residual is below this is settled. Measured with the single
+#: N: a start whose residual is below this is settled. Measured with the single
 #: wheelset at 80 km/h, 2-layer track, by relaxing the static start at speed with x frozen:
 #: on the through route at x = 43 m the holds carry 54 N and the wheelset settles 0.05 mm
 #: away (1 % of its ~6 mm flange clearance); at x = 2 m (switch) they carry 423 N and it
