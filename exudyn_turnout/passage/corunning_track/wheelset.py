@@ -6,7 +6,14 @@ The wheelset (:mod:`~exudyn_turnout.inputs.vehicle`) runs at constant speed alon
 follow the wheelset's x, coupled by the penalty wheel/rail contact of
 :mod:`~exudyn_turnout.passage.contact.height_table`.
 
-The run starts from static equilibrium at ``x_start`` and is split at the zone boundaries
+The run starts from static equilibrium at ``x_start`` or, where the route is curved there,
+in steady curving at speed: from the static state, a dynamic relaxation with x frozen (the
+contact's creep at speed v, the track's springs at x_start, the curving load on) until the
+vehicle is at rest in the track-following frame (``summary["start"]``,
+``summary["start_residual"]``; :mod:`~exudyn_turnout.passage.vehicle.start`, which also
+warns when a region of the turnout begins before the vehicle has settled). On straight
+track the static state is kept (the steady state up to what the lateral hold carries: the
+straight-track results do not change). The run is then split at the zone boundaries
 (Table 3): in each zone a new Exudyn system is built with that zone's masses and active
 rails, and the state of everything that continues (vehicle, sleeper, rails present in
 both zones, or a rail slot that a route says continues another) is carried over.
