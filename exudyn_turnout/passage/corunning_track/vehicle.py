@@ -51,13 +51,20 @@ The run starts in the steady state at speed (at rest in the track-following fram
 the static equilibrium at rest (lateral position and spin held, as the single wheelset's),
 then a static solve with the creep forces of speed v (spin held); where that fails (in a
 curve: saturated creep) a dynamic relaxation with x frozen (:data:`RELAX_TIME` s at
-:data:`RELAX_STEP` s, curving loads ramped up over the first second) reaches it.
+:data:`RELAX_STEP` s, curving loads ramped up over the first second, then 1 s chunks until
+every body's velocity is below 1e-5 m/s) reaches it. ``summary["start"]`` says which, and
+``summary["start_residual"]`` (N) what is left unbalanced: the static solve's tolerance
+after it (the torque its spin holds release is in the start string), the bodies' largest
+mass x lateral acceleration after the relaxation
+(:mod:`~exudyn_turnout.passage.vehicle.start`, whose warning names a region reached before
+the vehicle settled).
 """
 
 from __future__ import annotations
 
 import math
 import time
+import warnings
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 from typing import Any
@@ -76,7 +83,7 @@ from exudyn_turnout.passage.common import (
     newton_tolerance,
     progress_function,
 )
-from exudyn_turnout.passage.contact.profile import RouteContact
+from exudyn_turnout.passage.contact.profile import STATIC_SPIN_STIFFNESS, RouteContact
 from exudyn_turnout.passage.contact.vehicle_contacts import (
     VehicleContacts,
     WheelsetContactElement,
@@ -96,6 +103,14 @@ from exudyn_turnout.passage.results import (
     check_plausible,
     vehicle_summary,
 )
+from exudyn_turnout.passage.vehicle.start import (
+    RELAX_CHUNK,
+    RELAX_MAX_TIME,
+    RELAX_SETTLED_SPEED,
+    StartWarning,
+    steady_description,
+    unsettled_warning,
+)
 from exudyn_turnout.passage.vehicle.track_frame import (
     DUMMY_MASS,
     DUMMY_STIFFNESS,
@@ -107,12 +122,16 @@ from exudyn_turnout.passage.vehicle.track_frame import (
 
 __all__ = ["simulate_vehicle"]
 
-#: s, time of the dynamic relaxation to the steady state at speed (where the static solve
-#: fails, e.g. in a curve): the car body's lateral mode (~0.7 Hz, damping ratio ~0.45)
-#: settles in it
+#: s, first part of the dynamic relaxation to the steady state at speed (where the static
+#: solve fails, e.g. in a curve): the car body's lateral mode (~0.7 Hz, damping ratio ~0.45)
+#: settles in it; a slower drift does not (the car body still moved at 1.4 mm/s after 8 s in
+#: the 760 m curve at 80 km/h), so the relaxation goes on in chunks until settled
+#: (:mod:`~exudyn_turnout.passage.vehicle.start`: 18 s there, residual 3 N)
 RELAX_TIME = 8.0
 #: s, its time step (implicit, numerically damped: only the end state matters)
 RELAX_STEP = 5e-3
+#: N, the static solves' Newton tolerance (the start residual after the solve at speed)
+STATIC_TOLERANCE = 1e-4
 #: Exudyn's ``modifiedNewtonContractivity`` in a run: the Jacobian is recomputed when a
 #: Newton iteration reduces the residual by less than this factor (Exudyn's default 0.5).
 #: Where contact points move fast (switch, crossing) the kept Jacobian converges slowly;
@@ -383,7 +402,7 @@ def _solve_static(system: _System, what: str, load_steps: int = 1) -> None:
 
     sim = simulation_settings(1.0, 1.0)
     sim.staticSolver.numberOfLoadSteps = load_steps
-    sim.staticSolver.newton.absoluteTolerance = 1e-4
+    sim.staticSolver.newton.absoluteTolerance = STATIC_TOLERANCE
     sim.staticSolver.newton.maxIterations = 50
     try:
         system.mbs.SolveStatic(sim, updateInitialValues=True)
@@ -393,23 +412,73 @@ def _solve_static(system: _System, what: str, load_steps: int = 1) -> None:
         ) from None
 
 
-def _relax(system: _System, duration: float, h: float) -> None:
+def _relax(system: _System, model: VehicleModel, duration: float, h: float) -> tuple[float, float]:
     """Integrate with x frozen (the curving loads ramped up over the first second) until the
-    vehicle is at rest in the track-following frame: the steady state at speed."""
+    vehicle is at rest in the track-following frame: the steady state at speed.
+
+    ``duration`` s first, then chunks of ``RELAX_CHUNK`` s until every body's velocity (the
+    wheelsets' spin rates excepted) is below ``RELAX_SETTLED_SPEED``, at most
+    ``RELAX_MAX_TIME`` s in all. Return the residual (N: the largest mass x lateral
+    acceleration left on a body) and the time relaxed (s)."""
     import exudyn as exu
 
     from exudyn_turnout.corunning.track import simulation_settings
 
-    sim = simulation_settings(duration, h, duration)
-    sim.timeIntegration.generalizedAlpha.spectralRadius = 0.0
-    sim.timeIntegration.newton.absoluteTolerance = NEWTON_ABSOLUTE_TOLERANCE
-    try:
-        system.mbs.SolveDynamic(sim)
-    except (exu.SolverError, RuntimeError) as err:
-        raise PassageFailure(
-            f"steady state at speed not found with the front wheelset at x = "
-            f"{system.x_front:g} m: {str(err).strip()}"
-        ) from None
+    mbs, data = system.mbs, system.mbs.systemData
+    loads = system.body_loads
+    sizes = np.diff(np.append(loads.starts, loads.n))
+    lateral, moving = [], []  #: (index, mass) of each body's y; indices of its coordinates
+    for name, start, i_y, size in zip(loads.names, loads.starts, loads.i_y, sizes):
+        if name == "car_body" and model.car_body is not None:
+            mass = model.car_body.mass
+        elif name.startswith("bogie") and model.bogie is not None:
+            mass = model.bogie.mass
+        else:
+            mass = model.wheelset.mass
+        i = mbs.GetNodeODE2Index(system.names[name])
+        lateral.append((i + int(i_y - start), mass))
+        spin = 4 if name.startswith("ws") else -1  # the element's beta: its rate is steady
+        moving += [i + k for k in range(int(size)) if k != spin]
+    elapsed, chunk = 0.0, duration
+    while True:
+        sim = simulation_settings(chunk, h, chunk)
+        sim.timeIntegration.startTime = elapsed  # the curving loads' ramp runs on t
+        sim.timeIntegration.endTime = elapsed + chunk
+        sim.timeIntegration.generalizedAlpha.spectralRadius = 0.0
+        sim.timeIntegration.newton.absoluteTolerance = NEWTON_ABSOLUTE_TOLERANCE
+        try:
+            mbs.SolveDynamic(sim)
+        except (exu.SolverError, RuntimeError) as err:
+            raise PassageFailure(
+                f"steady state at speed not found with the front wheelset at x = "
+                f"{system.x_front:g} m: {str(err).strip()}"
+            ) from None
+        elapsed += chunk
+        q_t = np.asarray(data.GetODE2Coordinates_t())
+        settled = float(np.max(np.abs(q_t[moving]))) < RELAX_SETTLED_SPEED
+        if settled or elapsed >= RELAX_MAX_TIME - 1e-9:
+            break
+        initial, current = exu.ConfigurationType.Initial, exu.ConfigurationType.Current
+        data.SetODE2Coordinates(data.GetODE2Coordinates(current), initial)  # go on from here
+        data.SetODE2Coordinates_t(q_t, initial)
+        chunk = RELAX_CHUNK
+    a = np.asarray(data.GetODE2Coordinates_tt())
+    return max(mass * abs(float(a[i])) for i, mass in lateral), elapsed
+
+
+def _held_spin_torque(system: _System) -> float:
+    """N m: the largest torque the static solve's spin holds carry (what the run releases)."""
+    torque = 0.0
+    for i in range(len(system.elements)):
+        beta = system.mbs.GetNodeOutput(system.names[f"ws{i + 1}"], _coordinates())
+        torque = max(torque, STATIC_SPIN_STIFFNESS * abs(float(np.atleast_1d(beta)[4])))
+    return torque
+
+
+def _coordinates():
+    import exudyn as exu
+
+    return exu.OutputVariableType.Coordinates
 
 
 def _copy_state(state: Mapping, system: _System) -> None:
@@ -595,14 +664,21 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
     ]
     moving = _build(*args, first, x_a, v, True, x_range)
     _copy_state(state, moving)  # the rest state has K q_geo balanced already
+    curvature = max(abs(float(route.curvature(x_a + o))) for o in offsets)
+    start = steady_description(settings.speed_kmh, curvature)
     try:
         for el in moving.elements:
             el.hold_spin = True
         _solve_static(moving, "steady state at speed", 10)
+        # converged: the lateral forces balance within the solve's tolerance (the spin
+        # holds' torque is released in ~1 ms: spin inertia over the creep's damping)
+        residual = STATIC_TOLERANCE
+        start += f" (static solve, spin holds release {_held_spin_torque(moving):.3g} N m)"
     except PassageFailure:  # e.g. in a curve: relax dynamically with x frozen
         moving = _build(*args, first, x_a, v, True, x_range)
         _copy_state(state, moving)
-        _relax(moving, RELAX_TIME, RELAX_STEP)
+        residual, relaxed = _relax(moving, model, RELAX_TIME, RELAX_STEP)
+        start += f" (relaxed {relaxed:g} s with x frozen)"
     state, previous = _state(moving), moving
     t_prev = 0.0
     segments, t_offset, total = [], 0.0, (x_b - x_a) / v
@@ -620,4 +696,8 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
         t_offset += duration
     columns = join_segments(segments)
     summary = vehicle_summary(turnout, settings, model, columns, static_loads, wall)
+    summary["start"], summary["start_residual"] = start, float(residual)
+    warning = unsettled_warning(turnout, x_a, v, start, residual)
+    if warning is not None:
+        warnings.warn(warning, StartWarning, stacklevel=4)
     return PassageResult(settings, columns, summary, tuple(starts))

@@ -6,7 +6,14 @@ The wheelset (:mod:`~exudyn_turnout.inputs.vehicle`) runs at constant speed alon
 follow the wheelset's x, coupled by the penalty wheel/rail contact of
 :mod:`~exudyn_turnout.passage.contact.height_table`.
 
-The run starts from static equilibrium at ``x_start`` and is split at the zone boundaries
+The run starts from static equilibrium at ``x_start`` or, where the route is curved there,
+in steady curving at speed: from the static state, a dynamic relaxation with x frozen (the
+contact's creep at speed v, the track's springs at x_start, the curving load on) until the
+vehicle is at rest in the track-following frame (``summary["start"]``,
+``summary["start_residual"]``; :mod:`~exudyn_turnout.passage.vehicle.start`, which also
+warns when a region of the turnout begins before the vehicle has settled). On straight
+track the static state is kept (the steady state up to what the lateral hold carries: the
+straight-track results do not change). The run is then split at the zone boundaries
 (Table 3): in each zone a new Exudyn system is built with that zone's masses and active
 rails, and the state of everything that continues (vehicle, sleeper, rails present in
 both zones, or a rail slot that a route says continues another) is carried over.
@@ -16,6 +23,7 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 from typing import Any
@@ -33,6 +41,7 @@ from exudyn_turnout.passage.common import (
     progress_function,
     zones_of_run,
 )
+from exudyn_turnout.passage.contact.profile import STATIC_LATERAL_STIFFNESS
 from exudyn_turnout.passage.contact.protocol import Contact
 from exudyn_turnout.passage.corunning_track.carry_over import (
     dof_of,
@@ -46,6 +55,15 @@ from exudyn_turnout.passage.results import (
     PassageSettings,
     check_plausible,
     passage_summary,
+)
+from exudyn_turnout.passage.vehicle.start import (
+    RELAX_CHUNK,
+    RELAX_MAX_TIME,
+    RELAX_SETTLED_SPEED,
+    RELAX_STEP,
+    StartWarning,
+    steady_description,
+    unsettled_warning,
 )
 from exudyn_turnout.passage.vehicle.wheelset import add_vehicle, element_matrices, initial_guess
 
@@ -104,6 +122,7 @@ def build_zone_system(
     x0: float,
     v: float,
     contact: Contact,
+    frozen: bool = False,
 ) -> ZoneSystem:
     """One zone's Exudyn system: the co-running track of the zone under the wheelset, the
     vehicle, and the contact element coupling them.
@@ -128,6 +147,9 @@ def build_zone_system(
         m, m/s: the wheelset's position at t = 0 and speed (0: static).
     contact : Contact
         Makes the zone's contact element.
+    frozen : bool
+        The wheelset stays at x0 whatever t (the steady-state start at speed: the contact
+        has the creep of speed v, the track its springs at x0).
 
     Returns
     -------
@@ -145,13 +167,16 @@ def build_zone_system(
         turnout, zone=zone.index, layers=settings.layers, source=settings.source
     )
     params = replace(params, zone=route.zone(params.zone))
-    track = add_co_running_track(mbs, params, x0, v, mechanism=settings.track_mechanism)
+    v_track = 0.0 if frozen else v
+    track = add_co_running_track(mbs, params, x0, v_track, mechanism=settings.track_mechanism)
     profile = contact.profile
     element: Any
     try:
         element, slots = contact.element(vehicle, route, zone, x0, v, settings.irregularity)
     except ValueError as err:
         raise PassageError(str(err)) from None
+    if frozen:  # the element's position: x0 at every t (an instance attribute shadows x_at)
+        element.x_at = _FrozenPosition(element.x0)
     if profile:
         z_w, z_s = initial_guess(vehicle)
         z_touch, roll = element.touching_position(x0, -z_w / 3.0)
@@ -206,6 +231,17 @@ def build_zone_system(
     names.update({f"m0_{r}": n for r, n in track.layer_nodes.items()})
     mbs.Assemble()
     return ZoneSystem(container, mbs, zone, element, names, rails, sensors, params, force_sensor)
+
+
+class _FrozenPosition:
+    """x_at of a frozen contact element: its position whatever t."""
+
+    def __init__(self, x0: float):
+        self.x0 = float(x0)
+
+    def __call__(self, t: float) -> float:
+        del t
+        return self.x0
 
 
 def _node_state(system: ZoneSystem) -> dict[str, tuple[np.ndarray, np.ndarray]]:
@@ -308,6 +344,68 @@ def _solve_static(system: ZoneSystem) -> None:
             f"static equilibrium not found at x = {system.element.x0:g} m "
             f"(zone {system.zone.index}): {err}"
         ) from None
+
+
+def _set_state(state: Mapping[str, tuple[np.ndarray, np.ndarray]], system: ZoneSystem) -> None:
+    """Set the initial coordinates and velocities of ``system``'s named nodes from ``state``
+    (the same model: the nodes' sizes match)."""
+    import exudyn as exu
+
+    mbs, data = system.mbs, system.mbs.systemData
+    q = np.asarray(data.GetODE2Coordinates(exu.ConfigurationType.Initial)).copy()
+    q_t = np.zeros_like(q)
+    for name, node in system.names.items():
+        i = mbs.GetNodeODE2Index(node)
+        a, b = state[name]
+        q[i : i + len(a)], q_t[i : i + len(a)] = a, b
+    data.SetODE2Coordinates(q, exu.ConfigurationType.Initial)
+    data.SetODE2Coordinates_t(q_t, exu.ConfigurationType.Initial)
+
+
+def _relax_step(system: ZoneSystem, duration: float, h: float) -> np.ndarray:
+    """Integrate the frozen system for ``duration`` s at step ``h`` (numerically damped:
+    only the end state matters), continuing from its current state; return its
+    accelerations at the end (all coordinates, m/s^2 and rad/s^2)."""
+    import exudyn as exu
+
+    from exudyn_turnout.corunning.track import simulation_settings
+
+    data = system.mbs.systemData
+    sim = simulation_settings(duration, h, duration)
+    sim.timeIntegration.generalizedAlpha.spectralRadius = 0.0
+    sim.timeIntegration.newton.absoluteTolerance = NEWTON_ABSOLUTE_TOLERANCE
+    try:
+        system.mbs.SolveDynamic(sim)
+    except (exu.SolverError, RuntimeError) as err:
+        raise PassageFailure(
+            f"steady state at speed not found at x = {system.element.x0:g} m "
+            f"(zone {system.zone.index}): {str(err).strip()}"
+        ) from None
+    initial, current = exu.ConfigurationType.Initial, exu.ConfigurationType.Current
+    data.SetODE2Coordinates(data.GetODE2Coordinates(current), initial)  # the next chunk's
+    data.SetODE2Coordinates_t(data.GetODE2Coordinates_t(current), initial)
+    return np.asarray(data.GetODE2Coordinates_tt(exu.ConfigurationType.Current))
+
+
+def _relax(system: ZoneSystem, vehicle: Vehicle) -> float:
+    """Relax the frozen ``system`` to the steady state at speed (chunks of
+    :data:`~exudyn_turnout.passage.vehicle.start.RELAX_CHUNK` until every vehicle velocity but
+    the spin's steady rate is below ``RELAX_SETTLED_SPEED``); return the residual (N): the
+    largest mass x lateral acceleration left on the wheelset and the sprung mass."""
+    mbs = system.mbs
+    ws, yaw, sprung = (mbs.GetNodeODE2Index(system.names[n]) for n in ("wheelset", "yaw", "sprung"))
+    lateral = [(ws, vehicle.m_w), (sprung, vehicle.m_s)]  #: (index, mass)
+    #: the vehicle's coordinates but the spin (its rate is steady, not zero)
+    moving = [ws, ws + 1, ws + 2, yaw, sprung, sprung + 1]
+    elapsed, residual = 0.0, math.inf
+    while elapsed < RELAX_MAX_TIME - 1e-9:
+        a = _relax_step(system, RELAX_CHUNK, RELAX_STEP)
+        elapsed += RELAX_CHUNK
+        q_t = np.asarray(system.mbs.systemData.GetODE2Coordinates_t())
+        residual = max(m * abs(float(a[i])) for i, m in lateral)
+        if elapsed > RELAX_CHUNK and np.max(np.abs(q_t[moving])) < RELAX_SETTLED_SPEED:
+            break
+    return residual
 
 
 def _run(
@@ -444,6 +542,20 @@ def _simulate(
     static_loads = _wheel_loads(static, state, settings.layers)
     _check_static(state, static_loads, x_a, vehicle)
     W = 0.5 * (static_loads["left"] + static_loads["right"])
+    curvature = float(route.curvature(x_a))
+    if curvature != 0.0:  # in a curve: the steady curving state at speed
+        static = build_zone_system(
+            turnout, route, vehicle, zones[0], settings, x_a, v, contact, frozen=True
+        )
+        _set_state(state, static)
+        residual = _relax(static, vehicle)
+        state = _node_state(static)
+        start = steady_description(settings.speed_kmh, curvature)
+    else:  # straight: at rest is the steady state up to what the holds carry
+        # the lateral hold's force; the spin hold's torque is released in ~1 ms (spin
+        # inertia over the creep's damping 2 r0^2 f11 / v), not counted
+        residual = STATIC_LATERAL_STIFFNESS * abs(float(state["wheelset"][0][0]))
+        start = "static at rest"
     segments, x, t_offset, previous, total = [], x_a, 0.0, static, (x_b - x_a) / v
     for k, zone in enumerate(zones):
         system = build_zone_system(turnout, route, vehicle, zone, settings, x, v, contact)
@@ -463,6 +575,10 @@ def _simulate(
         x, t_offset = min(zone.x_end, x_b), t_offset + duration
     columns = join_segments(segments)
     summary = passage_summary(columns, turnout, settings, static_loads, time.perf_counter() - wall)
+    summary["start"], summary["start_residual"] = start, float(residual)
+    warning = unsettled_warning(turnout, x_a, v, start, residual)
+    if warning is not None:
+        warnings.warn(warning, StartWarning, stacklevel=4)
     return PassageResult(settings, columns, summary, tuple(max(z.x_start, x_a) for z in zones))
 
 

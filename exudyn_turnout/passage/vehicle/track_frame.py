@@ -157,6 +157,8 @@ class BodyLoads:
         self._points = np.append(self.offsets, self.x_ref)  #: m, from the front wheelset
         starts = np.cumsum([0] + [len(b.dof) for b in bodies])
         self.n = int(starts[-1])
+        #: index of each body's first coordinate in the bodies' coordinate order
+        self.starts = starts[:-1].astype(int)
         self.i_y = np.array([s + b.dof["y"] for s, b in zip(starts, bodies)])
         self.i_yaw = np.array(
             [s + b.dof["yaw"] if "yaw" in b.dof else -1 for s, b in zip(starts, bodies)]
