@@ -562,6 +562,8 @@ def _run(
             "z_wheelset_m": q[:, 1],
             "Fz_right_N": own[f"Fz_{label}_right_N"],
             "Fz_left_N": own[f"Fz_{label}_left_N"],
+            "Fy_right_N": own[f"Fy_{label}_right_N"],
+            "Fy_left_N": own[f"Fy_{label}_left_N"],
         }
         for j, slot in enumerate(system.slots[i]):
             plausible[f"z_rail_{slot}_m"] = q[:, element.n_vehicle + 2 * j + 1]

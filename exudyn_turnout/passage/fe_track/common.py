@@ -4,7 +4,6 @@ summary of the FE track."""
 
 from __future__ import annotations
 
-import math
 from dataclasses import asdict
 
 import numpy as np
@@ -20,88 +19,7 @@ __all__ = [
     "failure_reason",
     "fe_columns",
     "fe_summary",
-    "StartWarning",
-    "START_TOLERANCE",
-    "SETTLING_TIME",
-    "steady_description",
-    "unsettled_warning",
 ]
-
-# How a run starts: the keys, wording and criterion of the co-running track's
-# passage/vehicle/start.py (issue 23, written in parallel on another branch; once merged,
-# these five names should become imports from there).
-
-#: N (N m): a start whose residual is below this is settled (1e-3 of the single wheelset's
-#: static wheel load, 54.5 kN)
-START_TOLERANCE = 50.0
-#: s, time a start transient needs to decay (the co-running single wheelset started at rest
-#: in the 760 m curve at 80 km/h came within 1 % of its steady lateral force after 1.7 s)
-SETTLING_TIME = 2.0
-
-
-class StartWarning(UserWarning):
-    """A run's first region begins before the vehicle has settled from its start."""
-
-
-def steady_description(speed_kmh: float, curvature: float) -> str:
-    """The ``summary["start"]`` of a steady start.
-
-    Parameters
-    ----------
-    speed_kmh : float
-        km/h.
-    curvature : float
-        1/m, the route's curvature at the start (0: straight).
-
-    Returns
-    -------
-    str
-        e.g. ``"steady curving at 80 km/h, R = 760 m"`` or ``"steady at 100 km/h, straight"``.
-    """
-    if curvature == 0.0:
-        return f"steady at {speed_kmh:g} km/h, straight"
-    return f"steady curving at {speed_kmh:g} km/h, R = {1.0 / abs(curvature):.0f} m"
-
-
-def unsettled_warning(turnout, x_start: float, v: float, start: str, residual: float):
-    """The one-line warning for a run whose first region begins before the vehicle settled.
-
-    Criterion: a start is settled when ``residual`` <= :data:`START_TOLERANCE`; otherwise the
-    vehicle settles :data:`SETTLING_TIME` x v after ``x_start``. The run's first region is
-    the first of the turnout's ``[regions]`` that ends after ``x_start``.
-
-    Parameters
-    ----------
-    turnout : Turnout
-        Its ``regions``.
-    x_start : float
-        m, the (front wheelset's) start.
-    v : float
-        m/s, speed.
-    start : str
-        ``summary["start"]``.
-    residual : float
-        N, ``summary["start_residual"]``.
-
-    Returns
-    -------
-    str or None
-        The warning, or None when the vehicle settles before its first region.
-    """
-    if math.isfinite(residual) and residual <= START_TOLERANCE:
-        return None
-    ahead = [(a, name) for name, (a, b) in turnout.regions.items() if b > x_start]
-    if not ahead:
-        return None
-    x_region, name = min(ahead)
-    x_settled = x_start + SETTLING_TIME * v
-    if x_region >= x_settled:
-        return None
-    return (
-        f"the run starts at x = {x_start:g} m ({start}, residual {residual:.3g} N) and "
-        f"settles about {SETTLING_TIME:g} s x v = {x_settled - x_start:.3g} m later, after "
-        f"the {name} region begins (x = {x_region:g} m): start earlier"
-    )
 
 
 def fe_contact_element(route_contact, vehicle: Vehicle, route: Route, x0: float, v: float, irr):

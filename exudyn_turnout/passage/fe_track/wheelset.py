@@ -36,13 +36,11 @@ from exudyn_turnout.inputs.vehicle import Vehicle
 from exudyn_turnout.passage.common import QuietExudyn
 from exudyn_turnout.passage.contact.profile import RouteContact
 from exudyn_turnout.passage.fe_track.common import (
-    StartWarning,
     coupled_run_settings,
     failure_reason,
     fe_columns,
     fe_contact_element,
     fe_summary,
-    unsettled_warning,
 )
 from exudyn_turnout.passage.fe_track.coupling import FEContactElement, FECoSimulation, run_progress
 from exudyn_turnout.passage.fe_track.options import FEPassageOptions
@@ -55,6 +53,7 @@ from exudyn_turnout.passage.results import (
     check_plausible,
     passage_summary,
 )
+from exudyn_turnout.passage.vehicle.start import StartWarning, unsettled_warning
 
 __all__ = [
     "simulate_wheelset",
