@@ -26,7 +26,6 @@ version = release = exudyn_turnout.__version__
 
 extensions = [
     "sphinx.ext.autodoc",
-    "sphinx.ext.autosummary",
     "sphinx.ext.napoleon",
     "sphinx.ext.viewcode",
     "et_docs",
@@ -47,9 +46,7 @@ napoleon_use_ivar = True
 autodoc_member_order = "bysource"
 autodoc_typehints = "signature"
 autodoc_typehints_format = "short"
-autodoc_preserve_defaults = True
-# The pages list their members themselves (et_docs.api_pages); autosummary only draws tables.
-autosummary_generate = False
+autodoc_preserve_defaults = False
 python_maximum_signature_line_length = 88
 python_display_short_literal_types = True
 

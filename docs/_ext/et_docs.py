@@ -19,6 +19,8 @@ from __future__ import annotations
 import ast
 import contextlib
 import importlib
+import importlib.util
+import inspect
 import io
 import os
 import pkgutil
@@ -62,6 +64,7 @@ STAGES = {
 # --- API reference ------------------------------------------------------------------------
 
 
+@cache
 def _source(modname: str) -> tuple[Path, ast.Module] | None:
     spec = importlib.util.find_spec(modname)
     if spec is None or spec.origin is None or not spec.origin.endswith(".py"):
@@ -157,17 +160,59 @@ def _canonical() -> dict[str, dict[str, str]]:
     return result
 
 
-def _ref(home: str, name: str, current: str) -> str:
-    """An autosummary entry, relative to the page's module (autosummary wants it so)."""
-    if home == current:
-        return name
-    if home.startswith(current + "."):
-        return f"~{home[len(current) + 1 :]}.{name}"
-    return f"~{home}.{name}"
-
-
 def _title(text: str, underline: str = "=") -> list[str]:
     return [text, underline * len(text), ""]
+
+
+def _first_paragraph(text: str | None) -> str:
+    """The first paragraph of a docstring as one line of reStructuredText."""
+    lines = []
+    for line in (text or "").strip().splitlines():
+        if not line.strip():
+            break
+        lines.append(line.strip())
+    summary = " ".join(plain_text_docstring(lines))
+    return summary[:-1] if summary.endswith("::") else summary
+
+
+def _data_comment(modname: str, name: str) -> str:
+    """The ``#:`` comment of a module-level name (above its assignment or after it)."""
+    found = _source(modname)
+    if found is None:
+        return ""
+    path, tree = found
+    source = path.read_text(encoding="utf-8").splitlines()
+    for node in tree.body:
+        targets = getattr(node, "targets", None) or [getattr(node, "target", None)]
+        if any(isinstance(t, ast.Name) and t.id == name for t in targets):
+            line = source[node.lineno - 1]
+            if "#: " in line:
+                return line.split("#: ", 1)[1].strip()
+            comments = []
+            k = node.lineno - 2
+            while k >= 0 and source[k].lstrip().startswith("#:"):
+                comments.insert(0, source[k].lstrip()[2:].strip())
+                k -= 1
+            return _first_paragraph("\n".join(comments))
+    return ""
+
+
+def _summary(full: str) -> str:
+    modname, _, name = full.rpartition(".")
+    if full in _modules():
+        return _first_paragraph(importlib.import_module(full).__doc__)
+    obj = getattr(importlib.import_module(modname), name)
+    if isinstance(obj, type) or callable(obj):
+        return _first_paragraph(inspect.getdoc(obj))
+    return _data_comment(modname, name)
+
+
+def _table(role: str, names: list[str]) -> list[str]:
+    """A two-column table: each object linked, with the first paragraph of its docstring."""
+    lines = [".. list-table::", "   :widths: 30 70", ""]
+    for full in names:
+        lines += [f"   * - :py:{role}:`~{full}`", f"     - {_summary(full) or ' '}"]
+    return lines + [""]
 
 
 def _documented_here(modname: str) -> list[str]:
@@ -177,15 +222,13 @@ def _documented_here(modname: str) -> list[str]:
     return sorted(names, key=lambda n: (n.lower(), n))
 
 
-def _module_page(modname: str) -> str:
+def _module_page(modname: str, tagline: str | None = None) -> str:
     members = _documented_here(modname)
-    lines = _title(f"``{modname}``")
+    lines = _title(f"``{modname}``" + (f": {tagline}" if tagline else ""))
     lines += [f".. automodule:: {modname}", "   :no-members:", ""]
     if members:
         lines += _title("Contents", "-")
-        lines += [".. autosummary::", "   :nosignatures:", ""]
-        lines += [f"   {name}" for name in members]
-        lines += [""]
+        lines += _table("obj", [f"{modname}.{name}" for name in members])
         for name in members:
             lines += [f".. autoany:: {modname}.{name}", ""]
     return "\n".join(lines) + "\n"
@@ -197,36 +240,32 @@ def _children(package: str) -> list[str]:
 
 
 def _package_page(package: str, tagline: str | None = None) -> str:
-    title = f"``{package}``" + (f": {tagline}" if tagline else "")
-    lines = _title(title)
+    lines = _title(f"``{package}``" + (f": {tagline}" if tagline else ""))
     lines += [f".. automodule:: {package}", "   :no-members:", ""]
     homes = _canonical()[package]
     if homes:
         lines += _title("Public names", "-")
+        offer = (
+            "``import exudyn_turnout as et``"
+            if package == "exudyn_turnout"
+            else (f"``from {package} import ...``")
+        )
         lines += [
-            f"What ``from {package} import ...`` offers (its ``__all__``), each linked to the",
-            "module that defines it.",
-            "",
-            ".. autosummary::",
-            "   :nosignatures:",
+            f"What {offer} offers (its ``__all__``), each linked to the module that defines it.",
             "",
         ]
-        lines += [
-            f"   {_ref(home, name, package)}"
-            for name, home in sorted(homes.items(), key=lambda i: i[0].lower())
-        ]
-        lines += [""]
+        ordered = sorted(homes.items(), key=lambda item: (item[0].lower(), item[0]))
+        lines += _table("obj", [f"{home}.{name}" for name, home in ordered])
     here = _documented_here(package)
     if here:
         lines += _title("Defined in the package itself", "-")
         for name in here:
             lines += [f".. autoany:: {package}.{name}", ""]
-    children = _children(package)
+    children = [] if package == "exudyn_turnout" else _children(package)
     if children:
         lines += _title("Modules", "-")
-        lines += [".. autosummary::", ""]
-        lines += [f"   {child[len(package) + 1 :]}" for child in children]
-        lines += ["", ".. toctree::", "   :hidden:", ""]
+        lines += _table("mod", children)
+        lines += [".. toctree::", "   :hidden:", ""]
         lines += [f"   {child}" for child in children]
         lines += [""]
     return "\n".join(lines) + "\n"
@@ -243,39 +282,10 @@ def api_pages() -> dict[str, str]:
     pages = {}
     for modname in _modules():
         stage = STAGES.get(modname)
-        if modname == "exudyn_turnout":
-            # the front door: its own names only; the sub-packages are pages of their own
-            homes = _canonical()[modname]
-            lines = _title(f"``exudyn_turnout``: {stage}")
-            lines += ["", ".. automodule:: exudyn_turnout", "   :no-members:", ""]
-            lines += _title("Public names", "-")
-            lines += [
-                "What ``import exudyn_turnout as et`` offers (``et.__all__``), each linked to",
-                "the module that defines it.",
-                "",
-                ".. autosummary::",
-                "   :nosignatures:",
-                "",
-            ]
-            lines += [
-                f"   {_ref(home, name, modname)}"
-                for name, home in sorted(homes.items(), key=lambda i: i[0].lower())
-                if name != "__version__"
-            ]
-            lines += ["", ".. autoany:: exudyn_turnout.__version__", ""]
-            pages[f"{modname}.rst"] = "\n".join(lines) + "\n"
-        elif _is_package(modname):
+        if _is_package(modname):
             pages[f"{modname}.rst"] = _package_page(modname, stage)
         else:
-            pages[f"{modname}.rst"] = (
-                _module_page(modname)
-                if stage is None
-                else _module_page(modname).replace(
-                    f"``{modname}``\n{'=' * (len(modname) + 4)}",
-                    f"``{modname}``: {stage}\n{'=' * (len(modname) + 6 + len(stage))}",
-                    1,
-                )
-            )
+            pages[f"{modname}.rst"] = _module_page(modname, stage)
     return pages
 
 
@@ -542,9 +552,9 @@ def setup(app):
             obj = getattr(importlib.import_module(modname), name)
             if isinstance(obj, type):
                 kind = "autoexception" if issubclass(obj, BaseException) else "autoclass"
-                options = ["   :members:", "   :show-inheritance:"]
-                if issubclass(obj, BaseException):
-                    options = ["   :show-inheritance:"]
+                options = [] if issubclass(obj, BaseException) else ["   :members:"]
+                if obj.__bases__ != (object,):
+                    options.append("   :show-inheritance:")
             elif callable(obj) and hasattr(obj, "__code__") or _is_numba(obj):
                 kind, options = "autofunction", []
             else:
