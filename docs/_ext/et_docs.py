@@ -343,7 +343,7 @@ def _help(argv: list[str]) -> str:
 
     out = io.StringIO()
     saved = {k: os.environ.get(k) for k in ("COLUMNS", "NO_COLOR", "PYTHON_COLORS")}
-    os.environ.update(COLUMNS="100", NO_COLOR="1", PYTHON_COLORS="0")
+    os.environ.update(COLUMNS="90", NO_COLOR="1", PYTHON_COLORS="0")
     try:
         with contextlib.redirect_stdout(out):
             main([*argv, "--help"])
