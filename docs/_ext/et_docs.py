@@ -552,7 +552,9 @@ def setup(app):
             obj = getattr(importlib.import_module(modname), name)
             if isinstance(obj, type):
                 kind = "autoexception" if issubclass(obj, BaseException) else "autoclass"
-                options = [] if issubclass(obj, BaseException) else ["   :members:"]
+                options = (
+                    [] if issubclass(obj, BaseException) else ["   :members:", "   :undoc-members:"]
+                )
                 if obj.__bases__ != (object,):
                     options.append("   :show-inheritance:")
             elif callable(obj) and hasattr(obj, "__code__") or _is_numba(obj):
@@ -589,6 +591,33 @@ def setup(app):
         find_nearest._et_docs = True
         PythonDomain.find_obj = find_nearest
 
+    def resolve_reexport(app, env, node, contnode):
+        """``exudyn_turnout.load_turnout``: a name offered by a package but documented in
+        its defining module (``exudyn_turnout.inputs.turnout.load_turnout``) links there."""
+        if node.get("refdomain") != "py":
+            return None
+        domain = env.get_domain("py")
+        target = node.get("reftarget", "")
+        modname, _, name = target.rpartition(".")
+        home = _canonical().get(modname, {}).get(name)
+        if home is not None and home != modname:
+            return domain.resolve_xref(
+                env, node["refdoc"], app.builder, node["reftype"], f"{home}.{name}", node, contnode
+            )
+        # ":func:`simulate_passage`" written in a module that does not define it: the one
+        # object of that name nearest the referring module (none if two are as near)
+        if "." in target or target.startswith("_"):
+            return None
+        matches = domain.find_obj(
+            env, node.get("py:module"), node.get("py:class"), target, node["reftype"], 1
+        )
+        if len(matches) != 1:
+            return None
+        return domain.resolve_xref(
+            env, node["refdoc"], app.builder, node["reftype"], matches[0][0], node, contnode
+        )
+
+    app.connect("missing-reference", resolve_reexport)
     app.add_directive("cli-reference", CliReference)
     app.add_directive("autoany", AutoAny)
     app.connect("builder-inited", generate)
