@@ -50,6 +50,10 @@ autodoc_preserve_defaults = False
 python_maximum_signature_line_length = 88
 python_display_short_literal_types = True
 
+# Literal blocks of docstrings ("::") are mostly ASCII drawings, tables and commands, not
+# Python: left as they are. The pages name the language of their code blocks.
+highlight_language = "none"
+
 # Unresolved references (a type named in a docstring, numpy's ndarray) are not errors.
 nitpicky = False
 
