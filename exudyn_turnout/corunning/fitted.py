@@ -547,7 +547,7 @@ def with_fitted(turnout: Turnout, fitted: FittedSet) -> Turnout:
     turnout : Turnout
         The turnout the set was fitted to.
     fitted : FittedSet
-        From :func:`read_fitted` or :func:`exudyn_turnout.corunning.fit.fit_turnout`.
+        From :func:`read_fitted` or :func:`exudyn_turnout.corunning.fit.fitted_set`.
 
     Returns
     -------

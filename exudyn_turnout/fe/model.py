@@ -22,7 +22,7 @@ first free axial mode 790 Hz at 2.5 m, 486 Hz at 4.06 m) on the lateral ballast 
 s_b,y, d_b,y per unit length (total s_b,y L_t: Eq 13); pads k_p,y, c_p,y.
 
 Why two planar models instead of the paper's 3-D one
----------------------------------------------------
+----------------------------------------------------
 With the load at the shear centre and sections symmetric about the vertical, vertical and
 lateral bending of a rail are uncoupled. They couple only through eccentricities: the
 lateral pad force acts at the rail foot, below the shear centre, and the lateral load at

@@ -64,7 +64,7 @@ __all__ = [
 
 #: Version of the report's FE passage (a new value invalidates every cached FE passage):
 #: 2 = the FE track under the co-running passage's vehicle and profile contact, vertical and
-#: lateral (:mod:`exudyn_turnout.passage.fe_passage`); 1 was the vertical height-table one.
+#: lateral (:mod:`exudyn_turnout.passage.fe_track`); 1 was the vertical height-table one.
 FE_PASSAGE_VERSION = 2
 
 

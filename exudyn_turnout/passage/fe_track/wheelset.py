@@ -187,7 +187,7 @@ def simulate_wheelset(
         Mesh and ``loss_reference_hz``
         (:class:`~exudyn_turnout.passage.fe_track.options.FEPassageOptions`).
     planes : FETrackPlanes, optional
-        FE planes from :func:`~exudyn_turnout.passage.fe_track.coupling.build_fe_planes` to
+        FE planes from :func:`~exudyn_turnout.passage.fe_track.planes.build_fe_planes` to
         reuse.
 
     Returns
