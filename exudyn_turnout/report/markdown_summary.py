@@ -86,12 +86,22 @@ def _closing_lateral(passage: PassageMetrics, verdicts: Mapping[str, str]) -> st
     if "2-layer" not in models:
         return ""
     assert route is not None  # a route with passages
-    peak = {m: fmt(d.peaks_N["Fy_crossing"], "+.2f", 1e-3) for m, d in models.items()}
-    return (
-        f" Lateral crossing peak ({route}, {passage.speeds_kmh[route]:g} km/h): "
+    nose = all("Fy_nose" in d.peaks_N for d in models.values())
+    signal, where = ("Fy_nose", "at the crossing nose") if nose else ("Fy_crossing", "crossing")
+    peak = {m: fmt(d.peaks_N[signal], "+.2f", 1e-3) for m, d in models.items()}
+    text = (
+        f" Lateral peak {where} ({route}, {passage.speeds_kmh[route]:g} km/h): "
         f"{peak['2-layer']} kN (2-layer), {peak['3-layer']} kN (3-layer), "
         f"{peak.get('FE', 'n/a')} kN (FE); F6 {verdicts.get('F6', NOT_CHECKED)}."
     )
+    events = {m: d.check_rail for m, d in models.items() if d.check_rail is not None}
+    if events and any(e.impulse_Ns > 0 for e in events.values()):
+        text += " Check-rail event: peak Fy " + ", ".join(
+            f"{fmt(e.peak_Fy_N, '+.1f', 1e-3)} kN ({m})" for m, e in events.items()
+        )
+        text += " (" + ("tread unloaded" if any(e.tread_unloaded for e in events.values())
+                        else "tread loaded") + ")."  # fmt: skip
+    return text
 
 
 def _closing_cost(m: ReportMetrics, claims: Sequence[Claim]) -> str:
