@@ -193,4 +193,4 @@ def support_from_section(check_rail: Mapping) -> CheckRailSupport:
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise ValueError(f"{key} must be a number, got {value!r}")
         values[key] = float(value)
-    return CheckRailSupport(**values)  # type: ignore[arg-type]
+    return CheckRailSupport(**values)

@@ -82,8 +82,9 @@ def nose_region(turnout: Turnout) -> tuple[float, float] | None:
     start = tip - NOSE_BEFORE
     for route in route_names(turnout):
         check = check_rail_event(turnout, route)
-        if check is not None and check["entry_m"][0] < tip:  # type: ignore[index]
-            start = max(start, float(check["entry_m"][1]))  # type: ignore[index]
+        entry = cast(list, check["entry_m"]) if check is not None else None
+        if entry is not None and entry[0] < tip:
+            start = max(start, float(entry[1]))
     return (start, tip + NOSE_AFTER)
 
 
@@ -164,7 +165,8 @@ def event_summary(
     check = check_rail_event(turnout, route)
     if check is None:
         return out
-    wheel, slot, rng = check["wheel"], check["rail"], check["region_m"]
+    wheel, slot = str(check["wheel"]), str(check["rail"])
+    rng = cast(list, check["region_m"])
     out["check_rail_region_m"] = rng
     out["check_rail_entry_m"] = check["entry_m"]
     out["check_rail_wheel"], out["check_rail_rail"] = wheel, slot
@@ -184,7 +186,7 @@ def event_summary(
         least = float(np.nanmin(tread[sel]))
         out["check_rail_min_tread_Fz_N"] = least
         out["check_rail_tread_unloaded"] = bool(
-            least <= TREAD_UNLOADED * abs(float(static_loads[str(wheel)]))
+            least <= TREAD_UNLOADED * abs(float(static_loads[wheel]))
         )
     else:
         out["check_rail_min_tread_Fz_N"] = math.nan

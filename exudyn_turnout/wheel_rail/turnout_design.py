@@ -295,7 +295,7 @@ def rail_geometry(turnout: Turnout) -> RailGeometry:
             "tip_width": plan.nose_tip_width,
         }
     check = turnout.raw.get("check_rail", {})
-    check_defaults: dict[str, float | str] = {
+    check_defaults: dict[str, Any] = {
         k: float(check[k])
         for k in ("clearance", "flare_length", "flare_opening")
         if isinstance(check, Mapping) and k in check
