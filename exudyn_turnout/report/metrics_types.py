@@ -295,8 +295,8 @@ class PassageModel(Record):
     static_wheel_load_N: float  #: N, at the start
     wall_time_s: float  #: s
     simulated_time_s: float  #: s
-    vs_FE: VsFE | None = optional()  #: co-running passages with an FE reference
     check_rail: CheckRailEvent | None = optional()  #: the check-rail event, if the run has one
+    vs_FE: VsFE | None = optional()  #: co-running passages with an FE reference
 
 
 @dataclass(frozen=True, kw_only=True)
