@@ -107,3 +107,12 @@ def test_event_outside_the_run_is_nan():
     )
     assert math.isnan(s["peak_Fy_check_rail_N"]) and math.isnan(s["peak_Fz_nose_N"])
     assert event_line(s) is None
+    # a run through the check rail that never touches it
+    x = np.linspace(40.0, 50.0, 101)
+    s = event_summary(
+        _columns(x, x / 20.0, 0 * x, 0 * x, 50e3 + 0 * x),
+        turnout,
+        "diverging",
+        {"left": 5e4, "right": 5e4},
+    )
+    assert event_line(s) == "check rail (right wheel, r3, 44.29-51 m): no contact"

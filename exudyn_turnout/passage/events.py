@@ -213,6 +213,12 @@ def event_line(summary: Mapping[str, object]) -> str | None:
         return None
     region = summary["check_rail_region_m"]
     assert isinstance(region, (list, tuple))
+    where = (
+        f"check rail ({summary['check_rail_wheel']} wheel, {summary['check_rail_rail']}, "
+        f"{region[0]:g}-{region[1]:g} m)"
+    )
+    if not _number(summary, "check_rail_impulse_Ns") > 0.0:
+        return f"{where}: no contact"
     tread = "tread unloaded" if summary.get("check_rail_tread_unloaded") else "tread loaded"
     return (
         f"check rail ({summary['check_rail_wheel']} wheel, {summary['check_rail_rail']}, "
