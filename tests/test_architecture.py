@@ -33,9 +33,9 @@ EXUDYN_BUILDERS = {
     "passage/vehicle/steady_curving.py",
     "passage/corunning_track/wheelset.py",
     "passage/corunning_track/vehicle.py",
+    "passage/corunning_track/relax.py",
     "passage/fe_track/wheelset.py",
     "passage/fe_track/vehicle.py",
-    "passage/fe_track/vertical_legacy.py",
     "passage/hunting.py",
 }
 #: The one module allowed to import matplotlib (the figure modules get it from there).

@@ -51,7 +51,8 @@ The run starts in the steady state at speed (at rest in the track-following fram
 the static equilibrium at rest (lateral position and spin held, as the single wheelset's),
 then a static solve with the creep forces of speed v (spin held); where that fails (in a
 curve: saturated creep) a dynamic relaxation with x frozen (:data:`RELAX_TIME` s at
-:data:`RELAX_STEP` s, curving loads ramped up over the first second, then 1 s chunks until
+:data:`~exudyn_turnout.passage.vehicle.start.RELAX_STEP` s, curving loads ramped up over
+the first second, then 1 s chunks until
 every body's velocity is below 1e-5 m/s) reaches it. ``summary["start"]`` says which, and
 ``summary["start_residual"]`` (N) what is left unbalanced: the static solve's tolerance
 after it (the torque its spin holds release is in the start string), the bodies' largest
@@ -77,7 +78,6 @@ from exudyn_turnout.inputs.turnout import Turnout, Zone
 from exudyn_turnout.inputs.vehicle import Vehicle, load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
 from exudyn_turnout.passage.common import (
-    NEWTON_ABSOLUTE_TOLERANCE,
     QuietExudyn,
     join_segments,
     newton_tolerance,
@@ -95,6 +95,7 @@ from exudyn_turnout.passage.corunning_track.carry_over import (
     rebase_track,
     vehicle_shift,
 )
+from exudyn_turnout.passage.corunning_track.relax import relax_frozen
 from exudyn_turnout.passage.results import (
     PassageError,
     PassageFailure,
@@ -104,9 +105,6 @@ from exudyn_turnout.passage.results import (
     vehicle_summary,
 )
 from exudyn_turnout.passage.vehicle.start import (
-    RELAX_CHUNK,
-    RELAX_MAX_TIME,
-    RELAX_SETTLED_SPEED,
     StartWarning,
     steady_description,
     unsettled_warning,
@@ -128,8 +126,6 @@ __all__ = ["simulate_vehicle"]
 #: the 760 m curve at 80 km/h), so the relaxation goes on in chunks until settled
 #: (:mod:`~exudyn_turnout.passage.vehicle.start`: 18 s there, residual 3 N)
 RELAX_TIME = 8.0
-#: s, its time step (implicit, numerically damped: only the end state matters)
-RELAX_STEP = 5e-3
 #: N, the static solves' Newton tolerance (the start residual after the solve at speed)
 STATIC_TOLERANCE = 1e-4
 #: Exudyn's ``modifiedNewtonContractivity`` in a run: the Jacobian is recomputed when a
@@ -412,19 +408,12 @@ def _solve_static(system: _System, what: str, load_steps: int = 1) -> None:
         ) from None
 
 
-def _relax(system: _System, model: VehicleModel, duration: float, h: float) -> tuple[float, float]:
-    """Integrate with x frozen (the curving loads ramped up over the first second) until the
-    vehicle is at rest in the track-following frame: the steady state at speed.
-
-    ``duration`` s first, then chunks of ``RELAX_CHUNK`` s until every body's velocity (the
-    wheelsets' spin rates excepted) is below ``RELAX_SETTLED_SPEED``, at most
-    ``RELAX_MAX_TIME`` s in all. Return the residual (N: the largest mass x lateral
-    acceleration left on a body) and the time relaxed (s)."""
-    import exudyn as exu
-
-    from exudyn_turnout.corunning.track import simulation_settings
-
-    mbs, data = system.mbs, system.mbs.systemData
+def _relax(system: _System, model: VehicleModel) -> tuple[float, float]:
+    """Relax with x frozen (the curving loads ramped up over the first second) until the
+    vehicle is at rest in the track-following frame: the steady state at speed
+    (:func:`~exudyn_turnout.passage.corunning_track.relax.relax_frozen`: :data:`RELAX_TIME`
+    s first, then chunks). Return the residual (N: the largest mass x lateral acceleration
+    left on a body) and the time relaxed (s)."""
     loads = system.body_loads
     sizes = np.diff(np.append(loads.starts, loads.n))
     lateral, moving = [], []  #: (index, mass) of each body's y; indices of its coordinates
@@ -435,35 +424,12 @@ def _relax(system: _System, model: VehicleModel, duration: float, h: float) -> t
             mass = model.bogie.mass
         else:
             mass = model.wheelset.mass
-        i = mbs.GetNodeODE2Index(system.names[name])
+        i = system.mbs.GetNodeODE2Index(system.names[name])
         lateral.append((i + int(i_y - start), mass))
         spin = 4 if name.startswith("ws") else -1  # the element's beta: its rate is steady
         moving += [i + k for k in range(int(size)) if k != spin]
-    elapsed, chunk = 0.0, duration
-    while True:
-        sim = simulation_settings(chunk, h, chunk)
-        sim.timeIntegration.startTime = elapsed  # the curving loads' ramp runs on t
-        sim.timeIntegration.endTime = elapsed + chunk
-        sim.timeIntegration.generalizedAlpha.spectralRadius = 0.0
-        sim.timeIntegration.newton.absoluteTolerance = NEWTON_ABSOLUTE_TOLERANCE
-        try:
-            mbs.SolveDynamic(sim)
-        except (exu.SolverError, RuntimeError) as err:
-            raise PassageFailure(
-                f"steady state at speed not found with the front wheelset at x = "
-                f"{system.x_front:g} m: {str(err).strip()}"
-            ) from None
-        elapsed += chunk
-        q_t = np.asarray(data.GetODE2Coordinates_t())
-        settled = float(np.max(np.abs(q_t[moving]))) < RELAX_SETTLED_SPEED
-        if settled or elapsed >= RELAX_MAX_TIME - 1e-9:
-            break
-        initial, current = exu.ConfigurationType.Initial, exu.ConfigurationType.Current
-        data.SetODE2Coordinates(data.GetODE2Coordinates(current), initial)  # go on from here
-        data.SetODE2Coordinates_t(q_t, initial)
-        chunk = RELAX_CHUNK
-    a = np.asarray(data.GetODE2Coordinates_tt())
-    return max(mass * abs(float(a[i])) for i, mass in lateral), elapsed
+    where = f"with the front wheelset at x = {system.x_front:g} m"
+    return relax_frozen(system.mbs, moving, lateral, where, first=RELAX_TIME, carry_time=True)
 
 
 def _held_spin_torque(system: _System) -> float:
@@ -679,7 +645,7 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
     except PassageFailure:  # e.g. in a curve: relax dynamically with x frozen
         moving = _build(*args, first, x_a, v, True, x_range)
         _copy_state(state, moving)
-        residual, relaxed = _relax(moving, model, RELAX_TIME, RELAX_STEP)
+        residual, relaxed = _relax(moving, model)
         start += f" (relaxed {relaxed:g} s with x frozen)"
     state, previous = _state(moving), moving
     t_prev = 0.0

@@ -48,6 +48,7 @@ from exudyn_turnout.passage.corunning_track.carry_over import (
     rebase_track,
     vehicle_shift,
 )
+from exudyn_turnout.passage.corunning_track.relax import relax_frozen
 from exudyn_turnout.passage.results import (
     PassageError,
     PassageFailure,
@@ -58,9 +59,6 @@ from exudyn_turnout.passage.results import (
 )
 from exudyn_turnout.passage.vehicle.start import (
     RELAX_CHUNK,
-    RELAX_MAX_TIME,
-    RELAX_SETTLED_SPEED,
-    RELAX_STEP,
     StartWarning,
     steady_description,
     unsettled_warning,
@@ -362,49 +360,22 @@ def _set_state(state: Mapping[str, tuple[np.ndarray, np.ndarray]], system: ZoneS
     data.SetODE2Coordinates_t(q_t, exu.ConfigurationType.Initial)
 
 
-def _relax_step(system: ZoneSystem, duration: float, h: float) -> np.ndarray:
-    """Integrate the frozen system for ``duration`` s at step ``h`` (numerically damped:
-    only the end state matters), continuing from its current state; return its
-    accelerations at the end (all coordinates, m/s^2 and rad/s^2)."""
-    import exudyn as exu
-
-    from exudyn_turnout.corunning.track import simulation_settings
-
-    data = system.mbs.systemData
-    sim = simulation_settings(duration, h, duration)
-    sim.timeIntegration.generalizedAlpha.spectralRadius = 0.0
-    sim.timeIntegration.newton.absoluteTolerance = NEWTON_ABSOLUTE_TOLERANCE
-    try:
-        system.mbs.SolveDynamic(sim)
-    except (exu.SolverError, RuntimeError) as err:
-        raise PassageFailure(
-            f"steady state at speed not found at x = {system.element.x0:g} m "
-            f"(zone {system.zone.index}): {str(err).strip()}"
-        ) from None
-    initial, current = exu.ConfigurationType.Initial, exu.ConfigurationType.Current
-    data.SetODE2Coordinates(data.GetODE2Coordinates(current), initial)  # the next chunk's
-    data.SetODE2Coordinates_t(data.GetODE2Coordinates_t(current), initial)
-    return np.asarray(data.GetODE2Coordinates_tt(exu.ConfigurationType.Current))
-
-
 def _relax(system: ZoneSystem, vehicle: Vehicle) -> float:
-    """Relax the frozen ``system`` to the steady state at speed (chunks of
-    :data:`~exudyn_turnout.passage.vehicle.start.RELAX_CHUNK` until every vehicle velocity but
-    the spin's steady rate is below ``RELAX_SETTLED_SPEED``); return the residual (N): the
-    largest mass x lateral acceleration left on the wheelset and the sprung mass."""
+    """Relax the frozen ``system`` to the steady state at speed
+    (:func:`~exudyn_turnout.passage.corunning_track.relax.relax_frozen`, at least two
+    chunks); return the residual (N): the largest mass x lateral acceleration left on the
+    wheelset and the sprung mass."""
     mbs = system.mbs
     ws, yaw, sprung = (mbs.GetNodeODE2Index(system.names[n]) for n in ("wheelset", "yaw", "sprung"))
-    lateral = [(ws, vehicle.m_w), (sprung, vehicle.m_s)]  #: (index, mass)
-    #: the vehicle's coordinates but the spin (its rate is steady, not zero)
-    moving = [ws, ws + 1, ws + 2, yaw, sprung, sprung + 1]
-    elapsed, residual = 0.0, math.inf
-    while elapsed < RELAX_MAX_TIME - 1e-9:
-        a = _relax_step(system, RELAX_CHUNK, RELAX_STEP)
-        elapsed += RELAX_CHUNK
-        q_t = np.asarray(system.mbs.systemData.GetODE2Coordinates_t())
-        residual = max(m * abs(float(a[i])) for i, m in lateral)
-        if elapsed > RELAX_CHUNK and np.max(np.abs(q_t[moving])) < RELAX_SETTLED_SPEED:
-            break
+    where = f"at x = {system.element.x0:g} m (zone {system.zone.index})"
+    residual, _ = relax_frozen(
+        mbs,
+        # the vehicle's coordinates but the spin (its rate is steady, not zero)
+        [ws, ws + 1, ws + 2, yaw, sprung, sprung + 1],
+        [(ws, vehicle.m_w), (sprung, vehicle.m_s)],
+        where,
+        settle_after=RELAX_CHUNK,
+    )
     return residual
 
 
