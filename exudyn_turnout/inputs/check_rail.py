@@ -27,6 +27,8 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 
+from exudyn_turnout.inputs.toml_fields import did_you_mean
+
 __all__ = [
     "CHECK_RAIL_KEYS",
     "FLARE_SHAPES",
@@ -189,7 +191,7 @@ def support_from_section(check_rail: Mapping) -> CheckRailSupport:
     values: dict[str, float] = {}
     for key, value in section.items():
         if key not in known:
-            raise ValueError(f"{key} is not a field (fields: {', '.join(known)})")
+            raise ValueError(f"{key} is not a field{did_you_mean(key, known)}")
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise ValueError(f"{key} must be a number, got {value!r}")
         values[key] = float(value)

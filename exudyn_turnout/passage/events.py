@@ -29,7 +29,7 @@ of that wheel's other contacts in the region) and ``check_rail_tread_unloaded``.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import SupportsFloat, cast
 
 import numpy as np
@@ -46,6 +46,7 @@ __all__ = [
     "check_rail_event",
     "event_summary",
     "event_line",
+    "peak_in",
 ]
 
 #: m, the nose region starts this far before the nose tip: a wheel running on the wing rail
@@ -119,11 +120,31 @@ def check_rail_event(turnout: Turnout, route: str) -> dict[str, object] | None:
     }
 
 
-def _signed_peak(x: np.ndarray, values: np.ndarray, rng) -> tuple[float, float]:
-    sel = (x >= rng[0]) & (x <= rng[1]) & np.isfinite(values)
+def peak_in(
+    x: np.ndarray, values: np.ndarray, x_range: Sequence[float], signed: bool = True
+) -> tuple[float, float]:
+    """(peak, x of the peak) of ``values`` over ``x_range``; (nan, nan) if none is finite there.
+
+    Parameters
+    ----------
+    x : numpy.ndarray
+        m, positions of the samples.
+    values : numpy.ndarray
+        The signal.
+    x_range : (float, float)
+        m, closed range.
+    signed : bool
+        True: the value of largest magnitude, with its sign; False: the largest value.
+
+    Returns
+    -------
+    (float, float)
+    """
+    sel = (x >= x_range[0]) & (x <= x_range[1]) & np.isfinite(values)
     if not sel.any():
         return math.nan, math.nan
-    i = np.flatnonzero(sel)[int(np.argmax(np.abs(values[sel])))]
+    inside = np.flatnonzero(sel)
+    i = inside[int(np.argmax(np.abs(values[sel]) if signed else values[sel]))]
     return float(values[i]), float(x[i])
 
 
@@ -157,11 +178,9 @@ def event_summary(
     if nose is not None:
         out["nose_region_m"] = [float(nose[0]), float(nose[1])]
         for wheel, suffix in (("right", ""), ("left", "_left")):
-            fz = np.asarray(columns[f"Fz_{wheel}_N"])
-            sel = (x >= nose[0]) & (x <= nose[1]) & np.isfinite(fz)
-            out[f"peak_Fz_nose{suffix}_N"] = float(fz[sel].max()) if sel.any() else math.nan
-            fy = np.asarray(columns[f"Fy_{wheel}_N"])
-            out[f"peak_Fy_nose{suffix}_N"] = _signed_peak(x, fy, nose)[0]
+            fz, fy = (np.asarray(columns[f"{q}_{wheel}_N"]) for q in ("Fz", "Fy"))
+            out[f"peak_Fz_nose{suffix}_N"] = peak_in(x, fz, nose, signed=False)[0]
+            out[f"peak_Fy_nose{suffix}_N"] = peak_in(x, fy, nose)[0]
     check = check_rail_event(turnout, route)
     if check is None:
         return out
@@ -174,7 +193,7 @@ def event_summary(
     if fy_name not in columns:  # a run without per-contact columns (height-table contact)
         return out
     fy = np.asarray(columns[fy_name])
-    peak, x_peak = _signed_peak(x, fy, rng)
+    peak, x_peak = peak_in(x, fy, rng)
     out["peak_Fy_check_rail_N"], out["peak_Fy_check_rail_x_m"] = peak, x_peak
     t = np.asarray(columns["t_s"])
     sel = (x >= rng[0]) & (x <= rng[1])

@@ -17,7 +17,7 @@ import numpy as np
 
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
-from exudyn_turnout.passage.events import event_summary
+from exudyn_turnout.passage.events import event_summary, peak_in
 from exudyn_turnout.passage.safety import (
     SAFETY_LIMITS,
     SafetyLimits,
@@ -412,12 +412,7 @@ def _argpeak(
     cols: Mapping[str, np.ndarray], name: str, x_range: tuple[float, float], signed: bool
 ) -> tuple[float, float]:
     """(peak, x of the peak) of column ``name`` in x_range; (nan, nan) if none (or all NaN)."""
-    x = cols["x_m"]
-    values = np.where((x >= x_range[0]) & (x <= x_range[1]), cols[name], np.nan)
-    if not np.isfinite(values).any():
-        return math.nan, math.nan
-    i = int(np.nanargmax(np.abs(values)) if signed else np.nanargmax(values))
-    return float(values[i]), float(x[i])
+    return peak_in(np.asarray(cols["x_m"]), np.asarray(cols[name]), x_range, signed)
 
 
 def _contact_peaks(

@@ -55,6 +55,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from exudyn_turnout.fe.check_rail import check_rail_types
 from exudyn_turnout.inputs.routes import WHEELS, dip_angle, load_route, route_names
 from exudyn_turnout.inputs.toml_fields import FieldReader
 from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Turnout, TurnoutFileError
@@ -481,5 +482,5 @@ def check_rails(settings: ReportSettings, layout, turnout: Turnout) -> tuple[str
     """
     if settings.check_rails_given is not None:
         return _check_ids(settings, layout, "report.check_rails", settings.check_rails_given)
-    types = {z.rail_types["r3"] for z in turnout.zones if "r3" in z.active_rails}
+    types = check_rail_types(turnout)
     return tuple(r.id for r in layout.rails if all(s.rail_type in types for s in r.segments))
