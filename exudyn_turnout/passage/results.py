@@ -23,6 +23,7 @@ from exudyn_turnout.passage.safety import (
     SafetyLimits,
     SafetyStop,
     check_safety,
+    derailment_message,
     first_derailment,
     limits_record,
     safety_columns,
@@ -352,7 +353,8 @@ def check_plausible(columns: Mapping[str, np.ndarray], static_load: float, what:
             f"implausible run stopped at t = {t[i]:.5f} s, x = {x[i]:.3f} m{where}: "
             f"{label} {value:.4g} {unit} is beyond the physical limit {bound:.4g} {unit}"
         )
-    stop_on_derailment(columns, static_load, what)
+    if derailment is not None:
+        raise PassageFailure(derailment_message(derailment, what))
 
 
 def stop_on_derailment(

@@ -83,6 +83,7 @@ __all__ = [
     "safety_summary",
     "check_safety",
     "first_derailment",
+    "derailment_message",
     "limits_record",
 ]
 
@@ -581,11 +582,27 @@ def check_safety(
     """
     found = first_derailment(columns, static_load, limits)
     if found is not None:
-        where = f" ({what})" if what else ""
-        t_i, x_i, message = found
-        raise SafetyStop(
-            f"derailment stopped at t = {t_i:.5f} s, x = {x_i:.3f} m{where}: {message}"
-        )
+        raise SafetyStop(derailment_message(found, what))
+
+
+def derailment_message(found: tuple[float, float, str], what: str = "") -> str:
+    """The one line a derailment stop says.
+
+    Parameters
+    ----------
+    found : (float, float, str)
+        t (s), x (m) and the wheel and quantity, from :func:`first_derailment`.
+    what : str
+        Where (e.g. "zone 2, crossing panel"), put into the message.
+
+    Returns
+    -------
+    str
+        ``"derailment stopped at t = ... s, x = ... m (what): ..."``.
+    """
+    t_i, x_i, message = found
+    where = f" ({what})" if what else ""
+    return f"derailment stopped at t = {t_i:.5f} s, x = {x_i:.3f} m{where}: {message}"
 
 
 def first_derailment(
