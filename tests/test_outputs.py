@@ -1,0 +1,141 @@
+"""Output files of a passage: one layout in CSV, NPZ and ``result.columns``; compressed NPZ,
+float32 on request; no column empty from top to bottom (issue 25, "outputs sized for use")."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+
+import numpy as np
+import pytest
+
+from exudyn_turnout.passage.results import (
+    DEFAULT_SETTINGS,
+    PassageResult,
+    csv_text,
+    keeps_float64,
+    without_empty_columns,
+    write_passage,
+)
+
+N = 400
+
+
+def _result() -> PassageResult:
+    """A synthetic result: a rail slot present in the first half only, an unloaded contact
+    point's position NaN, a column of a body never met (all NaN)."""
+    rng = np.random.default_rng(7)
+    t = np.arange(N) * 1e-4 + 1.0
+    half = np.where(np.arange(N) < N // 2, 1.0, np.nan)
+    normal = np.where(rng.random(N) < 0.5, 0.0, 5e4 + rng.normal(size=N))
+    columns = {
+        "t_s": t,
+        "x_m": 40.0 + 27.7777777 * (t - 1.0),
+        "Fz_right_N": 5.45e4 + rng.normal(size=N) * 1e3,
+        "Fy_right_N": rng.normal(size=N) * 1e3,
+        "Fz_left_N": 5.45e4 + rng.normal(size=N) * 1e3,
+        "Fy_left_N": rng.normal(size=N) * 1e3,
+        "Fz_right_r3_N": half * 1e3,
+        "z_rail_r3_m": half * -1.234567891e-4,
+        "cp_right_r2_nose_0_N_N": normal,
+        "cp_right_r2_nose_0_y_rail_m": np.where(normal > 0, 0.012345678, np.nan),
+        "cp_right_r2_never_0_N_N": np.full(N, np.nan),
+    }
+    summary = {"static_wheel_load_N": 5.45e4, "static_wheel_load_left_N": 5.45e4}
+    return PassageResult(DEFAULT_SETTINGS, columns, summary)
+
+
+def _read_csv(path) -> tuple[list[str], np.ndarray]:
+    with open(path, newline="", encoding="utf-8") as fh:
+        rows = list(csv.reader(fh))
+    data = np.array([[float(c) if c else np.nan for c in row] for row in rows[1:]])
+    return rows[0], data
+
+
+def test_all_empty_column_is_left_out_of_the_result():
+    result = _result()
+    assert "cp_right_r2_never_0_N_N" not in result.columns
+    assert "z_rail_r3_m" in result.columns  # half empty: kept
+    for name, values in result.columns.items():
+        assert np.isfinite(np.asarray(values, float)).any(), name
+
+
+def test_csv_round_trip_same_names_and_values(tmp_path):
+    result = _result()
+    paths = write_passage(result, tmp_path, "csv")
+    names, data = _read_csv(paths["timeseries"])
+    assert names == list(result.columns)
+    for k, name in enumerate(names):
+        ref = np.asarray(result.columns[name], float)
+        # 9 significant digits written (CSV_DIGITS): relative 5e-9
+        np.testing.assert_allclose(data[:, k], ref, rtol=6e-9, atol=0, equal_nan=True)
+    text = (tmp_path / "timeseries.csv").read_text()
+    assert "nan" not in text and "inf" not in text
+
+
+def test_csv_text_empty_cells_for_every_non_finite_neighbour_pattern():
+    a = np.array([[np.nan, 1.0, np.nan, np.nan, np.inf], [2.0, -np.inf, np.nan, 3.5, np.nan]])
+    text = csv_text({f"c{i}": a[:, i] for i in range(a.shape[1])})
+    assert text == "c0,c1,c2,c3,c4\n,1,,,\n2,,,3.5,\n"
+
+
+def test_npz_round_trip_compressed_same_names(tmp_path):
+    result = _result()
+    plain = tmp_path / "plain.npz"
+    np.savez(plain, **{n: np.asarray(v, float) for n, v in result.columns.items()})
+    paths = write_passage(result, tmp_path, "npz")
+    with np.load(paths["timeseries"]) as data:
+        names = [n for n in data.files if n != "summary"]
+        assert names == list(result.columns)
+        for name in names:
+            assert data[name].dtype == np.float64
+            np.testing.assert_array_equal(data[name], result.columns[name])
+        assert json.loads(str(data["summary"]))["static_wheel_load_N"] == 5.45e4
+    assert (tmp_path / "timeseries.npz").stat().st_size < plain.stat().st_size
+
+
+def test_npz_float32_on_request_keeps_time_and_position_float64(tmp_path):
+    result = _result()
+    write_passage(result, tmp_path / "a", "npz", dtype="float32")
+    write_passage(result, tmp_path / "b", "npz")
+    with np.load(tmp_path / "a" / "timeseries.npz") as data:
+        assert data["t_s"].dtype == np.float64 and data["x_m"].dtype == np.float64
+        assert data["Fz_right_N"].dtype == np.float32
+        np.testing.assert_array_equal(data["t_s"], result.columns["t_s"])
+        # float32: 24-bit mantissa, relative 6e-8
+        np.testing.assert_allclose(data["Fz_right_N"], result.columns["Fz_right_N"], rtol=6e-8)
+    small = (tmp_path / "a" / "timeseries.npz").stat().st_size
+    assert small < (tmp_path / "b" / "timeseries.npz").stat().st_size
+
+
+def test_result_save_passes_dtype(tmp_path):
+    _result().save(tmp_path, format="npz", dtype="float32")
+    with np.load(tmp_path / "timeseries.npz") as data:
+        assert data["Fy_left_N"].dtype == np.float32
+
+
+@pytest.mark.parametrize(
+    "fmt,dtype,message",
+    [
+        ("xlsx", "float64", "format must be csv or npz"),
+        ("npz", "float16", "dtype must be one of float64, float32"),
+        ("csv", "float32", "dtype float32 is for the npz format"),
+    ],
+)
+def test_bad_format_or_dtype(tmp_path, fmt, dtype, message):
+    with pytest.raises(ValueError, match=message):
+        write_passage(_result(), tmp_path, fmt, dtype=dtype)
+
+
+def test_without_empty_columns_and_float64_rule():
+    cols = {"a": np.array([np.nan, 1.0]), "b": np.full(2, np.nan), "c": np.array([1, 2])}
+    assert list(without_empty_columns(cols)) == ["a", "c"]
+    assert keeps_float64("t_s") and keeps_float64("x_ws3_m") and keeps_float64("x_m")
+    assert not keeps_float64("Fz_right_N") and not keeps_float64("y_rail_r1_m")
+
+
+def test_csv_reads_back_as_text_stream():
+    text = csv_text({"t_s": np.array([0.1, 0.2]), "F_N": np.array([1.0, np.nan])})
+    rows = list(csv.reader(io.StringIO(text)))
+    assert rows == [["t_s", "F_N"], ["0.1", "1"], ["0.2", ""]]
