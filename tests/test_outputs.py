@@ -139,3 +139,25 @@ def test_csv_reads_back_as_text_stream():
     text = csv_text({"t_s": np.array([0.1, 0.2]), "F_N": np.array([1.0, np.nan])})
     rows = list(csv.reader(io.StringIO(text)))
     assert rows == [["t_s", "F_N"], ["0.1", "1"], ["0.2", ""]]
+
+
+def test_cli_float32_needs_npz(tmp_path, capsys):
+    from exudyn_turnout.cli.main import main
+
+    out = tmp_path / "run"
+    code = main(["simulate", "--x-start", "20", "--x-end", "20.01", "--float32", "--out", str(out)])
+    assert code == 2
+    assert capsys.readouterr().err.strip() == (
+        "error: --float32: only with --format npz (the CSV writes digits)"
+    )
+    assert not out.exists()  # refused before --out is touched
+
+
+def test_cli_float32_npz(tmp_path):
+    from exudyn_turnout.cli.main import main
+
+    argv = ["simulate", "--x-start", "20", "--x-end", "20.01", "--format", "npz", "--float32"]
+    assert main([*argv, "--no-plot", "--out", str(tmp_path)]) == 0
+    with np.load(tmp_path / "timeseries.npz") as data:
+        assert data["t_s"].dtype == np.float64 and data["Fz_right_N"].dtype == np.float32
+        assert json.loads(str(data["summary"]))["provenance"]["settings"]["format"] == "npz"

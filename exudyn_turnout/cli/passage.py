@@ -352,6 +352,8 @@ def run_passage_command(
         Exit code 0. A second console line lists the safety limits exceeded
         (:func:`safety_text`).
     """
+    if getattr(args, "float32", False) and args.format != "npz":
+        raise UsageError("--float32: only with --format npz (the CSV writes digits)")
     out = start_out_dir(args.out)
     try:
         return _run_and_write(args, out, simulate, title, what, turnout, vehicle, extra_settings)
@@ -408,7 +410,10 @@ def _run_and_write(args, out, simulate, title, what, turnout, vehicle, extra_set
                 )
 
     try:
-        paths = write_passage(result, out, fmt=args.format, provenance=record, figure=figure)
+        dtype = "float32" if getattr(args, "float32", False) else "float64"
+        paths = write_passage(
+            result, out, fmt=args.format, provenance=record, figure=figure, dtype=dtype
+        )
     except OSError as err:
         raise UsageError(f"--out {args.out}: cannot write: {err.strerror or err}") from None
     summary = result.summary
@@ -511,7 +516,12 @@ def add_passage_options(p: argparse.ArgumentParser) -> None:
         "--format",
         choices=("csv", "npz"),
         default="csv",
-        help="time series as timeseries.csv (default) or timeseries.npz",
+        help="time series as timeseries.csv (default) or timeseries.npz (compressed)",
+    )
+    p.add_argument(
+        "--float32",
+        action="store_true",
+        help="with --format npz: arrays in float32 (time and x stay float64), half the size",
     )
     p.add_argument("--out", required=True, metavar="DIR", help="output directory")
     p.add_argument("--no-plot", action="store_true", help="skip forces.png (and contact_band.png)")
