@@ -29,6 +29,7 @@ EXUDYN_BUILDERS = {
     "passage/vehicle/wheelset.py",
     "passage/vehicle/builder.py",
     "passage/vehicle/analysis.py",
+    "passage/vehicle/body_sensors.py",
     "passage/vehicle/track_frame.py",
     "passage/vehicle/steady_curving.py",
     "passage/corunning_track/wheelset.py",

@@ -18,6 +18,7 @@ import numpy as np
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
 from exudyn_turnout.passage.events import event_summary, peak_in
+from exudyn_turnout.passage.ride_comfort import comfort_columns, comfort_summary
 from exudyn_turnout.passage.safety import (
     SAFETY_LIMITS,
     SafetyLimits,
@@ -52,6 +53,7 @@ __all__ = [
     "csv_text",
     "peaks_table",
     "vehicle_summary",
+    "body_summary",
     "static_loads_of",
 ]
 
@@ -146,7 +148,9 @@ class PassageResult:
     zone_starts: tuple[float, ...] = field(default_factory=tuple)
 
     def __post_init__(self) -> None:
-        """Add the safety columns (Y/Q per wheel, sum Y per wheelset) if they are missing,
+        """Add the safety columns (Y/Q per wheel, sum Y per wheelset) and, for a full vehicle,
+        the EN 12299 weighted floor accelerations
+        (:func:`~exudyn_turnout.passage.ride_comfort.comfort_columns`) if they are missing,
         and drop columns without a single value (:func:`without_empty_columns`).
 
         Derived from the wheel forces and the summary's static wheel loads
@@ -158,6 +162,9 @@ class PassageResult:
             k: v for k, v in safety_columns(self.columns, loads).items() if k not in self.columns
         }
         columns = {**self.columns, **extra}
+        if not any(n.startswith(("awd_", "awb_")) for n in columns):
+            extra.update(comfort_columns(columns))  # full vehicle: EN 12299 weighted
+            columns.update(extra)
         kept = without_empty_columns(columns)
         if extra or len(kept) != len(self.columns):
             object.__setattr__(self, "columns", kept)
@@ -837,7 +844,10 @@ def vehicle_summary(
         :func:`~exudyn_turnout.passage.results.passage_summary` of the front wheelset plus
         ``peak_<Fz|Fy>_<region>_wsk_<wheel>_N``, ``static_wheel_load_wsk_<wheel>_N``,
         the safety quantities of every wheelset (``YQ_peak_<region>_wsk_<wheel>``...,
-        ``safety_exceeded`` naming ``wsk``), ``vehicle`` and ``wheelsets``.
+        ``safety_exceeded`` naming ``wsk``), the body accelerations' and suspension forces'
+        peaks (:func:`body_summary`), the ride comfort
+        (:func:`~exudyn_turnout.passage.ride_comfort.comfort_summary`), ``vehicle`` and
+        ``wheelsets``.
 
     Raises
     ------
@@ -869,6 +879,51 @@ def vehicle_summary(
             for wheel in ("right", "left"):
                 own[f"{q}_{wheel}_N"] = columns[f"{q}_{label}_{wheel}_N"]
         stop_on_derailment(own, 0.5 * (ld["right"] + ld["left"]), f"wheelset {label[2:]}")
+    summary.update(body_summary(columns))
+    summary.update(comfort_summary(columns))
     summary["vehicle"] = model.name
     summary["wheelsets"] = len(static_loads)
     return summary
+
+
+def body_summary(columns: Mapping[str, np.ndarray]) -> dict[str, float]:
+    """Peaks of the full vehicle's body accelerations and suspension forces over the run.
+
+    Parameters
+    ----------
+    columns : mapping
+        A full vehicle's columns
+        (:mod:`~exudyn_turnout.passage.vehicle.body_outputs`).
+
+    Returns
+    -------
+    dict
+        ``peak_ay_<point>_mps2``, ``peak_az_<point>_mps2`` (the largest magnitude, with its
+        sign) per body point; over all axleboxes (primary) and all bogie sides (secondary):
+        ``Fz_<primary|secondary>_min_N``, ``Fz_<...>_max_N`` (least and most load carried),
+        ``Fy_<...>_peak_N`` (largest magnitude, signed); ``Fy_bumpstop_peak_N``. Empty
+        without body columns.
+    """
+
+    def signed_peak(values: np.ndarray) -> float:
+        v = np.nan_to_num(np.asarray(values, dtype=float))
+        return float(v[np.argmax(np.abs(v))]) if v.size else math.nan
+
+    out: dict[str, float] = {}
+    for name, values in columns.items():
+        if name.startswith(("ay_", "az_")) and name.endswith("_mps2"):
+            out[f"peak_{name}"] = signed_peak(values)
+    for stage in ("primary", "secondary"):
+        vertical = [
+            np.asarray(v, float) for n, v in columns.items() if n.startswith(f"Fz_{stage}_")
+        ]
+        lateral = [np.asarray(v, float) for n, v in columns.items() if n.startswith(f"Fy_{stage}_")]
+        if vertical:
+            out[f"Fz_{stage}_min_N"] = float(min(np.nanmin(v) for v in vertical))
+            out[f"Fz_{stage}_max_N"] = float(max(np.nanmax(v) for v in vertical))
+        if lateral:
+            out[f"Fy_{stage}_peak_N"] = signed_peak(np.concatenate(lateral))
+    stops = [np.asarray(v, float) for n, v in columns.items() if n.startswith("Fy_bumpstop_")]
+    if stops:
+        out["Fy_bumpstop_peak_N"] = signed_peak(np.concatenate(stops))
+    return out

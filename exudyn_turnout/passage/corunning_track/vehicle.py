@@ -104,6 +104,7 @@ from exudyn_turnout.passage.results import (
     check_plausible,
     vehicle_summary,
 )
+from exudyn_turnout.passage.vehicle.body_sensors import add_body_sensors, recorded_body_columns
 from exudyn_turnout.passage.vehicle.start import (
     StartWarning,
     steady_description,
@@ -263,6 +264,7 @@ def _build(
     damping = np.asarray(damping.GetPythonObject(), float)
     loads = BodyLoads(build, stiffness, damping, route, x_front, v, *x_range)
     loads.frozen = frozen
+    add_body_sensors(mbs, build, loads)  # car body, bogies: columns after the run
     if tables is not None:
         loads.tabulate(tables)
     stops = None
@@ -535,6 +537,7 @@ def _run(
             plausible[f"z_rail_{slot}_m"] = q[:, element.n_vehicle + 2 * j + 1]
         check_plausible(plausible, static_load, f"wheelset {i + 1}")
         cols.update(own)
+    cols.update(recorded_body_columns(system.mbs, cols["t_s"] - t_offset))
     return cols
 
 

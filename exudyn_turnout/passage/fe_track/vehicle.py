@@ -67,6 +67,7 @@ from exudyn_turnout.passage.results import (
     PassageSettings,
     check_plausible,
 )
+from exudyn_turnout.passage.vehicle.body_sensors import add_body_sensors, recorded_body_columns
 from exudyn_turnout.passage.vehicle.start import StartWarning, steady_description, unsettled_warning
 
 __all__ = ["simulate_vehicle", "EXTENSION_MARGIN"]
@@ -164,6 +165,7 @@ def _build(turnout, route, model, vehicle, contact, settings, track, x_range, x_
     )
     loads = BodyLoads(build, stiffness, damping, route, x_front, v, *x_range)
     loads.frozen = frozen
+    add_body_sensors(mbs, build, loads)  # car body, bogies: columns after the run
     keep = add_vehicle_loads(mbs, build, loads)
     mbs.Assemble()
     index = [
@@ -483,6 +485,7 @@ def _simulate(turnout, settings, model, contact, route, x_range, progress, optio
         }
         check_plausible(plausible, model.static_wheel_load, f"wheelset {i + 1}")
         columns.update(own)
+    columns.update(recorded_body_columns(system.mbs, t))
     summary = vehicle_summary(turnout, settings, model, columns, static_loads, wall)
     summary.update(fe_summary(planes, settings, track, h, n_steps, static_s, steps_s))
     summary["cross_compliance"] = cross
