@@ -404,6 +404,12 @@ def _run_and_write(args, out, simulate, title, what, turnout, vehicle, extra_set
             save_figure(fig, str(directory / "forces.png"), dpi=120)
             fig, _ = plot_passage_safety(result, title=title)
             save_figure(fig, str(directory / "safety.png"), dpi=110)
+            if "az_car_centre_mps2" in result.columns:  # a full vehicle: wheelsets, bodies
+                for name, draw in (
+                    ("wheelsets", result.plot_wheelsets),
+                    ("bodies", result.plot_bodies),
+                ):
+                    save_figure(draw(title=title)[0], str(directory / f"{name}.png"), dpi=100)
             if len(result.contact_points("right")["x"]):  # profile contact
                 result.plot_contact_band(
                     directory / "contact_band.png", "right", title=f"{title}, right wheel"

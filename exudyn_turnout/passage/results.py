@@ -211,6 +211,39 @@ class PassageResult:
 
         return plot_passage_forces([self], wheel=wheel or "right", title=title)
 
+    def plot_wheelsets(self, title: str | None = None):
+        """A full vehicle's wheel forces, one row per wheelset, against each one's own x.
+
+        Parameters
+        ----------
+        title : str, optional
+
+        Returns
+        -------
+        (figure, axes)
+            From :func:`exudyn_turnout.plotting.vehicle.plot_wheelset_forces`.
+        """
+        from exudyn_turnout.plotting.vehicle import plot_wheelset_forces
+
+        return plot_wheelset_forces(self, title=title)
+
+    def plot_bodies(self, title: str | None = None):
+        """A full vehicle's car body and bogies: motion, weighted floor accelerations,
+        suspension forces.
+
+        Parameters
+        ----------
+        title : str, optional
+
+        Returns
+        -------
+        (figure, axes)
+            From :func:`exudyn_turnout.plotting.vehicle.plot_vehicle_bodies`.
+        """
+        from exudyn_turnout.plotting.vehicle import plot_vehicle_bodies
+
+        return plot_vehicle_bodies(self, title=title)
+
     def contact_points(self, wheel: str = "right") -> dict[str, np.ndarray]:
         """Every loaded contact point of a wheel over the run (profile contact).
 
@@ -603,6 +636,8 @@ OUTPUT_FILES = (
     "forces.png",
     "contact_band.png",
     "safety.png",
+    "wheelsets.png",
+    "bodies.png",
 )
 
 

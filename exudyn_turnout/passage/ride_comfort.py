@@ -271,14 +271,12 @@ def weighted(signal: np.ndarray, fs: float, weighting: Weighting) -> np.ndarray:
     return y
 
 
-def _sampling_rate(t: np.ndarray) -> float | None:
-    """Hz of a uniform time axis (None if not uniform to 1e-6 relative or too short)."""
-    if t.size < 3:
-        return None
-    dt = np.diff(t)
-    if np.max(np.abs(dt - dt.mean())) > 1e-6 * dt.mean():
-        return None
-    return float(1.0 / dt.mean())
+def _uniform(t: np.ndarray) -> tuple[np.ndarray, bool]:
+    """A uniform time axis of the run's median step over its span, and whether t is it."""
+    step = float(np.median(np.diff(t)))
+    grid = t[0] + step * np.arange(int(round((t[-1] - t[0]) / step)) + 1)
+    same = grid.size == t.size and bool(np.max(np.abs(grid - t)) <= 1e-6 * step)
+    return grid, same
 
 
 def _floor_points(columns: Mapping[str, np.ndarray]) -> list[str]:
@@ -302,21 +300,32 @@ def comfort_columns(columns: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
     -------
     dict
         ``awd_y_<point>_mps2`` (Wd of the lateral), ``awb_z_<point>_mps2`` (Wb of the
-        vertical); empty if the run has no floor points, is sampled below
-        :data:`MIN_SAMPLING_RATE` or not uniformly (several output steps joined).
+        vertical); empty if the run has no floor points or is sampled below
+        :data:`MIN_SAMPLING_RATE`. A run whose steps differ (its segments between zone
+        boundaries each have their own step, ~0.5 % apart) is filtered on a uniform grid of
+        its median step (linear interpolation there and back).
     """
     points = _floor_points(columns)
-    if not points or "t_s" not in columns:
+    if not points or "t_s" not in columns or len(columns["t_s"]) < 3:
         return {}
-    fs = _sampling_rate(np.asarray(columns["t_s"], dtype=float))
-    if fs is None or fs < MIN_SAMPLING_RATE:
+    t = np.asarray(columns["t_s"], dtype=float)
+    grid, same = _uniform(t)
+    fs = 1.0 / (grid[1] - grid[0])
+    if fs < MIN_SAMPLING_RATE * (1.0 - 1e-9):
         return {}
+
+    def filtered(values, weighting):
+        if same:
+            return weighted(values, fs, weighting)
+        y = weighted(np.interp(grid, t, np.asarray(values, dtype=float)), fs, weighting)
+        return np.interp(t, grid, y)
+
     out = {}
     for point in points:
         lateral, vertical = columns[f"ay_floor_{point}_mps2"], columns.get(f"az_{point}_mps2")
-        out[f"awd_y_{point}_mps2"] = weighted(lateral, fs, WD)
+        out[f"awd_y_{point}_mps2"] = filtered(lateral, WD)
         if vertical is not None:
-            out[f"awb_z_{point}_mps2"] = weighted(vertical, fs, WB)
+            out[f"awb_z_{point}_mps2"] = filtered(vertical, WB)
     return out
 
 
@@ -346,7 +355,7 @@ def comfort_summary(columns: Mapping[str, np.ndarray]) -> dict[str, object]:
     out: dict[str, object] = {"ride_duration_s": duration}
     if not weighted_cols:
         out["ride_comfort_note"] = (
-            f"not computed: EN 12299 filters need uniform samples at >= "
+            f"not computed: EN 12299 filters need samples at >= "
             f"{MIN_SAMPLING_RATE:g} Hz (--output-step <= {1.0 / MIN_SAMPLING_RATE:g} s)"
         )
         return out
