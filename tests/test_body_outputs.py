@@ -95,7 +95,7 @@ def test_floor_acceleration_adds_centripetal_and_gravity(build):
     car = build.car_body
     q[:, coordinate_slices(build)["car_body"].start + car.dof["roll"]] += 0.01
     zero = np.zeros((2, n))
-    centripetal = {name: np.array([0.5, 0.5]) for name in CAR_POINTS}
+    centripetal = np.array([0.5, 0.5])
     cols = body_columns(build, q, zero, zero, centripetal=centripetal)
     assert cols["ay_floor_car_centre_mps2"] == pytest.approx([0.5 + GRAVITY * 0.01] * 2)
     assert cols["ay_car_centre_mps2"] == pytest.approx([0.0, 0.0])

@@ -51,6 +51,8 @@ __all__ = [
     "without_empty_columns",
     "keeps_float64",
     "csv_text",
+    "NPZ_LEVEL",
+    "save_npz",
     "peaks_table",
     "vehicle_summary",
     "body_summary",
@@ -721,6 +723,33 @@ def csv_text(columns: Mapping[str, np.ndarray], digits: int = CSV_DIGITS) -> str
     return ",".join(names) + "\n" + text
 
 
+#: zlib level of the NPZ: 1 compresses a passage's doubles as well as numpy's default 6
+#: (7.06 against 7.07 MB for the main job) in ~0.8 of the time.
+NPZ_LEVEL = 1
+
+
+def save_npz(path, arrays: Mapping[str, np.ndarray], level: int = NPZ_LEVEL) -> None:
+    """An NPZ file (``np.load`` reads it): one ``.npy`` entry per array, deflated.
+
+    ``np.savez_compressed`` with a choice of the compression level.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    arrays : mapping
+        Name -> array (no object arrays).
+    level : int
+        zlib level, 1 (fastest) to 9.
+    """
+    import zipfile
+
+    with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED, compresslevel=level) as archive:
+        for name, array in arrays.items():
+            with archive.open(f"{name}.npy", "w", force_zip64=True) as fh:
+                np.lib.format.write_array(fh, np.asanyarray(array), allow_pickle=False)
+
+
 def write_passage(
     result: PassageResult,
     out_dir,
@@ -752,8 +781,8 @@ def write_passage(
         Created if missing.
     fmt : {"csv", "npz"}
         ``timeseries.csv`` (:data:`CSV_DIGITS` significant digits, :func:`csv_text`) or
-        ``timeseries.npz`` (``np.savez_compressed``: one array per column and ``summary``,
-        the summary as a JSON string; the default through run: 6.7 MB float64, 3.1 MB
+        ``timeseries.npz`` (compressed, :func:`save_npz`: one array per column and ``summary``,
+        the summary as a JSON string; the default through run: 7.0 MB float64, 3.3 MB
         float32, against 15.0 MB uncompressed).
     provenance : mapping, optional
         Stored as ``summary["provenance"]`` (see :mod:`exudyn_turnout.provenance`).
@@ -805,7 +834,7 @@ def write_passage(
                 for n, v in columns.items()
             }
             arrays["summary"] = np.array(summary_text)
-            np.savez_compressed(series, **arrays)  # type: ignore[arg-type]  # numpy's stub
+            save_npz(series, arrays)
         (tmp / "summary.json").write_text(summary_text + "\n", encoding="utf-8")
         files = [series.name]
         if figure is not None:

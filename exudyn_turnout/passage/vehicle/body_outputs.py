@@ -15,7 +15,10 @@ at the car body's centre and above each bogie centre):
 - ``bogie1``, ``bogie2``: the bogie frames' centres (their CoG).
 
 Columns (:func:`body_columns`), all in the track-following frame of the run (lateral y
-positive left, vertical z up; the frame moves along the route with each body):
+positive left, vertical z up; each body's frame is the track's tangent at the body's own x,
+so a car-body point's lateral displacement is measured from the tangent at the car body's
+CoG: in a curve it includes the chord offset of the unstrained vehicle, ~59 mm above the
+bogies in the 760 m curve):
 
 - per point: ``y_<point>_m``, ``z_<point>_m`` (displacement from the vehicle's static
   equilibrium on rigid track, ``VehicleBuild.static_state``), ``ay_<point>_mps2``,
@@ -23,9 +26,12 @@ positive left, vertical z up; the frame moves along the route with each body):
   accelerations, transformed to the point with the same small-angle kinematics; not a
   differentiated displacement);
 - car-body points: ``ay_floor_<point>_mps2``, what a lateral accelerometer on the floor
-  reads in car-body axes: ``ay`` + v^2 kappa(x) (the route's centripetal acceleration at the
-  point's x) + g roll (gravity's share along the rolled floor); the input of the ride
-  comfort (:mod:`exudyn_turnout.passage.ride_comfort`);
+  reads in car-body axes: ``ay`` + v^2 kappa(x_car) (the acceleration of the car body's
+  frame, the track tangent at its CoG's x: the centripetal acceleration the run applies to
+  the car body as its curving load) + g roll (gravity's share along the rolled floor); the
+  input of the ride comfort (:mod:`exudyn_turnout.passage.ride_comfort`). Left out, as in
+  the run: the frame's yaw acceleration v^2 dkappa/dx times the point's distance from the
+  CoG (a pulse where the curvature steps);
 - per body (``car_body``, ``bogie1``...): ``roll_<body>_rad``, ``pitch_<body>_rad``,
   ``yaw_<body>_rad`` from the static state;
 - suspension forces (:func:`suspension_forces`): per axlebox ``F<x|y|z>_primary_ws<k>_<side>_N``
@@ -47,7 +53,7 @@ the bodies' weights (tested).
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -261,7 +267,7 @@ def body_columns(
     *,
     q_geo: np.ndarray | None = None,
     q_geo_t: np.ndarray | None = None,
-    centripetal: Mapping[str, np.ndarray] | None = None,
+    centripetal: np.ndarray | None = None,
     floor_height: float = FLOOR_HEIGHT,
 ) -> dict[str, np.ndarray]:
     """Every body output of a run (module docstring): points, rotations, suspension forces.
@@ -275,9 +281,9 @@ def body_columns(
     q_geo, q_geo_t : numpy.ndarray, optional
         The unstrained vehicle in the track-following frame and its rate (a curve); None:
         straight track (zero).
-    centripetal : mapping, optional
-        Car-body point name -> v^2 kappa at its x (m/s^2, positive to the left) per sample;
-        None: zero (straight track).
+    centripetal : numpy.ndarray, optional
+        v^2 kappa at the car body's x (m/s^2, positive to the left) per sample, the
+        acceleration of its frame; None: zero (straight track).
     floor_height : float
         m, the car body's floor above the rail top.
 
@@ -299,7 +305,7 @@ def body_columns(
     if car is not None:
         roll = dq[:, coordinate_slices(build)[car.name]][:, car.dof["roll"]]
         for name in CAR_POINTS:
-            extra = 0.0 if centripetal is None else np.asarray(centripetal[name], float)
+            extra = 0.0 if centripetal is None else np.asarray(centripetal, float)
             out[f"ay_floor_{name}_mps2"] = out[f"ay_{name}_mps2"] + extra + GRAVITY * roll
     slices = coordinate_slices(build)
     for handles in ([car] if car is not None else []) + list(build.bogies):

@@ -16,7 +16,7 @@ import exudyn as exu
 import numpy as np
 from exudyn.itemInterface import SensorBody
 
-from exudyn_turnout.passage.vehicle.body_outputs import body_columns, body_points
+from exudyn_turnout.passage.vehicle.body_outputs import body_columns
 from exudyn_turnout.passage.vehicle.handles import VehicleBuild
 
 __all__ = ["SENSORS_KEY", "GEOMETRY_STEP", "add_body_sensors", "recorded_body_columns"]
@@ -98,8 +98,7 @@ def recorded_body_columns(mbs: Any, t: np.ndarray) -> dict[str, np.ndarray]:
         kwargs["q_geo"] = loads.geometries(x_front)
         ahead, behind = loads.geometries(x_front + h), loads.geometries(x_front - h)
         kwargs["q_geo_t"] = (ahead - behind) * (loads.v / (2 * h))
-        kwargs["centripetal"] = {
-            p.name: loads.v**2 * np.interp(x_front + p.x, loads.x, loads.kappa)
-            for p in body_points(build)
-        }
+        # the car body's frame: the tangent at its reference (CoG) x, as its curving load
+        x_car = x_front + build.car_body.x
+        kwargs["centripetal"] = loads.v**2 * np.interp(x_car, loads.x, loads.kappa)
     return body_columns(build, q, q_t, q_tt, **kwargs)
