@@ -130,3 +130,22 @@ def test_run_on_plain_track_has_body_columns_at_rest(tmp_path):
     paths = write_passage(result, tmp_path, "csv")
     header = open(paths["timeseries"]).readline().strip().split(",")
     assert header == list(c)
+
+
+@pytest.mark.slow
+def test_fe_track_run_has_the_same_body_columns():
+    """The full vehicle on the FE track records the same body columns (its run loop calls
+    the same sensors); Newton on the sprung bodies as on the co-running track."""
+    from exudyn_turnout.inputs.turnout import load_turnout
+    from exudyn_turnout.passage.run import simulate_passage
+
+    settings = PassageSettings(x_start=-5.0, x_end=-4.95)
+    result = simulate_passage(load_turnout(), settings, "manchester", track="fe")
+    c = result.columns
+    model = load_vehicle_model()
+    car, bogie = model.car_body.mass, model.bogie.mass
+    primary = sum(v for k, v in c.items() if k.startswith("Fz_primary_"))
+    inertia = car * c["az_car_centre_mps2"] + bogie * (c["az_bogie1_mps2"] + c["az_bogie2_mps2"])
+    residual = primary - (car + 2 * bogie) * GRAVITY - inertia
+    assert np.max(np.abs(residual)) < 1e-3  # N
+    assert len(c["y_car_front_m"]) == len(c["t_s"])
