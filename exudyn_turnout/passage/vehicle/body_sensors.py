@@ -5,7 +5,9 @@ system and :func:`recorded_body_columns` once per run segment: three Exudyn sens
 linear vehicle's suspension element (its coordinates, velocities and accelerations: every
 body's, in one vector each), read after the run and turned into the columns of
 :func:`~exudyn_turnout.passage.vehicle.body_outputs.body_columns`. The accelerations are the
-integrator's (generalized-alpha's q_tt), not differences of stored displacements.
+integrator's (generalized-alpha's q_tt), not differences of stored displacements. Cost: ~3 us
+per stored step for the three sensors (measured on a 35-coordinate element, 20,000 steps,
+against a full-vehicle step of ~230 us CPU).
 """
 
 from __future__ import annotations
