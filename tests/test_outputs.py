@@ -180,3 +180,13 @@ def test_compiled_formatter_is_pythons_text():
     assert format_rows(wide, 9) == python_rows(wide, 9)
     with pytest.raises(ValueError, match="digits must be 1 to 10"):
         format_rows(table, 12)
+
+
+def test_contact_points_of_a_result_without_an_unloaded_points_columns():
+    """A contact point whose position never had a value (its column dropped) still lists."""
+    result = _result()
+    points = result.contact_points("right")
+    loaded = result.columns["cp_right_r2_nose_0_N_N"] > 0
+    assert len(points["x"]) == int(loaded.sum())
+    assert np.all(points["y_rail"] == 0.012345678)
+    assert np.all(np.isnan(points["angle"]))  # no angle column: NaN

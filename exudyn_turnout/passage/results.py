@@ -270,11 +270,16 @@ class PassageResult:
             stem = name[: -len("_N_N")]
             loaded = normal > 0.0
             label = stem[len(f"cp_{wheel}_") :].rsplit("_", 1)[0].replace("_", " ")
+            missing = np.full(len(x), np.nan)  # a column without values is not kept
+
+            def quantity(suffix: str, stem: str = stem, missing: np.ndarray = missing):
+                return np.asarray(self.columns.get(f"{stem}_{suffix}", missing))
+
             out["x"].append(x[loaded])
-            out["y_rail"].append(self.columns[f"{stem}_y_rail_m"][loaded])
-            out["s_wheel"].append(self.columns[f"{stem}_s_wheel_m"][loaded])
+            out["y_rail"].append(quantity("y_rail_m")[loaded])
+            out["s_wheel"].append(quantity("s_wheel_m")[loaded])
             out["normal"].append(normal[loaded])
-            out["angle"].append(self.columns[f"{stem}_angle_rad"][loaded])
+            out["angle"].append(quantity("angle_rad")[loaded])
             out["body"].append(np.full(int(loaded.sum()), label, dtype=object))
         return {
             k: (np.concatenate(v) if v else np.zeros(0, dtype=object if k == "body" else float))
