@@ -18,7 +18,12 @@ import pytest
 
 from exudyn_turnout.wheel_rail import kernel
 from exudyn_turnout.wheel_rail.data import s1002_wheel, standard_track
-from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
+from exudyn_turnout.wheel_rail.geometry import (
+    WheelsetSetup,
+    rail_row,
+    solve_wheelset,
+    surface_derivatives,
+)
 from exudyn_turnout.wheel_rail.lead import MAX_LEAD_SINE, contact_lead
 from exudyn_turnout.wheel_rail.tables import build_contact_table
 
@@ -155,3 +160,33 @@ def test_kernel_flange_contact_of_a_yawed_wheelset(plain):
     assert yawed[_column("eta")] == pytest.approx(expected, rel=1e-9)
     assert yawed[_column("eta")] == pytest.approx(-yaw / np.cos(gamma), rel=0.03)
     assert yawed[_column("spin")] == pytest.approx(straight[_column("spin")], rel=1e-12)
+
+
+def test_rigid_wheelset_yawed_in_flange_contact():
+    """S1002 on UIC60 1:40 (Manchester benchmark profiles), wheelset 6.5 mm to the left (the
+    left flange against its rail at 67 deg, the wheelset rolled by 4.3 mrad) and yawed by 5
+    mrad: the left contact leads by
+    contact_lead's x, the right one (tread, ~0.02 rad) by < 0.1 mm; both wheels still touch
+    (vertical gaps 0); the flange reaches nearer its rail, so the wheelset rolls further
+    (left side up) than without yaw."""
+    wheel = s1002_wheel(SETUP)
+    track = standard_track(SETUP)
+    row = rail_row(track, surface_derivatives(track))
+    results = {
+        yaw: solve_wheelset(np.array([0.0065]), wheel, row, row, SETUP, yaw=yaw)
+        for yaw in (0.0, 0.005)
+    }
+    straight, yawed_result = results[0.0], results[0.005]
+    assert straight.x_lead_left[0] == 0.0 and straight.x_lead_right[0] == 0.0
+    gamma = yawed_result.angle_left[0]
+    assert np.degrees(gamma) == pytest.approx(67.0, abs=1.5)
+    lead, _ = contact_lead(yawed_result.radius_left[0], gamma, 1, 0.005)
+    assert yawed_result.x_lead_left[0] == pytest.approx(float(lead), rel=1e-12)
+    assert 5e-3 < yawed_result.x_lead_left[0] < 6.5e-3
+    assert abs(yawed_result.x_lead_right[0]) < 1e-4
+    for side in ("left", "right"):
+        found = getattr(yawed_result, f"candidates_{side}")[0]
+        # the roll is solved on the vertical search; the flange's point from the 60 deg
+        # search lies within 1 um of touching (0.81 um without yaw, 0.45 um with)
+        assert found.gap[0] / np.cos(found.angle[0]) == pytest.approx(0.0, abs=1e-6)
+    assert yawed_result.roll[0] > straight.roll[0]
