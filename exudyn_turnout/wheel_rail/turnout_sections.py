@@ -30,7 +30,9 @@ like the straight one, and a straight 1:N crossing is symmetric about its bisect
 it neglects: the curvature of the route over the length a section is seen (the wing rail
 and nose legs are straight while the route curves: a lateral error of dx^2 / (2 R), 0.16
 mm at 0.5 m after the nose tip for R = 760 m, 0.66 mm for R = 190 m), and the wheelset's
-yaw in the curve (a table has no yaw, as for the through route).
+yaw in the curve in the tables (a table has no yaw, as for the through route; the contact
+kernel adds the lead of a yawed wheel's contact points and the gap it closes at run time,
+:mod:`.lead`).
 
 x grid
 ------
