@@ -44,10 +44,10 @@ cubic spline) or joins the slices at constant y on the lateral grid, with
   118.94 mm and the profile's length doubles (107 -> 218 mm), and that surface rises 68
   mm above the rail between u = 80.8 and 118.9 mm (CONTACT's authors add features for this
   crossing, ``uk_interrupt_v2.slcs`` of their test bank).  At constant y a not-a-knot cubic rings
-  where a vertical face crosses the column (1.59 / -0.21 mm between slices of 1.46 / 0.25
-  mm at y = 38.6 mm, u = 238-263 mm), PCHIP stays within its neighbouring slices and
-  there agrees with the feature-aligned cubic within 0.03 mm
-  (``tests/test_wheel_rail_sections_tables.py``);
+  where a vertical face crosses the column (at y = 38.6 mm: 1.59 mm at u = 238.5 mm between
+  slices of 1.46 and 1.24 mm, 0.04 mm at u = 258.2 mm between 1.24 and 0.25 mm); PCHIP
+  stays within its neighbouring slices and there agrees with the feature-aligned cubic
+  within 0.01 mm (``tests/test_wheel_rail_sections_tables.py``);
 - ``"spline"``, ``"pchip"``: that cubic along u, aligned by features when the file has
   them (``alignment`` overrides);
 - ``"linear"``: the earlier behaviour, the gridded heights of neighbouring slices blended
