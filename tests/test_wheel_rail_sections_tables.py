@@ -22,7 +22,10 @@ from exudyn_turnout.wheel_rail.sections import (
     lateral_grid,
     place_rail,
     section_at,
+    sections_at,
+    slice_heights,
     slice_sections,
+    slice_surface,
     switch_sections,
     wheel_envelope,
 )
@@ -53,6 +56,97 @@ def test_slices_are_interpolated_linearly_between_positions():
     # CONTACT's artificial nose rises at 1:10 (the slice file's comment): 1 mm per 10 mm
     top = np.nanmax(sections.z, axis=1)
     assert np.median(np.diff(top[5:15]) / np.diff(slices.u[5:15])) == pytest.approx(0.1, rel=0.02)
+
+
+@pytest.mark.parametrize(
+    "name", ["cross_nose.slcs", "wing_rail.slcs", "cross+wing_extd.slcs", "uk_crossing.slcs"]
+)
+def test_slice_surface_passes_through_its_slices(name):
+    slices = read_slices(profile_path(name))
+    grid = lateral_grid(-0.05, 0.13)
+    own = slice_sections(slices, grid)  # each slice's own profile, gridded
+    surface = slice_surface(slices, grid)
+    # CONTACT's data (packaged) with features are aligned by them, the UK crossing has none
+    assert surface.alignment == ("lateral" if name == "uk_crossing.slcs" else "features")
+    heights = slice_heights(surface, slices.u[:25])
+    np.testing.assert_array_equal(np.isnan(heights), np.isnan(own.z[:25]))
+    # resampled by arc length every 0.1 mm: corners of the polyline cut by < 5 um
+    assert np.nanmax(np.abs(heights - own.z[:25])) < 5e-6
+
+
+def test_linear_slice_interpolation_is_the_gridded_blend():
+    slices = read_slices(profile_path("cross_nose.slcs"))
+    grid = lateral_grid(-0.02, 0.08)
+    x = np.concatenate((slices.u, slices.u[:-1] + 0.3 * np.diff(slices.u)))
+    linear = slice_heights(slice_surface(slices, grid, interpolation="linear"), x)
+    blend = sections_at(slice_sections(slices, grid), x)
+    np.testing.assert_array_equal(np.isnan(linear), np.isnan(blend))
+    np.testing.assert_allclose(linear, blend, atol=1e-15)
+
+
+def test_a_rail_shifting_sideways_stays_its_shape_between_slices():
+    """CONTACT's wing rail shifts sideways at 1:10 (its slice file's comment; the features
+    move 1 mm per 10 mm slice): midway between slices the section is the slice shifted by
+    0.5 mm.  The feature-aligned surface reproduces it; the linear blend at constant y
+    cuts the moving flank (0.6 mm within 16 mm of the top, 0.1 mm within 5 mm)."""
+    slices = read_slices(profile_path("wing_rail.slcs"))
+    grid = lateral_grid(-0.03, 0.08)  # 0.1 mm: the 0.5 mm shift is 5 grid steps
+    middle = 0.5 * (slices.u[8] + slices.u[9])
+    errors = {}
+    for method in ("auto", "linear"):
+        surface = slice_surface(slices, grid, interpolation=method)
+        before, half = slice_heights(surface, [slices.u[8], middle])
+        shifted = np.full_like(before, np.nan)
+        shifted[5:] = before[:-5]
+        touchable = np.isfinite(shifted) & np.isfinite(half) & (shifted > np.nanmax(before) - 0.016)
+        errors[method] = float(np.max(np.abs(half - shifted)[touchable]))
+    assert errors["auto"] < 1e-6
+    assert errors["linear"] > 0.4e-3
+
+
+def test_uk_crossing_wing_rail_falls_smoothly_between_slices():
+    """The wing rail of the UK crossing (S&C benchmark slices, packaged) falls steeply after
+    u = 239 mm: 1.458 / 1.237 / 0.248 mm at y = 38.6 mm in the slices at u = 228.7 / 248.4 /
+    268.0 mm (read from the files through the surface).  Midway between the last two the
+    default (PCHIP at constant y) and CONTACT's feature-aligned cubic agree within 0.03 mm
+    (0.879 / 0.872 mm) and lie 0.13 mm above the linear blend (0.743 mm); a not-a-knot cubic
+    at constant y rings there (1.587 mm above the higher neighbouring slice, 0.044 mm below
+    the lower), so it is not the default."""
+    slices = read_slices(profile_path("uk_crossing.slcs"))
+    grid = lateral_grid(0.0, 0.06)
+    column = int(round(0.0386 / 1e-4))
+    u = np.array([0.22871, 0.23854, 0.24836, 0.25819, 0.26801])
+    at = {
+        key: slice_heights(slice_surface(slices, grid, interpolation=m, alignment=a), u)[:, column]
+        for key, m, a in [
+            ("auto", "auto", "auto"),
+            ("contact", "spline", "features"),
+            ("linear", "linear", "auto"),
+            ("cubic_y", "spline", "lateral"),
+        ]
+    }
+    np.testing.assert_allclose(at["auto"][[0, 2, 4]], [1.458e-3, 1.237e-3, 0.248e-3], atol=2e-6)
+    assert abs(at["auto"][3] - at["contact"][3]) < 0.03e-3
+    assert at["auto"][3] - at["linear"][3] > 0.1e-3
+    for value, lo, hi in [(at["auto"][1], 1.237e-3, 1.458e-3), (at["auto"][3], 0.248e-3, 1.237e-3)]:
+        assert lo <= value <= hi  # shape-preserving: within its neighbouring slices
+    assert at["cubic_y"][1] > 1.458e-3 and at["cubic_y"][3] < 0.248e-3  # beyond both
+
+
+def test_uk_crossing_needs_lateral_alignment_where_the_nose_appears():
+    """Without features CONTACT joins points by their fraction of the slice's length; where
+    the nose appears (u = 113.95 -> 118.94 mm, the profile 107 -> 218 mm long) that joins
+    the wing rail's head to the flangeway and the surface rises far above both slices."""
+    slices = read_slices(profile_path("uk_crossing.slcs"))
+    grid = lateral_grid(-0.05, 0.12)
+    x = np.linspace(0.0808, 0.1189, 20)
+    neighbours = slice_heights(slice_surface(slices, grid), slices.u[44:49])
+    ceiling = np.nanmax(neighbours)
+    contact = slice_surface(slices, grid, interpolation="spline", alignment="features")
+    by_length = slice_heights(contact, x)
+    auto = slice_heights(slice_surface(slices, grid), x)
+    assert np.nanmax(by_length) > ceiling + 5e-3
+    assert np.nanmax(auto) <= ceiling + 1e-9
 
 
 def test_wheel_envelope_meets_a_rising_nose_ahead_and_a_flat_rail_under_the_centre():

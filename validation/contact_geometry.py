@@ -182,7 +182,9 @@ def transfer_section(setup: WheelsetSetup, lines: list, figures: Path | None) ->
         "",
         "Rigid wheel (r = 0.46 m) rolling over the sections (envelope over x), height of the "
         "touching point; transfer = first x on the nose; depth below the chord of the path's end "
-        "levels; angle = steepest fall + steepest rise.",
+        "levels; angle = steepest fall + steepest rise.  The UK crossing's slices are "
+        "interpolated along the track by a shape-preserving cubic at constant y "
+        "(sections.slice_surface; the set has no features).",
         "Shift positive towards the field side.",
         "",
         "| crossing | shift (mm) | transfer x (m) | dip depth (mm) at x (m) | dip angle (mrad) |",
@@ -191,8 +193,10 @@ def transfer_section(setup: WheelsetSetup, lines: list, figures: Path | None) ->
     slices = read_slices(profile_path("uk_crossing.slcs"))
     grid = lateral_grid(-0.08, 0.12, setup.grid_step)
     taping = gauge_point(slices.profiles[3]) + setup.taping_line - 0.5 * setup.gauge
+    # the slices interpolated along the track as sections.slice_surface does by default
+    # (PCHIP at constant y: this set has no features), every 1 mm the envelope reaches
     uk = transfer_rows(
-        slice_sections(slices, grid),
+        slice_sections(slices, grid, x=np.arange(-0.41, 0.91, 0.001)),
         wheel,
         taping,
         setup,

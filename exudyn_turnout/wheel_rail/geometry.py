@@ -42,7 +42,7 @@ characteristics in :mod:`.conicity`; their public names are re-exported here.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -62,6 +62,7 @@ from exudyn_turnout.wheel_rail.gap_minima import (
     refine_minimum,
     rotate_profile,
 )
+from exudyn_turnout.wheel_rail.lead import contact_lead
 from exudyn_turnout.wheel_rail.profile_grid import (
     CURVATURE_WINDOW,
     SurfaceDerivatives,
@@ -80,6 +81,7 @@ __all__ = [
     "WheelGrid",
     "SurfaceDerivatives",
     "Candidates",
+    "yawed",
     "grid_wheel",
     "surface_derivatives",
     "find_candidates",
@@ -102,6 +104,10 @@ __all__ = [
 ]
 
 _NO_GAP = 1.0  # m, gap written where a candidate slot is empty
+_CANDIDATE_FIELDS = (
+    "gap", "y_rail", "z_rail", "s_wheel", "angle", "radius", "curvature_rail",
+    "curvature_wheel", "x_lead",
+)  # fmt: skip
 
 #: One rail section for the contact solvers: heights z (m), slope dz/dy (-), curvature
 #: (1/m), all on the lateral grid y (m), in side coordinates (see :func:`rail_row`).
@@ -120,6 +126,36 @@ class Candidates:
     radius: np.ndarray  #: m, wheel rolling radius at the candidate
     curvature_rail: np.ndarray  #: 1/m, rail lateral curvature (convex positive)
     curvature_wheel: np.ndarray  #: 1/m, wheel lateral curvature (convex positive)
+    #: m, contact point ahead of the axle (the lead of a yawed wheel, :func:`yawed`); None:
+    #: no yaw, 0
+    x_lead: np.ndarray | None = None
+
+
+def yawed(found: Candidates, side: int, yaw: float) -> Candidates:
+    """Candidates of a wheel yawed by ``yaw``: leading or trailing, nearer the rail.
+
+    The wheel is a surface of revolution: yawed, it meets the (prismatic) rail at
+    ``x_lead = r sin(theta)`` ahead of its axle, ``sin(theta) = s tan(gamma) tan(psi)``,
+    and reaches ``r (1 - cos(theta)) cos(gamma)`` further towards it along the normal
+    (:func:`.lead.contact_lead`).  Position, angle and radius of each candidate are those
+    of the profile (changes of second order in the yaw).
+
+    Parameters
+    ----------
+    found : Candidates
+        Candidates of the wheel without yaw (side coordinates).
+    side : int
+        +1 for the left wheel, -1 for the right.
+    yaw : float
+        rad, wheelset yaw relative to the rail (about the vertical, positive to the left).
+
+    Returns
+    -------
+    Candidates
+        ``gap`` closed by the yaw, ``x_lead`` set.
+    """
+    lead, closing = contact_lead(found.radius, found.angle, side, yaw)
+    return replace(found, gap=found.gap - closing, x_lead=np.asarray(lead, float))
 
 
 #: rad, default extra search direction: finds a flange millimetres away from the gauge corner
@@ -443,6 +479,8 @@ def find_candidates(
     prominence: float = 5e-5,
     max_gap: float = 0.01,
     directions: tuple = (FLANGE_DIRECTION,),
+    yaw: float = 0.0,
+    side: int = 1,
 ) -> Candidates:
     """Candidate contact points of a wheel on one rail section, smallest normal gap first.
 
@@ -473,6 +511,10 @@ def find_candidates(
         m, candidates whose normal gap exceeds the smallest one's by more are dropped.
     directions : tuple
         rad, extra search directions.
+    yaw : float
+        rad, wheelset yaw relative to the rail (:func:`yawed`; 0: none).
+    side : int
+        +1 for the left wheel, -1 for the right (the sign of the lead).
 
     Returns
     -------
@@ -481,7 +523,17 @@ def find_candidates(
     """
     rail = prepare_rail(rail_z, rail_slope, rail_curvature, y_grid, directions)
     prepared = prepare_wheel(wheel, taping_line, roll, directions)
-    return search_candidates(rail, prepared, shift, lift, max_candidates, prominence, max_gap)
+    found = search_candidates(rail, prepared, shift, lift, max_candidates, prominence, max_gap)
+    return _with_yaw(found, side, yaw)
+
+
+def _with_yaw(found: Candidates, side: float, yaw: float) -> Candidates:
+    """:func:`yawed` candidates, re-sorted by gap (unchanged without yaw)."""
+    if yaw == 0.0:
+        return found
+    found = yawed(found, int(side), yaw)
+    order = np.argsort(found.gap, kind="stable")
+    return Candidates(**{k: getattr(found, k)[order] for k in _CANDIDATE_FIELDS})
 
 
 def _vertical_gap(found: Candidates) -> float:
@@ -537,6 +589,8 @@ class WheelsetContact:
     s_right: np.ndarray  #: m, contact point on the right wheel
     y_rail_left: np.ndarray  #: m, contact point on the left rail (side coordinates)
     y_rail_right: np.ndarray  #: m, contact point on the right rail (side coordinates)
+    x_lead_left: np.ndarray  #: m, left wheel's contact point ahead of the axle (yaw)
+    x_lead_right: np.ndarray  #: m, right wheel's contact point ahead of the axle (yaw)
     candidates_left: tuple  #: Candidates of the left wheel at each y
     candidates_right: tuple  #: Candidates of the right wheel at each y
 
@@ -556,6 +610,7 @@ def solve_wheelset(
     max_candidates: int = 3,
     max_gap: float = 0.005,
     tolerance: float = 1e-10,
+    yaw: float = 0.0,
 ) -> WheelsetContact:
     """Roll and height of a rigid wheelset touching both rails, for each lateral displacement.
 
@@ -578,6 +633,9 @@ def solve_wheelset(
         m, candidates with a larger gap (at equilibrium) are dropped.
     tolerance : float
         m, the roll is solved until the two wheels' vertical gaps differ by less.
+    yaw : float
+        rad, wheelset yaw relative to the rails: each wheel's contacts lead or trail and
+        reach nearer the rail (:func:`yawed`).
 
     Returns
     -------
@@ -608,6 +666,8 @@ def solve_wheelset(
             "s_right",
             "y_rail_left",
             "y_rail_right",
+            "x_lead_left",
+            "x_lead_right",
             "candidates_left",
             "candidates_right",
         )
@@ -622,12 +682,16 @@ def solve_wheelset(
         def gaps(roll: float, y: float = y) -> tuple[float, float]:
             left, right = (
                 _vertical_gap(
-                    search_candidates(
-                        vertical,
-                        prepare_wheel(wheel, taping, side * roll, ()),
-                        shift=side * y,
-                        max_candidates=1,
-                        max_gap=1.0,
+                    _with_yaw(
+                        search_candidates(
+                            vertical,
+                            prepare_wheel(wheel, taping, side * roll, ()),
+                            shift=side * y,
+                            max_candidates=1,
+                            max_gap=1.0,
+                        ),
+                        side,
+                        yaw,
                     )  # fmt: skip
                 )
                 for vertical, _full, side in rails
@@ -639,13 +703,17 @@ def solve_wheelset(
         gap_left, gap_right = gaps(roll)
         lift = -0.5 * (gap_left + gap_right)
         left, right = (
-            search_candidates(
-                full,
-                prepare_wheel(wheel, taping, side * roll),
-                shift=side * y,
-                lift=lift,
-                max_candidates=max_candidates,
-                max_gap=max_gap,
+            _with_yaw(
+                search_candidates(
+                    full,
+                    prepare_wheel(wheel, taping, side * roll),
+                    shift=side * y,
+                    lift=lift,
+                    max_candidates=max_candidates,
+                    max_gap=max_gap,
+                ),
+                side,
+                yaw,
             )  # fmt: skip
             for _vertical, full, side in rails
         )
@@ -656,6 +724,7 @@ def solve_wheelset(
             results[f"angle_{side}"].append(found.angle[0])
             results[f"s_{side}"].append(found.s_wheel[0])
             results[f"y_rail_{side}"].append(found.y_rail[0])
+            results[f"x_lead_{side}"].append(0.0 if found.x_lead is None else found.x_lead[0])
             results[f"candidates_{side}"].append(found)
 
     def column(key: str) -> np.ndarray:
@@ -673,6 +742,8 @@ def solve_wheelset(
         s_right=column("s_right"),
         y_rail_left=column("y_rail_left"),
         y_rail_right=column("y_rail_right"),
+        x_lead_left=column("x_lead_left"),
+        x_lead_right=column("x_lead_right"),
         candidates_left=tuple(results["candidates_left"]),
         candidates_right=tuple(results["candidates_right"]),
     )

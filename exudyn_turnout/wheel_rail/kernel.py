@@ -48,8 +48,12 @@ of its nodes; where the angle changes fast with the shift (flange root: ~0.1 rad
 0.2 mm step) the two differ by up to ~17 %, on the tread by < 2 %
 (tests/test_wheel_rail_kernel.py).
 
-Left out (small here, named so a reader can judge): the longitudinal offset of a leading
-flange contact in the creepages (its vertical sliding), the rail's own roll, the wheel's
+Lead (:mod:`.lead`): on the yawed wheelset a contact lies ``x_lead = r sin(theta)``,
+``sin(theta) = s tan(gamma) tan(psi)``, ahead of the axle, closer to the rail by
+``r (1 - cos(theta)) cos(gamma)`` along the normal; its moment arm is ``x_c + x_lead`` and
+the wheel's vertical material velocity there, ``-Omega x_lead``, enters ``eta``.
+
+Left out (small here, named so a reader can judge): the rail's own roll, the wheel's
 roll relative to the rail in the contact geometry (it tilts the contact angle by phi), and
 the rail's longitudinal curvature in the Hertz constant.
 """
@@ -65,6 +69,7 @@ import numpy as np
 
 from exudyn_turnout.wheel_rail.creep import kalker_coefficients
 from exudyn_turnout.wheel_rail.hertz import curvature_sums, ellipse_parameter
+from exudyn_turnout.wheel_rail.lead import MAX_LEAD_SINE
 from exudyn_turnout.wheel_rail.tables import ContactTable
 
 __all__ = [
@@ -387,6 +392,12 @@ def _point(
     r = fields[_RADIUS]
     lift = z_w + Y_c * phi - q[i_z] - z_irr
     lift_t = q_t[1] + Y_c * q_t[2] - q_t[i_z]
+    # lead of the contact on the yawed wheel and the gap it closes (.lead.contact_lead)
+    lead = s * sin_g * math.tan(psi)
+    cap = MAX_LEAD_SINE * cos_g
+    lead = (min(max(lead, -cap), cap) / cos_g) if cos_g > 0.0 else 0.0
+    x_lead = r * lead
+    gap -= r * lead * lead / (1.0 + math.sqrt(1.0 - lead * lead)) * cos_g
     delta = -(gap + cos_g * lift)
     if details[row, 14] == -1.0:  # first corner that finds this slot
         details[row, 14] = 0.0
@@ -397,7 +408,7 @@ def _point(
     details[row, 10] += weight * math.atan2(sin_g, cos_g)
     details[row, 14] += weight * delta
     details[row, 15] += weight * r
-    details[row, 16] += weight * fields[_X_OFFSET]
+    details[row, 16] += weight * (fields[_X_OFFSET] + x_lead)
     if delta <= 0.0:
         return 0
     delta_t = -(cos_g * lift_t - sin_g * shift_t)
@@ -416,7 +427,8 @@ def _point(
         psi_t = q_t[3]
         xi = 1.0 - kappa * Y_c - omega * r / v - Y_c * psi_t / v
         u_y = q_t[0] - q_t[i_y] - v * psi + r * q_t[2]
-        eta = (u_y * cos_g + lift_t * s * sin_g) / v
+        # the wheel's material at the lead moves vertically at -omega x_lead
+        eta = (u_y * cos_g + (lift_t - omega * x_lead) * s * sin_g) / v
         spin = (-s * omega * sin_g + psi_t * cos_g) / v
         fx, ft = polach_scalar(
             xi, eta, spin, a, b, normal, mu, G, fields[_C11], fields[_C22], fields[_C23]
@@ -424,7 +436,7 @@ def _point(
     F_Y = weight * (-s * sin_g * normal + cos_g * ft)
     F_Z = weight * (cos_g * normal + s * sin_g * ft)
     fx *= weight
-    x_c = fields[_X_OFFSET]
+    x_c = fields[_X_OFFSET] + x_lead
     forces[0] += F_Y
     forces[1] += F_Z
     forces[2] += Y_c * F_Z + r * F_Y

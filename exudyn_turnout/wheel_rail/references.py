@@ -139,6 +139,7 @@ def geometry_at_reference(
     envelope_step: float = 2.5e-4,
     reach: float = 0.1,
     nominal_radius: float = 0.46,
+    interpolation: str = "auto",
 ) -> GeometryResult:
     """Evaluate our geometry at the wheel position of a CONTACT case.
 
@@ -161,6 +162,9 @@ def geometry_at_reference(
         m, extent of that search.
     nominal_radius : float
         m, wheel radius (CONTACT's NOMRAD: 460 mm).
+    interpolation : str
+        Of the slices along the track (:data:`.sections.SLICE_INTERPOLATIONS`), evaluated
+        at every position of the longitudinal search.
 
     Returns
     -------
@@ -169,7 +173,8 @@ def geometry_at_reference(
     """
     slices = read_slices(Path(profiles_dir) / Path(case.rail_file).name)
     grid = lateral_grid(-0.08, 0.30, wheel.s[1] - wheel.s[0])
-    sections = slice_sections(slices, grid)
+    offsets = np.arange(-reach, reach + 0.5 * envelope_step, envelope_step)
+    sections = slice_sections(slices, grid, x=case.s + offsets, interpolation=interpolation)
     enveloped = wheel_envelope(
         sections, np.array([case.s]), nominal_radius, reach=reach, step=envelope_step
     )
@@ -199,7 +204,9 @@ def geometry_at_reference(
     )
 
 
-def compare_all(wheel: WheelGrid, data_folder: str | Path) -> list[tuple]:
+def compare_all(
+    wheel: WheelGrid, data_folder: str | Path, interpolation: str = "auto"
+) -> list[tuple]:
     """Every packaged reference case with our geometry next to it.
 
     Parameters
@@ -208,6 +215,8 @@ def compare_all(wheel: WheelGrid, data_folder: str | Path) -> list[tuple]:
         The S1002 wheel.
     data_folder : str or Path
         The packaged ``data/wheel_rail`` folder.
+    interpolation : str
+        Of the slices along the track (:data:`.sections.SLICE_INTERPOLATIONS`).
 
     Returns
     -------
@@ -218,6 +227,8 @@ def compare_all(wheel: WheelGrid, data_folder: str | Path) -> list[tuple]:
     rows = []
     for name in ("wing_brute", "cross_brute", "cross+wing", "cw_interrupt"):
         for case in read_reference_output(folder / "reference_outputs" / f"{name}.ref_out"):
-            ours = geometry_at_reference(case, wheel, folder / "profiles")
+            ours = geometry_at_reference(
+                case, wheel, folder / "profiles", interpolation=interpolation
+            )
             rows.append((f"{name}#{case.case}", case, ours))
     return rows

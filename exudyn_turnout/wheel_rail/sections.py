@@ -10,9 +10,8 @@ of a standard rail is at ``gauge / 2``), the same for the left and the right rai
 Sections come from
 
 - one profile (plain rail): :func:`plain_rail_sections`;
-- a CONTACT slice set: :func:`slice_sections` (linear interpolation of the gridded heights
-  between slices, which is exact for the slices and, for the 10 mm spacing of CONTACT's
-  artificial crossing, moves a 1:10 flank by at most 0.5 mm in between);
+- a CONTACT slice set: :func:`slice_surface` and :func:`slice_sections`, interpolated along
+  the track as CONTACT does (:data:`SLICE_INTERPOLATIONS`; see below);
 - design parameters: :func:`switch_sections` (stock rail and planed switch blade) and
   :func:`crossing_sections` (wing rail and crossing nose), see :class:`SwitchDesign` and
   :class:`CrossingDesign`.
@@ -20,6 +19,40 @@ Sections come from
 :func:`wheel_envelope` turns sections into what a rigid wheel of radius r rolling along x
 feels: ``max over dx of z(x + dx, y) - dx^2 / (2 r)``, so a nose rising ahead of the wheel
 is met before the wheel centre is over it (CONTACT's 3-D contact search does the same).
+
+Slices along the track
+----------------------
+CONTACT (open-source version, ``matlab/read_slices.m``, ``resample_slices.m`` and
+``make_2dspline.m`` of its distribution, Vollebregt 2008-2023, Apache-2.0) turns a slice
+set into a parametric surface (y, z)(u, v): each slice is cut at its feature positions
+(``S_F`` of the ``.slcs`` file; without features, one part from the first point to the
+last) and every part is resampled by arc length with the same number of points in every
+slice, so the point index v follows a feature (a flange root, a nose tip) along the track;
+a part whose feature positions are negative is absent in that slice.  Along u, each
+point's y and z are interpolated through the slices where the point is present, in runs of
+consecutive slices, by a cubic spline with not-a-knot end conditions (``U_INTPOL = 1``;
+``2`` asks for an approximating spline instead).  :func:`slice_surface` builds the same
+surface (along v, straight lines between resampled points 0.1 mm apart instead of CONTACT's
+cubic spline) or joins the slices at constant y on the lateral grid, with
+(:data:`SLICE_INTERPOLATIONS`)
+
+- ``"auto"`` (default): CONTACT's surface (features, not-a-knot cubic along u) when the
+  file gives features; without them, a shape-preserving cubic (PCHIP, Fritsch & Carlson,
+  SIAM J. Numer. Anal. 17, 1980) along u at constant y.  Without features CONTACT joins
+  points by their fraction of the slice's length, which joins unrelated points where the
+  slices change shape: on ``uk_crossing.slcs`` the nose appears between u = 113.95 and
+  118.94 mm and the profile's length doubles (107 -> 218 mm), and that surface rises 68
+  mm above the rail between u = 80.8 and 118.9 mm (CONTACT's authors add features for this
+  crossing, ``uk_interrupt_v2.slcs`` of their test bank).  At constant y a not-a-knot cubic rings
+  where a vertical face crosses the column (at y = 38.6 mm: 1.59 mm at u = 238.5 mm between
+  slices of 1.46 and 1.24 mm, 0.04 mm at u = 258.2 mm between 1.24 and 0.25 mm); PCHIP
+  stays within its neighbouring slices and there agrees with the feature-aligned cubic
+  within 0.01 mm (``tests/test_wheel_rail_sections_tables.py``);
+- ``"spline"``, ``"pchip"``: that cubic along u, aligned by features when the file has
+  them (``alignment`` overrides);
+- ``"linear"``: the earlier behaviour, the gridded heights of neighbouring slices blended
+  linearly at constant y (a laterally moving flank is then cut by the blend: on CONTACT's
+  1:10 artificial crossing by up to 0.5 mm between slices 10 mm apart).
 """
 
 from __future__ import annotations
@@ -28,6 +61,7 @@ import math
 from dataclasses import dataclass, replace
 
 import numpy as np
+from scipy.interpolate import CubicSpline, PchipInterpolator, make_interp_spline
 
 from exudyn_turnout.wheel_rail.profiles import Profile, SliceSet
 
@@ -39,6 +73,10 @@ __all__ = [
     "gauge_point",
     "place_rail",
     "plain_rail_sections",
+    "SLICE_INTERPOLATIONS",
+    "SliceSurface",
+    "slice_surface",
+    "slice_heights",
     "slice_sections",
     "section_at",
     "sections_at",
@@ -54,6 +92,14 @@ __all__ = [
 
 #: m, default lateral grid step: fine enough that a 0.1 mm shift resolves the contact point
 DEFAULT_GRID_STEP = 1e-4
+
+#: interpolations of a slice set along the track (:func:`slice_surface`); the first is the
+#: default, CONTACT's
+SLICE_INTERPOLATIONS = ("auto", "spline", "pchip", "linear")
+
+#: m, arc-length step of the resampled slices (CONTACT: at most 0.5 mm with a cubic spline
+#: along v; here straight lines along v, so the lateral grid's step)
+SLICE_RESAMPLE_STEP = 1e-4
 
 
 @dataclass(frozen=True, eq=False)
@@ -257,14 +303,238 @@ def plain_rail_sections(
     return SectionGrid(x=np.asarray(x, float), y=y_grid, z=np.tile(heights, (len(x), 1)), name=name)
 
 
+@dataclass(frozen=True, eq=False)
+class SliceSurface:
+    """A slice set ready for interpolation along the track (see the module docstring)."""
+
+    u: np.ndarray  #: m, slice positions (n_s,)
+    y: np.ndarray  #: m, lateral grid of the heights returned (n_y,), side coordinates
+    method: str  #: interpolation along u, one of :data:`SLICE_INTERPOLATIONS`
+    alignment: str  #: "features" (CONTACT's v) or "lateral" (constant y)
+    #: (u_first, u_last, columns, interpolant of y or None, interpolant of z) per run of
+    #: slices and group of points (features) or grid columns (lateral)
+    pieces: tuple
+    n_points: int  #: points per resampled slice (features) or grid columns (lateral)
+    y_offset: float = 0.0  #: m, where the slice profiles' origin lies in the grid's frame
+    z_offset: float = 0.0  #: m, the same vertically
+    source: str = ""  #: the slice file
+
+
+def _breaks(features: np.ndarray, length: float) -> np.ndarray:
+    """Feature positions of one slice along its arc length (NaN: feature absent)."""
+    if features.size <= 1:
+        return np.array([0.0, length])
+    breaks = np.where(features >= 0.0, features, np.nan)
+    last = int(np.flatnonzero(np.isfinite(breaks))[-1])
+    breaks[last] = min(breaks[last], length)
+    return breaks
+
+
+def _resample(slices: SliceSet, step: float) -> tuple[np.ndarray, np.ndarray]:
+    """Every slice resampled with the same number of points per part (CONTACT's v)."""
+    arcs = []
+    for profile in slices.profiles:
+        ds = np.hypot(np.diff(profile.y), np.diff(profile.z))
+        arcs.append(np.concatenate(([0.0], np.cumsum(ds))))
+    features = slices.features if slices.features.shape[1] > 1 else np.zeros((len(arcs), 0))
+    breaks = np.array([_breaks(np.asarray(f, float), float(a[-1])) for f, a in zip(features, arcs)])
+    with np.errstate(invalid="ignore"):
+        lengths = np.diff(breaks, axis=1)
+    if np.any(lengths <= 0.0):
+        raise ValueError(f"{slices.source}: feature positions are not increasing in a slice")
+    longest = np.nanmax(np.where(np.isfinite(lengths), lengths, -1.0), axis=0)
+    segments = np.maximum(np.ceil(np.maximum(longest, 0.0) / step - 1e-9).astype(int), 1)
+    first = np.concatenate(([0], np.cumsum(segments)))
+    n_v = int(first[-1]) + 1
+    y = np.full((len(arcs), n_v), np.nan)
+    z = np.full((len(arcs), n_v), np.nan)
+    for i, (profile, arc) in enumerate(zip(slices.profiles, arcs)):
+        for part in np.flatnonzero(np.isfinite(lengths[i])):
+            a, b = first[part], first[part + 1]
+            s = np.linspace(breaks[i, part], breaks[i, part + 1], b - a + 1)
+            y[i, a : b + 1] = np.interp(s, arc, profile.y)
+            z[i, a : b + 1] = np.interp(s, arc, profile.z)
+    return y, z
+
+
+def _runs(present: np.ndarray) -> list[tuple[int, int]]:
+    """(first, last) indices of the runs of True in a 1-D mask."""
+    edges = np.flatnonzero(np.diff(np.concatenate(([0], present.astype(int), [0]))))
+    return [(int(a), int(b) - 1) for a, b in zip(edges[::2], edges[1::2])]
+
+
+def _interpolant(u: np.ndarray, values: np.ndarray, method: str):
+    """Interpolant along u of the rows of ``values`` (None for a single slice)."""
+    if len(u) == 1:
+        return None
+    if method == "linear" or len(u) == 2:
+        return make_interp_spline(u, values, k=1, axis=0)
+    if method == "pchip":
+        return PchipInterpolator(u, values, axis=0)
+    return CubicSpline(u, values, axis=0, bc_type="not-a-knot")
+
+
+def _pieces(u: np.ndarray, values: tuple, method: str) -> tuple:
+    """Interpolants over the runs of slices where a point (column) is present."""
+    present = np.all([np.isfinite(v) for v in values], axis=0)
+    patterns: dict[bytes, list[int]] = {}
+    for j in range(present.shape[1]):
+        if present[:, j].any():
+            patterns.setdefault(present[:, j].tobytes(), []).append(j)
+    pieces = []
+    for columns in patterns.values():
+        cols = np.array(columns)
+        for a, b in _runs(present[:, cols[0]]):
+            run = slice(a, b + 1)
+            fits = [_interpolant(u[run], v[run][:, cols], method) for v in values]
+            if len(values) == 1:
+                fits = [None] + fits
+            if fits[-1] is None:  # a point present in one slice only: there only
+                fits = [v[a, cols] for v in values]
+                if len(values) == 1:
+                    fits = [None] + fits
+            pieces.append((float(u[a]), float(u[b]), cols, fits[0], fits[1]))
+    return tuple(pieces)
+
+
+def slice_surface(
+    slices: SliceSet,
+    y_grid: np.ndarray,
+    y_offset: float = 0.0,
+    z_offset: float = 0.0,
+    interpolation: str = "auto",
+    alignment: str = "auto",
+    step: float = SLICE_RESAMPLE_STEP,
+) -> SliceSurface:
+    """A slice set as a surface along the track, interpolated between its slices.
+
+    Parameters
+    ----------
+    slices : SliceSet
+        From :func:`.profiles.read_slices`.
+    y_grid : numpy.ndarray
+        m, lateral grid of the heights (:func:`slice_heights`), in the frame of the slice
+        profiles shifted by ``y_offset``.
+    y_offset, z_offset : float
+        m, where the slice profiles' origin lies in the grid's frame.
+    interpolation : str
+        Along u, one of :data:`SLICE_INTERPOLATIONS` (see the module docstring).
+    alignment : {"auto", "features", "lateral"}
+        Which points of neighbouring slices are joined: by CONTACT's feature-aligned
+        resampling, or at constant y on the grid.  ``"auto"``: features if the file gives
+        at least two per slice and the interpolation is not linear, else lateral.  The
+        surface records the interpolation and alignment used (``"auto"`` resolved).
+    step : float
+        m, arc-length step of the resampled slices (features).
+
+    Returns
+    -------
+    SliceSurface
+
+    Raises
+    ------
+    ValueError
+        Unknown interpolation or alignment, or a slice whose feature positions do not
+        increase.
+    """
+    if interpolation not in SLICE_INTERPOLATIONS:
+        raise ValueError(
+            f"slice interpolation {interpolation!r}: expected one of {SLICE_INTERPOLATIONS}"
+        )
+    if alignment not in ("auto", "features", "lateral"):
+        raise ValueError(f"slice alignment {alignment!r}: expected auto, features or lateral")
+    featured = slices.features.shape[1] > 1
+    if interpolation == "auto":
+        interpolation = "spline" if featured else "pchip"
+    if alignment == "auto":
+        alignment = "features" if featured and interpolation != "linear" else "lateral"
+    u = np.asarray(slices.u, float)
+    y_grid = np.asarray(y_grid, float)
+    if alignment == "features":
+        y, z = _resample(slices, step)
+        pieces = _pieces(u, (y, z), interpolation)
+        n_points = y.shape[1]
+    else:
+        heights = np.array(
+            [surface_on_grid(p, y_grid, y_offset, z_offset) for p in slices.profiles]
+        )
+        pieces = _pieces(u, (heights,), interpolation)
+        n_points = len(y_grid)
+    return SliceSurface(
+        u=u,
+        y=y_grid,
+        method=interpolation,
+        alignment=alignment,
+        pieces=pieces,
+        n_points=n_points,
+        y_offset=y_offset,
+        z_offset=z_offset,
+        source=slices.source,
+    )
+
+
+def _evaluate(surface: SliceSurface, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Interpolated points (features) or heights (lateral) at x, NaN where absent."""
+    y = np.full((len(x), surface.n_points), np.nan)
+    z = np.full((len(x), surface.n_points), np.nan)
+    scale = 1e-12 * max(1.0, float(np.max(np.abs(surface.u))))
+    for first, last, cols, fy, fz in surface.pieces:
+        inside = np.flatnonzero((x >= first - scale) & (x <= last + scale))
+        if inside.size == 0:
+            continue
+        if callable(fz):
+            xi = np.clip(x[inside], first, last)
+            z[np.ix_(inside, cols)] = fz(xi)
+            if fy is not None:
+                y[np.ix_(inside, cols)] = fy(xi)
+        else:  # one slice: the points themselves, at its position only
+            z[np.ix_(inside, cols)] = fz
+            if fy is not None:
+                y[np.ix_(inside, cols)] = fy
+    return y, z
+
+
+def slice_heights(surface: SliceSurface, x: np.ndarray) -> np.ndarray:
+    """Heights of a slice surface on its lateral grid at positions along the track.
+
+    Parameters
+    ----------
+    surface : SliceSurface
+        From :func:`slice_surface`.
+    x : numpy.ndarray
+        m, positions (slice coordinate u; clamped to the slices' range).
+
+    Returns
+    -------
+    numpy.ndarray
+        m, (len(x), n_y) heights (upper envelope), NaN where there is no rail.
+    """
+    x = np.clip(np.atleast_1d(np.asarray(x, float)), surface.u[0], surface.u[-1])
+    y, z = _evaluate(surface, x)
+    if surface.alignment == "lateral":
+        return z
+    out = np.full((len(x), len(surface.y)), np.nan)
+    for i in range(len(x)):
+        finite = np.isfinite(y[i]) & np.isfinite(z[i])
+        for a, b in _runs(finite):
+            if b == a:
+                continue
+            piece = Profile(y=y[i, a : b + 1], z=z[i, a : b + 1], kind="rail", source="")
+            heights = surface_on_grid(piece, surface.y, surface.y_offset, surface.z_offset)
+            out[i] = np.fmax(out[i], heights)
+    return out
+
+
 def slice_sections(
     slices: SliceSet,
     y_grid: np.ndarray,
     y_offset: float = 0.0,
     z_offset: float = 0.0,
     name: str = "",
+    x: np.ndarray | None = None,
+    interpolation: str = "auto",
 ) -> SectionGrid:
-    """Sections at the slice positions of a CONTACT slice set, gridded.
+    """Sections of a CONTACT slice set, gridded, at the slice positions or at given x.
 
     Parameters
     ----------
@@ -276,14 +546,28 @@ def slice_sections(
         m, where the slice profiles' origin lies in the grid's frame.
     name : str
         Label (default: the slice file).
+    x : numpy.ndarray, optional
+        m, positions along the track (slice coordinate u) to evaluate.  Default: the slice
+        positions, each slice's own profile gridded (between them :func:`sections_at`
+        interpolates linearly); for the interpolation along u, pass the positions that
+        will be used, as dense as needed.
+    interpolation : str
+        One of :data:`SLICE_INTERPOLATIONS` (used with ``x``; alignment ``"auto"``).
 
     Returns
     -------
     SectionGrid
-        x = the slice positions u.
     """
-    heights = np.array([surface_on_grid(p, y_grid, y_offset, z_offset) for p in slices.profiles])
-    return SectionGrid(x=slices.u.copy(), y=y_grid, z=heights, name=name or slices.source)
+    if x is None:
+        heights = np.array(
+            [surface_on_grid(p, y_grid, y_offset, z_offset) for p in slices.profiles]
+        )
+        return SectionGrid(x=slices.u.copy(), y=y_grid, z=heights, name=name or slices.source)
+    positions = np.asarray(x, float)
+    surface = slice_surface(slices, y_grid, y_offset, z_offset, interpolation)
+    return SectionGrid(
+        x=positions, y=y_grid, z=slice_heights(surface, positions), name=name or slices.source
+    )
 
 
 def section_at(sections: SectionGrid, x: float) -> np.ndarray:

@@ -59,7 +59,7 @@ __all__ = [
     "normal_force",
 ]
 
-_FORMAT_VERSION = "wheel_rail-table-10"  # 10: key and checksum stored in the file
+_FORMAT_VERSION = "wheel_rail-table-11-slices"  # 11: slices interpolated along u as CONTACT
 _FIELDS = (
     "gap",
     "y_rail",

@@ -30,7 +30,9 @@ like the straight one, and a straight 1:N crossing is symmetric about its bisect
 it neglects: the curvature of the route over the length a section is seen (the wing rail
 and nose legs are straight while the route curves: a lateral error of dx^2 / (2 R), 0.16
 mm at 0.5 m after the nose tip for R = 760 m, 0.66 mm for R = 190 m), and the wheelset's
-yaw in the curve (a table has no yaw, as for the through route).
+yaw in the curve in the tables (a table has no yaw, as for the through route; the contact
+kernel adds the lead of a yawed wheel's contact points and the gap it closes at run time,
+:mod:`.lead`).
 
 x grid
 ------
@@ -39,9 +41,12 @@ changes (:mod:`.section_nodes`): the design's break points, then bisection until
 interpolation between nodes is within ``section_tolerance`` (normal distance, over the
 part of the section a wheel can touch: per kind, down to 5 or 16 mm below its top) or the
 step is ``min_step``, then nodes that their neighbours interpolate within the tolerance
-are dropped; ``plain`` and ``closure`` keep their two ends.  Where a body begins
-abruptly (a nose tip), nodes every ``min_step`` over ``envelope_reach`` before it let the
-wheel's envelope (:func:`.sections.wheel_envelope`, applied by
+are dropped; ``plain`` and ``closure`` keep their two ends.  At a node a section is exact:
+the design functions of :mod:`.turnout_design` for the design kinds, and for ``slices`` the
+slice set interpolated along u as CONTACT does (:func:`.sections.slice_surface`; the slice
+positions are break points).  Between nodes every kind is linear, within the tolerance.
+Where a body begins abruptly (a nose tip), nodes every ``min_step`` over ``envelope_reach``
+before it let the wheel's envelope (:func:`.sections.wheel_envelope`, applied by
 :func:`route_contact_tables`) meet the front ahead of the wheel centre.
 
 Between two x nodes :mod:`.tables` interpolates a contact only where its position on the
@@ -83,13 +88,15 @@ from exudyn_turnout.wheel_rail.profiles import Profile, read_slices
 from exudyn_turnout.wheel_rail.section_nodes import TOUCHABLE_DEPTH, section_nodes
 from exudyn_turnout.wheel_rail.sections import (
     SectionGrid,
+    SliceSurface,
     SwitchDesign,
     gauge_point,
     inclination_ramp,
     lateral_grid,
     nose_heights,
     sections_at,
-    slice_sections,
+    slice_heights,
+    slice_surface,
     surface_on_grid,
     wheel_envelope,
 )
@@ -191,7 +198,7 @@ class _Context:
     upright: Profile  #: placed, not inclined (check rails, crossing noses are upright)
     y: np.ndarray  #: lateral grid
     base_heights: np.ndarray
-    slices: dict  #: path -> SectionGrid of the slice set (side coordinates)
+    slices: dict  #: path -> SliceSurface of the slice set (side coordinates, u = x - x0)
     raw: Profile  #: the profile as read (placed at other inclinations by the nose's twist)
     upright_heights: np.ndarray  #: the upright rail on ``y``
 
@@ -215,15 +222,15 @@ def _context(geometry: RailGeometry, check: bool) -> _Context:
     )
 
 
-def _slice_grid(context: _Context, segment: Segment) -> SectionGrid:
+def _slice_surface(context: _Context, segment: Segment) -> SliceSurface:
+    """The segment's slice set (side coordinates; u = x - x0), interpolated along u."""
     if segment.path not in context.slices:
         slices = read_slices(segment.path)
         first = slices.profiles[0]
         top = float(np.max(first.z))
         g = context.geometry
         dy = g.half_gauge - gauge_point(replace(first, z=first.z - top), g.gauge_depth)
-        grid = slice_sections(slices, context.y, y_offset=dy, z_offset=-top)
-        context.slices[segment.path] = replace(grid, x=grid.x + segment.x0)
+        context.slices[segment.path] = slice_surface(slices, context.y, y_offset=dy, z_offset=-top)
     return context.slices[segment.path]
 
 
@@ -256,7 +263,7 @@ def _heights(context: _Context, segment: Segment, x: float) -> np.ndarray:
             z=context.upright.z + g.check_rail.height,
         )
         return surface_on_grid(mirrored, y)
-    return sections_at(_slice_grid(context, segment), np.array([x]))[0]
+    return slice_heights(_slice_surface(context, segment), np.array([x - segment.x0]))[0]
 
 
 def _nose(context: _Context, segment: Segment, x: float) -> np.ndarray:
@@ -313,7 +320,7 @@ def _break_points(context: _Context, segment: Segment) -> list[float]:
         length = g.check_rail.flare_length
         points += [segment.x_from + length, segment.x_to - length]
     elif segment.kind == "slices":
-        points += list(_slice_grid(context, segment).x)
+        points += [float(u) + segment.x0 for u in _slice_surface(context, segment).u]
     return sorted({p for p in points if segment.x_from <= p <= segment.x_to})
 
 

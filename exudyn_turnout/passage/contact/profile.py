@@ -619,6 +619,7 @@ _POINT_COLUMNS = {
     "Ft": "Ft",
     "y_rail": "y_rail",
     "s_wheel": "s_wheel",
+    "x": "x_offset",
     "angle": "angle",
     "xi": "xi",
     "eta": "eta",
@@ -630,6 +631,7 @@ _UNITS = {
     "Ft": "N",
     "y_rail": "m",
     "s_wheel": "m",
+    "x": "m",
     "angle": "rad",
     "xi": "1",
     "eta": "1",
@@ -655,7 +657,9 @@ def contact_columns(
     -------
     dict
         ``cp_<wheel>_<rail>_<body>_<k>_<quantity>_<unit>``: normal force, creep forces,
-        position on rail and wheel, contact angle, creepages, and the wear number
+        position on rail and wheel, position ahead of the wheel centre (``x``: the lead
+        of a yawed wheel's contact, :mod:`exudyn_turnout.wheel_rail.lead`, plus where the
+        wheel meets a rail rising along x), contact angle, creepages, and the wear number
         ``Tgamma_..._N`` = |F_x xi| + |F_t eta| (N m/m).  Forces are 0 out of contact,
         creepages NaN; positions and angle are kept while the point is found (a candidate
         within the table's gap range), even unloaded, else NaN.  Only points that carry load

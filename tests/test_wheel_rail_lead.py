@@ -1,0 +1,192 @@
+"""Lead of the contact point of a yawed wheel (wheel_rail/lead.py) and its use in the kernel.
+
+References:
+- an independent 3-D search written here: the surface of revolution of a coned wheel,
+  yawed about the vertical, sampled over its angle and axial position, against a prismatic
+  rail (a circular gauge corner of 13 mm radius touching the cone), the touching point
+  found as the smallest vertical distance on 201 x 201 grids of angle and axial position,
+  from +-0.2 rad and +-4 mm, each around the last one's minimum and 10x finer (5 passes);
+- the lateral creepage of a flanging wheel with its contact taken where it lies,
+  ``-psi / cos(gamma)`` for r = r0 (derived in lead.py's docstring; the 1 / cos form as
+  in Garg & Dukkipati 1984).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from exudyn_turnout.wheel_rail import kernel
+from exudyn_turnout.wheel_rail.data import s1002_wheel, standard_track
+from exudyn_turnout.wheel_rail.geometry import (
+    WheelsetSetup,
+    rail_row,
+    solve_wheelset,
+    surface_derivatives,
+)
+from exudyn_turnout.wheel_rail.lead import MAX_LEAD_SINE, contact_lead
+from exudyn_turnout.wheel_rail.tables import build_contact_table
+
+SETUP = WheelsetSetup()
+N_Q = 11  # y_w, z_w, phi, psi, beta, y_s, z_s, then left rail (7, 8), right rail (9, 10)
+G = 8.1e10  # Pa, steel
+RADIUS = 0.46  # m
+CORNER = 0.013  # m, radius of the rail's gauge corner in the brute-force search
+
+
+def _touch(gamma: float, yaw: float, side: int, thetas, axial) -> tuple[float, float, float, float]:
+    """Smallest vertical gap of the yawed cone over a grid: (gap, lead, theta, axial)."""
+    slope = np.tan(gamma)
+    normal = np.array([-side * np.sin(gamma), np.cos(gamma)])  # rail normal, (Y, Z)
+    centre = np.array([0.0, -RADIUS]) - CORNER * normal
+    theta, e = np.meshgrid(thetas, axial, indexing="ij")
+    radius = RADIUS - side * slope * e  # the flange side has the larger radius
+    x_wheel, z = radius * np.sin(theta), -radius * np.cos(theta)
+    y = x_wheel * np.sin(yaw) + e * np.cos(yaw)
+    d = y - centre[0]
+    rail = np.where(np.abs(d) < CORNER, centre[1] + np.sqrt(np.abs(CORNER**2 - d**2)), -np.inf)
+    gap = z - rail
+    i = np.unravel_index(np.argmin(gap), gap.shape)
+    return float(gap[i]), float(x_wheel[i]), float(theta[i]), float(e[i])
+
+
+def brute_force(gamma: float, yaw: float, side: int) -> tuple[float, float]:
+    """Lead (m) and normal gap closed (m) by the yaw, from the 3-D search."""
+    results = []
+    for psi in (0.0, yaw):
+        theta, e, span_t, span_e = 0.0, 0.0, 0.2, 4e-3
+        for _ in range(5):  # a grid around the last minimum, 10x finer each pass
+            thetas = np.linspace(theta - span_t, theta + span_t, 201)
+            axial = np.linspace(e - span_e, e + span_e, 201)
+            gap, lead, theta, e = _touch(gamma, psi, side, thetas, axial)
+            span_t, span_e = span_t / 10.0, span_e / 10.0
+        results.append((gap, lead))
+    (gap0, _), (gap1, lead1) = results
+    return lead1, (gap0 - gap1) * np.cos(gamma)  # vertical lift closes cos(gamma) of it
+
+
+@pytest.mark.parametrize(
+    "gamma_deg, yaw, side",
+    [(70.0, 0.005, 1), (70.0, -0.005, 1), (70.0, 0.005, -1), (-84.0, 0.004, -1), (30.0, 0.01, 1)],
+)
+def test_lead_and_closing_match_a_3d_search(gamma_deg, yaw, side):
+    """Flange (70 deg), back of the flange against a check rail (-84 deg), flange root."""
+    gamma = np.radians(gamma_deg)
+    lead, closing = contact_lead(RADIUS, gamma, side, yaw)
+    lead_3d, closing_3d = brute_force(gamma, yaw, side)
+    assert abs(lead) > 1e-3  # a millimetre or more: worth having
+    assert float(lead) == pytest.approx(lead_3d, rel=5e-3, abs=2e-5)
+    assert float(closing) == pytest.approx(closing_3d, rel=0.02, abs=2e-7)
+
+
+def test_lead_sign_and_cap():
+    # left wheel (s = +1) against its flange (gamma > 0), wheelset turned left (psi > 0):
+    # ahead; the right wheel's flange (s = -1) behind; no yaw, no lead
+    assert contact_lead(RADIUS, 1.2, 1, 0.005)[0] > 0.0 > contact_lead(RADIUS, 1.2, -1, 0.005)[0]
+    assert contact_lead(RADIUS, 1.2, 1, 0.0) == (0.0, 0.0)
+    capped, _ = contact_lead(RADIUS, np.radians(89.0), 1, 0.1)
+    assert float(capped) == pytest.approx(RADIUS * MAX_LEAD_SINE)
+
+
+@pytest.fixture(scope="module")
+def plain(tmp_path_factory):
+    wheel = s1002_wheel(SETUP)
+    track = standard_track(SETUP, np.array([-10.0, 70.0]))
+    table = build_contact_table(
+        wheel, track, SETUP.taping_line, cache_dir=tmp_path_factory.mktemp("tables")
+    )
+    return kernel.pack_tables([table, table], [1, -1], [(7, 8), (9, 10)], [(-10, 70)] * 2)
+
+
+def _evaluate(packed, q, constants):
+    forces = np.zeros(N_Q)
+    details = np.zeros((packed.n_bodies * packed.n_candidates, len(kernel.DETAIL_FIELDS)))
+    kernel.contact_forces(
+        5.0,
+        np.asarray(q, float),
+        np.zeros(N_Q),
+        np.zeros(4),
+        packed.values,
+        packed.blendable,
+        packed.x,
+        packed.layout,
+        packed.bounds,
+        np.asarray(constants, float),
+        forces,
+        details,
+    )
+    return forces, details
+
+
+def _column(name: str) -> int:
+    return kernel.DETAIL_FIELDS.index(name)
+
+
+def test_kernel_flange_contact_of_a_yawed_wheelset(plain):
+    """Left wheel on its flange (S1002 on UIC60 1:40, shift 7 mm: contact angle 70 deg),
+    pressed 50 um without yaw, then yawed by 5 mrad at 80 km/h: the contact leads by
+    contact_lead's x, is pressed in further by its closing, the lateral creepage is
+    -psi cos(gamma) - (r / r0) tan(psi) tan(gamma) sin(gamma) (within 3 % of -psi / cos(gamma),
+    r / r0 = 1.028 there) and the spin creepage is unchanged."""
+    v, r0, yaw = 80.0 / 3.6, 0.46, 0.005
+    constants = (v, r0, 0.4, G, 0.0, 0.0)
+    q = np.zeros(N_Q)
+    q[0] = 0.007
+    _, details = _evaluate(plain, q, (0.0, r0, 0.4, G, 0.0, 0.0))
+    left = details[: plain.n_candidates]
+    deepest = left[
+        np.argmax(np.where(left[:, _column("found")] > 0, left[:, _column("delta")], -1))
+    ]
+    q[1] = (deepest[_column("delta")] - 5e-5) / np.cos(deepest[_column("angle")])
+    rows = {}
+    for psi in (0.0, yaw):
+        q[3] = psi
+        _, details = _evaluate(plain, q, constants)
+        loaded = details[: plain.n_candidates]
+        loaded = loaded[loaded[:, _column("normal")] > 0]
+        assert len(loaded) == 1
+        rows[psi] = loaded[0]
+    straight, yawed = rows[0.0], rows[yaw]
+    gamma, r = yawed[_column("angle")], yawed[_column("radius")]
+    assert np.degrees(gamma) == pytest.approx(70.0, abs=1.0)
+    lead, closing = contact_lead(r, gamma, 1, yaw)
+    assert straight[_column("x_offset")] == 0.0 and straight[_column("eta")] == 0.0
+    assert yawed[_column("x_offset")] == pytest.approx(float(lead), rel=1e-12)
+    assert 6e-3 < yawed[_column("x_offset")] < 7e-3
+    assert yawed[_column("delta")] - straight[_column("delta")] == pytest.approx(
+        float(closing), rel=1e-9
+    )
+    expected = -yaw * np.cos(gamma) - r / r0 * np.tan(yaw) * np.tan(gamma) * np.sin(gamma)
+    assert yawed[_column("eta")] == pytest.approx(expected, rel=1e-9)
+    assert yawed[_column("eta")] == pytest.approx(-yaw / np.cos(gamma), rel=0.03)
+    assert yawed[_column("spin")] == pytest.approx(straight[_column("spin")], rel=1e-12)
+
+
+def test_rigid_wheelset_yawed_in_flange_contact():
+    """S1002 on UIC60 1:40 (Manchester benchmark profiles), wheelset 6.5 mm to the left (the
+    left flange against its rail at 67 deg, the wheelset rolled by 4.3 mrad) and yawed by 5
+    mrad: the left contact leads by
+    contact_lead's x, the right one (tread, ~0.02 rad) by < 0.1 mm; both wheels still touch
+    (vertical gaps 0); the flange reaches nearer its rail, so the wheelset rolls further
+    (left side up) than without yaw."""
+    wheel = s1002_wheel(SETUP)
+    track = standard_track(SETUP)
+    row = rail_row(track, surface_derivatives(track))
+    results = {
+        yaw: solve_wheelset(np.array([0.0065]), wheel, row, row, SETUP, yaw=yaw)
+        for yaw in (0.0, 0.005)
+    }
+    straight, yawed_result = results[0.0], results[0.005]
+    assert straight.x_lead_left[0] == 0.0 and straight.x_lead_right[0] == 0.0
+    gamma = yawed_result.angle_left[0]
+    assert np.degrees(gamma) == pytest.approx(67.0, abs=1.5)
+    lead, _ = contact_lead(yawed_result.radius_left[0], gamma, 1, 0.005)
+    assert yawed_result.x_lead_left[0] == pytest.approx(float(lead), rel=1e-12)
+    assert 5e-3 < yawed_result.x_lead_left[0] < 6.5e-3
+    assert abs(yawed_result.x_lead_right[0]) < 1e-4
+    for side in ("left", "right"):
+        found = getattr(yawed_result, f"candidates_{side}")[0]
+        # the roll is solved on the vertical search; the flange's point from the 60 deg
+        # search lies within 1 um of touching (0.81 um without yaw, 0.45 um with)
+        assert found.gap[0] / np.cos(found.angle[0]) == pytest.approx(0.0, abs=1e-6)
+    assert yawed_result.roll[0] > straight.roll[0]
