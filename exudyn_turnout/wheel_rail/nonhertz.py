@@ -371,8 +371,8 @@ def hertz_fits(gap, step: float, a_sum, b_sum, modulus: float) -> np.ndarray:
         region where the undeformed gap is below the penetration.
     """
     gap = np.nan_to_num(np.atleast_2d(np.asarray(gap, float)), nan=_UNREACHABLE)
-    a_sum = np.atleast_1d(np.asarray(a_sum, float))
-    b_sum = np.atleast_1d(np.asarray(b_sum, float))
+    a_sum = np.broadcast_to(np.asarray(a_sum, float), gap.shape[:1])
+    b_sum = np.broadcast_to(np.asarray(b_sum, float), gap.shape[:1])
     ok = (a_sum > MIN_CURVATURE_SUM) & (b_sum > MIN_CURVATURE_SUM)
     a_f, b_f = np.maximum(a_sum, MIN_CURVATURE_SUM), np.maximum(b_sum, MIN_CURVATURE_SUM)
     constant = hertz_constant(a_f, b_f, modulus)
@@ -409,8 +409,8 @@ def patch_law(gap, step: float, a_sum, b_sum, modulus: float) -> np.ndarray:
         (n, len(PATCH_FIELDS)).
     """
     gap = np.atleast_2d(np.asarray(gap, float))
-    a_sum = np.atleast_1d(np.asarray(a_sum, float))
-    b_sum = np.atleast_1d(np.asarray(b_sum, float))
+    a_sum = np.broadcast_to(np.asarray(a_sum, float), gap.shape[:1])
+    b_sum = np.broadcast_to(np.asarray(b_sum, float), gap.shape[:1])
     n = gap.shape[0]
     out = np.zeros((n, len(PATCH_FIELDS)))
     if n == 0:
