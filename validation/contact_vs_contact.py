@@ -1,7 +1,7 @@
 """Our normal and tangential contact against CONTACT's reference outputs: writes
 contact_vs_contact.md.
 
-Run: ``python validation/contact_vs_contact.py``.  For every packaged CONTACT case
+Run: ``python validation/contact_vs_contact.py [--tables]``.  For every packaged CONTACT case
 (S1002 wheel on CONTACT's artificial wing rail, crossing nose, nose + wing rail, and the
 interrupted nose + wing rail; Apache-2.0, see exudyn_turnout/data/wheel_rail/NOTICE.md)
 it prints CONTACT's result, ours by Kik-Piotrowski (the semi-Hertzian method of
@@ -24,11 +24,18 @@ the issue where it gives one):
 - patch length (x) and width (s) within 25 %: CONTACT counts whole elements of
   DX = 0.2 mm by DS = 0.05 mm (one element is 2-5 % of the length, 2-7 % of the width)
   and KP's area is that of a virtual penetration, exact only in shape for a Hertz gap.
+
+``--tables`` adds, per rail body of the packaged turnout's routes (the vehicle's wheel),
+where the contact tables use the semi-Hertzian law, and what it gives there against the
+Hertz ellipse the tables held before (at the law's reference penetration).
 """
 
 from __future__ import annotations
 
+import argparse
 from pathlib import Path
+
+import numpy as np
 
 from exudyn_turnout.wheel_rail.data import data_dir, s1002_wheel
 from exudyn_turnout.wheel_rail.references import (
@@ -84,8 +91,67 @@ def rows_of(reference, result) -> list[tuple]:
     ]  # fmt: skip
 
 
-def main() -> int:
+def table_lines() -> list[str]:
+    """Per rail body of both routes: share of semi-Hertzian nodes, and the node where the
+    Hertz ellipse was widest, Hertz against the semi-Hertzian law at DELTA_REF."""
+    from exudyn_turnout.inputs.turnout import load_turnout
+    from exudyn_turnout.inputs.vehicle import load_vehicle
+    from exudyn_turnout.passage.contact.profile import wheel_and_setup
+    from exudyn_turnout.wheel_rail.hertz import (
+        curvature_sums,
+        effective_modulus,
+        hertz_constant,
+        hertz_contact,
+    )
+    from exudyn_turnout.wheel_rail.nonhertz import DELTA_REF
+    from exudyn_turnout.wheel_rail.turnout_sections import route_contact_tables
+
+    modulus = effective_modulus()
+    turnout = load_turnout()
+    wheel, setup = wheel_and_setup(turnout, load_vehicle())
+    lines = [
+        "## Where the passage's tables use the semi-Hertzian law",
+        "",
+        f"Packaged turnout and vehicle; per rail body the share of candidate nodes whose law"
+        f" has a Kik-Piotrowski part (weight > 0), and at the node whose Hertz ellipse"
+        f" (floored curvature sums) is widest among them: that Hertz ellipse against the"
+        f" node's law (weight w of KP), at delta = {DELTA_REF * 1e3:.3f} mm.",
+        "",
+        "| route | rail body | KP weight > 0 | contact angle | w | Hertz a x b (mm) |"
+        " law a x b (mm) | Hertz N (kN) | law N (kN) |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
+    for route in ("through", "diverging"):
+        for body, table in route_contact_tables(turnout, route, wheel, setup):
+            names = {n: k for k, n in enumerate(table.fields)}
+            rows = table.values[table.values[..., 0] < 0.5]
+            semi = rows[:, names["semi_hertzian"]] > 0.0
+            if not np.any(semi):
+                continue
+            a_sum, b_sum = curvature_sums(
+                rows[:, names["radius"]], rows[:, names["angle"]],
+                rows[:, names["curvature_wheel"]], rows[:, names["curvature_rail"]],
+            )  # fmt: skip
+            force = hertz_constant(a_sum, b_sum, modulus) * DELTA_REF**1.5
+            hertz = hertz_contact(a_sum, b_sum, force, modulus)
+            i = int(np.argmax(np.where(semi, hertz.b, -1.0)))
+            row = rows[i]
+            lines.append(
+                f"| {route} | {body.name} | {semi.mean() * 100:.0f} % "
+                f"| {np.degrees(row[names['angle']]):.0f} deg "
+                f"| {row[names['semi_hertzian']]:.2f} "
+                f"| {hertz.a[i] * 1e3:.1f} x {hertz.b[i] * 1e3:.1f} "
+                f"| {row[names['patch_a']] * 1e3:.1f} x {row[names['patch_b']] * 1e3:.1f} "
+                f"| {force[i] / 1e3:.1f} | {row[names['patch_force']] / 1e3:.1f} |"
+            )
+    return lines + [""]
+
+
+def main(argv: list[str] | None = None) -> int:
     """Write contact_vs_contact.md (and print it)."""
+    parser = argparse.ArgumentParser(description="our contact against CONTACT's outputs")
+    parser.add_argument("--tables", action="store_true", help="add the passage tables' use")
+    args = parser.parse_args(argv)
     wheel = s1002_wheel()
     folder = data_dir()
     lines = [
@@ -150,6 +216,8 @@ def main() -> int:
         *(f"| {m} | {ok} of {n} |" for m, (ok, n) in tally.items()),
         "",
     ]
+    if args.tables:
+        lines += table_lines()
     OUT.write_text("\n".join(lines), encoding="utf-8")
     print("\n".join(lines))
     return 0
