@@ -87,9 +87,6 @@ MISSES = {
     ("cross+wing#1", "approach"): "KP -5.6 % (Hertz +6.1 %): flat nose top, gap far from "
     "Hertzian, KP's virtual-penetration area is approximate",
     ("cw_interrupt#2", "approach"): "KP -24.8 %: " + _INTERRUPTED,
-    ("cross+wing#1", "position"): "YCP 0.52 mm off: CONTACT's reference point of a 2.3 mm wide "
-    "patch on a nearly flat nose top; ours is the point of deepest interpenetration",
-    ("cw_interrupt#2", "position"): "YCP 0.68 mm off: " + _INTERRUPTED,
     ("wing_brute#1", "fx"): "FX +12.2 %: Polach on the equivalent ellipse, spin-dominated "
     "(CPHI a = 8e-4 > |CETA|)",
     ("cw_interrupt#2", "fx"): "FX +47 %: " + _INTERRUPTED,
@@ -154,12 +151,15 @@ def test_kp_approach_within_five_percent(contact_results, name):
     assert abs(ours.semi_hertz.approach - reference) <= GOAL_APPROACH * reference
 
 
-@pytest.mark.parametrize("name", [_marked(n, "position") for n in CASES])
+@pytest.mark.parametrize("name", CASES)
 def test_contact_position_within_half_a_millimetre(contact_results, name):
+    """Where the KP patch's normal force acts (measured: within 0.21 mm of CONTACT's
+    reference location; the point of deepest interpenetration is up to 0.68 mm off, on
+    the flat nose top of cross+wing and cw_interrupt case 2)."""
     case, ours = contact_results[name]
     patch = case.patches[0]
-    assert abs(ours.geometry.y_contact_rail - patch.y_contact_rail) <= GOAL_POSITION
-    assert abs(ours.geometry.z_contact_rail - patch.z_contact_rail) <= GOAL_POSITION
+    assert abs(ours.semi_hertz.y_contact_rail - patch.y_contact_rail) <= GOAL_POSITION
+    assert abs(ours.semi_hertz.z_contact_rail - patch.z_contact_rail) <= GOAL_POSITION
 
 
 @pytest.mark.parametrize("name", CASES)

@@ -72,12 +72,14 @@ def _error(kind: str, ours: float, reference: float) -> str:
 def rows_of(reference, result) -> list[tuple]:
     """(quantity, unit scale, unit, CONTACT, KP, Hertz, tolerance key) of one case."""
     patch = reference.patches[0]
-    kp, hz, geo = result.semi_hertz, result.hertz, result.geometry
+    kp, hz, geo = result.semi_hertz, result.hertz, result.geometry  # KP: its force centre
     return [
-        ("YCP(R), contact on rail", 1e3, "mm", patch.y_contact_rail, geo.y_contact_rail,
-         geo.y_contact_rail, "position"),
-        ("ZCP(R), its height", 1e3, "mm", patch.z_contact_rail, geo.z_contact_rail,
-         geo.z_contact_rail, "position"),
+        ("YCP(R), contact on rail", 1e3, "mm", patch.y_contact_rail, kp.y_contact_rail,
+         hz.y_contact_rail, "position"),
+        ("ZCP(R), its height", 1e3, "mm", patch.z_contact_rail, kp.z_contact_rail,
+         hz.z_contact_rail, "position"),
+        ("deepest interpenetration, on rail", 1e3, "mm", patch.y_contact_rail,
+         geo.y_contact_rail, geo.y_contact_rail, None),
         ("approach at CONTACT's FN", 1e3, "mm", patch.approach, kp.approach, hz.approach,
          "approach"),
         ("FN at our undeformed interpenetration", 1e-3, "kN", patch.normal_force,
@@ -160,7 +162,9 @@ def main(argv: list[str] | None = None) -> int:
         "Written by `python validation/contact_vs_contact.py` (tolerances and their reasons"
         " in its docstring).  KP: Kik-Piotrowski on our undeformed gap function"
         " (`wheel_rail/nonhertz.py`); Hertz: the ellipse of the point's curvature sums, as"
-        " the tables computed it before the semi-Hertzian method.  Errors are ours minus"
+        " the tables computed it before the semi-Hertzian method.  Contact positions: KP's is"
+        " where its normal force acts (the patch's force centre), Hertz's the point of"
+        " deepest interpenetration.  Errors are ours minus"
         " CONTACT's; a tick marks a quantity within its tolerance.",
         "",
     ]

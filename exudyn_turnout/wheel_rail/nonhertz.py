@@ -161,6 +161,7 @@ class SemiHertzPatch:
     area: np.ndarray  #: m^2, contact area
     a: np.ndarray  #: m, equivalent ellipse, rolling direction (same area, same L/W)
     b: np.ndarray  #: m, equivalent ellipse, lateral
+    t_centre: np.ndarray  #: m, lateral position of the normal force's line of action
 
 
 def strip_integral(half_length, t) -> np.ndarray:
@@ -248,6 +249,11 @@ def kik_piotrowski(gap, step: float, a_sum, delta, modulus: float, epsilon: floa
     with np.errstate(divide="ignore", invalid="ignore"):
         c = np.where(i1 > 0.0, np.pi * modulus * delta / i1, 0.0)
     force = c * i2
+    # every strip carries (pi / 2) c x_l(t)^2: the force acts at their weighted mean t
+    strip_force = half * half
+    total = np.sum(strip_force, axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t_centre = np.where(total > 0.0, np.sum(strip_force * t, axis=1) / total, 0.0)
     length = np.max(half, axis=1)
     area = 2.0 * np.sum(half, axis=1) * step
     # lateral edges, interpolated where the gap crosses the virtual penetration
@@ -268,6 +274,7 @@ def kik_piotrowski(gap, step: float, a_sum, delta, modulus: float, epsilon: floa
         area=area,
         a=np.nan_to_num(a_eq),
         b=np.nan_to_num(b_eq),
+        t_centre=t_centre,
     )
 
 

@@ -375,6 +375,10 @@ def compare_all(wheel: WheelGrid, data_folder: str | Path) -> list[tuple]:
 class PatchResult:
     """Our normal and tangential contact at a CONTACT case, by one method (SI)."""
 
+    #: m, where the normal force acts on the rail profile (Hertz: the contact point; KP:
+    #: the patch's force centre, moved from it along the tangent)
+    y_contact_rail: float
+    z_contact_rail: float  #: m, its height
     approach: float  #: m, penetration that carries CONTACT's FN
     force_at_geometry: float  #: N, normal force at our undeformed interpenetration
     p_max: float  #: Pa, peak pressure at CONTACT's FN
@@ -424,11 +428,15 @@ def contact_at_reference(
     """Our normal contact (Hertz and Kik-Piotrowski) and creep forces at a CONTACT case.
 
     The geometry is that of :func:`geometry_at_reference`; the candidate nearest
-    CONTACT's first patch is compared.  Hertz uses the point's curvature sums (floored like
-    the tables'), Kik-Piotrowski the undeformed normal gap along the lateral tangent
-    (:func:`.nonhertz.normal_gap_function`, sampled at ``step``).  Both are evaluated at
-    CONTACT's FN; the creep forces are Polach's (:func:`.creep.polach_creep_forces`) at
-    CONTACT's creepages CKSI, CETA, CPHI with its FN, friction, G and Poisson's ratio.
+    CONTACT's first patch is compared.  Its position is the point of deepest
+    interpenetration; KP's patch position is where its normal force acts (the strips'
+    force-weighted mean along the tangent), which is what CONTACT's reference location
+    agrees with (validation/contact_vs_contact.md).  Hertz uses the point's curvature
+    sums (floored like the tables'), Kik-Piotrowski the undeformed normal gap along the
+    lateral tangent (:func:`.nonhertz.normal_gap_function`, sampled at ``step``).  Both
+    are evaluated at CONTACT's FN; the creep forces are Polach's
+    (:func:`.creep.polach_creep_forces`) at CONTACT's creepages CKSI, CETA, CPHI with its
+    FN, friction, G and Poisson's ratio.
 
     Parameters
     ----------
@@ -478,6 +486,8 @@ def contact_at_reference(
     ellipse = hertz_contact(a_sum[k], b_sum[k], force, modulus)
     a_h, b_h = float(ellipse.a), float(ellipse.b)
     hertz = PatchResult(
+        y_contact_rail=geometry.y_contact_rail,
+        z_contact_rail=geometry.z_contact_rail,
         approach=(force / constant) ** (2.0 / 3.0),
         force_at_geometry=constant * max(geometry.approach, 0.0) ** 1.5,
         p_max=float(ellipse.p0),
@@ -496,7 +506,10 @@ def contact_at_reference(
     delta = _solve_penetration(force, lambda d: float(kp(d).normal_force[0]))
     solved = kp(delta)
     a_kp, b_kp = float(solved.a[0]), float(solved.b[0])
+    shift = float(solved.t_centre[0])
     semi = PatchResult(
+        y_contact_rail=geometry.y_contact_rail + shift * float(np.cos(found.angle[k])),
+        z_contact_rail=geometry.z_contact_rail + shift * float(np.sin(found.angle[k])),
         approach=delta,
         force_at_geometry=float(kp(geometry.approach).normal_force[0])
         if geometry.approach > 0.0
