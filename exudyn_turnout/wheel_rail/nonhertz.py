@@ -4,19 +4,21 @@ Why a second normal-contact method
 ----------------------------------
 Hertz theory (:mod:`.hertz`) assumes a gap ``A x^2 + B y^2`` over the whole patch.  On the
 flat back of the flange against a check-rail face (B floored at
-:data:`.hertz.MIN_CURVATURE_SUM`, A = cos(84 deg) / (2 r)) it gives a lateral semi-axis of
-172 mm on a face about 25 mm high; at the gauge corner of worn or conformal profiles the
-curvature sum is floored or changes sign within the patch.  There the patch, its pressure
-and the normal stiffness must follow from the real gap of the undeformed surfaces.
+:data:`.hertz.MIN_CURVATURE_SUM`, A = cos(84 deg) / (2 r)) it gave a lateral semi-axis of
+172 mm on a face about 25 mm high (issue 22); on the flange of the switch blade and at the
+nose the tables held ellipses over 300 mm wide (validation/contact_vs_contact.md); at the
+gauge corner of worn or conformal profiles the curvature sum is floored or changes sign
+within the patch.  There the patch, its pressure and the normal stiffness must follow
+from the real gap of the undeformed surfaces.
 
 Choice.  Three published families were weighed:
 
 - *Multi-Hertzian* (a Hertz ellipse per minimum of the gap) still takes each ellipse from
   local curvatures, so a flat face keeps its 172 mm axis unless it is cut off by hand;
 - *STRIPES* (Ayasse & Chollet, "Determination of the wheel rail contact patch in
-  semi-Hertzian conditions", VSD 43 (2005) 161-172) takes the lateral gap function
-  strip by strip but Hertz-like semi-axes per strip from local curvatures, with an
-  interpenetration correction; it is the closest to CONTACT in the authors' tests;
+  semi-Hertzian conditions", VSD 43 (2005) 161-172) is semi-Hertzian as well (Hertz-like
+  along x in every strip, the lateral extent from a corrected interpenetration) but
+  works with curvatures per strip, which the tables hold only at the contact point;
 - *Kik-Piotrowski* (J. Piotrowski & W. Kik, "A simplified model of wheel/rail contact
   mechanics for non-Hertzian problems and its application in rail vehicle dynamic
   simulations", VSD 46 (2008) 27-48) needs only the lateral gap function g(y) of the
@@ -31,8 +33,8 @@ enough to be tabulated per node.  Its known weakness (the contact area is that o
 along x in every strip) is stated with the comparisons against CONTACT
 (``validation/contact_vs_contact.md``).
 
-The method (Piotrowski & Kik 2008, Sec. 2)
------------------------------------------
+The method (Piotrowski & Kik 2008)
+----------------------------------
 With the normal gap ``g(t) >= 0`` of the undeformed surfaces along the lateral tangent t
 (0 at the contact point) and the relative curvature A in the rolling direction:
 
@@ -53,9 +55,9 @@ With the normal gap ``g(t) >= 0`` of the undeformed surfaces along the lateral t
   pressure ``c max_t x_l(t)``.
 
 For the creep law the patch is replaced by the ellipse of the same area and the same
-ratio of length to width (Piotrowski & Kik 2008, Sec. 4: the "equivalent ellipse" used
-for Kalker's coefficients and FASTSIM; also Piotrowski & Chollet, VSD 43 (2005)
-455-483).
+ratio of length to width, the "equivalent ellipse" through which Piotrowski & Kik (2008)
+give FASTSIM its flexibility for a non-elliptic patch (see also the review of Piotrowski &
+Chollet, VSD 43 (2005) 455-483); here it feeds Kalker's coefficients and Polach's law.
 
 Where Hertz is kept.  Hertz's ellipse is exact where the gap is Hertzian, so it stays
 wherever it *fits the surfaces*: at both reference penetrations (:data:`DELTA_LOW`,
@@ -169,7 +171,7 @@ def strip_integral(half_length, t) -> np.ndarray:
 
     ``J(L, t) = int_{-L}^{L} sqrt(L^2 - x^2) / sqrt(x^2 + t^2) dx
     = 2 sqrt(L^2 + t^2) (K(m) - E(m))``, ``m = L^2 / (L^2 + t^2)`` (substitute
-    x = L sin(theta); the integral of Piotrowski & Kik 2008, Eq. 12, per strip).
+    x = L sin(theta); one strip of Piotrowski & Kik's contact condition).
 
     Parameters
     ----------
