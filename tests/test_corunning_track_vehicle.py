@@ -99,9 +99,11 @@ def test_zone_crossing_of_the_front_wheelset(turnout, model):
         jump_single = abs(np.diff(single.columns[f"Fz_{wheel}_N"])[j - 1 : j + 1]).max()
         # Tolerance: 1.5 % of the wheel load. The single-wheelset passage (the same
         # re-basing, simulate._carry_over) jumps by 589 N (right) / 459 N (left) here
-        # (measured): the full vehicle must not add to it.
+        # (measured with Hertz contact everywhere): the full vehicle must not add to it.
+        # One-sided since the semi-Hertzian law on the wing rail and nose (issue 22): the
+        # two runs' start transients then differ, single 647 N, vehicle 600 N (right).
         assert jump < 0.015 * STATIC_WHEEL_LOAD, wheel
-        assert jump == pytest.approx(jump_single, rel=0.05, abs=20.0), wheel
+        assert jump <= 1.05 * jump_single + 20.0, wheel
         # wheelsets that do not cross: no jump beyond their step-to-step change (< 5 N)
         for k in (2, 3, 4):
             assert abs(np.diff(cols[f"Fz_ws{k}_{wheel}_N"])[i - 1 : i + 1]).max() < 5.0

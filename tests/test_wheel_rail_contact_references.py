@@ -95,3 +95,118 @@ def test_slice_interpolation_along_the_track_moves_the_contact_to_contact_s(comp
         assert abs(linear.x_contact - reference.x_contact) > 1.0e-3
         assert abs(ours.x_contact - reference.x_contact) <= 0.5e-3
         assert abs(ours.y_contact_rail - reference.y_contact_rail) <= 0.5e-3
+
+
+# --- normal and tangential contact against CONTACT (issue 22) ---------------------------
+# Goals of issue 22 (written before comparing): approach within 5 %, contact positions
+# within 0.5 mm, creep forces FX and FS within 10 % at CONTACT's creepages, the same
+# number of patches.  Cases that miss a goal are marked xfail (strict) with the measured
+# miss and its reason; validation/contact_vs_contact.md holds every number.
+GOAL_APPROACH = 0.05
+GOAL_POSITION = 0.5e-3  # m
+GOAL_CREEP = 0.10
+CASES = ["wing_brute#1", "cross_brute#1", "cross+wing#1", "cw_interrupt#1", "cw_interrupt#2"]
+_INTERRUPTED = (
+    "CONTACT's patch is cut along x where the interrupted rail ends (5 mm long, ours 7.7 mm):"
+    " our patch comes from a lateral gap function and the rigid-wheel envelope along x, so"
+    " it cannot end along x"
+)
+MISSES = {
+    ("cross+wing#1", "approach"): "KP -5.6 % (Hertz +6.1 %): flat nose top, gap far from "
+    "Hertzian, KP's virtual-penetration area is approximate",
+    ("cw_interrupt#2", "approach"): "KP -24.8 %: " + _INTERRUPTED,
+    # found when the slice interpolation along u (CONTACT's cubic) and this comparison met:
+    # with the slices blended linearly the case gave -2.3 %, on the wrong surface (XCP
+    # 1.16 mm off); on CONTACT's surface (XCP 0.16 mm off) KP and Hertz agree (-6.5 / -6.3 %)
+    ("cw_interrupt#1", "approach"): "KP -6.5 % (Hertz -6.3 %) at CONTACT's slice surface; "
+    "both undeformed-geometry methods miss CONTACT's elastic approach by the same amount",
+    ("wing_brute#1", "fx"): "FX +12.2 %: Polach on the equivalent ellipse, spin-dominated "
+    "(CPHI a = 8e-4 > |CETA|)",
+    ("cw_interrupt#2", "fx"): "FX +47 %: " + _INTERRUPTED,
+    ("wing_brute#1", "fs"): "FS 470 N vs 107 N: Polach's spin term (CPHI a > |CETA|) is far "
+    "from Kalker's exact theory; FS is 4 % of mu FN",
+    ("cross+wing#1", "fs"): "FS -7 N vs -71 N: pure spin, FS is 2 % of mu FN; Polach's spin "
+    "force is far from the exact theory",
+    ("cw_interrupt#1", "fs"): "FS +102 N vs -178 N: 70 % of mu FN used longitudinally; the "
+    "coupling of spin and saturation is not in Polach's method",
+    ("cw_interrupt#2", "fs"): "FS -28 %: " + _INTERRUPTED,
+}
+
+
+@pytest.fixture(scope="module")
+def contact_results():
+    from exudyn_turnout.wheel_rail.references import REFERENCE_FILES, contact_at_reference
+
+    wheel, folder = s1002_wheel(), data_dir()
+    return {
+        f"{name}#{case.case}": (case, contact_at_reference(case, wheel, folder / "profiles"))
+        for name in REFERENCE_FILES
+        for case in read_reference_output(folder / "reference_outputs" / f"{name}.ref_out")
+    }
+
+
+def test_reader_gives_forces_creepages_and_patch_extent():
+    """Values of cw_interrupt.ref_out (CONTACT's output, cases 1 and 2), read in SI."""
+    first, second = read_reference_output(data_dir() / "reference_outputs" / "cw_interrupt.ref_out")
+    assert first.prescribed == "force" and second.prescribed == "position"
+    patch = first.patches[0]
+    assert len(first.patches) == 1
+    assert (patch.normal_force, patch.fx, patch.fs) == pytest.approx((1.002e4, 2093.0, -178.5))
+    assert patch.approach == pytest.approx(3.732e-5)
+    assert patch.p_max == pytest.approx(3388e6)
+    assert (patch.cksi, patch.ceta) == pytest.approx((-1.699e-3, -1.923e-4))
+    assert patch.cphi == pytest.approx(0.166)  # CPHI 1.660E-04 1/mm
+    # "FORM OF THE CONTACT": 467 elements (= NCON) over 46 columns (x) and 15 rows (s) of
+    # DX = 0.2 mm, DS = 0.05 mm
+    assert patch.n_elements == 467
+    assert (patch.length, patch.width) == pytest.approx((46 * 0.2e-3, 15 * 0.05e-3))
+    assert patch.area == pytest.approx(467 * 0.2e-3 * 0.05e-3)
+    assert (first.friction, first.shear_modulus, first.poisson) == pytest.approx(
+        (0.3, 8.2e10, 0.28)
+    )
+    # case 2's map has a blank between cells: 991 elements, 25 columns, 69 rows
+    wide = second.patches[0]
+    assert (wide.n_elements, wide.length, wide.width) == pytest.approx(
+        (991, 25 * 0.2e-3, 69 * 0.05e-3)
+    )
+
+
+def _marked(name, quantity):
+    reason = MISSES.get((name, quantity))
+    marks = [pytest.mark.xfail(strict=True, reason=reason)] if reason else []
+    return pytest.param(name, id=name, marks=marks)
+
+
+@pytest.mark.parametrize("name", [_marked(n, "approach") for n in CASES])
+def test_kp_approach_within_five_percent(contact_results, name):
+    case, ours = contact_results[name]
+    reference = case.patches[0].approach
+    assert abs(ours.semi_hertz.approach - reference) <= GOAL_APPROACH * reference
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_contact_position_within_half_a_millimetre(contact_results, name):
+    """Where the KP patch's normal force acts (measured: within 0.21 mm of CONTACT's
+    reference location; the point of deepest interpenetration is up to 0.68 mm off, on
+    the flat nose top of cross+wing and cw_interrupt case 2)."""
+    case, ours = contact_results[name]
+    patch = case.patches[0]
+    assert abs(ours.semi_hertz.y_contact_rail - patch.y_contact_rail) <= GOAL_POSITION
+    assert abs(ours.semi_hertz.z_contact_rail - patch.z_contact_rail) <= GOAL_POSITION
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_number_of_patches_matches(contact_results, name):
+    case, ours = contact_results[name]
+    assert len(ours.patch_forces) == len(case.patches)
+
+
+@pytest.mark.parametrize("quantity", ["fx", "fs"])
+@pytest.mark.parametrize("name", CASES)
+def test_creep_forces_within_ten_percent(contact_results, name, quantity, request):
+    reason = MISSES.get((name, quantity))
+    if reason:
+        request.applymarker(pytest.mark.xfail(strict=True, reason=reason))
+    case, ours = contact_results[name]
+    reference = getattr(case.patches[0], quantity)
+    assert abs(getattr(ours.semi_hertz, quantity) - reference) <= GOAL_CREEP * abs(reference)

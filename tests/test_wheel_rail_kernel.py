@@ -6,7 +6,8 @@ References:
   CONTACT's reference outputs in test_wheel_rail_contact_references.py);
 - creep: :func:`exudyn_turnout.wheel_rail.creep.polach_creep_forces` (Polach 1999) and its
   small-creepage limit, Kalker's linear theory F_x = -G a b C11 xi (Kalker 1967);
-- normal force: Hertz F = C_H delta^1.5 with the tabulated C_H (Johnson 1985, Eq 4.39-4.41);
+- normal force: the node's law N_ref (delta / DELTA_REF)^n (wheel_rail/nonhertz.py; Hertz
+  F = C_H delta^1.5 with the tabulated C_H where Hertz fits, Johnson 1985, Eq 4.39-4.41);
 - generalised forces: at v = 0 without damping the normal forces derive from the potential
   U = sum 2/5 C_H delta^2.5, so Q = -dU/dq (finite differences).
 """
@@ -191,7 +192,8 @@ def test_plain_track_at_rest_lateral_force_is_n_tan_gamma(plain):
 
 
 def test_normal_forces_derive_from_the_hertz_potential(plain):
-    """At v = 0 the generalised forces on y, z and roll are -dU/dq of U = 2/5 C_H delta^2.5:
+    """At v = 0 the generalised forces on y, z and roll are -dU/dq of U = N delta / (n + 1)
+    (the node's law N = k delta^n; Hertz: 2/5 C_H delta^2.5):
     checks the lateral lever arm, the roll lever arm and the sign conventions together."""
 
     def potential(q):
@@ -202,8 +204,10 @@ def test_normal_forces_derive_from_the_hertz_potential(plain):
                 row = details[k * plain.n_candidates + c]
                 delta = row[_column("delta")]
                 if delta > 0 and row[_column("normal")] > 0:
-                    # C_H from the force itself: N = C_H delta^1.5
-                    total += 0.4 * row[_column("normal")] * delta
+                    # the node's law N = k delta^n (Hertz: n = 1.5) has the potential
+                    # N delta / (n + 1); n from the stiffness dN/d(delta) = n N / delta
+                    n = row[_column("stiffness")] * delta / row[_column("normal")]
+                    total += row[_column("normal")] * delta / (n + 1.0)
         return total
 
     # On the tread.  Towards the flange root (y ~ 5 mm) the contact angle changes by ~0.1
@@ -272,3 +276,38 @@ def test_a_diverged_state_gives_nan_forces_not_a_crash(plain):
     assert np.all(np.isnan(forces))
     forces, _ = _evaluate(plain, np.nan, np.zeros(N_Q))
     assert np.all(np.isnan(forces))
+
+
+def test_normal_force_and_semi_axes_follow_the_node_law(crossing_table):
+    """At a table node the kernel's normal force, stiffness and semi-axes are the node's
+    law (wheel_rail/nonhertz.py), for Hertz and for semi-Hertzian nodes alike."""
+    from exudyn_turnout.wheel_rail.nonhertz import DELTA_REF
+
+    packed = kernel.pack_tables([crossing_table], [-1], [(7, 8)], [(-1.0, 1.0)])
+    fields = {name: k for k, name in enumerate(crossing_table.fields)}
+    values = crossing_table.values
+    kinds = set()
+    for ix in range(0, len(crossing_table.x), 3):
+        for js in range(0, len(crossing_table.shift), 7):
+            q = np.zeros(N_Q)
+            q[0], q[1] = -crossing_table.shift[js], -1e-4
+            _, details = _evaluate(packed, crossing_table.x[ix], q)
+            for c in range(values.shape[2]):
+                node = values[ix, js, c]
+                delta = -(node[fields["gap"]] + np.cos(node[fields["angle"]]) * -1e-4)
+                if node[0] >= 0.5 or delta <= 0.0:
+                    continue
+                ratio = delta / DELTA_REF
+                force = node[fields["patch_force"]] * ratio ** node[fields["patch_force_exponent"]]
+                row = details[c]
+                assert row[_column("normal")] == pytest.approx(force, rel=1e-9)
+                stiffness = node[fields["patch_force_exponent"]] * force / delta
+                assert row[_column("stiffness")] == pytest.approx(stiffness, rel=1e-9)
+                a = node[fields["patch_a"]] * ratio ** node[fields["patch_a_exponent"]]
+                b = node[fields["patch_b"]] * ratio ** node[fields["patch_b_exponent"]]
+                assert row[_column("a")] == pytest.approx(a, rel=1e-9)
+                assert row[_column("b")] == pytest.approx(b, rel=1e-9)
+                assert row[_column("semi_hertzian")] == pytest.approx(node[fields["semi_hertzian"]])
+                kinds.add(round(float(node[fields["semi_hertzian"]]), 6))
+    # Hertz nodes, fully semi-Hertzian nodes and blended ones were all checked
+    assert min(kinds) == 0.0 and max(kinds) == 1.0 and len(kinds) > 2

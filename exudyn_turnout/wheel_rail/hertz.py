@@ -17,7 +17,9 @@ so that ``F = C_H delta^1.5`` with
 ``1 / E* = (1 - nu_1^2) / E_1 + (1 - nu_2^2) / E_2``.  For a sphere of radius R on a plane
 (A = B = 1 / (2R)) this is Hertz's ``(4/3) E* sqrt(R)``.  Conformal points (B <= 0, e.g.
 flange root on the gauge corner) are outside Hertz theory; :func:`curvature_sums` floors
-both sums at a small positive value and says so.
+both sums at a small positive value and says so.  Where a floor bites, or the ellipse is
+wider than the surfaces (a flat flange back on a check-rail face), the contact tables use
+the semi-Hertzian method of :mod:`.nonhertz` instead.
 """
 
 from __future__ import annotations

@@ -9,9 +9,12 @@ call, for every body and every candidate at the current state:
    hold the same contact points, else the cell's first node with the gap carried to the
    query's shift to first order), the normal gap carried to the wheel's lift,
    ``gap + cos(gamma) lift``.
-2. **Normal force** along the contact normal, one-sided Hertz ``C_H delta^1.5`` with the
-   Hertz constant of the node's curvatures (exact Hertz ellipse, :mod:`.hertz`), plus an
-   optional normal damping ``c d(delta)/dt`` (never pulling).
+2. **Normal force** along the contact normal, the node's law
+   ``N_ref (delta / DELTA_REF)^n`` (:mod:`.nonhertz`: exact Hertz ``C_H delta^1.5`` where the
+   Hertz ellipse fits the surfaces, a power law through two Kik-Piotrowski solutions
+   where it does not: flat faces, corners, conformal points), plus an optional normal
+   damping ``c d(delta)/dt`` (never pulling).  The semi-axes for the creep law follow the
+   same per-node law (Hertz's ellipse, or the equivalent ellipse of the KP patch).
 3. **Creepages** at the contact point from the wheelset's motion relative to the rail body
    (derivation below) and **creep forces** by Polach's method (:func:`.creep.polach_creep_forces`,
    the same formulas compiled), with Kalker's coefficients for the node's ellipse shape.
@@ -70,6 +73,7 @@ import numpy as np
 from exudyn_turnout.wheel_rail.creep import kalker_coefficients
 from exudyn_turnout.wheel_rail.hertz import curvature_sums, ellipse_parameter
 from exudyn_turnout.wheel_rail.lead import MAX_LEAD_SINE
+from exudyn_turnout.wheel_rail.nonhertz import DELTA_REF, PATCH_FIELDS
 from exudyn_turnout.wheel_rail.tables import ContactTable
 
 __all__ = [
@@ -83,12 +87,15 @@ __all__ = [
     "hertz_axes_per_root",
 ]
 
-# Node fields of a packed table: the table's 10 fields, sin and cos of the angle, then the
-# Hertz semi-axes per sqrt(delta) and Kalker's coefficients of the node's ellipse shape.
+# Node fields of a packed table: geometry (gap, positions, angle, radius), the normal law
+# N = F_REF (delta / DELTA_REF)^F_EXP, the Hertz constant (kept for outputs), x offset, sin
+# and cos of the angle, the semi-axes at DELTA_REF, Kalker's coefficients of the node's
+# ellipse shape, the semi-axes' exponents, and 1 where the law is semi-Hertzian.
 _GAP, _Y_RAIL, _Z_RAIL, _S_WHEEL, _ANGLE, _RADIUS = 0, 1, 2, 3, 4, 5
-_C_H, _X_OFFSET, _SIN, _COS = 8, 9, 10, 11
-_A_ROOT, _B_ROOT, _C11, _C22, _C23 = 12, 13, 14, 15, 16
-_N_FIELDS = 17
+_F_REF, _F_EXP, _C_H, _X_OFFSET, _SIN, _COS = 6, 7, 8, 9, 10, 11
+_A_REF, _B_REF, _C11, _C22, _C23, _A_EXP, _B_EXP, _SEMI = 12, 13, 14, 15, 16, 17, 18, 19
+_N_FIELDS = 20
+_GEOMETRY = ("gap", "y_rail", "z_rail", "s_wheel", "angle", "radius")
 _EMPTY = 0.5  # m, a gap this large marks an empty candidate slot (tables store 1 m)
 #: m, a candidate slot held by both x nodes of a cell whose contact positions on the rail
 #: differ by less than this is one contact point drifting along x (interpolated along x)
@@ -114,10 +121,12 @@ DETAIL_FIELDS = (
     "delta",  # m, normal penetration (negative: separated)
     "radius",  # m, rolling radius
     "x_offset",  # m, contact point ahead of the wheel centre
-    "a",  # m, Hertz semi-axis, rolling direction
-    "b",  # m, Hertz semi-axis, lateral
+    "a",  # m, semi-axis, rolling direction (Hertz, or KP's equivalent ellipse)
+    "b",  # m, semi-axis, lateral (Hertz, or KP's equivalent ellipse)
     "found",  # weight of the table nodes that hold this point (1: all; 0: not found)
     "carried",  # weight of the table nodes at which it carries load
+    "stiffness",  # N/m, normal contact stiffness dN/d(delta) (elastic part)
+    "semi_hertzian",  # weight of the nodes whose law is Kik-Piotrowski (0: Hertz)
 )
 _N_DETAIL = len(DETAIL_FIELDS)
 
@@ -126,7 +135,7 @@ _N_DETAIL = len(DETAIL_FIELDS)
 class PackedTables:
     """The contact tables of one wheelset's rail bodies as flat arrays (kernel input)."""
 
-    values: np.ndarray  #: flat node values, body after body, (n_x, n_s, n_c, 17) each
+    values: np.ndarray  #: flat node values, body after body, (n_x, n_s, n_c, 20) each
     blendable: np.ndarray  #: flat uint8 cell flags, (n_x, n_s) each
     x: np.ndarray  #: m, section positions, body after body
     #: per body: value offset, blend offset, x offset, n_x, n_s, n_c, side (+1 / -1),
@@ -212,22 +221,48 @@ def hertz_axes_per_root(
 
 
 def _node_fields(table: ContactTable, modulus: float, poisson: float) -> np.ndarray:
-    """(n_x, n_s, n_c, 17) node values: the table's 12 plus Hertz and Kalker per node."""
+    """(n_x, n_s, n_c, 20) node values: geometry, the normal law, semi-axes and Kalker's.
+
+    A table that carries the per-node law of :mod:`.nonhertz` (``PATCH_FIELDS``) is used
+    as it is; an older table (without it) gets Hertz's law from its curvatures.
+    """
     base = table.values
+    index = {name: k for k, name in enumerate(table.fields)}
+    n_public = len(table.fields)
     out = np.zeros(base.shape[:3] + (_N_FIELDS,))
-    out[..., : base.shape[3]] = base
-    valid = base[..., _GAP] < _EMPTY
-    if np.any(valid):
+    for k, name in enumerate(_GEOMETRY):
+        out[..., k] = base[..., index[name]]
+    out[..., _C_H] = base[..., index["hertz_constant"]]
+    out[..., _X_OFFSET] = base[..., index["x_offset"]]
+    out[..., _SIN] = base[..., n_public]
+    out[..., _COS] = base[..., n_public + 1]
+    valid = base[..., index["gap"]] < _EMPTY
+    if not np.any(valid):
+        return out
+    if all(name in index for name in PATCH_FIELDS):
+        law = np.stack([base[..., index[name]][valid] for name in PATCH_FIELDS], axis=-1)
+    else:
         a_sum, b_sum = curvature_sums(
-            base[..., _RADIUS][valid], base[..., _ANGLE][valid], base[..., 7][valid],
-            base[..., 6][valid],
+            base[..., index["radius"]][valid], base[..., index["angle"]][valid],
+            base[..., index["curvature_wheel"]][valid], base[..., index["curvature_rail"]][valid],
         )  # fmt: skip
         a_root, b_root = hertz_axes_per_root(a_sum, b_sum, modulus)
-        out[..., _A_ROOT][valid], out[..., _B_ROOT][valid] = a_root, b_root
-        coefficients = kalker_coefficients(a_root, b_root, poisson)
-        out[..., _C11][valid] = coefficients.c11
-        out[..., _C22][valid] = coefficients.c22
-        out[..., _C23][valid] = coefficients.c23
+        root = np.sqrt(DELTA_REF)
+        law = np.zeros((a_root.size, len(PATCH_FIELDS)))
+        law[:, 0] = base[..., index["hertz_constant"]][valid] * DELTA_REF * root
+        law[:, 1] = 1.5
+        law[:, 2], law[:, 3] = a_root * root, 0.5
+        law[:, 4], law[:, 5] = b_root * root, 0.5
+    for k, target in enumerate((_F_REF, _F_EXP, _A_REF, _A_EXP, _B_REF, _B_EXP, _SEMI)):
+        out[..., target][valid] = law[:, k]
+    a_ref, b_ref = law[:, 2], law[:, 4]
+    usable = (a_ref > 0.0) & (b_ref > 0.0)
+    coefficients = kalker_coefficients(
+        np.where(usable, a_ref, 1.0), np.where(usable, b_ref, 1.0), poisson
+    )
+    out[..., _C11][valid] = coefficients.c11
+    out[..., _C22][valid] = coefficients.c22
+    out[..., _C23][valid] = coefficients.c23
     return out
 
 
@@ -356,7 +391,7 @@ def polach_scalar(xi, eta, phi, a, b, Q, mu, G, c11, c22, c23):  # pragma: no co
 
 @numba.njit(cache=True)
 def _interpolate(values, v_base, n_s, n_c, c, tx, ts, blend, out):  # pragma: no cover (compiled)
-    """Interpolated fields of candidate c into ``out`` (17,); the gap is not yet carried."""
+    """Interpolated fields of candidate c into ``out`` (20,); the gap is not yet carried."""
     row = n_c * _N_FIELDS
     plane = n_s * row
     i00 = v_base + c * _N_FIELDS
@@ -412,12 +447,14 @@ def _point(
     if delta <= 0.0:
         return 0
     delta_t = -(cos_g * lift_t - sin_g * shift_t)
-    normal = fields[_C_H] * delta * math.sqrt(delta) + damping * delta_t
+    # the node's normal law N_ref (delta / DELTA_REF)^n and semi-axes (see .nonhertz)
+    ratio = math.log(delta / DELTA_REF)
+    elastic = fields[_F_REF] * math.exp(fields[_F_EXP] * ratio)
+    normal = elastic + damping * delta_t
     if normal <= 0.0:
         return 0
-    root = math.sqrt(delta)
-    a = fields[_A_ROOT] * root
-    b = fields[_B_ROOT] * root
+    a = fields[_A_REF] * math.exp(fields[_A_EXP] * ratio)
+    b = fields[_B_REF] * math.exp(fields[_B_EXP] * ratio)
     fx = 0.0
     ft = 0.0
     xi = 0.0
@@ -455,6 +492,8 @@ def _point(
     details[row, 13] += weight * spin
     details[row, 17] += weight * a
     details[row, 18] += weight * b
+    details[row, 21] += weight * fields[_F_EXP] * elastic / delta
+    details[row, 22] += weight * fields[_SEMI]
     return 1
 
 
@@ -607,7 +646,7 @@ def contact_forces(
                     details[row, f] /= found
             carried = details[row, 20]
             if carried > 0.0:
-                for f in (11, 12, 13, 17, 18):
+                for f in (11, 12, 13, 17, 18, 21, 22):
                     details[row, f] /= carried
     return loaded
 

@@ -44,6 +44,7 @@ from exudyn_turnout.wheel_rail.geometry import (
     surface_derivatives,
 )
 from exudyn_turnout.wheel_rail.hertz import curvature_sums, effective_modulus, hertz_constant
+from exudyn_turnout.wheel_rail.nonhertz import PATCH_FIELDS, patch_law_fields
 from exudyn_turnout.wheel_rail.sections import SectionGrid
 
 __all__ = [
@@ -59,7 +60,9 @@ __all__ = [
     "normal_force",
 ]
 
-_FORMAT_VERSION = "wheel_rail-table-11-slices"  # 11: slices interpolated along u as CONTACT
+# 10: key and checksum stored in the file; 11: slices interpolated along u as CONTACT and a
+# per-node normal-contact law (semi-Hertzian where the Hertz ellipse does not fit)
+_FORMAT_VERSION = "wheel_rail-table-11"
 _FIELDS = (
     "gap",
     "y_rail",
@@ -71,6 +74,7 @@ _FIELDS = (
     "curvature_wheel",
     "hertz_constant",
     "x_offset",
+    *PATCH_FIELDS,  # normal-contact law per node: Hertz where it fits, else Kik-Piotrowski
 )
 _SIN = len(_FIELDS)  # stored after the public fields: sin(angle) and cos(angle), for the
 _COS = _SIN + 1  # gap's first-order change with shift and lift
@@ -243,6 +247,9 @@ def _build_values(
             prominence=settings.prominence,
             max_gap=settings.max_gap,
         )
+        laws = patch_law_fields(
+            rail, prepared_wheel, shifts, batch, settings.young, settings.poisson
+        )
         for j, found in enumerate(batch):
             n = len(found.gap)
             count[i, j] = n
@@ -269,6 +276,7 @@ def _build_values(
                 np.nan_to_num(found.curvature_wheel),
                 np.zeros(n),
                 x_offset,
+                *laws[j].T,
                 np.sin(found.angle),
                 np.cos(found.angle),
             )
