@@ -1,0 +1,158 @@
+"""The same passage on several tracks: their peaks side by side and one overlaid figure.
+
+:class:`PassageComparison` holds the results of one scenario run on several tracks
+(2-layer, 3-layer, FE), as :func:`~exudyn_turnout.passage.run.compare_tracks` returns
+them and ``exudyn-turnout simulate --track 2-layer,3-layer`` writes them: ``plot()`` overlays
+them in the layout of the paper's Figs 7 and 8, ``record()`` is ``comparison.json``,
+``table()`` the console table, with each track's peak against the 2-layer track's in %
+(the paper's Section 4 compares the 3-layer with the 2-layer model this way).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass
+
+from exudyn_turnout.passage.results import PassageResult
+
+__all__ = ["PEAK_KEYS", "PassageComparison", "difference_percent"]
+
+#: Summary keys compared, the right wheel's peaks as the paper's Figs 7, 8 (N).
+PEAK_KEYS = ("peak_Fz_switch_N", "peak_Fz_crossing_N", "peak_Fy_switch_N", "peak_Fy_crossing_N")
+
+
+def difference_percent(value: float, reference: float) -> float | None:
+    """How much larger a peak's magnitude is than the reference's: 100 (|v| - |r|) / |r|.
+
+    Magnitudes, so that a lateral peak of -15 kN against -22 kN is a smaller peak (-32 %),
+    whatever the sign convention of the lateral force.
+
+    Parameters
+    ----------
+    value, reference : float
+        The peak and the reference peak (same unit).
+
+    Returns
+    -------
+    float or None
+        %; None where either is missing (not finite) or the reference is zero.
+    """
+    if not (math.isfinite(value) and math.isfinite(reference)) or reference == 0.0:
+        return None
+    return 100.0 * (abs(value) - abs(reference)) / abs(reference)
+
+
+def _peak(result: PassageResult, key: str) -> float:
+    value = result.summary.get(key)
+    return float(value) if isinstance(value, (int, float)) else math.nan
+
+
+@dataclass(frozen=True)
+class PassageComparison(Mapping):
+    """One scenario on several tracks: track name -> PassageResult, in run order.
+
+    A read-only mapping (``comparison["3-layer"]``) with the figure, table and record of
+    the comparison.
+    """
+
+    #: track name ("2-layer", "3-layer", "fe") -> its result, in run order (-).
+    results: Mapping[str, PassageResult]
+
+    def __getitem__(self, track: str) -> PassageResult:
+        return self.results[track]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self.results)
+
+    def __len__(self) -> int:
+        return len(self.results)
+
+    @property
+    def reference(self) -> str | None:
+        """The track the others are compared with: "2-layer" if run, else None."""
+        return "2-layer" if "2-layer" in self.results else None
+
+    def differences(self) -> dict[str, dict[str, float | None]]:
+        """Each other track's peak magnitudes against the reference track's, in %.
+
+        Returns
+        -------
+        dict
+            ``{"3-layer vs 2-layer": {"peak_Fz_crossing_N": -9.8, ...}}`` (None where a
+            peak is missing, e.g. a region outside the run); empty without a reference.
+        """
+        ref = self.reference
+        if ref is None:
+            return {}
+        out = {}
+        for track, result in self.results.items():
+            if track == ref:
+                continue
+            out[f"{track} vs {ref}"] = {
+                key: difference_percent(_peak(result, key), _peak(self.results[ref], key))
+                for key in PEAK_KEYS
+            }
+        return out
+
+    def record(self) -> dict:
+        """The comparison as ``comparison.json``: peaks per track (N) and differences (%).
+
+        Returns
+        -------
+        dict
+            ``tracks``: per track the :data:`PEAK_KEYS` (N, None where not reached),
+            ``wall_time_s`` (the first track's includes the process's one-time warm-up)
+            and ``simulated_time_s``; ``difference_percent``: :meth:`differences` (peak
+            magnitudes, :func:`difference_percent`); ``wheel``: "right".
+        """
+        tracks: dict[str, dict[str, float | None]] = {}
+        for track, result in self.results.items():
+            row: dict[str, float | None] = {}
+            for key in PEAK_KEYS + ("wall_time_s", "simulated_time_s"):
+                value = _peak(result, key)
+                row[key] = value if math.isfinite(value) else None
+            tracks[track] = row
+        return {"wheel": "right", "tracks": tracks, "difference_percent": self.differences()}
+
+    def table(self) -> str:
+        """Plain-text table: peaks (kN) per track, then each track against the reference (%).
+
+        No wall times: in one process the first run also pays the one-time warm-up
+        (compilation, contact tables), so they would compare the order, not the tracks.
+
+        Returns
+        -------
+        str
+        """
+        heads = [key[len("peak_") : -len("_N")] for key in PEAK_KEYS]
+        names = list(self.results) + list(self.differences())
+        width = max(len(n) for n in names + ["right wheel"]) + 2
+        lines = [f"{'right wheel':<{width}}" + "".join(f"{h:>14}" for h in heads)]
+        for track, result in self.results.items():
+            cells = []
+            for key in PEAK_KEYS:
+                value = _peak(result, key)
+                cells.append(f"{value / 1e3:>11.1f} kN" if math.isfinite(value) else f"{'-':>14}")
+            lines.append(f"{track:<{width}}" + "".join(cells))
+        for name, diffs in self.differences().items():
+            cells = [f"{d:>+13.1f}%" if d is not None else f"{'-':>14}" for d in diffs.values()]
+            lines.append(f"{name:<{width}}" + "".join(cells))
+        return "\n".join(lines)
+
+    def plot(self, wheel: str = "right", title: str | None = None):
+        """Every track's contact forces overlaid, at the switch and the crossing (Figs 7, 8).
+
+        Parameters
+        ----------
+        wheel : {"right", "left"}
+        title : str, optional
+
+        Returns
+        -------
+        (figure, axes)
+            From :func:`exudyn_turnout.plotting.curves.plot_passage_forces`.
+        """
+        from exudyn_turnout.plotting.curves import plot_passage_forces
+
+        return plot_passage_forces(list(self.results.values()), wheel=wheel, title=title)
