@@ -16,10 +16,27 @@ from dataclasses import dataclass
 
 from exudyn_turnout.passage.results import PassageResult
 
-__all__ = ["PEAK_KEYS", "PassageComparison", "difference_percent"]
+__all__ = ["PEAK_KEYS", "PassageComparison", "difference_percent", "peak_keys"]
 
 #: Summary keys compared, the right wheel's peaks as the paper's Figs 7, 8 (N).
 PEAK_KEYS = ("peak_Fz_switch_N", "peak_Fz_crossing_N", "peak_Fy_switch_N", "peak_Fy_crossing_N")
+
+
+def peak_keys(wheel: str = "right") -> tuple[str, ...]:
+    """The summary keys of a wheel's peaks at the switch and the crossing (N).
+
+    Parameters
+    ----------
+    wheel : {"right", "left"}
+
+    Returns
+    -------
+    tuple of str
+        :data:`PEAK_KEYS` for the right wheel; ``peak_Fz_switch_left_N``... for the left.
+    """
+    if wheel not in ("right", "left"):
+        raise ValueError(f"wheel must be right or left, got {wheel!r}")
+    return PEAK_KEYS if wheel == "right" else tuple(k[:-2] + "_left_N" for k in PEAK_KEYS)
 
 
 def difference_percent(value: float, reference: float) -> float | None:
@@ -73,8 +90,12 @@ class PassageComparison(Mapping):
         """The track the others are compared with: "2-layer" if run, else None."""
         return "2-layer" if "2-layer" in self.results else None
 
-    def differences(self) -> dict[str, dict[str, float | None]]:
+    def differences(self, wheel: str = "right") -> dict[str, dict[str, float | None]]:
         """Each other track's peak magnitudes against the reference track's, in %.
+
+        Parameters
+        ----------
+        wheel : {"right", "left"}
 
         Returns
         -------
@@ -91,52 +112,64 @@ class PassageComparison(Mapping):
                 continue
             out[f"{track} vs {ref}"] = {
                 key: difference_percent(_peak(result, key), _peak(self.results[ref], key))
-                for key in PEAK_KEYS
+                for key in peak_keys(wheel)
             }
         return out
 
-    def record(self) -> dict:
+    def record(self, wheel: str = "right") -> dict:
         """The comparison as ``comparison.json``: peaks per track (N) and differences (%).
+
+        Parameters
+        ----------
+        wheel : {"right", "left"}
+            Whose peaks (default the right wheel, as the paper's Figs 7, 8).
 
         Returns
         -------
         dict
-            ``tracks``: per track the :data:`PEAK_KEYS` (N, None where not reached),
+            ``tracks``: per track the :func:`peak_keys` (N, None where not reached),
             ``wall_time_s`` (the first track's includes the process's one-time warm-up)
             and ``simulated_time_s``; ``difference_percent``: :meth:`differences` (peak
-            magnitudes, :func:`difference_percent`); ``wheel``: "right".
+            magnitudes, :func:`difference_percent`); ``wheel``.
         """
         tracks: dict[str, dict[str, float | None]] = {}
         for track, result in self.results.items():
             row: dict[str, float | None] = {}
-            for key in PEAK_KEYS + ("wall_time_s", "simulated_time_s"):
+            for key in peak_keys(wheel) + ("wall_time_s", "simulated_time_s"):
                 value = _peak(result, key)
                 row[key] = value if math.isfinite(value) else None
             tracks[track] = row
-        return {"wheel": "right", "tracks": tracks, "difference_percent": self.differences()}
+        return {"wheel": wheel, "tracks": tracks, "difference_percent": self.differences(wheel)}
 
-    def table(self) -> str:
+    def table(self, wheel: str = "right") -> str:
         """Plain-text table: peaks (kN) per track, then each track against the reference (%).
 
         No wall times: in one process the first run also pays the one-time warm-up
         (compilation, contact tables), so they would compare the order, not the tracks.
 
+        Parameters
+        ----------
+        wheel : {"right", "left"}
+            Whose peaks; named in the table's first line.
+
         Returns
         -------
         str
         """
-        heads = [key[len("peak_") : -len("_N")] for key in PEAK_KEYS]
-        names = list(self.results) + list(self.differences())
-        width = max(len(n) for n in names + ["right wheel"]) + 2
-        lines = [f"{'right wheel':<{width}}" + "".join(f"{h:>14}" for h in heads)]
+        keys = peak_keys(wheel)
+        heads = [key[len("peak_") :].replace("_left", "")[: -len("_N")] for key in keys]
+        diffs = self.differences(wheel)
+        names = list(self.results) + list(diffs) + [f"{wheel} wheel"]
+        width = max(len(n) for n in names) + 2
+        lines = [f"{wheel + ' wheel':<{width}}" + "".join(f"{h:>14}" for h in heads)]
         for track, result in self.results.items():
             cells = []
-            for key in PEAK_KEYS:
+            for key in keys:
                 value = _peak(result, key)
                 cells.append(f"{value / 1e3:>11.1f} kN" if math.isfinite(value) else f"{'-':>14}")
             lines.append(f"{track:<{width}}" + "".join(cells))
-        for name, diffs in self.differences().items():
-            cells = [f"{d:>+13.1f}%" if d is not None else f"{'-':>14}" for d in diffs.values()]
+        for name, row in diffs.items():
+            cells = [f"{d:>+13.1f}%" if d is not None else f"{'-':>14}" for d in row.values()]
             lines.append(f"{name:<{width}}" + "".join(cells))
         return "\n".join(lines)
 
