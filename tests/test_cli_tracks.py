@@ -177,3 +177,11 @@ def test_status_line_plain_in_a_log_and_a_bar_on_a_terminal():
     status.run("y")(0.5, 1.0)
     status.end()
     assert quiet.getvalue() == ""
+
+
+def test_a_full_vehicle_window_names_the_front_wheelset():
+    run = _fake(60.0, 70.0)
+    columns = dict(run.columns, x_ws2_m=run.columns["x_m"] - 2.5)  # a second wheelset
+    vehicle = PassageResult(run.settings, columns, run.summary)
+    note = missing_region_note([vehicle], "crossing")
+    assert note == "crossing 44.29-51 m outside the front wheelset's x range 60-70 m"
