@@ -142,8 +142,10 @@ def decimate_min_max(x, y, points: int = FIGURE_POINTS) -> tuple[np.ndarray, np.
     The samples are split into ``points // 2`` consecutive buckets of equal count; of each
     bucket the smallest and the largest value are kept, in their order. The drawn line
     then reaches every peak of the full curve (a plain stride would miss a peak between
-    two kept samples) at a fraction of the drawing time. Curves of at most ``points``
-    samples are returned as they are.
+    two kept samples). Curves of at most ``points`` samples are returned as they are.
+    Measured on the default passage (23,402 samples): no measurable change in the time
+    of a PNG (Agg simplifies dense paths itself); what it saves is the size of vector
+    figures (PDF, SVG) and of long runs' figures.
 
     Parameters
     ----------

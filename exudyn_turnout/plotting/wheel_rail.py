@@ -19,7 +19,6 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_turnout.plotting.backend import pyplot
-from exudyn_turnout.plotting.curves import FIGURE_POINTS
 from exudyn_turnout.wheel_rail.geometry import WheelGrid, WheelsetContact, wheel_heights_on_grid
 from exudyn_turnout.wheel_rail.sections import SectionGrid, section_at
 from exudyn_turnout.wheel_rail.transfer import DipSummary, WheelPath
@@ -174,7 +173,6 @@ def plot_contact_band_along_x(
     path: str | Path,
     title: str = "",
     x_ranges: list | None = None,
-    points: int = FIGURE_POINTS,
 ) -> Path:
     """The classic contact-band plot: contact positions on the rail and on the wheel along x.
 
@@ -198,10 +196,6 @@ def plot_contact_band_along_x(
         Figure title.
     x_ranges : list of (float, float), optional
         m, one column of panels per x range (e.g. switch and crossing); default: all x.
-    points : int
-        Most points drawn per rail body and panel: a denser band is thinned to every k-th
-        point along x (a band of 20,000 points looks the same with 2,000, and draws in a
-        fraction of the time).
 
     Returns
     -------
@@ -219,10 +213,9 @@ def plot_contact_band_along_x(
     for column, (low, high) in enumerate(ranges):
         inside = (x >= low) & (x <= high) & np.isfinite(y_rail) & np.isfinite(s_wheel)
         for label in labels:
-            mine = np.flatnonzero(inside & (body == label))
-            if not len(mine):
+            mine = inside & (body == label)
+            if not np.any(mine):
                 continue
-            mine = mine[:: -(-len(mine) // max(int(points), 1))]  # every k-th, k = ceil(n / points)
             for row, values in enumerate((y_rail, s_wheel)):
                 axes[row][column].plot(
                     x[mine],
