@@ -155,7 +155,7 @@ def test_status_line_plain_in_a_log_and_a_bar_on_a_terminal():
     status.end()
     lines = log.getvalue().splitlines()
     assert "\r" not in log.getvalue()
-    assert lines[0] == "preparing" and lines[-1].startswith("3-layer track: ran in")
+    assert lines[0] == "preparing" and lines[-1].startswith("3-layer track: set up and ran in")
     assert [line.split(":")[1].split("%")[0].strip() for line in lines[1:-1]] == [
         "0",
         "26",

@@ -150,7 +150,7 @@ class StatusLine:
 
         if self.quiet or self._label is None:
             return
-        self._line(f"{self._label}: ran in {time.perf_counter() - self._start:.1f} s")
+        self._line(f"{self._label}: set up and ran in {time.perf_counter() - self._start:.1f} s")
         self._label = None
 
     def clear(self) -> None:
