@@ -148,22 +148,25 @@ class _Tty(io.StringIO):
 def test_status_line_plain_in_a_log_and_a_bar_on_a_terminal():
     log = io.StringIO()
     status = StatusLine(log)
-    status.stage("preparing")
+    status.stage("writing")
+    status.stage("contact tables", setup=True)
     show = status.run("3-layer track")
+    assert log.getvalue() == "writing\n"  # the set-up is printed when it has ended
     for i in range(51):
         show(i / 50, 2.0 * i)
     status.end()
     lines = log.getvalue().splitlines()
     assert "\r" not in log.getvalue()
-    assert lines[0] == "preparing" and lines[-1].startswith("3-layer track: set up and ran in")
-    assert [line.split(":")[1].split("%")[0].strip() for line in lines[1:-1]] == [
+    assert lines[1].startswith("3-layer track: set up in") and "(contact tables)" in lines[1]
+    assert lines[-1].startswith("3-layer track: set up and ran in")
+    assert [line.split(":")[1].split("%")[0].strip() for line in lines[2:-1]] == [
         "0",
         "26",
         "50",
         "76",
         "100",
     ]  # every 25 %, at the first report past each quarter
-    assert "s left" in lines[2]
+    assert "s left" in lines[3]
     tty = _Tty()
     status = StatusLine(tty)
     bar = status.run("3-layer track")
@@ -171,6 +174,13 @@ def test_status_line_plain_in_a_log_and_a_bar_on_a_terminal():
     bar(0.5, 10.0)
     status.end()
     assert "\r" in tty.getvalue() and "[###############" in tty.getvalue()
+    failed = io.StringIO()
+    status = StatusLine(failed)
+    status.stage("contact tables", setup=True)
+    status.run("3-layer track")
+    status.clear()  # bad input found in the set-up: the error will be the one line
+    status.end()
+    assert failed.getvalue() == ""
     quiet = io.StringIO()
     status = StatusLine(quiet, quiet=True)
     status.stage("x")

@@ -66,8 +66,10 @@ def track_list(text: str) -> tuple[str, ...]:
 class StatusLine:
     """What a passage command is doing, on stderr: stages, then the run with an ETA.
 
-    On a terminal one line is rewritten (carriage return); elsewhere (a log file, a pipe)
-    plain lines are printed: each stage, and the run at 0, 25, 50, 75 and 100 %.
+    On a terminal one line is rewritten (carriage return) and removed when the command's
+    own output or an error follows. Elsewhere (a log file, a pipe) plain lines are printed:
+    the set-up when it has ended (with its time, so that bad input or a failed set-up is
+    still the one line of the error), the run at 0, 25, 50, 75 and 100 %, and the end.
     ``quiet`` prints nothing.
 
     Parameters
@@ -86,6 +88,7 @@ class StatusLine:
         self._next = 0.0  # the next fraction a plain line is printed at
         self._label: str | None = None  # the run under way
         self._start = 0.0  # s, its perf_counter at start
+        self._setup: str | None = None  # a set-up stage, printed in a log when it has ended
 
     def _line(self, text: str, final: bool = True) -> None:
         if self.quiet:
@@ -97,13 +100,19 @@ class StatusLine:
             self.stream.write(text + "\n")
         self.stream.flush()
 
-    def stage(self, text: str) -> None:
+    def stage(self, text: str, setup: bool = False) -> None:
         """Say what is being done now (one line).
 
         Parameters
         ----------
         text : str
+        setup : bool
+            The set-up of a run (:meth:`run` follows): in a log printed when the run's
+            first progress arrives, with the time it took.
         """
+        if setup and not self.tty:
+            self._setup = text
+            return
         self._line(text, final=not self.tty)
 
     def run(self, label: str):
@@ -128,6 +137,9 @@ class StatusLine:
             now = time.perf_counter()
             if not start:
                 start.append((now, fraction))
+                if self._setup is not None:
+                    self._line(f"{label}: set up in {now - self._start:.1f} s ({self._setup})")
+                    self._setup = None
             t0, f0 = start[0]
             eta = ""
             if fraction > f0 + 0.02 and fraction < 1.0:
@@ -154,7 +166,9 @@ class StatusLine:
         self._label = None
 
     def clear(self) -> None:
-        """Remove a terminal line left open (the command's own output follows)."""
+        """Remove a terminal line left open and forget a set-up not yet printed (the
+        command's own output, or an error, follows)."""
+        self._setup, self._label = None, None
         if self._open and not self.quiet:
             self.stream.write("\r\x1b[K")
             self.stream.flush()
@@ -241,6 +255,7 @@ def _simulate_command(args: argparse.Namespace) -> int:
         runs.append((track, settings))
     if model is not None and base.contact != "profile":
         raise UsageError("--contact height-table: the full vehicle has the profile contact only")
+    _check_runs(runs, turnout, vehicle, model)
     if base.contact == "profile":  # the rail geometry, checked before anything runs
         from exudyn_turnout.wheel_rail.turnout_design import rail_geometry
         from exudyn_turnout.wheel_rail.turnout_sections import route_segments
@@ -309,6 +324,22 @@ def _simulate_command(args: argparse.Namespace) -> int:
         raise
     _end_running(out)
     return 0
+
+
+def _check_runs(runs, turnout, vehicle, model) -> None:
+    """Check every run's settings before anything is printed (bad input: one line, exit 2)."""
+    from exudyn_turnout.inputs.vehicle import load_vehicle
+    from exudyn_turnout.passage.common import check_settings, check_vehicle_settings
+    from exudyn_turnout.passage.results import PassageError
+
+    try:
+        for _, settings in runs:
+            if model is None:
+                check_settings(settings, turnout, vehicle)
+            else:
+                check_vehicle_settings(settings, turnout, model, load_vehicle())
+    except PassageError as err:
+        raise UsageError(str(err)) from None
 
 
 def _write_comparison(args: argparse.Namespace, out: Path, results: dict, title: str) -> None:
@@ -598,16 +629,21 @@ def _run_and_write(
     status = StatusLine(sys.stderr, quiet=getattr(args, "quiet", False))
     status.stage(
         f"preparing the {label}: contact tables of the {args.route} route (built on the "
-        f"first run only, cached in {_cache_place()}), the Exudyn model, the static state"
+        f"first run only, cached in {_cache_place()}), the Exudyn model, the static state",
+        setup=True,
     )
     try:
         result = simulate(status.run(label))
     except PassageFailure as err:
+        status.clear()
         raise RunFailure(str(err)) from None
     except PassageError as err:
+        status.clear()
         raise UsageError(str(err)) from None
-    finally:
-        status.end()
+    except BaseException:
+        status.clear()
+        raise
+    status.end()
     status.stage(f"writing {out}")
     settings = dict(
         extra_settings or {},
