@@ -125,6 +125,13 @@ def test_comparison_overlays_and_tabulates():
     table = comparison.table()
     assert "+50.0%" in table  # 3 * F against 2 * F
     assert comparison.record()["tracks"]["3-layer"]["peak_Fz_switch_N"] is None
+    with_fe = PassageComparison(
+        {"2-layer": _fake(40, 50, 2), "3-layer": _fake(40, 50, 3), "fe": _fake(40, 50, 4)}
+    )
+    assert with_fe.pairs() == [("3-layer", "2-layer"), ("2-layer", "fe"), ("3-layer", "fe")]
+    diffs = with_fe.differences()
+    assert diffs["2-layer vs fe"]["peak_Fz_crossing_N"] == pytest.approx(-50.0)  # 2F vs 4F
+    assert PassageComparison({"3-layer": _fake(40, 50, 3)}).differences() == {}
 
 
 def test_decimation_keeps_every_peak():

@@ -5,7 +5,8 @@
 them and ``exudyn-turnout simulate --track 2-layer,3-layer`` writes them: ``plot()`` overlays
 them in the layout of the paper's Figs 7 and 8, ``record()`` is ``comparison.json``,
 ``table()`` the console table, with each track's peak against the 2-layer track's in %
-(the paper's Section 4 compares the 3-layer with the 2-layer model this way).
+(the paper's Section 4 compares the 3-layer with the 2-layer model this way) and, where
+the FE reference was run, against the FE's.
 """
 
 from __future__ import annotations
@@ -85,13 +86,24 @@ class PassageComparison(Mapping):
     def __len__(self) -> int:
         return len(self.results)
 
-    @property
-    def reference(self) -> str | None:
-        """The track the others are compared with: "2-layer" if run, else None."""
-        return "2-layer" if "2-layer" in self.results else None
+    def pairs(self) -> list[tuple[str, str]]:
+        """The (track, reference) pairs compared: each co-running track against the 2-layer
+        track (the paper's Section 4), and each co-running track against the FE reference
+        where it was run.
+
+        Returns
+        -------
+        list of (str, str)
+        """
+        out = []
+        if "2-layer" in self.results:
+            out += [(t, "2-layer") for t in self.results if t not in ("2-layer", "fe")]
+        if "fe" in self.results:
+            out += [(t, "fe") for t in self.results if t != "fe"]
+        return out
 
     def differences(self, wheel: str = "right") -> dict[str, dict[str, float | None]]:
-        """Each other track's peak magnitudes against the reference track's, in %.
+        """Peak magnitudes of each track against its reference (:meth:`pairs`), in %.
 
         Parameters
         ----------
@@ -100,21 +112,18 @@ class PassageComparison(Mapping):
         Returns
         -------
         dict
-            ``{"3-layer vs 2-layer": {"peak_Fz_crossing_N": -9.8, ...}}`` (None where a
-            peak is missing, e.g. a region outside the run); empty without a reference.
+            ``{"3-layer vs 2-layer": {"peak_Fz_crossing_N": -21.4, ...}}`` (None where a
+            peak is missing, e.g. a region outside the run); empty for one track.
         """
-        ref = self.reference
-        if ref is None:
-            return {}
-        out = {}
-        for track, result in self.results.items():
-            if track == ref:
-                continue
-            out[f"{track} vs {ref}"] = {
-                key: difference_percent(_peak(result, key), _peak(self.results[ref], key))
+        return {
+            f"{track} vs {ref}": {
+                key: difference_percent(
+                    _peak(self.results[track], key), _peak(self.results[ref], key)
+                )
                 for key in peak_keys(wheel)
             }
-        return out
+            for track, ref in self.pairs()
+        }
 
     def record(self, wheel: str = "right") -> dict:
         """The comparison as ``comparison.json``: peaks per track (N) and differences (%).
