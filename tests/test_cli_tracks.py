@@ -156,7 +156,7 @@ def test_status_line_plain_in_a_log_and_a_bar_on_a_terminal():
     log = io.StringIO()
     status = StatusLine(log)
     status.stage("writing")
-    status.stage("contact tables", setup=True)
+    status.setup("3-layer track", "contact tables")
     show = status.run("3-layer track")
     assert log.getvalue() == "writing\n"  # the set-up is printed when it has ended
     for i in range(51):
@@ -176,6 +176,8 @@ def test_status_line_plain_in_a_log_and_a_bar_on_a_terminal():
     assert "s left" in lines[3]
     tty = _Tty()
     status = StatusLine(tty)
+    status.setup("3-layer track", "contact tables")
+    assert tty.getvalue().endswith("preparing the 3-layer track: contact tables")
     bar = status.run("3-layer track")
     bar(0.0, 0.0)
     bar(0.5, 10.0)
@@ -183,7 +185,7 @@ def test_status_line_plain_in_a_log_and_a_bar_on_a_terminal():
     assert "\r" in tty.getvalue() and "[###############" in tty.getvalue()
     failed = io.StringIO()
     status = StatusLine(failed)
-    status.stage("contact tables", setup=True)
+    status.setup("3-layer track", "contact tables")
     status.run("3-layer track")
     status.clear()  # bad input found in the set-up: the error will be the one line
     status.end()

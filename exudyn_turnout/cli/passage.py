@@ -100,20 +100,32 @@ class StatusLine:
             self.stream.write(text + "\n")
         self.stream.flush()
 
-    def stage(self, text: str, setup: bool = False) -> None:
+    def stage(self, text: str) -> None:
         """Say what is being done now (one line).
 
         Parameters
         ----------
         text : str
-        setup : bool
-            The set-up of a run (:meth:`run` follows): in a log printed when the run's
-            first progress arrives, with the time it took.
         """
-        if setup and not self.tty:
-            self._setup = text
-            return
         self._line(text, final=not self.tty)
+
+    def setup(self, label: str, text: str) -> None:
+        """Say what a run's set-up does (:meth:`run` follows).
+
+        On a terminal at once ("preparing the <label>: <text>"); in a log when the run's
+        first progress arrives, with the time it took ("<label>: set up in 2.1 s (<text>)").
+
+        Parameters
+        ----------
+        label : str
+            What runs, e.g. "3-layer track".
+        text : str
+            What the set-up does.
+        """
+        if self.tty:
+            self._line(f"preparing the {label}: {text}", final=False)
+        else:
+            self._setup = text
 
     def run(self, label: str):
         """A progress callback for a passage, ``callback(fraction, x)``.
@@ -627,10 +639,10 @@ def _run_and_write(
     from exudyn_turnout.provenance import provenance
 
     status = StatusLine(sys.stderr, quiet=getattr(args, "quiet", False))
-    status.stage(
-        f"preparing the {label}: contact tables of the {args.route} route (built on the "
-        f"first run only, cached in {_cache_place()}), the Exudyn model, the static state",
-        setup=True,
+    status.setup(
+        label,
+        f"contact tables of the {args.route} route (built on the first run only, cached in "
+        f"{_cache_place()}), the Exudyn model, the static state",
     )
     try:
         result = simulate(status.run(label))
