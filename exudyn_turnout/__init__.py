@@ -63,6 +63,7 @@ _LAZY = {
     "FEOptions": "exudyn_turnout.fe.mesh",
     "simulate_passage": "exudyn_turnout.passage.run",
     "compare_layers": "exudyn_turnout.passage.run",
+    "compare_tracks": "exudyn_turnout.passage.run",
     "packaged_vehicle": "exudyn_turnout.inputs.vehicles",
     "load_vehicle_model": "exudyn_turnout.inputs.vehicle_model",
     "VehicleModel": "exudyn_turnout.inputs.vehicle_model",

@@ -99,3 +99,25 @@ def test_frf_imports_neither_exudyn_nor_matplotlib(tmp_path):
         [sys.executable, "-c", code], capture_output=True, text=True, check=True
     ).stdout
     assert out.strip().splitlines()[-1] == "0 False False"
+
+
+@pytest.mark.slow
+def test_with_fe_overlays_the_fe_receptance(capsys, tmp_path, turnout):
+    """--with-fe: the FE receptance at the same x, rail and direction, beside the CSV and in
+    the plot; its values are fe_receptance's (the FE reference, exudyn_turnout.fe.frf)."""
+    from exudyn_turnout.fe.frf import fe_receptance
+
+    out, plot = tmp_path / "h.csv", tmp_path / "h.png"
+    code, stdout, err = _run(
+        capsys, *BASE, "--x", "47.2", "--n", "4", "--with-fe", "--out", str(out),
+        "--plot", str(plot),
+    )  # fmt: skip
+    assert code == 0, err
+    fe_csv = tmp_path / "h_fe.csv"
+    data = np.loadtxt(fe_csv, delimiter=",", skiprows=1)
+    assert data.shape == (4, 4)
+    expected = fe_receptance(turnout, "r2", "vertical", 47.2, data[:, 0])
+    np.testing.assert_allclose(data[:, 1] + 1j * data[:, 2], expected.H, rtol=1e-6)
+    assert (tmp_path / "h_fe.meta.json").exists()
+    assert plot.read_bytes()[:4] == b"\x89PNG"
+    assert "wrote " + str(fe_csv) in stdout and "3-layer/FE = " in stdout

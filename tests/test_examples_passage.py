@@ -1,12 +1,18 @@
-"""The passage examples run (short x range) and their two models differ where they should.
+"""The passage examples run (short x range), tell the truth about time, and keep to the
+route's permitted speed.
 
 Reference: the paper's Section 4 finding that the two-layer model overestimates the
 crossing impact; here checked as a property of our models (3-layer peak < 2-layer peak at
-the crossing nose), not as a number from the paper.
+the crossing nose), not as a number from the paper. The diverging route's permitted speed,
+80 km/h, is the packaged turnout file's (data/uic60_760_1_15.toml,
+``routes.diverging.permitted_speed_kmh``).
 """
 
 import importlib.util
+import warnings
 from pathlib import Path
+
+import pytest
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -18,15 +24,37 @@ def _load(name):
     return module
 
 
-def test_through_example(tmp_path, capsys):
-    results = _load("passage_through").run(tmp_path, x_start=46.4, x_end=48.4)
+@pytest.mark.slow
+def test_through_example(tmp_path, capsys, monkeypatch):
+    example = _load("passage_through")
+    order = []
+    warm = example.warm_up
+    monkeypatch.setattr(example, "warm_up", lambda *a: order.append("warm-up") or warm(*a))
+    compare = example.compare_tracks
+    monkeypatch.setattr(
+        example, "compare_tracks", lambda *a, **k: order.append("models") or compare(*a, **k)
+    )
+    comparison = example.run(tmp_path, x_start=46.4, x_end=48.4)
+    assert order == ["warm-up", "models"]  # the models are timed after the warm-up
     assert (tmp_path / "through_2_vs_3_layers.png").exists()
-    assert results[3].summary["peak_Fz_crossing_N"] < results[2].summary["peak_Fz_crossing_N"]
-    assert "2-layer, through" in capsys.readouterr().out
+    two, three = comparison["2-layer"], comparison["3-layer"]
+    assert three.summary["peak_Fz_crossing_N"] < two.summary["peak_Fz_crossing_N"]
+    assert three.settings.speed_kmh == 100.0  # no permitted speed on the through route
+    out = capsys.readouterr().out
+    assert out.index("warm-up") < out.index("3-layer vs 2-layer")
+    assert "after the warm-up" in out and "peaks of the right wheel" in out
 
 
-def test_diverging_example(tmp_path):
-    results = _load("passage_diverging").run(tmp_path, x_start=20.0, x_end=21.0)
+def test_diverging_example_within_the_permitted_speed(tmp_path, capsys):
+    example = _load("passage_diverging")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a speed warning would fail here
+        comparison = example.run(tmp_path, x_start=20.0, x_end=21.0, wheel="left")
     assert (tmp_path / "diverging_2_vs_3_layers.png").exists()
-    assert set(results) == {2, 3}
-    assert all(r.settings.route == "diverging" for r in results.values())
+    assert set(comparison) == {"2-layer", "3-layer"}
+    assert all(r.settings.route == "diverging" for r in comparison.values())
+    assert all(r.settings.speed_kmh == 80.0 for r in comparison.values())
+    out = capsys.readouterr().out
+    # the wheel the console names is the wheel plotted
+    assert "peaks of the left wheel" in out and "(left wheel)" in out
+    assert "left wheel" in out.splitlines()[-1]

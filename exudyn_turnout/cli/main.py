@@ -38,7 +38,6 @@ __all__ = [
     "number",
     "turnout_from_args",
     "kilonewtons",
-    "progress_bar",
     "check_out_dir",
     "check_out_file",
     "check_plot_file",
@@ -259,29 +258,6 @@ def unit_of(name: str) -> str:
     if name.startswith("L_eff_r") or name.endswith("_m"):
         return "m"
     return "-"
-
-
-def progress_bar(stream):
-    """A one-line progress bar on a terminal; nothing when output is not a terminal.
-
-    Parameters
-    ----------
-    stream : text stream
-        Usually ``sys.stderr``.
-
-    Returns
-    -------
-    callable(fraction, x) or None
-    """
-    if not stream.isatty():
-        return None
-
-    def show(fraction: float, x: float) -> None:
-        n = int(30 * fraction)
-        stream.write(f"\r[{'#' * n}{'.' * (30 - n)}] {100 * fraction:5.1f} %  x = {x:7.2f} m")
-        stream.flush()
-
-    return show
 
 
 def kilonewtons(force: float) -> str:

@@ -13,10 +13,10 @@ from exudyn_turnout.cli.main import (
     check_out_dir,
     kilonewtons,
     number,
-    progress_bar,
     turnout_from_args,
 )
 from exudyn_turnout.passage.events import event_line
+from exudyn_turnout.passage.results import TRACKS
 from exudyn_turnout.passage.run import simulate_passage
 
 __all__ = [
@@ -28,7 +28,163 @@ __all__ = [
     "add_passage_options",
     "route_from_args",
     "settings_from_args",
+    "track_list",
+    "StatusLine",
+    "COMPARISON_FILE",
 ]
+
+#: File of a run on several tracks (``--track 2-layer,3-layer``): peaks per track and the
+#: differences in %, beside the overlaid ``forces.png``.
+COMPARISON_FILE = "comparison.json"
+
+
+def track_list(text: str) -> tuple[str, ...]:
+    """argparse type of ``--track``: one track, or several separated by commas.
+
+    Parameters
+    ----------
+    text : str
+        E.g. ``"3-layer"`` or ``"2-layer,3-layer,fe"``.
+
+    Returns
+    -------
+    tuple of str
+        The tracks, in the given order.
+    """
+    names = tuple(name.strip() for name in text.split(","))
+    for name in names:
+        if name not in TRACKS:
+            raise argparse.ArgumentTypeError(
+                f"unknown track {name!r} in {text!r} (tracks: {', '.join(TRACKS)}; several "
+                "separated by commas)"
+            )
+    if len(set(names)) != len(names):
+        raise argparse.ArgumentTypeError(f"a track is named twice in {text!r}")
+    return names
+
+
+class StatusLine:
+    """What a passage command is doing, on stderr: stages, then the run with an ETA.
+
+    On a terminal one line is rewritten (carriage return) and removed when the command's
+    own output or an error follows. Elsewhere (a log file, a pipe) plain lines are printed:
+    the set-up when it has ended (with its time, so that bad input or a failed set-up is
+    still the one line of the error), the run at 0, 25, 50, 75 and 100 %, and the end.
+    ``quiet`` prints nothing.
+
+    Parameters
+    ----------
+    stream : text stream
+        Usually ``sys.stderr``.
+    quiet : bool
+        ``--quiet``.
+    """
+
+    def __init__(self, stream, quiet: bool = False) -> None:
+        self.stream = stream
+        self.quiet = quiet
+        self.tty = bool(getattr(stream, "isatty", lambda: False)())
+        self._open = False  # a terminal line waiting for its end
+        self._next = 0.0  # the next fraction a plain line is printed at
+        self._label: str | None = None  # the run under way
+        self._start = 0.0  # s, its perf_counter at start
+        self._setup: str | None = None  # a set-up stage, printed in a log when it has ended
+
+    def _line(self, text: str, final: bool = True) -> None:
+        if self.quiet:
+            return
+        if self.tty:
+            self.stream.write(f"\r\x1b[K{text}" + ("\n" if final else ""))
+            self._open = not final
+        else:
+            self.stream.write(text + "\n")
+        self.stream.flush()
+
+    def stage(self, text: str) -> None:
+        """Say what is being done now (one line).
+
+        Parameters
+        ----------
+        text : str
+        """
+        self._line(text, final=not self.tty)
+
+    def setup(self, label: str, text: str) -> None:
+        """Say what a run's set-up does (:meth:`run` follows).
+
+        On a terminal at once ("preparing the <label>: <text>"); in a log when the run's
+        first progress arrives, with the time it took ("<label>: set up in 2.1 s (<text>)").
+
+        Parameters
+        ----------
+        label : str
+            What runs, e.g. "3-layer track".
+        text : str
+            What the set-up does.
+        """
+        if self.tty:
+            self._line(f"preparing the {label}: {text}", final=False)
+        else:
+            self._setup = text
+
+    def run(self, label: str):
+        """A progress callback for a passage, ``callback(fraction, x)``.
+
+        Parameters
+        ----------
+        label : str
+            What runs, e.g. "3-layer track".
+
+        Returns
+        -------
+        callable(fraction, x)
+        """
+        import time
+
+        start: list[tuple[float, float]] = []  # s and fraction of the first report
+        self._next = 0.0
+        self._label, self._start = label, time.perf_counter()
+
+        def show(fraction: float, x: float) -> None:
+            now = time.perf_counter()
+            if not start:
+                start.append((now, fraction))
+                if self._setup is not None:
+                    self._line(f"{label}: set up in {now - self._start:.1f} s ({self._setup})")
+                    self._setup = None
+            t0, f0 = start[0]
+            eta = ""
+            if fraction > f0 + 0.02 and fraction < 1.0:
+                left = (now - t0) * (1.0 - fraction) / (fraction - f0)
+                eta = f", about {left:.1f} s left" if left < 10 else f", about {left:.0f} s left"
+            if self.tty:
+                n = int(30 * fraction)
+                bar = f"[{'#' * n}{'.' * (30 - n)}]"
+                text = f"{label}: {bar} {100 * fraction:5.1f} %  x = {x:7.2f} m{eta}"
+                self._line(text, final=False)
+            elif fraction >= self._next - 1e-9:
+                self._line(f"{label}: {100 * fraction:3.0f} %, x = {x:.2f} m{eta}")
+                self._next = 0.25 * (int(fraction / 0.25 + 1e-9) + 1)
+
+        return show
+
+    def end(self) -> None:
+        """The run has ended: its wall time (a plain line; on a terminal, the line's end)."""
+        import time
+
+        if self.quiet or self._label is None:
+            return
+        self._line(f"{self._label}: set up and ran in {time.perf_counter() - self._start:.1f} s")
+        self._label = None
+
+    def clear(self) -> None:
+        """Remove a terminal line left open and forget a set-up not yet printed (the
+        command's own output, or an error, follows)."""
+        self._setup, self._label = None, None
+        if self._open and not self.quiet:
+            self.stream.write("\r\x1b[K")
+            self.stream.flush()
+            self._open = False
 
 
 def settings_from_args(args: argparse.Namespace, **track_options):
@@ -95,46 +251,131 @@ def _simulate_command(args: argparse.Namespace) -> int:
     args.route = route_from_args(args, turnout)
     from exudyn_turnout.passage.run import track_of
 
-    settings = settings_from_args(args, layers=args.layers, source=args.source)
-    track, settings = track_of(settings, args.track)  # the track is the one source of truth
-    if track == "fe" and (
-        settings.contact != "profile" or getattr(args, "parameters", None) is not None
-    ):
-        raise UsageError(
-            "--track fe: the FE track takes Table 1 directly (no --parameters) and runs with "
-            "the profile contact (the height-table contact is the single wheelset's "
-            "co-running baseline)"
-        )
-    if model is not None and settings.contact != "profile":
+    tracks = args.track or (None,)  # None: --layers names the co-running track
+    base = settings_from_args(args, layers=args.layers, source=args.source)
+    runs = []
+    for name in tracks:
+        track, settings = track_of(base, name)  # the track is the one source of truth
+        if track == "fe" and (
+            settings.contact != "profile" or getattr(args, "parameters", None) is not None
+        ):
+            raise UsageError(
+                "--track fe: the FE track takes Table 1 directly (no --parameters) and runs "
+                "with the profile contact (the height-table contact is the single wheelset's "
+                "co-running baseline)"
+            )
+        runs.append((track, settings))
+    if model is not None and base.contact != "profile":
         raise UsageError("--contact height-table: the full vehicle has the profile contact only")
-    if settings.contact == "profile":  # the rail geometry, checked before anything runs
+    _check_runs(runs, turnout, vehicle, model)
+    if base.contact == "profile":  # the rail geometry, checked before anything runs
         from exudyn_turnout.wheel_rail.turnout_design import rail_geometry
         from exudyn_turnout.wheel_rail.turnout_sections import route_segments
 
         rail_geometry(turnout)
         route_segments(turnout, args.route)
 
-    def simulate(bar):
-        if model is None:
-            return simulate_passage(turnout, settings, vehicle=vehicle, progress=bar, track=track)
+    def simulate_on(track: str, settings):
+        def simulate(bar):
+            if model is None:
+                return simulate_passage(
+                    turnout, settings, vehicle=vehicle, progress=bar, track=track
+                )
+            return simulate_passage(turnout, settings, model, progress=bar, track=track)
 
-        return simulate_passage(turnout, settings, model, progress=bar, track=track)
+        return simulate
 
-    return run_passage_command(
-        args,
-        simulate,
-        f"{turnout.name}, {args.route} route, {args.speed:g} km/h"
-        + ("" if model is None else f", {model.name} (front wheelset)"),
-        ("FE track, " if track == "fe" else "")
-        + ("" if model is None else "full vehicle, front wheelset: "),
-        turnout=turnout,
-        vehicle=vehicle if model is None else _vehicle_file(args.vehicle),
-        extra_settings={
+    title = f"{turnout.name}, {args.route} route, {args.speed:g} km/h" + (
+        "" if model is None else f", {model.name} (front wheelset)"
+    )
+
+    def what(track: str) -> str:
+        return ("FE track, " if track == "fe" else "") + (
+            "" if model is None else "full vehicle, front wheelset: "
+        )
+
+    def extra(track: str) -> dict:
+        return {
             "model": "FE" if track == "fe" else "co-running",
             "profiles": args.profiles,
             "parameters": file_record(getattr(args, "parameters", None)),
-        },
-    )
+        }
+
+    vehicle_record = vehicle if model is None else _vehicle_file(args.vehicle)
+    if len(runs) == 1:
+        track, settings = runs[0]
+        return run_passage_command(
+            args,
+            simulate_on(track, settings),
+            title,
+            what(track),
+            turnout=turnout,
+            vehicle=vehicle_record,
+            extra_settings=extra(track),
+            label=f"{track} track",
+        )
+    out = start_out_dir(args.out)
+    try:
+        results: dict = {}
+        for track, settings in runs:
+            results[track] = _run_and_write(
+                args,
+                out / track,
+                simulate_on(track, settings),
+                title,
+                what(track),
+                turnout,
+                vehicle_record,
+                extra(track),
+                label=f"{track} track ({len(results) + 1} of {len(runs)})",
+                forces=False,
+            )
+        _write_comparison(args, out, results, title)
+    except (UsageError, RunFailure):
+        _end_running(out)
+        raise
+    _end_running(out)
+    return 0
+
+
+def _check_runs(runs, turnout, vehicle, model) -> None:
+    """Check every run's settings before anything is printed (bad input: one line, exit 2)."""
+    from exudyn_turnout.inputs.vehicle import load_vehicle
+    from exudyn_turnout.passage.common import check_settings, check_vehicle_settings
+    from exudyn_turnout.passage.results import PassageError
+
+    try:
+        for _, settings in runs:
+            if model is None:
+                check_settings(settings, turnout, vehicle)
+            else:
+                check_vehicle_settings(settings, turnout, model, load_vehicle())
+    except PassageError as err:
+        raise UsageError(str(err)) from None
+
+
+def _write_comparison(args: argparse.Namespace, out: Path, results: dict, title: str) -> None:
+    """The overlaid forces.png and comparison.json of a run on several tracks; the table."""
+    from exudyn_turnout.cli.main import write_output
+    from exudyn_turnout.passage.comparison import PassageComparison
+    from exudyn_turnout.provenance import round_floats, write_json
+
+    comparison = PassageComparison(results)
+    record = dict(comparison.record(), route=args.route, speed_kmh=args.speed)
+    record["files"] = {track: f"{track}/summary.json" for track in results}
+    try:
+        write_json(out / COMPARISON_FILE, round_floats(record))
+    except OSError as err:
+        raise UsageError(f"--out {args.out}: cannot write: {err.strerror or err}") from None
+    written = [str(out / COMPARISON_FILE)]
+    if not args.no_plot:
+        from exudyn_turnout.plotting.curves import save_figure
+
+        fig, _ = comparison.plot(title=title)
+        write_output(str(out / "forces.png"), lambda tmp: save_figure(fig, tmp, dpi=120))
+        written.append(str(out / "forces.png"))
+    print(comparison.table())
+    print(f"wrote {', '.join(written)}")
 
 
 def _vehicle_file(name_or_path: str) -> str:
@@ -290,12 +531,18 @@ def _end_running(out: Path) -> None:
 
 
 def _clear_outputs(out: Path) -> None:
-    """Remove the files an earlier run left in ``out`` (so a failure leaves nothing stale)."""
+    """Remove the files an earlier run left in ``out`` (so a failure leaves nothing stale).
+
+    Also the files of an earlier run on several tracks: ``comparison.json`` and the files in
+    each track's folder (``out/3-layer/summary.json``...).
+    """
     from exudyn_turnout.passage.results import OUTPUT_FILES
 
     if not out.is_dir():
         return
-    for name in OUTPUT_FILES:
+    names = list(OUTPUT_FILES) + [COMPARISON_FILE]  # a run on several tracks: one folder each
+    names += [f"{track}/{name}" for track in TRACKS for name in OUTPUT_FILES]
+    for name in names:
         try:
             (out / name).unlink(missing_ok=True)
         except OSError as err:
@@ -322,8 +569,9 @@ def run_passage_command(
     turnout=None,
     vehicle=None,
     extra_settings: dict | None = None,
+    label: str = "passage",
 ) -> int:
-    """Run a passage with a progress bar; write its files and print one summary line.
+    """Run a passage with a progress line; write its files and print one summary line.
 
     Shared by ``simulate`` and ``fe simulate``. Before the run the files of an earlier run
     are removed from ``--out`` and :data:`RUNNING_MARKER` is written there (removed when the
@@ -345,6 +593,8 @@ def run_passage_command(
         Recorded (file name and SHA-256) in the summary's provenance.
     extra_settings : dict, optional
         Settings recorded besides the PassageSettings (model, profiles, FE options).
+    label : str
+        What runs, in the progress line (e.g. "3-layer track").
 
     Returns
     -------
@@ -356,14 +606,32 @@ def run_passage_command(
         raise UsageError("--float32: only with --format npz (the CSV writes digits)")
     out = start_out_dir(args.out)
     try:
-        return _run_and_write(args, out, simulate, title, what, turnout, vehicle, extra_settings)
+        _run_and_write(
+            args, out, simulate, title, what, turnout, vehicle, extra_settings, label=label
+        )
     except (UsageError, RunFailure):
         _end_running(out)
         raise
+    _end_running(out)
+    return 0
 
 
-def _run_and_write(args, out, simulate, title, what, turnout, vehicle, extra_settings) -> int:
-    """The body of :func:`run_passage_command` after ``--out`` was prepared."""
+def _run_and_write(
+    args,
+    out,
+    simulate,
+    title,
+    what,
+    turnout,
+    vehicle,
+    extra_settings,
+    label: str = "passage",
+    forces: bool = True,
+):
+    """Run one passage and write its files into ``out``; print its lines; the result.
+
+    ``forces``: draw forces.png (a run on several tracks draws one overlaid figure instead).
+    """
     from exudyn_turnout.passage.results import (
         PassageError,
         PassageFailure,
@@ -372,16 +640,25 @@ def _run_and_write(args, out, simulate, title, what, turnout, vehicle, extra_set
     )
     from exudyn_turnout.provenance import provenance
 
-    bar = progress_bar(sys.stderr)
+    status = StatusLine(sys.stderr, quiet=getattr(args, "quiet", False))
+    status.setup(
+        label,
+        f"contact tables of the {args.route} route (built on the first run only, cached in "
+        f"{_cache_place()}), the Exudyn model, the static state",
+    )
     try:
-        result = simulate(bar)
+        result = simulate(status.run(label))
     except PassageFailure as err:
+        status.clear()
         raise RunFailure(str(err)) from None
     except PassageError as err:
+        status.clear()
         raise UsageError(str(err)) from None
-    finally:
-        if bar:
-            sys.stderr.write("\n")
+    except BaseException:
+        status.clear()
+        raise
+    status.end()
+    status.stage(f"writing {out}")
     settings = dict(
         extra_settings or {},
         **settings_record(result.settings),
@@ -400,8 +677,9 @@ def _run_and_write(args, out, simulate, title, what, turnout, vehicle, extra_set
             from exudyn_turnout.plotting.curves import plot_passage_forces, save_figure
             from exudyn_turnout.plotting.safety import plot_passage_safety
 
-            fig, _ = plot_passage_forces([result], wheel="right", title=title)
-            save_figure(fig, str(directory / "forces.png"), dpi=120)
+            if forces:
+                fig, _ = plot_passage_forces([result], wheel="right", title=title)
+                save_figure(fig, str(directory / "forces.png"), dpi=120)
             fig, _ = plot_passage_safety(result, title=title)
             save_figure(fig, str(directory / "safety.png"), dpi=110)
             if "az_car_centre_mps2" in result.columns:  # a full vehicle: wheelsets, bodies
@@ -422,6 +700,7 @@ def _run_and_write(args, out, simulate, title, what, turnout, vehicle, extra_set
         )
     except OSError as err:
         raise UsageError(f"--out {args.out}: cannot write: {err.strerror or err}") from None
+    status.clear()
     summary = result.summary
     if "n_dof" in summary:
         what = f"{what.rstrip(', ')} ({summary['n_dof']} DOFs), "
@@ -438,8 +717,16 @@ def _run_and_write(args, out, simulate, title, what, turnout, vehicle, extra_set
     if event is not None:
         print(event)
     print(safety_text(summary))
-    _end_running(out)
-    return 0
+    return result
+
+
+def _cache_place() -> str:
+    """The contact-table cache directory, ``~`` for the home directory."""
+    from exudyn_turnout.wheel_rail.tables import default_cache_dir
+
+    place = str(default_cache_dir())
+    home = str(Path.home())
+    return "~" + place[len(home) :] if home != "/" and place.startswith(home) else place
 
 
 def safety_text(summary: dict, most: int = 6) -> str:
@@ -530,7 +817,14 @@ def add_passage_options(p: argparse.ArgumentParser) -> None:
         help="with --format npz: arrays in float32 (time and x stay float64), half the size",
     )
     p.add_argument("--out", required=True, metavar="DIR", help="output directory")
-    p.add_argument("--no-plot", action="store_true", help="skip forces.png (and contact_band.png)")
+    p.add_argument(
+        "--no-plot", action="store_true", help="skip the figures (forces, safety, contact band)"
+    )
+    p.add_argument(
+        "--quiet",
+        action="store_true",
+        help="no progress on stderr (what is being done, the run with an ETA); warnings stay",
+    )
 
 
 def build(sub: argparse._SubParsersAction) -> None:
@@ -554,10 +848,14 @@ def build(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--layers", type=int, choices=(2, 3), default=3)
     parser.add_argument(
         "--track",
-        choices=("2-layer", "3-layer", "fe"),
+        type=track_list,
+        metavar="2-layer|3-layer|fe[,...]",
         help="track model: a co-running track (same as --layers) or fe, the FE turnout "
         "(vertical and lateral planes, rail torsion) under the same vehicle and contact "
-        "(default: --layers)",
+        "(default: --layers). Several separated by commas (e.g. 2-layer,3-layer) run one "
+        "after the other: each track's files in its own folder of --out, the overlaid "
+        "forces.png (the paper's Figs 7, 8) and comparison.json (peaks, differences in %%) "
+        "in --out",
     )
     parser.add_argument(
         "--route",

@@ -1,7 +1,9 @@
 """``exudyn-turnout frf``: point receptance of a rail of the co-running track model.
 
 Writes ``frequency_hz,real,imag,magnitude`` (m/N) and optionally a log-log plot; prints
-one summary line with the first eigenfrequencies. Plots (with --plot) through
+one summary line with the first eigenfrequencies. ``--with-fe`` also computes the FE
+reference's receptance at the same x, rail and direction (``<stem>_fe.csv``, overlaid in
+the plot: the comparison of the paper's Figs 5 and 6). Plots (with --plot) through
 :mod:`exudyn_turnout.plotting.curves`.
 """
 
@@ -9,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 from collections.abc import Sequence
+from pathlib import Path
 from typing import cast
 
 from exudyn_turnout.cli.main import (
@@ -25,7 +28,7 @@ from exudyn_turnout.cli.main import (
 from exudyn_turnout.inputs.turnout import RAIL_SLOTS
 from exudyn_turnout.receptance import DIRECTIONS, log_frequencies
 
-__all__ = ["build"]
+__all__ = ["build", "fe_csv_path"]
 
 
 def build(sub: argparse._SubParsersAction) -> None:
@@ -70,6 +73,13 @@ def build(sub: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("--out", required=True, metavar="FILE.csv", help="CSV file to write")
     parser.add_argument("--plot", metavar="FILE.png", help="also save a log-log plot of |H|")
+    parser.add_argument(
+        "--with-fe",
+        action="store_true",
+        help="also the FE reference's receptance at the same x, rail and direction (the "
+        "rail of the slot on the through route, or the file's first route; as fe frf, about "
+        "0.15 s per frequency): written to <stem>_fe.csv and overlaid in --plot",
+    )
     parser.set_defaults(run=_run)
 
 
@@ -111,10 +121,20 @@ def _run(args: argparse.Namespace) -> int:
         "fmax_hz": args.fmax,
         "n": args.n,
     }
+    fe = _fe_receptance(args, turnout, receptance.x, frequencies) if args.with_fe else None
     write_output(args.out, receptance.to_csv)
     write_sidecar(args.out, provenance(settings, turnout=turnout, argv=getattr(args, "argv", None)))
+    if fe is not None:
+        fe_path = str(fe_csv_path(args.out))
+        fe_settings = dict(
+            settings, model="FE", rail_id=fe.metadata["rail_id"], n_dof=fe.metadata["n_dof"]
+        )
+        write_output(fe_path, fe.to_csv)
+        write_sidecar(
+            fe_path, provenance(fe_settings, turnout=turnout, argv=getattr(args, "argv", None))
+        )
     if args.plot:
-        _plot(receptance, args.plot)
+        _plot(receptance, args.plot, fe)
     # co_running_receptance's metadata: tuples of floats (Hz)
     eigenfrequencies = cast(Sequence[float], receptance.metadata["eigenfrequencies_hz"])
     damped_frequencies = cast(Sequence[float], receptance.metadata["damped_frequencies_hz"])
@@ -127,14 +147,62 @@ def _run(args: argparse.Namespace) -> int:
         f"1/|H({frequencies[0]:g} Hz)| = {receptance.static_stiffness:.4g} N/m; "
         f"first undamped eigenfrequencies {undamped} Hz; oscillating modes (damped) {damped} Hz"
     )
+    if fe is not None:
+        print(
+            f"wrote {fe_csv_path(args.out)}: FE {args.rail} ({fe.metadata['rail_id']}) "
+            f"{args.direction} at x = {receptance.x:g} m, {fe.metadata['n_dof']} DOFs; "
+            f"1/|H({frequencies[0]:g} Hz)| = {fe.static_stiffness:.4g} N/m "
+            f"({receptance.model}/FE = {receptance.static_stiffness / fe.static_stiffness:.3f})"
+        )
     return 0
 
 
-def _plot(receptance, path: str) -> None:
+def fe_csv_path(out: str) -> Path:
+    """The FE receptance's CSV of ``frf --with-fe``: ``<stem>_fe.csv`` beside ``--out``.
+
+    Parameters
+    ----------
+    out : str
+        ``--out`` (the co-running receptance's CSV).
+
+    Returns
+    -------
+    Path
+    """
+    p = Path(out)
+    return p.with_name(f"{p.stem}_fe{p.suffix or '.csv'}")
+
+
+def _fe_receptance(args: argparse.Namespace, turnout, x: float, frequencies):
+    """The FE receptance at x of the same rail slot and direction (the default route)."""
+    from exudyn_turnout.cli.passage import route_from_args
+    from exudyn_turnout.fe.frf import fe_receptance
+    from exudyn_turnout.fe.layout import load_layout
+
+    check_out_file(str(fe_csv_path(args.out)))
+    args.route = None  # frf has no --route: the default route's slot mapping
+    route = route_from_args(args, turnout)
+    try:
+        return fe_receptance(
+            turnout,
+            args.rail,
+            args.direction,
+            x,
+            frequencies,
+            route=route,
+            layout=load_layout(turnout),
+        )
+    except (KeyError, ValueError) as err:
+        raise UsageError(f"frf --with-fe: {str(err).strip(chr(39))}") from None
+
+
+def _plot(receptance, path: str, fe=None) -> None:
     from exudyn_turnout.plotting.curves import plot_receptance, save_figure
 
     zone, source = receptance.metadata["zone"], receptance.metadata["source"]
-    fig, _ = plot_receptance(
-        receptance, title=f"{receptance.model} co-running track, zone {zone}, {source} parameters"
-    )
+    curves = [receptance] if fe is None else [fe, receptance]
+    title = f"{receptance.model} co-running track, zone {zone}, {source} parameters"
+    if fe is not None:
+        title = f"FE reference and {title}"
+    fig, _ = plot_receptance(curves, title=title)
     write_output(path, lambda tmp: save_figure(fig, tmp, dpi=120), "--plot")

@@ -31,6 +31,7 @@ from exudyn_turnout.inputs.vehicle import Vehicle, load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
 from exudyn_turnout.inputs.vehicles import packaged_vehicle
 from exudyn_turnout.passage.common import check_settings, check_vehicle_settings
+from exudyn_turnout.passage.comparison import PassageComparison
 from exudyn_turnout.passage.results import (
     DEFAULT_SETTINGS,
     TRACKS,
@@ -43,6 +44,7 @@ from exudyn_turnout.passage.track import TrackImplementation
 __all__ = [
     "simulate_passage",
     "compare_layers",
+    "compare_tracks",
     "track_of",
     "vehicle_of",
 ]
@@ -240,3 +242,54 @@ def compare_layers(
         layers: simulate_passage(turnout, settings, vehicle, track=f"{layers}-layer")
         for layers in (2, 3)
     }
+
+
+def compare_tracks(
+    turnout: Turnout,
+    settings: PassageSettings = DEFAULT_SETTINGS,
+    tracks: tuple[str, ...] | list[str] = ("2-layer", "3-layer"),
+    vehicle: Vehicle | VehicleModel | str | None = None,
+    progress: Callable[[str, float, float], None] | None = None,
+) -> PassageComparison:
+    """The same passage on several tracks, in the given order (the paper's Figs 7, 8).
+
+    Parameters
+    ----------
+    turnout : Turnout
+    settings : PassageSettings
+    tracks : sequence of {"2-layer", "3-layer", "fe"}
+        Each at most once.
+    vehicle : {"wheelset", "manchester"}, Vehicle or VehicleModel, optional
+    progress : callable(track, fraction, x), optional
+        Called about every 2 % of each run, with the track's name.
+
+    Returns
+    -------
+    PassageComparison
+        Track -> PassageResult; ``.plot()`` overlays them, ``.table()`` and ``.record()``
+        give the peaks and each track against the 2-layer track in %.
+
+    Raises
+    ------
+    PassageError
+        An unknown or repeated track, or bad settings.
+    """
+    names = list(tracks)
+    if not names or len(set(names)) != len(names):
+        raise PassageError(f"tracks must be distinct and at least one, got {names}")
+    for name in names:
+        track_of(settings, name)  # an unknown track fails before any run
+    results = {}
+    for name in names:
+        report = None if progress is None else _tagged(progress, name)
+        results[name] = simulate_passage(turnout, settings, vehicle, report, track=name)
+    return PassageComparison(results)
+
+
+def _tagged(progress: Callable[[str, float, float], None], track: str):
+    """A run's progress callback that names its track."""
+
+    def report(fraction: float, x: float) -> None:
+        progress(track, fraction, x)
+
+    return report

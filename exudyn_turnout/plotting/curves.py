@@ -20,6 +20,9 @@ __all__ = [
     "plot_receptance",
     "passage_label",
     "plot_passage_forces",
+    "FIGURE_POINTS",
+    "decimate_min_max",
+    "missing_region_note",
     "plot_receptance_agreement",
     "plot_force_signals",
     "plot_force_grid",
@@ -129,41 +132,156 @@ def passage_label(result) -> str:
     return f"{model}, {settings.source}, {settings.speed_kmh:g} km/h"
 
 
-def plot_passage_forces(results, wheel: str = "right", labels=None, title: str | None = None):
-    """Contact forces of passages against x, at the switch and at the crossing (Figs 7, 8 layout).
+#: Points per curve and panel a passage figure draws at most (:func:`decimate_min_max`).
+FIGURE_POINTS = 2000
+
+
+def decimate_min_max(x, y, points: int = FIGURE_POINTS) -> tuple[np.ndarray, np.ndarray]:
+    """At most ``points`` samples of a curve for a figure, keeping every local extreme.
+
+    The samples are split into ``points // 2`` consecutive buckets of equal count; of each
+    bucket the smallest and the largest value are kept, in their order. The drawn line
+    then reaches every peak of the full curve (a plain stride would miss a peak between
+    two kept samples). Curves of at most ``points`` samples are returned as they are.
+    Measured on the default passage (23,402 samples): no measurable change in the time
+    of a PNG (Agg simplifies dense paths itself); what it saves is the size of vector
+    figures (PDF, SVG) and of long runs' figures.
+
+    Parameters
+    ----------
+    x, y : array_like
+        The curve (same length); NaN in ``y`` is kept where a whole bucket is NaN.
+    points : int
+        Most samples returned (at least 2).
+
+    Returns
+    -------
+    x, y : ndarray
+        The kept samples, in the original order.
+    """
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    n, buckets = len(y), max(int(points) // 2, 1)
+    if n <= max(int(points), 2):
+        return x, y
+    size = -(-n // buckets)  # ceil
+    padded = np.full(buckets * size, np.nan)
+    padded[:n] = y
+    table = padded.reshape(buckets, size)
+    finite = np.isfinite(table)
+    lowest = np.where(finite, table, np.inf).argmin(axis=1)
+    highest = np.where(finite, table, -np.inf).argmax(axis=1)
+    start = np.arange(buckets) * size
+    keep = np.unique(np.concatenate([start + lowest, start + highest]))
+    keep = keep[keep < n]
+    return x[keep], y[keep]
+
+
+def _run_range(result) -> tuple[float, float]:
+    """m, the first and last x of a run (the front wheelset's for a full vehicle)."""
+    x = np.asarray(result.columns["x_m"], dtype=float)
+    return float(np.nanmin(x)), float(np.nanmax(x))
+
+
+def missing_region_note(results, where: str) -> str | None:
+    """Why a passage figure has no panel of a region, or None where a run covers it.
 
     Parameters
     ----------
     results : sequence of PassageResult
-        Runs to overlay (e.g. 2-layer, 3-layer, FE reference).
+        The runs of one figure.
+    where : {"switch", "crossing"}
+        The region (``summary["<where>_region_m"]``).
+
+    Returns
+    -------
+    str or None
+        E.g. ``"switch 0-10 m outside the run's x range 40-50 m"`` when no run has a
+        sample inside the region, None otherwise.
+    """
+    region = results[0].summary.get(f"{where}_region_m")
+    if not isinstance(region, (list, tuple)) or len(region) != 2:
+        return f"{where}: no region in the summary"
+    x0, x1 = float(region[0]), float(region[1])
+    for result in results:
+        x = np.asarray(result.columns["x_m"], dtype=float)
+        if np.count_nonzero((x >= x0) & (x <= x1)) >= 2:
+            return None
+    lo = min(_run_range(r)[0] for r in results)
+    hi = max(_run_range(r)[1] for r in results)
+    whose = "the front wheelset's" if "x_ws2_m" in results[0].columns else "the run's"
+    return f"{where} {x0:g}-{x1:g} m outside {whose} x range {lo:.4g}-{hi:.4g} m"
+
+
+def _passage_style(result) -> dict:
+    """Line style of a passage in an overlay: by track model (:func:`_style`), thin."""
+    model = result.summary.get("model", f"{result.settings.layers}-layer")
+    style = dict(_style(str(model)))
+    style.setdefault("lw", 1.0)
+    return style
+
+
+def plot_passage_forces(
+    results,
+    wheel: str = "right",
+    labels=None,
+    title: str | None = None,
+    points: int = FIGURE_POINTS,
+):
+    """Contact forces of passages against x, at the switch and at the crossing (Figs 7, 8 layout).
+
+    A region no run reaches has no panel; the figure says why below its title (e.g.
+    "switch 0-10 m outside the run's x range 40-50 m"). A run reaching neither region is
+    drawn over its whole x range, with that note. Each curve is drawn with at most
+    ``points`` samples per panel (:func:`decimate_min_max`: every peak kept).
+
+    Parameters
+    ----------
+    results : sequence of PassageResult
+        Runs to overlay (e.g. 2-layer, 3-layer, FE reference); styled by track model
+        (FE black, 2-layer blue dashed, 3-layer red).
     wheel : {"right", "left"}
-        Which wheel's forces (columns ``Fz_<wheel>_N``, ``Fy_<wheel>_N``).
+        Which wheel's forces (columns ``Fz_<wheel>_N``, ``Fy_<wheel>_N``; a full vehicle's
+        front wheelset).
     labels : sequence of str, optional
         Legend entries; default :func:`passage_label`.
     title : str, optional
         Title of the figure.
+    points : int
+        Most samples per curve and panel.
 
     Returns
     -------
     (figure, axes)
-        A 2 x 2 grid: rows vertical (Fz) and lateral (Fy) force on the rail, columns the
-        switch and crossing regions named in the results' summaries.
+        A 2 x n grid (n = regions reached, or 1): rows vertical (Fz) and lateral (Fy)
+        force on the rail, columns the switch and crossing regions named in the results'
+        summaries.
     """
     plt = pyplot()
     results = list(results)
-    fig, axes = plt.subplots(2, 2, figsize=(10.0, 6.4), sharex="col")
+    if not results:
+        raise ValueError("plot_passage_forces: no results to draw")
     names = list(labels) if labels is not None else [passage_label(r) for r in results]
-    regions = (
-        ("switch", results[0].summary["switch_region_m"]),
-        ("crossing", results[0].summary["crossing_region_m"]),
+    notes = {where: missing_region_note(results, where) for where in ("switch", "crossing")}
+    columns: list[tuple[str, tuple[float, float]]] = [
+        (where, tuple(results[0].summary[f"{where}_region_m"]))
+        for where, note in notes.items()
+        if note is None
+    ]
+    if not columns:
+        lo = min(_run_range(r)[0] for r in results)
+        hi = max(_run_range(r)[1] for r in results)
+        columns = [(f"x {lo:.4g}-{hi:.4g} m", (lo, hi))]
+    fig, axes = plt.subplots(
+        2, len(columns), figsize=(5.0 * len(columns), 6.4), sharex="col", squeeze=False
     )
     for row, (quantity, unit) in enumerate((("Fz", "vertical"), ("Fy", "lateral"))):
-        for col, (where, (x0, x1)) in enumerate(regions):
+        for col, (where, (x0, x1)) in enumerate(columns):
             ax = axes[row, col]
             for result, name in zip(results, names):
                 x, force = result.columns["x_m"], result.columns[f"{quantity}_{wheel}_N"]
                 sel = (x >= x0) & (x <= x1)
-                ax.plot(x[sel], force[sel] / 1e3, label=name, lw=1.0)
+                xs, fs = decimate_min_max(x[sel], force[sel] / 1e3, points)
+                ax.plot(xs, fs, label=name, **_passage_style(result))
             ax.grid(True, alpha=0.3)
             ax.set_title(f"{unit} force, {wheel} wheel, {where}", fontsize="medium")
             if col == 0:
@@ -171,8 +289,10 @@ def plot_passage_forces(results, wheel: str = "right", labels=None, title: str |
             if row == 1:
                 ax.set_xlabel("x from switch toe (m)")
     axes[0, 0].legend(fontsize="small")
-    if title:
-        fig.suptitle(title)
+    missing = [note for note in notes.values() if note is not None]
+    heading = "\n".join(([title] if title else []) + [f"no panel: {n}" for n in missing])
+    if heading:
+        fig.suptitle(heading, fontsize="medium")
     fig.tight_layout()
     return fig, axes
 
