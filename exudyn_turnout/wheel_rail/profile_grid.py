@@ -14,7 +14,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.signal import savgol_filter
 
 from exudyn_turnout.wheel_rail.profiles import Profile
 from exudyn_turnout.wheel_rail.sections import SectionGrid, surface_on_grid
@@ -100,6 +99,8 @@ def savgol_derivatives(z: np.ndarray, step: float, window: float) -> tuple[np.nd
         return slope, second
     idx = np.arange(z.shape[-1])
     padded = np.interp(idx, idx[finite], filled[finite])
+    from scipy.signal import savgol_filter  # here: scipy.signal costs 0.6 s to import
+
     slope = savgol_filter(padded, points, 3, deriv=1, delta=step)
     second = savgol_filter(padded, points, 3, deriv=2, delta=step)
     slope[~finite] = np.nan

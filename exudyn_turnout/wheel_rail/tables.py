@@ -45,7 +45,7 @@ from exudyn_turnout.wheel_rail.geometry import (
 )
 from exudyn_turnout.wheel_rail.hertz import curvature_sums, effective_modulus, hertz_constant
 from exudyn_turnout.wheel_rail.nonhertz import PATCH_FIELDS, patch_law_fields
-from exudyn_turnout.wheel_rail.sections import SectionGrid
+from exudyn_turnout.wheel_rail.sections import SectionGrid, wheel_envelope
 
 __all__ = [
     "TableSettings",
@@ -54,6 +54,7 @@ __all__ = [
     "default_cache_dir",
     "table_key",
     "build_contact_table",
+    "cached_wheel_envelope",
     "lookup",
     "lookup_values",
     "cell_coefficients",
@@ -394,10 +395,10 @@ _ARRAYS = ("x", "shift", "values", "count", "blendable")
 _UNUSABLE: set[str] = set()
 
 
-def _checksum(arrays: dict[str, np.ndarray]) -> str:
-    """SHA-256 of the arrays' dtypes, shapes and bytes, in :data:`_ARRAYS` order."""
+def _checksum(arrays: dict[str, np.ndarray], names: tuple[str, ...] = _ARRAYS) -> str:
+    """SHA-256 of the arrays' dtypes, shapes and bytes, in ``names`` order."""
     digest = hashlib.sha256()
-    for name in _ARRAYS:
+    for name in names:
         a = np.ascontiguousarray(arrays[name])
         digest.update(f"{name}:{a.dtype.str}:{a.shape}".encode())
         digest.update(a.tobytes())
@@ -468,7 +469,7 @@ def _write_cached(path: Path, key: str, arrays: dict[str, np.ndarray]) -> None:
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         content: dict[str, Any] = dict(arrays, key=np.array(key))
-        content["checksum"] = np.array(_checksum(arrays))
+        content["checksum"] = np.array(_checksum(arrays, tuple(arrays)))
         np.savez(temporary, **content)
         os.replace(temporary, path)
     except OSError as err:
@@ -577,3 +578,75 @@ def normal_force(contacts: ContactLookup) -> np.ndarray:
     """
     delta = contacts.penetration
     return np.where(delta > 0.0, contacts.hertz_constant * delta * np.sqrt(delta), 0.0)
+
+
+#: Arrays of a cached wheel envelope (besides ``key`` and ``checksum``).
+_ENVELOPE_ARRAYS = ("x", "y", "z", "x_offset", "name")
+
+
+def cached_wheel_envelope(
+    sections: SectionGrid,
+    x: np.ndarray,
+    wheel_radius: float,
+    reach: float,
+    step: float,
+    cache_dir: str | Path | None = None,
+) -> SectionGrid:
+    """:func:`.sections.wheel_envelope`, kept in the table cache beside the tables.
+
+    The envelope of a turnout's rail bodies is the same in every run of a route and costs
+    about a second; it is stored under the SHA-256 of every input (the sections' arrays,
+    x, radius, reach, step and the table format), with a checksum of its arrays. A damaged
+    or unreadable entry is computed again and overwritten; an unusable cache location
+    means computing it (the tables' one warning names the location).
+
+    Parameters
+    ----------
+    sections : SectionGrid
+        The rail body's sections.
+    x : numpy.ndarray
+        m, where the envelope is wanted.
+    wheel_radius, reach, step : float
+        m, as :func:`.sections.wheel_envelope`.
+    cache_dir : str or Path, optional
+        Cache location (default :func:`default_cache_dir`).
+
+    Returns
+    -------
+    SectionGrid
+        Identical to ``wheel_envelope(sections, x, wheel_radius, reach, step)``.
+    """
+    x = np.asarray(x, float)
+    digest = hashlib.sha256(f"envelope/{_FORMAT_VERSION}".encode())
+    for array in (sections.x, sections.y, sections.z, x):
+        digest.update(np.ascontiguousarray(array, dtype=float).tobytes())
+    digest.update(repr((float(wheel_radius), float(reach), float(step), sections.name)).encode())
+    key = digest.hexdigest()
+    path = Path(cache_dir or default_cache_dir()) / f"envelope_{key[:24]}.npz"
+    if path.is_file():
+        try:
+            with open(path, "rb") as handle, np.load(handle, allow_pickle=False) as data:
+                arrays = {name: data[name] for name in _ENVELOPE_ARRAYS}
+                if str(data["key"]) == key and str(data["checksum"]) == _checksum(
+                    arrays, _ENVELOPE_ARRAYS
+                ):
+                    return SectionGrid(
+                        x=arrays["x"],
+                        y=arrays["y"],
+                        z=arrays["z"],
+                        name=str(arrays["name"]),
+                        x_offset=arrays["x_offset"],
+                    )
+        except Exception:  # noqa: S110 - any unreadable entry is computed again below
+            pass
+    envelope = wheel_envelope(sections, x, wheel_radius, reach, step)
+    if envelope.x_offset is not None:
+        _write_cached(
+            path,
+            key,
+            {
+                name: np.asarray(getattr(envelope, name), float if name != "name" else str)
+                for name in _ENVELOPE_ARRAYS
+            },
+        )
+    return envelope

@@ -104,6 +104,7 @@ from exudyn_turnout.wheel_rail.tables import (
     ContactTable,
     TableSettings,
     build_contact_table,
+    cached_wheel_envelope,
 )
 from exudyn_turnout.wheel_rail.turnout_design import (
     RailGeometry,
@@ -530,7 +531,12 @@ def body_table_settings(
 
 
 def envelope_sections(
-    body: RailBody, geometry: RailGeometry, wheel_radius: float, x: np.ndarray | None = None
+    body: RailBody,
+    geometry: RailGeometry,
+    wheel_radius: float,
+    x: np.ndarray | None = None,
+    cache: bool = False,
+    cache_dir=None,
 ) -> SectionGrid:
     """What a rigid wheel feels on a body at its x nodes (:func:`.sections.wheel_envelope`).
 
@@ -545,6 +551,10 @@ def envelope_sections(
     x : numpy.ndarray, optional
         m, some of the body's x nodes (default: all): the same values there, computed only
         there.
+    cache : bool
+        Keep the envelope in the table cache (:func:`.tables.cached_wheel_envelope`).
+    cache_dir : str or Path, optional
+        That cache's location (default :func:`.tables.default_cache_dir`).
 
     Returns
     -------
@@ -556,12 +566,18 @@ def envelope_sections(
         if x is None:
             return body.sections
         return replace(body.sections, x=np.asarray(x, float), z=sections_at(body.sections, x))
+    nodes = body.sections.x if x is None else np.asarray(x, float)
+    if cache:
+        return cached_wheel_envelope(
+            body.sections,
+            nodes,
+            wheel_radius,
+            geometry.envelope_reach,
+            geometry.envelope_step,
+            cache_dir,
+        )
     return wheel_envelope(
-        body.sections,
-        body.sections.x if x is None else np.asarray(x, float),
-        wheel_radius,
-        geometry.envelope_reach,
-        geometry.envelope_step,
+        body.sections, nodes, wheel_radius, geometry.envelope_reach, geometry.envelope_step
     )
 
 
@@ -618,7 +634,9 @@ def route_contact_tables(
         )
     out = []
     for body in route_rail_bodies(turnout, route):
-        sections = envelope_sections(body, geometry, setup.nominal_radius)
+        sections = envelope_sections(
+            body, geometry, setup.nominal_radius, cache=True, cache_dir=cache_dir
+        )
         table = build_contact_table(
             wheel,
             sections,
