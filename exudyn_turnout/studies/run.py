@@ -49,6 +49,7 @@ __all__ = [
     "run_study",
     "load_results",
     "estimated_cost",
+    "process_pool",
     "RESULTS_FILES",
 ]
 
@@ -528,6 +529,42 @@ def _one_thread_per_worker(active: bool):
             os.environ.pop(name, None)
 
 
+def process_pool(cases: Sequence[Case], workers: int):
+    """The default executor of :func:`run_study`: spawned processes, warmed for ``cases``.
+
+    Each worker starts with one BLAS/OpenMP thread (unless set) and runs a 5 cm passage of
+    each kind of case (at most three kinds: files, route, contact, track) before its first
+    case, so that imports, contact tables and compiled kernels are loaded once per worker.
+
+    Parameters
+    ----------
+    cases : sequence of Case
+        The cases the pool will run (their kinds are warmed).
+    workers : int
+        Processes.
+
+    Returns
+    -------
+    concurrent.futures.ProcessPoolExecutor
+        To be shut down by the caller (or used as a context manager).
+    """
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
+    with _one_thread_per_worker(True):
+        pool = ProcessPoolExecutor(
+            int(workers),
+            mp_context=multiprocessing.get_context("spawn"),
+            initializer=_warm_worker,
+            initargs=(_warm_cases(cases),),
+        )
+        # a worker process starts (and reads the environment) at a submit that finds no idle
+        # worker: start all of them now, while the environment is set
+        for _ in range(int(workers)):
+            pool.submit(int, 0)
+    return pool
+
+
 def run_study(
     study: Study | str | Path,
     executor: Executor | None = None,
@@ -619,25 +656,16 @@ def run_study(
     elif todo:
         own = executor is None
         if own:
-            import multiprocessing
-            from concurrent.futures import ProcessPoolExecutor
-
             n = min(int(workers or os.cpu_count() or 1), len(todo))
-            executor = ProcessPoolExecutor(
-                n,
-                mp_context=multiprocessing.get_context("spawn"),
-                initializer=_warm_worker,
-                initargs=(_warm_cases(todo),),
-            )
+            executor = process_pool(todo, n)
             pool_name = f"process pool, {n} workers"
         else:
             pool_name = type(executor).__name__
         assert executor is not None
         futures: dict[Future, Case] = {}
         try:
-            with _one_thread_per_worker(own):
-                longest_first = sorted(todo, key=estimated_cost, reverse=True)
-                futures = {executor.submit(run_case, case): case for case in longest_first}
+            longest_first = sorted(todo, key=estimated_cost, reverse=True)
+            futures = {executor.submit(run_case, case): case for case in longest_first}
             for future in as_completed(futures):
                 case = futures[future]
                 try:
