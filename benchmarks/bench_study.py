@@ -3,9 +3,10 @@
 A 24-case study of the default profile contact (2 track models x 6 speeds x 2 rail pad
 stiffnesses, the through route from -5 to 60 m, about 1-2 s a case) is run into fresh
 directories: serially in this process, on ``run_study``'s own process pool of 2 workers
-(spawned, each warmed once at its start, the longest cases first), on the same kind of
-pool with 1 worker (``process_pool(cases, 1)``), and on a Dask LocalCluster of 2 worker
-processes (cluster start-up timed apart). Each run alternates with the yardstick
+(warmed once, the longest cases first; forked on Linux, and spawned: each spawned worker
+imports and warms up itself), on the same kind of pool with 1 worker
+(``process_pool(cases, 1)``), and on a Dask LocalCluster of 2 worker processes (cluster
+start-up timed apart). Each run alternates with the yardstick
 (``benchmarks/yardstick.py``): the table gives wall time, yardstick units, per case,
 speed-up over 1 worker, and whether the peaks equal the serial run's to the bit. The
 machine's own 2-process speed-up (the yardstick run in 2 processes at once) is printed
@@ -50,7 +51,7 @@ speed_kmh = {speeds}
 def main(argv=None):
     """Run the study on each executor and print the table."""
     from exudyn_turnout.studies import load_study, run_study
-    from exudyn_turnout.studies.run import process_pool
+    from exudyn_turnout.studies.run import default_start_method, process_pool
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cases-dir", help="where the runs are stored (default: a temp dir)")
@@ -82,9 +83,12 @@ def main(argv=None):
         return t
 
     timed("serial, in this process", "serial", workers=1)
-    timed("process pool, 2 workers", "pool2", workers=2)
+    method = default_start_method()
+    timed(f"process pool ({method}), 2 workers", "pool2", workers=2)
     with process_pool(study.cases(), 1) as one:
-        timed("process pool, 1 worker", "pool1", executor=one)
+        timed(f"process pool ({method}), 1 worker", "pool1", executor=one)
+    if method != "spawn":
+        timed("process pool (spawn), 2 workers", "spawn2", workers=2, start_method="spawn")
     dask_start = None
     try:
         from distributed import Client, LocalCluster
@@ -106,7 +110,7 @@ def main(argv=None):
     n = rows[0][2].n_cases
     reference = rows[0][2].table
     walls = {label: t.seconds for label, t, _ in rows}
-    one = walls["process pool, 1 worker"]
+    one = walls[f"process pool ({method}), 1 worker"]
     print(f"\n{n} cases, profile contact; {machine_line()}")
     print(f"yardstick median {stick.median:.3f} s\n")
     print(
@@ -124,13 +128,14 @@ def main(argv=None):
             f"{one / t.seconds:>15.2f}{str(same):>6}"
         )
     if dask_start is not None:
-        overhead = (walls["Dask LocalCluster, 2 workers"] - walls["process pool, 2 workers"]) / n
+        pool2 = walls[f"process pool ({method}), 2 workers"]
+        overhead = (walls["Dask LocalCluster, 2 workers"] - pool2) / n
         print(
             f"\nDask LocalCluster start-up {dask_start:.1f} s (not in its row); "
             f"Dask over the 2-worker pool: {overhead * 1e3:+.0f} ms per case"
         )
     print(
-        f"1 -> 2 workers (process pool): x{one / walls['process pool, 2 workers']:.2f} "
+        f"1 -> 2 workers (process pool): x{one / walls[f'process pool ({method}), 2 workers']:.2f} "
         f"(goal >= 1.8); the yardstick in 2 processes at the time: x{machine_gain:.2f}"
     )
     shutil.rmtree(root, ignore_errors=True)

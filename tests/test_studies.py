@@ -105,11 +105,28 @@ def test_serial_study_table(serial):
 
 
 @pytest.mark.slow
-def test_process_pool_gives_identical_numbers(serial, tmp_path):
+@pytest.mark.parametrize("start_method", ["fork", "spawn"])
+def test_process_pool_gives_identical_numbers(serial, tmp_path, start_method):
+    import multiprocessing
+
+    if start_method not in multiprocessing.get_all_start_methods():
+        pytest.skip(f"no {start_method} start method on this platform")
     tmp, reference = serial
-    pool = run_study(tmp / "study.toml", workers=2, out=tmp_path / "pool")
+    pool = run_study(
+        tmp / "study.toml", workers=2, out=tmp_path / "pool", start_method=start_method
+    )
     assert pool.computed == 4
     _assert_same_numbers(reference.table, pool.table)
+    meta = (tmp_path / "pool" / "results.meta.json").read_text(encoding="utf-8")
+    assert f"process pool ({start_method}), 2 workers" in meta
+
+
+def test_process_pool_start_methods():
+    from exudyn_turnout.studies.run import default_start_method, process_pool
+
+    assert default_start_method() in ("fork", "spawn")
+    with pytest.raises(StudyError, match="start_method must be 'fork' or 'spawn', got 'thread'"):
+        process_pool([], 1, "thread")
 
 
 @pytest.mark.slow
