@@ -49,18 +49,18 @@ def test_table_written_from_given_numbers(bench):
         "date": "2026-12-02 03:00 UTC",
     }
     rows = [
-        table.Row("single wheelset, 3-layer", "1.29", "0.55", "3.01", "a note"),
-        table.Row("study", "40.0 vs 70.0", "", "90.0 vs 160.0", "speed-up 1.75"),
+        table.Row("single wheelset, 3-layer", "1.29", "1.02", "0.44", "3.01", "a note"),
+        table.Row("study", "40.0 vs 70.0", "80 vs 70", "", "90.0 vs 160.0", "speed-up 1.75"),
     ]
-    block = table.render_table(rows, info, 0.4321, quick=False)
+    block = table.render_table(rows, info, 0.4321, 0.1502, quick=False)
     lines = block.splitlines()
     assert "Test CPU, 2 cores, load average 1.50, 2.25, 3.00" in lines[0]
     assert "exudyn 1.13.6" in lines[0] and "2026-12-02 03:00 UTC" in lines[0]
-    assert "0.432 s (median)" in lines[0] and "--quick" not in lines[0]
-    assert lines[2] == "| case | wall s | x real time | yardstick units | note |"
-    assert lines[4] == "| single wheelset, 3-layer | 1.29 | 0.55 | 3.01 | a note |"
-    assert lines[5] == "| study | 40.0 vs 70.0 |  | 90.0 vs 160.0 | speed-up 1.75 |"
-    assert "--quick" in table.render_table(rows, info, 0.4, quick=True).splitlines()[0]
+    assert "0.432 s wall, 0.150 s CPU (medians)" in lines[0] and "--quick" not in lines[0]
+    assert lines[2] == "| case | wall s | CPU s | x real time | yardstick units | note |"
+    assert lines[4] == "| single wheelset, 3-layer | 1.29 | 1.02 | 0.44 | 3.01 | a note |"
+    assert lines[5] == "| study | 40.0 vs 70.0 | 80 vs 70 |  | 90.0 vs 160.0 | speed-up 1.75 |"
+    assert "--quick" in table.render_table(rows, info, 0.4, 0.1, quick=True).splitlines()[0]
     readme = f"# x\n\n## Performance\n{table.START}\nold\n{table.END}\n\n## Development\n"
     new = table.replace_table(readme, block)
     assert "old" not in new and block in new
@@ -80,6 +80,7 @@ def test_yardstick_interleaves_and_takes_the_median_ratio(bench):
     # warm-up, then yardstick / case / yardstick / case ... / yardstick
     assert order == ["c", "y", "c", "y", "c", "y", "c", "y"]
     assert timing.repeats == 3 and len(timing.samples) == 3 and len(stick.times) == 4
+    assert len(stick.cpu_times) == 4 and timing.cpu_seconds >= 0.0
     assert timing.result == 7 and timing.units > 0 and math.isfinite(timing.units)
     with pytest.raises(ValueError, match="repeats"):
         stick.measure(lambda: None, repeats=0)

@@ -553,8 +553,8 @@ def process_pool(cases: Sequence[Case], workers: int, start_method: str | None =
     files, route, contact, track) loads imports, contact tables and compiled kernels once.
     ``fork`` (default on Linux) warms this process and forks the workers from it, so the
     warm-up is paid once, not once per worker, and the workers skip the imports (~3 s a
-    worker); ``spawn`` starts fresh interpreters (one BLAS/OpenMP thread each, unless set)
-    that each warm up in an initializer.
+    worker; they keep this process's BLAS threads); ``spawn`` starts fresh interpreters
+    (one BLAS/OpenMP thread each, unless set) that each warm up in an initializer.
 
     Parameters
     ----------
