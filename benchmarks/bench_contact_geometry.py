@@ -6,7 +6,10 @@ jobs share the machine), the time to load it back from the disk
 cache, and the lookup time per call for a step's batch of contacts (4 = two wheels on two
 rails each; 8; 100) and per contact.  Tables are cached in a temporary folder that is
 removed afterwards.  Targets: a build of a few seconds, then cached; a lookup of a few
-microseconds per contact, since a passage makes ~25 000 steps with ~3 calls each.
+microseconds per contact, since a passage makes ~25 000 steps with ~3 calls each. The
+yardstick (``benchmarks/yardstick.py``) runs before and after each table: "build yst" is
+the build in yardstick units, "lookup ppm" the lookup per contact (100) in millionths of
+a yardstick; both carry over between machines and loads.
 """
 
 from __future__ import annotations
@@ -17,6 +20,7 @@ import time
 from functools import partial
 
 import numpy as np
+from yardstick import Yardstick, machine_line
 
 from exudyn_turnout.wheel_rail.data import profile_path, s1002_wheel, standard_track
 from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
@@ -69,8 +73,11 @@ def main() -> None:
     rng = np.random.default_rng(1)
     print(
         f"{'table':26s} {'nodes':>8s} {'build s':>8s} {'cpu s':>6s} {'load s':>7s} "
-        f"{'lookup us/call (4 / 8 / 100)':>30s} {'us/contact (100)':>17s}"
+        f"{'lookup us/call (4 / 8 / 100)':>30s} {'us/contact (100)':>17s} {'build yst':>9s} "
+        f"{'lookup ppm':>10s}"
     )
+    stick = Yardstick()
+    stick.run()
     with tempfile.TemporaryDirectory() as cache:
         for name, sections, taping_line in cases:
             cpu = time.process_time()
@@ -91,14 +98,17 @@ def main() -> None:
                     best_of(partial(lookup_values, table, x, shift, lift), args.repeat) * 1e6
                 )
             nodes = table.values.shape[0] * table.values.shape[1]
+            stick.run()
             print(
                 f"{name:26s} {nodes:8d} {table.build_seconds:8.2f} {cpu:6.2f} {load:7.3f} "
                 f"{per_call[0]:10.1f} / {per_call[1]:5.1f} / {per_call[2]:6.1f} "
-                f"{per_call[2] / 100:17.2f}"
+                f"{per_call[2] / 100:17.2f} {stick.units(table.build_seconds):9.2f} "
+                f"{stick.units(per_call[2] / 100):10.2f}"
             )
     print(
         f"(crossing sections: reading 148 slices and the wheel envelope took {envelope_time:.2f} s)"
     )
+    print(f"yardstick median {stick.median:.3f} s; {machine_line()}")
 
 
 if __name__ == "__main__":

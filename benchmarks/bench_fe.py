@@ -14,6 +14,10 @@ UIC60-760-1:15 turnout with the default FE options:
 - the peak memory of the process (ru_maxrss). Targets: receptance <= 10 s,
   < 2 GB; profile <= 60 s. The timings are of this one run on this machine.
 
+The yardstick (``benchmarks/yardstick.py``, a fixed workload independent of this package)
+runs before and after each group: the "yardstick units" rows give the group's time in its
+units, which carry over between machines and loads.
+
 ``--solver``: only the passage's step-matrix solves, SuperLU (minimum degree on A + A^T, no
 pivoting: the passage's factor before issue 24) against CHOLMOD (``cholespy``, the
 passage's factor now), interleaved in this process; the ratio is what carries over.
@@ -27,6 +31,7 @@ import time
 
 import numpy as np
 import scipy.sparse.linalg as sla
+from yardstick import Yardstick, machine_line
 
 from exudyn_turnout.fe.frf import sweep, sweep_vectors
 from exudyn_turnout.fe.layout import load_layout
@@ -73,7 +78,7 @@ def _parts(system, b, f) -> dict[str, float]:
     return out
 
 
-def receptance_rows(turnout, layout, direction, x, f) -> list[tuple[str, str]]:
+def receptance_rows(turnout, layout, direction, x, f, stick) -> list[tuple[str, str]]:
     rail = layout.slot_rail("r2", x)
     with Clock() as build:
         mesh = build_mesh(turnout, layout, FEOptions(), points={rail: [x]})
@@ -83,6 +88,8 @@ def receptance_rows(turnout, layout, direction, x, f) -> list[tuple[str, str]]:
         system = condense(model, np.union1d(default_keep(model), np.nonzero(b_full)[0]))
     with Clock() as run:
         H = sweep(model, rail, x, f)
+    stick.run()
+    total = stick.units(build.wall + run.wall)
     b = system.restrict(b_full).astype(complex)
     parts = _parts(system, b, f)
     rows = [
@@ -93,7 +100,10 @@ def receptance_rows(turnout, layout, direction, x, f) -> list[tuple[str, str]]:
             f"{direction}: receptance r2 ({rail}) x = {x:g} m, {len(f)} freq.",
             f"{run.wall:.2f} s wall, {run.cpu:.2f} s CPU, {1e3 * run.wall / len(f):.1f} ms/freq.",
         ),
-        (f"{direction}: total (build + sweep)", f"{build.wall + run.wall:.2f} s"),
+        (
+            f"{direction}: total (build + sweep)",
+            f"{build.wall + run.wall:.2f} s = {total:.1f} yardstick units",
+        ),
     ]
     rows += [
         (f"{direction}:   {k}", f"{v:.2f} s ({100 * v / sum(parts.values()):.0f}%)")
@@ -103,7 +113,7 @@ def receptance_rows(turnout, layout, direction, x, f) -> list[tuple[str, str]]:
     return rows
 
 
-def torsion_rows(turnout, layout, x, f, planar_wall: float) -> list[tuple[str, str]]:
+def torsion_rows(turnout, layout, x, f, planar_wall: float, stick) -> list[tuple[str, str]]:
     """Lateral model with rail torsion: DOFs, build and sweep time, ratio to the planar one."""
     rail = layout.slot_rail("r2", x)
     with Clock() as build:
@@ -113,6 +123,7 @@ def torsion_rows(turnout, layout, x, f, planar_wall: float) -> list[tuple[str, s
     keep = np.union1d(default_keep(model), np.nonzero(b)[0])
     with Clock() as run:
         sweep_vectors(model, b[:, None], f)
+    stick.run()
     return [
         (
             "lateral + torsion: DOFs (full / kept after condensation)",
@@ -123,6 +134,7 @@ def torsion_rows(turnout, layout, x, f, planar_wall: float) -> list[tuple[str, s
             f"lateral + torsion: receptance at the gauge corner, {len(f)} freq.",
             f"{run.wall:.2f} s wall, {run.cpu:.2f} s CPU, {1e3 * run.wall / len(f):.1f} ms/freq.",
         ),
+        ("lateral + torsion: sweep, yardstick units", f"{stick.units(run.wall):.1f}"),
         ("lateral + torsion: sweep time / planar lateral sweep", f"{run.wall / planar_wall:.2f}"),
     ]
 
@@ -181,21 +193,25 @@ def main(argv=None) -> None:
     if args.solver:
         for k, v in solver_rows(turnout):
             print(f"{k:<62}  {v}")
+        print(f"(a ratio of two solvers interleaved: it carries over as it is); {machine_line()}")
         return
     layout = load_layout(turnout)
     f = log_frequencies(1.0, 2000.0, args.n)
+    stick = Yardstick()
+    stick.run()
     rows = [("FE options", str(FEOptions()))]
     for direction in ("vertical", "lateral"):
-        rows += receptance_rows(turnout, layout, direction, args.x, f)
+        rows += receptance_rows(turnout, layout, direction, args.x, f, stick)
     planar_wall = float(next(v for k, v in rows if k.startswith("lateral: receptance")).split()[0])
-    rows += torsion_rows(turnout, layout, args.x, f, planar_wall)
+    rows += torsion_rows(turnout, layout, args.x, f, planar_wall, stick)
     with Clock() as prof:
         profile = static_stiffness_profile(turnout, layout)
+    stick.run()
     rows += [
         (
             "static stiffness profile, both planes",
-            f"{prof.wall:.2f} s wall, {prof.cpu:.2f} s CPU, {len(profile.x)} rail positions, "
-            f"{len(profile.rails)} rails",
+            f"{prof.wall:.2f} s wall = {stick.units(prof.wall):.1f} yardstick units, "
+            f"{prof.cpu:.2f} s CPU, {len(profile.x)} rail positions, {len(profile.rails)} rails",
         )
     ]
     rows += [
@@ -209,6 +225,7 @@ def main(argv=None) -> None:
     print("-" * (width + 60))
     for k, v in rows:
         print(f"{k:<{width}}  {v}")
+    print(f"yardstick median {stick.median:.3f} s; {machine_line()}")
 
 
 if __name__ == "__main__":

@@ -12,12 +12,17 @@ carries over):
   (``passage/fe_track/``): the default moving window and the whole model, with the split
   of the window run's wall time;
 - with ``--full``: the full vehicle (4 wheelsets) on 3-layer tracks and on the FE track.
+
+Every run also alternates with the shared yardstick (``benchmarks/yardstick.py``, a fixed
+workload independent of this package): the "yardstick" column is the run's wall time in
+its units.
 """
 
 from __future__ import annotations
 
 import argparse
-import time
+
+from yardstick import Yardstick, machine_line
 
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.passage.fe_track.options import FEPassageOptions
@@ -25,10 +30,9 @@ from exudyn_turnout.passage.results import PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
 
 
-def _timed(run) -> tuple[float, float, object]:
-    w0, c0 = time.perf_counter(), time.process_time()
-    result = run()
-    return time.process_time() - c0, time.perf_counter() - w0, result
+def _timed(stick, run) -> tuple[float, float, object, float]:
+    t = stick.measure(run, repeats=1, warm_up=False)
+    return t.cpu_seconds, t.seconds, t.result, t.units
 
 
 def main(argv=None) -> None:
@@ -40,12 +44,16 @@ def main(argv=None) -> None:
     args = parser.parse_args(argv)
     turnout = load_turnout()
     settings = PassageSettings(x_start=args.x_start, x_end=args.x_end)
-    simulate_passage(turnout, PassageSettings(x_start=-5.0, x_end=-4.9))  # tables, numba
-    simulate_passage(turnout, PassageSettings(x_start=-5.0, x_end=-4.99), track="fe")
+    warm = PassageSettings(x_start=-5.0, x_end=-4.9)
+    simulate_passage(turnout, warm, "wheelset")  # tables, numba
+    simulate_passage(turnout, PassageSettings(x_start=-5.0, x_end=-4.99), "wheelset", track="fe")
+    stick = Yardstick()
     rows = []
-    cpu_3l, wall_3l, co = _timed(lambda: simulate_passage(turnout, settings, track="3-layer"))
+    cpu_3l, wall_3l, co, units = _timed(
+        stick, lambda: simulate_passage(turnout, settings, "wheelset", track="3-layer")
+    )
     sim = co.summary["simulated_time_s"]
-    rows.append(("3-layer co-running, profile contact (yardstick)", cpu_3l, wall_3l, co))
+    rows.append(("3-layer co-running, profile contact (the unit)", cpu_3l, wall_3l, co, units))
     window = FEPassageOptions()
     cases = (
         (f"FE, window {window.window_length:g} m (default)", window),
@@ -53,27 +61,35 @@ def main(argv=None) -> None:
     )
     fe = None
     for name, options in cases:
-        cpu, wall, r = _timed(
+        cpu, wall, r, units = _timed(
+            stick,
             lambda options=options: simulate_passage(
-                turnout, settings, track="fe", fe_options=options
-            )
+                turnout, settings, "wheelset", track="fe", fe_options=options
+            ),
         )
         fe = fe or r
-        rows.append((name, cpu, wall, r))
+        rows.append((name, cpu, wall, r, units))
     if args.full:
         for track in ("3-layer", "fe"):
-            cpu, wall, r = _timed(
-                lambda track=track: simulate_passage(turnout, settings, "manchester", track=track)
+            cpu, wall, r, units = _timed(
+                stick,
+                lambda track=track: simulate_passage(turnout, settings, "manchester", track=track),
             )
-            rows.append((f"full vehicle, {track}", cpu, wall, r))
+            rows.append((f"full vehicle, {track}", cpu, wall, r, units))
     print(
         f"x {settings.x_start:g}..{settings.x_end:g} m, 100 km/h, h = 1e-4 s, "
         f"{sim:.3f} s simulated; cost in units of the 3-layer run (same process)"
     )
-    print(f"{'case':<50}{'x 3L':>8}{'CPU s':>9}{'wall s':>9}{'x real':>9}{'DOFs':>8}")
-    for name, cpu, wall, r in rows:
+    print(
+        f"{'case':<50}{'x 3L':>8}{'CPU s':>9}{'wall s':>9}{'yardstick':>10}{'x real':>9}{'DOFs':>8}"
+    )
+    for name, cpu, wall, r, units in rows:
         n_dof = r.summary.get("n_dof", "")
-        print(f"{name:<50}{cpu / cpu_3l:>8.1f}{cpu:>9.2f}{wall:>9.2f}{cpu / sim:>9.1f}{n_dof!s:>8}")
+        print(
+            f"{name:<50}{cpu / cpu_3l:>8.1f}{cpu:>9.2f}{wall:>9.2f}{units:>10.2f}"
+            f"{cpu / sim:>9.1f}{n_dof!s:>8}"
+        )
+    print(f"yardstick median {stick.median:.3f} s; {machine_line()}")
     assert fe is not None
     parts = fe.summary["wall_time_parts_s"]
     steps = fe.summary["n_steps"]

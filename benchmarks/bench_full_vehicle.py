@@ -9,7 +9,9 @@ the passage's step.
 Cases: the full Manchester vehicle (4 wheelsets) with each node parametrization and
 bumpstop law in both representations of ``vehicle_builder`` (linear: one
 ``ObjectGenericODE2``; rigid: rigid bodies and connectors), and the single-wheelset model
-(1 wheelset) through the same builder.
+(1 wheelset) through the same builder. The runs of a case alternate with the yardstick
+(``benchmarks/yardstick.py``): the median solve time is printed in seconds and in
+yardstick units (which carry over between machines and loads).
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ import time
 
 import exudyn as exu
 import numpy as np
+from yardstick import Yardstick, machine_line
 
 from exudyn_turnout.inputs.vehicle_model import load_vehicle_model, single_wheelset_share
 from exudyn_turnout.passage.vehicle.builder import (
@@ -66,7 +69,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--time", type=float, default=2.0, help="simulated time per case, s")
     parser.add_argument("--step", type=float, default=1e-4, help="time step, s")
-    parser.add_argument("--repeat", type=int, default=3, help="runs per case, best taken")
+    parser.add_argument("--repeat", type=int, default=3, help="runs per case, median taken")
     args = parser.parse_args(argv)
     full = load_vehicle_model()
     single = single_wheelset_share(full)
@@ -85,20 +88,28 @@ def main(argv=None):
     ]
     steps = int(round(args.time / args.step))
     print(
-        f"vehicle alone on rigid-track springs, h = {args.step:g} s, {steps} steps, best of "
+        f"vehicle alone on rigid-track springs, h = {args.step:g} s, {steps} steps, median of "
         f"{args.repeat}"
     )
     print(
-        f"{'case':<44}{'ODE2':>6}{'Newton/step':>12}{'wall s':>9}{'us/step':>9}{'x real time':>13}"
+        f"{'case':<44}{'ODE2':>6}{'Newton/step':>12}{'wall s':>9}{'yardstick':>10}"
+        f"{'us/step':>9}{'x real time':>13}"
     )
+    stick = Yardstick()
     for name, model, options in cases:
-        runs = [_case(model, args.time, args.step, **options) for _ in range(args.repeat)]
-        best = min(r[0] for r in runs)
-        _, n, its = runs[0]
-        print(
-            f"{name:<44}{n:>6}{its:>12.2f}{best:>9.3f}{1e6 * best / steps:>9.1f}"
-            f"{best / args.time:>13.3f}"
+        timing = stick.measure(
+            lambda model=model, options=options: _case(model, args.time, args.step, **options),
+            args.repeat,
+            warm_up=False,
+            inner=lambda run: run[0],  # the solve, not the build
         )
+        wall = timing.seconds
+        _, n, its = timing.result
+        print(
+            f"{name:<44}{n:>6}{its:>12.2f}{wall:>9.3f}{timing.units:>10.2f}"
+            f"{1e6 * wall / steps:>9.1f}{wall / args.time:>13.3f}"
+        )
+    print(f"yardstick median {stick.median:.3f} s; {machine_line()}")
 
 
 if __name__ == "__main__":

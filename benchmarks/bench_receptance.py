@@ -3,7 +3,9 @@
 Run: ``python benchmarks/bench_receptance.py [--repeat N] [--steps N]``. Prints one table;
 every ratio is of two timings from this same run. Targets: a 2000-frequency
 three-layer receptance in <= 50 ms; the scan of one rail every 0.6 m from -5 to 60 m in
-a few seconds.
+a few seconds. The yardstick (``benchmarks/yardstick.py``) runs before, between and after
+the two groups of timings; the "yardstick" column gives each time in its units (against
+the yardstick runs around its group), which carry over between machines and loads.
 """
 
 from __future__ import annotations
@@ -14,6 +16,7 @@ from collections.abc import Callable
 from functools import partial
 
 import numpy as np
+from yardstick import Yardstick, machine_line
 
 
 def best_of(fn: Callable[[], object], repeat: int) -> float:
@@ -171,11 +174,17 @@ def main(argv=None) -> None:
     from exudyn_turnout.inputs.turnout import load_turnout
 
     turnout = load_turnout()
-    rows = receptance_rows(turnout, args.repeat) + exudyn_rows(turnout, args.steps)
+    stick = Yardstick()
+    stick.run()
+    rows = [(*r, stick.run()) for r in receptance_rows(turnout, args.repeat)]
+    rows += [(*r, stick.run()) for r in exudyn_rows(turnout, args.steps)]
+    seconds = {"s": 1.0, "ms": 1e-3, "us": 1e-6}
     width = max(len(r[0]) for r in rows)
-    print(f"{'quantity':<{width}}  {'value':>10}  unit  target / note")
-    for name, value, unit, target in rows:
-        print(f"{name:<{width}}  {value:>10.3g}  {unit:<4}  {target}")
+    print(f"{'quantity':<{width}}  {'value':>10}  unit  {'yardstick':>10}  target / note")
+    for name, value, unit, target, after in rows:
+        units = f"{value * seconds[unit] / after:>10.3g}" if unit in seconds else f"{'':>10}"
+        print(f"{name:<{width}}  {value:>10.3g}  {unit:<4}  {units}  {target}")
+    print(f"yardstick median {stick.median:.3f} s; {machine_line()}")
 
 
 if __name__ == "__main__":

@@ -11,14 +11,17 @@ the process's CPU time of the run (less sensitive than wall time to other proces
 shared machine). For the full vehicle: Newton iterations per step and Jacobian evaluations
 of the whole run (Exudyn's solver statistics, summed over the run's segments). The contact
 tables are loaded and the compiled contact kernel warmed up before, untimed. Issue 13's
-target: the 3-layer full vehicle at most 1.0 x real time.
+target: the 3-layer full vehicle at most 1.0 x real time. Every run alternates with the
+yardstick (``benchmarks/yardstick.py``); "yardstick" is the whole run's wall time in its
+units, the number that carries over between machines and loads.
 """
 
 from __future__ import annotations
 
 import argparse
-import time
 from dataclasses import replace
+
+from yardstick import Yardstick, machine_line
 
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
@@ -50,12 +53,11 @@ class _NewtonCount:
         full_vehicle_passage._run = self._run
 
 
-def _timed(run, settings) -> tuple[float, float, int, _NewtonCount]:
+def _timed(stick, run, settings) -> tuple[float, float, int, _NewtonCount, float]:
     with _NewtonCount() as count:
-        wall, cpu = time.perf_counter(), time.process_time()
-        result = run(settings)
-        wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
-    return wall, cpu, len(result.columns["t_s"]) - 1, count
+        timing = stick.measure(lambda: run(settings), repeats=1, warm_up=False)
+    result = timing.result
+    return timing.seconds, timing.cpu_seconds, len(result.columns["t_s"]) - 1, count, timing.units
 
 
 def main() -> None:
@@ -72,24 +74,25 @@ def main() -> None:
     x_b = turnout.x_max if args.x_end is None else args.x_end
     base = PassageSettings(route=args.route, speed_kmh=args.speed, x_start=x_a, x_end=x_b)
     warm = replace(base, x_end=x_a + 0.05)
-    simulate_passage(turnout, warm)  # contact tables, compiled kernel: untimed
+    simulate_passage(turnout, warm, "wheelset")  # contact tables, compiled kernel: untimed
     simulate_passage(turnout, warm, model)
+    stick = Yardstick()
     simulated = (x_b - x_a) / base.v
     print(f"{args.route} route, front wheelset x {x_a:g} .. {x_b:g} m, {args.speed:g} km/h, ")
     print(f"h = 1e-4 s, {simulated:.3f} s simulated")
     print(
         f"{'case':<30}{'steps':>7}{'wall s':>8}{'cpu s':>7}{'us/step':>9}{'marginal':>10}"
-        f"{'x real time':>12}{'Newton/step':>12}{'Jacobians':>10}"
+        f"{'x real time':>12}{'yardstick':>10}{'Newton/step':>12}{'Jacobians':>10}"
     )
     cases = (
-        ("1 wheelset", lambda s: simulate_passage(turnout, s)),
+        ("1 wheelset", lambda s: simulate_passage(turnout, s, "wheelset")),
         ("4 wheelsets (full vehicle)", lambda s: simulate_passage(turnout, s, model)),
     )
     for layers in args.layers:
         settings = replace(base, layers=layers)
         for label, run in cases:
-            wall_0, _, steps_0, _ = _timed(run, replace(settings, x_end=x_a + 0.5))
-            wall, cpu, steps, count = _timed(run, settings)
+            wall_0, _, steps_0, _, _ = _timed(stick, run, replace(settings, x_end=x_a + 0.5))
+            wall, cpu, steps, count, units = _timed(stick, run, settings)
             marginal = 1e6 * (wall - wall_0) / max(steps - steps_0, 1)
             newton = (
                 f"{count.iterations / count.steps:>12.2f}{count.jacobians:>10d}"
@@ -98,8 +101,10 @@ def main() -> None:
             )
             print(
                 f"{label + f', {layers}L':<30}{steps:>7}{wall:>8.2f}{cpu:>7.2f}"
-                f"{1e6 * wall / steps:>9.1f}{marginal:>10.1f}{wall / simulated:>12.2f}{newton}"
+                f"{1e6 * wall / steps:>9.1f}{marginal:>10.1f}{wall / simulated:>12.2f}"
+                f"{units:>10.2f}{newton}"
             )
+    print(f"yardstick median {stick.median:.3f} s; {machine_line()}")
 
 
 if __name__ == "__main__":

@@ -105,11 +105,28 @@ def test_serial_study_table(serial):
 
 
 @pytest.mark.slow
-def test_process_pool_gives_identical_numbers(serial, tmp_path):
+@pytest.mark.parametrize("start_method", ["fork", "spawn"])
+def test_process_pool_gives_identical_numbers(serial, tmp_path, start_method):
+    import multiprocessing
+
+    if start_method not in multiprocessing.get_all_start_methods():
+        pytest.skip(f"no {start_method} start method on this platform")
     tmp, reference = serial
-    pool = run_study(tmp / "study.toml", workers=2, out=tmp_path / "pool")
+    pool = run_study(
+        tmp / "study.toml", workers=2, out=tmp_path / "pool", start_method=start_method
+    )
     assert pool.computed == 4
     _assert_same_numbers(reference.table, pool.table)
+    meta = (tmp_path / "pool" / "results.meta.json").read_text(encoding="utf-8")
+    assert f"process pool ({start_method}), 2 workers" in meta
+
+
+def test_process_pool_start_methods():
+    from exudyn_turnout.studies.run import default_start_method, process_pool
+
+    assert default_start_method() in ("fork", "spawn")
+    with pytest.raises(StudyError, match="start_method must be 'fork' or 'spawn', got 'thread'"):
+        process_pool([], 1, "thread")
 
 
 @pytest.mark.slow
@@ -284,3 +301,223 @@ def test_fitted_parameter_source_in_a_study(tmp_path):
     bad = text.replace('parameters = ["", "uic60_760_1_15_fitted.toml"]', 'parameters = ["", ""]')
     with pytest.raises(StudyError, match="source = 'fitted' and a parameters file go together"):
         load_study(_write(tmp_path, bad, "bad.toml")).cases()
+
+
+# --- issue 24: studies scale; issue 25: studies you can read ------------------------------
+
+#: Two short cases of the default profile contact (the crossing's dip, 44.5-46 m).
+PROFILE = """
+[study]
+name = "profile"
+
+[base]
+x_start = 44.5
+x_end = 46.0
+output_step = 2e-3
+
+[factors]
+speed_kmh = [80.0, 100.0]
+"""
+
+
+def test_cases_of_the_same_files_share_the_contact_tables(tmp_path, monkeypatch):
+    """A worker builds (or reads) a route's contact tables once, not once per case: before
+    issue 24 each case loaded its files from a new temporary folder, the in-memory tables
+    missed, and ~2.5 s of a ~3 s case went to rebuilding them."""
+    from exudyn_turnout.studies import run_case
+    from exudyn_turnout.wheel_rail import turnout_sections
+
+    calls = []
+    original = turnout_sections.route_contact_tables
+
+    def counted(*args, **kwargs):
+        calls.append(args[1])
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(turnout_sections, "route_contact_tables", counted)
+    cases = load_study(_write(tmp_path, PROFILE)).cases()
+    records = [run_case(case) for case in cases]
+    assert [r["status"] for r in records] == ["ok", "ok"], [r["error"] for r in records]
+    assert len(calls) <= 1  # 0 if an earlier test of this process loaded the same route
+
+
+def test_longest_cases_are_handed_out_first():
+    from exudyn_turnout.studies.run import estimated_cost
+
+    study = study_from_dict(
+        {
+            "base": {"x_start": 40.0, "x_end": 50.0},
+            "factors": {"speed_kmh": [50.0, 100.0], "track": ["3-layer", "fe"]},
+        }
+    )
+    cost = {(c.inputs["speed_kmh"], c.inputs["track"]): estimated_cost(c) for c in study.cases()}
+    # 10 m at 50 km/h is twice the steps of 10 m at 100 km/h; the FE track costs more
+    assert cost[50.0, "3-layer"] == pytest.approx(2 * cost[100.0, "3-layer"])
+    assert cost[100.0, "fe"] > cost[50.0, "3-layer"]
+
+
+def test_keep_timeseries_stores_each_case_compressed(tmp_path):
+    import zipfile
+
+    path = _write(tmp_path, PROFILE.replace("[80.0, 100.0]", "[100.0]"))
+    first = run_study(path, workers=1, out=tmp_path / "out")
+    key = first.table["key"][0]
+    folder = tmp_path / "out" / "cases" / key
+    assert not (folder / "timeseries.npz").exists()  # not asked for
+    # asked for now (the option): the stored case lacks them, so it runs again
+    again = run_study(path, workers=1, out=tmp_path / "out", keep_timeseries=True)
+    assert (again.computed, again.reused) == (1, 0)
+    with zipfile.ZipFile(folder / "timeseries.npz") as archive:
+        assert {i.compress_type for i in archive.infolist()} == {zipfile.ZIP_DEFLATED}
+    with np.load(folder / "timeseries.npz") as series:
+        t, x = series["t_s"], series["x_m"]
+        # every stored sample of the passage: 1.5 m at 100 km/h, one every 2 ms
+        assert t.size == pytest.approx(1.5 / (100 / 3.6) / 2e-3 + 1, abs=1)
+        assert x[0] == pytest.approx(44.5) and x[-1] == pytest.approx(46.0, abs=0.06)
+        assert series["Fz_right_N"].shape == t.shape
+        # the study's RMS of the dynamic load comes from these very samples (to 1 mN: the
+        # table keeps 9 digits, so its static load of ~1e5 N is rounded to 1e-4 N)
+        fz = series["Fz_right_N"] - again.table["static_wheel_load_N"][0]
+        rms = np.sqrt(np.mean(fz[np.isfinite(fz)] ** 2))
+        assert rms == pytest.approx(again.table["rms_dyn_Fz_right_N"][0], abs=1e-3)
+    # the same from the study file's [output] section; stored with them: nothing to run
+    path.write_text(
+        PROFILE.replace("[80.0, 100.0]", "[100.0]") + "\n[output]\nkeep_timeseries = true\n"
+    )
+    assert load_study(path).keep_timeseries
+    third = run_study(path, workers=1, out=tmp_path / "out")
+    assert (third.computed, third.reused) == (0, 1)
+    with pytest.raises(StudyError, match=r"\[output\]: unknown field 'keep'"):
+        study_from_dict({"output": {"keep": True}})
+    with pytest.raises(StudyError, match="keep_timeseries = 'yes' must be true or false"):
+        study_from_dict({"output": {"keep_timeseries": "yes"}})
+
+
+def test_progress_lines_in_a_log_and_a_bar_on_a_terminal():
+    import io
+
+    from exudyn_turnout.cli.study import ProgressLines
+
+    now = [0.0]
+    log = io.StringIO()
+    show = ProgressLines(log, clock=lambda: now[0])
+    for done, eta, t in ((1, None, 0.0), (1, None, 0.0), (2, 30.0, 10.0), (4, 0.0, 41.0)):
+        now[0] = t
+        show(done, 4, eta)
+    show.end()
+    # one plain line per finished case (a repeated count is not repeated), no carriage return
+    assert log.getvalue().splitlines() == [
+        "study: 1/4 cases, 0 s, ETA --",
+        "study: 2/4 cases, 10 s, ETA 0:30",
+        "study: 4/4 cases, 41 s, ETA 0:00",
+    ]
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    tty = Terminal()
+    bar = ProgressLines(tty, clock=lambda: 0.0)
+    bar(2, 4, 5.0)
+    assert tty.getvalue().startswith("\r[###############...............] 2/4 cases")
+    assert "\n" not in tty.getvalue()
+    bar.end()
+    assert tty.getvalue().endswith("\n")
+
+
+def _synthetic_table():
+    """A study's table without passages: 3 paired pad levels x 2 speeds x 3 seeds."""
+    pads = [f"turnout.rail_types.{r}.pad.k_z" for r in ("stock", "switch", "crossing", "check")]
+    rows = [(k, v, s) for k in (96e6, 120e6, 144e6) for v in (80.0, 100.0) for s in (1, 2, 3)]
+    n = len(rows)
+    table = {
+        "case": np.arange(n, dtype=float),
+        "status": np.array(["ok"] * n),
+        "speed_kmh": np.array([r[1] for r in rows]),
+        "seed": np.array([float(r[2]) for r in rows]),
+        # a made-up peak: grows with pad stiffness and speed, a spread over the seeds
+        "max_Fz_crossing_N": np.array([1e5 + r[0] * 1e-4 + 100 * r[1] + 50 * r[2] for r in rows]),
+    }
+    for name in pads:
+        table[name] = np.array([r[0] for r in rows])
+    varied = ["speed_kmh", *pads, "seed"]
+    return table, varied, pads
+
+
+def test_study_figures_one_per_factor_with_units(tmp_path, monkeypatch):
+    from exudyn_turnout.plotting import studies as figures
+
+    table, varied, pads = _synthetic_table()
+    saved = {}
+
+    def keep(fig, path):
+        saved[Path(path).name] = fig
+
+    monkeypatch.setattr(figures, "save_study_figure", keep)
+    paths = figures.study_figures(table, varied, tmp_path, paired=pads)
+    # four paired pad factors make one figure, not four identical ones
+    assert sorted(saved) == [
+        "peak_distribution.png",
+        "peak_vs_speed_kmh.png",
+        "peak_vs_turnout_rail_types_stock_pad_k_z.png",
+    ]
+    assert len(paths) == 3
+    pad_ax = saved["peak_vs_turnout_rail_types_stock_pad_k_z.png"].axes[0]
+    assert pad_ax.get_xlabel() == "rail pad k_z, stock/switch/crossing/check rails (MN/m)"
+    assert pad_ax.get_ylabel().startswith("largest Fz, crossing (kN)")
+    # one curve per speed (the other factor), the seeds as mean and range; x in MN/m
+    assert [t.get_text() for t in pad_ax.get_legend().get_texts()] == [
+        "speed = 80 km/h",
+        "speed = 100 km/h",
+    ]
+    np.testing.assert_allclose(pad_ax.get_lines()[0].get_xdata(), [96.0, 120.0, 144.0])
+    speed_ax = saved["peak_vs_speed_kmh.png"].axes[0]
+    assert speed_ax.get_xlabel() == "speed (km/h)"
+    assert len(speed_ax.get_lines()) == 3  # one per pad level
+    # the distribution over seeds split by the other factors: 3 pads x 2 speeds, 3 seeds each
+    cdf_ax = saved["peak_distribution.png"].axes[1]
+    labels = [t.get_text() for t in cdf_ax.get_legend().get_texts()]
+    assert len(labels) == 6 and all(label.endswith("(n = 3)") for label in labels)
+    assert labels[0] == "speed = 80 km/h, rail pad k_z = 96 MN/m (n = 3)"
+
+
+def test_factor_and_result_labels_carry_units():
+    from exudyn_turnout.plotting.studies import factor_label, result_label
+
+    assert factor_label("speed_kmh") == ("speed (km/h)", 1.0)
+    assert factor_label("time_step") == ("time step (ms)", 1e3)
+    assert factor_label("vehicle.primary_suspension.c_z") == (
+        "vehicle primary suspension c_z (kN s/m)",
+        1e-3,
+    )
+    assert factor_label("turnout.sleeper.density")[0] == "sleeper density (kg/m^3)"
+    assert factor_label("turnout.something_odd")[0].endswith("(SI)")  # unknown: said so
+    assert result_label("peak_Fz_crossing_right_r2_N") == (
+        "peak Fz, crossing, right, r2 (kN)",
+        1e-3,
+    )
+    assert result_label("rms_dyn_Fz_right_N")[0] == "RMS of dynamic Fz, right (kN)"
+
+
+@pytest.mark.slow
+def test_profile_contact_pool_and_dask_give_the_serial_numbers(tmp_path):
+    """The default contact: serial, the process pool (warmed workers, longest case first)
+    and a Dask cluster give the very same table, to the bit."""
+    path = _write(tmp_path, PROFILE)
+    serial_run = run_study(path, workers=1, out=tmp_path / "serial")
+    pool = run_study(path, workers=2, out=tmp_path / "pool")
+    assert pool.computed == 2 and pool.failed == 0
+    _assert_same_numbers(serial_run.table, pool.table)
+    try:
+        from distributed import Client, LocalCluster
+    except ImportError:
+        pytest.skip("dask[distributed] is not installed (the cluster extra); CI installs it")
+    with (
+        LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+        ) as cluster,
+        Client(cluster) as client,
+    ):
+        dask = run_study(path, executor=client.get_executor(), out=tmp_path / "dask")
+    assert dask.computed == 2
+    _assert_same_numbers(pool.table, dask.table)

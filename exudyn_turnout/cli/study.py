@@ -15,7 +15,7 @@ import time
 
 from exudyn_turnout.cli.main import RunFailure, UsageError, check_out_dir
 
-__all__ = ["build", "eta_text"]
+__all__ = ["build", "eta_text", "ProgressLines"]
 
 
 def eta_text(seconds: float | None) -> str:
@@ -71,24 +71,54 @@ def build(sub: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--retry-failed", action="store_true", help="run the stored failed cases again"
     )
+    parser.add_argument(
+        "--keep-timeseries",
+        action="store_true",
+        help="store every case's whole time series, cases/<key>/timeseries.npz (compressed; "
+        "also [output] keep_timeseries = true in the study file)",
+    )
     parser.add_argument("--no-plot", action="store_true", help="skip the figures")
     parser.set_defaults(run=_run)
 
 
-def _progress(stream):
-    start = time.perf_counter()
+class ProgressLines:
+    """The study's progress: a bar on a terminal, else one plain line per finished case.
 
-    def show(done: int, total: int, eta: float | None) -> None:
-        n = int(30 * done / total) if total else 30
-        elapsed = time.perf_counter() - start
-        line = f"[{'#' * n}{'.' * (30 - n)}] {done}/{total} cases, {elapsed:.0f} s, {eta_text(eta)}"
-        if stream.isatty():
-            stream.write("\r" + line)
-        elif done == total:
-            stream.write(line)
-        stream.flush()
+    A batch log (stderr not a terminal) gets ``study: 3/24 cases, 41 s, ETA 4:52`` for the
+    cases stored before (once) and for each case finished, so it is never silent for long.
 
-    return show
+    Parameters
+    ----------
+    stream : text stream
+        Usually ``sys.stderr``.
+    clock : callable, optional
+        s, a monotonic clock (tests pass their own).
+    """
+
+    def __init__(self, stream, clock=time.perf_counter):
+        self.stream = stream
+        self.clock = clock
+        self.start = clock()
+        self.terminal = bool(stream.isatty())
+        self.last = -1
+
+    def __call__(self, done: int, total: int, eta: float | None) -> None:
+        """Show ``done`` of ``total`` cases (``run_study``'s ``progress``)."""
+        elapsed = self.clock() - self.start
+        if self.terminal:
+            n = int(30 * done / total) if total else 30
+            bar = f"[{'#' * n}{'.' * (30 - n)}]"
+            self.stream.write(f"\r{bar} {done}/{total} cases, {elapsed:.0f} s, {eta_text(eta)}")
+        elif done != self.last:
+            self.stream.write(f"study: {done}/{total} cases, {elapsed:.0f} s, {eta_text(eta)}\n")
+        self.last = done
+        self.stream.flush()
+
+    def end(self) -> None:
+        """Finish the bar's line on a terminal (nothing in a log)."""
+        if self.terminal:
+            self.stream.write("\n")
+            self.stream.flush()
 
 
 def _client(address: str):
@@ -116,7 +146,7 @@ def _run(args: argparse.Namespace) -> int:
     except StudyError as err:
         raise UsageError(str(err)) from None
     client = _client(args.scheduler) if args.scheduler else None
-    bar = _progress(sys.stderr)
+    bar = ProgressLines(sys.stderr)
     try:
         result = run_study(
             study,
@@ -125,13 +155,14 @@ def _run(args: argparse.Namespace) -> int:
             out=out,
             progress=bar,
             retry_failed=args.retry_failed,
+            keep_timeseries=True if args.keep_timeseries else None,
         )
     except StudyError as err:
         raise UsageError(str(err)) from None
     except OSError as err:
         raise UsageError(f"--out {args.out}: cannot write: {err.strerror or err}") from None
     finally:
-        sys.stderr.write("\n")
+        bar.end()
         if client is not None:
             client.close()
     figures = [] if args.no_plot else _figures(result.table, study, out)
@@ -150,4 +181,6 @@ def _run(args: argparse.Namespace) -> int:
 def _figures(table, study, out) -> list[str]:
     from exudyn_turnout.plotting.studies import study_figures
 
-    return study_figures(table, study.varied, out)
+    return study_figures(
+        table, study.varied, out, paired=list(study.paired), sampled=list(study.lhs_ranges)
+    )

@@ -32,6 +32,9 @@ A study is data (TOML)::
     irregularity = "psd:ERRI-low,band=1-70"    # seed=N is added to each psd: part
     seeds = 20                      # seeds 1..20, or a list [3, 7, 11]
 
+    [output]                        # optional
+    keep_timeseries = true          # every case's whole time series, cases/<key>/timeseries.npz
+
 A factor is any field of :class:`~exudyn_turnout.passage.results.PassageSettings`,
 ``track``, ``turnout`` / ``vehicle`` (a file), ``irregularity`` (a spec), or a field of the
 turnout or vehicle file by dotted path (``turnout.<path>``, ``vehicle.<path>``; an integer
@@ -100,6 +103,8 @@ class Case:
         s, decimation of the stored time histories (None: not stored).
     key : str
         Hash of all of the above and the package version: the case's folder name.
+    keep_timeseries : bool
+        Store the case's whole time series (not part of the key: the same passage).
     """
 
     index: int
@@ -118,6 +123,7 @@ class Case:
     irregularity: Irregularity | None = None
     history_step: float | None = None  #: s
     key: str = ""
+    keep_timeseries: bool = False
 
 
 def _settings_fields() -> dict[str, str]:
@@ -179,6 +185,8 @@ class Study:
         s, decimation of stored histories.
     description : str
         Free text.
+    keep_timeseries : bool
+        From ``[output] keep_timeseries``: store every case's whole time series.
     """
 
     name: str
@@ -193,6 +201,7 @@ class Study:
     repetition_irregularity: str = ""
     history_step: float | None = None  #: s
     description: str = ""
+    keep_timeseries: bool = False
 
     @property
     def directory(self) -> Path:
@@ -350,6 +359,7 @@ class Study:
                     irregularity=irregularities.get(spec),
                     history_step=history,
                     key=key,
+                    keep_timeseries=self.keep_timeseries,
                 )
             )
         return out
@@ -505,7 +515,7 @@ def study_from_dict(data: Mapping[str, Any], source: str = "") -> Study:
     def error(text: str) -> StudyError:
         return StudyError(f"{label}: {text}")
 
-    sections = ("study", "base", "factors", "paired", "latin_hypercube", "repetitions")
+    sections = ("study", "base", "factors", "paired", "latin_hypercube", "repetitions", "output")
     for key in data:
         if key not in sections:
             raise error(f"unknown section [{key}] (sections: {', '.join(sections)})")
@@ -521,6 +531,13 @@ def study_from_dict(data: Mapping[str, Any], source: str = "") -> Study:
         isinstance(history, (int, float)) and not isinstance(history, bool) and history > 0
     ):
         raise error(f"[study]: history_step = {history!r} must be a time step > 0 (s)")
+    output = dict(data.get("output", {}))
+    for key in output:
+        if key != "keep_timeseries":
+            raise error(f"[output]: unknown field {key!r} (fields: keep_timeseries)")
+    keep = output.get("keep_timeseries", False)
+    if not isinstance(keep, bool):
+        raise error(f"[output]: keep_timeseries = {keep!r} must be true or false")
     base = dict(data.get("base", {}))
     for name, value in base.items():
         _check_name(name, "[base]", error)
@@ -621,6 +638,7 @@ def study_from_dict(data: Mapping[str, Any], source: str = "") -> Study:
         repetition_irregularity=rep_spec,
         history_step=None if history is None else float(history),
         description=str(head.get("description", "")),
+        keep_timeseries=keep,
     )
 
 
