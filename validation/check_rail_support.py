@@ -160,7 +160,7 @@ def main(argv=None) -> None:
         )
         + ". The bracket-derived check rail matches the FE's static stiffness exactly at "
         "the table's positions (sleepers and overhang) and interpolates linearly between "
-        "them, so mid-bay (45.2, 46, 47, 48 m here) it is the neighbouring sleepers' value: "
+        "them, so mid-bay (every x above) it is the neighbouring sleepers' value: "
         "up to 16 % above the FE's mid-bay value (the bay's own bending, which a co-running "
         "model without discrete supports cannot have). The co-running models know no roll: "
         "the bracket-derived check rail takes the torsion-aware FE at the gauge corner; the "
