@@ -228,6 +228,9 @@ def fe_fit_targets(
     rails : sequence of str, optional
         Rail slots to fit (default: the zone's active rails); a slot without an FE rail
         at a position (the switch rail ahead of the toe) has no target there.
+    lateral : {"torsion", "planar"}
+        Lateral FE reference (:data:`LATERAL_REFERENCES`): torsion-aware at the gauge
+        corner (the FE passages' track, default) or planar at the rail (the paper's kind).
 
     Returns
     -------

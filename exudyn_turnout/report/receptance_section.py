@@ -28,11 +28,23 @@ from exudyn_turnout.report.settings import (
 )
 
 __all__ = [
+    "FE_TORSION",
+    "FE_REFERENCE_OF_CASE",
     "receptance_positions",
     "pinned_pinned_frequency",
     "receptance_case_metrics",
     "receptance_section",
 ]
+
+
+#: Name of the torsion-aware FE curve of a lateral case (ours, beyond the paper).
+FE_TORSION = "FE torsion"
+
+#: The FE reference ("FE") of a case's claims, by direction: the paper's kind of FE.
+FE_REFERENCE_OF_CASE = {
+    "vertical": "FE vertical plane at the rail (the paper's kind)",
+    "lateral": "planar lateral FE, force and response at the rail (the paper's kind)",
+}
 
 
 def receptance_positions(
@@ -112,8 +124,13 @@ def _cached_fe_receptance(
     config: ReportConfig,
     cache: ResultCache,
     fe_slots: str,
+    torsion: bool = False,
 ) -> tuple[Receptance, dict[str, Any]]:
-    """FE receptance of co-running ``rail`` at x, the FE rail from ``[layout.slots.<fe_slots>]``."""
+    """FE receptance of co-running ``rail`` at x, the FE rail from ``[layout.slots.<fe_slots>]``.
+
+    Lateral: planar at the rail (the paper's kind of FE) or, with ``torsion``, the
+    torsion-aware FE at the gauge corner (ours).
+    """
     from exudyn_turnout.fe.frf import fe_receptance
 
     f = config.frequencies
@@ -127,6 +144,7 @@ def _cached_fe_receptance(
         f,
         config.fe_options,
         fe_slots,
+        "torsion" if torsion else "planar",
     )
     hit = cache.load(key)
     if hit is not None:
@@ -136,7 +154,9 @@ def _cached_fe_receptance(
             {"cached": True, "wall_time_s": meta["wall_time_s"], "computed": meta["computed"]},
         )
     t0 = time.perf_counter()
-    r = fe_receptance(turnout, rail, direction, x, f, route=fe_slots, options=config.fe_options)
+    r = fe_receptance(
+        turnout, rail, direction, x, f, route=fe_slots, options=config.fe_options, torsion=torsion
+    )
     info = {
         "cached": False,
         "wall_time_s": time.perf_counter() - t0,
@@ -239,6 +259,23 @@ def _receptance_case(
     rail_type = zone.rail_types[rail]
     f_pp = pinned_pinned_frequency(turnout, rail_type, x, direction)
     m = receptance_case_metrics(curves, f_pp, config.criteria)
+    m["fe_reference"] = FE_REFERENCE_OF_CASE[direction]
+    if direction == "lateral":  # ours, beyond the paper: the torsion-aware FE beside it
+        torsion, _ = _cached_fe_receptance(
+            turnout, rail, direction, x, config, cache, fe_slots, torsion=True
+        )
+        beyond = receptance_case_metrics(
+            {**curves, "FE": torsion, "FE planar": curves["FE"]}, f_pp, config.criteria
+        )
+        m["vs_fe_torsion"] = beyond["models"]
+        curves[FE_TORSION] = torsion
+        m["models"][FE_TORSION] = {
+            "peaks_hz": beyond["models"]["FE"]["peaks_hz"],
+            "static_stiffness_N_per_m": torsion.static_stiffness,
+            "static_stiffness_ratio_to_FE": (
+                torsion.static_stiffness / curves["FE"].static_stiffness
+            ),
+        }
     m.update(
         {
             "rail": rail,
