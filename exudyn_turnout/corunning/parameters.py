@@ -4,7 +4,12 @@ Three sources:
 
 ``derived``
     computed from the turnout's Table 1 properties with Eqs 1-19
-    (:mod:`exudyn_turnout.corunning.equations`) under a set of :class:`Readings`;
+    (:mod:`exudyn_turnout.corunning.equations`) under a set of :class:`Readings`; the check
+    rail's (slot r3's) lateral entries and mass are derived from the FE check rail on its
+    L-bracket when the file has ``[check_rail.co_running]``
+    (:mod:`exudyn_turnout.corunning.check_rail`, ``check_rail="bracket"``), or from Eqs
+    1-19 like a running rail (``check_rail="table1"``, the paper's; the comparison with
+    Table 2 uses it);
 ``published``
     the paper's Table 2, as stored in the turnout file;
 ``fitted``
