@@ -187,6 +187,28 @@ def _beyond_the_paper(receptance: ReceptanceMetrics) -> list[str]:
     ] + table(head, rows)
 
 
+def _check_rail(receptance: ReceptanceMetrics) -> list[str]:
+    """The check rail's lateral dynamic stiffness at its entry, FE vs co-running."""
+    c = receptance.check_rail
+    if c is None:
+        return []
+    head = ["model"] + [f"{f:g} Hz" for f in c.frequencies_hz]
+    rows = [
+        [name] + [fmt(v, ".1f", 1e-6) for v in values]
+        for name, values in c.dynamic_stiffness_N_per_m.items()
+    ]
+    return [
+        f"**Check rail** (`{c.fe_rail}`, slot {c.rail}, {c.route} route, x = {c.x_m:.2f} m: "
+        "the end of its entry flare, where the wheel strikes it). Lateral dynamic stiffness "
+        "1 / |H(f)| (MN/m) at the gauge corner; 1 Hz is the static stiffness. FE: the "
+        "torsion-aware FE with the check rail on its L-bracket (the FE passages' track); "
+        "*bracket*: the co-running check rail derived from it (its static stiffness, lateral "
+        "resonance and the resonance's depth, `exudyn_turnout.corunning.check_rail`); *Table "
+        "1*: Eqs 1-19 like a running rail (the paper's).",
+        "",
+    ] + table(head, rows)
+
+
 def _tables(receptance: ReceptanceMetrics) -> list[str]:
     keys = [f"{lo:g}-{hi:g} Hz" for lo, hi in RANGES]
     head = ["case", "model"] + keys + [k + " excl. pp" for k in keys] + ["1-2000 Hz excl. pp"]
@@ -271,6 +293,7 @@ def receptance_lines(
         + _static_stiffness(receptance)
         + _tables(receptance)
         + _beyond_the_paper(receptance)
+        + _check_rail(receptance)
         + ["FE receptances: " + "; ".join(fe) + ".", ""]
         + claims_table(claims, "receptance")
     )

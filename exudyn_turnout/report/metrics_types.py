@@ -257,6 +257,19 @@ class ReceptanceCase(Record):
 
 
 @dataclass(frozen=True, kw_only=True)
+class CheckRailReceptance(Record):
+    """The check rail's lateral dynamic stiffness at its entry: FE vs co-running."""
+
+    route: str  #: the report route whose check rail it is
+    rail: str  #: co-running slot
+    fe_rail: str  #: FE layout rail id
+    x_m: float  #: m, the end of the entry flare
+    frequencies_hz: list[float]  #: Hz (1 Hz: the static stiffness)
+    #: N/m, 1 / |H(f)| per model ("FE (L-bracket, gauge corner)", "2-layer, bracket", ...)
+    dynamic_stiffness_N_per_m: dict[str, list[float]]
+
+
+@dataclass(frozen=True, kw_only=True)
 class ReceptanceMetrics(Record):
     """Section 2: the receptance cases."""
 
@@ -265,6 +278,7 @@ class ReceptanceMetrics(Record):
     frequencies: FrequencyGrid
     route: str | None = optional()  #: the receptance route
     wheel: str | None = optional()  #: the wheel whose path gives the positions
+    check_rail: CheckRailReceptance | None = optional()  #: the check rail at its entry
 
 
 @dataclass(frozen=True, kw_only=True)

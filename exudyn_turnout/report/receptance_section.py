@@ -34,7 +34,12 @@ __all__ = [
     "pinned_pinned_frequency",
     "receptance_case_metrics",
     "receptance_section",
+    "CHECK_RAIL_FREQUENCIES",
+    "check_rail_receptance_metrics",
 ]
+
+#: Hz, where the check rail's lateral dynamic stiffness is tabled (1 Hz: the static one)
+CHECK_RAIL_FREQUENCIES = (1.0, 50.0, 100.0, 300.0, 1000.0)
 
 
 #: Name of the torsion-aware FE curve of a lateral case (ours, beyond the paper).
@@ -343,6 +348,9 @@ def receptance_section(
         "wheel": settings.receptance_wheel,
     }
     curves: dict[str, dict[str, Receptance]] = {}
+    check = check_rail_receptance_metrics(turnout, config, cache, settings)
+    if check is not None:
+        metrics["check_rail"] = check
     for label, (rail, x) in receptance_positions(turnout, settings=settings).items():
         metrics["positions"][label] = {"rail": rail, "x_m": x}
         for direction in ("vertical", "lateral"):
@@ -355,3 +363,86 @@ def receptance_section(
                 + (" (cached)" if metrics["cases"][case]["fe"]["cached"] else "")
             )
     return metrics, curves
+
+
+def check_rail_receptance_metrics(
+    turnout: Turnout,
+    config: ReportConfig,
+    cache: ResultCache,
+    settings: ReportSettings | None = None,
+) -> dict[str, Any] | None:
+    """The check rail's lateral dynamic stiffness, FE (bracket) vs co-running, at its entry.
+
+    At the end of the entry flare of the first report route that has a check-rail contact
+    (where the wheel strikes it, :func:`~exudyn_turnout.passage.events.check_rail_event`;
+    routes whose lateral force is plotted first),
+    1 / |H(f)| at :data:`CHECK_RAIL_FREQUENCIES` of: the torsion-aware FE check rail on its
+    L-bracket at the gauge corner (the FE passages' track), and the co-running slot with
+    the check rail derived from it (``check_rail="bracket"``, the default when the file
+    has ``[check_rail.co_running]``) and from Table 1 like a running rail (``"table1"``).
+
+    Parameters
+    ----------
+    turnout : Turnout
+    config : ReportConfig
+        FE mesh.
+    cache : ResultCache
+        Where the FE values are stored.
+    settings : ReportSettings, optional
+
+    Returns
+    -------
+    dict or None
+        JSON-ready; None when no report route has a check rail.
+    """
+    from exudyn_turnout.corunning.check_rail import check_rail_model
+    from exudyn_turnout.corunning.fit import model_receptance
+    from exudyn_turnout.corunning.parameters import co_running_parameters
+    from exudyn_turnout.fe.check_rail_receptance import check_rail_receptance
+    from exudyn_turnout.fe.frf import resolve_rail
+    from exudyn_turnout.fe.layout import load_layout
+    from exudyn_turnout.passage.events import check_rail_event
+
+    settings = settings or report_settings(turnout)
+    # the routes whose lateral force is plotted first (the paper's Fig. 8: the diverging one)
+    routes = sorted(settings.routes, key=lambda r: "Fy" not in r.forces)
+    found = next(
+        ((r, e) for r in routes if (e := check_rail_event(turnout, r.name)) is not None), None
+    )
+    if found is None:
+        return None
+    route, event = found
+    slot, x = str(event["rail"]), float(event["entry_m"][1])  # type: ignore[index]
+    rail_id = resolve_rail(load_layout(turnout), slot, x, route.fe_slots)
+    f = np.asarray(CHECK_RAIL_FREQUENCIES)
+    key = input_key(
+        "fe_check_rail",
+        turnout_fingerprint(turnout),
+        code_fingerprint(RESULT_STAGES),
+        rail_id,
+        x,
+        f,
+        config.fe_options,
+    )
+    hit = cache.load(key)
+    if hit is not None:
+        H_fe = hit[0]["H"][:, 0]
+    else:
+        H = check_rail_receptance(turnout, rail_id, [x], f, config.fe_options)
+        cache.save(key, {"H": H}, {"computed": time.strftime("%Y-%m-%d %H:%M")})
+        H_fe = H[:, 0]
+    models = {"FE (L-bracket, gauge corner)": [float(v) for v in 1.0 / np.abs(H_fe)]}
+    kinds = [("bracket", "bracket")] if check_rail_model(turnout, None) == "bracket" else []
+    for model, label in kinds + [("table1", "Table 1")]:
+        for layers in (2, 3):
+            params = co_running_parameters(turnout, x=x, layers=layers, check_rail=model)
+            H = model_receptance(params, x, slot, "lateral", f)
+            models[f"{layers}-layer, {label}"] = [float(v) for v in 1.0 / np.abs(H)]
+    return {
+        "route": route.name,
+        "rail": slot,
+        "fe_rail": rail_id,
+        "x_m": x,
+        "frequencies_hz": list(CHECK_RAIL_FREQUENCIES),
+        "dynamic_stiffness_N_per_m": models,
+    }
