@@ -97,8 +97,11 @@ def test_delta_factors_hand_values(turnout, x, expected_dz, expected_dy):
 
 
 def test_lateral_check_rail_and_crossing_rail_reproduce_table2(turnout):
-    """Table 2: k_rt3,y = 215e6 (check, L-brackets), zone 2 k_rt2,y = 53e6, k_tg,y = 86e6."""
-    zone2 = co_running_parameters(turnout, zone=2).entries
+    """Table 2: k_rt3,y = 215e6 (check, L-brackets), zone 2 k_rt2,y = 53e6, k_tg,y = 86e6.
+
+    Eqs 1-19 on Table 1 (``check_rail="table1"``, the paper's path; the default derives the
+    check rail from the FE bracket instead, tests/test_corunning_check_rail.py)."""
+    zone2 = co_running_parameters(turnout, zone=2, check_rail="table1").entries
     assert zone2["k_rt3_y"].a == pytest.approx(215e6, rel=0.02)
     assert zone2["k_rt2_y"].a == pytest.approx(53e6, rel=0.02)
     assert zone2["k_tg_y"].a == pytest.approx(86e6, rel=0.02)

@@ -228,12 +228,13 @@ def test_cli_fit_then_source_fitted(capsys, tmp_path, monkeypatch, switch_target
     """
     import exudyn_turnout.cli.fit as cli_fit
 
-    def cached_targets(turnout, zone, positions, frequencies, options, route, rails):
-        assert (zone.index, list(positions), list(rails), route) == (
+    def cached_targets(turnout, zone, positions, frequencies, options, route, rails, lateral):
+        assert (zone.index, list(positions), list(rails), route, lateral) == (
             1,
             [X_SWITCH],
             ["r2"],
             "through",
+            "torsion",  # the default: the FE passages' lateral track
         )
         assert options == cli_fit.coarse_fe_options() and len(frequencies) == N_FE
         np.testing.assert_allclose(frequencies, switch_targets[0][0].reference.frequency_hz)
@@ -261,6 +262,8 @@ def test_cli_fit_then_source_fitted(capsys, tmp_path, monkeypatch, switch_target
     assert len(fitted.provenance["turnout_sha256"]) == 64
     assert fitted.provenance["fe_options"]["element_order"] == 2
     assert fitted.provenance["n_frequencies"] == N_FE
+    assert fitted.provenance["lateral_fe"] == "torsion"
+    assert "# FE reference: vertical: FE vertical plane" in out.read_text().splitlines()[2]
     assert fitted.residuals[1] and "fitted_db" in fitted.residuals[1][0]
     code, stdout, _ = _run(
         capsys,

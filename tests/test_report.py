@@ -17,8 +17,9 @@ import pytest
 from exudyn_turnout.cli.main import main
 from exudyn_turnout.report import agreement as ag
 from exudyn_turnout.report.cache import ResultCache, input_key
-from exudyn_turnout.report.claims import evaluate_claims
+from exudyn_turnout.report.claims import FE_REFERENCES, evaluate_claims
 from exudyn_turnout.report.criteria import FAILS, HOLDS, NOT_CHECKED, Criteria
+from exudyn_turnout.report.markdown_format import claims_table
 
 # --- metric functions -----------------------------------------------------------------
 
@@ -155,6 +156,18 @@ def test_claims_without_data_are_not_checked():
     v = _verdicts({})
     assert set(v) >= {"S1", "R1", "F1", "F4", "C1", "C3"}
     assert all(x == NOT_CHECKED for x in v.values())
+
+
+def test_every_claim_names_its_fe_reference():
+    """S and R claims against the planar FE (the paper's kind), F and C against the passages'
+    torsion-aware FE track (issue 23: state which lateral FE reference each claim uses)."""
+    claims = evaluate_claims({})
+    by_id = {c.id: c.fe_reference for c in claims}
+    assert all(by_id[i] == FE_REFERENCES["planar"] for i in by_id if i[0] in "SR")
+    assert all(by_id[i] == FE_REFERENCES["passage"] for i in by_id if i[0] in "FC")
+    assert "planar" in FE_REFERENCES["planar"] and "torsion" in FE_REFERENCES["passage"]
+    table = "\n".join(claims_table(claims, "receptance"))
+    assert "| FE reference |" in table and FE_REFERENCES["planar"] in table
 
 
 def _lateral_passage_metrics(p2: float, p3: float, pfe: float) -> dict:

@@ -3,7 +3,6 @@ committed ``metrics.json`` files unchanged, and ``report.md`` renders from them.
 
 from __future__ import annotations
 
-import dataclasses
 import json
 from pathlib import Path
 
@@ -53,7 +52,10 @@ def test_claims_of_committed_metrics_are_the_committed_claims(path):
     data = _load(path)
     criteria = Criteria(**data["criteria"])
     for metrics in (data, ReportMetrics.from_dict(data)):
-        claims = [dataclasses.asdict(c) for c in evaluate_claims(metrics, criteria)]
+        claims = [c.to_dict() for c in evaluate_claims(metrics, criteria)]
+        for new, old in zip(claims, data["claims"]):
+            if "fe_reference" not in old:  # a report written before the references were stated
+                new.pop("fe_reference")
         assert json.loads(to_json({"claims": claims}))["claims"] == data["claims"]
 
 

@@ -15,7 +15,9 @@ Writes ``validation/fitted_parameters.md`` (default):
 4. With ``--passage``: peak vertical contact forces over the switch and the crossing
    windows, FE track vs 3-layer co-running derived / published / fitted (``--fitted`` file).
 
-FE: ``FEOptions()`` (quartic elements of 0.2 m, the report's mesh), 400 log-spaced
+FE reference: vertical plane; lateral torsion-aware at the gauge corner (the FE passages'
+track; ``cli.fit.fe_fit_targets`` default). FE: ``FEOptions()`` (quartic elements of 0.2 m,
+the report's mesh), 400 log-spaced
 frequencies 1-2000 Hz; the fit: ``exudyn_turnout.corunning.fit`` defaults.
 """
 
@@ -262,7 +264,12 @@ def main() -> None:
         "*derived*: Eqs 1-19 (package default readings); *published*: the paper's Table 2; "
         "*fitted here*: the fit at this x (`exudyn-turnout fit --positions x`); *fitted file*: "
         "the turnout-wide fitted file (fits at every 4th sleeper, tables linear in x, masses "
-        "constant per zone) evaluated at this x. FE: `FEOptions()`, 400 frequencies.",
+        "constant per zone) evaluated at this x. FE: `FEOptions()`, 400 frequencies. **FE "
+        "reference** (of the fits and of every comparison here): the vertical plane at the "
+        "rail; laterally the torsion-aware FE (rails roll on their pads, check rails on their "
+        "L-brackets), force and response at the gauge corner: the FE track of the FE "
+        "passages (`exudyn-turnout fit --lateral-fe torsion`, the default; the report judges "
+        "the paper's receptance claims against the planar lateral FE instead).",
         "",
         receptance_markdown(rows, fits),
         "",

@@ -26,7 +26,43 @@ from exudyn_turnout.cli.main import (
 )
 from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Turnout, Zone
 
-__all__ = ["build", "sleeper_positions", "fe_fit_targets", "coarse_fe_options"]
+__all__ = [
+    "LATERAL_REFERENCES",
+    "build",
+    "sleeper_positions",
+    "fe_fit_targets",
+    "coarse_fe_options",
+    "reference_description",
+]
+
+#: The lateral FE references a fit can take: ``"torsion"`` the torsion-aware FE (the rail
+#: rolls on its pads, the check rail on its L-bracket; force and response at the gauge
+#: corner): the FE track of the FE passages, the default; ``"planar"`` the planar lateral
+#: FE (no roll, force and response at the rail): the kind of FE the paper had.
+LATERAL_REFERENCES = ("torsion", "planar")
+
+
+def reference_description(lateral: str) -> str:
+    """The FE reference of a fit in words (for the fitted file's header).
+
+    Parameters
+    ----------
+    lateral : {"torsion", "planar"}
+
+    Returns
+    -------
+    str
+    """
+    if lateral == "torsion":
+        return (
+            "vertical: FE vertical plane at the rail; lateral: torsion-aware FE (rails roll "
+            "on their pads, check rails on their L-brackets), force and response at the "
+            "gauge corner: the FE track of the FE passages"
+        )
+    return (
+        "vertical: FE vertical plane at the rail; lateral: planar FE (no roll), force and "
+        "response at the rail: the kind of FE the paper had"
+    )
 
 
 def build(sub: argparse._SubParsersAction) -> None:
@@ -77,6 +113,13 @@ def build(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument(
         "--route", default="through", help="route whose FE rail slots are used (default through)"
+    )
+    p.add_argument(
+        "--lateral-fe",
+        choices=LATERAL_REFERENCES,
+        default="torsion",
+        help="lateral FE reference: torsion (rails roll, gauge corner; the FE passages' "
+        "track; default) or planar (no roll, at the rail; the paper's kind of FE)",
     )
     p.add_argument("--fmin", type=number, default=1.0, metavar="HZ", help="default 1 Hz")
     p.add_argument("--fmax", type=number, default=2000.0, metavar="HZ", help="default 2000 Hz")
@@ -162,6 +205,7 @@ def fe_fit_targets(
     options: Any = None,
     route: str = "through",
     rails: Sequence[str] | None = None,
+    lateral: str = "torsion",
 ) -> tuple[list[list[Any]], tuple[str, ...]]:
     """FE point receptances of a zone's rails at the fit positions, as fit targets.
 
@@ -184,6 +228,9 @@ def fe_fit_targets(
     rails : sequence of str, optional
         Rail slots to fit (default: the zone's active rails); a slot without an FE rail
         at a position (the switch rail ahead of the toe) has no target there.
+    lateral : {"torsion", "planar"}
+        Lateral FE reference (:data:`LATERAL_REFERENCES`): torsion-aware at the gauge
+        corner (the FE passages' track, default) or planar at the rail (the paper's kind).
 
     Returns
     -------
@@ -195,12 +242,15 @@ def fe_fit_targets(
     import numpy as np
 
     from exudyn_turnout.corunning.fit import FitTarget
-    from exudyn_turnout.fe.frf import resolve_rail, sweep_points
+    from exudyn_turnout.fe.frf import load_height, resolve_rail, sweep_vectors
     from exudyn_turnout.fe.layout import load_layout
     from exudyn_turnout.fe.mesh import FEOptions, build_mesh
     from exudyn_turnout.fe.model import assemble
+    from exudyn_turnout.fe.torsion import UIC60_SECTION
     from exudyn_turnout.receptance import Receptance
 
+    if lateral not in LATERAL_REFERENCES:
+        raise ValueError(f"lateral must be one of {', '.join(LATERAL_REFERENCES)}, got {lateral!r}")
     options = options or FEOptions()
     layout = load_layout(turnout)
     f = np.asarray(frequencies, float)
@@ -229,13 +279,15 @@ def fe_fit_targets(
     keys = list(ids)
     targets: list[list[Any]] = [[] for _ in positions]
     for direction in ("vertical", "lateral"):
-        model = assemble(turnout, mesh, direction)
-        H = sweep_points(model, [(ids[k], float(k[1])) for k in keys], f)
+        torsion = UIC60_SECTION if direction == "lateral" and lateral == "torsion" else None
+        model = assemble(turnout, mesh, direction, torsion=torsion)
+        z = load_height(torsion, "head") if torsion is not None else 0.0
+        B = np.column_stack([model.head_vector(ids[k], float(k[1]), z) for k in keys])
+        H = sweep_vectors(model, B, f)
         for j, (rail, x) in enumerate(keys):
             i = list(positions).index(x)
-            reference = Receptance(
-                f, H[:, j], rail, direction, float(x), "FE", {"rail_id": ids[(rail, x)]}
-            )
+            meta = {"rail_id": ids[(rail, x)], "lateral_reference": lateral}
+            reference = Receptance(f, H[:, j], rail, direction, float(x), "FE", meta)
             f_pp = _pinned_pinned_hz(turnout, zone.rail_types[rail], float(x), direction)
             targets[i].append(FitTarget(rail, direction, reference, f_pp))
     return targets, tuple(used)
@@ -287,7 +339,14 @@ def _run(args: argparse.Namespace) -> int:
         )
         try:
             targets, rails = fe_fit_targets(
-                turnout, zone, xs, frequencies, options, route=args.route, rails=args.rails
+                turnout,
+                zone,
+                xs,
+                frequencies,
+                options,
+                route=args.route,
+                rails=args.rails,
+                lateral=args.lateral_fe,
             )
         except ValueError as err:
             raise UsageError(f"fit: zone {zone.index}: {err}") from None
@@ -305,6 +364,8 @@ def _run(args: argparse.Namespace) -> int:
         "turnout_sha256": file_sha256(turnout.source),
         "turnout_model_sha256": turnout_model_sha256(turnout),
         "route": args.route,
+        "fe_reference": reference_description(args.lateral_fe),
+        "lateral_fe": args.lateral_fe,
         "f_min_hz": args.fmin,
         "f_max_hz": args.fmax,
         "n_frequencies": args.n,

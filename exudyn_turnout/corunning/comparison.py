@@ -176,10 +176,16 @@ def _explain(c: _Context, derived_ok: bool, printed_ok: bool) -> tuple[str, floa
 
 
 def _zone_values(turnout: Turnout, zone: int) -> list[dict[str, dict[str, float]]]:
-    """Values of the four sets at the zone start, middle and end."""
+    """Values of the four sets at the zone start, middle and end.
+
+    The derived sets take the check rail from Table 1 like a running rail (Eqs 1-19,
+    ``check_rail="table1"``): this is the comparison of the equations with Table 2.
+    """
     zone_data = turnout.zone(zone)
     sets = {
-        key: co_running_parameters(turnout, zone=zone, source=source, readings=readings)
+        key: co_running_parameters(
+            turnout, zone=zone, source=source, readings=readings, check_rail="table1"
+        )
         for key, source, readings in (
             ("printed", "derived", AS_PRINTED),
             ("derived", "derived", DEFAULT_READINGS),

@@ -265,6 +265,11 @@ def fitted_toml(fitted: FittedSet) -> str:
     lines = [
         "# Co-running parameters fitted to the FE receptance (exudyn-turnout fit).",
         "# SI units. Written by exudyn_turnout.corunning.fitted: values of the fit, do not edit.",
+        *(
+            [f"# FE reference: {fitted.provenance['fe_reference']}."]
+            if "fe_reference" in fitted.provenance
+            else []
+        ),
         "[fitted]",
         f"format = {FITTED_FORMAT}",
         f"layers = {fitted.layers}",

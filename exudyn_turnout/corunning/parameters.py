@@ -4,7 +4,12 @@ Three sources:
 
 ``derived``
     computed from the turnout's Table 1 properties with Eqs 1-19
-    (:mod:`exudyn_turnout.corunning.equations`) under a set of :class:`Readings`;
+    (:mod:`exudyn_turnout.corunning.equations`) under a set of :class:`Readings`; the check
+    rail's (slot r3's) lateral entries and mass are derived from the FE check rail on its
+    L-bracket when the file has ``[check_rail.co_running]``
+    (:mod:`exudyn_turnout.corunning.check_rail`, ``check_rail="bracket"``), or from Eqs
+    1-19 like a running rail (``check_rail="table1"``, the paper's; the comparison with
+    Table 2 uses it);
 ``published``
     the paper's Table 2, as stored in the turnout file;
 ``fitted``
@@ -31,6 +36,11 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 from exudyn_turnout.corunning import equations as eq
+from exudyn_turnout.corunning.check_rail import (
+    bracket_entries,
+    check_rail_lateral,
+    check_rail_model,
+)
 from exudyn_turnout.inputs.turnout import (
     PARAMETER_NAMES,
     RAIL_SLOTS,
@@ -434,14 +444,50 @@ def _sleeper_entries(turnout: Turnout, zone: Zone, readings: Readings) -> dict[s
     }
 
 
+def _check_rail_slots(turnout: Turnout, zone: Zone) -> tuple[str, ...]:
+    """Active slots of the zone whose rail type is a check rail's (slot r3's, Table 3)."""
+    types = {z.rail_types["r3"] for z in turnout.zones if "r3" in z.active_rails}
+    return tuple(r for r in zone.active_rails if r == "r3" and zone.rail_types[r] in types)
+
+
+def _bracket(
+    turnout: Turnout, zone: Zone, layers: int, entries: dict[str, Entry]
+) -> dict[str, Entry]:
+    """The check rail's lateral entries and mass from the FE bracket (corunning.check_rail)."""
+    lateral = check_rail_lateral(turnout)
+    assert lateral is not None  # check_rail_model("bracket") checked it
+    k_tg_y = entries["k_tg_y"]
+
+    def k_tg_y_at(x: float) -> float:
+        s = (x - zone.x_start) / (zone.x_end - zone.x_start)
+        return k_tg_y.value(delta_z(turnout, x), delta_y(turnout, x), s)
+
+    out = dict(entries)
+    for slot in _check_rail_slots(turnout, zone):
+        out.update(
+            bracket_entries(
+                lateral,
+                zone,
+                layers,
+                k_tg_y_at,
+                turnout.extra_layer.k_0_y_over_k_rt_y,
+                turnout.extra_layer.m_0,
+                slot,
+            )
+        )
+    return out
+
+
 def _derived(
-    turnout: Turnout, zone: Zone, readings: Readings
+    turnout: Turnout, zone: Zone, readings: Readings, layers: int = 3, check_rail: str = "table1"
 ) -> tuple[dict[str, Entry], dict[str, float]]:
     entries: dict[str, Entry] = {}
     for slot in RAIL_SLOTS:
         if slot in zone.rail_types:
             entries.update(_rail_entries(turnout, zone, slot, readings))
     entries.update(_sleeper_entries(turnout, zone, readings))
+    if check_rail == "bracket":
+        entries = _bracket(turnout, zone, layers, entries)
     reference = reference_support(turnout)
     governing = rail_support(turnout, zone.ballast_rail_type, readings)
     constants = {
@@ -481,6 +527,7 @@ def co_running_parameters(
     layers: int = 3,
     source: str = "derived",
     readings: Readings = DEFAULT_READINGS,
+    check_rail: str | None = None,
 ) -> CoRunningParameters:
     """Co-running parameter set of a zone, or of the zone containing x.
 
@@ -501,6 +548,13 @@ def co_running_parameters(
     readings : Readings
         Readings of the ambiguous equations, for ``source="derived"`` (and the entries a
         fitted set does not hold).
+    check_rail : {"bracket", "table1"}, optional
+        The check rail's (slot r3's) lateral entries and mass for ``source="derived"`` (and
+        the entries a fitted set does not hold): ``"bracket"`` derived from the FE check
+        rail on its L-bracket (:mod:`exudyn_turnout.corunning.check_rail`), ``"table1"``
+        Eqs 1-19 on Table 1 like a running rail (the paper's). Default: ``"bracket"`` when
+        the file has ``[check_rail.co_running]``, else ``"table1"``. Not used by
+        ``source="published"`` (Table 2 as printed).
 
     Returns
     -------
@@ -526,7 +580,8 @@ def co_running_parameters(
             )
         entries, constants = dict(turnout.published[zone_data.index]), {}
     else:
-        entries, constants = _derived(turnout, zone_data, readings)
+        model = check_rail_model(turnout, check_rail)
+        entries, constants = _derived(turnout, zone_data, readings, layers, model)
     if source == "fitted":
         entries = _with_fitted_entries(turnout, zone_data, layers, entries)
     if layers == 2:

@@ -34,13 +34,22 @@ __all__ = [
     "FLARE_SHAPES",
     "CheckRailSupport",
     "support_from_section",
+    "CheckRailLateral",
+    "lateral_from_section",
     "flare_opening",
     "flare_slope",
     "entry_lateral_velocity",
 ]
 
 #: Keys of a turnout file's ``[check_rail]`` section.
-CHECK_RAIL_KEYS = ("clearance", "flare_length", "flare_opening", "flare_shape", "support")
+CHECK_RAIL_KEYS = (
+    "clearance",
+    "flare_length",
+    "flare_opening",
+    "flare_shape",
+    "support",
+    "co_running",
+)
 
 #: Run-in shapes of a check rail's flared ends (see the module docstring).
 FLARE_SHAPES = ("straight", "tangential")
@@ -196,3 +205,81 @@ def support_from_section(check_rail: Mapping) -> CheckRailSupport:
             raise ValueError(f"{key} must be a number, got {value!r}")
         values[key] = float(value)
     return CheckRailSupport(**values)
+
+
+@dataclass(frozen=True)
+class CheckRailLateral:
+    """The FE check rail's lateral receptance at its gauge corner, summarised along x.
+
+    Computed by :func:`exudyn_turnout.fe.check_rail_receptance.check_rail_lateral_points`
+    (torsion-aware FE, the rail on its L-bracket) and stored in a turnout file's
+    ``[check_rail.co_running]``; the co-running check rail is derived from it
+    (:mod:`exudyn_turnout.corunning.check_rail`).
+    """
+
+    rail: str  #: layout rail id of the FE check rail the values belong to
+    x: tuple[float, ...]  #: m, positions along the check rail, increasing
+    static_stiffness: tuple[float, ...]  #: N/m, 1 / |H(1 Hz)|
+    resonance_frequency: tuple[float, ...]  #: Hz, largest |H| in the search band
+    resonance_stiffness: tuple[float, ...]  #: N/m, 1 / max |H| there
+
+    def __post_init__(self):
+        n = len(self.x)
+        if n == 0:
+            raise ValueError("x must hold at least one position")
+        for name in ("static_stiffness", "resonance_frequency", "resonance_stiffness"):
+            values = getattr(self, name)
+            if len(values) != n:
+                raise ValueError(f"{name} must have one value per x ({n}), got {len(values)}")
+            if not all(math.isfinite(v) and v > 0.0 for v in values):
+                raise ValueError(f"{name} must be finite and > 0, got {list(values)}")
+        if not all(math.isfinite(v) for v in self.x):
+            raise ValueError(f"x must be finite, got {list(self.x)}")
+        if any(b <= a for a, b in zip(self.x, self.x[1:])):
+            raise ValueError(f"x must increase, got {list(self.x)}")
+
+
+def lateral_from_section(check_rail: Mapping) -> CheckRailLateral | None:
+    """The ``co_running`` table of a ``[check_rail]`` section, if there is one.
+
+    Parameters
+    ----------
+    check_rail : mapping
+        The ``[check_rail]`` section.
+
+    Returns
+    -------
+    CheckRailLateral or None
+        None when the section has no ``co_running`` table.
+
+    Raises
+    ------
+    ValueError
+        ``co_running`` is not a table, lacks or has an unknown key, or holds a value that is
+        not a list of numbers or is out of range: the message names the key.
+    """
+    section = check_rail.get("co_running")
+    if section is None:
+        return None
+    if not isinstance(section, Mapping):
+        raise ValueError("must be a table")
+    lists = ("x", "static_stiffness", "resonance_frequency", "resonance_stiffness")
+    known = ("rail",) + lists
+    for key in section:
+        if key not in known:
+            raise ValueError(f"{key} is not a field{did_you_mean(key, known)}")
+    for key in known:
+        if key not in section:
+            raise ValueError(f"{key} is missing")
+    rail = section["rail"]
+    if not isinstance(rail, str) or not rail:
+        raise ValueError(f"rail must be a layout rail id, got {rail!r}")
+    values: dict[str, tuple[float, ...]] = {}
+    for key in lists:
+        raw = section[key]
+        if not isinstance(raw, (list, tuple)) or not all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) for v in raw
+        ):
+            raise ValueError(f"{key} must be a list of numbers, got {raw!r}")
+        values[key] = tuple(float(v) for v in raw)
+    return CheckRailLateral(rail=rail, **values)

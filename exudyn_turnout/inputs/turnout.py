@@ -23,7 +23,12 @@ from typing import Any
 
 import numpy as np
 
-from exudyn_turnout.inputs.check_rail import CHECK_RAIL_KEYS, FLARE_SHAPES, support_from_section
+from exudyn_turnout.inputs.check_rail import (
+    CHECK_RAIL_KEYS,
+    FLARE_SHAPES,
+    lateral_from_section,
+    support_from_section,
+)
 from exudyn_turnout.inputs.routes import load_route, route_names
 from exudyn_turnout.inputs.toml_fields import (
     X_LIMIT,
@@ -563,6 +568,10 @@ def _check_rail(r: FieldReader) -> None:
         support_from_section(section if isinstance(section, Mapping) else {})
     except ValueError as err:
         raise r.fail("check_rail.support", str(err)) from None
+    try:
+        lateral_from_section(section if isinstance(section, Mapping) else {})
+    except ValueError as err:
+        raise r.fail("check_rail.co_running", str(err)) from None
 
 
 def load_turnout(path: str | Path | None = None) -> Turnout:

@@ -14,6 +14,7 @@ needs (e.g. the FE passage) are not available in this run.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
@@ -31,7 +32,48 @@ from exudyn_turnout.report.metrics_types import (
 )
 from exudyn_turnout.report.record import Record
 
-__all__ = ["evaluate_claims", "CLAIM_FUNCTIONS"]
+__all__ = [
+    "evaluate_claims",
+    "CLAIM_FUNCTIONS",
+    "FE_REFERENCES",
+    "FE_REFERENCE_NOTE",
+    "FE_REFERENCE_OF_TOPIC",
+]
+
+#: The FE references the claims are judged against, short (the claims tables' column).
+FE_REFERENCES = {
+    "planar": "planar FE (the paper's)",
+    "passage": "torsion-aware FE track (ours)",
+}
+
+#: What the references are and how the verdicts are formed, for the report's text. The
+#: paper's claims are judged against the FE the paper had: vertical and lateral planes, the
+#: lateral one planar (no roll; force and response at the rail: the paper's Eq 14 gives
+#: ~29 MN/m plain-track lateral static stiffness, our planar FE 27.8 MN/m). The
+#: torsion-aware lateral FE (the rail rolls on its pads, the check rail on its L-bracket;
+#: force and response at the gauge corner: 14.1 MN/m on plain track, issue 23) is ours,
+#: beyond the paper: shown beside the planar one in section 2, and the FE track of the
+#: passages (the only FE passage track there is).
+FE_REFERENCE_NOTE = (
+    "**FE references.** The paper's claims on track stiffness (S) and receptance (R) are "
+    "judged against the FE the paper had: vertical plane, and a planar lateral plane with "
+    "force and response at the rail (the kind of FE the paper's Eq 14 is fitted to). Our "
+    "torsion-aware lateral FE (the rail rolls on its pads, the check rail on its L-bracket; "
+    "force and response at the gauge corner) goes beyond the paper: section 2 shows it "
+    "beside the planar one, with their static stiffness ratio. The passages' FE track is the "
+    "torsion-aware one (no planar FE passage is run): the contact-force claims (F) and the FE "
+    "cost (C) are judged against it, so a lateral verdict there compares with a track softer "
+    "laterally at the rail head than the paper's FE (section 2: K_FE planar / K_FE torsion); "
+    "vertical verdicts are not affected."
+)
+
+#: Which reference each topic's claims are judged against (:data:`FE_REFERENCES` keys).
+FE_REFERENCE_OF_TOPIC = {
+    "track stiffness": "planar",
+    "receptance": "planar",
+    "contact forces": "passage",
+    "computing cost": "passage",
+}
 
 
 def _verdict(ok: bool | None) -> str:
@@ -677,7 +719,8 @@ def evaluate_claims(
     Returns
     -------
     list of Claim
-        In the order of ``functions``.
+        In the order of ``functions``, each with its ``fe_reference`` (by topic,
+        :data:`FE_REFERENCE_OF_TOPIC`).
 
     Raises
     ------
@@ -686,4 +729,10 @@ def evaluate_claims(
     """
     criteria = criteria or Criteria()
     sections = _sections(metrics)
-    return [fn(sections.get(key), criteria) for key, fn in functions]
+    claims = [fn(sections.get(key), criteria) for key, fn in functions]
+    return [
+        dataclasses.replace(
+            c, fe_reference=FE_REFERENCES[FE_REFERENCE_OF_TOPIC.get(c.topic, "planar")]
+        )
+        for c in claims
+    ]

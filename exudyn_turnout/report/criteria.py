@@ -13,6 +13,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from exudyn_turnout.report.record import Record, optional
+
 __all__ = ["Criteria", "Claim", "HOLDS", "FAILS", "NOT_CHECKED", "RANGES"]
 
 HOLDS, FAILS, NOT_CHECKED = "holds", "does not hold here", "not checked"
@@ -59,8 +61,8 @@ class Criteria:
 
 
 @dataclass(frozen=True)
-class Claim:
-    """One claim of the paper with our verdict."""
+class Claim(Record):
+    """One claim of the paper with our verdict (a record: ``metrics.json``'s ``claims``)."""
 
     id: str  #: short id, e.g. "R1"
     topic: str  #: "track stiffness", "receptance", "contact forces" or "computing cost"
@@ -69,3 +71,6 @@ class Claim:
     verdict: str  #: HOLDS, FAILS or NOT_CHECKED
     evidence: str  #: the numbers behind the verdict, one line
     values: Mapping[str, Any] = field(default_factory=dict)  #: those numbers, for metrics.json
+    #: which FE reference the verdict is formed against (``claims.FE_REFERENCES``); absent
+    #: in reports written before it was stated
+    fe_reference: str | None = optional()

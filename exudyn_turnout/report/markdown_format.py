@@ -127,7 +127,8 @@ def verdict_text(verdict: str) -> str:
 
 
 def claims_table(claims: Iterable[Claim], topic: str | None = None) -> list[str]:
-    """The table of the claims of ``topic`` (all if None): claim, criterion, verdict, numbers.
+    """The table of the claims of ``topic`` (all if None): claim, criterion, FE reference,
+    verdict, numbers.
 
     Parameters
     ----------
@@ -141,11 +142,11 @@ def claims_table(claims: Iterable[Claim], topic: str | None = None) -> list[str]
         Lines.
     """
     rows = [
-        [c.id, c.statement, c.criterion, verdict_text(c.verdict), c.evidence]
+        [c.id, c.statement, c.criterion, c.fe_reference or "-", verdict_text(c.verdict), c.evidence]
         for c in claims
         if topic is None or c.topic == topic
     ]
-    return table(["id", "paper's claim", "criterion", "verdict", "numbers"], rows)
+    return table(["id", "paper's claim", "criterion", "FE reference", "verdict", "numbers"], rows)
 
 
 def figure(figures: Mapping[str, str], name: str, alt: str) -> list[str]:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
+from exudyn_turnout.report.claims import FE_REFERENCE_NOTE
 from exudyn_turnout.report.criteria import FAILS, HOLDS, NOT_CHECKED, Claim
 from exudyn_turnout.report.markdown_format import EXCL, fmt, span, table, verdict_text
 from exudyn_turnout.report.metrics_types import PassageMetrics, PassageModel, ReportMetrics
@@ -164,10 +165,13 @@ def summary_lines(
         Lines.
     """
     low, high = _closing_receptance(m, claims)
-    rows = [[c.id, c.statement, verdict_text(c.verdict), c.evidence] for c in claims]
+    rows = [
+        [c.id, c.statement, c.fe_reference or "-", verdict_text(c.verdict), c.evidence]
+        for c in claims
+    ]
     return (
-        ["## Summary", "", _verdict_count(claims), ""]
-        + table(["id", "paper's claim", "verdict", "numbers"], rows)
+        ["## Summary", "", _verdict_count(claims), "", FE_REFERENCE_NOTE, ""]
+        + table(["id", "paper's claim", "FE reference", "verdict", "numbers"], rows)
         + [
             "Headline numbers:",
             "",

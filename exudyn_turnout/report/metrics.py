@@ -109,7 +109,7 @@ def build_report(turnout: Turnout | None = None, config: ReportConfig = ReportCo
         turnout, passages, receptance, config.criteria, config.vehicle
     )
     claims = tuple(evaluate_claims(metrics, config.criteria))
-    metrics["claims"] = [dataclasses.asdict(c) for c in claims]
+    metrics["claims"] = [c.to_dict() for c in claims]
     metrics["compute_wall_time_s"] = time.perf_counter() - t0
     return Report(config, metrics, claims, curves, passages, profile, settings)
 

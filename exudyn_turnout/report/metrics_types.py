@@ -237,7 +237,7 @@ class ReceptanceCase(Record):
 
     pinned_pinned_hz: float  #: Hz
     excluded_bands_hz: list[float]  #: Hz, band centres left out near f_pp
-    models: dict[str, ReceptanceModel]  #: "2-layer", "3-layer", "FE"
+    models: dict[str, ReceptanceModel]  #: "2-layer", "3-layer", "FE" (+ "FE torsion")
     fe_peak_near_pinned_pinned_hz: float | None  #: Hz, None: no FE peak near f_pp
     fe_dip_near_pinned_pinned_hz: float | None  #: Hz, None: no FE dip near f_pp
     rail: str  #: rail slot
@@ -249,6 +249,24 @@ class ReceptanceCase(Record):
     fe: FEInfo  #: where the FE receptance came from
     co_running_wall_time_s: float  #: s, one co-running receptance
     fe_n_dof: int | None  #: FE coordinates
+    #: the FE the models are compared with ("FE"): the paper's kind (planar lateral)
+    fe_reference: str | None = optional()
+    #: lateral cases: the co-running models and the planar FE against the torsion-aware FE
+    #: at the gauge corner (ours, beyond the paper), as ``models`` against "FE"
+    vs_fe_torsion: dict[str, ReceptanceModel] | None = optional()
+
+
+@dataclass(frozen=True, kw_only=True)
+class CheckRailReceptance(Record):
+    """The check rail's lateral dynamic stiffness at its entry: FE vs co-running."""
+
+    route: str  #: the report route whose check rail it is
+    rail: str  #: co-running slot
+    fe_rail: str  #: FE layout rail id
+    x_m: float  #: m, the end of the entry flare
+    frequencies_hz: list[float]  #: Hz (1 Hz: the static stiffness)
+    #: N/m, 1 / |H(f)| per model ("FE (L-bracket, gauge corner)", "2-layer, bracket", ...)
+    dynamic_stiffness_N_per_m: dict[str, list[float]]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -260,6 +278,7 @@ class ReceptanceMetrics(Record):
     frequencies: FrequencyGrid
     route: str | None = optional()  #: the receptance route
     wheel: str | None = optional()  #: the wheel whose path gives the positions
+    check_rail: CheckRailReceptance | None = optional()  #: the check rail at its entry
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -28,11 +28,28 @@ from exudyn_turnout.report.settings import (
 )
 
 __all__ = [
+    "FE_TORSION",
+    "FE_REFERENCE_OF_CASE",
     "receptance_positions",
     "pinned_pinned_frequency",
     "receptance_case_metrics",
     "receptance_section",
+    "CHECK_RAIL_FREQUENCIES",
+    "check_rail_receptance_metrics",
 ]
+
+#: Hz, where the check rail's lateral dynamic stiffness is tabled (1 Hz: the static one)
+CHECK_RAIL_FREQUENCIES = (1.0, 50.0, 100.0, 300.0, 1000.0)
+
+
+#: Name of the torsion-aware FE curve of a lateral case (ours, beyond the paper).
+FE_TORSION = "FE torsion"
+
+#: The FE reference ("FE") of a case's claims, by direction: the paper's kind of FE.
+FE_REFERENCE_OF_CASE = {
+    "vertical": "FE vertical plane at the rail (the paper's kind)",
+    "lateral": "planar lateral FE, force and response at the rail (the paper's kind)",
+}
 
 
 def receptance_positions(
@@ -112,8 +129,13 @@ def _cached_fe_receptance(
     config: ReportConfig,
     cache: ResultCache,
     fe_slots: str,
+    torsion: bool = False,
 ) -> tuple[Receptance, dict[str, Any]]:
-    """FE receptance of co-running ``rail`` at x, the FE rail from ``[layout.slots.<fe_slots>]``."""
+    """FE receptance of co-running ``rail`` at x, the FE rail from ``[layout.slots.<fe_slots>]``.
+
+    Lateral: planar at the rail (the paper's kind of FE) or, with ``torsion``, the
+    torsion-aware FE at the gauge corner (ours).
+    """
     from exudyn_turnout.fe.frf import fe_receptance
 
     f = config.frequencies
@@ -127,6 +149,7 @@ def _cached_fe_receptance(
         f,
         config.fe_options,
         fe_slots,
+        "torsion" if torsion else "planar",
     )
     hit = cache.load(key)
     if hit is not None:
@@ -136,7 +159,9 @@ def _cached_fe_receptance(
             {"cached": True, "wall_time_s": meta["wall_time_s"], "computed": meta["computed"]},
         )
     t0 = time.perf_counter()
-    r = fe_receptance(turnout, rail, direction, x, f, route=fe_slots, options=config.fe_options)
+    r = fe_receptance(
+        turnout, rail, direction, x, f, route=fe_slots, options=config.fe_options, torsion=torsion
+    )
     info = {
         "cached": False,
         "wall_time_s": time.perf_counter() - t0,
@@ -239,6 +264,23 @@ def _receptance_case(
     rail_type = zone.rail_types[rail]
     f_pp = pinned_pinned_frequency(turnout, rail_type, x, direction)
     m = receptance_case_metrics(curves, f_pp, config.criteria)
+    m["fe_reference"] = FE_REFERENCE_OF_CASE[direction]
+    if direction == "lateral":  # ours, beyond the paper: the torsion-aware FE beside it
+        torsion, _ = _cached_fe_receptance(
+            turnout, rail, direction, x, config, cache, fe_slots, torsion=True
+        )
+        beyond = receptance_case_metrics(
+            {**curves, "FE": torsion, "FE planar": curves["FE"]}, f_pp, config.criteria
+        )
+        m["vs_fe_torsion"] = beyond["models"]
+        curves[FE_TORSION] = torsion
+        m["models"][FE_TORSION] = {
+            "peaks_hz": beyond["models"]["FE"]["peaks_hz"],
+            "static_stiffness_N_per_m": torsion.static_stiffness,
+            "static_stiffness_ratio_to_FE": (
+                torsion.static_stiffness / curves["FE"].static_stiffness
+            ),
+        }
     m.update(
         {
             "rail": rail,
@@ -306,6 +348,9 @@ def receptance_section(
         "wheel": settings.receptance_wheel,
     }
     curves: dict[str, dict[str, Receptance]] = {}
+    check = check_rail_receptance_metrics(turnout, config, cache, settings)
+    if check is not None:
+        metrics["check_rail"] = check
     for label, (rail, x) in receptance_positions(turnout, settings=settings).items():
         metrics["positions"][label] = {"rail": rail, "x_m": x}
         for direction in ("vertical", "lateral"):
@@ -318,3 +363,86 @@ def receptance_section(
                 + (" (cached)" if metrics["cases"][case]["fe"]["cached"] else "")
             )
     return metrics, curves
+
+
+def check_rail_receptance_metrics(
+    turnout: Turnout,
+    config: ReportConfig,
+    cache: ResultCache,
+    settings: ReportSettings | None = None,
+) -> dict[str, Any] | None:
+    """The check rail's lateral dynamic stiffness, FE (bracket) vs co-running, at its entry.
+
+    At the end of the entry flare of the first report route that has a check-rail contact
+    (where the wheel strikes it, :func:`~exudyn_turnout.passage.events.check_rail_event`;
+    routes whose lateral force is plotted first),
+    1 / |H(f)| at :data:`CHECK_RAIL_FREQUENCIES` of: the torsion-aware FE check rail on its
+    L-bracket at the gauge corner (the FE passages' track), and the co-running slot with
+    the check rail derived from it (``check_rail="bracket"``, the default when the file
+    has ``[check_rail.co_running]``) and from Table 1 like a running rail (``"table1"``).
+
+    Parameters
+    ----------
+    turnout : Turnout
+    config : ReportConfig
+        FE mesh.
+    cache : ResultCache
+        Where the FE values are stored.
+    settings : ReportSettings, optional
+
+    Returns
+    -------
+    dict or None
+        JSON-ready; None when no report route has a check rail.
+    """
+    from exudyn_turnout.corunning.check_rail import check_rail_model
+    from exudyn_turnout.corunning.fit import model_receptance
+    from exudyn_turnout.corunning.parameters import co_running_parameters
+    from exudyn_turnout.fe.check_rail_receptance import check_rail_receptance
+    from exudyn_turnout.fe.frf import resolve_rail
+    from exudyn_turnout.fe.layout import load_layout
+    from exudyn_turnout.passage.events import check_rail_event
+
+    settings = settings or report_settings(turnout)
+    # the routes whose lateral force is plotted first (the paper's Fig. 8: the diverging one)
+    routes = sorted(settings.routes, key=lambda r: "Fy" not in r.forces)
+    found = next(
+        ((r, e) for r in routes if (e := check_rail_event(turnout, r.name)) is not None), None
+    )
+    if found is None:
+        return None
+    route, event = found
+    slot, x = str(event["rail"]), float(event["entry_m"][1])  # type: ignore[index]
+    rail_id = resolve_rail(load_layout(turnout), slot, x, route.fe_slots)
+    f = np.asarray(CHECK_RAIL_FREQUENCIES)
+    key = input_key(
+        "fe_check_rail",
+        turnout_fingerprint(turnout),
+        code_fingerprint(RESULT_STAGES),
+        rail_id,
+        x,
+        f,
+        config.fe_options,
+    )
+    hit = cache.load(key)
+    if hit is not None:
+        H_fe = hit[0]["H"][:, 0]
+    else:
+        H = check_rail_receptance(turnout, rail_id, [x], f, config.fe_options)
+        cache.save(key, {"H": H}, {"computed": time.strftime("%Y-%m-%d %H:%M")})
+        H_fe = H[:, 0]
+    models = {"FE (L-bracket, gauge corner)": [float(v) for v in 1.0 / np.abs(H_fe)]}
+    kinds = [("bracket", "bracket")] if check_rail_model(turnout, None) == "bracket" else []
+    for model, label in kinds + [("table1", "Table 1")]:
+        for layers in (2, 3):
+            params = co_running_parameters(turnout, x=x, layers=layers, check_rail=model)
+            H = model_receptance(params, x, slot, "lateral", f)
+            models[f"{layers}-layer, {label}"] = [float(v) for v in 1.0 / np.abs(H)]
+    return {
+        "route": route.name,
+        "rail": slot,
+        "fe_rail": rail_id,
+        "x_m": x,
+        "frequencies_hz": list(CHECK_RAIL_FREQUENCIES),
+        "dynamic_stiffness_N_per_m": models,
+    }

@@ -9,6 +9,13 @@ coupled by the exact one-step co-simulation of :mod:`~exudyn_turnout.passage.fe_
 range: the FE track has no zones; every rail body of the route is coupled to the FE rail
 of its slot wherever the wheelset is in its reach.
 
+The run starts from the static equilibrium at ``x_start`` (lateral position and spin held)
+or, where the route is curved there, in steady curving at speed, as the FE full vehicle
+(:mod:`~exudyn_turnout.passage.fe_track.vehicle`): from the static state a dynamic
+relaxation with x frozen, the FE track stepped alongside (:data:`RELAX_TIME`);
+``summary["start"]`` and ``summary["start_residual"]`` say how it started
+(:mod:`~exudyn_turnout.passage.vehicle.start`).
+
 ::
 
       sprung mass m_s (y, z)              Exudyn
@@ -53,7 +60,12 @@ from exudyn_turnout.passage.results import (
     check_plausible,
     passage_summary,
 )
-from exudyn_turnout.passage.vehicle.start import StartWarning, unsettled_warning
+from exudyn_turnout.passage.vehicle.start import (
+    RELAX_STEP,
+    StartWarning,
+    steady_description,
+    unsettled_warning,
+)
 
 __all__ = [
     "simulate_wheelset",
@@ -62,7 +74,14 @@ __all__ = [
     "FEStaticState",
     "coupled_run_settings",
     "start_state",
+    "RELAX_TIME",
 ]
+
+#: s, the dynamic relaxation to steady curving at speed of a run that starts in a curve (x
+#: frozen, the FE track stepped alongside at the start module's ``RELAX_STEP``): as the
+#: co-running single wheelset's relaxation (passage/corunning_track/wheelset.py), which
+#: settles below the start tolerance within its first two 1 s chunks; 3 s leaves a margin.
+RELAX_TIME = 3.0
 
 #: Vehicle coordinates in the element: wheelset (y, z, roll), yaw and spin, sprung (y, z).
 _VEHICLE_NODES = ("wheelset", "yaw", "sprung")
@@ -237,7 +256,19 @@ def _simulate(
     t0 = time.perf_counter()
     rest = static_equilibrium(track, contact, vehicle, route, x_a, irr)
     q0, loads = rest.vehicle_q, rest.wheel_loads
-    track.start([rest.element], [rest.rail_forces], v)
+    q0_t = np.zeros_like(q0)
+    curvature = float(route.curvature(x_a))
+    if curvature != 0.0:  # in a curve: steady curving at speed, relaxed with x frozen
+        start_element, forces, q0, q0_t, residual = _relax(
+            planes, route, contact, vehicle, x_a, v, irr, options, rest
+        )
+        start = steady_description(settings.speed_kmh, curvature) + (
+            f" (relaxed {RELAX_TIME:g} s with x frozen, FE track stepped alongside)"
+        )
+    else:
+        start_element, forces = rest.element, rest.rail_forces
+        start, residual = start_state(vehicle, route, x_a, v)
+    track.start([start_element], [forces], v)
     static_s = time.perf_counter() - t0
     # the run at speed
     moving = fe_contact_element(contact, vehicle, route, x_a, v, irr)
@@ -247,6 +278,9 @@ def _simulate(
     q_init = np.asarray(data.GetODE2Coordinates(exu.ConfigurationType.Initial)).copy()
     q_init[system.index] = q0
     data.SetODE2Coordinates(q_init, exu.ConfigurationType.Initial)
+    q_t_init = np.asarray(data.GetODE2Coordinates_t(exu.ConfigurationType.Initial)).copy()
+    q_t_init[system.index] = q0_t
+    data.SetODE2Coordinates_t(q_t_init, exu.ConfigurationType.Initial)
     recorder = _Recorder(every)
     report = run_progress(progress, duration, x_a, v)
 
@@ -282,21 +316,22 @@ def _simulate(
     check_plausible(columns, W, "FE track")
     summary = passage_summary(columns, turnout, settings, loads, time.perf_counter() - wall)
     summary.update(fe_summary(planes, settings, track, h, n_steps, static_s, steps_s))
-    summary["start"], summary["start_residual"] = start_state(vehicle, route, x_a, v)
-    warning = unsettled_warning(turnout, x_a, v, summary["start"], float(summary["start_residual"]))
+    summary["start"], summary["start_residual"] = start, float(residual)
+    warning = unsettled_warning(turnout, x_a, v, start, float(residual))
     if warning is not None:
         warnings.warn(warning, StartWarning, stacklevel=5)
     return PassageResult(replace(settings, x_start=x_a, x_end=x_b), columns, summary, (x_a,))
 
 
 def start_state(vehicle: Vehicle, route: Route, x: float, v: float) -> tuple[str, float]:
-    """How the single wheelset's FE run starts: ``summary["start"]`` and its residual.
+    """The static start's ``summary["start"]`` and residual (a run on straight track).
 
-    The run starts from the static equilibrium at rest (lateral position and spin held). In
-    a curve the steady curving state at speed is not sought (not done for the FE single
-    wheelset); what the start leaves unbalanced is the lateral curving load of the wheelset
-    and its sprung mass, (m_w + m_s) v^2 |kappa| (0 on straight track, where the creep forces
-    at speed settle within centimetres).
+    A run that starts on straight track starts from the static equilibrium at rest (lateral
+    position and spin held): the steady state at speed up to what the holds carry (the
+    creep forces at speed settle within centimetres). A run that starts in a curve is
+    relaxed to steady curving instead (:func:`simulate_wheelset`); were it started at rest,
+    what it left unbalanced would be the lateral curving load of the wheelset and its
+    sprung mass, (m_w + m_s) v^2 |kappa|, which this returns there.
 
     Parameters
     ----------
@@ -316,6 +351,72 @@ def start_state(vehicle: Vehicle, route: Route, x: float, v: float) -> tuple[str
     """
     kappa = abs(float(route.curvature(x)))
     return "static at rest", (vehicle.m_w + vehicle.m_s) * v * v * kappa
+
+
+class _FrozenPosition:
+    """x_at of a frozen contact element: its position whatever t."""
+
+    def __init__(self, x0: float):
+        self.x0 = float(x0)
+
+    def __call__(self, t: float) -> float:
+        del t
+        return self.x0
+
+
+def _relax(planes, route, contact, vehicle, x, v, irr, options, rest):
+    """Relax the wheelset at speed with x frozen from its static state, the FE track stepped
+    alongside (its own track at the start module's ``RELAX_STEP``, rho_inf 0, field not
+    moving), for :data:`RELAX_TIME`: as the FE full vehicle's relaxation
+    (:mod:`~exudyn_turnout.passage.fe_track.vehicle`), whose static solve at speed fails in
+    a curve (saturated creep). Returns the coupled element (frozen at x), its rail forces,
+    the vehicle's coordinates and velocities, and the residual (N: the largest mass x
+    lateral acceleration left on the wheelset or the sprung mass)."""
+    import exudyn as exu
+
+    from exudyn_turnout.passage.common import NEWTON_ABSOLUTE_TOLERANCE
+
+    relax_track = FECoSimulation(planes, route.name, RELAX_STEP, 0.0, options)
+    element = fe_contact_element(contact, vehicle, route, x, v, irr)
+    element.x_at = _FrozenPosition(x)  # an instance attribute shadows the method
+    coupled = FEContactElement(element, relax_track)
+    relax_track.start([coupled], [rest.rail_forces], 0.0)
+    system = _build(vehicle, coupled, 0.0, 0.0, 0.0)
+    data = system.mbs.systemData
+    q_init = np.asarray(data.GetODE2Coordinates(exu.ConfigurationType.Initial)).copy()
+    q_init[system.index] = rest.vehicle_q
+    data.SetODE2Coordinates(q_init, exu.ConfigurationType.Initial)
+    forces = [rest.rail_forces]
+
+    def pre_step(mbs, t):
+        relax_track.predict(t, [coupled])
+        return True
+
+    def post_step(mbs, t):
+        q, q_t = _coordinates(system)
+        F = coupled.solve(t, q, q_t)
+        if t == relax_track.t_next:
+            relax_track.complete([(coupled, F)])
+        forces[0] = F
+        return True
+
+    system.mbs.SetPreStepUserFunction(pre_step)
+    system.mbs.SetPostStepUserFunction(post_step)
+    n_steps = round(RELAX_TIME / RELAX_STEP)
+    sim = coupled_run_settings(
+        RELAX_TIME, n_steps, PassageSettings(spectral_radius=0.0), NEWTON_ABSOLUTE_TOLERANCE
+    )
+    try:
+        system.mbs.SolveDynamic(sim)
+    except Exception as err:  # Exudyn's SolverError, or ModelError from a user function
+        raise PassageFailure(
+            f"steady curving at speed on the FE track not found at x = {x:g} m: "
+            f"{failure_reason(err)}"
+        ) from None
+    q, q_t = _coordinates(system)
+    a = np.asarray(data.GetODE2Coordinates_tt(exu.ConfigurationType.Current))[system.index]
+    residual = max(vehicle.m_w * abs(float(a[0])), vehicle.m_s * abs(float(a[5])))
+    return coupled, forces[0], q, q_t, residual
 
 
 @dataclass(frozen=True)
