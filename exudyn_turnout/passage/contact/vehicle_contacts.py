@@ -8,11 +8,13 @@ import math
 
 import numpy as np
 
+from exudyn_turnout.corunning.track_kernel import TrackForce
 from exudyn_turnout.passage.contact.profile import (
     STATIC_LATERAL_STIFFNESS,
     STATIC_SPIN_STIFFNESS,
     ProfileContactElement,
 )
+from exudyn_turnout.passage.contact.vehicle_kernel import CompiledContacts
 
 __all__ = [
     "WheelsetContactElement",
@@ -129,16 +131,30 @@ class VehicleContacts:
 
     ``stops``: on straight track the vehicle's bumpstops (``vehicle_builder``'s force and
     Jacobian functions on car body and bogies, ``size`` coordinates) ride along on the
-    object's last coordinates: one Python call fewer per residual evaluation.
+    object's coordinates after the contacts': one Python call fewer per residual evaluation.
+
+    ``track``: the co-running tracks' springs
+    (:class:`~exudyn_turnout.corunning.track_kernel.TrackForce`, one compiled call) ride
+    along too, on indices of this object's vector (their rail or m_0 nodes shared with the
+    contacts, the others in ``n_track`` coordinates after the stops').
     """
 
-    def __init__(self, elements: list[WheelsetContactElement], stops: tuple | None = None):
+    def __init__(
+        self,
+        elements: list[WheelsetContactElement],
+        stops: tuple | None = None,
+        track: TrackForce | None = None,
+        n_track: int = 0,
+    ):
         self.elements = list(elements)
         ends = np.cumsum([el.n for el in self.elements])
         self.spans = [(int(b - el.n), int(b)) for el, b in zip(self.elements, ends)]
         self.n_contacts = int(ends[-1])  #: coordinates of the contact elements, first
         self.stops = stops  #: (size, force, jacobian) of the bumpstops, or None
-        self.n = self.n_contacts + (int(stops[0]) if stops is not None else 0)
+        #: end of the bumpstops' coordinates (the track's own ones follow)
+        self.n_stops_end = self.n_contacts + (int(stops[0]) if stops is not None else 0)
+        self.track = track  #: the tracks' springs, or None
+        self.n = self.n_stops_end + int(n_track)
         self._out = np.zeros(self.n)
         self._bias = np.zeros(self.n)  #: N, the curving loads (subtracted as in __call__)
         self._t = math.nan
@@ -146,6 +162,25 @@ class VehicleContacts:
         self._moving = False  #: all at speed without holds: forces = kernel + bias
         self._a_y = [0.0] * len(self.elements)  #: m/s^2, the curving accelerations in _bias
         self._biased = False  #: any curving load (x + 0.0 == x: skipped on straight track)
+        #: all wheelsets in one compiled call (profile elements at speed, no holds)
+        self._compiled = (
+            CompiledContacts(self.elements, self.spans)
+            if CompiledContacts.serves(self.elements)
+            else None
+        )
+        self._t_fast = math.nan
+        self._fast = False
+
+    def _fast_at(self, t: float) -> bool:
+        """Whether the compiled path serves time t (all at speed, no holds); prepares it."""
+        if t != self._t_fast:
+            self._t_fast = t
+            self._fast = self._compiled is not None and all(
+                el.v > 0.0 and not el.hold_spin for el in self.elements
+            )
+            if self._fast:
+                self._compiled.prepare(t)  # type: ignore[union-attr]
+        return self._fast
 
     def _new_time(self, t: float) -> None:
         self._t = t
@@ -165,28 +200,39 @@ class VehicleContacts:
             else:
                 self._moving = False
 
-    def __call__(self, mbs, t, item_number, q_list, q_t_list):
-        q, q_t = np.array(q_list, dtype=float), np.array(q_t_list, dtype=float)
+    def _python_forces(self, t: float, q: np.ndarray, q_t: np.ndarray, out: np.ndarray) -> None:
+        """The contacts' forces element by element (static holds, x frozen, v = 0)."""
         if t != self._t:
             self._new_time(t)
-        out = self._out
-        if self._moving:  # the hot path: x - c == x + (-c) exactly
+        if self._moving:  # x - c == x + (-c) exactly
             for el, x, (a, b) in zip(self.elements, self._x, self.spans):
                 el._call(x, q[a:b], q_t[a:b])
                 out[a:b] = el._forces
             if self._biased:
-                out += self._bias
+                out[: self.n_contacts] += self._bias[: self.n_contacts]
         else:
             for el, x, (a, b) in zip(self.elements, self._x, self.spans):
                 out[a:b] = el._generalised_forces(x, q[a:b], q_t[a:b])
+
+    def __call__(self, mbs, t, item_number, q_list, q_t_list):
+        q, q_t = np.array(q_list, dtype=float), np.array(q_t_list, dtype=float)
+        out = self._out
+        if self._fast_at(t):  # the hot path, one compiled call (equal to the loops below)
+            self._compiled.add_to(t, q, q_t, out)
+        else:
+            self._python_forces(t, q, q_t, out)
         if self.stops is not None:
-            c = self.n_contacts
-            out[c:] = self.stops[1](mbs, t, item_number, q_list[c:], q_t_list[c:])
+            c, e = self.n_contacts, self.n_stops_end
+            out[c:e] = self.stops[1](mbs, t, item_number, q_list[c:e], q_t_list[c:e])
+        if self.track is not None:
+            out[self.n_stops_end :] = 0.0
+            self.track.add_forces(t, q, q_t, out)
         return out
 
     def jacobian(self, t: float, q: np.ndarray, q_t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """-df/dq and -df/dq_t of the contact forces f (the left-hand side's Jacobians), by
-        forward differences per wheelset (its block; the blocks do not couple).
+        forward differences per wheelset (its block; the blocks do not couple); without the
+        track's springs (:meth:`jacobian_function` adds them).
 
         The steps are Exudyn's own numerical differentiation's (relative 1e-7 of the
         coordinate, at least 1e-7 x 0.01). The dummy sprung-mass columns (5, 6) are zero:
@@ -221,8 +267,8 @@ class VehicleContacts:
                     vector[j] = value
                     jac[a:b, a + j] = (f0 - f1) / eps
         if self.stops is not None:  # their tangent stiffness; no damping
-            c = self.n_contacts
-            jac_q[c:, c:] = self.stops[2](None, t, 0, q[c:], q_t[c:], 1.0, 0.0)
+            c, e = self.n_contacts, self.n_stops_end
+            jac_q[c:e, c:e] = self.stops[2](None, t, 0, q[c:e], q_t[c:e], 1.0, 0.0)
         return jac_q, jac_q_t
 
     def jacobian_function(self, mbs, t, item_number, q, q_t, f_q, f_q_t):
@@ -246,7 +292,10 @@ class VehicleContacts:
             (n, n).
         """
         jac_q, jac_q_t = self.jacobian(t, np.asarray(q, float), np.asarray(q_t, float))
-        return f_q * jac_q + f_q_t * jac_q_t
+        out = f_q * jac_q + f_q_t * jac_q_t
+        if self.track is not None:  # the springs' K(x), D(x)
+            self.track.add_jacobian(t, f_q, f_q_t, out)
+        return out
 
 
 def wheelset_columns(

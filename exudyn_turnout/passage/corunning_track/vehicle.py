@@ -74,7 +74,7 @@ import numpy as np
 
 from exudyn_turnout.corunning.parameters import co_running_parameters
 from exudyn_turnout.inputs.routes import Route
-from exudyn_turnout.inputs.turnout import Turnout, Zone
+from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Turnout, Zone
 from exudyn_turnout.inputs.vehicle import Vehicle, load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
 from exudyn_turnout.passage.common import (
@@ -190,6 +190,7 @@ def _build(
     from exudyn.itemInterface import NodeGenericODE2, ObjectGenericODE2, SensorNode
 
     from exudyn_turnout.corunning.track import add_co_running_track
+    from exudyn_turnout.corunning.track_kernel import TrackPlacement, track_force
     from exudyn_turnout.passage.vehicle import builder as vehicle_builder
     from exudyn_turnout.passage.vehicle.builder import add_vehicle_model
 
@@ -201,6 +202,8 @@ def _build(
     names: dict[str, int] = {b.name: b.node for b in build.bodies() if b.name[:5] != "wheel"}
     elements, params_all, slots_all, sensors = [], [], [], []
     contact_nodes: list[int] = []
+    compiled = settings.track_mechanism == "compiled"
+    placements = []  #: per track (compiled): (params, x, v, {coordinate: (node, local)})
     for i, (ws, place) in enumerate(zip(build.wheelsets, places)):
         x_i = x_front + ws.x
         x_track = turnout.x_min if place.clamped else turnout.x_max if place.beyond else x_i
@@ -210,8 +213,10 @@ def _build(
         params = replace(params, zone=route.zone(params.zone))
         v_track = 0.0 if (place.clamped or place.beyond or frozen) else v
         track = add_co_running_track(
-            mbs, params, x_track, v_track, mechanism=settings.track_mechanism
+            mbs, params, x_track, v_track, mechanism=settings.track_mechanism, force_object=False
         )
+        if compiled:
+            placements.append((params, x_track, v_track, _coordinate_nodes(track)))
         try:
             raw, slots = contact.element(vehicle, route, place.zone, x_i, v, settings.irregularity)
         except ValueError as err:
@@ -273,16 +278,39 @@ def _build(
         )
         stops = (size, stop_force, stop_jacobian)
         contact_nodes += [car.node] + [b.node for b in build.bogies]
-    contacts = VehicleContacts(elements, stops)
-    m, k = np.zeros((contacts.n, contacts.n)), np.zeros((contacts.n, contacts.n))
-    for a, _ in contacts.spans:
-        for j in (5, 6):  # the dummy sprung-mass coordinates
-            m[a + j, a + j], k[a + j, a + j] = DUMMY_MASS, DUMMY_STIFFNESS
+    forces, n_track = None, 0
+    if compiled:  # the tracks' springs ride on the contacts' object (module docstring)
+        offsets, size = {}, 0
+        for node in contact_nodes:
+            offsets[node] = size
+            size += len(mbs.GetNode(node)["referenceCoordinates"])
+        n_shared = size
+        for *_, coordinates in placements:
+            for node, _ in coordinates.values():
+                if node not in offsets:
+                    offsets[node] = size
+                    size += len(mbs.GetNode(node)["referenceCoordinates"])
+                    contact_nodes.append(node)
+        n_track = size - n_shared
+        forces = track_force(
+            [
+                TrackPlacement(p, x, v_p, {d: offsets[n] + j for d, (n, j) in c.items()})
+                for p, x, v_p, c in placements
+            ]
+        )
+    contacts = VehicleContacts(elements, stops, forces, n_track)
+    dummies = [names[f"dummy{i + 1}"] for i in range(len(elements))]
+    n_dummy = 2 * len(dummies)
+    mbs.AddObject(  # the dummy sprung masses, decoupled
+        ObjectGenericODE2(
+            nodeNumbers=dummies,
+            massMatrix=DUMMY_MASS * np.eye(n_dummy),
+            stiffnessMatrix=DUMMY_STIFFNESS * np.eye(n_dummy),
+        )
+    )
     mbs.AddObject(
         ObjectGenericODE2(
             nodeNumbers=contact_nodes,
-            massMatrix=m,
-            stiffnessMatrix=k,
             forceUserFunction=contacts,
             jacobianUserFunction=contacts.jacobian_function,
         )
@@ -295,6 +323,14 @@ def _build(
     )
     set_initial_vehicle(system, build)
     return system
+
+
+def _coordinate_nodes(track: Any) -> dict[str, tuple[int, int]]:
+    """A track's coordinates (dof names) as (node, local index)."""
+    pairs = [(track.sleeper_node, j) for j in range(3)]
+    for group in (track.rail_nodes, track.layer_nodes):
+        pairs += [(group[r], j) for r in RAIL_SLOTS if r in group for j in (0, 1)]
+    return dict(zip(track.dof, pairs))
 
 
 def _state(system: _System) -> dict[str, tuple[np.ndarray, np.ndarray]]:
