@@ -37,7 +37,22 @@ from exudyn_turnout.corunning.fitted import TableEntry
 from exudyn_turnout.corunning.parameters import CoRunningParameters, reference_support
 from exudyn_turnout.inputs.turnout import Entry, Polynomial
 
-__all__ = ["TrackPlacement", "TrackForce", "track_force"]
+__all__ = ["TrackPlacement", "TrackForce", "track_force", "spring_forces", "KERNEL_ARRAYS"]
+
+#: names of :attr:`TrackForce.arrays` in the order :func:`spring_forces` takes them
+KERNEL_ARRAYS = (
+    "ends",
+    "arms",
+    "laws",
+    "tracks",
+    "track_poly",
+    "poly_c",
+    "poly_n",
+    "poly_f",
+    "law_i",
+    "law_a",
+    "ramps",
+)
 
 # marker kinds of a spring end
 _GROUND, _NODE, _SLEEPER = 0, 1, 2
@@ -123,7 +138,7 @@ def _end_motion(q, q_t, ends, arms, s, e):  # pragma: no cover (compiled)
 
 
 @numba.njit(cache=True)
-def _add_forces(
+def spring_forces(
     t,
     q,
     q_t,
@@ -141,7 +156,21 @@ def _add_forces(
     law_a,
     ramps,
 ):  # pragma: no cover (compiled)
-    """Add every spring's generalised forces at time t to ``out``."""
+    """Add every spring's generalised forces at time t to ``out`` (compiled).
+
+    Parameters
+    ----------
+    t : float
+        s; each track's x = x0 + v t.
+    q, q_t : numpy.ndarray
+        Coordinates and velocities of the force vector.
+    out : numpy.ndarray
+        The force vector, added to.
+    values : numpy.ndarray
+        Scratch for the laws' values (one per law).
+    ends, arms, laws, tracks, track_poly, poly_c, poly_n, poly_f, law_i, law_a, ramps
+        :attr:`TrackForce.arrays` (:data:`KERNEL_ARRAYS`).
+    """
     _law_values(t, tracks, track_poly, poly_c, poly_n, poly_f, law_i, law_a, ramps, values)
     for s in range(ends.shape[0]):
         y0, z0, vy0, vz0, c0, s0 = _end_motion(q, q_t, ends, arms, s, 0)
@@ -235,22 +264,12 @@ class TrackForce:
         #: (track, entry name) of every law, in the order of :meth:`law_values`
         self.laws = laws
         self._values = np.zeros(len(arrays["law_a"]))
-        self._args = tuple(
-            arrays[k]
-            for k in (
-                "ends",
-                "arms",
-                "laws",
-                "tracks",
-                "track_poly",
-                "poly_c",
-                "poly_n",
-                "poly_f",
-                "law_i",
-                "law_a",
-                "ramps",
-            )
-        )
+        self._args = tuple(arrays[k] for k in KERNEL_ARRAYS)
+
+    @property
+    def arrays(self) -> dict[str, np.ndarray]:
+        """The kernel's input arrays by name (:data:`KERNEL_ARRAYS`; do not modify)."""
+        return dict(self._arrays)
 
     def add_forces(self, t: float, q: np.ndarray, q_t: np.ndarray, out: np.ndarray) -> None:
         """Add the springs' generalised forces (N, N m on a roll) at time t to ``out``.
@@ -264,7 +283,7 @@ class TrackForce:
         out : numpy.ndarray
             The force vector (right-hand side), added to.
         """
-        _add_forces(t, q, q_t, out, self._values, *self._args)
+        spring_forces(t, q, q_t, out, self._values, *self._args)
 
     def add_jacobian(self, t: float, f_q: float, f_q_t: float, out: np.ndarray) -> None:
         """Add f_q K(x) + f_q_t D(x) at time t to ``out`` (the left-hand side's Jacobian).

@@ -14,7 +14,7 @@ from exudyn_turnout.passage.contact.profile import (
     STATIC_SPIN_STIFFNESS,
     ProfileContactElement,
 )
-from exudyn_turnout.passage.contact.vehicle_kernel import CompiledContacts
+from exudyn_turnout.passage.contact.vehicle_kernel import CompiledResidual
 
 __all__ = [
     "WheelsetContactElement",
@@ -130,8 +130,12 @@ class VehicleContacts:
     is block diagonal).
 
     ``stops``: on straight track the vehicle's bumpstops (``vehicle_builder``'s force and
-    Jacobian functions on car body and bogies, ``size`` coordinates) ride along on the
-    object's coordinates after the contacts': one Python call fewer per residual evaluation.
+    Jacobian functions on car body and bogies, ``size`` coordinates, and optionally their
+    ``linear_bumpstop_arrays`` for the compiled path) ride along on the object's
+    coordinates after the contacts': one Python call fewer per residual evaluation.
+
+    At speed without holds the whole object is one compiled call
+    (:class:`~exudyn_turnout.passage.contact.vehicle_kernel.CompiledResidual`).
 
     ``track``: the co-running tracks' springs
     (:class:`~exudyn_turnout.corunning.track_kernel.TrackForce`, one compiled call) ride
@@ -162,10 +166,16 @@ class VehicleContacts:
         self._moving = False  #: all at speed without holds: forces = kernel + bias
         self._a_y = [0.0] * len(self.elements)  #: m/s^2, the curving accelerations in _bias
         self._biased = False  #: any curving load (x + 0.0 == x: skipped on straight track)
-        #: all wheelsets in one compiled call (profile elements at speed, no holds)
+        #: the whole object in one compiled call (profile elements at speed, no holds)
         self._compiled = (
-            CompiledContacts(self.elements, self.spans)
-            if CompiledContacts.serves(self.elements)
+            CompiledResidual(
+                self.elements,
+                self.spans,
+                self.n,
+                None if stops is None else stops[3],
+                track,
+            )
+            if CompiledResidual.serves(self.elements) and (stops is None or len(stops) > 3)
             else None
         )
         self._t_fast = math.nan
@@ -173,13 +183,12 @@ class VehicleContacts:
 
     def _fast_at(self, t: float) -> bool:
         """Whether the compiled path serves time t (all at speed, no holds); prepares it."""
-        if t != self._t_fast:
-            self._t_fast = t
-            self._fast = self._compiled is not None and all(
-                el.v > 0.0 and not el.hold_spin for el in self.elements
-            )
-            if self._fast:
-                self._compiled.prepare(t)  # type: ignore[union-attr]
+        self._t_fast = t
+        self._fast = self._compiled is not None and all(
+            el.v > 0.0 and not el.hold_spin for el in self.elements
+        )
+        if self._fast:
+            self._compiled.prepare(t)  # type: ignore[union-attr]
         return self._fast
 
     def _new_time(self, t: float) -> None:
@@ -215,12 +224,11 @@ class VehicleContacts:
                 out[a:b] = el._generalised_forces(x, q[a:b], q_t[a:b])
 
     def __call__(self, mbs, t, item_number, q_list, q_t_list):
+        if self._fast if t == self._t_fast else self._fast_at(t):
+            return self._compiled(t, q_list, q_t_list)  # the hot path: equal to the rest
         q, q_t = np.array(q_list, dtype=float), np.array(q_t_list, dtype=float)
         out = self._out
-        if self._fast_at(t):  # the hot path, one compiled call (equal to the loops below)
-            self._compiled.add_to(t, q, q_t, out)
-        else:
-            self._python_forces(t, q, q_t, out)
+        self._python_forces(t, q, q_t, out)
         if self.stops is not None:
             c, e = self.n_contacts, self.n_stops_end
             out[c:e] = self.stops[1](mbs, t, item_number, q_list[c:e], q_t_list[c:e])
@@ -299,7 +307,12 @@ class VehicleContacts:
 
 
 def wheelset_columns(
-    element: ProfileContactElement, t: np.ndarray, q: np.ndarray, q_t: np.ndarray, label: str
+    element: ProfileContactElement,
+    t: np.ndarray,
+    q: np.ndarray,
+    q_t: np.ndarray,
+    label: str,
+    columns: dict[str, np.ndarray] | None = None,
 ) -> dict[str, np.ndarray]:
     """Per wheel forces and wheelset coordinates of one wheelset, named ``..._<label>_...``.
 
@@ -313,6 +326,8 @@ def wheelset_columns(
         Its element coordinates and velocities (samples x element size).
     label : str
         E.g. "ws2".
+    columns : dict, optional
+        ``element.columns(t, q, q_t)`` if the caller has it already (not computed twice).
 
     Returns
     -------
@@ -321,7 +336,7 @@ def wheelset_columns(
         ``Fz_<label>_<wheel>_<rail>_N``, ``Fy_...``, and ``y_<label>_m``, ``z_<label>_m``,
         ``roll_<label>_rad``, ``yaw_<label>_rad``.
     """
-    cols = element.columns(t, q, q_t)
+    cols = element.columns(t, q, q_t) if columns is None else columns
     out = {}
     for name, values in cols.items():
         if name.startswith(("Fz_", "Fy_")):
