@@ -39,13 +39,18 @@ zone and the contact at x clamped to x_max (plain track in the packaged files), 
 front wheelset may run up to x_max plus the vehicle's length and the rear wheelsets pass
 the whole turnout.
 
-Exudyn objects of the user functions (speed, benchmarks/bench_vehicle_passage.py): the four
-contact elements are one ObjectGenericODE2 (one Python call per residual evaluation) with a
-forward-difference Jacobian per wheelset (Exudyn's own steps, a block each instead of the
-whole object's numerical one); on straight track the bumpstops ride on it and the curving
-loads (zero there) are left out; in a curve the curving loads and the bumpstops share one
-object, the loads tabulated along the run. A run's Newton tolerance is
-:func:`newton_tolerance`.
+Exudyn objects of the user functions (speed, issue 24): the four contact elements are one
+ObjectGenericODE2 (one Python call per residual evaluation) with a forward-difference
+Jacobian per wheelset (Exudyn's own steps, a block each instead of the whole object's
+numerical one); on straight track the bumpstops ride on it and the curving loads (zero
+there) are left out; in a curve the curving loads and the bumpstops share one object, the
+loads tabulated along the run. With the ``compiled`` track mechanism (the default) the four
+co-running tracks' springs ride on the contacts' object too (their masses stay Exudyn
+bodies; :mod:`~exudyn_turnout.corunning.track_kernel`), and at speed the object's whole
+residual is one numba call
+(:class:`~exudyn_turnout.passage.contact.vehicle_kernel.CompiledResidual`). The run uses
+Exudyn's sparse LU (EigenSparse): each track couples to its wheelset only. A run's Newton
+tolerance is :func:`newton_tolerance`.
 
 The run starts in the steady state at speed (at rest in the track-following frame): first
 the static equilibrium at rest (lateral position and spin held, as the single wheelset's),
@@ -517,8 +522,8 @@ def _run(
     sim.timeIntegration.generalizedAlpha.spectralRadius = settings.spectral_radius
     sim.timeIntegration.newton.absoluteTolerance = newton_tolerance(len(system.elements))
     sim.timeIntegration.newton.modifiedNewtonContractivity = _NEWTON_CONTRACTIVITY
-    # sparse LU: the system couples each track with its wheelset only (measured: Exudyn's
-    # share of a step -35 %, see module docstring)
+    # sparse LU: each track couples to its wheelset only (measured on the full vehicle's
+    # through passage: Exudyn's own share of the run -35 %, the run -18 %)
     sim.linearSolver.solverType = exu.LinearSolverType.EigenSparse
     v = settings.v
     if progress is not None:
