@@ -245,6 +245,10 @@ def test_compiled_residual_equals_the_python_path(turnout, model, route, mechani
     )
     assert contacts._compiled is not None
     assert (contacts.track is not None) == (mechanism == "compiled")
+    c, e = contacts.n_contacts, contacts.n_stops_end
+    if contacts.stops is not None:  # straight track: the car body 27.5 mm to the side, the
+        q[c] += 0.0275  # bumpstops (clearance 25 mm) engaged
+        assert np.any(contacts.stops[1](None, 0.0, 0, list(q[c:e]), list(q_t[c:e])))
     t = 0.0123
     fast = np.array(contacts(None, t, 0, list(q), list(q_t)))
     assert contacts._fast
@@ -252,10 +256,10 @@ def test_compiled_residual_equals_the_python_path(turnout, model, route, mechani
     slow = np.array(contacts(None, t, 0, list(q), list(q_t)))
     assert not contacts._fast
     assert np.array_equal(fast, slow)
-    c = contacts.n_contacts
     assert np.max(np.abs(fast[:c])) > 1e4  # the wheels carry load (N)
+    assert (np.max(np.abs(fast[c:e]), initial=0.0) > 1e2) == (route == "through")  # stops
     if mechanism == "compiled":  # the track's own coordinates feel their springs
-        assert np.max(np.abs(fast[contacts.n_stops_end :])) > 1e2
+        assert np.max(np.abs(fast[e:])) > 1e2
 
 
 def test_contact_jacobian_equals_central_differences(turnout, model):
