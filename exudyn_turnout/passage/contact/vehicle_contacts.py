@@ -149,6 +149,7 @@ class VehicleContacts:
         stops: tuple | None = None,
         track: TrackForce | None = None,
         n_track: int = 0,
+        body_loads: tuple | None = None,
     ):
         self.elements = list(elements)
         ends = np.cumsum([el.n for el in self.elements])
@@ -159,6 +160,12 @@ class VehicleContacts:
         self.n_stops_end = self.n_contacts + (int(stops[0]) if stops is not None else 0)
         self.track = track  #: the tracks' springs, or None
         self.n = self.n_stops_end + int(n_track)
+        #: (BodyLoads, index in this vector of each of its coordinates): the curving loads,
+        #: and the bumpstops acting on q - q_geo; None on straight track
+        self.body_loads = body_loads
+        self._t_loads = math.nan
+        self._loads = np.zeros(self.n)  #: N, the body loads at _t_loads on this vector
+        self._shift = np.zeros(self.n_stops_end - self.n_contacts)  #: m, q_geo of the stops
         self._out = np.zeros(self.n)
         self._bias = np.zeros(self.n)  #: N, the curving loads (subtracted as in __call__)
         self._t = math.nan
@@ -174,6 +181,7 @@ class VehicleContacts:
                 self.n,
                 None if stops is None else stops[3],
                 track,
+                body_loads is not None,
             )
             if CompiledResidual.serves(self.elements) and (stops is None or len(stops) > 3)
             else None
@@ -188,8 +196,20 @@ class VehicleContacts:
             el.v > 0.0 and not el.hold_spin for el in self.elements
         )
         if self._fast:
-            self._compiled.prepare(t)  # type: ignore[union-attr]
+            self._compiled.prepare(t, *self._body_loads_at(t))  # type: ignore[union-attr]
         return self._fast
+
+    def _body_loads_at(self, t: float) -> tuple[np.ndarray, np.ndarray] | tuple[()]:
+        """The body loads on this vector and the stops' q_geo at t (nothing on straight
+        track)."""
+        if self.body_loads is None:
+            return ()
+        if t != self._t_loads:
+            loads, index = self.body_loads
+            self._t_loads = t
+            self._loads[index] = loads(None, t, 0, None, None)
+            self._shift[:] = loads.geometry_at(t)[: len(self._shift)]
+        return self._loads, self._shift
 
     def _new_time(self, t: float) -> None:
         self._t = t
@@ -229,12 +249,16 @@ class VehicleContacts:
         q, q_t = np.array(q_list, dtype=float), np.array(q_t_list, dtype=float)
         out = self._out
         self._python_forces(t, q, q_t, out)
+        curved = self._body_loads_at(t)
         if self.stops is not None:
             c, e = self.n_contacts, self.n_stops_end
-            out[c:e] = self.stops[1](mbs, t, item_number, q_list[c:e], q_t_list[c:e])
+            u = list(q[c:e] - curved[1]) if curved else q_list[c:e]  # q - q_geo in a curve
+            out[c:e] = self.stops[1](mbs, t, item_number, u, q_t_list[c:e])
         if self.track is not None:
             out[self.n_stops_end :] = 0.0
             self.track.add_forces(t, q, q_t, out)
+        if curved:
+            out += curved[0]
         return out
 
     def jacobian(self, t: float, q: np.ndarray, q_t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -274,9 +298,11 @@ class VehicleContacts:
                     f1 = el._generalised_forces(x, u, u_t)
                     vector[j] = value
                     jac[a:b, a + j] = (f0 - f1) / eps
-        if self.stops is not None:  # their tangent stiffness; no damping
+        if self.stops is not None:  # their tangent stiffness (at q - q_geo); no damping
             c, e = self.n_contacts, self.n_stops_end
-            jac_q[c:e, c:e] = self.stops[2](None, t, 0, q[c:e], q_t[c:e], 1.0, 0.0)
+            curved = self._body_loads_at(t)
+            u = q[c:e] - curved[1] if curved else q[c:e]
+            jac_q[c:e, c:e] = self.stops[2](None, t, 0, u, q_t[c:e], 1.0, 0.0)
         return jac_q, jac_q_t
 
     def jacobian_function(self, mbs, t, item_number, q, q_t, f_q, f_q_t):

@@ -69,6 +69,8 @@ _PACKED = (
     ("track_poly", "i"),
     ("poly_n", "i"),
     ("law_i", "i"),
+    ("body_loads", "f"),  # N, the curving loads on this vector (empty on straight track)
+    ("stop_shift", "f"),  # m, q_geo of the bumpstops' coordinates (zero on straight track)
 )
 
 
@@ -161,13 +163,15 @@ def _view3(buf, header, j):  # pragma: no cover (compiled)
 
 @numba.njit(cache=True)
 def _stop_forces(
-    q, out, start, index, coefficient, count, points, increments
+    q, out, start, index, coefficient, count, points, increments, shift
 ):  # pragma: no cover (compiled)
-    """Add the linear bumpstops' forces (builder.linear_bumpstop_functions) to ``out``."""
+    """Add the linear bumpstops' forces (builder.linear_bumpstop_functions) on q - shift
+    to ``out``."""
     for r in range(index.shape[0]):
         u = 0.0
         for j in range(count[r]):
-            u += coefficient[r, j] * q[start + index[r, j]]
+            i = index[r, j]
+            u += coefficient[r, j] * (q[start + i] - shift[i])
         a = abs(u)
         if a > points[0]:
             f = 0.0
@@ -215,6 +219,7 @@ def _residual(t, fbuf, ibuf, header, values, blendable, xs):  # pragma: no cover
         _view1(ibuf, header, 25),
         _view1(fbuf, header, 12),
         _view1(fbuf, header, 13),
+        _view1(fbuf, header, 33),
     )
     spring_forces(
         t,
@@ -234,6 +239,9 @@ def _residual(t, fbuf, ibuf, header, values, blendable, xs):  # pragma: no cover
         _view1(fbuf, header, 19),
         _view2(fbuf, header, 20),
     )
+    body = _view1(fbuf, header, 32)
+    for j in range(body.shape[0]):
+        out[j] += body[j]
 
 
 class CompiledResidual:
@@ -253,6 +261,8 @@ class CompiledResidual:
         their coordinates following the last element's.
     track : TrackForce, optional
         The co-running tracks' springs on the force vector's indices.
+    curved : bool
+        Body loads and the bumpstops' q_geo are given per time (:meth:`prepare`).
     """
 
     def __init__(
@@ -262,6 +272,7 @@ class CompiledResidual:
         n: int,
         stops: Mapping[str, np.ndarray] | None = None,
         track: TrackForce | None = None,
+        curved: bool = False,
     ):
         self.elements = tuple(elements)
         first, n_el = self.elements[0], len(self.elements)
@@ -310,9 +321,12 @@ class CompiledResidual:
         springs = track.arrays if track is not None else _no_springs()
         arrays.update({k: springs[k] for k in KERNEL_ARRAYS})
         arrays["track_values"] = np.zeros(len(springs["law_a"]))
+        arrays["body_loads"] = np.zeros(n if curved else 0)
+        arrays["stop_shift"] = np.zeros(n - max(b for _, b in spans))  # from the stops' start
         self._fbuf, self._ibuf, self._header, views = _pack(arrays)
         self.q, self.q_t, self.out = views["q"], views["q_t"], views["out"]
         self._motion, self._irregularity = views["motion"], views["irregularity"]
+        self._body_loads, self._stop_shift = views["body_loads"], views["stop_shift"]
         self._tables = (first.tables.values, first.tables.blendable, first.tables.x)
 
     @staticmethod
@@ -337,14 +351,24 @@ class CompiledResidual:
             for el in elements
         )
 
-    def prepare(self, t: float) -> None:
+    def prepare(
+        self, t: float, loads: np.ndarray | None = None, shift: np.ndarray | None = None
+    ) -> None:
         """Read the elements' ``frozen`` flags and irregularities at time t (once per t).
 
         Parameters
         ----------
         t : float
             s.
+        loads : numpy.ndarray, optional
+            N, the body loads on the force vector at t (``curved``).
+        shift : numpy.ndarray, optional
+            m, q_geo of the bumpstops' coordinates at t (``curved``).
         """
+        if loads is not None:
+            self._body_loads[:] = loads
+        if shift is not None:
+            self._stop_shift[: len(shift)] = shift
         for k, el in enumerate(self.elements):
             self._motion[k, 4] = 1.0 if getattr(el, "frozen", False) else 0.0
             if el.irregularity is not None:

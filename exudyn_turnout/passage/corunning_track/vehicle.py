@@ -277,7 +277,9 @@ def _build(
         loads.tabulate(tables)
     stops = None
     car = build.car_body
-    if not loads.curved and model.bumpstop is not None and car is not None:  # q_geo = 0
+    # the bumpstops ride on the contacts' object, and in a curve the curving loads too
+    fold = model.bumpstop is not None and car is not None
+    if fold and car is not None:
         size, (stop_force, stop_jacobian) = vehicle_builder.linear_bumpstop_functions(
             model, car, build.bogies
         )
@@ -304,7 +306,19 @@ def _build(
                 for p, x, v_p, c in placements
             ]
         )
-    contacts = VehicleContacts(elements, stops, forces, n_track)
+    body_loads = None
+    if fold and loads.curved:  # the loads' coordinates (every body's) in the object's vector
+        at, size = {}, 0
+        for node in contact_nodes:
+            at[node] = size
+            size += len(mbs.GetNode(node)["referenceCoordinates"])
+        index = [
+            at[b.node] + j
+            for b in build.bodies()
+            for j in range(len(mbs.GetNode(b.node)["referenceCoordinates"]))
+        ]
+        body_loads = (loads, np.array(index, dtype=np.int64))
+    contacts = VehicleContacts(elements, stops, forces, n_track, body_loads)
     dummies = [names[f"dummy{i + 1}"] for i in range(len(elements))]
     n_dummy = 2 * len(dummies)
     mbs.AddObject(  # the dummy sprung masses, decoupled
@@ -321,7 +335,7 @@ def _build(
             jacobianUserFunction=contacts.jacobian_function,
         )
     )
-    keep = add_vehicle_loads(mbs, build, loads) if loads.curved else ()
+    keep = add_vehicle_loads(mbs, build, loads) if (loads.curved and not fold) else ()
     mbs.variables["exudyn_turnout.corunning_track.vehicle"] = (contacts, loads, keep)
     mbs.Assemble()
     system = _System(
