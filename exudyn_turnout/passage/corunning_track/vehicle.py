@@ -42,9 +42,8 @@ the whole turnout.
 Exudyn objects of the user functions (speed, issue 24): the four contact elements are one
 ObjectGenericODE2 (one Python call per residual evaluation) with a forward-difference
 Jacobian per wheelset (Exudyn's own steps, a block each instead of the whole object's
-numerical one); on straight track the bumpstops ride on it and the curving loads (zero
-there) are left out; in a curve the curving loads and the bumpstops share one object, the
-loads tabulated along the run. With the ``compiled`` track mechanism (the default) the four
+numerical one); the bumpstops ride on it (on q - q_geo), and in a curve the body loads
+(K q_geo, D q_geo_t, curving loads; tabulated along the run) too. With the ``compiled`` track mechanism (the default) the four
 co-running tracks' springs ride on the contacts' object too (their masses stay Exudyn
 bodies; :mod:`~exudyn_turnout.corunning.track_kernel`), and at speed the object's whole
 residual is one numba call
