@@ -188,16 +188,20 @@ class VehicleContacts:
         )
         self._t_fast = math.nan
         self._fast = False
+        self._running = all(el.v > 0.0 for el in self.elements)  #: no static element
 
     def _fast_at(self, t: float) -> bool:
         """Whether the compiled path serves time t (all at speed, no holds); prepares it."""
         self._t_fast = t
-        self._fast = self._compiled is not None and all(
-            el.v > 0.0 and not el.hold_spin for el in self.elements
-        )
-        if self._fast:
+        fast = self._compiled is not None and self._running
+        for el in self.elements if fast else ():
+            if el.hold_spin:
+                fast = False
+                break
+        self._fast = fast
+        if fast:
             self._compiled.prepare(t, *self._body_loads_at(t))  # type: ignore[union-attr]
-        return self._fast
+        return fast
 
     def _body_loads_at(self, t: float) -> tuple[np.ndarray, np.ndarray] | tuple[()]:
         """The body loads on this vector and the stops' q_geo at t (nothing on straight

@@ -327,6 +327,10 @@ class CompiledResidual:
         self.q, self.q_t, self.out = views["q"], views["q_t"], views["out"]
         self._motion, self._irregularity = views["motion"], views["irregularity"]
         self._body_loads, self._stop_shift = views["body_loads"], views["stop_shift"]
+        self._frozen = tuple(m[4] != 0.0 for m in motion)
+        self._irregular = [
+            (k, el) for k, el in enumerate(self.elements) if el.irregularity is not None
+        ]
         self._tables = (first.tables.values, first.tables.blendable, first.tables.x)
 
     @staticmethod
@@ -369,10 +373,12 @@ class CompiledResidual:
             self._body_loads[:] = loads
         if shift is not None:
             self._stop_shift[: len(shift)] = shift
-        for k, el in enumerate(self.elements):
-            self._motion[k, 4] = 1.0 if getattr(el, "frozen", False) else 0.0
-            if el.irregularity is not None:
-                self._irregularity[k] = el.irregularity.at(el.x_at(t))
+        frozen = tuple(bool(getattr(el, "frozen", False)) for el in self.elements)
+        if frozen != self._frozen:
+            self._frozen = frozen
+            self._motion[:, 4] = frozen
+        for k, el in self._irregular:
+            self._irregularity[k] = el.irregularity.at(el.x_at(t))
 
     def __call__(self, t: float, q_list, q_t_list) -> np.ndarray:
         """The force vector at time t for Exudyn's coordinate and velocity lists.

@@ -43,13 +43,13 @@ Exudyn objects of the user functions (speed, issue 24): the four contact element
 ObjectGenericODE2 (one Python call per residual evaluation) with a forward-difference
 Jacobian per wheelset (Exudyn's own steps, a block each instead of the whole object's
 numerical one); the bumpstops ride on it (on q - q_geo), and in a curve the body loads
-(K q_geo, D q_geo_t, curving loads; tabulated along the run) too. With the ``compiled`` track mechanism (the default) the four
-co-running tracks' springs ride on the contacts' object too (their masses stay Exudyn
-bodies; :mod:`~exudyn_turnout.corunning.track_kernel`), and at speed the object's whole
-residual is one numba call
-(:class:`~exudyn_turnout.passage.contact.vehicle_kernel.CompiledResidual`). The run uses
-Exudyn's sparse LU (EigenSparse): each track couples to its wheelset only. A run's Newton
-tolerance is :func:`newton_tolerance`.
+(K q_geo, D q_geo_t, curving loads; tabulated along the run) too. With the ``compiled``
+track mechanism (the default) the four co-running tracks' springs ride on the contacts'
+object too (their masses stay Exudyn bodies;
+:mod:`~exudyn_turnout.corunning.track_kernel`), and at speed the object's whole residual
+is one numba call (:class:`~exudyn_turnout.passage.contact.vehicle_kernel.CompiledResidual`).
+The run uses Exudyn's sparse LU (EigenSparse): each track couples to its wheelset only. A
+run's Newton tolerance is :func:`newton_tolerance`.
 
 The run starts in the steady state at speed (at rest in the track-following frame): first
 the static equilibrium at rest (lateral position and spin held, as the single wheelset's),
