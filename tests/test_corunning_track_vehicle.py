@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -171,7 +173,7 @@ def test_rear_wheelsets_pass_the_crossing_beyond_the_turnout_end(turnout, model)
         simulate_passage(turnout, too_far, model)
 
 
-def _segment(turnout, model, x_front, v, frozen=False, route_name="through"):
+def _segment(turnout, model, x_front, v, frozen=False, route_name="through", mechanism="compiled"):
     """One run segment's Exudyn system of the full vehicle (3 layers), its contact function
     and a state with every wheel pressed into its rails and moving a little."""
     from exudyn_turnout.inputs.routes import load_route
@@ -180,7 +182,9 @@ def _segment(turnout, model, x_front, v, frozen=False, route_name="through"):
     from exudyn_turnout.passage.corunning_track import vehicle as fvp
 
     route, base = load_route(turnout, route_name), load_vehicle()
-    settings = PassageSettings(route=route_name, speed_kmh=100.0, layers=3)
+    settings = PassageSettings(
+        route=route_name, speed_kmh=100.0, layers=3, track_mechanism=mechanism
+    )
     places = tuple(fvp._place(turnout, x_front + o) for o in model.wheelset.x)
     args = (turnout, route, model, fvp.contact_vehicle(base, model))
     args += (route_contact(turnout, route_name, base), settings, places, x_front, v, frozen)
@@ -211,22 +215,55 @@ def test_one_contact_function_for_all_wheelsets_gives_each_elements_forces(
     # for bit, what each wheelset's own element returns: running (curving load), the solve
     # at speed (spin held) and at rest (lateral position and spin held)
     x = 46.5 if route == "through" else 20.0
-    _, contacts, q, q_t = _segment(turnout, model, x, v, route_name=route)
+    # symbolic track springs: the object's forces are the contacts' alone
+    _, contacts, q, q_t = _segment(turnout, model, x, v, route_name=route, mechanism="symbolic")
     t = 0.0123
     expected = []
     for el, (a, b) in zip(contacts.elements, contacts.spans):
         el.hold_spin = hold_spin
         expected.append(np.array(el(None, t, 0, list(q[a:b]), list(q_t[a:b]))))
     forces = np.array(contacts(None, t, 0, list(q), list(q_t)))
-    c = contacts.n_contacts
-    assert np.array_equal(forces[:c], np.concatenate(expected))
+    c, e = contacts.n_contacts, contacts.n_stops_end
+    # in a curve the body loads (K q_geo, curving loads) ride on the object too
+    curved = contacts.body_loads is not None
+    assert curved == (route == "diverging" and v > 0.0)
+    loads = contacts._loads if curved else np.zeros(contacts.n)
+    assert np.array_equal(forces[:c], np.concatenate(expected) + loads[:c])
     assert np.max(np.abs(forces)) > 1e4  # the wheels do carry load (N)
-    assert contacts._biased == (route == "diverging")  # the curving loads were applied
-    # on straight track the bumpstops ride along on the last coordinates (car body, bogies)
-    assert (contacts.stops is not None) == (route == "through")
-    if contacts.stops is not None:
-        stop = contacts.stops[1](None, t, 0, list(q[c:]), list(q_t[c:]))
-        assert np.array_equal(forces[c:], stop)
+    # the curving loads were applied (the elements' own forces include -m v^2 kappa)
+    assert any(el._kappa != 0.0 for el in contacts.elements) == (route == "diverging")
+    # the bumpstops ride along after the contacts (car body, bogies), on q - q_geo
+    shift = contacts.body_loads[0].geometry_at(t)[: e - c] if curved else 0.0
+    stop = contacts.stops[1](None, t, 0, list(q[c:e] - shift), list(q_t[c:e]))
+    assert np.array_equal(forces[c:e], np.array(stop) + loads[c:e])
+
+
+@pytest.mark.parametrize("route", ["through", "diverging"])
+@pytest.mark.parametrize("mechanism", ["compiled", "symbolic"])
+def test_compiled_residual_equals_the_python_path(turnout, model, route, mechanism):
+    # the hot path (contacts, bumpstops on straight track, the tracks' springs when
+    # compiled: one numba call) returns, bit for bit, what the Python path returns
+    x = 46.5 if route == "through" else 20.0
+    _, contacts, q, q_t = _segment(
+        turnout, model, x, 100.0 / 3.6, route_name=route, mechanism=mechanism
+    )
+    assert contacts._compiled is not None
+    assert (contacts.track is not None) == (mechanism == "compiled")
+    c, e = contacts.n_contacts, contacts.n_stops_end
+    if route == "through":  # the car body 27.5 mm to the side: the bumpstops (clearance
+        q[c] += 0.0275  # 25 mm) engaged
+        assert np.any(contacts.stops[1](None, 0.0, 0, list(q[c:e]), list(q_t[c:e])))
+    t = 0.0123
+    fast = np.array(contacts(None, t, 0, list(q), list(q_t)))
+    assert contacts._fast
+    contacts._compiled, contacts._t_fast = None, math.nan
+    slow = np.array(contacts(None, t, 0, list(q), list(q_t)))
+    assert not contacts._fast
+    assert np.array_equal(fast, slow)
+    assert np.max(np.abs(fast[:c])) > 1e4  # the wheels carry load (N)
+    assert np.max(np.abs(fast[c:e])) > 1e2  # stops (and in the curve the body loads)
+    if mechanism == "compiled":  # the track's own coordinates feel their springs
+        assert np.max(np.abs(fast[e:])) > 1e2
 
 
 def test_contact_jacobian_equals_central_differences(turnout, model):
@@ -236,7 +273,8 @@ def test_contact_jacobian_equals_central_differences(turnout, model):
     # of 1e-8 m / 1e-6 m/s; measured: 2.4e-6 of it at x = 20, 46.5 and 47 m).
     _, contacts, q, q_t = _segment(turnout, model, 20.0, 100.0 / 3.6)
     t = 0.0
-    jac_q, jac_q_t = contacts.jacobian(t, q, q_t)
+    jac_q = contacts.jacobian_function(None, t, 0, q, q_t, 1.0, 0.0)  # with the track springs
+    jac_q_t = contacts.jacobian_function(None, t, 0, q, q_t, 0.0, 1.0)
     for vector, jac, step in ((q, jac_q, 1e-8), (q_t, jac_q_t, 1e-6)):
         central = np.zeros_like(jac)
         for j in range(contacts.n):
@@ -286,7 +324,7 @@ def test_exudyn_takes_the_contact_jacobian_as_its_own_numerical_one(turnout, mod
             i = mbs.GetNodeODE2Index(node)
             k = np.atleast_1d(mbs.GetNodeOutput(node, exu.OutputVariableType.Coordinates)).size
             u += list(q[i : i + k])
-        assert len(u) == contacts.n - contacts.n_contacts
+        assert len(u) == contacts.n_stops_end - contacts.n_contacts
         assert np.any(contacts.stops[1](None, 0.0, 0, u, [0.0] * len(u)))  # engaged
         if not user:
             for i in range(data.NumberOfObjects()):

@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import exudyn as exu
+import numpy as np
 from exudyn.advancedUtilities import CreateSymbolicUserFunction
 from exudyn.itemInterface import (
     CartesianSpringDamper,
@@ -24,6 +25,7 @@ from exudyn.itemInterface import (
     MassPoint2D,
     NodePoint2D,
     NodeRigidBody2D,
+    ObjectGenericODE2,
     ObjectGround,
     RigidBody2D,
 )
@@ -32,6 +34,7 @@ from exudyn_turnout.corunning.cross_section import CrossSectionSpring, cross_sec
 from exudyn_turnout.corunning.fitted import TableEntry
 from exudyn_turnout.corunning.modal import TrackMatrices, dof_names
 from exudyn_turnout.corunning.parameters import CoRunningParameters, reference_support
+from exudyn_turnout.corunning.track_kernel import TrackPlacement, track_force
 from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Entry, Polynomial
 
 __all__ = [
@@ -44,7 +47,7 @@ __all__ = [
 ]
 
 #: How position-dependent stiffness and damping are evaluated during a simulation.
-MECHANISMS = ("symbolic", "python", "constant")
+MECHANISMS = ("symbolic", "python", "constant", "compiled")
 
 _KEEPALIVE = "exudyn_turnout.corunning.track.symbolic_functions"  # mbs.variables key
 
@@ -165,7 +168,8 @@ class TrackHandles:
     Node, body and marker maps are keyed by rail slot (active rails only). A wheel
     attaches to ``wheel_markers[rail]``: the rail mass for two layers, the m_0 above it
     for three. ``connectors`` maps ``ballast_z1``, ``ballast_z2``, ``ballast_y``,
-    ``pad_rj`` and ``layer_rj`` to their CartesianSpringDamper objects;
+    ``pad_rj`` and ``layer_rj`` to their CartesianSpringDamper objects (none for the
+    ``compiled`` mechanism: ``force_object`` holds all springs);
     ``position_dependent`` names those whose stiffness or damping follows x.
     """
 
@@ -187,6 +191,8 @@ class TrackHandles:
     connectors: Mapping[str, int]  #: CartesianSpringDamper objects by spring name
     position_dependent: tuple[str, ...]  #: names of the connectors that follow x
     x_coordinate: tuple[int, int] | None = None  #: (node, local index) carrying q, x = x0 + q
+    #: ObjectGenericODE2 holding every spring (``compiled`` mechanism), or None
+    force_object: int | None = None
     _position: list = field(default_factory=lambda: [math.nan], repr=False)  # x read at step start
     _symbol: Any = field(default=None, repr=False)  # exudyn.symbolic.Real holding that x
 
@@ -243,6 +249,7 @@ def add_co_running_track(
     mechanism: str = "symbolic",
     x_coordinate: tuple[int, int] | None = None,
     install_pre_step: bool = True,
+    force_object: bool = True,
 ) -> TrackHandles:
     r"""Add the two- or three-layer co-running cross-section (Figs 2, 3) to ``mbs``.
 
@@ -289,7 +296,11 @@ def add_co_running_track(
         ``symbolic`` (default) Exudyn symbolic user functions, evaluated in C++;
         ``python`` Python ``springForceUserFunction`` (same numbers, several times slower
         per step, see ``benchmarks/bench_receptance.py``);
-        ``constant`` built-in springs fixed at their value at x0.
+        ``constant`` built-in springs fixed at their value at x0;
+        ``compiled`` no connectors: all springs of the cross-section in one
+        ``ObjectGenericODE2`` whose force is one compiled call
+        (:mod:`~exudyn_turnout.corunning.track_kernel`: the same laws and kinematics,
+        the Jacobian linear), x = x0 + v t.
     x_coordinate : (node, index), optional
         Read the position from an ODE2 coordinate q instead: x = x0 + q, taken at the
         start of each time step (:meth:`TrackHandles.update_position`).
@@ -297,6 +308,10 @@ def add_co_running_track(
         With ``x_coordinate``: install a pre-step function calling ``update_position``
         (it replaces any pre-step function of ``mbs``; pass False and call
         ``handles.update_position(mbs)`` from your own instead).
+    force_object : bool
+        With ``compiled``: add the springs' object. False: add the bodies only, and put the
+        springs (:func:`~exudyn_turnout.corunning.track_kernel.track_force` of this track)
+        into an object of your own, e.g. with other forces in one Python call.
 
     Returns
     -------
@@ -306,10 +321,12 @@ def add_co_running_track(
     Raises
     ------
     ValueError
-        For an unknown mechanism, or x0 outside the zone.
+        For an unknown mechanism, x0 outside the zone, or ``compiled`` with x_coordinate.
     """
     if mechanism not in MECHANISMS:
         raise ValueError(f"mechanism must be one of {', '.join(MECHANISMS)}, got {mechanism!r}")
+    if mechanism == "compiled" and x_coordinate is not None:
+        raise ValueError("the compiled mechanism follows x = x0 + v t; x_coordinate needs another")
     values = params.at(x0)
     items = _add_bodies(mbs, params, values)
     position: list = [float(x0)]
@@ -320,7 +337,14 @@ def add_co_running_track(
         else None
     )
     x_of = _position_functions(x0, v, x_coordinate, position, symbol)
-    connectors, dependent = _add_springs(mbs, params, items, values, mechanism, x_of)
+    compiled = None
+    if mechanism == "compiled":
+        connectors: dict[str, int] = {}
+        dependent = _dependent_springs(params)
+        if force_object:
+            compiled = _add_compiled_springs(mbs, params, items, float(x0), float(v))
+    else:
+        connectors, dependent = _add_springs(mbs, params, items, values, mechanism, x_of)
     handles = TrackHandles(
         params,
         float(x0),
@@ -330,6 +354,7 @@ def add_co_running_track(
         connectors=connectors,
         position_dependent=dependent,
         x_coordinate=x_coordinate,
+        force_object=compiled,
         _position=position,
         _symbol=symbol,
         **items,
@@ -359,6 +384,56 @@ def _add_springs(
             keep.append(_attach_user_function(mbs, connector, law, entries, mechanism, x_of))
             dependent.append(spring.name)
     return connectors, tuple(dependent)
+
+
+def _dependent_springs(params: CoRunningParameters) -> tuple[str, ...]:
+    """Names of the springs with an entry that is not constant."""
+    return tuple(
+        spring.name
+        for spring in cross_section_springs(params)
+        if any(n is not None and params.entries[n].kind != "const" for n in spring.k + spring.c)
+    )
+
+
+def _track_nodes(items: Mapping) -> list[int]:
+    """The track's nodes in :func:`~exudyn_turnout.corunning.modal.dof_names` order."""
+    return (
+        [items["sleeper_node"]]
+        + [items["rail_nodes"][r] for r in RAIL_SLOTS if r in items["rail_nodes"]]
+        + [items["layer_nodes"][r] for r in RAIL_SLOTS if r in items["layer_nodes"]]
+    )
+
+
+def _add_compiled_springs(
+    mbs: exu.MainSystem, params: CoRunningParameters, items: Mapping, x0: float, v: float
+) -> int:
+    """One ObjectGenericODE2 over the track's coordinates with the compiled springs."""
+    dof = dof_names(params.active_rails, params.layers)
+    force = track_force([TrackPlacement(params, x0, v, {name: i for i, name in enumerate(dof)})])
+    n = len(dof)
+    out = np.zeros(n)
+
+    def forceUserFunction(mbs, t, itemNumber, q, q_t):
+        out[:] = 0.0
+        force.add_forces(t, np.asarray(q, float), np.asarray(q_t, float), out)
+        return out
+
+    def jacobianUserFunction(mbs, t, itemNumber, q, q_t, f_q, f_q_t):
+        jac = np.zeros((n, n))
+        force.add_jacobian(t, f_q, f_q_t, jac)
+        return jac
+
+    keep = mbs.variables.setdefault(_KEEPALIVE, [])
+    keep.append((force, forceUserFunction, jacobianUserFunction))
+    return int(
+        mbs.AddObject(
+            ObjectGenericODE2(
+                nodeNumbers=_track_nodes(items),
+                forceUserFunction=forceUserFunction,
+                jacobianUserFunction=jacobianUserFunction,
+            )
+        )
+    )
 
 
 def _pre_step(handles: TrackHandles) -> Callable:

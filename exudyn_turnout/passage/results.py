@@ -91,9 +91,9 @@ class PassageSettings:
     time_step: float = 1e-4  #: s, converged: halving it moves the crossing peak < 0.4 %
     output_step: float | None = None  #: s, default: every time step
     spectral_radius: float = 0.8  #: generalized-alpha rho_inf
-    track_mechanism: str = (
-        "symbolic"  #: how track springs follow x: "symbolic", "python" or "constant"
-    )
+    #: how track springs follow x: "compiled" (one numba call for all springs), "symbolic",
+    #: "python" or "constant" (corunning.track.MECHANISMS)
+    track_mechanism: str = "compiled"
     #: wheel/rail contact: "profile" (S1002 on the turnout's rail sections, multi-point
     #: Hertz, Polach creep with spin) or "height-table" (the route's rail height tables on a
     #: conical tread with flange springs: a simplification kept for comparison)

@@ -8,11 +8,13 @@ import math
 
 import numpy as np
 
+from exudyn_turnout.corunning.track_kernel import TrackForce
 from exudyn_turnout.passage.contact.profile import (
     STATIC_LATERAL_STIFFNESS,
     STATIC_SPIN_STIFFNESS,
     ProfileContactElement,
 )
+from exudyn_turnout.passage.contact.vehicle_kernel import CompiledResidual
 
 __all__ = [
     "WheelsetContactElement",
@@ -128,17 +130,42 @@ class VehicleContacts:
     is block diagonal).
 
     ``stops``: on straight track the vehicle's bumpstops (``vehicle_builder``'s force and
-    Jacobian functions on car body and bogies, ``size`` coordinates) ride along on the
-    object's last coordinates: one Python call fewer per residual evaluation.
+    Jacobian functions on car body and bogies, ``size`` coordinates, and optionally their
+    ``linear_bumpstop_arrays`` for the compiled path) ride along on the object's
+    coordinates after the contacts': one Python call fewer per residual evaluation.
+
+    At speed without holds the whole object is one compiled call
+    (:class:`~exudyn_turnout.passage.contact.vehicle_kernel.CompiledResidual`).
+
+    ``track``: the co-running tracks' springs
+    (:class:`~exudyn_turnout.corunning.track_kernel.TrackForce`, one compiled call) ride
+    along too, on indices of this object's vector (their rail or m_0 nodes shared with the
+    contacts, the others in ``n_track`` coordinates after the stops').
     """
 
-    def __init__(self, elements: list[WheelsetContactElement], stops: tuple | None = None):
+    def __init__(
+        self,
+        elements: list[WheelsetContactElement],
+        stops: tuple | None = None,
+        track: TrackForce | None = None,
+        n_track: int = 0,
+        body_loads: tuple | None = None,
+    ):
         self.elements = list(elements)
         ends = np.cumsum([el.n for el in self.elements])
         self.spans = [(int(b - el.n), int(b)) for el, b in zip(self.elements, ends)]
         self.n_contacts = int(ends[-1])  #: coordinates of the contact elements, first
         self.stops = stops  #: (size, force, jacobian) of the bumpstops, or None
-        self.n = self.n_contacts + (int(stops[0]) if stops is not None else 0)
+        #: end of the bumpstops' coordinates (the track's own ones follow)
+        self.n_stops_end = self.n_contacts + (int(stops[0]) if stops is not None else 0)
+        self.track = track  #: the tracks' springs, or None
+        self.n = self.n_stops_end + int(n_track)
+        #: (BodyLoads, index in this vector of each of its coordinates): the curving loads,
+        #: and the bumpstops acting on q - q_geo; None on straight track
+        self.body_loads = body_loads
+        self._t_loads = math.nan
+        self._loads = np.zeros(self.n)  #: N, the body loads at _t_loads on this vector
+        self._shift = np.zeros(self.n_stops_end - self.n_contacts)  #: m, q_geo of the stops
         self._out = np.zeros(self.n)
         self._bias = np.zeros(self.n)  #: N, the curving loads (subtracted as in __call__)
         self._t = math.nan
@@ -146,6 +173,47 @@ class VehicleContacts:
         self._moving = False  #: all at speed without holds: forces = kernel + bias
         self._a_y = [0.0] * len(self.elements)  #: m/s^2, the curving accelerations in _bias
         self._biased = False  #: any curving load (x + 0.0 == x: skipped on straight track)
+        #: the whole object in one compiled call (profile elements at speed, no holds)
+        self._compiled = (
+            CompiledResidual(
+                self.elements,
+                self.spans,
+                self.n,
+                None if stops is None else stops[3],
+                track,
+                body_loads is not None,
+            )
+            if CompiledResidual.serves(self.elements) and (stops is None or len(stops) > 3)
+            else None
+        )
+        self._t_fast = math.nan
+        self._fast = False
+        self._running = all(el.v > 0.0 for el in self.elements)  #: no static element
+
+    def _fast_at(self, t: float) -> bool:
+        """Whether the compiled path serves time t (all at speed, no holds); prepares it."""
+        self._t_fast = t
+        fast = self._compiled is not None and self._running
+        for el in self.elements if fast else ():
+            if el.hold_spin:
+                fast = False
+                break
+        self._fast = fast
+        if fast:
+            self._compiled.prepare(t, *self._body_loads_at(t))  # type: ignore[union-attr]
+        return fast
+
+    def _body_loads_at(self, t: float) -> tuple[np.ndarray, np.ndarray] | tuple[()]:
+        """The body loads on this vector and the stops' q_geo at t (nothing on straight
+        track)."""
+        if self.body_loads is None:
+            return ()
+        if t != self._t_loads:
+            loads, index = self.body_loads
+            self._t_loads = t
+            self._loads[index] = loads(None, t, 0, None, None)
+            self._shift[:] = loads.geometry_at(t)[: len(self._shift)]
+        return self._loads, self._shift
 
     def _new_time(self, t: float) -> None:
         self._t = t
@@ -165,28 +233,42 @@ class VehicleContacts:
             else:
                 self._moving = False
 
-    def __call__(self, mbs, t, item_number, q_list, q_t_list):
-        q, q_t = np.array(q_list, dtype=float), np.array(q_t_list, dtype=float)
+    def _python_forces(self, t: float, q: np.ndarray, q_t: np.ndarray, out: np.ndarray) -> None:
+        """The contacts' forces element by element (static holds, x frozen, v = 0)."""
         if t != self._t:
             self._new_time(t)
-        out = self._out
-        if self._moving:  # the hot path: x - c == x + (-c) exactly
+        if self._moving:  # x - c == x + (-c) exactly
             for el, x, (a, b) in zip(self.elements, self._x, self.spans):
                 el._call(x, q[a:b], q_t[a:b])
                 out[a:b] = el._forces
             if self._biased:
-                out += self._bias
+                out[: self.n_contacts] += self._bias[: self.n_contacts]
         else:
             for el, x, (a, b) in zip(self.elements, self._x, self.spans):
                 out[a:b] = el._generalised_forces(x, q[a:b], q_t[a:b])
+
+    def __call__(self, mbs, t, item_number, q_list, q_t_list):
+        if self._fast if t == self._t_fast else self._fast_at(t):
+            return self._compiled(t, q_list, q_t_list)  # the hot path: equal to the rest
+        q, q_t = np.array(q_list, dtype=float), np.array(q_t_list, dtype=float)
+        out = self._out
+        self._python_forces(t, q, q_t, out)
+        curved = self._body_loads_at(t)
         if self.stops is not None:
-            c = self.n_contacts
-            out[c:] = self.stops[1](mbs, t, item_number, q_list[c:], q_t_list[c:])
+            c, e = self.n_contacts, self.n_stops_end
+            u = list(q[c:e] - curved[1]) if curved else q_list[c:e]  # q - q_geo in a curve
+            out[c:e] = self.stops[1](mbs, t, item_number, u, q_t_list[c:e])
+        if self.track is not None:
+            out[self.n_stops_end :] = 0.0
+            self.track.add_forces(t, q, q_t, out)
+        if curved:
+            out += curved[0]
         return out
 
     def jacobian(self, t: float, q: np.ndarray, q_t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """-df/dq and -df/dq_t of the contact forces f (the left-hand side's Jacobians), by
-        forward differences per wheelset (its block; the blocks do not couple).
+        forward differences per wheelset (its block; the blocks do not couple); without the
+        track's springs (:meth:`jacobian_function` adds them).
 
         The steps are Exudyn's own numerical differentiation's (relative 1e-7 of the
         coordinate, at least 1e-7 x 0.01). The dummy sprung-mass columns (5, 6) are zero:
@@ -220,9 +302,11 @@ class VehicleContacts:
                     f1 = el._generalised_forces(x, u, u_t)
                     vector[j] = value
                     jac[a:b, a + j] = (f0 - f1) / eps
-        if self.stops is not None:  # their tangent stiffness; no damping
-            c = self.n_contacts
-            jac_q[c:, c:] = self.stops[2](None, t, 0, q[c:], q_t[c:], 1.0, 0.0)
+        if self.stops is not None:  # their tangent stiffness (at q - q_geo); no damping
+            c, e = self.n_contacts, self.n_stops_end
+            curved = self._body_loads_at(t)
+            u = q[c:e] - curved[1] if curved else q[c:e]
+            jac_q[c:e, c:e] = self.stops[2](None, t, 0, u, q_t[c:e], 1.0, 0.0)
         return jac_q, jac_q_t
 
     def jacobian_function(self, mbs, t, item_number, q, q_t, f_q, f_q_t):
@@ -246,11 +330,19 @@ class VehicleContacts:
             (n, n).
         """
         jac_q, jac_q_t = self.jacobian(t, np.asarray(q, float), np.asarray(q_t, float))
-        return f_q * jac_q + f_q_t * jac_q_t
+        out = f_q * jac_q + f_q_t * jac_q_t
+        if self.track is not None:  # the springs' K(x), D(x)
+            self.track.add_jacobian(t, f_q, f_q_t, out)
+        return out
 
 
 def wheelset_columns(
-    element: ProfileContactElement, t: np.ndarray, q: np.ndarray, q_t: np.ndarray, label: str
+    element: ProfileContactElement,
+    t: np.ndarray,
+    q: np.ndarray,
+    q_t: np.ndarray,
+    label: str,
+    columns: dict[str, np.ndarray] | None = None,
 ) -> dict[str, np.ndarray]:
     """Per wheel forces and wheelset coordinates of one wheelset, named ``..._<label>_...``.
 
@@ -264,6 +356,8 @@ def wheelset_columns(
         Its element coordinates and velocities (samples x element size).
     label : str
         E.g. "ws2".
+    columns : dict, optional
+        ``element.columns(t, q, q_t)`` if the caller has it already (not computed twice).
 
     Returns
     -------
@@ -272,7 +366,7 @@ def wheelset_columns(
         ``Fz_<label>_<wheel>_<rail>_N``, ``Fy_...``, and ``y_<label>_m``, ``z_<label>_m``,
         ``roll_<label>_rad``, ``yaw_<label>_rad``.
     """
-    cols = element.columns(t, q, q_t)
+    cols = element.columns(t, q, q_t) if columns is None else columns
     out = {}
     for name, values in cols.items():
         if name.startswith(("Fz_", "Fy_")):

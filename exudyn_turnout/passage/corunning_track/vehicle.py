@@ -39,13 +39,17 @@ zone and the contact at x clamped to x_max (plain track in the packaged files), 
 front wheelset may run up to x_max plus the vehicle's length and the rear wheelsets pass
 the whole turnout.
 
-Exudyn objects of the user functions (speed, benchmarks/bench_vehicle_passage.py): the four
-contact elements are one ObjectGenericODE2 (one Python call per residual evaluation) with a
-forward-difference Jacobian per wheelset (Exudyn's own steps, a block each instead of the
-whole object's numerical one); on straight track the bumpstops ride on it and the curving
-loads (zero there) are left out; in a curve the curving loads and the bumpstops share one
-object, the loads tabulated along the run. A run's Newton tolerance is
-:func:`newton_tolerance`.
+Exudyn objects of the user functions (speed, issue 24): the four contact elements are one
+ObjectGenericODE2 (one Python call per residual evaluation) with a forward-difference
+Jacobian per wheelset (Exudyn's own steps, a block each instead of the whole object's
+numerical one); the bumpstops ride on it (on q - q_geo), and in a curve the body loads
+(K q_geo, D q_geo_t, curving loads; tabulated along the run) too. With the ``compiled``
+track mechanism (the default) the four co-running tracks' springs ride on the contacts'
+object too (their masses stay Exudyn bodies;
+:mod:`~exudyn_turnout.corunning.track_kernel`), and at speed the object's whole residual
+is one numba call (:class:`~exudyn_turnout.passage.contact.vehicle_kernel.CompiledResidual`).
+The run uses Exudyn's sparse LU (EigenSparse): each track couples to its wheelset only. A
+run's Newton tolerance is :func:`newton_tolerance`.
 
 The run starts in the steady state at speed (at rest in the track-following frame): first
 the static equilibrium at rest (lateral position and spin held, as the single wheelset's),
@@ -74,7 +78,7 @@ import numpy as np
 
 from exudyn_turnout.corunning.parameters import co_running_parameters
 from exudyn_turnout.inputs.routes import Route
-from exudyn_turnout.inputs.turnout import Turnout, Zone
+from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Turnout, Zone
 from exudyn_turnout.inputs.vehicle import Vehicle, load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
 from exudyn_turnout.passage.common import (
@@ -191,6 +195,7 @@ def _build(
     from exudyn.itemInterface import NodeGenericODE2, ObjectGenericODE2, SensorNode
 
     from exudyn_turnout.corunning.track import add_co_running_track
+    from exudyn_turnout.corunning.track_kernel import TrackPlacement, track_force
     from exudyn_turnout.passage.vehicle import builder as vehicle_builder
     from exudyn_turnout.passage.vehicle.builder import add_vehicle_model
 
@@ -202,6 +207,8 @@ def _build(
     names: dict[str, int] = {b.name: b.node for b in build.bodies() if b.name[:5] != "wheel"}
     elements, params_all, slots_all, sensors = [], [], [], []
     contact_nodes: list[int] = []
+    compiled = settings.track_mechanism == "compiled"
+    placements = []  #: per track (compiled): (params, x, v, {coordinate: (node, local)})
     for i, (ws, place) in enumerate(zip(build.wheelsets, places)):
         x_i = x_front + ws.x
         x_track = turnout.x_min if place.clamped else turnout.x_max if place.beyond else x_i
@@ -211,8 +218,10 @@ def _build(
         params = replace(params, zone=route.zone(params.zone))
         v_track = 0.0 if (place.clamped or place.beyond or frozen) else v
         track = add_co_running_track(
-            mbs, params, x_track, v_track, mechanism=settings.track_mechanism
+            mbs, params, x_track, v_track, mechanism=settings.track_mechanism, force_object=False
         )
+        if compiled:
+            placements.append((params, x_track, v_track, _coordinate_nodes(track)))
         try:
             raw, slots = contact.element(vehicle, route, place.zone, x_i, v, settings.irregularity)
         except ValueError as err:
@@ -269,27 +278,65 @@ def _build(
         loads.tabulate(tables)
     stops = None
     car = build.car_body
-    if not loads.curved and model.bumpstop is not None and car is not None:  # q_geo = 0
+    # the bumpstops ride on the contacts' object, and in a curve the curving loads too
+    fold = model.bumpstop is not None and car is not None
+    if fold and car is not None:
         size, (stop_force, stop_jacobian) = vehicle_builder.linear_bumpstop_functions(
             model, car, build.bogies
         )
-        stops = (size, stop_force, stop_jacobian)
+        arrays = vehicle_builder.linear_bumpstop_arrays(model, car, build.bogies)
+        stops = (size, stop_force, stop_jacobian, arrays)
         contact_nodes += [car.node] + [b.node for b in build.bogies]
-    contacts = VehicleContacts(elements, stops)
-    m, k = np.zeros((contacts.n, contacts.n)), np.zeros((contacts.n, contacts.n))
-    for a, _ in contacts.spans:
-        for j in (5, 6):  # the dummy sprung-mass coordinates
-            m[a + j, a + j], k[a + j, a + j] = DUMMY_MASS, DUMMY_STIFFNESS
+    forces, n_track = None, 0
+    if compiled:  # the tracks' springs ride on the contacts' object (module docstring)
+        offsets, size = {}, 0
+        for node in contact_nodes:
+            offsets[node] = size
+            size += len(mbs.GetNode(node)["referenceCoordinates"])
+        n_shared = size
+        for *_, coordinates in placements:
+            for node, _ in coordinates.values():
+                if node not in offsets:
+                    offsets[node] = size
+                    size += len(mbs.GetNode(node)["referenceCoordinates"])
+                    contact_nodes.append(node)
+        n_track = size - n_shared
+        forces = track_force(
+            [
+                TrackPlacement(p, x, v_p, {d: offsets[n] + j for d, (n, j) in c.items()})
+                for p, x, v_p, c in placements
+            ]
+        )
+    body_loads = None
+    if fold and loads.curved:  # the loads' coordinates (every body's) in the object's vector
+        at, size = {}, 0
+        for node in contact_nodes:
+            at[node] = size
+            size += len(mbs.GetNode(node)["referenceCoordinates"])
+        index = [
+            at[b.node] + j
+            for b in build.bodies()
+            for j in range(len(mbs.GetNode(b.node)["referenceCoordinates"]))
+        ]
+        body_loads = (loads, np.array(index, dtype=np.int64))
+    contacts = VehicleContacts(elements, stops, forces, n_track, body_loads)
+    dummies = [names[f"dummy{i + 1}"] for i in range(len(elements))]
+    n_dummy = 2 * len(dummies)
+    mbs.AddObject(  # the dummy sprung masses, decoupled
+        ObjectGenericODE2(
+            nodeNumbers=dummies,
+            massMatrix=DUMMY_MASS * np.eye(n_dummy),
+            stiffnessMatrix=DUMMY_STIFFNESS * np.eye(n_dummy),
+        )
+    )
     mbs.AddObject(
         ObjectGenericODE2(
             nodeNumbers=contact_nodes,
-            massMatrix=m,
-            stiffnessMatrix=k,
             forceUserFunction=contacts,
             jacobianUserFunction=contacts.jacobian_function,
         )
     )
-    keep = add_vehicle_loads(mbs, build, loads) if loads.curved else ()
+    keep = add_vehicle_loads(mbs, build, loads) if (loads.curved and not fold) else ()
     mbs.variables["exudyn_turnout.corunning_track.vehicle"] = (contacts, loads, keep)
     mbs.Assemble()
     system = _System(
@@ -297,6 +344,14 @@ def _build(
     )
     set_initial_vehicle(system, build)
     return system
+
+
+def _coordinate_nodes(track: Any) -> dict[str, tuple[int, int]]:
+    """A track's coordinates (dof names) as (node, local index)."""
+    pairs = [(track.sleeper_node, j) for j in range(3)]
+    for group in (track.rail_nodes, track.layer_nodes):
+        pairs += [(group[r], j) for r in RAIL_SLOTS if r in group for j in (0, 1)]
+    return dict(zip(track.dof, pairs))
 
 
 def _state(system: _System) -> dict[str, tuple[np.ndarray, np.ndarray]]:
@@ -482,6 +537,9 @@ def _run(
     sim.timeIntegration.generalizedAlpha.spectralRadius = settings.spectral_radius
     sim.timeIntegration.newton.absoluteTolerance = newton_tolerance(len(system.elements))
     sim.timeIntegration.newton.modifiedNewtonContractivity = _NEWTON_CONTRACTIVITY
+    # sparse LU: each track couples to its wheelset only (measured on the full vehicle's
+    # through passage: Exudyn's own share of the run -35 %, the run -18 %)
+    sim.linearSolver.solverType = exu.LinearSolverType.EigenSparse
     v = settings.v
     if progress is not None:
         system.mbs.SetPreStepUserFunction(
@@ -511,9 +569,10 @@ def _run(
             )
         label = f"ws{i + 1}"
         x_i = system.x_front + _offset_of(system, i) + v * t
+        element_columns = element.columns(t, q, q_t)
         if i == 0:
             cols["t_s"], cols["x_m"] = t + t_offset, system.x_front + v * t
-            cols.update(element.columns(t, q, q_t))
+            cols.update(element_columns)
             for k, name in enumerate(
                 ("y_wheelset_m", "z_wheelset_m", "roll_wheelset_rad", "yaw_wheelset_rad")
             ):
@@ -521,7 +580,7 @@ def _run(
             for j, slot in enumerate(system.slots[0]):
                 base = element.n_vehicle + 2 * j
                 cols[f"y_rail_{slot}_m"], cols[f"z_rail_{slot}_m"] = q[:, base], q[:, base + 1]
-        own = wheelset_columns(element, t, q, q_t, label)
+        own = wheelset_columns(element, t, q, q_t, label, element_columns)
         own[f"x_{label}_m"] = x_i
         plausible = {
             "t_s": t + t_offset,

@@ -179,6 +179,7 @@ __all__ = [
     "solve_static",
     "connector_forces_at_reference",
     "vehicle_modes",
+    "linear_bumpstop_arrays",
 ]
 
 
@@ -697,12 +698,10 @@ def _gather(indices: Sequence[int]) -> Callable[[Sequence[float]], tuple[float, 
     return operator.itemgetter(*indices)
 
 
-def linear_bumpstop_functions(
+def _linear_bumpstop_rows(
     model: VehicleModel, car: BodyHandles, bogies: Sequence[BodyHandles]
-) -> tuple[int, tuple[Any, ...]]:
-    """Force and Jacobian functions on (car body, bogies): F = -c F_stop(c^T q) per bogie,
-    with c^T q the relative lateral displacement car body - bogie at the bumpstop (small
-    angles); and their number of coordinates."""
+) -> tuple[int, list[np.ndarray], BumpStop]:
+    """Per bogie the row c of c^T q (car body - bogie at the bumpstop); the size of q."""
     stop = _bumpstop_of(model)
     n_car = len(car.dof)
     size = n_car + sum(len(b.dof) for b in bogies)
@@ -717,6 +716,53 @@ def linear_bumpstop_functions(
         )[0]
         rows.append(c)
         start += len(bogie.dof)
+    return size, rows, stop
+
+
+def linear_bumpstop_arrays(
+    model: VehicleModel, car: BodyHandles, bogies: Sequence[BodyHandles]
+) -> dict[str, np.ndarray]:
+    """The bumpstops of :func:`linear_bumpstop_functions` as arrays (for compiled code).
+
+    Parameters
+    ----------
+    model : VehicleModel
+        A vehicle with a lateral bumpstop.
+    car : BodyHandles
+    bogies : sequence of BodyHandles
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        ``index``, ``coefficient`` (bogie x non-zero entries of its row c, in index order,
+        padded), ``count`` (non-zero entries per row), ``points`` (m) and ``increments``
+        (N/m) of the force law's ramps (``BumpStop.ramps``): F(u) = sign(u) sum over
+        the points p < |u| of increment (|u| - p), zero up to the first point.
+    """
+    _, rows, stop = _linear_bumpstop_rows(model, car, bogies)
+    nonzero = [np.flatnonzero(c) for c in rows]
+    width = max((len(i) for i in nonzero), default=0)
+    index = np.zeros((len(rows), width), dtype=np.int64)
+    coefficient = np.zeros((len(rows), width))
+    for r, (c, i) in enumerate(zip(rows, nonzero)):
+        index[r, : len(i)], coefficient[r, : len(i)] = i, c[i]
+    points, increments = stop.ramps()
+    return {
+        "index": index,
+        "coefficient": coefficient,
+        "count": np.array([len(i) for i in nonzero], dtype=np.int64),
+        "points": np.array(points, dtype=float),
+        "increments": np.array(increments, dtype=float),
+    }
+
+
+def linear_bumpstop_functions(
+    model: VehicleModel, car: BodyHandles, bogies: Sequence[BodyHandles]
+) -> tuple[int, tuple[Any, ...]]:
+    """Force and Jacobian functions on (car body, bogies): F = -c F_stop(c^T q) per bogie,
+    with c^T q the relative lateral displacement car body - bogie at the bumpstop (small
+    angles); and their number of coordinates."""
+    size, rows, stop = _linear_bumpstop_rows(model, car, bogies)
     c_matrix = np.array(rows)
     # plain Python on the few non-zero entries: numpy's per-call overhead on 15-vectors was
     # ~50 us per force evaluation, this is a few us

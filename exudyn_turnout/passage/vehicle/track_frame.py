@@ -324,10 +324,10 @@ def add_vehicle_loads(mbs, build, loads: BodyLoads) -> tuple:
     vehicle's bodies, the bumpstops acting on q - q_geo (track-following frame: a bumpstop
     sees the car body's displacement relative to the unstrained vehicle).
 
-    For a curve (on straight track the loads are zero and the bumpstops ride on the contacts'
-    object, :class:`_Contacts`): one ObjectGenericODE2 on all bodies carries both (one
-    Python call per residual evaluation); its Jacobian is the bumpstops' (the loads depend
-    on t only).
+    For a curve: one ObjectGenericODE2 on all bodies carries both (one Python call per
+    residual evaluation); its Jacobian is the bumpstops' (the loads depend on t only). The
+    co-running full vehicle puts both on its contacts' object instead
+    (:class:`~exudyn_turnout.passage.contact.vehicle_contacts.VehicleContacts`).
 
     Parameters
     ----------
