@@ -240,6 +240,11 @@ class ReceptanceCase(Record):
     models: dict[str, ReceptanceModel]  #: "2-layer", "3-layer", "FE" (+ "FE torsion")
     fe_peak_near_pinned_pinned_hz: float | None  #: Hz, None: no FE peak near f_pp
     fe_dip_near_pinned_pinned_hz: float | None  #: Hz, None: no FE dip near f_pp
+    #: the FE the models are compared with ("FE"): the paper's kind (planar lateral)
+    fe_reference: str | None = optional()
+    #: lateral cases: the co-running models and the planar FE against the torsion-aware FE
+    #: at the gauge corner (ours, beyond the paper), as ``models`` against "FE"
+    vs_fe_torsion: dict[str, ReceptanceModel] | None = optional()
     rail: str  #: rail slot
     direction: str  #: "vertical" or "lateral"
     x_m: float  #: m
@@ -249,11 +254,6 @@ class ReceptanceCase(Record):
     fe: FEInfo  #: where the FE receptance came from
     co_running_wall_time_s: float  #: s, one co-running receptance
     fe_n_dof: int | None  #: FE coordinates
-    #: the FE the models are compared with ("FE"): the paper's kind (planar lateral)
-    fe_reference: str | None = optional()
-    #: lateral cases: the co-running models and the planar FE against the torsion-aware FE
-    #: at the gauge corner (ours, beyond the paper), as ``models`` against "FE"
-    vs_fe_torsion: dict[str, ReceptanceModel] | None = optional()
 
 
 @dataclass(frozen=True, kw_only=True)
