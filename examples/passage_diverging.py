@@ -25,4 +25,4 @@ def run(out_dir, speed_kmh=None, x_start=None, x_end=None, wheel="right"):
 
 
 if __name__ == "__main__":
-    passage_through.main("diverging")
+    passage_through.main("diverging", __doc__)

@@ -68,8 +68,9 @@ def run(out_dir, route="through", speed_kmh=None, x_start=None, x_end=None, whee
     return comparison
 
 
-def main(route="through"):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def main(route="through", doc=__doc__):
+    """Command line of this example (and of ``passage_diverging.py``, with its ``doc``)."""
+    parser = argparse.ArgumentParser(description=" ".join(doc.split("\n\n")[0].split()))
     parser.add_argument("--out", default="out", help="output directory (default: out)")
     parser.add_argument(
         "--speed",

@@ -58,3 +58,20 @@ def test_diverging_example_within_the_permitted_speed(tmp_path, capsys):
     # the wheel the console names is the wheel plotted
     assert "peaks of the left wheel" in out and "(left wheel)" in out
     assert "left wheel" in out.splitlines()[-1]
+
+
+@pytest.mark.parametrize(
+    ("name", "route"), [("passage_through", "Through route"), ("passage_diverging", "Diverging")]
+)
+def test_example_help_names_its_own_route(name, route, capsys, monkeypatch):
+    """Each example's --help starts with its own docstring's first paragraph (the diverging
+    example reuses the through example's command line and once printed "Through route")."""
+    import runpy
+
+    path = Path(__file__).resolve().parents[1] / "examples" / f"{name}.py"
+    monkeypatch.setattr("sys.argv", [path.name, "--help"])
+    monkeypatch.syspath_prepend(str(path.parent))
+    with pytest.raises(SystemExit) as stop:
+        runpy.run_path(str(path), run_name="__main__")
+    assert stop.value.code == 0
+    assert capsys.readouterr().out.split("\n\n")[1].startswith(route)
