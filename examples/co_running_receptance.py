@@ -4,7 +4,9 @@ three-layer co-running models.
 The layout of the paper's Figs 5 (vertical) and 6 (lateral): panel (a) the switch rail,
 panel (b) the crossing rail, each with the FE reference's receptance at the same position,
 rail and direction (our FE model of the turnout, ``exudyn_turnout.fe``; the paper's is an
-Ansys model) and the two co-running models derived from it. The FE curves take most of the
+Ansys model; lateral: the planar FE, force and response at the rail, the paper's kind and the
+validation report's reference for these claims) and the two co-running models derived
+from it. The FE curves take most of the
 run (about 0.15 s per frequency and curve; ``--fe-points``, ``--no-fe``). The paper shows
 them "where the load is transferring at the switch and crossing" (Section 3.3), so the
 defaults are the load transfer positions of the packaged through route: x = 4 m on the
@@ -82,7 +84,10 @@ def plot_direction(
         labels = [curve.model for curve in curves]
         stem = f"{name.replace(' ', '_')}_{direction}"
         if fe_frequencies is not None:
-            fe = fe_receptance(turnout, "r2", direction, x, fe_frequencies)
+            # lateral: the planar FE (force and response at the rail), the paper's kind and
+            # the reference of the report's receptance claims; the torsion-aware FE (the
+            # rail rolls on its pads, gauge corner) is ours: `exudyn-turnout fe frf`
+            fe = fe_receptance(turnout, "r2", direction, x, fe_frequencies, torsion=False)
             fe.to_csv(out_dir / f"{stem}_FE.csv")
             ratios = ", ".join(
                 f"{c.model} {c.static_stiffness / fe.static_stiffness:.2f}" for c in curves
