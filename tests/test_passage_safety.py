@@ -196,3 +196,23 @@ def test_wheelset_at_320_kmh_on_the_760_m_curve_climbs_and_stops():
         warnings.simplefilter("ignore")  # the speed warnings of the turnout file
         with pytest.raises(PassageFailure, match=r"t = .*x = .*left wheel climbing its flange"):
             simulate_passage(load_turnout(), settings)
+
+
+def test_nadal_limit_follows_the_vehicle_friction():
+    """Nadal's limit (tan g - mu) / (1 + mu tan g) at S1002's 70.13 deg uses the vehicle
+    file's mu, not the packaged 0.4: mu 0.3 -> 1.3480 (closed form, computed here)."""
+    from dataclasses import replace
+
+    from exudyn_turnout.inputs.turnout import load_turnout
+    from exudyn_turnout.inputs.vehicle import load_vehicle
+    from exudyn_turnout.passage.run import simulate_passage
+
+    vehicle = load_vehicle()
+    slippery = replace(vehicle, contact=replace(vehicle.contact, mu=0.3))
+    settings = PassageSettings(layers=2, x_start=-5.0, x_end=-4.8)
+    result = simulate_passage(load_turnout(), settings, vehicle=slippery)
+    tan_g = math.tan(math.radians(70.13))
+    expected = (tan_g - 0.3) / (1.0 + 0.3 * tan_g)
+    assert result.summary["safety_limits"]["friction"] == 0.3
+    assert result.summary["safety_limits"]["nadal"] == pytest.approx(expected, rel=1e-12)
+    assert expected == pytest.approx(1.3480, abs=1e-4)

@@ -365,7 +365,12 @@ class PassageResult:
         )
 
 
-def check_plausible(columns: Mapping[str, np.ndarray], static_load: float, what: str = "") -> None:
+def check_plausible(
+    columns: Mapping[str, np.ndarray],
+    static_load: float,
+    what: str = "",
+    limits: SafetyLimits = SAFETY_LIMITS,
+) -> None:
     """Stop a run that left every physical state (limits in :data:`PLAUSIBLE`).
 
     Parameters
@@ -378,6 +383,9 @@ def check_plausible(columns: Mapping[str, np.ndarray], static_load: float, what:
         the run.
     what : str
         Where (e.g. "zone 2, crossing panel"), put into the message.
+    limits : SafetyLimits
+        Of the climbing and lift stop (the vehicle's friction:
+        :func:`~exudyn_turnout.passage.safety.limits_for_friction`).
 
     Raises
     ------
@@ -407,7 +415,7 @@ def check_plausible(columns: Mapping[str, np.ndarray], static_load: float, what:
             bad = np.nonzero(np.abs(np.nan_to_num(values, nan=0.0)) > bound)[0]
         if bad.size and (first is None or bad[0] < first[0]):
             first = (int(bad[0]), label, float(values[bad[0]]), bound, unit)
-    derailment = first_derailment(columns, static_load) if static_load > 0 else None
+    derailment = first_derailment(columns, static_load, limits) if static_load > 0 else None
     if first is not None and (derailment is None or t[first[0]] <= derailment[0]):
         i, label, value, bound, unit = first
         where = f" ({what})" if what else ""
@@ -886,6 +894,7 @@ def vehicle_summary(
     columns: Mapping[str, np.ndarray],
     static_loads: list,
     wall: float,
+    limits: SafetyLimits = SAFETY_LIMITS,
 ) -> dict:
     """Summary of a full vehicle's passage: the front wheelset's, then per wheelset peaks.
 
@@ -900,6 +909,9 @@ def vehicle_summary(
         Per wheelset, "left" and "right" static wheel loads (N).
     wall : float
         s, ``time.perf_counter()`` at the start of the run.
+    limits : SafetyLimits
+        Of the safety quantities (the vehicle's friction:
+        :func:`~exudyn_turnout.passage.safety.limits_for_friction`).
 
     Returns
     -------
@@ -918,7 +930,7 @@ def vehicle_summary(
         A wheel of any wheelset lifted or climbing (:func:`stop_on_derailment`).
     """
     front = static_loads[0]
-    summary = passage_summary(columns, turnout, settings, front, time.perf_counter() - wall)
+    summary = passage_summary(columns, turnout, settings, front, time.perf_counter() - wall, limits)
     regions = {name: turnout.regions[name] for name in ("switch", "crossing")}
     for i, loads in enumerate(static_loads):
         label = f"ws{i + 1}"
@@ -935,13 +947,13 @@ def vehicle_summary(
         f"ws{i + 1}": {w: float(ld[w]) for w in ("right", "left")}
         for i, ld in enumerate(static_loads)
     }
-    _add_safety(summary, columns, loads, regions, SAFETY_LIMITS)  # the list: per wsk
+    _add_safety(summary, columns, loads, regions, limits)  # the list: per wsk
     for label, ld in loads.items():
         own = {"t_s": columns["t_s"], "x_m": columns[f"x_{label}_m"]}
         for q in ("Fz", "Fy"):
             for wheel in ("right", "left"):
                 own[f"{q}_{wheel}_N"] = columns[f"{q}_{label}_{wheel}_N"]
-        stop_on_derailment(own, 0.5 * (ld["right"] + ld["left"]), f"wheelset {label[2:]}")
+        stop_on_derailment(own, 0.5 * (ld["right"] + ld["left"]), f"wheelset {label[2:]}", limits)
     summary.update(body_summary(columns))
     summary.update(comfort_summary(columns))
     summary["vehicle"] = model.name

@@ -61,7 +61,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
@@ -85,6 +85,7 @@ __all__ = [
     "first_derailment",
     "derailment_message",
     "limits_record",
+    "limits_for_friction",
 ]
 
 WHEELS = ("right", "left")
@@ -119,6 +120,23 @@ class SafetyLimits:
 
 #: The default limits.
 SAFETY_LIMITS = SafetyLimits()
+
+
+def limits_for_friction(friction: float, limits: SafetyLimits = SAFETY_LIMITS) -> SafetyLimits:
+    """The limits with the vehicle's wheel/rail friction in Nadal's limit.
+
+    Parameters
+    ----------
+    friction : float
+        -, the contact law's mu (``[contact] mu`` of the vehicle file).
+    limits : SafetyLimits
+        The other limits.
+
+    Returns
+    -------
+    SafetyLimits
+    """
+    return replace(limits, friction=float(friction))
 
 
 def limits_record(limits: SafetyLimits = SAFETY_LIMITS) -> dict[str, float]:

@@ -108,6 +108,7 @@ from exudyn_turnout.passage.results import (
     check_plausible,
     vehicle_summary,
 )
+from exudyn_turnout.passage.safety import limits_for_friction
 from exudyn_turnout.passage.vehicle.body_sensors import add_body_sensors, recorded_body_columns
 from exudyn_turnout.passage.vehicle.start import (
     StartWarning,
@@ -594,7 +595,8 @@ def _run(
         }
         for j, slot in enumerate(system.slots[i]):
             plausible[f"z_rail_{slot}_m"] = q[:, element.n_vehicle + 2 * j + 1]
-        check_plausible(plausible, static_load, f"wheelset {i + 1}")
+        mu = element.vehicle.contact.mu
+        check_plausible(plausible, static_load, f"wheelset {i + 1}", limits_for_friction(mu))
         cols.update(own)
     cols.update(recorded_body_columns(system.mbs, cols["t_s"] - t_offset))
     return cols
@@ -725,7 +727,15 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
         state, previous, t_prev = _state(system), system, duration
         t_offset += duration
     columns = join_segments(segments)
-    summary = vehicle_summary(turnout, settings, model, columns, static_loads, wall)
+    summary = vehicle_summary(
+        turnout,
+        settings,
+        model,
+        columns,
+        static_loads,
+        wall,
+        limits_for_friction(vehicle.contact.mu),
+    )
     summary["start"], summary["start_residual"] = start, float(residual)
     warning = unsettled_warning(turnout, x_a, v, start, residual)
     if warning is not None:

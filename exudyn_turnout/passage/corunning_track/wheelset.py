@@ -57,6 +57,7 @@ from exudyn_turnout.passage.results import (
     check_plausible,
     passage_summary,
 )
+from exudyn_turnout.passage.safety import limits_for_friction
 from exudyn_turnout.passage.vehicle.start import (
     RELAX_CHUNK,
     StartWarning,
@@ -540,12 +541,21 @@ def _simulate(
         )
         duration = (min(zone.x_end, x_b) - x) / v
         cols = _run(system, duration, settings, t_offset, total, progress)
-        check_plausible(cols, W, f"zone {zone.index}, {zone.name}")
+        check_plausible(
+            cols, W, f"zone {zone.index}, {zone.name}", limits_for_friction(vehicle.contact.mu)
+        )
         segments.append(cols if k == 0 else {n: c[1:] for n, c in cols.items()})
         state, previous = _node_state(system), system
         x, t_offset = min(zone.x_end, x_b), t_offset + duration
     columns = join_segments(segments)
-    summary = passage_summary(columns, turnout, settings, static_loads, time.perf_counter() - wall)
+    summary = passage_summary(
+        columns,
+        turnout,
+        settings,
+        static_loads,
+        time.perf_counter() - wall,
+        limits_for_friction(vehicle.contact.mu),
+    )
     summary["start"], summary["start_residual"] = start, float(residual)
     warning = unsettled_warning(turnout, x_a, v, start, residual)
     if warning is not None:

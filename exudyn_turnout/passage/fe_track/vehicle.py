@@ -67,6 +67,7 @@ from exudyn_turnout.passage.results import (
     PassageSettings,
     check_plausible,
 )
+from exudyn_turnout.passage.safety import limits_for_friction
 from exudyn_turnout.passage.vehicle.body_sensors import add_body_sensors, recorded_body_columns
 from exudyn_turnout.passage.vehicle.start import StartWarning, steady_description, unsettled_warning
 
@@ -483,10 +484,19 @@ def _simulate(turnout, settings, model, contact, route, x_range, progress, optio
             "Fy_right_N": own[f"Fy_{label}_right_N"],
             "Fy_left_N": own[f"Fy_{label}_left_N"],
         }
-        check_plausible(plausible, model.static_wheel_load, f"wheelset {i + 1}")
+        limits = limits_for_friction(vehicle.contact.mu)
+        check_plausible(plausible, model.static_wheel_load, f"wheelset {i + 1}", limits)
         columns.update(own)
     columns.update(recorded_body_columns(system.mbs, t))
-    summary = vehicle_summary(turnout, settings, model, columns, static_loads, wall)
+    summary = vehicle_summary(
+        turnout,
+        settings,
+        model,
+        columns,
+        static_loads,
+        wall,
+        limits_for_friction(vehicle.contact.mu),
+    )
     summary.update(fe_summary(planes, settings, track, h, n_steps, static_s, steps_s))
     summary["cross_compliance"] = cross
     summary["start"], summary["start_residual"] = start, float(residual)

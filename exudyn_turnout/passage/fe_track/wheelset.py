@@ -60,6 +60,7 @@ from exudyn_turnout.passage.results import (
     check_plausible,
     passage_summary,
 )
+from exudyn_turnout.passage.safety import limits_for_friction
 from exudyn_turnout.passage.vehicle.start import (
     RELAX_STEP,
     StartWarning,
@@ -313,8 +314,15 @@ def _simulate(
     steps_s = time.perf_counter() - t1
     columns = fe_columns(moving, recorder.t, recorder.q, recorder.q_t, x_a, v)
     W = 0.5 * (loads["left"] + loads["right"])
-    check_plausible(columns, W, "FE track")
-    summary = passage_summary(columns, turnout, settings, loads, time.perf_counter() - wall)
+    check_plausible(columns, W, "FE track", limits_for_friction(vehicle.contact.mu))
+    summary = passage_summary(
+        columns,
+        turnout,
+        settings,
+        loads,
+        time.perf_counter() - wall,
+        limits_for_friction(vehicle.contact.mu),
+    )
     summary.update(fe_summary(planes, settings, track, h, n_steps, static_s, steps_s))
     summary["start"], summary["start_residual"] = start, float(residual)
     warning = unsettled_warning(turnout, x_a, v, start, float(residual))
