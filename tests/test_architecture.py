@@ -35,6 +35,7 @@ EXUDYN_BUILDERS = {
     "passage/corunning_track/wheelset.py",
     "passage/corunning_track/vehicle.py",
     "passage/corunning_track/relax.py",
+    "passage/corunning_track/carry_over.py",
     "passage/fe_track/wheelset.py",
     "passage/fe_track/vehicle.py",
     "passage/hunting.py",

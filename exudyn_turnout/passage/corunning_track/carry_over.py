@@ -21,6 +21,7 @@ __all__ = [
     "vehicle_shift",
     "inside_zone",
     "rebase_track",
+    "set_named_state",
 ]
 
 _NODE_DOF = {"sleeper": ("y_t", "z_t", "phi_t")}
@@ -231,3 +232,31 @@ def rebase_track(
                 q_new[name] = u_new[name] + dyn["z_t"] + arm * dyn["phi_t"]
                 v_new[name] = v["z_t"] + arm * v["phi_t"]
     return q_new, v_new, u_old, u_new, source
+
+
+def set_named_state(
+    mbs: Any, names: Mapping[str, int], state: Mapping[str, tuple[np.ndarray, np.ndarray]]
+) -> None:
+    """Set an Exudyn system's initial coordinates and velocities node by node.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+        The assembled system.
+    names : mapping
+        Node name -> node number, every node whose state is set.
+    state : mapping
+        Node name -> (coordinates, velocities) of that node (its sizes); the coordinates of
+        nodes not named keep their initial values, every velocity not given is zero.
+    """
+    import exudyn as exu
+
+    data = mbs.systemData
+    q = np.asarray(data.GetODE2Coordinates(exu.ConfigurationType.Initial)).copy()
+    q_t = np.zeros_like(q)
+    for name, node in names.items():
+        i = mbs.GetNodeODE2Index(node)
+        a, b = state[name]
+        q[i : i + len(a)], q_t[i : i + len(a)] = a, b
+    data.SetODE2Coordinates(q, exu.ConfigurationType.Initial)
+    data.SetODE2Coordinates_t(q_t, exu.ConfigurationType.Initial)

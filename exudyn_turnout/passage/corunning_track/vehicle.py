@@ -69,7 +69,6 @@ from __future__ import annotations
 
 import math
 import time
-import warnings
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 from typing import Any
@@ -97,6 +96,7 @@ from exudyn_turnout.passage.corunning_track.carry_over import (
     dof_of,
     inside_zone,
     rebase_track,
+    set_named_state,
     vehicle_shift,
 )
 from exudyn_turnout.passage.corunning_track.relax import relax_frozen
@@ -111,9 +111,8 @@ from exudyn_turnout.passage.results import (
 from exudyn_turnout.passage.safety import limits_for_friction
 from exudyn_turnout.passage.vehicle.body_sensors import add_body_sensors, recorded_body_columns
 from exudyn_turnout.passage.vehicle.start import (
-    StartWarning,
+    record_start,
     steady_description,
-    unsettled_warning,
 )
 from exudyn_turnout.passage.vehicle.track_frame import (
     DUMMY_MASS,
@@ -396,7 +395,6 @@ def _carry_over(
     t_old: float,
 ) -> None:
     """Set ``new``'s initial state from ``old``'s final ``state`` (module docstring)."""
-    import exudyn as exu
 
     values: dict[str, tuple[np.ndarray, np.ndarray]] = {}
     for name in new.names:
@@ -438,15 +436,7 @@ def _carry_over(
         moved = vehicle_shift(el, u_old, u_new, loads_old, source, layers)
         q_ws = values[f"ws{i + 1}"][0]
         q_ws[:3] = q_ws[:3] + moved["wheelset"]
-    mbs, data = new.mbs, new.mbs.systemData
-    q = np.asarray(data.GetODE2Coordinates(exu.ConfigurationType.Initial)).copy()
-    q_t = np.zeros_like(q)
-    for name, node in new.names.items():
-        i = mbs.GetNodeODE2Index(node)
-        a, b = values[name]
-        q[i : i + len(a)], q_t[i : i + len(a)] = a, b
-    data.SetODE2Coordinates(q, exu.ConfigurationType.Initial)
-    data.SetODE2Coordinates_t(q_t, exu.ConfigurationType.Initial)
+    set_named_state(new.mbs, new.names, values)
 
 
 def _solve_static(system: _System, what: str, load_steps: int = 1) -> None:
@@ -503,20 +493,6 @@ def _coordinates():
     import exudyn as exu
 
     return exu.OutputVariableType.Coordinates
-
-
-def _copy_state(state: Mapping, system: _System) -> None:
-    import exudyn as exu
-
-    mbs, data = system.mbs, system.mbs.systemData
-    q = np.asarray(data.GetODE2Coordinates(exu.ConfigurationType.Initial)).copy()
-    q_t = np.zeros_like(q)
-    for name, node in system.names.items():
-        i = mbs.GetNodeODE2Index(node)
-        a, b = state[name]
-        q[i : i + len(a)], q_t[i : i + len(a)] = a, b
-    data.SetODE2Coordinates(q, exu.ConfigurationType.Initial)
-    data.SetODE2Coordinates_t(q_t, exu.ConfigurationType.Initial)
 
 
 def _run(
@@ -695,7 +671,7 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
         for i, el in enumerate(rest.elements)
     ]
     moving = _build(*args, first, x_a, v, True, x_range)
-    _copy_state(state, moving)  # the rest state has K q_geo balanced already
+    set_named_state(moving.mbs, moving.names, state)  # the rest state has K q_geo balanced already
     curvature = max(abs(float(route.curvature(x_a + o))) for o in offsets)
     start = steady_description(settings.speed_kmh, curvature)
     try:
@@ -708,7 +684,7 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
         start += f" (static solve, spin holds release {_held_spin_torque(moving):.3g} N m)"
     except PassageFailure:  # e.g. in a curve: relax dynamically with x frozen
         moving = _build(*args, first, x_a, v, True, x_range)
-        _copy_state(state, moving)
+        set_named_state(moving.mbs, moving.names, state)
         residual, relaxed = _relax(moving, model)
         start += f" (relaxed {relaxed:g} s with x frozen)"
     state, previous = _state(moving), moving
@@ -736,8 +712,5 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
         wall,
         limits_for_friction(vehicle.contact.mu),
     )
-    summary["start"], summary["start_residual"] = start, float(residual)
-    warning = unsettled_warning(turnout, x_a, v, start, residual)
-    if warning is not None:
-        warnings.warn(warning, StartWarning, stacklevel=4)
+    record_start(summary, turnout, x_a, v, start, residual, stacklevel=4)
     return PassageResult(settings, columns, summary, tuple(starts))

@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import math
 import time
-import warnings
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 from typing import Any
@@ -46,6 +45,7 @@ from exudyn_turnout.passage.contact.protocol import Contact
 from exudyn_turnout.passage.corunning_track.carry_over import (
     dof_of,
     rebase_track,
+    set_named_state,
     vehicle_shift,
 )
 from exudyn_turnout.passage.corunning_track.relax import relax_frozen
@@ -60,9 +60,8 @@ from exudyn_turnout.passage.results import (
 from exudyn_turnout.passage.safety import limits_for_friction
 from exudyn_turnout.passage.vehicle.start import (
     RELAX_CHUNK,
-    StartWarning,
+    record_start,
     steady_description,
-    unsettled_warning,
 )
 from exudyn_turnout.passage.vehicle.wheelset import add_vehicle, element_matrices, initial_guess
 
@@ -293,8 +292,6 @@ def _carry_over(
     load jumps; the dynamic deviation from static equilibrium and all velocities carry
     over. A rail that appears starts with the sleeper's motion under it.
     """
-    import exudyn as exu
-
     loads_old = _wheel_rail_loads(old, state, layers)
     lateral = old.element.lateral_static_loads
     q_old, v_old = _track_vector(state, old, 0), _track_vector(state, old, 1)
@@ -302,19 +299,14 @@ def _carry_over(
         old.params, new.params, x, x, loads_old, continues, q_old, v_old, layers, lateral
     )
     moved = vehicle_shift(old.element, u_old, u_new, loads_old, source, layers)
-    mbs, data = new.mbs, new.mbs.systemData
-    q = np.asarray(data.GetODE2Coordinates(exu.ConfigurationType.Initial)).copy()
-    q_t = np.zeros_like(q)
-    for name, node in new.names.items():
-        i = mbs.GetNodeODE2Index(node)
+    values = {}
+    for name in new.names:
         if name in ("wheelset", "yaw", "sprung"):
-            values, rates = state[name][0] + moved[name], state[name][1]
+            values[name] = (state[name][0] + moved[name], state[name][1])
         else:
             dofs = dof_of(name)
-            values, rates = np.array([q_new[d] for d in dofs]), np.array([v_new[d] for d in dofs])
-        q[i : i + len(values)], q_t[i : i + len(values)] = values, rates
-    data.SetODE2Coordinates(q, exu.ConfigurationType.Initial)
-    data.SetODE2Coordinates_t(q_t, exu.ConfigurationType.Initial)
+            values[name] = (np.array([q_new[d] for d in dofs]), np.array([v_new[d] for d in dofs]))
+    set_named_state(new.mbs, new.names, values)
 
 
 def _element_nodes(system: ZoneSystem, layers: int) -> list[str]:
@@ -343,22 +335,6 @@ def _solve_static(system: ZoneSystem) -> None:
             f"static equilibrium not found at x = {system.element.x0:g} m "
             f"(zone {system.zone.index}): {err}"
         ) from None
-
-
-def _set_state(state: Mapping[str, tuple[np.ndarray, np.ndarray]], system: ZoneSystem) -> None:
-    """Set the initial coordinates and velocities of ``system``'s named nodes from ``state``
-    (the same model: the nodes' sizes match)."""
-    import exudyn as exu
-
-    mbs, data = system.mbs, system.mbs.systemData
-    q = np.asarray(data.GetODE2Coordinates(exu.ConfigurationType.Initial)).copy()
-    q_t = np.zeros_like(q)
-    for name, node in system.names.items():
-        i = mbs.GetNodeODE2Index(node)
-        a, b = state[name]
-        q[i : i + len(a)], q_t[i : i + len(a)] = a, b
-    data.SetODE2Coordinates(q, exu.ConfigurationType.Initial)
-    data.SetODE2Coordinates_t(q_t, exu.ConfigurationType.Initial)
 
 
 def _relax(system: ZoneSystem, vehicle: Vehicle) -> float:
@@ -519,7 +495,7 @@ def _simulate(
         static = build_zone_system(
             turnout, route, vehicle, zones[0], settings, x_a, v, contact, frozen=True
         )
-        _set_state(state, static)
+        set_named_state(static.mbs, static.names, state)
         residual = _relax(static, vehicle)
         state = _node_state(static)
         start = steady_description(settings.speed_kmh, curvature)
@@ -556,10 +532,7 @@ def _simulate(
         time.perf_counter() - wall,
         limits_for_friction(vehicle.contact.mu),
     )
-    summary["start"], summary["start_residual"] = start, float(residual)
-    warning = unsettled_warning(turnout, x_a, v, start, residual)
-    if warning is not None:
-        warnings.warn(warning, StartWarning, stacklevel=4)
+    record_start(summary, turnout, x_a, v, start, residual, stacklevel=4)
     return PassageResult(settings, columns, summary, tuple(max(z.x_start, x_a) for z in zones))
 
 

@@ -45,7 +45,6 @@ from __future__ import annotations
 
 import math
 import time
-import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import Any
@@ -69,7 +68,7 @@ from exudyn_turnout.passage.results import (
 )
 from exudyn_turnout.passage.safety import limits_for_friction
 from exudyn_turnout.passage.vehicle.body_sensors import add_body_sensors, recorded_body_columns
-from exudyn_turnout.passage.vehicle.start import StartWarning, steady_description, unsettled_warning
+from exudyn_turnout.passage.vehicle.start import record_start, steady_description
 
 __all__ = ["simulate_vehicle", "EXTENSION_MARGIN"]
 
@@ -499,8 +498,5 @@ def _simulate(turnout, settings, model, contact, route, x_range, progress, optio
     )
     summary.update(fe_summary(planes, settings, track, h, n_steps, static_s, steps_s))
     summary["cross_compliance"] = cross
-    summary["start"], summary["start_residual"] = start, float(residual)
-    warning = unsettled_warning(turnout, x_a, v, start, residual)
-    if warning is not None:
-        warnings.warn(warning, StartWarning, stacklevel=4)
+    record_start(summary, turnout, x_a, v, start, residual, stacklevel=4)
     return PassageResult(replace(settings, x_start=x_a, x_end=x_b), columns, summary, (x_a,))

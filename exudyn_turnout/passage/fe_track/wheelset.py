@@ -30,7 +30,6 @@ from __future__ import annotations
 
 import math
 import time
-import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import Any
@@ -63,9 +62,8 @@ from exudyn_turnout.passage.results import (
 from exudyn_turnout.passage.safety import limits_for_friction
 from exudyn_turnout.passage.vehicle.start import (
     RELAX_STEP,
-    StartWarning,
+    record_start,
     steady_description,
-    unsettled_warning,
 )
 
 __all__ = [
@@ -324,10 +322,7 @@ def _simulate(
         limits_for_friction(vehicle.contact.mu),
     )
     summary.update(fe_summary(planes, settings, track, h, n_steps, static_s, steps_s))
-    summary["start"], summary["start_residual"] = start, float(residual)
-    warning = unsettled_warning(turnout, x_a, v, start, float(residual))
-    if warning is not None:
-        warnings.warn(warning, StartWarning, stacklevel=5)
+    record_start(summary, turnout, x_a, v, start, residual, stacklevel=5)
     return PassageResult(replace(settings, x_start=x_a, x_end=x_b), columns, summary, (x_a,))
 
 

@@ -25,6 +25,8 @@ crossing) begins before that.
 from __future__ import annotations
 
 import math
+import warnings
+from collections.abc import MutableMapping
 
 from exudyn_turnout.inputs.turnout import Turnout
 
@@ -38,6 +40,7 @@ __all__ = [
     "RELAX_SETTLED_SPEED",
     "steady_description",
     "unsettled_warning",
+    "record_start",
 ]
 
 #: N: a start whose residual is below this is settled. Measured with the single
@@ -136,3 +139,37 @@ def unsettled_warning(
         f"{residual:.3g} N (settled: <= {START_TOLERANCE:g} N): its start transient needs "
         f"about {SETTLING_TIME:g} s x v = {x_settled - x_start:.3g} m; start earlier"
     )
+
+
+def record_start(
+    summary: MutableMapping[str, object],
+    turnout: Turnout,
+    x_start: float,
+    v: float,
+    start: str,
+    residual: float,
+    stacklevel: int = 2,
+) -> None:
+    """Put how a run started into its summary; warn (:class:`StartWarning`) if unsettled.
+
+    Parameters
+    ----------
+    summary : mapping
+        Gets ``start`` and ``start_residual`` (N).
+    turnout : Turnout
+        Its ``regions``.
+    x_start : float
+        m, the (front wheelset's) start.
+    v : float
+        m/s, speed.
+    start : str
+        How the run started (:func:`steady_description` or "static at rest").
+    residual : float
+        N, what the start left unbalanced.
+    stacklevel : int
+        Of the warning, counted from the caller of this function.
+    """
+    summary["start"], summary["start_residual"] = start, float(residual)
+    warning = unsettled_warning(turnout, x_start, v, start, float(residual))
+    if warning is not None:
+        warnings.warn(warning, StartWarning, stacklevel=stacklevel + 1)
