@@ -60,6 +60,7 @@ from exudyn_turnout.passage.results import (
 from exudyn_turnout.passage.safety import limits_for_friction
 from exudyn_turnout.passage.vehicle.start import (
     RELAX_CHUNK,
+    FrozenPosition,
     record_start,
     steady_description,
 )
@@ -174,7 +175,7 @@ def build_zone_system(
     except ValueError as err:
         raise PassageError(str(err)) from None
     if frozen:  # the element's position: x0 at every t (an instance attribute shadows x_at)
-        element.x_at = _FrozenPosition(element.x0)
+        element.x_at = FrozenPosition(element.x0)
     if profile:
         z_w, z_s = initial_guess(vehicle)
         z_touch, roll = element.touching_position(x0, -z_w / 3.0)
@@ -229,17 +230,6 @@ def build_zone_system(
     names.update({f"m0_{r}": n for r, n in track.layer_nodes.items()})
     mbs.Assemble()
     return ZoneSystem(container, mbs, zone, element, names, rails, sensors, params, force_sensor)
-
-
-class _FrozenPosition:
-    """x_at of a frozen contact element: its position whatever t."""
-
-    def __init__(self, x0: float):
-        self.x0 = float(x0)
-
-    def __call__(self, t: float) -> float:
-        del t
-        return self.x0
 
 
 def _node_state(system: ZoneSystem) -> dict[str, tuple[np.ndarray, np.ndarray]]:

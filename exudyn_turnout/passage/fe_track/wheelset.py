@@ -62,6 +62,7 @@ from exudyn_turnout.passage.results import (
 from exudyn_turnout.passage.safety import limits_for_friction
 from exudyn_turnout.passage.vehicle.start import (
     RELAX_STEP,
+    FrozenPosition,
     record_start,
     steady_description,
 )
@@ -356,17 +357,6 @@ def start_state(vehicle: Vehicle, route: Route, x: float, v: float) -> tuple[str
     return "static at rest", (vehicle.m_w + vehicle.m_s) * v * v * kappa
 
 
-class _FrozenPosition:
-    """x_at of a frozen contact element: its position whatever t."""
-
-    def __init__(self, x0: float):
-        self.x0 = float(x0)
-
-    def __call__(self, t: float) -> float:
-        del t
-        return self.x0
-
-
 def _relax(planes, route, contact, vehicle, x, v, irr, options, rest):
     """Relax the wheelset at speed with x frozen from its static state, the FE track stepped
     alongside (its own track at the start module's ``RELAX_STEP``, rho_inf 0, field not
@@ -381,7 +371,7 @@ def _relax(planes, route, contact, vehicle, x, v, irr, options, rest):
 
     relax_track = FECoSimulation(planes, route.name, RELAX_STEP, 0.0, options)
     element = fe_contact_element(contact, vehicle, route, x, v, irr)
-    element.x_at = _FrozenPosition(x)  # an instance attribute shadows the method
+    element.x_at = FrozenPosition(x)  # an instance attribute shadows the method
     coupled = FEContactElement(element, relax_track)
     relax_track.start([coupled], [rest.rail_forces], 0.0)
     system = _build(vehicle, coupled, 0.0, 0.0, 0.0)

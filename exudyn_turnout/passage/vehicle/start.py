@@ -41,6 +41,7 @@ __all__ = [
     "steady_description",
     "unsettled_warning",
     "record_start",
+    "FrozenPosition",
 ]
 
 #: N: a start whose residual is below this is settled. Measured with the single
@@ -173,3 +174,21 @@ def record_start(
     warning = unsettled_warning(turnout, x_start, v, start, float(residual))
     if warning is not None:
         warnings.warn(warning, StartWarning, stacklevel=stacklevel + 1)
+
+
+class FrozenPosition:
+    """The ``x_at`` of a contact element held at one position while the vehicle relaxes.
+
+    Parameters
+    ----------
+    x0 : float
+        m, the position returned for every t.
+    """
+
+    def __init__(self, x0: float):
+        self.x0 = float(x0)
+
+    def __call__(self, t: float) -> float:
+        """The position (m) at t (s): ``x0``."""
+        del t
+        return self.x0
