@@ -45,9 +45,7 @@ from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel, load_vehicle_model
 from exudyn_turnout.passage.contact.profile import (
-    STATIC_LATERAL_STIFFNESS,
-    STATIC_SPIN_STIFFNESS,
-    ProfileContactElement,
+    RigidRailContact,
     route_contact,
 )
 
@@ -342,31 +340,6 @@ class HuntingRun:
         )
 
 
-class _RigidRailContact:
-    """Force function of one wheelset's contact on rigid rails at a fixed rail section.
-
-    The profile contact element's ``evaluate`` at x = ``x_section`` whatever t (plain track
-    is the same section all along), its rail coordinates held at zero; only the wheelset's
-    five coordinates (y, z, roll, yaw, spin) are in the Exudyn object. ``static``: the
-    lateral position and the spin perturbation are held by springs (the static solve).
-    """
-
-    def __init__(self, element: ProfileContactElement, x_section: float, n: int):
-        self.element, self.x, self.n = element, float(x_section), n
-        self.q = np.zeros(element.n)
-        self.q_t = np.zeros(element.n)
-        self.static = False
-
-    def __call__(self, mbs, t, item_number, q, q_t):
-        n = self.n
-        self.q[:n], self.q_t[:n] = q, q_t
-        forces = self.element.evaluate(self.x, self.q, self.q_t)[0][:n]
-        if self.static:
-            forces[0] -= STATIC_LATERAL_STIFFNESS * q[0]
-            forces[4] -= STATIC_SPIN_STIFFNESS * q[4]
-        return forces
-
-
 @dataclass
 class _Straight:
     """The vehicle on straight rigid plain track, built and at its static equilibrium."""
@@ -374,7 +347,7 @@ class _Straight:
     container: Any
     mbs: Any
     build: Any  #: VehicleBuild
-    forces: list  #: _RigidRailContact per wheelset
+    forces: list  #: RigidRailContact per wheelset
     sensors: list  #: coordinate sensor per body (build.bodies() order)
     r0: float  #: m, wheel radius of the contact
     b: float  #: m, contact semi-spacing
@@ -413,7 +386,7 @@ def _straight(turnout: Turnout, route_name: str, model: VehicleModel, v: float) 
         if tuple(ws.dof) != ("y", "z", "roll", "yaw", "spin"):
             raise ValueError(f"unexpected wheelset coordinates {tuple(ws.dof)}")
         element, _ = contact.element(vehicle, route, turnout.zones[0], x_section, v)
-        force = _RigidRailContact(element, x_section, len(ws.dof))
+        force = RigidRailContact(element, x_section, len(ws.dof))
         zero = np.zeros((force.n, force.n))
         mbs.AddObject(
             ObjectGenericODE2(

@@ -47,6 +47,7 @@ __all__ = [
     "STATIC_SPIN_STIFFNESS",
     "N_VEHICLE_COORDINATES",
     "contact_columns",
+    "RigidRailContact",
 ]
 
 #: N/m: holds the wheelset's lateral position in the static solve (v = 0), where creep gives
@@ -686,3 +687,60 @@ def contact_columns(
             )
             out[f"{stem}_{c}_Tgamma_N"] = np.where(loaded, wear, 0.0)
     return out
+
+
+class RigidRailContact:
+    """Force function of one wheelset's profile contact on rigid rails at a fixed position.
+
+    The contact element's ``evaluate`` at x = ``x`` whatever t, its rail coordinates (and the
+    element's sprung-mass coordinates) held at zero; only the wheelset's first ``n``
+    coordinates (y, z, roll, yaw, spin) are in the Exudyn object (an ``ObjectGenericODE2``
+    on the wheelset node, this object its ``forceUserFunction``). Subtracts a lateral
+    ``load`` (the wheelset's curving load m_w v^2 kappa); with ``static`` set, the lateral
+    position and the spin are held by :data:`STATIC_LATERAL_STIFFNESS` and
+    :data:`STATIC_SPIN_STIFFNESS` (a static solve, where creep gives no stiffness).
+
+    Parameters
+    ----------
+    element : ProfileContactElement
+        The wheelset's contact element.
+    x : float
+        m, the position along the route.
+    n : int
+        Number of the wheelset node's coordinates.
+    load : float
+        N, lateral load subtracted from the lateral force.
+    """
+
+    def __init__(self, element: ProfileContactElement, x: float, n: int, load: float = 0.0):
+        self.element, self.x, self.n, self.load = element, float(x), n, float(load)
+        self.q = np.zeros(element.n)
+        self.q_t = np.zeros(element.n)
+        self.static = False
+
+    def full(self, q, q_t) -> tuple[np.ndarray, np.ndarray]:
+        """The element's coordinates and velocities for the wheelset's ``q``, ``q_t``.
+
+        Parameters
+        ----------
+        q, q_t : array_like
+            The wheelset node's coordinates and velocities.
+
+        Returns
+        -------
+        (numpy.ndarray, numpy.ndarray)
+            Copies, the other coordinates zero.
+        """
+        self.q[: self.n], self.q_t[: self.n] = q, q_t
+        return self.q.copy(), self.q_t.copy()
+
+    def __call__(self, mbs, t, item_number, q, q_t):
+        """Exudyn's force user function: the contact forces on the wheelset's coordinates."""
+        n = self.n
+        self.q[:n], self.q_t[:n] = q, q_t
+        forces = self.element.evaluate(self.x, self.q, self.q_t)[0][:n]
+        forces[0] -= self.load
+        if self.static:
+            forces[0] -= STATIC_LATERAL_STIFFNESS * q[0]
+            forces[4] -= STATIC_SPIN_STIFFNESS * q[4]
+        return forces

@@ -39,7 +39,10 @@ from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.turnout_data import Table1D
 from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel, load_vehicle_model
-from exudyn_turnout.passage.contact.profile import ProfileContactElement, route_contact
+from exudyn_turnout.passage.contact.profile import (
+    RigidRailContact,
+    route_contact,
+)
 
 __all__ = [
     "NewtonResult",
@@ -211,32 +214,6 @@ def conical_wheelset_residual(
     return np.array([lateral, yaw, spin])
 
 
-class _RigidRailContact:
-    """Force function of one wheelset's profile contact on rigid rails at a fixed position.
-
-    The contact element's ``evaluate`` at x = ``x`` whatever t, its rail coordinates (and the
-    element's sprung-mass coordinates) held at zero; only the wheelset's five coordinates
-    (y, z, roll, yaw, spin) are in the Exudyn object. Adds the wheelset's curving load
-    -m_w v^2 kappa.
-    """
-
-    def __init__(self, element: ProfileContactElement, x: float, n: int, load: float):
-        self.element, self.x, self.n, self.load = element, float(x), n, float(load)
-        self.q = np.zeros(element.n)
-        self.q_t = np.zeros(element.n)
-
-    def full(self, q, q_t) -> tuple[np.ndarray, np.ndarray]:
-        self.q[: self.n], self.q_t[: self.n] = q, q_t
-        return self.q.copy(), self.q_t.copy()
-
-    def __call__(self, mbs, t, item_number, q, q_t):
-        n = self.n
-        self.q[:n], self.q_t[:n] = q, q_t
-        forces = self.element.evaluate(self.x, self.q, self.q_t)[0][:n]
-        forces[0] -= self.load
-        return forces
-
-
 @dataclass(eq=False)
 class RigidCurveSystem:
     """The full vehicle on rigid rails with every wheelset at a fixed route position."""
@@ -244,7 +221,7 @@ class RigidCurveSystem:
     container: Any  #: exudyn.SystemContainer (keeps the system alive)
     mbs: Any  #: exudyn.MainSystem, assembled, initial state: static + q_geo
     build: Any  #: VehicleBuild
-    contacts: list  #: _RigidRailContact per wheelset
+    contacts: list  #: RigidRailContact per wheelset
     x_front: float  #: m, front wheelset position
     kappa: tuple  #: 1/m, curvature at each wheelset
     v: float  #: m/s
@@ -336,7 +313,7 @@ def build_rigid_curve(
             )
         element, _ = contact.element(vehicle, route, zones[0], x_i, v)
         kappa = float(np.interp(x_i, route.curvature.x, route.curvature.value))
-        force = _RigidRailContact(element, x_i, len(ws.dof), model.wheelset.mass * v**2 * kappa)
+        force = RigidRailContact(element, x_i, len(ws.dof), model.wheelset.mass * v**2 * kappa)
         zero = np.zeros((force.n, force.n))
         mbs.AddObject(
             ObjectGenericODE2(
