@@ -101,6 +101,20 @@ def test_floor_acceleration_adds_centripetal_and_gravity(build):
     assert cols["ay_car_centre_mps2"] == pytest.approx([0.0, 0.0])
 
 
+def test_floor_acceleration_adds_the_frames_angular_acceleration(build):
+    """The car body's frame turning at Omega_t moves a floor point d ahead of the CoG
+    laterally at d Omega_t (track_frame module docstring; bogie pivots at d = +-9.5 m,
+    data/manchester_vehicle.toml)."""
+    n = len(build.static_state)
+    q = np.tile(np.asarray(build.static_state), (2, 1))
+    zero = np.zeros((2, n))
+    turning = np.array([0.2, -0.1])  # rad/s^2
+    cols = body_columns(build, q, zero, zero, frame_yaw_acceleration=turning)
+    assert cols["ay_floor_car_front_mps2"] == pytest.approx(9.5 * turning)
+    assert cols["ay_floor_car_rear_mps2"] == pytest.approx(-9.5 * turning)
+    assert cols["ay_floor_car_centre_mps2"] == pytest.approx([0.0, 0.0], abs=1e-12)
+
+
 @pytest.mark.slow
 def test_run_on_plain_track_has_body_columns_at_rest(tmp_path):
     """All wheelsets on plain track (behind the turnout's start): a steady straight run."""

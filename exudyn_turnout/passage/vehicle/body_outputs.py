@@ -26,12 +26,15 @@ bogies in the 760 m curve):
   accelerations, transformed to the point with the same small-angle kinematics; not a
   differentiated displacement);
 - car-body points: ``ay_floor_<point>_mps2``, what a lateral accelerometer on the floor
-  reads in car-body axes: ``ay`` + v^2 kappa(x_car) (the acceleration of the car body's
-  frame, the track tangent at its CoG's x: the centripetal acceleration the run applies to
-  the car body as its curving load) + g roll (gravity's share along the rolled floor); the
-  input of the ride comfort (:mod:`exudyn_turnout.passage.ride_comfort`). Left out, as in
-  the run: the frame's yaw acceleration v^2 dkappa/dx times the point's distance from the
-  CoG (a pulse where the curvature steps);
+  reads in car-body axes: ``ay`` + v^2 kappa(x_car) + d v^2 dkappa/ds(x_car) + g roll: the
+  point's acceleration relative to the car body's frame, plus that frame's own at the point
+  (its centripetal acceleration, the one the run applies to the car body as its curving
+  load, and its angular acceleration times the point's distance d ahead of the CoG: the
+  frame's Euler term, :mod:`~exudyn_turnout.passage.vehicle.track_frame`; the frame follows
+  the centreline smoothed over 0.5 m, so both are continuous), plus gravity's share along
+  the rolled floor; the input of the ride comfort
+  (:mod:`exudyn_turnout.passage.ride_comfort`). Left out (module docstring of
+  ``track_frame``): Omega^2 y, ~2e-5 m/s^2;
 - per body (``car_body``, ``bogie1``...): ``roll_<body>_rad``, ``pitch_<body>_rad``,
   ``yaw_<body>_rad`` from the static state;
 - suspension forces (:func:`suspension_forces`): per axlebox ``F<x|y|z>_primary_ws<k>_<side>_N``
@@ -268,6 +271,7 @@ def body_columns(
     q_geo: np.ndarray | None = None,
     q_geo_t: np.ndarray | None = None,
     centripetal: np.ndarray | None = None,
+    frame_yaw_acceleration: np.ndarray | None = None,
     floor_height: float = FLOOR_HEIGHT,
 ) -> dict[str, np.ndarray]:
     """Every body output of a run (module docstring): points, rotations, suspension forces.
@@ -284,6 +288,9 @@ def body_columns(
     centripetal : numpy.ndarray, optional
         v^2 kappa at the car body's x (m/s^2, positive to the left) per sample, the
         acceleration of its frame; None: zero (straight track).
+    frame_yaw_acceleration : numpy.ndarray, optional
+        v^2 dkappa/ds at the car body's x (rad/s^2, positive turning left) per sample, the
+        angular acceleration of its frame; None: zero.
     floor_height : float
         m, the car body's floor above the rail top.
 
@@ -304,9 +311,12 @@ def body_columns(
     car = build.car_body
     if car is not None:
         roll = dq[:, coordinate_slices(build)[car.name]][:, car.dof["roll"]]
-        for name in CAR_POINTS:
-            extra = 0.0 if centripetal is None else np.asarray(centripetal, float)
-            out[f"ay_floor_{name}_mps2"] = out[f"ay_{name}_mps2"] + extra + GRAVITY * roll
+        extra = 0.0 if centripetal is None else np.asarray(centripetal, float)
+        turning = 0.0 if frame_yaw_acceleration is None else np.asarray(frame_yaw_acceleration)
+        for point in body_points(build, floor_height)[: len(CAR_POINTS)]:
+            frame = extra + point.offset[2] * turning  # offset[2]: m ahead of the CoG
+            ay = out[f"ay_{point.name}_mps2"]
+            out[f"ay_floor_{point.name}_mps2"] = ay + frame + GRAVITY * roll
     slices = coordinate_slices(build)
     for handles in ([car] if car is not None else []) + list(build.bogies):
         part = dq[:, slices[handles.name]]

@@ -100,7 +100,8 @@ def recorded_body_columns(mbs: Any, t: np.ndarray) -> dict[str, np.ndarray]:
         kwargs["q_geo"] = loads.geometries(x_front)
         ahead, behind = loads.geometries(x_front + h), loads.geometries(x_front - h)
         kwargs["q_geo_t"] = (ahead - behind) * (loads.v / (2 * h))
-        # the car body's frame: the tangent at its reference (CoG) x, as its curving load
-        x_car = x_front + build.car_body.x
-        kwargs["centripetal"] = loads.v**2 * np.interp(x_car, loads.x, loads.kappa)
+        # the car body's frame (the reference's, last column): its centripetal and angular
+        # accelerations, as its curving and Euler loads in the run
+        lateral, yaw = loads.frame_accelerations(x_front)
+        kwargs["centripetal"], kwargs["frame_yaw_acceleration"] = lateral[:, -1], yaw[:, -1]
     return body_columns(build, q, q_t, q_tt, **kwargs)
