@@ -22,9 +22,10 @@ the route's curvature): the suspension gets the extra force K q_geo (K its stiff
 matrix), which gives the wheelsets' geometric angle of attack in the bogie and the bogies'
 offset under the car body. Car body and bogies get -m v^2 kappa(x) at their CoG
 (d'Alembert in the track-following frame); while q_geo changes (entering a curve) the
-suspension dampers see D q_geo_t as well. Left out: the yaw inertia terms J v^2 dkappa/dx
-of the frame's changing yaw rate, and for the wheelsets everything the single wheelset's
-element leaves out.
+suspension dampers see D q_geo_t as well, and every body's yaw the Euler load
+-J v^2 dkappa/dx of the frame's changing yaw rate (car body and bogies in frames smoothed
+over 0.5 m; :mod:`~exudyn_turnout.passage.vehicle.track_frame`). Left out: for the
+wheelsets everything the single wheelset's element leaves out.
 
 Zones: a wheelset's track and contact are in the zone containing its x. When any wheelset
 crosses a zone boundary the system is rebuilt with the new zone for that wheelset and the

@@ -50,6 +50,17 @@ relative velocity d v Delta kappa = 0.278 m/s, c_y d v Delta kappa = 8.9 kN per 
 kN s/m; measured 8.6 kN, opposite in the two bogies), decaying with the car body's yaw
 time constant I_z / (4 c_y d^2) = 0.17 s: the largest EN 12299 Wd peak of the run.
 
+The suspension's geometry along the curve was not the cause: q_geo
+(:meth:`BodyLoads.geometries`, from the integrated curvature as :func:`curve_geometry`) is
+the unstrained vehicle, a rigid body on the tangent of the car body's frame, written in
+each body's own frame, so K (q - q_geo) and D (q_t - q_geo_t) are the suspension's
+physical strain and strain rate. E.g. a secondary damper at bogie j, d = x_j - x_car ahead
+of the car body's CoG, sees (lateral, bogie frame) y_car_t + d yaw_car_t - y_j_t - v
+(heading_j - heading_car) + d v kappa_car from the bodies' inertial velocities, and the
+same from c^T (q_t - q_geo_t) (c^T q = y_car + d yaw_car - y_j, c^T q_geo = e_j, v de_j/dx
+= v (heading_j - heading_car - kappa_car d)). Its term d v kappa_car steps with the car
+body's frame; only the Euler load makes d yaw_car_t step against it.
+
 Which frame each body has
 -------------------------
 The wheelsets' frames follow the route's centreline (their contact element reads y and yaw
@@ -58,16 +69,17 @@ The car body's and the bogie frames' coordinates are read only by the suspension
 q - q_geo) and the outputs, so their frames are free: they follow the route's centreline
 smoothed over :data:`FRAME_SMOOTHING` (curvature, heading and lateral offset each
 convolved with one triangular kernel, :func:`smoothing_kernel`), whose turning rate is
-continuous. Their Euler load then spreads over 0.5 m (22 ms at 80 km/h, ~230 steps of
-1e-4 s), and the integrator, which samples a load once per step, takes its impulse to
-1e-6 (tested); a rate step's impulse spread over one grid cell would be off by up to the
-ratio of a step's travel to the ramp. The smoothed centreline lies kappa sigma^2 / 2 =
-7 um off the route's in the 760 m curve (sigma^2 = L^2 / 24, the kernel's variance) and
-turns off it by at most Delta kappa L / 12 at a step (5.5e-5 rad at the 760 m curve's
-end): nothing physical moves (q_geo expresses the unstrained vehicle in each body's own
-frame); only the car body's and bogies' displacements are read from these frames. The
-wheelsets' Euler load stays on the route's curvature: on the 1 cm grid a step spreads
-over 2 cm, whose impulse the integrator takes to ~1 % at 80 km/h and 1e-4 s (tested).
+continuous. Their Euler load then spreads over 0.5 m (22 ms at 80 km/h, ~230 steps of 1e-4
+s), and the integrator, which samples a load once per step, takes its impulse to 1e-14 at
+1e-4 s and 2e-5 at 2e-4 s (80 km/h; tested); a rate step's impulse spread over one grid
+cell would be off by up to the ratio of a step's travel to the ramp. The smoothed
+centreline lies kappa sigma^2 / 2 = 7 um off the route's in the 760 m curve (sigma^2 = L^2
+/ 24, the kernel's variance) and turns off it by at most Delta kappa L / 12 at a step
+(5.5e-5 rad at the 760 m curve's end): nothing physical moves (q_geo expresses the
+unstrained vehicle in each body's own frame); only the car body's and bogies'
+displacements are read from these frames. The wheelsets' Euler load stays on the route's
+curvature: on the 1 cm grid a step spreads over 2 cm, whose impulse the integrator takes
+to 1e-13 at 1e-4 s and 1.2 % at 2e-4 s (80 km/h; tested at 1e-4 s).
 
 In steady curving on a constant curvature every frame turns at the same Omega, q_geo is
 constant and q_geo_t = 0: the dampers are force-free, the springs carry the centripetal
@@ -473,7 +485,8 @@ class BodyLoads:
             q_geo = self.geometry(x_front)
             f = self.k @ q_geo
         self._x_geo, self._q_geo = x_front, q_geo
-        f += self._frame_loads(np.array([x_front]), factor)[0]
+        if self.curved:  # straight track: no frame loads
+            f += self._frame_loads(np.array([x_front]), factor)[0]
         return f
 
     def __call__(self, mbs, t, item_number, q, q_t):
