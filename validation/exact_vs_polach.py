@@ -46,6 +46,11 @@ CREEPAGES = (
 )
 
 
+def _f(value: float) -> str:
+    """A force in mu N, three decimals, round-off zeros without a sign flip."""
+    return f"{round(value, 3) + 0.0:+.3f}"
+
+
 def main(argv: list[str] | None = None) -> int:
     """Write exact_vs_polach.md (and print it)."""
     parser = argparse.ArgumentParser(description="Polach against Kalker's exact theory")
@@ -76,8 +81,8 @@ def main(argv: list[str] | None = None) -> int:
             key = "with spin" if phi_n else "no spin"
             worst[key] = max(worst[key], difference)
             lines.append(
-                f"| {ratio:g} | {xi_n:g} | {eta_n:g} | {phi_n:g} | {fx / (MU * N):+.3f} "
-                f"| {fy / (MU * N):+.3f} | {px / (MU * N):+.3f} | {py / (MU * N):+.3f} "
+                f"| {ratio:g} | {xi_n:g} | {eta_n:g} | {phi_n:g} | {_f(fx / (MU * N))} "
+                f"| {_f(fy / (MU * N))} | {_f(px / (MU * N))} | {_f(py / (MU * N))} "
                 f"| {difference:.3f} |"
             )
     lines += [

@@ -279,6 +279,42 @@ def solve_steady_rolling(
     )
 
 
+def _reduced_step(J: np.ndarray, R: np.ndarray, outside, ux, uy) -> np.ndarray:
+    """Solve J step = -R with the radial part of every slipping element's step known.
+
+    In a slipping element the projection's derivative is (g/|z|) t t^T (t: the tangent
+    to the disc), so the Newton row along z/|z| reads ``z^T step_i = -z^T R_i``: that
+    component is eliminated, leaving one unknown (along t) per slipping element and two
+    per adhering one, which makes the LU up to 8x cheaper in full slip.
+    """
+    m = outside.size
+    tx, ty = -uy, ux  # tangent of the slipping elements' discs
+    known = np.zeros(2 * m)
+    radial = -(ux * R[:m] + uy * R[m:])
+    known[:m] = np.where(outside, radial * ux, 0.0)
+    known[m:] = np.where(outside, radial * uy, 0.0)
+    rhs_full = -R - J @ known
+    stick = np.nonzero(~outside)[0]
+    slip = np.nonzero(outside)[0]
+    # rows: both rows of adhering elements, the tangential row of slipping ones
+    rows = np.vstack(
+        [J[stick], J[m + stick], tx[slip, None] * J[slip] + ty[slip, None] * J[m + slip]]
+    )
+    rhs = np.concatenate([rhs_full[stick], rhs_full[m + stick],
+                          tx[slip] * rhs_full[slip] + ty[slip] * rhs_full[m + slip]])  # fmt: skip
+    # columns: both components of adhering elements, the tangential one of slipping ones
+    matrix = np.hstack([rows[:, stick], rows[:, m + stick],
+                        rows[:, slip] * tx[slip] + rows[:, m + slip] * ty[slip]])  # fmt: skip
+    v = scipy.linalg.solve(matrix, rhs, check_finite=False, overwrite_a=True, overwrite_b=True)
+    k = stick.size
+    step = known
+    step[stick] += v[:k]
+    step[m + stick] += v[k : 2 * k]
+    step[slip] += v[2 * k :] * tx[slip]
+    step[m + slip] += v[2 * k :] * ty[slip]
+    return step
+
+
 def _newton(S: np.ndarray, w: np.ndarray, g: np.ndarray, r: float, tol: float, limit: int):
     """Semi-smooth Newton on R(q) = q - P_g(q - r s(q)), s = w + S q (module docstring);
     returns (q, iterations, converged, slip flags)."""
@@ -310,7 +346,7 @@ def _newton(S: np.ndarray, w: np.ndarray, g: np.ndarray, r: float, tol: float, l
         J[np.arange(m, 2 * m), np.arange(m, 2 * m)] += 1.0 - pyy
         J[np.arange(m), np.arange(m, 2 * m)] -= pxy
         J[np.arange(m, 2 * m), np.arange(m)] -= pxy
-        step = scipy.linalg.solve(J, -R, check_finite=False)
+        step = _reduced_step(J, R, outside, ux, uy)
         merit = float(R @ R)
         t = 1.0
         while True:
