@@ -35,12 +35,14 @@ descriptions:
   of Coulomb's law, ``R(q) = q - P_g(q - r s(q)) = 0`` (P_g: projection of each element's
   traction onto its disc of radius g = mu p; r = dx / A_xx(0), the inverse of the
   element's own slip coefficient), started from the full-adhesion solution projected
-  onto the discs, with a backtracking line search on ``|R|^2``; dense LU per iteration
-  (O(m^3) for m elements in contact).  It converges in 3-6 iterations on the cases of
-  tests/test_exact_rolling.py.  A Gauss-Seidel sweep over the elements (the idea of
-  Kalker's and Vollebregt's solvers) was tried first and diverged on the steady-rolling
-  operator ``(A - A_lead) / dx`` (its element diagonal is a small difference of
-  coefficients); Vollebregt's SteadyGS handles this by solving whole grid lines.
+  onto the discs, with a backtracking line search on ``|R|^2``; one dense LU per
+  iteration (O(m^3) for m elements in contact) after eliminating the radial component of
+  every slipping element's step, which the Newton equations fix directly.  It converges
+  in 3-7 iterations on the cases of tests/test_exact_rolling.py.  A Gauss-Seidel sweep
+  over the elements (the idea of Kalker's and Vollebregt's solvers) was tried first and
+  diverged on the steady-rolling operator ``(A - A_lead) / dx`` (its element diagonal
+  is a small difference of coefficients); Vollebregt's SteadyGS handles this by solving
+  whole grid lines.
 
 Sign convention (that of Kalker and CONTACT, and of ``creep.polach_creep_forces``):
 creepages are those of body 1 relative to body 2 and forces act on body 1, so that the
