@@ -132,7 +132,7 @@ def test_large_creepage_saturates_at_mu_n():
 
 def test_large_pure_spin_force_vanishes():
     # in full slip about the centre of a circle the tractions turn around it and their
-    # resultant vanishes (Kalker 1990, section 2.4: the spin force falls after a peak);
+    # resultant vanishes by symmetry, so the spin force falls after a peak;
     # measured -1051 N at 0.5 1/m, -68 N at 10 1/m, -13 N at 50 1/m
     forces = [
         exact_creep_forces_ellipse(5e-3, 5e-3, 0.0, 0.0, phi, N, 0.3, G, 0.28, 16)
@@ -244,7 +244,7 @@ def test_contacts_own_area_reproduces_contacts_creep_forces(name, index, tol_fx,
 
 def test_spin_moment_is_reciprocal_and_near_kalkers_c33():
     # Betti-Maxwell reciprocity of the linear theory: the lateral force of spin and the
-    # moment of lateral creepage share C23 (Kalker 1990, ch. 2: M_z = G c^3 C23 eta,
+    # moment of lateral creepage share C23 (creep.py's linear theory: M_z = G c^3 C23 eta,
     # F_y = -G c^3 C23 phi); the discrete operator keeps it to round-off (measured).
     c, nu = 5e-3, 0.28
     pressure, dx, dy, x0, y0 = hertz_pressure_grid(c, c, N, 20)

@@ -5,9 +5,9 @@ similar bodies (equal G and nu, so the normal and tangential problems decouple),
 rectangular grid of elements carrying a given normal pressure p(x, y).  It stands where
 Kalker's program CONTACT stands in the literature, with the same boundary element
 discretisation (J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
-Kluwer 1990, ch. 5; E.A.H. Vollebregt, *User guide for CONTACT*, Vtech CMCC, 2025,
-sections "Discretisation" and "Kinematic variables"), written here from those
-descriptions:
+Kluwer 1990; E.A.H. Vollebregt, *User guide for CONTACT*, Vtech CMCC,
+github.com/eve70a/CONTACT doc/user-guide.tex at commit d431cdb, sections on the
+discretisation and the kinematic variables), written here from those descriptions:
 
 * **Influence coefficients** (:func:`influence_coefficients`): the tangential
   displacement difference at an element's centre due to a uniform unit traction on
@@ -21,9 +21,9 @@ descriptions:
   antiderivatives over a rectangle are ``x asinh(y/|x|) + y asinh(x/|y|)`` for 1/rho,
   ``y asinh(x/|y|)`` for x^2/rho^3, ``x asinh(y/|x|)`` for y^2/rho^3 and ``-rho`` for
   x y / rho^3 (terms of one variable only cancel in the four-corner sum).
-* **Steady rolling slip** (Kalker 1990, eq. 5.10): the contact moves in +x over both
-  bodies (leading edge at the largest x), material flows through it in -x, and the slip
-  of body 1 relative to body 2 per unit rolling distance is
+* **Steady rolling slip** (Kalker 1990; CONTACT user guide): the contact moves in +x
+  over both bodies (leading edge at the largest x), material flows through it in -x,
+  and the slip of body 1 relative to body 2 per unit rolling distance is
 
       s = w + du/dx,   w = (xi - phi y, eta + phi x)   (:func:`rigid_slip`),
 
@@ -133,7 +133,7 @@ def influence_coefficients(
 
 
 def rigid_slip(x, y, xi: float, eta: float, phi: float) -> tuple[np.ndarray, np.ndarray]:
-    """Rigid slip per unit rolling distance (Kalker 1990, eq. 1.6 and ch. 5).
+    """Rigid slip per unit rolling distance (Kalker 1990; CONTACT user guide, eq. of W_It).
 
     ``w_x = xi - phi y``, ``w_y = eta + phi x``: creepages of body 1 relative to body 2
     and the spin phi about the normal pointing into body 1, at element centres (x, y)
