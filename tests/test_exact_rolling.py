@@ -214,13 +214,18 @@ def test_contact_maps_count_contacts_statistics(name, index, n_contact, n_adhesi
 @pytest.mark.slow
 @pytest.mark.parametrize(
     ("name", "index", "tol_fx", "tol_fs"),
-    [("wing_brute", 0, 0.04, 0.05), ("cross_brute", 0, 0.01, 0.01)],
+    [
+        ("wing_brute", 0, 0.04, 0.05),
+        ("cross_brute", 0, 0.01, 0.01),
+        ("cross+wing", 0, 0.02, 0.06),
+    ],
 )
 def test_contacts_own_area_reproduces_contacts_creep_forces(name, index, tol_fx, tol_fs):
     # CONTACT's area from its map, pressure rebuilt strip by strip (CONTACT prints no
     # pressure field; its PMAX is 5 % (wing) and 13 % (cross) above the rebuilt one),
     # spin about the area's centroid.  Measured: wing FX +2.4 %, FS -3.0 %; cross FX
-    # +0.05 %, FS -0.4 % (full slip: area and mu N decide).  A sign or convention error
+    # +0.05 %, FS -0.4 % (full slip: area and mu N decide); cross+wing (spin-dominated
+    # FS, where Polach's law is 90 % off) FX +0.6 %, FS +4.0 %.  A sign or convention error
     # in spin, rolling direction or creepage would show as tens of per cent in FS.
     case, found = _contact_case(name, index)
     patch = case.patches[0]
@@ -237,9 +242,10 @@ def test_contacts_own_area_reproduces_contacts_creep_forces(name, index, tol_fx,
     assert solved.converged
     assert solved.fx == pytest.approx(patch.fx, rel=tol_fx)
     assert solved.fy == pytest.approx(patch.fs, rel=tol_fs)
-    # adhesion area within 5 % of the elements (wing: 378 against CONTACT's 363)
+    # adhesion area within 6 % of the elements (wing: 378 against CONTACT's 363 of 624;
+    # cross+wing 1071 against 996 of 1283, 5.8 %)
     adhesion = int((solved.contact & ~solved.slip).sum())
-    assert abs(adhesion - int(found.adhesion.sum())) <= 0.05 * found.contact.sum()
+    assert abs(adhesion - int(found.adhesion.sum())) <= 0.06 * found.contact.sum()
 
 
 def test_spin_moment_is_reciprocal_and_near_kalkers_c33():
