@@ -30,7 +30,7 @@ from exudyn_turnout.wheel_rail.exact_rolling import exact_creep_forces_ellipse  
 
 OUT = Path(__file__).with_suffix(".md")
 G, NU, N, MU, C = 8.1e10, 0.28, 1.0e4, 0.3, 5e-3
-RATIOS = (0.3, 1.0, 3.0)
+RATIOS = (0.1, 0.3, 1.0, 3.0, 10.0)
 #: normalised creepages (xi', eta', phi') = G c^2 (xi, eta) / (mu N), G c^3 phi / (mu N)
 CREEPAGES = (
     (0.1, 0.0, 0.0),
