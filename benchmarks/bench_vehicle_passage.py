@@ -14,17 +14,31 @@ tables are loaded and the compiled contact kernel warmed up before, untimed. Iss
 target: the 3-layer full vehicle at most 1.0 x real time. Every run alternates with the
 yardstick (``benchmarks/yardstick.py``); "yardstick" is the whole run's wall time in its
 units, the number that carries over between machines and loads.
+
+``--phases`` measures instead the README's full-vehicle case (issue 24: 3-layer, through
+route, 100 km/h, front wheelset -5..60 m, 2.34 s simulated; ``--repeats`` runs, medians)
+in three parts, each in CPU seconds, x real time and yardstick units (its CPU time over
+the yardstick runs' around it): the set-up (from the call to the first time step: the
+Exudyn systems, the static solves of the four tracks, the start at speed), the stepping
+(every segment's ``SolveDynamic``, with the compiled residual calls inside), and the rest
+(the segments' rebuilds and carry-overs, the columns, the summary); with residual
+calls, Newton iterations per step and Jacobian evaluations.
 """
 
 from __future__ import annotations
 
 import argparse
+import math
+import statistics
+import time
 from dataclasses import replace
 
+import exudyn as exu
 from yardstick import Yardstick, machine_line
 
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
+from exudyn_turnout.passage.contact.vehicle_contacts import VehicleContacts
 from exudyn_turnout.passage.corunning_track import vehicle as full_vehicle_passage
 from exudyn_turnout.passage.results import PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
@@ -60,6 +74,85 @@ def _timed(stick, run, settings) -> tuple[float, float, int, _NewtonCount, float
     return timing.seconds, timing.cpu_seconds, len(result.columns["t_s"]) - 1, count, timing.units
 
 
+class _Phases:
+    """CPU time of the set-up, the stepping and the rest of a full-vehicle passage."""
+
+    def __init__(self):
+        self.start = self.first_step = math.nan
+        self.stepping = 0.0
+        self.calls = 0
+        self._solve = exu.MainSystem.SolveDynamic
+        self._call = VehicleContacts.__call__
+
+    def __enter__(self):
+        def solve(mbs, *args, **kwargs):
+            t0 = time.process_time()
+            if math.isnan(self.first_step):
+                self.first_step = t0
+            try:
+                return self._solve(mbs, *args, **kwargs)
+            finally:
+                self.stepping += time.process_time() - t0
+
+        def call(contacts, *args):
+            self.calls += 1
+            return self._call(contacts, *args)
+
+        exu.MainSystem.SolveDynamic = solve
+        VehicleContacts.__call__ = call
+        return self
+
+    def __exit__(self, *exc):
+        exu.MainSystem.SolveDynamic = self._solve
+        VehicleContacts.__call__ = self._call
+
+
+def phases(repeats: int) -> None:
+    """Print the full-vehicle case's set-up, stepping and rest (module docstring)."""
+    turnout, model = load_turnout(), load_vehicle_model()
+    case = PassageSettings(route="through", speed_kmh=100.0, x_start=-5.0, x_end=60.0)
+    simulate_passage(turnout, replace(case, x_end=-4.9), model)  # tables, kernels: untimed
+    simulated = (case.x_end - case.x_start) / case.v
+    stick = Yardstick()
+    stick.run()
+    rows: dict[str, list[float]] = {"set-up": [], "stepping": [], "rest": [], "total": []}
+    units: dict[str, list[float]] = {k: [] for k in rows}
+    counts = []
+    for _ in range(repeats):
+        with _NewtonCount() as newton, _Phases() as part:
+            t0 = time.process_time()
+            simulate_passage(turnout, case, model)
+            total = time.process_time() - t0
+        stick.run()
+        cpu = {
+            "set-up": part.first_step - t0,
+            "stepping": part.stepping,
+            "rest": total - (part.first_step - t0) - part.stepping,
+            "total": total,
+        }
+        scale = 0.5 * sum(stick.cpu_times[-2:])
+        for key, value in cpu.items():
+            rows[key].append(value)
+            units[key].append(value / scale)
+        counts.append(
+            (part.calls / newton.steps, newton.iterations / newton.steps, newton.jacobians)
+        )
+    print(
+        f"full Manchester vehicle, 3-layer, through, 100 km/h, x -5..60 m ({simulated:.2f} s "
+        f"simulated), median of {repeats} runs, CPU time"
+    )
+    print(f"{'part':<10}{'CPU s':>8}{'x real time':>13}{'yardstick':>11}")
+    for key, values in rows.items():
+        cpu = statistics.median(values)
+        print(f"{key:<10}{cpu:>8.3f}{cpu / simulated:>13.3f}{statistics.median(units[key]):>11.2f}")
+    calls, iterations, jacobians = counts[-1]
+    print(
+        f"residual calls per step {calls:.2f}, Newton iterations per step {iterations:.3f}, "
+        f"Jacobians {jacobians}"
+    )
+    print(f"yardstick CPU median {stick.cpu_median:.3f} s; {machine_line()}")
+
+
 def main() -> None:
     """Print the table."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -68,7 +161,12 @@ def main() -> None:
     parser.add_argument("--x-end", type=float, default=None, help="front wheelset end (m)")
     parser.add_argument("--speed", type=float, default=100.0, help="km/h")
     parser.add_argument("--layers", type=int, nargs="+", default=[2, 3], choices=[2, 3])
+    parser.add_argument("--phases", action="store_true", help="set-up, stepping, rest")
+    parser.add_argument("--repeats", type=int, default=3, help="runs of --phases")
     args = parser.parse_args()
+    if args.phases:
+        phases(args.repeats)
+        return
     turnout, model = load_turnout(), load_vehicle_model()
     x_a = turnout.x_min if args.x_start is None else args.x_start
     x_b = turnout.x_max if args.x_end is None else args.x_end

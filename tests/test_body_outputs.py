@@ -63,6 +63,25 @@ def test_every_suspension_element_force_free_in_the_reference(build):
     assert all(v[0] == 0.0 for v in forces.values())
 
 
+def test_bumpstop_column_is_the_scalar_law_bit_for_bit(build, model):
+    # the bumpstop column (computed on arrays) equals BumpStop.lateral_force sample by
+    # sample: inside the clearance (zero), on its edge, in the table and beyond it (the
+    # last slope extrapolated), both directions
+    stop = model.bumpstop
+    n = sum(s.stop - s.start for s in coordinate_slices(build).values())
+    car = build.car_body
+    start = coordinate_slices(build)["car_body"].start
+    y = np.array([0.0, 0.01, stop.clearance, 0.026, 0.03, 0.04, 0.08])
+    y = np.concatenate([y, -y])
+    q = np.zeros((len(y), n))
+    q[:, start + car.dof["y"]] = y  # the car body to the side, the bogies centred
+    force = suspension_forces(build, q)["Fy_bumpstop_b1_N"]
+    expected = np.array([0.0 - stop.lateral_force(u) for u in y])
+    assert np.array_equal(force.view(np.int64), expected.view(np.int64))
+    assert np.count_nonzero(force) == 8  # beyond the 25 mm clearance only (4 each side)
+    assert np.all(np.sign(force[y > stop.clearance]) == -1.0)  # pushes the car body back
+
+
 def test_static_forces_carry_the_body_weights(build, model):
     """At the vehicle's static equilibrium on rigid track the primary springs carry car body
     and bogie frames, the secondary ones the car body (masses: data/manchester_vehicle.toml)."""

@@ -266,6 +266,28 @@ def test_compiled_residual_equals_the_python_path(turnout, model, route, mechani
         assert np.max(np.abs(fast[e:])) > 1e2
 
 
+def test_compiled_residual_recomputes_the_track_laws_at_a_new_time(turnout, model):
+    # the compiled path evaluates the springs' K(x), D(x) once per time (the Newton
+    # iterations of a step share t): a call at a new t must use the new x. At x = 46.5 m
+    # (the crossing) the support stiffness changes along the track: 0.1 s later the
+    # wheelsets are 2.8 m further and the forces differ; each time's forces equal the
+    # Python path's bit for bit, called first or after the other time.
+    _, contacts, q, q_t = _segment(turnout, model, 46.5, 100.0 / 3.6)
+    compiled = contacts._compiled
+    e = contacts.n_stops_end
+    fast = {}
+    for t in (0.0123, 0.1123, 0.0123):
+        fast[t] = np.array(contacts(None, t, 0, list(q), list(q_t)))
+        assert contacts._fast
+    contacts._compiled, contacts._t_fast = None, math.nan
+    for t, forces in fast.items():
+        slow = np.array(contacts(None, t, 0, list(q), list(q_t)))
+        assert np.array_equal(forces, slow)
+    assert not np.array_equal(fast[0.0123][e:], fast[0.1123][e:])  # the springs did change
+    contacts._compiled = compiled
+    assert isinstance(contacts(None, 0.2, 0, list(q), list(q_t)), list)  # Exudyn's fast type
+
+
 def test_contact_jacobian_equals_central_differences(turnout, model):
     # -df/dq and -df/dq_t of the contact function (forward differences per wheelset) against
     # central differences of the whole function (definition of the derivative). Tolerance:

@@ -186,6 +186,27 @@ def test_linear_model_is_the_rigid_model_linearised(model):
     assert np.allclose(f_lin, f_rigid, rtol=1e-3)
 
 
+def test_linear_builds_of_one_vehicle_share_the_rigid_linearisation(model):
+    """The linear representation's M, K, D, static state and force vector, kept for a model
+    (the passage builds one vehicle per segment), equal a first build's bit for bit; a
+    changed model gets its own (its stiffer primary springs change K)."""
+
+    def matrices(m):
+        mbs, build, _ = _system(m)
+        item = build.items["suspension"]
+        return [
+            np.array(mbs.GetObjectParameter(item, name).GetPythonObject(), dtype=float)
+            for name in ("massMatrix", "stiffnessMatrix", "dampingMatrix")
+        ] + [np.array(mbs.GetObjectParameter(item, "forceVector")), np.array(build.static_state)]
+
+    first, again = matrices(model), matrices(model)
+    for a, b in zip(first, again):
+        assert np.array_equal(a, b)
+    stiffer = replace(model, primary=replace(model.primary, k_z=2.0 * model.primary.k_z))
+    assert not np.array_equal(matrices(stiffer)[1], first[1])
+    assert np.array_equal(matrices(model)[1], first[1])  # the first one still served
+
+
 def test_bumpstop_characteristic(model):
     stop = model.bumpstop
     assert stop.lateral_force(0.0) == 0.0 and stop.lateral_force(0.025) == 0.0

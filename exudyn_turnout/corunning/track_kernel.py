@@ -37,7 +37,15 @@ from exudyn_turnout.corunning.fitted import TableEntry
 from exudyn_turnout.corunning.parameters import CoRunningParameters, reference_support
 from exudyn_turnout.inputs.turnout import Entry, Polynomial
 
-__all__ = ["TrackPlacement", "TrackForce", "track_force", "spring_forces", "KERNEL_ARRAYS"]
+__all__ = [
+    "TrackPlacement",
+    "TrackForce",
+    "track_force",
+    "spring_forces",
+    "law_values",
+    "applied_spring_forces",
+    "KERNEL_ARRAYS",
+]
 
 #: names of :attr:`TrackForce.arrays` in the order :func:`spring_forces` takes them
 KERNEL_ARRAYS = (
@@ -90,10 +98,24 @@ def _support(x, poly_c, poly_n, poly_f, p):  # pragma: no cover (compiled)
 
 
 @numba.njit(cache=True)
-def _law_values(
+def law_values(
     t, tracks, track_poly, poly_c, poly_n, poly_f, law_i, law_a, ramps, values
 ):  # pragma: no cover (compiled)
-    """Every law's value at its track's x = x0 + v t (into ``values``)."""
+    """Every law's value at its track's x = x0 + v t (into ``values``; compiled).
+
+    They depend on t only: a caller evaluating several residuals at one t (the Newton
+    iterations of a step) computes them once and applies them with
+    :func:`applied_spring_forces`.
+
+    Parameters
+    ----------
+    t : float
+        s; each track's x = x0 + v t.
+    tracks, track_poly, poly_c, poly_n, poly_f, law_i, law_a, ramps : numpy.ndarray
+        :attr:`TrackForce.arrays` of those names.
+    values : numpy.ndarray
+        SI units, one per law (:attr:`TrackForce.laws`), overwritten.
+    """
     n_tracks = tracks.shape[0]
     delta = np.empty((n_tracks, 2))
     for k in range(n_tracks):
@@ -171,7 +193,25 @@ def spring_forces(
     ends, arms, laws, tracks, track_poly, poly_c, poly_n, poly_f, law_i, law_a, ramps
         :attr:`TrackForce.arrays` (:data:`KERNEL_ARRAYS`).
     """
-    _law_values(t, tracks, track_poly, poly_c, poly_n, poly_f, law_i, law_a, ramps, values)
+    law_values(t, tracks, track_poly, poly_c, poly_n, poly_f, law_i, law_a, ramps, values)
+    applied_spring_forces(q, q_t, out, values, ends, arms, laws)
+
+
+@numba.njit(cache=True)
+def applied_spring_forces(q, q_t, out, values, ends, arms, laws):  # pragma: no cover (compiled)
+    """Add every spring's generalised forces, its laws' values given, to ``out`` (compiled).
+
+    Parameters
+    ----------
+    q, q_t : numpy.ndarray
+        Coordinates and velocities of the force vector.
+    out : numpy.ndarray
+        The force vector, added to.
+    values : numpy.ndarray
+        The laws' values at the time (:func:`law_values`).
+    ends, arms, laws : numpy.ndarray
+        :attr:`TrackForce.arrays` of those names.
+    """
     for s in range(ends.shape[0]):
         y0, z0, vy0, vz0, c0, s0 = _end_motion(q, q_t, ends, arms, s, 0)
         y1, z1, vy1, vz1, c1, s1 = _end_motion(q, q_t, ends, arms, s, 1)
@@ -217,7 +257,7 @@ def _add_jacobian(
     ramps,
 ):  # pragma: no cover (compiled)
     """Add f_q K(x) + f_q_t D(x) (linear in the coordinates) to ``out``."""
-    _law_values(t, tracks, track_poly, poly_c, poly_n, poly_f, law_i, law_a, ramps, values)
+    law_values(t, tracks, track_poly, poly_c, poly_n, poly_f, law_i, law_a, ramps, values)
     index = np.empty(4, np.int64)
     coef = np.empty(4)
     for s in range(ends.shape[0]):
@@ -314,7 +354,7 @@ class TrackForce:
         """
         values = np.zeros_like(self._values)
         a = self._arrays
-        _law_values(
+        law_values(
             t,
             a["tracks"],
             a["track_poly"],

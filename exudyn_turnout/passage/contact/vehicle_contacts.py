@@ -263,7 +263,7 @@ class VehicleContacts:
             self.track.add_forces(t, q, q_t, out)
         if curved:
             out += curved[0]
-        return out
+        return out.tolist()  # Exudyn reads a list faster than a numpy array
 
     def jacobian(self, t: float, q: np.ndarray, q_t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """-df/dq and -df/dq_t of the contact forces f (the left-hand side's Jacobians), by

@@ -192,6 +192,17 @@ def _relative(build, parent, child, point, q):
     )
 
 
+def _bumpstop_forces(stop, u: np.ndarray) -> np.ndarray:
+    """``stop.lateral_force`` of every sample of u (m), N: the same operations in the same
+    order, on arrays (bit for bit; one Python call per sample cost ~0.2 s a passage)."""
+    points, increments = stop.ramps()
+    a = np.abs(u)
+    total = np.zeros_like(a)  # as sum(): 0 + the first term, then term by term
+    for point, increment in zip(points, increments):
+        total = total + increment * np.maximum(a - point, 0.0)
+    return np.copysign(total, u)
+
+
 def suspension_forces(
     build: VehicleBuild, q: np.ndarray, q_t: np.ndarray | None = None
 ) -> dict[str, np.ndarray]:
@@ -257,8 +268,7 @@ def suspension_forces(
             point = (0.0, stop.height, bogie.x)
             u = _relative(build, bogie, car, point, q)[:, 0]  # car body minus frame
             # the force on the car body opposes its displacement relative to the frame
-            force = np.array([stop.lateral_force(v) for v in u], dtype=float)
-            out[f"Fy_bumpstop_{tag}_N"] = 0.0 - force
+            out[f"Fy_bumpstop_{tag}_N"] = 0.0 - _bumpstop_forces(stop, u)
     return out
 
 

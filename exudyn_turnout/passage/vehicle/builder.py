@@ -97,6 +97,7 @@ state, connector forces, linearisation, modes) in
 
 from __future__ import annotations
 
+import functools
 import math
 import operator
 from collections.abc import Callable, Sequence
@@ -543,15 +544,13 @@ def _free_names(build: VehicleBuild, spin: bool) -> list[tuple[Any, str]]:
     return out
 
 
-def _add_linear(
-    mbs: exu.MainSystem,
-    model: VehicleModel,
-    rotation: str,
-    wheelset_spin: bool,
-    bumpstop: bool,
-    gravity: bool,
-) -> VehicleBuild:
-    # 1. the rigid model, its static equilibrium on rigid track and its linearisation there
+@functools.lru_cache(maxsize=16)
+def _linearised(model: VehicleModel, rotation: str, wheelset_spin: bool, gravity: bool) -> tuple:
+    """The rigid model's static equilibrium on rigid track and its linearisation there:
+    (rigid build, M, K, D and q_s on its free coordinates, wheel loads), arrays read-only.
+
+    Deterministic in its arguments (a frozen model), so kept: the full vehicle's passage
+    builds the same vehicle for every segment (~4 ms each)."""
     ref_mbs = exu.SystemContainer().AddSystem()
     rigid = _add_rigid(ref_mbs, model, rotation, wheelset_spin, "none", gravity)
     support = rigid_track_support(ref_mbs, rigid, RigidTrack(k_x=1e7 if wheelset_spin else 0.0))
@@ -563,16 +562,31 @@ def _add_linear(
     m, k, d = linearized_matrices(ref_mbs)
     q_rigid = np.array(ref_mbs.systemData.GetODE2Coordinates())
     held = {ref_mbs.GetNodeODE2Index(n) + c for n, c in rigid.held}
-
-    # 2. the same bodies as generic nodes of their free coordinates
-    spin = ("spin",) if wheelset_spin else ()
     names = _free_names(rigid, wheelset_spin)
     index = [
         ref_mbs.GetNodeODE2Index(handles.node) + handles.dof[dname] for handles, dname in names
     ]
     assert not held.intersection(index)
-    m, k, d = (np.asarray(a)[np.ix_(index, index)] for a in (m, k, d))
+    m, k, d = (np.array(np.asarray(a)[np.ix_(index, index)]) for a in (m, k, d))
     q_s = q_rigid[index]
+    for a in (m, k, d, q_s):
+        a.setflags(write=False)
+    return rigid, m, k, d, q_s, loads
+
+
+def _add_linear(
+    mbs: exu.MainSystem,
+    model: VehicleModel,
+    rotation: str,
+    wheelset_spin: bool,
+    bumpstop: bool,
+    gravity: bool,
+) -> VehicleBuild:
+    # 1. the rigid model, its static equilibrium on rigid track and its linearisation there
+    rigid, m, k, d, q_s, loads = _linearised(model, rotation, wheelset_spin, gravity)
+
+    # 2. the same bodies as generic nodes of their free coordinates
+    spin = ("spin",) if wheelset_spin else ()
 
     def generic_node(n):
         return int(
@@ -636,7 +650,7 @@ def _add_linear(
     nodes = [handles.node for handles in partial.bodies()]
 
     # 3. F0 = K q_s - f_wheels: the rigid model's equilibrium under its wheel loads
-    f_wheels = np.zeros(len(index))
+    f_wheels = np.zeros(len(q_s))
     offsets = _node_offsets(partial)
     for ws, pair in zip(partial.wheelsets, loads):
         coordinate_names = list(ws.dof)
@@ -646,7 +660,7 @@ def _add_linear(
             f_wheels[start : start + len(coordinate_names)] += t.T @ np.array(
                 [0.0, wheel_load, 0.0]
             )
-    force = k @ q_s - f_wheels if gravity else np.zeros(len(index))
+    force = k @ q_s - f_wheels if gravity else np.zeros(len(q_s))
     items = {
         "suspension": int(
             mbs.AddObject(
