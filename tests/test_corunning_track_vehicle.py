@@ -374,3 +374,18 @@ def test_newton_tolerance_per_wheelset():
 
     assert newton_tolerance(1) == NEWTON_ABSOLUTE_TOLERANCE
     assert newton_tolerance(4) == pytest.approx(2.0 * NEWTON_ABSOLUTE_TOLERANCE)
+
+
+@pytest.mark.slow
+def test_rear_wheelset_enters_a_zone_exactly_at_its_boundary(turnout, model):
+    # The rear wheelset (21.56 m behind the front one on the Manchester vehicle) reaches the
+    # diverging route's zone-2 start, 44.29 m, with the front at 65.85 m; x0 + v t lands there
+    # by round-off a hair short of the boundary, and the track must be built at the boundary
+    # (it raised "x = 44.29 m is outside zone 2 (44.29 m to 51 m)" before).
+    s = PassageSettings(route="diverging", speed_kmh=80.0, layers=3, x_start=65.6, x_end=66.1)
+    result = simulate_passage(turnout, s, model)
+    x = result.columns["x_m"]
+    assert x[-1] >= 66.1 - 1e-3
+    for side in ("right", "left"):  # the wheel's total (per-rail columns are NaN off-rail)
+        fz = result.columns[f"Fz_ws4_{side}_N"]
+        assert np.all(np.isfinite(fz)) and np.all(fz > 0.5 * STATIC_WHEEL_LOAD)

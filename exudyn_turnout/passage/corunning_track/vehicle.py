@@ -221,7 +221,15 @@ def _build(
     placements = []  #: per track (compiled): (params, x, v, {coordinate: (node, local)})
     for i, (ws, place) in enumerate(zip(build.wheelsets, places)):
         x_i = x_front + ws.x
-        x_track = turnout.x_min if place.clamped else turnout.x_max if place.beyond else x_i
+        # a wheelset placed on a zone boundary by round-off (x0 + v t) builds its track at the
+        # boundary itself: the zone's parameters are defined on [x_start, x_end] only
+        x_track = (
+            turnout.x_min
+            if place.clamped
+            else turnout.x_max
+            if place.beyond
+            else inside_zone(place.zone, x_i)
+        )
         params = co_running_parameters(
             turnout, zone=place.zone.index, layers=settings.layers, source=settings.source
         )
