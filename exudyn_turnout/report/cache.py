@@ -3,9 +3,9 @@
 A result is stored as ``<key>.npz`` (its arrays) and ``<key>.json`` (everything else)
 under the cache directory. The key is the SHA-256 of everything the result depends on:
 the turnout file's content, the options and settings, the frequencies, and the files of
-the package's stage folders that compute it (:func:`code_fingerprint`: a code change
-invalidates the entry). No
-pickle: a cache file cannot run code.
+the package's stage folders that compute it, with the report's own modules that run the
+computation or store its result (:data:`REPORT_RESULT_MODULES`) (:func:`code_fingerprint`:
+a code change invalidates the entry). No pickle: a cache file cannot run code.
 
 The default directory is ``$XDG_CACHE_HOME/exudyn_turnout`` (``~/.cache/exudyn_turnout``).
 """
@@ -31,6 +31,7 @@ __all__ = [
     "code_files",
     "code_fingerprint",
     "RESULT_STAGES",
+    "REPORT_RESULT_MODULES",
 ]
 
 #: Stage folders of the package whose code a cached result (FE receptance, FE static
@@ -38,6 +39,15 @@ __all__ = [
 #: ``corunning/`` code even for an FE receptance, and an FE receptance or stiffness profile is
 #: recomputed in seconds, so a narrower set would save little and could go stale.
 RESULT_STAGES = ("inputs", "wheel_rail", "corunning", "fe", "passage")
+
+#: Modules of ``report/`` whose code is on the path of a cached value, part of every key:
+#: ``passage_api`` picks the vehicle and makes the FE passage's options, ``passages`` runs the
+#: report's passage (:func:`~exudyn_turnout.report.passages.run_passage`) and rebuilds a
+#: cached one, and this module stores and reads every cached array. A change in them can
+#: change what the cache returns; the rest of ``report/`` only reads results (text, figures,
+#: criteria), so editing it keeps the cache (an FE passage of the full vehicle costs most of
+#: an hour).
+REPORT_RESULT_MODULES = ("report/cache.py", "report/passage_api.py", "report/passages.py")
 
 #: Top-level modules of the package that every stage may execute.
 _TOP_LEVEL = ("__init__.py", "provenance.py", "receptance.py")
@@ -114,8 +124,10 @@ def code_files(
 
     All ``*.py`` files of the stage folders, recursively (a stage reorganised into
     sub-folders stays covered, no module is named), the package's top-level modules
-    (``__init__.py``, ``provenance.py``, ``receptance.py``) and its data files that change
-    results (``data/**/*.toml``, the wheel and rail profiles).
+    (``__init__.py``, ``provenance.py``, ``receptance.py``), the report modules that run or
+    store a cached computation (:data:`REPORT_RESULT_MODULES`) and the package's data files
+    that change results (``data/**/*.toml``, the wheel and rail profiles). Files of these
+    that ``root`` does not have are left out.
 
     Parameters
     ----------
@@ -130,7 +142,8 @@ def code_files(
         Paths under ``root``, sorted, no duplicates.
     """
     root = _package_root() if root is None else Path(root)
-    files = {root / name for name in _TOP_LEVEL if (root / name).is_file()}
+    named = _TOP_LEVEL + REPORT_RESULT_MODULES
+    files = {root / name for name in named if (root / name).is_file()}
     for stage in stages:
         files.update(f for f in (root / stage).rglob("*.py") if "__pycache__" not in f.parts)
     for pattern in _DATA:
