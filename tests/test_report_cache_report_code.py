@@ -12,6 +12,9 @@ from __future__ import annotations
 import inspect
 from pathlib import Path
 
+import numpy as np
+import pytest
+
 import exudyn_turnout
 from exudyn_turnout.report import cache, passage_api, passages
 
@@ -48,3 +51,24 @@ def test_a_byte_in_a_report_result_module_changes_the_fingerprint(tmp_path):
     assert cache.code_fingerprint(("fe",), tmp_path) == key
     (tmp_path / "report/passages.py").write_text("edited")  # runs the cached passage
     assert cache.code_fingerprint(("fe",), tmp_path) != key
+
+
+def test_an_unusable_cache_location_warns_and_the_run_goes_on(tmp_path):
+    """A cache directory under a file (as XDG_CACHE_HOME set to a file) cannot be made:
+    saving warns once and stores nothing, loading finds nothing; no exception (issue 25)."""
+    blocker = tmp_path / "a_file"
+    blocker.write_text("not a directory")
+    store = cache.ResultCache(blocker / "exudyn_turnout")
+    key = cache.input_key("x", 1)
+    with pytest.warns(UserWarning, match=r"FE result cache .*a_file.* not usable.*without it"):
+        store.save(key, {"H": np.ones(3)}, {"computed": "now"})
+    assert store.load(key) is None
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a_file"]
+
+
+def test_a_usable_cache_round_trips(tmp_path):
+    store = cache.ResultCache(tmp_path / "c")
+    key = cache.input_key("y", 2)
+    store.save(key, {"H": np.arange(3.0)}, {"computed": "now"})
+    arrays, meta = store.load(key)
+    assert np.array_equal(arrays["H"], [0.0, 1.0, 2.0]) and meta == {"computed": "now"}

@@ -12,10 +12,12 @@ The default directory is ``$XDG_CACHE_HOME/exudyn_turnout`` (``~/.cache/exudyn_t
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import hashlib
 import json
 import os
+import warnings
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -204,9 +206,9 @@ class ResultCache:
         if self.directory is None:
             return None
         npz, meta = self._paths(key)
-        if not (npz.exists() and meta.exists()):
-            return None
         try:
+            if not (npz.is_file() and meta.is_file()):
+                return None
             with np.load(npz, allow_pickle=False) as data:
                 arrays = {k: data[k] for k in data.files}
             return arrays, json.loads(meta.read_text(encoding="utf-8"))
@@ -215,6 +217,9 @@ class ResultCache:
 
     def save(self, key: str, arrays: Mapping[str, np.ndarray], metadata: Mapping[str, Any]) -> None:
         """Store arrays and JSON-serialisable metadata under key (no-op when disabled).
+
+        A location that cannot be written (under a file, no permission, disk full) gives a
+        warning and stores nothing: the run goes on without the cache.
 
         Parameters
         ----------
@@ -227,11 +232,24 @@ class ResultCache:
         """
         if self.directory is None:
             return
-        self.directory.mkdir(parents=True, exist_ok=True)
         npz, meta = self._paths(key)
         tmp = npz.with_suffix(".tmp.npz")
         named = {name: np.asarray(value) for name, value in arrays.items()}
-        # mypy cannot rule out an array named like the keyword allow_pickle: bool
-        np.savez_compressed(tmp, **named)  # type: ignore[arg-type]
-        tmp.replace(npz)
-        meta.write_text(json.dumps(metadata, default=_jsonable, allow_nan=True), encoding="utf-8")
+        text = json.dumps(metadata, default=_jsonable, allow_nan=True)
+        try:
+            self.directory.mkdir(parents=True, exist_ok=True)
+            # mypy cannot rule out an array named like the keyword allow_pickle: bool
+            np.savez_compressed(tmp, **named)  # type: ignore[arg-type]
+            tmp.replace(npz)
+            meta.write_text(text, encoding="utf-8")
+        except OSError as err:
+            # an unusable cache location (under a file, not writable, disk full) costs the
+            # cache, not the run: the result is kept in memory and the run goes on
+            for path in (tmp, npz, meta):
+                with contextlib.suppress(OSError):
+                    path.unlink(missing_ok=True)
+            warnings.warn(
+                f"FE result cache {self.directory} is not usable "
+                f"({err.strerror or err}): running without it",
+                stacklevel=2,
+            )
