@@ -18,15 +18,15 @@ from exudyn_turnout.inputs.check_rail import CO_RUNNING_MODELS, co_running_model
 from exudyn_turnout.inputs.turnout import TurnoutFileError, default_turnout_path, load_turnout
 from exudyn_turnout.passage.common import lightest_rail_mass
 
-#: the header of the packaged file's table; the key goes right under it
-RAIL_LINE = "[check_rail.co_running]\n"
+#: the packaged file's choice in [check_rail.co_running]; the tests put theirs in its place
+MODEL_LINE = 'model = "bracket"\n'
 
 
 def _with_model(tmp_path, line: str):
     src = default_turnout_path().read_text()
-    assert src.count(RAIL_LINE) == 1
+    assert src.count(MODEL_LINE) == 1
     path = tmp_path / "t.toml"
-    path.write_text(src.replace(RAIL_LINE, f"{RAIL_LINE}{line}\n", 1))
+    path.write_text(src.replace(MODEL_LINE, f"{line}\n", 1))
     return path
 
 
@@ -43,6 +43,7 @@ def test_section_reader():
 
 def test_file_key_selects_table1(tmp_path):
     packaged = load_turnout()
+    assert packaged.raw["check_rail"]["co_running"]["model"] == "bracket"
     table1 = load_turnout(_with_model(tmp_path, 'model = "table1"'))
     bracket = load_turnout(_with_model(tmp_path, 'model = "bracket"'))
     assert check_rail_model(packaged, None) == "bracket"
@@ -89,3 +90,19 @@ def test_bad_model_is_one_line_exit_2(tmp_path, capsys, line, message):
     assert main(["params", "--turnout", str(path), "--zone", "1"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "t.toml" in err[0] and "check_rail.co_running" in err[0]
+
+
+def test_a_study_can_vary_the_model(tmp_path):
+    """The packaged file states its model, so a study factor can vary it by dotted path."""
+    from exudyn_turnout.studies import load_study
+
+    path = tmp_path / "s.toml"
+    path.write_text(
+        '[study]\nname = "check rail"\n[base]\nroute = "diverging"\nspeed_kmh = 60.0\n'
+        "[factors]\n"
+        '"turnout.check_rail.co_running.model" = ["bracket", "table1"]\n'
+    )
+    assert len(load_study(path).cases()) == 2
+    path.write_text(path.read_text().replace('"table1"]', '"tabel1"]'))
+    with pytest.raises(ValueError, match="check_rail.co_running model must be one of"):
+        load_study(path).cases()
