@@ -131,3 +131,9 @@ def test_getting_started_is_in_the_contents():
     toctree = index.split(".. toctree::", 1)[1]
     assert re.search(r"^\s+quickstart$", toctree, re.M)
     assert (DOCS / "quickstart.rst").is_file()
+
+
+def test_examples_index_describes_every_example():
+    index = (DOCS / "examples" / "index.rst").read_text(encoding="utf-8")
+    for script in sorted((ROOT / "examples").glob("*.py")):
+        assert f":doc:`generated/{script.stem}`" in index, script.name
