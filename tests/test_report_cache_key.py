@@ -16,9 +16,10 @@ from pathlib import Path
 import pytest
 
 #: Package folders whose modules do not change a passage's result: the report (it consumes
-#: results), the command line (it parses arguments and calls the report) and the plotting
-#: (it draws results). Their modules may be imported along with a passage but compute none of
-#: its numbers.
+#: results; its few modules that run or store a cached result are in the key anyway,
+#: ``report.cache.REPORT_RESULT_MODULES``), the command line (it parses arguments and calls
+#: the report) and the plotting (it draws results). Their modules may be imported along with
+#: a passage but compute none of its numbers.
 NOT_RESULTS = ("report", "cli", "plotting")
 
 

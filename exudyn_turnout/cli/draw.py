@@ -57,6 +57,19 @@ def _run_section(args: argparse.Namespace) -> int:
     return 0
 
 
+def _check_passage_options(args: argparse.Namespace, turnout) -> None:
+    """``--scale`` and the x range, before the passage runs (bad input: exit 2, not 3)."""
+    if not args.scale > 0.0:
+        raise UsageError(f"--scale must be > 0 (a magnification), got {args.scale:g}")
+    x_start = turnout.x_min if args.x_start is None else args.x_start
+    x_end = turnout.x_max if args.x_end is None else args.x_end
+    if not turnout.x_min <= x_start < x_end <= turnout.x_max:
+        raise UsageError(
+            f"--x-start {x_start:g} --x-end {x_end:g}: the x range must lie within the "
+            f"turnout ({turnout.x_min:g} to {turnout.x_max:g} m) with --x-start < --x-end"
+        )
+
+
 def _run_passage(args: argparse.Namespace) -> int:
     from exudyn_turnout.cli.passage import route_from_args, settings_from_args
     from exudyn_turnout.inputs.vehicle import load_vehicle
@@ -66,6 +79,7 @@ def _run_passage(args: argparse.Namespace) -> int:
 
     out = _check_file(args.out, ".gif")
     turnout = turnout_from_args(args)
+    _check_passage_options(args, turnout)
     vehicle = load_vehicle(args.vehicle)
     args.route = route_from_args(args, turnout)
     settings = settings_from_args(args, layers=args.layers, source=args.source)

@@ -16,6 +16,7 @@ import argparse
 import math
 import sys
 from collections.abc import Sequence
+from pathlib import Path
 from typing import Any
 
 from exudyn_turnout.cli.main import (
@@ -308,6 +309,29 @@ def _zones_and_positions(
     return [(turnout.zone(i), xs) for i, xs in sorted(out.items())]
 
 
+def _check_route_and_rails(
+    turnout: Turnout, route: str, rails: Sequence[str] | None, zones: Sequence[Zone]
+) -> None:
+    """``--route`` names a slot table of ``[layout.slots]`` and ``--rails`` are active in
+    every zone to fit: bad input is refused before any FE work (one line, exit 2)."""
+    from exudyn_turnout.inputs.toml_fields import did_you_mean
+
+    slots = turnout.raw["layout"].get("slots", {})
+    names = tuple(slots) if isinstance(slots, dict) else ()
+    if names and route not in names:
+        raise UsageError(
+            f"fit: --route {route}: {Path(turnout.source).name} has no [layout.slots.{route}]"
+            f"{did_you_mean(route, names)}"
+        )
+    for zone in zones:
+        for rail in rails or ():
+            if rail not in zone.active_rails:
+                raise UsageError(
+                    f"fit: --rails {rail}: not active in zone {zone.index} ({zone.name}; "
+                    f"active rails: {' '.join(zone.active_rails)})"
+                )
+
+
 def _run(args: argparse.Namespace) -> int:
     from exudyn_turnout.corunning.fit import FitOptions, fit_zone, fitted_set
     from exudyn_turnout.corunning.fitted import file_sha256, turnout_model_sha256, write_fitted
@@ -327,10 +351,12 @@ def _run(args: argparse.Namespace) -> int:
     turnout = load_turnout(args.turnout)
     if "layout" not in turnout.raw:
         raise UsageError(f"fit: {turnout.source} has no [layout] section (the FE model needs it)")
+    work = _zones_and_positions(turnout, args.positions, args.every)
+    _check_route_and_rails(turnout, args.route, args.rails, [zone for zone, _ in work])
     options = coarse_fe_options() if args.coarse else FEOptions()
     fit_options = FitOptions(f_min=args.fmin, f_max=args.fmax)
     zone_fits, rails_used = [], {}
-    for zone, xs in _zones_and_positions(turnout, args.positions, args.every):
+    for zone, xs in work:
         params = co_running_parameters(turnout, zone=zone.index, layers=args.layers)
         print(
             f"zone {zone.index}: FE receptances at {len(xs)} position(s)",

@@ -45,7 +45,12 @@ import statistics
 from collections.abc import Callable, Mapping
 
 from exudyn_turnout.corunning.fitted import TableEntry
-from exudyn_turnout.inputs.check_rail import CheckRailLateral, lateral_from_section
+from exudyn_turnout.inputs.check_rail import (
+    CO_RUNNING_MODELS,
+    CheckRailLateral,
+    co_running_model_from_section,
+    lateral_from_section,
+)
 from exudyn_turnout.inputs.turnout import Entry, Turnout, TurnoutFileError, Zone
 
 __all__ = [
@@ -60,8 +65,9 @@ __all__ = [
 
 #: How the co-running check rail's lateral entries are made: ``"bracket"`` derived from
 #: the FE check rail on its L-bracket (this module), ``"table1"`` Eqs 1-19 on Table 1 like
-#: a running rail (the paper's).
-CHECK_RAIL_MODELS = ("bracket", "table1")
+#: a running rail (the paper's). The turnout file chooses with ``[check_rail.co_running]``
+#: ``model`` (:data:`exudyn_turnout.inputs.check_rail.CO_RUNNING_MODELS`).
+CHECK_RAIL_MODELS = CO_RUNNING_MODELS
 
 
 def check_rail_lateral(turnout: Turnout) -> CheckRailLateral | None:
@@ -87,6 +93,15 @@ def check_rail_lateral(turnout: Turnout) -> CheckRailLateral | None:
         raise TurnoutFileError(f"{turnout.source}: check_rail.co_running {err}") from None
 
 
+def _file_model(turnout: Turnout) -> str | None:
+    """The ``model`` key of the file's ``[check_rail.co_running]``, or None."""
+    section = turnout.raw.get("check_rail", {})
+    try:
+        return co_running_model_from_section(section if isinstance(section, Mapping) else {})
+    except ValueError as err:
+        raise TurnoutFileError(f"{turnout.source}: check_rail.co_running.{err}") from None
+
+
 def check_rail_model(turnout: Turnout, model: str | None) -> str:
     """The check-rail model to use: the one asked for, or the default.
 
@@ -94,7 +109,8 @@ def check_rail_model(turnout: Turnout, model: str | None) -> str:
     ----------
     turnout : Turnout
     model : {"bracket", "table1"} or None
-        None: ``"bracket"`` if the file has ``[check_rail.co_running]``, else ``"table1"``.
+        None: the file's ``[check_rail.co_running]`` ``model`` if it has one, else
+        ``"bracket"`` if the file has ``[check_rail.co_running]``, else ``"table1"``.
 
     Returns
     -------
@@ -105,6 +121,8 @@ def check_rail_model(turnout: Turnout, model: str | None) -> str:
     ValueError
         An unknown model, or ``"bracket"`` for a file without ``[check_rail.co_running]``.
     """
+    if model is None:
+        model = _file_model(turnout)
     if model is None:
         return "bracket" if check_rail_lateral(turnout) is not None else "table1"
     if model not in CHECK_RAIL_MODELS:

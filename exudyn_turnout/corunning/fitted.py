@@ -75,9 +75,13 @@ FITTED_FORMAT = 2
 
 #: Sections of a turnout file that a fitted set depends on (the FE model it was fitted to
 #: and the co-running model it starts from): rails, pads, sleepers, ballast, the support
-#: polynomials, the third layer, the zones and the layout. Comments, formatting and the
-#: other sections (routes, regions, check rail, wheel/rail design, report, Table 2) do not
-#: enter :func:`turnout_model_sha256`, so editing them keeps a fitted file valid.
+#: polynomials, the third layer, the zones, the layout, the check rail's L-bracket in the
+#: FE (``check_rail.support``) and the co-running check rail (``check_rail.co_running``).
+#: A dotted name is a sub-table; it enters the hash only when the file has it (a turnout
+#: without it keeps the hash it had before it was added here). Comments, formatting and the
+#: other sections (routes, regions, the check rail's clearance and flares, wheel/rail
+#: design, report, Table 2) do not enter :func:`turnout_model_sha256`, so editing them keeps
+#: a fitted file valid.
 MODEL_SECTIONS = (
     "rail_types",
     "sleeper",
@@ -86,6 +90,8 @@ MODEL_SECTIONS = (
     "extra_layer",
     "zones",
     "layout",
+    "check_rail.support",
+    "check_rail.co_running",
 )
 
 #: SI upper bounds of fitted values (those of the turnout file, ``inputs.turnout.BOUNDS``).
@@ -221,7 +227,14 @@ def turnout_model_sha256(turnout: Turnout) -> str:
         64 hex digits; the same for two files that differ only in comments, layout of the
         text or sections outside :data:`MODEL_SECTIONS`.
     """
-    model = {name: turnout.raw.get(name) for name in MODEL_SECTIONS}
+    model: dict[str, Any] = {}
+    for name in MODEL_SECTIONS:
+        head, _, sub = name.partition(".")
+        value = turnout.raw.get(head)
+        if not sub:
+            model[name] = value
+        elif isinstance(value, Mapping) and sub in value:
+            model[name] = value[sub]
     text = json.dumps(model, sort_keys=True, separators=(",", ":"), default=repr)
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
@@ -460,8 +473,8 @@ def _check_turnout(check: _Check, head: Mapping[str, Any], turnout: Turnout) -> 
         raise check.fail(
             "fitted.turnout_model_sha256",
             f"does not match {source}: the set was fitted to a turnout whose rails, pads, "
-            "sleepers, ballast, zones or layout differ; refit with exudyn-turnout fit "
-            f"--turnout {source}",
+            "sleepers, ballast, zones, layout or check rail's support differ; refit with "
+            f"exudyn-turnout fit --turnout {source}",
         )
     return None
 

@@ -36,6 +36,8 @@ __all__ = [
     "support_from_section",
     "CheckRailLateral",
     "lateral_from_section",
+    "CO_RUNNING_MODELS",
+    "co_running_model_from_section",
     "flare_opening",
     "flare_slope",
     "entry_lateral_velocity",
@@ -53,6 +55,12 @@ CHECK_RAIL_KEYS = (
 
 #: Run-in shapes of a check rail's flared ends (see the module docstring).
 FLARE_SHAPES = ("straight", "tangential")
+
+#: How the co-running check rail (slot r3) is made, the ``model`` key of
+#: ``[check_rail.co_running]``: ``"bracket"`` from the FE check rail on its L-bracket (the
+#: section's values, :mod:`exudyn_turnout.corunning.check_rail`), ``"table1"`` from Eqs 1-19
+#: on Table 1 like a running rail (the paper's).
+CO_RUNNING_MODELS = ("bracket", "table1")
 
 
 def _check_shape(shape: str) -> None:
@@ -266,8 +274,8 @@ def lateral_from_section(check_rail: Mapping) -> CheckRailLateral | None:
     lists = ("x", "static_stiffness", "resonance_frequency", "resonance_stiffness")
     known = ("rail",) + lists
     for key in section:
-        if key not in known:
-            raise ValueError(f"{key} is not a field{did_you_mean(key, known)}")
+        if key not in known + ("model",):
+            raise ValueError(f"{key} is not a field{did_you_mean(key, known + ('model',))}")
     for key in known:
         if key not in section:
             raise ValueError(f"{key} is missing")
@@ -283,3 +291,38 @@ def lateral_from_section(check_rail: Mapping) -> CheckRailLateral | None:
             raise ValueError(f"{key} must be a list of numbers, got {raw!r}")
         values[key] = tuple(float(v) for v in raw)
     return CheckRailLateral(rail=rail, **values)
+
+
+def co_running_model_from_section(check_rail: Mapping) -> str | None:
+    """The ``model`` key of a ``[check_rail]`` section's ``co_running`` table, if given.
+
+    ``model = "table1"`` keeps the FE values in the file but builds the co-running check rail
+    from Eqs 1-19 on Table 1 (the paper's); ``"bracket"`` (the default when the table is
+    there) from the FE values.
+
+    Parameters
+    ----------
+    check_rail : mapping
+        The ``[check_rail]`` section.
+
+    Returns
+    -------
+    str or None
+        One of :data:`CO_RUNNING_MODELS`; None when there is no ``co_running`` table or it
+        has no ``model`` key.
+
+    Raises
+    ------
+    ValueError
+        ``model`` is not one of :data:`CO_RUNNING_MODELS`: the message names the key.
+    """
+    section = check_rail.get("co_running")
+    if not isinstance(section, Mapping) or "model" not in section:
+        return None
+    model = section["model"]
+    if not isinstance(model, str) or model not in CO_RUNNING_MODELS:
+        hint = did_you_mean(model, CO_RUNNING_MODELS) if isinstance(model, str) else ""
+        raise ValueError(
+            f"model must be one of {', '.join(CO_RUNNING_MODELS)}, got {model!r}{hint}"
+        )
+    return model

@@ -26,6 +26,7 @@ import numpy as np
 from exudyn_turnout.inputs.check_rail import (
     CHECK_RAIL_KEYS,
     FLARE_SHAPES,
+    co_running_model_from_section,
     lateral_from_section,
     support_from_section,
 )
@@ -570,6 +571,7 @@ def _check_rail(r: FieldReader) -> None:
         raise r.fail("check_rail.support", str(err)) from None
     try:
         lateral_from_section(section if isinstance(section, Mapping) else {})
+        co_running_model_from_section(section if isinstance(section, Mapping) else {})
     except ValueError as err:
         raise r.fail("check_rail.co_running", str(err)) from None
 

@@ -3,19 +3,21 @@
 A result is stored as ``<key>.npz`` (its arrays) and ``<key>.json`` (everything else)
 under the cache directory. The key is the SHA-256 of everything the result depends on:
 the turnout file's content, the options and settings, the frequencies, and the files of
-the package's stage folders that compute it (:func:`code_fingerprint`: a code change
-invalidates the entry). No
-pickle: a cache file cannot run code.
+the package's stage folders that compute it, with the report's own modules that run the
+computation or store its result (:data:`REPORT_RESULT_MODULES`) (:func:`code_fingerprint`:
+a code change invalidates the entry). No pickle: a cache file cannot run code.
 
 The default directory is ``$XDG_CACHE_HOME/exudyn_turnout`` (``~/.cache/exudyn_turnout``).
 """
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import hashlib
 import json
 import os
+import warnings
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -31,6 +33,7 @@ __all__ = [
     "code_files",
     "code_fingerprint",
     "RESULT_STAGES",
+    "REPORT_RESULT_MODULES",
 ]
 
 #: Stage folders of the package whose code a cached result (FE receptance, FE static
@@ -38,6 +41,15 @@ __all__ = [
 #: ``corunning/`` code even for an FE receptance, and an FE receptance or stiffness profile is
 #: recomputed in seconds, so a narrower set would save little and could go stale.
 RESULT_STAGES = ("inputs", "wheel_rail", "corunning", "fe", "passage")
+
+#: Modules of ``report/`` whose code is on the path of a cached value, part of every key:
+#: ``passage_api`` picks the vehicle and makes the FE passage's options, ``passages`` runs the
+#: report's passage (:func:`~exudyn_turnout.report.passages.run_passage`) and rebuilds a
+#: cached one, and this module stores and reads every cached array. A change in them can
+#: change what the cache returns; the rest of ``report/`` only reads results (text, figures,
+#: criteria), so editing it keeps the cache (an FE passage of the full vehicle costs most of
+#: an hour).
+REPORT_RESULT_MODULES = ("report/cache.py", "report/passage_api.py", "report/passages.py")
 
 #: Top-level modules of the package that every stage may execute.
 _TOP_LEVEL = ("__init__.py", "provenance.py", "receptance.py")
@@ -114,8 +126,10 @@ def code_files(
 
     All ``*.py`` files of the stage folders, recursively (a stage reorganised into
     sub-folders stays covered, no module is named), the package's top-level modules
-    (``__init__.py``, ``provenance.py``, ``receptance.py``) and its data files that change
-    results (``data/**/*.toml``, the wheel and rail profiles).
+    (``__init__.py``, ``provenance.py``, ``receptance.py``), the report modules that run or
+    store a cached computation (:data:`REPORT_RESULT_MODULES`) and the package's data files
+    that change results (``data/**/*.toml``, the wheel and rail profiles). Files of these
+    that ``root`` does not have are left out.
 
     Parameters
     ----------
@@ -130,7 +144,8 @@ def code_files(
         Paths under ``root``, sorted, no duplicates.
     """
     root = _package_root() if root is None else Path(root)
-    files = {root / name for name in _TOP_LEVEL if (root / name).is_file()}
+    named = _TOP_LEVEL + REPORT_RESULT_MODULES
+    files = {root / name for name in named if (root / name).is_file()}
     for stage in stages:
         files.update(f for f in (root / stage).rglob("*.py") if "__pycache__" not in f.parts)
     for pattern in _DATA:
@@ -191,9 +206,9 @@ class ResultCache:
         if self.directory is None:
             return None
         npz, meta = self._paths(key)
-        if not (npz.exists() and meta.exists()):
-            return None
         try:
+            if not (npz.is_file() and meta.is_file()):
+                return None
             with np.load(npz, allow_pickle=False) as data:
                 arrays = {k: data[k] for k in data.files}
             return arrays, json.loads(meta.read_text(encoding="utf-8"))
@@ -202,6 +217,9 @@ class ResultCache:
 
     def save(self, key: str, arrays: Mapping[str, np.ndarray], metadata: Mapping[str, Any]) -> None:
         """Store arrays and JSON-serialisable metadata under key (no-op when disabled).
+
+        A location that cannot be written (under a file, no permission, disk full) gives a
+        warning and stores nothing: the run goes on without the cache.
 
         Parameters
         ----------
@@ -214,11 +232,24 @@ class ResultCache:
         """
         if self.directory is None:
             return
-        self.directory.mkdir(parents=True, exist_ok=True)
         npz, meta = self._paths(key)
         tmp = npz.with_suffix(".tmp.npz")
         named = {name: np.asarray(value) for name, value in arrays.items()}
-        # mypy cannot rule out an array named like the keyword allow_pickle: bool
-        np.savez_compressed(tmp, **named)  # type: ignore[arg-type]
-        tmp.replace(npz)
-        meta.write_text(json.dumps(metadata, default=_jsonable, allow_nan=True), encoding="utf-8")
+        text = json.dumps(metadata, default=_jsonable, allow_nan=True)
+        try:
+            self.directory.mkdir(parents=True, exist_ok=True)
+            # mypy cannot rule out an array named like the keyword allow_pickle: bool
+            np.savez_compressed(tmp, **named)  # type: ignore[arg-type]
+            tmp.replace(npz)
+            meta.write_text(text, encoding="utf-8")
+        except OSError as err:
+            # an unusable cache location (under a file, not writable, disk full) costs the
+            # cache, not the run: the result is kept in memory and the run goes on
+            for path in (tmp, npz, meta):
+                with contextlib.suppress(OSError):
+                    path.unlink(missing_ok=True)
+            warnings.warn(
+                f"FE result cache {self.directory} is not usable "
+                f"({err.strerror or err}): running without it",
+                stacklevel=2,
+            )
