@@ -260,7 +260,10 @@ def build_creep_table(
         sign convention of :func:`.creep.polach_creep_forces` (e.g. an exact-theory
         solver); called once per node (``n_ratio n_size n_alpha n_beta`` calls) on a patch of
         ``sqrt(a b)`` = 5 mm, N = 10 kN, mu = 0.3, G = 81 GPa.  None: FASTSIM
-        (:func:`.fastsim.fastsim_ellipse`), vectorised.
+        (:func:`.fastsim.fastsim_ellipse`), vectorised.  The default grid has 722,007
+        nodes: an exact-theory solver taking 0.1-1 s per solve (a boundary-element
+        solution on 16-24 elements across the patch, one core) would need 20-200 hours;
+        a grid of 13 x 17 x 9 x 17 nodes (n_ratio, n_size, n_alpha, n_beta) 1-10 hours.
 
     Returns
     -------
@@ -540,14 +543,14 @@ def table_creep_forces(
                                           normal_force, friction))
     )  # fmt: skip
     shape = arrays[0].shape
-    xi, eta, phi, a_, b_, q, mu = (np.ascontiguousarray(v.ravel()) for v in arrays)
+    xi, eta, phi, a_, b_, q, mu = (np.array(v, dtype=float).ravel() for v in arrays)
     usable = (a_ > 0.0) & (b_ > 0.0)
     c = kalker_coefficients(
         np.where(usable, a_, 1.0), np.where(usable, b_, 1.0), table.settings.poisson
     )
     out = _many(
         table.packed, xi, eta, phi, a_, b_, q, mu, float(shear_modulus),
-        *(np.ascontiguousarray(np.broadcast_to(v, xi.shape), dtype=float)
+        *(np.array(np.broadcast_to(v, xi.shape), dtype=float)
           for v in (c.c11, c.c22, c.c23)),
     )  # fmt: skip
     return CreepForces(longitudinal=out[:, 0].reshape(shape), lateral=out[:, 1].reshape(shape))
