@@ -4,8 +4,10 @@ implementations and against closed forms.
 References:
 - table geometry: :func:`exudyn_turnout.wheel_rail.tables.lookup_values` (tested against
   CONTACT's reference outputs in test_wheel_rail_contact_references.py);
-- creep: :func:`exudyn_turnout.wheel_rail.creep.polach_creep_forces` (Polach 1999) and its
-  small-creepage limit, Kalker's linear theory F_x = -G a b C11 xi (Kalker 1967);
+- creep: the kernel's law, the FASTSIM table (:func:`exudyn_turnout.wheel_rail.creep_table.
+  table_creep_forces`), or Polach's (:func:`exudyn_turnout.wheel_rail.creep.
+  polach_creep_forces`, Polach 1999), and their small-creepage limit, Kalker's linear
+  theory F_x = -G a b C11 xi (Kalker 1967);
 - normal force: the node's law N_ref (delta / DELTA_REF)^n (wheel_rail/nonhertz.py; Hertz
   F = C_H delta^1.5 with the tabulated C_H where Hertz fits, Johnson 1985, Eq 4.39-4.41);
 - generalised forces: at v = 0 without damping the normal forces derive from the potential
