@@ -6,11 +6,14 @@ and ``contact_forces`` is called for wheelset states swept along the route (late
 -11 ... +11 mm, tread penetration about 0.1 mm, a small yaw and speed 80 km/h, so that
 tread, flange and check-rail contacts all carry load somewhere).
 
+Rows: this kernel with its default creep law (FASTSIM's forces from the creep table of
+``wheel_rail/creep_table.py``) and with Polach's law (``pack_tables(..., creep_law=
+"polach")``), the cost of the creep law alone.
 Yardstick: the same calls with every node's law replaced by Hertz's (exponents 1.5, 0.5,
 0.5; the packed arrays are otherwise identical), and, with ``--baseline FILE``, the kernel
 of an older revision (``git show <rev>:exudyn_turnout/wheel_rail/kernel.py > FILE``),
-loaded beside this one and fed the same tables without the per-node law fields, all in
-the same run.
+loaded beside this one and fed the same tables (without the per-node law fields if it
+predates them), all in the same run.
 
 Run: ``python benchmarks/bench_contact_kernel.py [--calls N] [--baseline FILE]``.
 """
@@ -105,8 +108,10 @@ def main(argv: list[str] | None = None) -> int:
     n_rows = packed.n_bodies * packed.n_candidates
     forces = np.zeros(7)
     details = np.zeros((n_rows, len(kernel.DETAIL_FIELDS)))
+    polach_packed = kernel.pack_tables(tables, sides, coordinates, ranges, creep_law="polach")
     callers = [
         ("this kernel, per-node laws (KP where Hertz does not fit)", kernel, packed, details),
+        ("this kernel, per-node laws, Polach's creep law", kernel, polach_packed, details),
         ("this kernel, Hertz at every node", kernel, hertz_packed, details),
     ]
     if args.baseline:
@@ -115,11 +120,14 @@ def main(argv: list[str] | None = None) -> int:
         old = importlib.util.module_from_spec(spec)
         sys.modules["baseline_kernel"] = old
         spec.loader.exec_module(old)
-        old_tables = [
-            SimpleNamespace(values=t.values, blendable=t.blendable, x=t.x, shift=t.shift)
-            for t in hertz_tables
-        ]
-        old_packed = old.pack_tables(old_tables, sides, coordinates, ranges)
+        if hasattr(old, "PATCH_FIELDS"):  # a kernel with per-node laws: the same tables
+            old_packed = old.pack_tables(tables, sides, coordinates, ranges)
+        else:
+            old_tables = [
+                SimpleNamespace(values=t.values, blendable=t.blendable, x=t.x, shift=t.shift)
+                for t in hertz_tables
+            ]
+            old_packed = old.pack_tables(old_tables, sides, coordinates, ranges)
         old_details = np.zeros((n_rows, len(old.DETAIL_FIELDS)))
         callers.append((f"baseline kernel ({args.baseline})", old, old_packed, old_details))
     best = [np.inf] * len(callers)

@@ -35,10 +35,14 @@ def test_least_damped_mode_below_and_at_the_critical_speed():
     assert low.name == "car body lower sway"
     assert 0.5 < low.frequency_hz < 0.7
     assert 0.15 < low.damping_ratio < 0.25
-    # at 425 km/h the bogie hunting mode is at the stability limit (validation/hunting.md:
-    # linear critical speed 425-430 km/h, 5.13 Hz), between Klingel's rigid-bogie and
-    # free-wheelset frequencies for lambda = 0.372 (4.5 / 8.9 Hz at 193.75 km/h, x 425/193.75)
-    high = least_damped_lateral(425.0)
+    # at 340 km/h the bogie hunting mode is at the stability limit: linear critical speed
+    # with the kernel's FASTSIM creep table measured 340 km/h, 4.29 Hz (damping ratio
+    # +0.0066 / -0.0000 / -0.0065 at 335 / 340 / 345 km/h).  With Polach's law it was
+    # 425-430 km/h, 5.13 Hz (validation/hunting.md, written with Polach: to be regenerated);
+    # FASTSIM's creep forces saturate earlier at moderate creepage (Vermeulen-Johnson's
+    # curve, tests/test_wheel_rail_fastsim.py), and its slopes at the tread's spin
+    # operating point are 3-5 % below Polach's.
+    high = least_damped_lateral(340.0)
     assert high.name == "bogie hunting"
     assert abs(high.damping_ratio) < 0.02
     assert 4.0 < high.frequency_hz < 6.5

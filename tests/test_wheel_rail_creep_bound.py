@@ -166,11 +166,12 @@ def test_spin_uses_up_adhesion():
         assert np.all(np.abs(spun) <= np.abs(plain) * (1.0 + 1e-12))
 
 
-def test_every_contact_of_the_compiled_kernel_keeps_the_bound(tmp_path):
+@pytest.mark.parametrize("creep_law", ["fastsim", "polach"])
+def test_every_contact_of_the_compiled_kernel_keeps_the_bound(tmp_path, creep_law):
     """Property test through the whole kernel (issue 22: 1.31 mu N at a flange root in a
     full-vehicle curving run): random wheelset states on plain track and on a crossing
     (two-point contact, rows blended from several table nodes), every contact row
-    |(F_x, F_t)| <= mu N."""
+    |(F_x, F_t)| <= mu N, with the kernel's creep law (the FASTSIM table) and Polach's."""
     from exudyn_turnout.wheel_rail.data import s1002_wheel, standard_track, uic60_rail
     from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
     from exudyn_turnout.wheel_rail.sections import (
@@ -194,8 +195,9 @@ def test_every_contact_of_the_compiled_kernel_keeps_the_bound(tmp_path):
     crossing = SectionGrid(x=x, y=grid, z=np.fmax(rails["wing"].z, rails["nose"].z), name="x")
     crossing_table = build_contact_table(wheel, crossing, setup.taping_line, cache_dir=tmp_path)
     packed = kernel.pack_tables(
-        [plain, crossing_table], [1, -1], [(7, 8), (9, 10)], [(-10.0, 70.0), (-0.2, 0.6)]
-    )
+        [plain, crossing_table], [1, -1], [(7, 8), (9, 10)], [(-10.0, 70.0), (-0.2, 0.6)],
+        creep_law=creep_law,
+    )  # fmt: skip
     rng = np.random.default_rng(11)
     n_q, columns = 11, kernel.DETAIL_FIELDS
     normal, fx, ft = (columns.index(c) for c in ("normal", "Fx", "Ft"))

@@ -4,8 +4,10 @@ implementations and against closed forms.
 References:
 - table geometry: :func:`exudyn_turnout.wheel_rail.tables.lookup_values` (tested against
   CONTACT's reference outputs in test_wheel_rail_contact_references.py);
-- creep: :func:`exudyn_turnout.wheel_rail.creep.polach_creep_forces` (Polach 1999) and its
-  small-creepage limit, Kalker's linear theory F_x = -G a b C11 xi (Kalker 1967);
+- creep: the kernel's law, the FASTSIM table (:func:`exudyn_turnout.wheel_rail.creep_table.
+  table_creep_forces`), or Polach's (:func:`exudyn_turnout.wheel_rail.creep.
+  polach_creep_forces`, Polach 1999), and their small-creepage limit, Kalker's linear
+  theory F_x = -G a b C11 xi (Kalker 1967);
 - normal force: the node's law N_ref (delta / DELTA_REF)^n (wheel_rail/nonhertz.py; Hertz
   F = C_H delta^1.5 with the tabulated C_H where Hertz fits, Johnson 1985, Eq 4.39-4.41);
 - generalised forces: at v = 0 without damping the normal forces derive from the potential
@@ -311,3 +313,44 @@ def test_normal_force_and_semi_axes_follow_the_node_law(crossing_table):
                 kinds.add(round(float(node[fields["semi_hertzian"]]), 6))
     # Hertz nodes, fully semi-Hertzian nodes and blended ones were all checked
     assert min(kinds) == 0.0 and max(kinds) == 1.0 and len(kinds) > 2
+
+
+@pytest.mark.parametrize("creep_law", ["fastsim", "polach"])
+def test_creep_forces_are_the_selected_law_at_the_rows_creepages(wheel, creep_law):
+    """The flange contact of a yawed, sliding wheelset: every row's (F_x, F_t) is
+    the selected law (the FASTSIM table, or Polach's) at the row's creepages, semi-axes and
+    normal force (at a table node: a row blended from several nodes holds the nodes' mean
+    creepages and axes but the sum of their forces); the two laws differ there (spin on
+    the flange)."""
+    from exudyn_turnout.wheel_rail.creep_table import creep_table, table_creep_forces
+
+    track = standard_track(SETUP, np.array([-10.0, 70.0]))
+    table = build_contact_table(wheel, track, SETUP.taping_line)
+    packed = kernel.pack_tables(
+        [table, table], [1, -1], [(7, 8), (9, 10)], [(-10, 70)] * 2, creep_law=creep_law
+    )
+    q = np.zeros(N_Q)
+    # at a table node (x and shift), so that each row is one node's contact point
+    x = float(table.x[len(table.x) // 2])
+    shift = float(table.shift[np.argmin(np.abs(table.shift - 0.0065))])
+    q[0], q[1], q[3] = shift, 7e-4, 4e-3  # on the left flange (~100 kN), yawed
+    q_t = np.zeros(N_Q)
+    q_t[0], q_t[4] = 0.05, 0.3
+    mu, v = 0.35, 20.0
+    _, details = _evaluate(packed, x, q, q_t, constants=(v, 0.46, mu, G, 0.0, 0.0))
+    rows = details[details[:, _column("normal")] > 0]
+    assert len(rows) >= 1 and np.max(np.abs(rows[:, _column("spin")])) > 0.5  # a flange
+    args = [rows[:, _column(n)] for n in ("xi", "eta", "spin", "a", "b", "normal")]
+    if creep_law == "fastsim":
+        expected = table_creep_forces(creep_table(), *args, mu, G)
+        other = polach_creep_forces(*args, mu, G, 0.28)
+    else:
+        expected = polach_creep_forces(*args, mu, G, 0.28)
+        other = table_creep_forces(creep_table(), *args, mu, G)
+    scale = mu * rows[:, _column("normal")]
+    assert np.all(np.abs(rows[:, _column("Fx")] - expected.longitudinal) <= 1e-9 * scale)
+    assert np.all(np.abs(rows[:, _column("Ft")] - expected.lateral) <= 1e-9 * scale)
+    difference = np.hypot(
+        expected.longitudinal - other.longitudinal, expected.lateral - other.lateral
+    )
+    assert difference.max() > 0.01 * mu * rows[:, _column("normal")].max()

@@ -79,12 +79,16 @@ both non-zero the magnitude is Kalker's and the direction that of (xi, eta).  Wi
 spin both non-zero the linear spin force is Kalker's times |s_yC| / s_C (Polach's
 approximation; smaller than Kalker's where |xi| >> |phi a|).
 
-Why Polach and not FASTSIM: it is closed form (a few dozen flops per contact, no strip
-discretisation), smooth in the creepages (good for the implicit integrator's Newton
-iterations), vectorises over all contacts of a step, and reproduces Kalker's linear
-theory for small creepage and Coulomb saturation at large creepage, including spin, which
-the flange and crossing contacts need.  FASTSIM would give the traction distribution (for
-wear maps) at ~100 times the cost; not needed here.
+Polach and FASTSIM.  Polach's law is closed form (a few dozen flops per contact), smooth
+in the creepages and reproduces Kalker's linear theory and Coulomb's saturation, but its
+spin force is an approximation: against CONTACT's reference outputs (Kalker's exact
+theory on the real patch) its lateral force was 4.4 times too large in the
+spin-dominated wing_brute case and of the wrong sign in cw_interrupt#1.  The contact
+kernel therefore uses Kalker's FASTSIM (:mod:`.fastsim`), tabulated once
+(:mod:`.creep_table`), whose lateral force there is 16 % and 6 % off, with the right
+signs (tests/test_wheel_rail_fastsim_contact.py); Polach's law stays selectable in the kernel
+(``kernel.pack_tables(..., creep_law="polach")``) and is what
+:func:`.references.contact_at_reference` reports.
 
 Sign convention: forces on the wheel, opposing the creepages (Kalker's convention).
 """

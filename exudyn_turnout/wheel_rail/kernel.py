@@ -16,8 +16,10 @@ call, for every body and every candidate at the current state:
    damping ``c d(delta)/dt`` (never pulling).  The semi-axes for the creep law follow the
    same per-node law (Hertz's ellipse, or the equivalent ellipse of the KP patch).
 3. **Creepages** at the contact point from the wheelset's motion relative to the rail body
-   (derivation below) and **creep forces** by Polach's method (:func:`.creep.polach_creep_forces`,
-   the same formulas compiled), with Kalker's coefficients for the node's ellipse shape.
+   (derivation below) and **creep forces** of Kalker's FASTSIM, interpolated in the creep
+   table of :mod:`.creep_table` (``|F| <= mu N`` by construction), with Kalker's
+   coefficients for the node's ellipse shape; Polach's method
+   (:func:`.creep.polach_creep_forces`, compiled) is selectable in :func:`pack_tables`.
 4. **Generalised forces** on the wheelset (lateral, vertical, roll, yaw, spin perturbation)
    and, opposite, on each rail body's lateral and vertical coordinate.
 
@@ -71,6 +73,11 @@ import numba
 import numpy as np
 
 from exudyn_turnout.wheel_rail.creep import kalker_coefficients
+from exudyn_turnout.wheel_rail.creep_table import (
+    CreepTableSettings,
+    creep_table,
+    table_creep_scalar,
+)
 from exudyn_turnout.wheel_rail.hertz import curvature_sums, ellipse_parameter
 from exudyn_turnout.wheel_rail.lead import MAX_LEAD_SINE
 from exudyn_turnout.wheel_rail.nonhertz import DELTA_REF, PATCH_FIELDS
@@ -274,6 +281,7 @@ def pack_tables(
     names: Sequence[str] | None = None,
     modulus: float = 2.1e11 / (2.0 * (1.0 - 0.3**2)),
     poisson: float = 0.28,
+    creep_law: str = "fastsim",
 ) -> PackedTables:
     """Pack the tables of one wheelset's rail bodies for :func:`contact_forces`.
 
@@ -294,11 +302,18 @@ def pack_tables(
         Pa, contact modulus E* (default steel, E = 210 GPa, nu = 0.3).
     poisson : float
         Poisson's ratio for Kalker's coefficients (0.28: Kalker's tables as used by CONTACT).
+    creep_law : str
+        "fastsim": FASTSIM's forces from the creep table (:mod:`.creep_table`, the
+        default); "polach": Polach's method (:func:`polach_scalar`).
 
     Returns
     -------
     PackedTables
+        Its ``values`` end with the creep law: the packed creep table (FASTSIM), then
+        its index and the law (1 FASTSIM, 0 Polach).
     """
+    if creep_law not in ("fastsim", "polach"):
+        raise ValueError(f"creep_law must be 'fastsim' or 'polach', not {creep_law!r}")
     values, blends, xs, layout, bounds = [], [], [], [], []
     v_off = b_off = x_off = 0
     for table, side, (i_y, i_z), (x_from, x_to) in zip(
@@ -317,8 +332,14 @@ def pack_tables(
         v_off += fields.size
         b_off += n_x * n_s
         x_off += n_x
+    # the creep law behind the node values: [table..., index of the table, law]
+    law = np.zeros(0)
+    if creep_law == "fastsim":
+        law = creep_table(CreepTableSettings(poisson=poisson)).packed
+    values.append(law)
+    values.append(np.array([float(v_off), 1.0 if creep_law == "fastsim" else 0.0]))
     return PackedTables(
-        values=np.concatenate(values) if values else np.zeros(0),
+        values=np.concatenate(values),
         blendable=np.concatenate(blends) if blends else np.zeros(0, np.uint8),
         x=np.concatenate(xs) if xs else np.zeros(0),
         layout=np.array(layout, dtype=np.int64).reshape(-1, 9),
@@ -412,10 +433,12 @@ def _interpolate(values, v_base, n_s, n_c, c, tx, ts, blend, out):  # pragma: no
 
 @numba.njit(cache=True)
 def _point(
-    fields, gap, weight, s, row, i_y, i_z, q, q_t, shift_t, z_irr, omega, constants, forces, details
-):  # pragma: no cover (compiled)
+    fields, gap, weight, s, row, i_y, i_z, q, q_t, shift_t, z_irr, omega, constants, forces,
+    details, creep, creep_at,
+):  # pragma: no cover (compiled)  # fmt: skip
     """Forces of one contact point (node or interpolated ``fields``, normal ``gap`` at zero
-    lift), times ``weight``, added to ``forces`` and ``details[row]``; 1 if it carries load."""
+    lift), times ``weight``, added to ``forces`` and ``details[row]``; 1 if it carries load.
+    ``creep[creep_at:]`` holds the creep table (``creep_at`` < 0: Polach's law)."""
     v, mu, G, damping, kappa = (
         constants[0], constants[2], constants[3], constants[4], constants[5]
     )  # fmt: skip
@@ -467,9 +490,15 @@ def _point(
         # the wheel's material at the lead moves vertically at -omega x_lead
         eta = (u_y * cos_g + (lift_t - omega * x_lead) * s * sin_g) / v
         spin = (-s * omega * sin_g + psi_t * cos_g) / v
-        fx, ft = polach_scalar(
-            xi, eta, spin, a, b, normal, mu, G, fields[_C11], fields[_C22], fields[_C23]
-        )
+        if creep_at >= 0:  # FASTSIM's forces from the creep table (.creep_table)
+            fx, ft = table_creep_scalar(
+                creep, creep_at, xi, eta, spin, a, b, normal, mu, G, fields[_C11],
+                fields[_C22], fields[_C23],
+            )  # fmt: skip
+        else:
+            fx, ft = polach_scalar(
+                xi, eta, spin, a, b, normal, mu, G, fields[_C11], fields[_C22], fields[_C23]
+            )
     F_Y = weight * (-s * sin_g * normal + cos_g * ft)
     F_Z = weight * (cos_g * normal + s * sin_g * ft)
     fx *= weight
@@ -552,6 +581,8 @@ def contact_forces(
         return 0
     y_w, phi = q[0], q[2]
     omega = (v / r0 + q_t[4]) if v > 0.0 else 0.0
+    n_values = values.shape[0]  # the creep law is packed behind the nodes (pack_tables)
+    creep_at = int(values[n_values - 2]) if values[n_values - 1] > 0.5 else -1
     fields = np.empty(_N_FIELDS)
     n_max = details.shape[0] // max(layout.shape[0], 1)
     loaded = 0
@@ -595,7 +626,7 @@ def contact_forces(
                 if fields[_GAP] < _EMPTY:
                     loaded += _point(
                         fields, fields[_GAP], 1.0, s, k * n_max + c, i_y, i_z, q, q_t, shift_t,
-                        z_irr, omega, constants, forces, details,
+                        z_irr, omega, constants, forces, details, values, creep_at,
                     )  # fmt: skip
             continue
         # cell whose nodes hold different contact points.  Per shift node of the cell and
@@ -623,7 +654,7 @@ def contact_forces(
                     gap = fields[_GAP] - fields[_SIN] * (shift - shift_node)
                     loaded += _point(
                         fields, gap, wb, s, k * n_max + c, i_y, i_z, q, q_t, shift_t, z_irr,
-                        omega, constants, forces, details,
+                        omega, constants, forces, details, values, creep_at,
                     )  # fmt: skip
                     continue
                 for da in range(2):
@@ -636,7 +667,7 @@ def contact_forces(
                     gap = fields[_GAP] - fields[_SIN] * (shift - shift_node)
                     loaded += _point(
                         fields, gap, w, s, k * n_max + c, i_y, i_z, q, q_t, shift_t, z_irr,
-                        omega, constants, forces, details,
+                        omega, constants, forces, details, values, creep_at,
                     )  # fmt: skip
         for c in range(n_c):  # positions: averages over the nodes that hold the point
             row = k * n_max + c

@@ -1,0 +1,556 @@
+"""Creep forces from a precomputed table (FASTSIM, or any creep solver), for the kernel.
+
+Why a table.  FASTSIM (:mod:`.fastsim`) on a converged grid costs about 130 microseconds per
+contact, far more than the kernel's budget; its forces, however, depend on four numbers
+only, so they are computed once, stored, and interpolated.
+
+Normalisation
+-------------
+With Kalker's coefficients C11, C22, C23 of the ellipse a x b (:mod:`.creep`), the normal
+force N and friction mu, the creepages are normalised as
+
+    xi' = G a b C11 xi / (3 mu N),  eta' = G a b C22 eta / (3 mu N),
+    phi' = G (a b)^1.5 C23 phi / (3 mu N)
+
+(:func:`normalised_creepages`; xi' is Vermeulen & Johnson's (1964) creepage, which
+saturates a pure creepage at xi' = 1).  In these, Kalker's linear theory is
+``F / (mu N) = -3 (xi', eta' + phi')`` for every ellipse, and the forces of the simplified
+theory (and of the exact one: both are invariant under a common scaling of lengths,
+loads and moduli) divided by mu N are functions of the ellipse ratio and (xi', eta',
+phi') alone.  The table stores ``f = F / (mu N)`` (so ``|f| <= 1``) over four
+coordinates, multilinear and uniform in each:
+
+- ``tau = ln(a / b)``, :data:`RATIO_RANGE` (a / b from 0.05 to 20: long lateral flange and
+  check-rail patches to slender tread patches; clamped outside; Kalker's coefficients
+  use his end rows outside 0.1 ... 10, as in :mod:`.creep`);
+- the size of the creepage, ``rho = |(xi', eta', phi')|``, compressed to
+  ``u`` in [0, 1] with ``rho = u^2 / (1 - u)`` (u = 1 is full slip, computed at rho =
+  :data:`FULL_SLIP`): the saturation (rho ~ 1, u ~ 0.6) gets most of the nodes, and the
+  first node above zero lies at rho ~ 1e-3, so that Kalker's linear range is met to
+  0.1 % (with ``rho = u / (1 - u)`` it lay at 0.03 and the linear forces were 3 % off);
+  within a cell the weights are linear in rho (in u in the last cell, to full slip);
+- the direction of the translational creepage, ``alpha = atan2(eta, xi)`` in
+  [0, pi / 2] (the direction of the force in full slip without spin);
+- the weight of spin, ``beta = atan2(phi l, |(xi, eta)|)`` in [-pi / 2, pi / 2], with
+  ``l = |(b cos(alpha), a sin(alpha))|``: spin slips the material by up to ``phi b``
+  along x and ``phi a`` along y, and this length sets where spin competes with the
+  creepage it adds to.  (A first version measured beta against the friction-normalised
+  creepages; on slender patches it squeezed the change of f into a few degrees, and the
+  interpolation error was twice as large, measured as in the tests.)
+
+Symmetries of a patch symmetric in x and y: ``f(-xi, -eta, -phi) = -f(xi, eta, phi)``
+and the mirror y -> -y, ``f_x(xi, -eta, -phi) = f_x``, ``f_y(xi, -eta, -phi) = -f_y``;
+so only xi >= 0, eta >= 0 are stored.
+
+Every interpolated value is a convex combination of stored vectors in the unit disc, so
+``|F| <= mu N`` holds by construction for any input.  The interpolation error against
+direct FASTSIM is measured in tests/test_wheel_rail_creep_table.py.
+
+Cache.  The FASTSIM table is built once (about 18 s of one core's time) and stored as
+``.npz`` (11.6 MB) in the cache directory (:func:`.tables.default_cache_dir`), named by
+a SHA-256 of its settings, with a SHA-256 of its array; a damaged or unreadable file is
+named in one warning and rebuilt, an unwritable directory means running without the
+cache (one warning).
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+import math
+import os
+import time
+import uuid
+import warnings
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numba
+import numpy as np
+
+from exudyn_turnout.wheel_rail.creep import CreepForces, kalker_coefficients
+from exudyn_turnout.wheel_rail.fastsim import fastsim_ellipse
+from exudyn_turnout.wheel_rail.tables import default_cache_dir
+
+__all__ = [
+    "FULL_SLIP",
+    "RATIO_RANGE",
+    "HEADER",
+    "CreepTableSettings",
+    "CreepTable",
+    "normalised_creepages",
+    "ratio_coordinate",
+    "build_creep_table",
+    "creep_table",
+    "table_creep_scalar",
+    "table_creep_forces",
+]
+
+#: Normalised creepage at which the table's full-slip edge (u = 1) is evaluated
+FULL_SLIP = 1e6
+#: -, range of a / b on the table's ratio axis (clamped outside)
+RATIO_RANGE = (0.05, 20.0)
+#: Length of the header in front of a packed table (:attr:`CreepTable.packed`)
+HEADER = 8
+_FORMAT = "creep-table-3"
+
+
+@dataclass(frozen=True)
+class CreepTableSettings:
+    """Grid of a creep table and the FASTSIM discretisation that fills it."""
+
+    poisson: float = 0.28  #: -, Poisson's ratio of Kalker's coefficients
+    n_size: int = 33  #: -, nodes of the compressed size u on [0, 1], rho = u^2 / (1 - u)
+    n_alpha: int = 17  #: -, nodes of alpha = atan2(eta, xi) on [0, pi / 2]
+    n_beta: int = 33  #: -, nodes of beta (module docstring) on [-pi / 2, pi / 2]
+    n_ratio: int = 39  #: -, nodes of ln(a / b) over RATIO_RANGE
+    n_strips: int = 24  #: -, FASTSIM strips across the patch
+    n_x: int = 24  #: -, FASTSIM elements along x per strip (and 48, extrapolated)
+
+
+@dataclass(frozen=True, eq=False)
+class CreepTable:
+    """Normalised creep forces ``F / (mu N)`` on the table grid (see the module docstring)."""
+
+    values: np.ndarray  #: -, (n_ratio, n_size, n_alpha, n_beta, 2): f_x, f_y
+    ratio_first: float  #: -, first node of the ratio coordinate ln(a / b)
+    ratio_step: float  #: -, its step
+    settings: CreepTableSettings  #: grid and discretisation
+    solver: str  #: name of the solver that filled it
+    build_seconds: float  #: s, time to build (0 when loaded from the cache)
+
+    @property
+    def packed(self) -> np.ndarray:
+        """Header (:data:`HEADER` numbers) and the flat values, the kernel's input.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``[n_ratio, n_size, n_alpha, n_beta, t_first, t_step, 0, 0, values...]``.
+        """
+        n_t, n_x, n_e, n_p = self.values.shape[:4]
+        header = [n_t, n_x, n_e, n_p, self.ratio_first, self.ratio_step, 0.0, 0.0]
+        return np.concatenate((np.array(header, float), self.values.ravel()))
+
+
+def normalised_creepages(xi, eta, phi, a, b, normal_force, friction, shear_modulus, c11, c22, c23):
+    """Creepages normalised by the friction force (module docstring).
+
+    ``xi' = G a b C11 xi / (3 mu N)``, ``eta' = G a b C22 eta / (3 mu N)``,
+    ``phi' = G (a b)^1.5 C23 phi / (3 mu N)``: Kalker's linear theory is then
+    ``F / (mu N) = -3 (xi', eta' + phi')``; ``xi'`` is the creepage of Vermeulen &
+    Johnson (1964).
+
+    Parameters
+    ----------
+    xi, eta : array_like
+        Creepages (-).
+    phi : array_like
+        1/m, spin creepage.
+    a, b : array_like
+        m, semi-axes in rolling and lateral direction.
+    normal_force : array_like
+        N (> 0).
+    friction : array_like
+        Coefficient of friction.
+    shear_modulus : float
+        Pa.
+    c11, c22, c23 : array_like
+        Kalker's coefficients of the ellipse.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        (xi', eta', phi'), dimensionless.
+    """
+    scale = np.asarray(shear_modulus * np.asarray(a) * np.asarray(b), float) / (
+        3.0 * np.asarray(friction, float) * np.asarray(normal_force, float)
+    )
+    root = np.sqrt(np.asarray(a, float) * np.asarray(b, float))
+    return (
+        scale * np.asarray(c11) * np.asarray(xi),
+        scale * np.asarray(c22) * np.asarray(eta),
+        scale * root * np.asarray(c23) * np.asarray(phi),
+    )
+
+
+def ratio_coordinate(a, b) -> np.ndarray:
+    """The table's ellipse-ratio coordinate ``tau = ln(a / b)``.
+
+    Parameters
+    ----------
+    a, b : array_like
+        m, semi-axes in rolling and lateral direction.
+
+    Returns
+    -------
+    numpy.ndarray
+        tau (0 for a circle).
+    """
+    return np.log(np.asarray(a, float) / np.asarray(b, float))
+
+
+def _ratio_axis(n: int) -> np.ndarray:
+    """Nodes of ln(a / b) over :data:`RATIO_RANGE`."""
+    return np.linspace(math.log(RATIO_RANGE[0]), math.log(RATIO_RANGE[1]), n)
+
+
+def _axis_creepage(u: np.ndarray) -> np.ndarray:
+    """Size rho of the compressed coordinate u, ``u^2 / (1 - u)`` (1: :data:`FULL_SLIP`)."""
+    inside = np.abs(u) < 1.0
+    safe = np.where(inside, np.abs(u), 0.0)
+    return np.where(inside, safe * safe / (1.0 - safe), FULL_SLIP)
+
+
+def _grid(settings: CreepTableSettings):
+    t = _ratio_axis(settings.n_ratio)
+    u = np.linspace(0.0, 1.0, settings.n_size)
+    alpha = np.linspace(0.0, 0.5 * np.pi, settings.n_alpha)
+    beta = np.linspace(-0.5 * np.pi, 0.5 * np.pi, settings.n_beta)
+    return t, u, alpha, beta
+
+
+def _node_creepages(u, alpha, beta, a, b, c11, c22, c23, scale):
+    """Creepages (xi, eta, phi) of grid coordinates (module docstring); ``scale`` is
+    ``3 mu N / (G a b)``, so that ``xi' = c11 xi / scale``."""
+    rho = _axis_creepage(u)
+    xi = np.cos(alpha)
+    eta = np.sin(alpha)
+    phi = np.tan(np.clip(beta, -1.5707963, 1.5707963)) / np.hypot(b * xi, a * eta)
+    size = np.sqrt((c11 * xi) ** 2 + (c22 * eta) ** 2 + (np.sqrt(a * b) * c23 * phi) ** 2)
+    factor = rho * scale / size
+    return factor * xi, factor * eta, factor * phi
+
+
+def _fastsim_nodes(settings: CreepTableSettings) -> np.ndarray:
+    """FASTSIM at every node, vectorised (the default solver)."""
+    grid = np.meshgrid(*_grid(settings), indexing="ij")
+    a, b, q, mu, g = _physical(grid[0])
+    c = kalker_coefficients(a, b, settings.poisson)
+    scale = 3.0 * mu * q / (g * a * b)
+    xi, eta, phi = _node_creepages(grid[1], grid[2], grid[3], a, b, c.c11, c.c22, c.c23, scale)
+    forces = fastsim_ellipse(
+        xi, eta, phi, a, b, q, mu, g, settings.poisson, settings.n_strips, settings.n_x
+    )
+    return np.stack((forces.longitudinal, forces.lateral), axis=-1) / (mu * q)[..., None]
+
+
+def _physical(t):
+    """A patch with ln(a / b) = t, sqrt(a b) = 5 mm, N = 10 kN, mu = 0.3, G = 81 GPa."""
+    ratio = np.exp(np.asarray(t, float))
+    root = 5e-3
+    a = root * np.sqrt(ratio)
+    b = root / np.sqrt(ratio)
+    return a, b, np.full_like(a, 1e4), np.full_like(a, 0.3), 8.1e10
+
+
+def build_creep_table(
+    settings: CreepTableSettings = CreepTableSettings(),
+    solver: Callable[..., tuple[float, float]] | None = None,
+) -> CreepTable:
+    """Fill a creep table with FASTSIM (default) or any creep solver.
+
+    Parameters
+    ----------
+    settings : CreepTableSettings
+        Grid and FASTSIM discretisation.
+    solver : callable, optional
+        ``solver(a, b, xi, eta, phi, N, mu, G, nu) -> (F_x, F_y)`` in N on the wheel, the
+        sign convention of :func:`.creep.polach_creep_forces` (e.g. an exact-theory
+        solver); called once per node (``n_ratio n_size n_alpha n_beta`` calls) on a patch of
+        ``sqrt(a b)`` = 5 mm, N = 10 kN, mu = 0.3, G = 81 GPa.  None: FASTSIM
+        (:func:`.fastsim.fastsim_ellipse`), vectorised.  The default grid has 722,007
+        nodes: an exact-theory solver taking 0.1-1 s per solve (a boundary-element
+        solution on 16-24 elements across the patch, one core) would need 20-200 hours;
+        a grid of 13 x 17 x 9 x 17 nodes (n_ratio, n_size, n_alpha, n_beta) 1-10 hours.
+
+    Returns
+    -------
+    CreepTable
+    """
+    start = time.perf_counter()
+    t_axis = _ratio_axis(settings.n_ratio)
+    if solver is None:
+        values = _fastsim_nodes(settings)
+        name = "fastsim"
+    else:
+        t, u, alpha, beta = _grid(settings)
+        values = np.zeros((t.size, u.size, alpha.size, beta.size, 2))
+        a, b, q, mu, g = _physical(t)
+        c = kalker_coefficients(a, b, settings.poisson)
+        for i in range(t.size):
+            scale = 3.0 * mu[i] * q[i] / (g * a[i] * b[i])
+            for index in np.ndindex(u.size, alpha.size, beta.size):
+                xi, eta, phi = _node_creepages(
+                    u[index[0]], alpha[index[1]], beta[index[2]], a[i], b[i], c.c11[i],
+                    c.c22[i], c.c23[i], scale,
+                )  # fmt: skip
+                fx, fy = solver(
+                    a[i], b[i], float(xi), float(eta), float(phi), q[i], mu[i], g,
+                    settings.poisson,
+                )  # fmt: skip
+                values[(i, *index)] = (fx / (mu[i] * q[i]), fy / (mu[i] * q[i]))
+        name = getattr(solver, "__name__", "solver")
+    # a solver may exceed the disc by round-off; the kernel's bound needs |f| <= 1
+    size = np.hypot(values[..., 0], values[..., 1])
+    values /= np.maximum(size, 1.0)[..., None]
+    return CreepTable(
+        values=values,
+        ratio_first=float(t_axis[0]),
+        ratio_step=float(t_axis[1] - t_axis[0]),
+        settings=settings,
+        solver=name,
+        build_seconds=time.perf_counter() - start,
+    )
+
+
+def _key(settings: CreepTableSettings) -> str:
+    text = repr((_FORMAT, settings, FULL_SLIP, "fastsim-parabolic-3-flexibilities"))
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def _checksum(values: np.ndarray) -> str:
+    digest = hashlib.sha256(f"{values.dtype.str}:{values.shape}".encode())
+    digest.update(np.ascontiguousarray(values).tobytes())
+    return digest.hexdigest()
+
+
+def _read(path: Path, key: str, settings: CreepTableSettings) -> np.ndarray | None:
+    shape = (settings.n_ratio, settings.n_size, settings.n_alpha, settings.n_beta, 2)
+    try:
+        with open(path, "rb") as handle, np.load(handle, allow_pickle=False) as data:
+            values = data["values"]
+            if str(data["key"]) != key:
+                problem = "belongs to other settings"
+            elif values.shape != shape:
+                problem = f"has values of shape {values.shape}, expected {shape}"
+            elif str(data["checksum"]) != _checksum(values):
+                problem = "fails its checksum"
+            elif not np.all(np.isfinite(values)) or _largest(values) > 1.0 + 1e-12:
+                problem = "holds forces outside the friction disc"
+            else:
+                return values
+    except Exception as err:  # any file numpy cannot read is a damaged cache entry
+        problem = f"cannot be read ({type(err).__name__}: {err})".replace("\n", " ")
+    warnings.warn(f"creep-table cache {path}: {problem}; the table is rebuilt", RuntimeWarning, 2)
+    return None
+
+
+def _largest(values: np.ndarray) -> float:
+    """Largest |f| of a table's values (1: the friction bound)."""
+    return float(np.hypot(values[..., 0], values[..., 1]).max())
+
+
+def _write(path: Path, key: str, values: np.ndarray) -> None:
+    temporary = path.with_name(f"{path.stem}.{os.getpid()}-{uuid.uuid4().hex[:8]}.tmp.npz")
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        np.savez(temporary, values=values, key=np.array(key), checksum=np.array(_checksum(values)))
+        os.replace(temporary, path)
+    except OSError as err:
+        warnings.warn(
+            f"creep-table cache {path.parent}: cannot be written ({err.strerror or err}); "
+            "running without a cache",
+            RuntimeWarning,
+            2,
+        )
+    finally:
+        try:
+            temporary.unlink(missing_ok=True)
+        except OSError:
+            pass
+
+
+@functools.lru_cache(maxsize=4)
+def creep_table(
+    settings: CreepTableSettings = CreepTableSettings(), cache_dir: str | None = None
+) -> CreepTable:
+    """The FASTSIM creep table: from memory, from the disk cache, or built and cached.
+
+    Parameters
+    ----------
+    settings : CreepTableSettings
+        Grid and discretisation.
+    cache_dir : str, optional
+        Cache location (default :func:`.tables.default_cache_dir`).
+
+    Returns
+    -------
+    CreepTable
+    """
+    key = _key(settings)
+    path = Path(cache_dir or default_cache_dir()) / f"creep_table_{key[:24]}.npz"
+    t_axis = _ratio_axis(settings.n_ratio)
+    if path.is_file():
+        values = _read(path, key, settings)
+        if values is not None:
+            return CreepTable(
+                values=values,
+                ratio_first=float(t_axis[0]),
+                ratio_step=float(t_axis[1] - t_axis[0]),
+                settings=settings,
+                solver="fastsim",
+                build_seconds=0.0,
+            )
+    table = build_creep_table(settings)
+    _write(path, key, table.values)
+    return table
+
+
+@numba.njit(cache=True)
+def table_creep_scalar(
+    packed, offset, xi, eta, phi, a, b, Q, mu, G, c11, c22, c23
+):  # pragma: no cover (compiled; tested through table_creep_forces and the kernel)
+    """Creep forces of one contact from a packed table (compiled): (F_x, F_y) on the wheel.
+
+    Parameters
+    ----------
+    packed : numpy.ndarray
+        Array holding a :attr:`CreepTable.packed` from index ``offset`` on.
+    offset : int
+        Index of its header.
+    xi, eta : float
+        Creepages (-).
+    phi : float
+        1/m, spin creepage.
+    a, b : float
+        m, semi-axes in rolling and lateral direction.
+    Q : float
+        N, normal force.
+    mu : float
+        Friction coefficient.
+    G : float
+        Pa, shear modulus.
+    c11, c22, c23 : float
+        Kalker's coefficients of the ellipse.
+
+    Returns
+    -------
+    tuple of float
+        N, (F_x, F_y); ``|F| <= mu Q``.
+    """
+    if Q <= 0.0 or a <= 0.0 or b <= 0.0 or mu <= 0.0:
+        return 0.0, 0.0
+    q_mu = Q * mu
+    sign = 1.0
+    if xi < 0.0:  # f(-c) = -f(c)
+        xi, eta, phi, sign = -xi, -eta, -phi, -1.0
+    mirror = 1.0
+    if eta < 0.0:  # y -> -y: f_y changes sign
+        eta, phi, mirror = -eta, -phi, -1.0
+    scale = G * a * b / (3.0 * q_mu)
+    cx = scale * c11 * xi
+    ce = scale * c22 * eta
+    cp = scale * math.sqrt(a * b) * c23 * phi
+    n_t = int(packed[offset])
+    n_r = int(packed[offset + 1])
+    n_a = int(packed[offset + 2])
+    n_b = int(packed[offset + 3])
+    t_first = packed[offset + 4]
+    t_step = packed[offset + 5]
+    t = math.log(a / b)
+    position = min(max((t - t_first) / t_step, 0.0), n_t - 1.000001)
+    it = int(position)
+    wt = position - it
+    # size, compressed, and the direction of the creepages (module docstring)
+    rho = math.sqrt(cx * cx + ce * ce + cp * cp)
+    position = 0.5 * (math.sqrt(rho * rho + 4.0 * rho) - rho) * (n_r - 1)  # u of rho
+    ir = min(int(position), n_r - 2)
+    wr = position - ir
+    if ir < n_r - 2:  # linear in rho within the cell (the last one reaches full slip)
+        low = ir * ir / ((n_r - 1.0) * (n_r - 1.0 - ir))
+        high = (ir + 1.0) * (ir + 1.0) / ((n_r - 1.0) * (n_r - 2.0 - ir))
+        wr = min(max((rho - low) / (high - low), 0.0), 1.0)
+    position = math.atan2(eta, xi) * (2.0 / math.pi) * (n_a - 1)
+    ia = min(int(position), n_a - 2)
+    wa = position - ia
+    plane = math.hypot(xi, eta)
+    length = math.hypot(b * xi / plane, a * eta / plane) if plane > 0.0 else b
+    position = (math.atan2(phi * length, plane) / math.pi + 0.5) * (n_b - 1)
+    ib = min(int(position), n_b - 2)
+    wb = position - ib
+    base = offset + HEADER
+    fx = 0.0
+    fy = 0.0
+    for dt in range(2):
+        w_t = wt if dt else 1.0 - wt
+        for dr in range(2):
+            w_r = w_t * (wr if dr else 1.0 - wr)
+            for da in range(2):
+                w_a = w_r * (wa if da else 1.0 - wa)
+                for db in range(2):
+                    w = w_a * (wb if db else 1.0 - wb)
+                    k = base + 2 * ((((it + dt) * n_r + ir + dr) * n_a + ia + da) * n_b + ib + db)
+                    fx += w * packed[k]
+                    fy += w * packed[k + 1]
+    size = math.hypot(fx, fy)
+    if size > 1.0:  # a convex combination of unit-disc vectors: round-off only
+        fx /= size
+        fy /= size
+    return sign * q_mu * fx, sign * mirror * q_mu * fy
+
+
+@numba.njit(cache=True)
+def _many(packed, xi, eta, phi, a, b, q, mu, g, c11, c22, c23):  # pragma: no cover (compiled)
+    out = np.zeros((xi.shape[0], 2))
+    for k in range(xi.shape[0]):
+        fx, fy = table_creep_scalar(
+            packed, 0, xi[k], eta[k], phi[k], a[k], b[k], q[k], mu[k], g, c11[k], c22[k], c23[k]
+        )
+        out[k, 0] = fx
+        out[k, 1] = fy
+    return out
+
+
+def table_creep_forces(
+    table: CreepTable,
+    creep_longitudinal,
+    creep_lateral,
+    spin,
+    a,
+    b,
+    normal_force,
+    friction,
+    shear_modulus: float = 8.1e10,
+) -> CreepForces:
+    """Creep forces interpolated in a creep table (arrays; the kernel's law in Python).
+
+    Parameters
+    ----------
+    table : CreepTable
+        From :func:`creep_table` or :func:`build_creep_table`.
+    creep_longitudinal, creep_lateral : array_like
+        Creepages xi, eta (-).
+    spin : array_like
+        1/m, spin creepage.
+    a, b : array_like
+        m, semi-axes in rolling and lateral direction.
+    normal_force : array_like
+        N.
+    friction : array_like
+        Coefficient of friction.
+    shear_modulus : float
+        Pa.
+
+    Returns
+    -------
+    CreepForces
+        On the wheel, ``|F| <= mu N``.
+    """
+    arrays = np.broadcast_arrays(
+        *(np.asarray(v, float) for v in (creep_longitudinal, creep_lateral, spin, a, b,
+                                          normal_force, friction))
+    )  # fmt: skip
+    shape = arrays[0].shape
+    xi, eta, phi, a_, b_, q, mu = (np.array(v, dtype=float).ravel() for v in arrays)
+    usable = (a_ > 0.0) & (b_ > 0.0)
+    c = kalker_coefficients(
+        np.where(usable, a_, 1.0), np.where(usable, b_, 1.0), table.settings.poisson
+    )
+    out = _many(
+        table.packed, xi, eta, phi, a_, b_, q, mu, float(shear_modulus),
+        *(np.array(np.broadcast_to(v, xi.shape), dtype=float)
+          for v in (c.c11, c.c22, c.c23)),
+    )  # fmt: skip
+    return CreepForces(longitudinal=out[:, 0].reshape(shape), lateral=out[:, 1].reshape(shape))

@@ -1,0 +1,151 @@
+"""The FASTSIM creep table (wheel_rail/creep_table.py): accuracy, bound, symmetry, cache.
+
+The reference for the interpolation is direct FASTSIM (:func:`.fastsim.fastsim_ellipse`,
+converged: tests/test_wheel_rail_fastsim.py).  Kalker's linear theory (coefficients from
+the package's copy of Kalker 1990 Table E3, checked against CONTACT's in
+tests/test_wheel_rail_hertz_creep.py) is the small-creepage reference.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from exudyn_turnout.wheel_rail import creep_table as ct
+from exudyn_turnout.wheel_rail.creep import kalker_coefficients
+from exudyn_turnout.wheel_rail.fastsim import fastsim_ellipse, fastsim_solver
+
+G = 8.1e10  # Pa
+
+
+@pytest.fixture(scope="module")
+def table():
+    return ct.creep_table()
+
+
+def _random(n, seed, ratio=(0.05, 20.0)):
+    rng = np.random.default_rng(seed)
+
+    def log_uniform(lo, hi):
+        return 10.0 ** rng.uniform(math.log10(lo), math.log10(hi), n)
+
+    def signed(lo, hi):
+        return rng.choice([-1.0, 1.0], n) * log_uniform(lo, hi)
+
+    a = log_uniform(1e-3, 1e-2)
+    return (
+        signed(1e-6, 0.05),  # xi
+        signed(1e-6, 0.05),  # eta
+        signed(1e-3, 10.0),  # spin, 1/m
+        a,
+        a / log_uniform(*ratio),  # b
+        log_uniform(1e3, 1e5),  # N
+        rng.uniform(0.1, 0.6, n),  # mu
+    )
+
+
+def _error(table, inputs):
+    reference = fastsim_ellipse(*inputs, G)
+    ours = ct.table_creep_forces(table, *inputs, G)
+    scale = inputs[5] * inputs[6]
+    return (
+        np.hypot(ours.longitudinal - reference.longitudinal, ours.lateral - reference.lateral)
+        / scale
+    )
+
+
+def test_interpolation_error_against_direct_fastsim(table):
+    """Measured (5000 random points, creepages to 0.05, spin to 10 1/m; seeds 1, 2 and
+    5, 6): for a / b in 0.3 ... 3 max 0.026, rms 0.0024 of mu N; over 0.05 ... 20 max
+    0.070, rms 0.0057 (largest on slender patches, a / b < 0.1: rms 0.012).  The bounds
+    leave room for other random draws."""
+    moderate = _error(table, _random(5000, 1, ratio=(0.3, 3.0)))
+    assert moderate.max() < 0.035 and np.sqrt(np.mean(moderate**2)) < 0.004
+    wide = _error(table, _random(5000, 2))
+    assert wide.max() < 0.1 and np.sqrt(np.mean(wide**2)) < 0.01
+
+
+@pytest.mark.parametrize(
+    "creepages",
+    [
+        (2e-7, 0.0, 0.0),
+        (0.0, -1e-7, 0.0),
+        (0.0, 0.0, 2e-5),
+        (2e-7, -1e-7, 2e-5),
+        (-1e-7, 3e-7, 1e-5),
+    ],
+)
+def test_small_creepage_is_kalker_linear(table, creepages):
+    """Within 2 % of the linear force's size (the interpolation in the direction angles
+    is not exact for the linear law: measured up to 1.1 %)."""
+    a, b, load, mu = 6e-3, 4e-3, 1e4, 0.3
+    c = kalker_coefficients(a, b)
+    xi, eta, phi = creepages
+    forces = ct.table_creep_forces(table, xi, eta, phi, a, b, load, mu, G)
+    linear = np.array([
+        -G * a * b * c.c11 * xi, -G * a * b * (c.c22 * eta + math.sqrt(a * b) * c.c23 * phi)
+    ])  # fmt: skip
+    error = np.hypot(float(forces.longitudinal) - linear[0], float(forces.lateral) - linear[1])
+    assert error <= 0.02 * np.hypot(*linear)
+
+
+def test_resultant_never_exceeds_mu_n(table):
+    inputs = list(_random(100_000, 3, ratio=(0.01, 100.0)))  # beyond the ratio axis, too
+    inputs[0][::7] = 0.0
+    inputs[2][::5] = 0.0
+    forces = ct.table_creep_forces(table, *inputs, G)
+    ratio = np.hypot(forces.longitudinal, forces.lateral) / (inputs[5] * inputs[6])
+    assert np.all(np.isfinite(ratio))
+    assert ratio.max() <= 1.0 + 1e-12
+    assert ratio.max() > 0.999
+
+
+def test_symmetries(table):
+    a, b, load, mu = 5e-3, 3e-3, 2e4, 0.4
+    base = ct.table_creep_forces(table, 1e-3, 4e-4, 0.7, a, b, load, mu, G)
+    flipped = ct.table_creep_forces(table, -1e-3, -4e-4, -0.7, a, b, load, mu, G)
+    mirrored = ct.table_creep_forces(table, 1e-3, -4e-4, -0.7, a, b, load, mu, G)
+    assert float(flipped.longitudinal) == pytest.approx(-float(base.longitudinal))
+    assert float(flipped.lateral) == pytest.approx(-float(base.lateral))
+    assert float(mirrored.longitudinal) == pytest.approx(float(base.longitudinal))
+    assert float(mirrored.lateral) == pytest.approx(-float(base.lateral))
+    direct = fastsim_ellipse(-1e-3, 4e-4, 0.7, a, b, load, mu, G)  # not stored: xi < 0
+    other = ct.table_creep_forces(table, -1e-3, 4e-4, 0.7, a, b, load, mu, G)
+    assert float(other.lateral) == pytest.approx(float(direct.lateral), abs=0.02 * mu * load)
+
+
+def test_any_solver_fills_a_table():
+    """A small grid filled by a solver function equals the vectorised FASTSIM fill."""
+    settings = ct.CreepTableSettings(n_size=5, n_alpha=3, n_beta=5, n_ratio=3)
+    calls = []
+
+    def solver(a, b, xi, eta, phi, load, mu, g, nu):
+        calls.append(a)
+        forces = fastsim_ellipse(xi, eta, phi, a, b, load, mu, g, nu, settings.n_strips,
+                                 settings.n_x)  # fmt: skip
+        return float(forces.longitudinal), float(forces.lateral)
+
+    by_solver = ct.build_creep_table(settings, solver=solver)
+    vectorised = ct.build_creep_table(settings)
+    assert len(calls) == 5 * 3 * 5 * 3
+    np.testing.assert_allclose(by_solver.values, vectorised.values, atol=1e-12)
+    assert by_solver.solver == "solver" and vectorised.solver == "fastsim"
+    # the package's solver signature (a converged FASTSIM) fits as well
+    assert np.all(np.isfinite(fastsim_solver(5e-3, 4e-3, 1e-3, 0.0, 0.1, 1e4, 0.3, G, 0.28)))
+
+
+def test_cache_is_written_read_and_a_damaged_file_rebuilt(tmp_path):
+    settings = ct.CreepTableSettings(n_size=5, n_alpha=3, n_beta=5, n_ratio=3)
+    built = ct.creep_table(settings, str(tmp_path))
+    files = list(tmp_path.glob("creep_table_*.npz"))
+    assert len(files) == 1 and built.build_seconds > 0.0
+    ct.creep_table.cache_clear()
+    loaded = ct.creep_table(settings, str(tmp_path))
+    assert loaded.build_seconds == 0.0
+    np.testing.assert_array_equal(loaded.values, built.values)
+    files[0].write_bytes(b"not a zip file")
+    ct.creep_table.cache_clear()
+    with pytest.warns(RuntimeWarning, match="cannot be read.*rebuilt"):
+        again = ct.creep_table(settings, str(tmp_path))
+    np.testing.assert_array_equal(again.values, built.values)
+    ct.creep_table.cache_clear()
