@@ -294,9 +294,10 @@ def _edge_fraction(gap: np.ndarray, level: np.ndarray, inner: np.ndarray, outer:
 def _frames(rail: PreparedRail, wheel: PreparedWheel) -> list:
     """Search frames: (theta, v grid, rail surface, wheel v, wheel surface); vertical first."""
     frames = [(0.0, rail.y, rail.z, wheel.y, wheel.z)]
-    for (theta, v_grid, rail_w, _dw, _k), (_t, wheel_v, wheel_w, _s, _wk) in zip(
+    for (theta, v_grid, rail_w, _dw, _k), wheel_frame in zip(
         rail.directions, wheel.directions, strict=False
     ):
+        wheel_v, wheel_w = wheel_frame[1], wheel_frame[2]
         frames.append((float(theta), v_grid, rail_w, wheel_v, wheel_w))
     return frames
 

@@ -62,8 +62,10 @@ __all__ = [
 ]
 
 # 10: key and checksum stored in the file; 11: slices interpolated along u as CONTACT and a
-# per-node normal-contact law (semi-Hertzian where the Hertz ellipse does not fit)
-_FORMAT_VERSION = "wheel_rail-table-11"
+# per-node normal-contact law (semi-Hertzian where the Hertz ellipse does not fit); 12: the
+# flange back rounded to the inner face as EN 13715 (geometry.flange_back_arc), the radius
+# of an inner-face contact from its height
+_FORMAT_VERSION = "wheel_rail-table-12"
 _FIELDS = (
     "gap",
     "y_rail",
