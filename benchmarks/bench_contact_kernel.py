@@ -115,10 +115,16 @@ def main(argv: list[str] | None = None) -> int:
         old = importlib.util.module_from_spec(spec)
         sys.modules["baseline_kernel"] = old
         spec.loader.exec_module(old)
-        old_tables = [
-            SimpleNamespace(values=t.values, blendable=t.blendable, x=t.x, shift=t.shift)
-            for t in hertz_tables
-        ]
+        # a baseline that reads the per-node laws by name gets the same tables; an older
+        # one (before the per-node laws) the tables without them
+        old_tables = (
+            tables
+            if hasattr(old, "PATCH_FIELDS")
+            else [
+                SimpleNamespace(values=t.values, blendable=t.blendable, x=t.x, shift=t.shift)
+                for t in hertz_tables
+            ]
+        )
         old_packed = old.pack_tables(old_tables, sides, coordinates, ranges)
         old_details = np.zeros((n_rows, len(old.DETAIL_FIELDS)))
         callers.append((f"baseline kernel ({args.baseline})", old, old_packed, old_details))

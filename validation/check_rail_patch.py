@@ -13,7 +13,11 @@ that carries N there is printed by both normal-contact methods:
 - Kik-Piotrowski (:func:`.nonhertz.kik_piotrowski`) on the point's undeformed normal gap:
   half-length, width along the tangent, peak pressure;
 - the wheel's lateral curvature at the point (what the Hertz patch's narrow width comes
-  from at the back of the flange).
+  from at the back of the flange);
+- the lead of the contact (``x_lead``, from the passage's ``cp_*_x_m`` column) and what the
+  check rail's table gives at x + x_lead instead of the wheelset's x (the kernel takes the
+  table at x): the normal gap's change there, over the whole check-rail region the largest
+  such change along the run (issue 22's open item).
 
 Nothing is written; the numbers are compared before and after a change of the wheel's
 flange-back geometry (:func:`.geometry.prepare_wheel`).
@@ -54,8 +58,13 @@ def main(argv: list[str] | None = None) -> int:
     )
     from exudyn_turnout.wheel_rail.hertz import curvature_sums, effective_modulus, hertz_contact
     from exudyn_turnout.wheel_rail.nonhertz import kik_piotrowski, normal_gap_function
+    from exudyn_turnout.wheel_rail.tables import lookup
     from exudyn_turnout.wheel_rail.turnout_design import rail_geometry
-    from exudyn_turnout.wheel_rail.turnout_sections import envelope_sections, route_rail_bodies
+    from exudyn_turnout.wheel_rail.turnout_sections import (
+        envelope_sections,
+        route_contact_tables,
+        route_rail_bodies,
+    )
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--layers", type=int, default=2)
@@ -90,6 +99,7 @@ def main(argv: list[str] | None = None) -> int:
     s_wheel = float(columns[f"{prefix}_s_wheel_m"][i])
     angle = float(columns[f"{prefix}_angle_rad"][i])
     force = float(normal[i])
+    lead = np.asarray(columns[f"{prefix}_x_m"])
 
     wheel, setup = wheel_and_setup(turnout, load_vehicle())
     geometry = rail_geometry(turnout)
@@ -132,6 +142,27 @@ def main(argv: list[str] | None = None) -> int:
     print(
         f"| Kik-Piotrowski | {patch.half_length[0] * 1e3:.2f} | "
         f"{0.5 * (patch.t_high[0] - patch.t_low[0]) * 1e3:.2f} | {patch.p_max[0] / 1e9:.2f} |"
+    )
+    # the lead: the table at x + x_lead against the table at x, along the run where the
+    # check-rail contact carries load (the table's x_offset is 0 on a check rail)
+    table = next(tab for b, tab in route_contact_tables(turnout, "diverging", wheel, setup)
+                 if b.back_of_flange)  # fmt: skip
+    loaded = np.flatnonzero(normal > 0.0)
+    xs = np.asarray(columns["x_m"])[loaded]
+    shifts = np.asarray(columns[f"{prefix}_y_rail_m"])[loaded] - setup.taping_line
+    shifts -= np.asarray(columns[f"{prefix}_s_wheel_m"])[loaded]
+    at_x = lookup(table, xs, shifts)
+    ahead = lookup(table, xs + lead[loaded], shifts)
+    slot = np.argmin(np.abs(at_x.angle - angle), axis=1)
+    rows = np.arange(len(xs))
+    change = ahead.gap[rows, slot] - at_x.gap[rows, slot]
+    j = int(np.argmax(np.abs(change)))
+    print(
+        f"lead at the peak: x_lead = {lead[i] * 1e3:.1f} mm; along the loaded run "
+        f"({len(xs)} samples, x {xs.min():.2f}-{xs.max():.2f} m) the table's normal gap at "
+        f"x + x_lead differs from that at x by up to {change[j] * 1e3:+.3f} mm "
+        f"(x = {xs[j]:.3f} m, x_lead = {lead[loaded][j] * 1e3:.1f} mm); at the peak "
+        f"{change[int(np.argmin(np.abs(xs - x)))] * 1e3:+.3f} mm"
     )
     return 0
 
