@@ -1,12 +1,14 @@
 """The check-rail contact patch of the diverging route's check-rail event: prints a table.
 
-Run: ``python validation/check_rail_patch.py [--layers 2] [--x-start 43.3] [--x-end 47]``.
+Run: ``python validation/check_rail_patch.py [--layers 2] [--vehicle manchester]
+[--x-start 43.3] [--x-end 47]``.
 
-A single-wheelset passage (packaged turnout and vehicle, diverging route at 80 km/h) runs
-through the check rail's entry.  At the sample where the check-rail contact carries its
-largest normal force N, the wheel's contact point (position on the rail and the wheel,
-contact angle) is searched again on the check rail's section at that x, and the patch
-that carries N there is printed by both normal-contact methods:
+A single-wheelset (or, with ``--vehicle manchester``, the full vehicle's) passage
+(packaged turnout, diverging route at 80 km/h) runs through the check rail's entry.  At the
+sample where the check-rail contact carries its largest normal force N, the wheel's contact
+point (position on the rail and the wheel, contact angle) is searched again on the check
+rail's section at that x, and the patch that carries N there is printed by both
+normal-contact methods:
 
 - Hertz (:func:`.hertz.hertz_contact`) with the point's curvature sums (floored as in the
   tables): semi-axes a (rolling), b (lateral), peak pressure p0;
@@ -71,6 +73,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--speed", type=float, default=80.0, help="km/h")
     parser.add_argument("--x-start", type=float, default=None, help="m (default: entry - 1)")
     parser.add_argument("--x-end", type=float, default=None, help="m (default: entry + 2.7)")
+    parser.add_argument("--vehicle", default=None, help="vehicle (default: the wheelset)")
     args = parser.parse_args(argv)
 
     turnout = et.load_turnout()
@@ -85,7 +88,9 @@ def main(argv: list[str] | None = None) -> int:
         x_start=args.x_start if args.x_start is not None else x0 - 1.0,
         x_end=args.x_end if args.x_end is not None else x0 + 2.7,
     )
-    result = et.simulate_passage(turnout, settings, track=f"{args.layers}-layer")
+    result = et.simulate_passage(
+        turnout, settings, vehicle=args.vehicle, track=f"{args.layers}-layer"
+    )
     columns = result.columns
     prefix = next(
         k[: -len("_N_N")]
@@ -128,7 +133,10 @@ def main(argv: list[str] | None = None) -> int:
         return kik_piotrowski(gap, 1e-4, a_sum[k], delta, modulus)
 
     patch = kp(_solve(force, lambda d: float(kp(d).normal_force[0])))
-    print(f"diverging {args.speed:g} km/h, {args.layers}-layer, wheelset; check-rail peak")
+    print(
+        f"diverging {args.speed:g} km/h, {args.layers}-layer, {args.vehicle or 'wheelset'}; "
+        f"check-rail peak ({prefix})"
+    )
     print(f"x = {x:.3f} m, N = {force / 1e3:.1f} kN, angle {math.degrees(angle):.1f} deg,")
     print(f"  on the rail y = {y_rail * 1e3:.2f} mm, on the wheel s = {s_wheel * 1e3:.2f} mm")
     print(
