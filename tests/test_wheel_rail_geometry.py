@@ -389,14 +389,16 @@ def wheel_rail_base():
 
 
 def test_back_of_flange_against_a_check_rail_is_found_along_its_own_direction():
-    """A check rail (vertical face 5.4 mm from the wheel's inner face) is touched by the back
+    """A check rail (vertical face 5 mm from the wheel's inner face) is touched by the back
     of the flange: contact angle -90 deg (normal on the wheel towards the field side), normal
-    gap closing one to one with the wheel's shift towards the track centre."""
+    gap closing one to one with the wheel's shift towards the track centre.  The inner face
+    is where EN 13715 puts it, 70 mm from the taping line: at 1360 / 2 = 680 mm from the
+    track centre (EN 13260's back-to-back distance)."""
     from exudyn_turnout.wheel_rail.geometry import CHECK_RAIL_DIRECTION, FLANGE_DIRECTION
     from exudyn_turnout.wheel_rail.sections import SectionGrid, surface_on_grid
 
     wheel = s1002_wheel(SETUP)
-    face = 0.675  # m from the track centre; the wheel's inner face is at 0.6804 m
+    face = 0.675  # m from the track centre; the wheel's inner face is at 0.680 m
     block = Profile(
         y=np.array([face - 0.04, face - 0.04, face - 0.002, face, face]),
         z=np.array([-0.05, 0.010, 0.010, 0.008, -0.05]),
@@ -418,7 +420,7 @@ def test_back_of_flange_against_a_check_rail_is_found_along_its_own_direction():
         )
         assert math.degrees(found.angle[0]) == pytest.approx(-90.0, abs=1.0)
         gaps.append(found.gap[0])
-    assert gaps[0] == pytest.approx(0.6804 - face, abs=2e-4)
+    assert gaps[0] == pytest.approx(0.680 - face, abs=2e-4)
     assert gaps[0] - gaps[1] == pytest.approx(0.003, abs=1e-4)
     vertical_only = find_candidates(*row, wheel, SETUP.taping_line, shift=0.0, directions=())
     assert len(vertical_only.gap) == 0 or abs(math.degrees(vertical_only.angle[0])) < 80

@@ -23,13 +23,19 @@ from exudyn_turnout.wheel_rail import kernel
 from exudyn_turnout.wheel_rail.creep import kalker_coefficients, polach_creep_forces
 from exudyn_turnout.wheel_rail.data import s1002_wheel, standard_track, uic60_rail
 from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
+from exudyn_turnout.wheel_rail.nonhertz import node_centre, node_normal_forces
 from exudyn_turnout.wheel_rail.sections import (
     CrossingDesign,
     SectionGrid,
     crossing_sections,
     lateral_grid,
 )
-from exudyn_turnout.wheel_rail.tables import build_contact_table, lookup_values
+from exudyn_turnout.wheel_rail.tables import (
+    build_contact_table,
+    lookup,
+    lookup_values,
+    normal_force,
+)
 
 SETUP = WheelsetSetup()
 N_Q = 11  # y_w, z_w, phi, psi, beta, y_s, z_s, then left rail (7, 8), right rail (9, 10)
@@ -113,8 +119,16 @@ def test_kernel_geometry_equals_table_lookup(crossing_table):
                 continue
             checked += 1
             row = details[c]
-            assert row[_column("y_rail")] == pytest.approx(reference[c, 1], abs=1e-12)
-            assert row[_column("s_wheel")] == pytest.approx(reference[c, 3], abs=1e-12)
+            # positions: the deepest point moved along the tangent to the node's force
+            # centre at the kernel's penetration and angle
+            centre = node_centre(
+                reference[c, fields.index("patch_centre")],
+                reference[c, fields.index("patch_centre_exponent")],
+                row[_column("delta")],
+            )
+            along = centre * np.cos(row[_column("angle")])
+            assert row[_column("y_rail")] == pytest.approx(reference[c, 1] + along, abs=1e-11)
+            assert row[_column("s_wheel")] == pytest.approx(reference[c, 3] + along, abs=1e-11)
             assert row[_column("radius")] == pytest.approx(reference[c, 5], abs=1e-12)
             # the kernel's angle is atan2 of the interpolated (sin, cos), the table's the
             # interpolated angle: equal to O(D^3) for a cell whose angle changes by D
@@ -126,6 +140,54 @@ def test_kernel_geometry_equals_table_lookup(crossing_table):
             # < 0.09 rad a cell's angle changes here, times |lift| = 1e-4 m
             assert -row[_column("delta")] == pytest.approx(gap, abs=1e-7)
     assert checked > 50
+
+
+def test_lookup_normal_force_is_the_kernels(crossing_table):
+    """tables.normal_force (the lookup path) and the kernel's normal force are one law
+    (nonhertz.node_normal_force): equal to round-off in cells whose nodes hold the same
+    contact points (both bilinear), on the crossing, where semi-Hertzian nodes exist; and
+    both put the contact at the same force centre."""
+    table = crossing_table
+    assert np.any(table.field("semi_hertzian") > 0.0)
+    packed = kernel.pack_tables([table], [-1], [(7, 8)], [(-1.0, 1.0)])
+    rng = np.random.default_rng(7)
+    step = table.shift[1] - table.shift[0]
+    checked = semi = 0
+    for _ in range(300):
+        x, shift, lift = rng.uniform(-0.2, 0.6), rng.uniform(-0.011, 0.011), -2e-4
+        ix = min(max(np.searchsorted(table.x, x, side="right") - 1, 0), len(table.x) - 2)
+        js = int((shift - table.shift[0]) / step)
+        if not table.blendable[ix, js]:
+            continue
+        q = np.zeros(N_Q)
+        q[0], q[1] = -shift, lift  # right wheel: shift = -(y_w - y_rail)
+        _, details = _evaluate(packed, x, q)
+        found = lookup(table, [x], [shift], [lift])
+        expected = normal_force(found)[0]
+        raw = lookup_values(table, [x], [shift], [lift])[0]
+        for c in range(table.values.shape[2]):
+            if not found.valid[0, c]:
+                continue
+            row = details[c]
+            # the same law of the same fields at the kernel's penetration: to round-off
+            law = node_normal_forces(
+                found.patch_force[0, c : c + 1],
+                found.force_exponent[0, c : c + 1],
+                np.array([row[_column("delta")]]),
+            )[0]
+            assert row[_column("normal")] == pytest.approx(law, rel=1e-12, abs=1e-9)
+            # the lookup's own penetration differs by < 1e-7 m (its gap is carried to the
+            # lift with the interpolated, unnormalised cos, see the test above): n 1e-7 /
+            # delta < 2e-3 of the force at delta >= 0.1 mm
+            assert row[_column("normal")] == pytest.approx(expected[c], rel=2e-3, abs=1e-6)
+            # positions: the same, to the penetrations' and angles' differences (the lookup
+            # takes cos of the interpolated angle, the kernel the normalised interpolated
+            # (sin, cos)): < 0.3 um for centres of a few mm
+            assert row[_column("y_rail")] == pytest.approx(found.y_rail[0, c], abs=3e-7)
+            if expected[c] > 0.0:
+                checked += 1
+                semi += raw[c, table.fields.index("semi_hertzian")] > 0.0
+    assert checked > 20 and semi > 0
 
 
 def test_forces_are_continuous_where_contact_points_jump(crossing_table):

@@ -12,6 +12,7 @@ from exudyn_turnout.wheel_rail.geometry import (
     rail_row,
     surface_derivatives,
 )
+from exudyn_turnout.wheel_rail.nonhertz import DELTA_REF
 from exudyn_turnout.wheel_rail.profiles import read_simpack_profile, read_slices
 from exudyn_turnout.wheel_rail.sections import (
     CrossingDesign,
@@ -242,11 +243,21 @@ def test_lookup_matches_the_direct_search_on_and_between_nodes(plain_table):
         first = int(np.argmin(found.gap[k]))
         # normal gap within 3 micrometres, contact point within 0.5 mm, angle 0.5 deg
         assert found.gap[k, first] == pytest.approx(direct.gap[0], abs=3e-6)
-        assert found.y_rail[k, first] == pytest.approx(direct.y_rail[0], abs=5e-4)
+        # (the lookup's positions are the force centre's; its deepest point is compared)
+        deepest = found.y_rail[k, first] - found.centre[k, first] * np.cos(found.angle[k, first])
+        assert deepest == pytest.approx(direct.y_rail[0], abs=5e-4)
         assert math.degrees(found.angle[k, first]) == pytest.approx(
             math.degrees(direct.angle[0]), abs=0.5
         )
     forces = normal_force(found)
-    expected = found.hertz_constant * np.maximum(-found.gap, 0.0) ** 1.5
-    np.testing.assert_allclose(forces, np.where(found.valid, expected, 0.0))
+    # the nodes' law N_ref (delta / DELTA_REF)^n (nonhertz), Hertz's C_H delta^1.5 where n
+    # is 1.5 at all four nodes
+    penetration = np.maximum(-found.gap, 0.0)
+    expected = found.patch_force * (penetration / DELTA_REF) ** found.force_exponent
+    np.testing.assert_allclose(forces, np.where(found.valid, expected, 0.0), rtol=1e-12)
+    hertz = found.valid & (found.force_exponent == 1.5)
+    assert np.any(hertz & (penetration > 0.0))
+    np.testing.assert_allclose(
+        forces[hertz], (found.hertz_constant * penetration**1.5)[hertz], rtol=1e-9
+    )
     assert forces[0].sum() > 0.0 and np.all(forces[~found.valid] == 0.0)

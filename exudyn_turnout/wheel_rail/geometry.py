@@ -72,7 +72,6 @@ from exudyn_turnout.wheel_rail.profile_grid import (
     savgol_derivatives,
     surface_derivatives,
     wheel_heights_on_grid,
-    wheel_points,
 )
 from exudyn_turnout.wheel_rail.sections import SectionGrid
 
@@ -91,6 +90,9 @@ __all__ = [
     "PreparedWheel",
     "prepare_rail",
     "prepare_wheel",
+    "flange_back_arc",
+    "FLANGE_BACK",
+    "FLANGE_BACK_RADIUS",
     "search_candidates",
     "search_candidates_batch",
     "wheel_heights_on_grid",
@@ -162,8 +164,15 @@ def yawed(found: Candidates, side: int, yaw: float) -> Candidates:
 FLANGE_DIRECTION = math.radians(60.0)
 #: rad, search direction for the back of the flange against a check rail
 CHECK_RAIL_DIRECTION = math.radians(-70.0)
-#: m, height of the wheel's inner face added above the profile's first (flange back) point
+#: m, height of the wheel's inner face added above the flange back's tangent point
 INNER_FACE_HEIGHT = 0.06
+#: m, lateral distance of the wheel's inner face (back of the flange) from the taping line:
+#: EN 13715's S1002, 70 mm (:attr:`.profile_grid.WheelsetSetup.flange_back`)
+FLANGE_BACK = 0.070
+#: m, radius of the flange back where it meets the inner face: EN 13715's S1002 (as UIC
+#: 510-2) defines it as section H, a circle of 20.5 mm centred 49.5 mm from the taping
+#: line, tangent to the inner face 70 mm from it (9.519 mm below the taping circle)
+FLANGE_BACK_RADIUS = 0.0205
 
 
 @dataclass(frozen=True, eq=False)
@@ -187,7 +196,9 @@ class PreparedWheel:
     z: np.ndarray  #: m, heights of its surface points at zero lift
     s: np.ndarray  #: m, the points' lateral coordinate on the wheel
     surface_z: np.ndarray  #: m, the unrolled wheel's height at ``s`` (for the radius)
-    #: per extra direction: (theta, v, lower surface w, s at v, curvature)
+    #: per extra direction: (theta, v, lower surface w, s at v, curvature, unrolled height
+    #: at v: the rolling radius is ``nominal_radius`` minus it; the point at the rail
+    #: point's v, which is the one on the contact normal when the two touch)
     directions: tuple
 
 
@@ -247,10 +258,70 @@ def _with_side_faces(
     )
 
 
+def flange_back_arc(
+    s0: float,
+    z0: float,
+    step: float,
+    flange_back: float = FLANGE_BACK,
+    radius: float = FLANGE_BACK_RADIUS,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The flange back from a profile's first point down to the wheel's inner face.
+
+    A wheel profile file stops short of the inner face (``MBench_S1002_v3.prw`` comments
+    out its first point, the vertical tangent at s = -70 mm, and starts at -69.61 mm on a
+    78.8 deg slope).  Joined to a vertical face there, the flange back had a corner whose
+    curvature (288 1/m on the 1.5 mm filter) made the check-rail patch 0.3 mm wide at
+    6 GPa.  EN 13715's S1002 rounds it instead: its section H is a circle of
+    :data:`FLANGE_BACK_RADIUS` tangent to the inner face at :data:`FLANGE_BACK` from the
+    taping line.  This returns that circle from the first point to the tangent point:
+    the circle of ``radius`` tangent to the face ``s = -flange_back`` through ``(s0, z0)``
+    (for S1002 exactly section H, since the file's points lie on it).
+
+    Parameters
+    ----------
+    s0, z0 : float
+        m, the profile's first point (flange-back end): lateral coordinate from the taping
+        line (negative) and height above the taping circle's lowest point (negative).
+    step : float
+        m, arc-length step of the points.
+    flange_back : float
+        m, distance of the inner face from the taping line.
+    radius : float
+        m, radius of the flange back.
+
+    Returns
+    -------
+    s, z : numpy.ndarray
+        m, points from the tangent point on the face (first) towards ``(s0, z0)``, which
+        is not included; empty when the profile already reaches the face, or when no
+        circle of ``radius`` tangent to the face passes below the point (then the face
+        starts at the profile's first point).
+    """
+    centre_s = -flange_back + radius
+    reach = s0 - centre_s  # negative: the point lies on the face's side of the centre
+    if s0 <= -flange_back + 1e-9 or reach >= 0.0:
+        return np.zeros(0), np.zeros(0)
+    centre_z = z0 + math.sqrt(radius * radius - reach * reach)
+    start = math.atan2(z0 - centre_z, reach)  # in (-pi, -pi/2)
+    sweep = start + math.pi
+    count = max(int(math.ceil(sweep * radius / step)), 1)
+    phi = -math.pi + sweep * np.arange(count) / count
+    return centre_s + radius * np.cos(phi), centre_z + radius * np.sin(phi)
+
+
 def prepare_wheel(
-    wheel: WheelGrid, taping_line: float, roll: float = 0.0, directions: tuple = (FLANGE_DIRECTION,)
+    wheel: WheelGrid,
+    taping_line: float,
+    roll: float = 0.0,
+    directions: tuple = (FLANGE_DIRECTION,),
+    flange_back: float = FLANGE_BACK,
+    back_radius: float = FLANGE_BACK_RADIUS,
 ) -> PreparedWheel:
     """Precompute a wheel's surface (at a roll angle) in each extra search direction.
+
+    The profile is completed at the back of the flange as EN 13715 draws it: the flange
+    back's circle (:func:`flange_back_arc`) down to its vertical tangent on the inner face,
+    and the inner face :data:`INNER_FACE_HEIGHT` above it (a check rail touches them).
 
     Parameters
     ----------
@@ -262,39 +333,62 @@ def prepare_wheel(
         rad, see :func:`wheel_heights_on_grid`.
     directions : tuple
         rad, the same extra directions as the rail's.
+    flange_back : float
+        m, distance of the wheel's inner face from the taping line (S1002: 70 mm).
+    back_radius : float
+        m, radius of the flange back at the inner face (S1002: 20.5 mm).
 
     Returns
     -------
     PreparedWheel
     """
-    y_points, z_points = wheel_points(wheel, taping_line, 0.0, 0.0, roll)
-    finite = np.isfinite(z_points)
-    y_points, z_points, s_points = y_points[finite], z_points[finite], wheel.s[finite]
+    finite = np.isfinite(wheel.z)
     step = float(wheel.s[1] - wheel.s[0])
-    # the back of the flange continues as the wheel's vertical inner face (EN 13715), which
-    # a profile file stops short of; a check rail touches it there
-    rise = np.arange(step, INNER_FACE_HEIGHT + step, step)
-    c, s = math.cos(roll), math.sin(roll)
-    face_y = np.concatenate((y_points[:1] - s * rise, y_points))
-    face_z = np.concatenate((z_points[:1] + c * rise, z_points))
-    face_s = np.concatenate((np.full(rise.shape, s_points[0]), s_points))
+    arc_s, arc_h = flange_back_arc(
+        float(wheel.s[finite][0]), float(wheel.z[finite][0]), step, flange_back, back_radius
+    )
+    # unrolled points: the arc, then the profile (s increasing); h is the height above the
+    # taping circle's lowest point (gives the rolling radius of a point)
+    s_points = np.concatenate((arc_s, wheel.s[finite]))
+    h_points = np.concatenate((arc_h, wheel.z[finite]))
+    y_points, z_points = _placed(s_points, h_points, wheel.nominal_radius, taping_line, roll)
+    # the inner face above the flange back's tangent point, from its top down
+    rise = np.arange(INNER_FACE_HEIGHT, 0.0, -step)
+    face_s = np.full(rise.shape, s_points[0])
+    face_h = h_points[0] + rise
+    all_s = np.concatenate((face_s, s_points))
+    all_h = np.concatenate((face_h, h_points))
+    face_y, face_z = _placed(all_s, all_h, wheel.nominal_radius, taping_line, roll)
     prepared = []
     for theta in directions:
         v, w = rotate_profile(face_y, face_z, theta)
         v_grid = np.arange(float(np.min(v)), float(np.max(v)), step)
         # the rotated profile folds over itself (flange, inner face): s is that of the
         # point forming the lower envelope, not an interpolation across the folds
-        lower, s_at = lower_envelope(v, w, face_s, v_grid)
+        lower, s_at = lower_envelope(v, w, all_s, v_grid)
+        _lower, h_at = lower_envelope(v, w, all_h, v_grid)
         slope, second = savgol_derivatives(lower, step, CURVATURE_WINDOW)
-        prepared.append((theta, v_grid, lower, s_at, second / (1.0 + slope**2) ** 1.5))
+        prepared.append((theta, v_grid, lower, s_at, second / (1.0 + slope**2) ** 1.5, h_at))
     return PreparedWheel(
         wheel=wheel,
         y=y_points,
         z=z_points,
         s=s_points,
-        surface_z=wheel.z[finite],
+        surface_z=h_points,
         directions=tuple(prepared),
     )
+
+
+def _placed(
+    s: np.ndarray, h: np.ndarray, nominal_radius: float, taping_line: float, roll: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """Wheel points (s, height) in the track frame at zero shift and lift (as
+    :func:`.profile_grid.wheel_points`)."""
+    y, z = taping_line + s, h - nominal_radius
+    if roll:
+        c, sn = math.cos(roll), math.sin(roll)
+        y, z = c * y - sn * z, sn * y + c * z
+    return y, z + nominal_radius
 
 
 def _vertical_minima(
@@ -334,6 +428,7 @@ def _vertical_minima(
                     0.0,
                     float(rail.curvature[i]),
                     float(wheel.wheel.curvature[k]),
+                    float(np.interp(s, wheel.s, wheel.surface_z)),
                 )
             )
         results.append(found)
@@ -344,9 +439,10 @@ def _directional_minima(
     rail: PreparedRail, wheel: PreparedWheel, shifts: np.ndarray, lift: float, prominence: float
 ) -> list[list]:
     results: list[list] = [[] for _ in range(len(shifts))]
-    for (theta, v_grid, rail_w, rail_dw, rail_k), (_t, wheel_v, wheel_w, wheel_s, wheel_k) in zip(
+    for (theta, v_grid, rail_w, rail_dw, rail_k), wheel_frame in zip(
         rail.directions, wheel.directions
     ):
+        _t, wheel_v, wheel_w, wheel_s, wheel_k, wheel_h = wheel_frame
         c, s = math.cos(theta), math.sin(theta)
         dv = shifts * c + lift * s
         dw = -shifts * s + lift * c
@@ -375,6 +471,7 @@ def _directional_minima(
                         theta,
                         float(rail_k[i]),
                         float(np.interp(v - dv[row], wheel_v, wheel_k)),
+                        float(np.interp(v - dv[row], wheel_v, wheel_h)),
                     )
                 )
     return results
@@ -393,8 +490,10 @@ def _candidates_from(
     unique = sorted(unique, key=lambda c: c[3])[:max_candidates]
     grid = wheel.wheel
     columns = []
-    for y, z, s, value, angle, _theta, rail_curvature, wheel_curvature in unique:
-        radius = grid.nominal_radius - float(np.interp(s, wheel.s, wheel.surface_z))
+    for y, z, s, value, angle, _theta, rail_curvature, wheel_curvature, height in unique:
+        # the height of the wheel point that forms the contact (on the inner face, s alone
+        # does not tell it)
+        radius = grid.nominal_radius - height
         columns.append((value, y, z, s, angle, radius, rail_curvature, wheel_curvature))
     table = np.array(columns, dtype=float).reshape(-1, 8)
     return Candidates(*(table[:, k].copy() for k in range(8)))

@@ -8,11 +8,14 @@ call, for every body and every candidate at the current state:
 1. **Geometry** as :func:`.tables.lookup_values` does it (bilinear in cells whose four nodes
    hold the same contact points, else the cell's first node with the gap carried to the
    query's shift to first order), the normal gap carried to the wheel's lift,
-   ``gap + cos(gamma) lift``.
+   ``gap + cos(gamma) lift``.  The contact's position (on rail and wheel, and the moment
+   arms) is the node's force centre at the penetration (:func:`.nonhertz.node_centre`),
+   moved from the deepest point along the tangent.
 2. **Normal force** along the contact normal, the node's law
    ``N_ref (delta / DELTA_REF)^n`` (:mod:`.nonhertz`: exact Hertz ``C_H delta^1.5`` where the
    Hertz ellipse fits the surfaces, a power law through two Kik-Piotrowski solutions
-   where it does not: flat faces, corners, conformal points), plus an optional normal
+   where it does not: flat faces, corners, conformal points; one compiled law with the
+   tables' lookup, :func:`.nonhertz.node_normal_force`), plus an optional normal
    damping ``c d(delta)/dt`` (never pulling).  The semi-axes for the creep law follow the
    same per-node law (Hertz's ellipse, or the equivalent ellipse of the KP patch).
 3. **Creepages** at the contact point from the wheelset's motion relative to the rail body
@@ -56,7 +59,10 @@ of its nodes; where the angle changes fast with the shift (flange root: ~0.1 rad
 Lead (:mod:`.lead`): on the yawed wheelset a contact lies ``x_lead = r sin(theta)``,
 ``sin(theta) = s tan(gamma) tan(psi)``, ahead of the axle, closer to the rail by
 ``r (1 - cos(theta)) cos(gamma)`` along the normal; its moment arm is ``x_c + x_lead`` and
-the wheel's vertical material velocity there, ``-Omega x_lead``, enters ``eta``.
+the wheel's vertical material velocity there, ``-Omega x_lead``, enters ``eta``, and the
+gap is the rail's at ``x + x_lead`` to first order (the cell's slope of the gap along x
+times x_lead; where a check rail flares, 1:70 at the packaged turnout's entry, a 4 mm lead
+closes the gap by 0.06 mm, validation/check_rail_patch.py).
 
 Left out (small here, named so a reader can judge): the rail's own roll, the wheel's
 roll relative to the rail in the contact geometry (it tilts the contact angle by phi), and
@@ -80,7 +86,12 @@ from exudyn_turnout.wheel_rail.creep_table import (
 )
 from exudyn_turnout.wheel_rail.hertz import curvature_sums, ellipse_parameter
 from exudyn_turnout.wheel_rail.lead import MAX_LEAD_SINE
-from exudyn_turnout.wheel_rail.nonhertz import DELTA_REF, PATCH_FIELDS
+from exudyn_turnout.wheel_rail.nonhertz import (
+    DELTA_REF,
+    PATCH_FIELDS,
+    node_centre,
+    node_normal_force,
+)
 from exudyn_turnout.wheel_rail.tables import ContactTable
 
 __all__ = [
@@ -101,7 +112,9 @@ __all__ = [
 _GAP, _Y_RAIL, _Z_RAIL, _S_WHEEL, _ANGLE, _RADIUS = 0, 1, 2, 3, 4, 5
 _F_REF, _F_EXP, _C_H, _X_OFFSET, _SIN, _COS = 6, 7, 8, 9, 10, 11
 _A_REF, _B_REF, _C11, _C22, _C23, _A_EXP, _B_EXP, _SEMI = 12, 13, 14, 15, 16, 17, 18, 19
-_N_FIELDS = 20
+_CENTRE, _CENTRE_EXP = 20, 21  # the force centre's law c_ref (delta / DELTA_REF)^m
+_N_FIELDS = 22
+_GAP_DX = _N_FIELDS  # scratch slot after the node fields: the gap's x-derivative in the cell
 _GEOMETRY = ("gap", "y_rail", "z_rail", "s_wheel", "angle", "radius")
 _EMPTY = 0.5  # m, a gap this large marks an empty candidate slot (tables store 1 m)
 #: m, a candidate slot held by both x nodes of a cell whose contact positions on the rail
@@ -142,7 +155,7 @@ _N_DETAIL = len(DETAIL_FIELDS)
 class PackedTables:
     """The contact tables of one wheelset's rail bodies as flat arrays (kernel input)."""
 
-    values: np.ndarray  #: flat node values, body after body, (n_x, n_s, n_c, 20) each
+    values: np.ndarray  #: flat node values, body after body, (n_x, n_s, n_c, 22) each
     blendable: np.ndarray  #: flat uint8 cell flags, (n_x, n_s) each
     x: np.ndarray  #: m, section positions, body after body
     #: per body: value offset, blend offset, x offset, n_x, n_s, n_c, side (+1 / -1),
@@ -228,7 +241,7 @@ def hertz_axes_per_root(
 
 
 def _node_fields(table: ContactTable, modulus: float, poisson: float) -> np.ndarray:
-    """(n_x, n_s, n_c, 20) node values: geometry, the normal law, semi-axes and Kalker's.
+    """(n_x, n_s, n_c, 22) node values: geometry, the normal law, semi-axes and Kalker's.
 
     A table that carries the per-node law of :mod:`.nonhertz` (``PATCH_FIELDS``) is used
     as it is; an older table (without it) gets Hertz's law from its curvatures.
@@ -243,6 +256,9 @@ def _node_fields(table: ContactTable, modulus: float, poisson: float) -> np.ndar
     out[..., _X_OFFSET] = base[..., index["x_offset"]]
     out[..., _SIN] = base[..., n_public]
     out[..., _COS] = base[..., n_public + 1]
+    if "patch_centre" in index:  # the contact position is the force centre (.nonhertz)
+        out[..., _CENTRE] = base[..., index["patch_centre"]]
+        out[..., _CENTRE_EXP] = base[..., index["patch_centre_exponent"]]
     valid = base[..., index["gap"]] < _EMPTY
     if not np.any(valid):
         return out
@@ -456,13 +472,17 @@ def _point(
     lead = (min(max(lead, -cap), cap) / cos_g) if cos_g > 0.0 else 0.0
     x_lead = r * lead
     gap -= r * lead * lead / (1.0 + math.sqrt(1.0 - lead * lead)) * cos_g
+    gap += x_lead * fields[_GAP_DX]  # the rail at x + x_lead, to first order along x
     delta = -(gap + cos_g * lift)
+    # the contact position: the force centre at this penetration (.nonhertz.node_centre)
+    moved = node_centre(fields[_CENTRE], fields[_CENTRE_EXP], delta)
+    Y_c += s * moved * cos_g
     if details[row, 14] == -1.0:  # first corner that finds this slot
         details[row, 14] = 0.0
     details[row, 19] += weight
-    details[row, 7] += weight * fields[_Y_RAIL]
-    details[row, 8] += weight * fields[_Z_RAIL]
-    details[row, 9] += weight * fields[_S_WHEEL]
+    details[row, 7] += weight * (fields[_Y_RAIL] + moved * cos_g)
+    details[row, 8] += weight * (fields[_Z_RAIL] + moved * sin_g)
+    details[row, 9] += weight * (fields[_S_WHEEL] + moved * cos_g)
     details[row, 10] += weight * math.atan2(sin_g, cos_g)
     details[row, 14] += weight * delta
     details[row, 15] += weight * r
@@ -472,7 +492,7 @@ def _point(
     delta_t = -(cos_g * lift_t - sin_g * shift_t)
     # the node's normal law N_ref (delta / DELTA_REF)^n and semi-axes (see .nonhertz)
     ratio = math.log(delta / DELTA_REF)
-    elastic = fields[_F_REF] * math.exp(fields[_F_EXP] * ratio)
+    elastic = node_normal_force(fields[_F_REF], fields[_F_EXP], delta)
     normal = elastic + damping * delta_t
     if normal <= 0.0:
         return 0
@@ -583,7 +603,7 @@ def contact_forces(
     omega = (v / r0 + q_t[4]) if v > 0.0 else 0.0
     n_values = values.shape[0]  # the creep law is packed behind the nodes (pack_tables)
     creep_at = int(values[n_values - 2]) if values[n_values - 1] > 0.5 else -1
-    fields = np.empty(_N_FIELDS)
+    fields = np.empty(_N_FIELDS + 1)
     n_max = details.shape[0] // max(layout.shape[0], 1)
     loaded = 0
     for k in range(layout.shape[0]):
@@ -620,9 +640,16 @@ def contact_forces(
         ts = position - js
         blend = blendable[b_off + ix * n_s + js] != 0
         v_base = v_off + (ix * n_s + js) * n_c * _N_FIELDS
+        dx = xs[x_off + ix + 1] - x0
+        plane = n_s * n_c * _N_FIELDS
         if blend:
             for c in range(n_c):
                 _interpolate(values, v_base, n_s, n_c, c, tx, ts, True, fields)
+                i00 = v_base + c * _N_FIELDS  # the gap's x-derivative of the bilinear form
+                i01 = i00 + n_c * _N_FIELDS
+                d0 = values[i00 + plane] - values[i00]
+                d1 = values[i01 + plane] - values[i01]
+                fields[_GAP_DX] = (d0 + ts * (d1 - d0)) / dx
                 if fields[_GAP] < _EMPTY:
                     loaded += _point(
                         fields, fields[_GAP], 1.0, s, k * n_max + c, i_y, i_z, q, q_t, shift_t,
@@ -635,7 +662,6 @@ def contact_forces(
         # nodes' points are taken each with its x weight; either is carried to the query's
         # shift to first order and the forces are blended with the shift weights.  The
         # force is so continuous in x and shift (a nearest-node lookup jumps).
-        plane = n_s * n_c * _N_FIELDS
         for db in range(2):
             wb = ts if db else 1.0 - ts
             if wb <= 0.0:
@@ -651,6 +677,7 @@ def contact_forces(
                 if ok0 and ok1 and abs(values[i0 + _Y_RAIL] - values[i1 + _Y_RAIL]) < _X_BLEND:
                     for f in range(_N_FIELDS):
                         fields[f] = values[i0 + f] + tx * (values[i1 + f] - values[i0 + f])
+                    fields[_GAP_DX] = (values[i1 + _GAP] - values[i0 + _GAP]) / dx
                     gap = fields[_GAP] - fields[_SIN] * (shift - shift_node)
                     loaded += _point(
                         fields, gap, wb, s, k * n_max + c, i_y, i_z, q, q_t, shift_t, z_irr,
@@ -664,6 +691,7 @@ def contact_forces(
                     i = i1 if da else i0
                     for f in range(_N_FIELDS):
                         fields[f] = values[i + f]
+                    fields[_GAP_DX] = 0.0  # two different points: no slope along x
                     gap = fields[_GAP] - fields[_SIN] * (shift - shift_node)
                     loaded += _point(
                         fields, gap, w, s, k * n_max + c, i_y, i_z, q, q_t, shift_t, z_irr,

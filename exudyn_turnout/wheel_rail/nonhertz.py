@@ -78,7 +78,11 @@ each table node the normal force, and the equivalent semi-axes, are evaluated at
 ``N = N_ref (delta / DELTA_REF)^n`` with ``DELTA_REF = sqrt(DELTA_LOW DELTA_HIGH)`` (and
 likewise a, b).  A Hertz node has n = 1.5 and exponents 0.5 for a and b, i.e. exactly
 ``C_H delta^1.5``.  How far the power law is from KP in between and outside is measured in
-tests/test_wheel_rail_nonhertz.py.
+tests/test_wheel_rail_nonhertz.py.  The law itself is one compiled function,
+:func:`node_normal_force`, for the kernel and the tables' lookup alike.  Every node also
+stores KP's force centre (:func:`force_centre`; at DELTA_REF and a power law in the
+penetration, :func:`node_centre`), Hertz node or not: the kernel and the lookup put the
+contact there (its positions on rail and wheel, the moment arms).
 
 Gap function.  The table search finds each contact point in one of a few frames (vertical,
 and the tilted search directions of :mod:`.geometry`); the gap in the frame closest to the
@@ -93,6 +97,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 from scipy.special import ellipe, ellipk
 
@@ -115,8 +120,14 @@ __all__ = [
     "SemiHertzPatch",
     "strip_integral",
     "kik_piotrowski",
+    "force_centre",
+    "node_normal_force",
+    "node_normal_forces",
+    "node_centre",
+    "node_centres",
     "normal_gap_function",
     "MISFIT_FULL",
+    "CENTRE_EXPONENT_MAX",
     "hertz_misfit",
     "hertz_fits",
     "semi_hertz_weight",
@@ -132,6 +143,8 @@ DELTA_LOW = 2e-5
 DELTA_HIGH = 2e-4
 #: m, penetration at which the per-node law stores its values
 DELTA_REF = math.sqrt(DELTA_LOW * DELTA_HIGH)
+#: Largest exponent of a node's force-centre law (:func:`node_centre`)
+CENTRE_EXPONENT_MAX = 2.0
 #: Misfit (Hertz's lateral semi-axis over the surfaces' reach) from which KP alone is used
 MISFIT_FULL = 2.0
 #: m, lateral step of the sampled gap function in the tables
@@ -147,6 +160,8 @@ PATCH_FIELDS = (
     "patch_b",  # m, lateral semi-axis at DELTA_REF
     "patch_b_exponent",  # its exponent
     "semi_hertzian",  # weight of the Kik-Piotrowski law: 0 Hertz fits ... 1 KP alone
+    "patch_centre",  # m, KP's force centre at DELTA_REF along the lateral tangent (every node)
+    "patch_centre_exponent",  # m of the centre's law c_ref (delta / DELTA_REF)^m
 )
 _UNREACHABLE = 1.0  # m, gap written where no surface is (never inside a patch)
 
@@ -251,11 +266,7 @@ def kik_piotrowski(gap, step: float, a_sum, delta, modulus: float, epsilon: floa
     with np.errstate(divide="ignore", invalid="ignore"):
         c = np.where(i1 > 0.0, np.pi * modulus * delta / i1, 0.0)
     force = c * i2
-    # every strip carries (pi / 2) c x_l(t)^2: the force acts at their weighted mean t
-    strip_force = half * half
-    total = np.sum(strip_force, axis=1)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t_centre = np.where(total > 0.0, np.sum(strip_force * t, axis=1) / total, 0.0)
+    t_centre = _centre(depth, t)
     length = np.max(half, axis=1)
     area = 2.0 * np.sum(half, axis=1) * step
     # lateral edges, interpolated where the gap crosses the virtual penetration
@@ -291,12 +302,160 @@ def _edge_fraction(gap: np.ndarray, level: np.ndarray, inner: np.ndarray, outer:
     return np.where(outside, 0.5, np.clip(np.nan_to_num(fraction, nan=0.5), 0.0, 1.0))
 
 
+def _centre(depth: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Force centre of strips loaded as their depth below the virtual penetration."""
+    # every strip carries (pi / 2) c x_l(t)^2 = (pi / 2) c depth / A: the force acts at the
+    # depth-weighted mean t
+    total = np.sum(depth, axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(total > 0.0, np.sum(depth * t, axis=1) / total, 0.0)
+
+
+def force_centre(gap, step: float, delta, epsilon: float = EPSILON) -> np.ndarray:
+    """Where Kik-Piotrowski's normal force acts, along the lateral tangent (Piotrowski & Kik
+    2008).
+
+    Every strip of the virtual interpenetration region carries ``(pi / 2) c x_l(t)^2``
+    with ``x_l(t)^2 = (epsilon delta - g(t)) / A``, so the force acts at the mean of t
+    weighted by ``epsilon delta - g(t)`` over the connected run around the contact point;
+    neither the modulus nor the rolling-direction curvature enters.  Equal to
+    :attr:`SemiHertzPatch.t_centre` of :func:`kik_piotrowski`.  For a gap symmetric about
+    the contact point (Hertz) it is the contact point; where the gap is not (a flat nose
+    top beside its flank) it moves towards the flatter side, as CONTACT's contact
+    reference does (validation/contact_vs_contact.md).
+
+    Parameters
+    ----------
+    gap : array_like
+        m, (n, n_t) normal gap functions (:func:`normal_gap_function`), the contact point
+        in the centre column.
+    step : float
+        m, their sample step.
+    delta : array_like
+        m, (n,) or scalar penetration (> 0).
+    epsilon : float
+        Virtual-penetration factor.
+
+    Returns
+    -------
+    numpy.ndarray
+        m, (n,) position of the force's line of action from the contact point along the
+        lateral tangent ``(cos(gamma), sin(gamma))`` in side coordinates (y, z).
+    """
+    gap = np.nan_to_num(np.atleast_2d(np.asarray(gap, float)), nan=_UNREACHABLE)
+    n, n_t = gap.shape
+    delta = np.broadcast_to(np.asarray(delta, float), (n,))
+    t = (np.arange(n_t) - n_t // 2) * step
+    virtual = (epsilon * delta)[:, None]
+    run = _connected_run(gap < virtual)
+    return _centre(np.where(run, virtual - gap, 0.0), t)
+
+
+@numba.njit(cache=True)
+def node_normal_force(reference, exponent, delta):  # pragma: no cover (compiled)
+    """The per-node normal-contact law: ``N = N_ref (delta / DELTA_REF)^n``, 0 if delta <= 0.
+
+    The one law of the kernel (:mod:`.kernel`) and of the tables' lookup
+    (:func:`.tables.normal_force`); for a Hertz node (n = 1.5) exactly ``C_H delta^1.5``.
+
+    Parameters
+    ----------
+    reference : float
+        N, the node's force at :data:`DELTA_REF` (field ``patch_force``).
+    exponent : float
+        Its exponent n (field ``patch_force_exponent``).
+    delta : float
+        m, normal penetration.
+
+    Returns
+    -------
+    float
+        N, normal force (>= 0).
+    """
+    if delta <= 0.0:
+        return 0.0
+    return reference * math.exp(exponent * math.log(delta / DELTA_REF))
+
+
+@numba.njit(cache=True)
+def node_normal_forces(reference, exponent, delta):  # pragma: no cover (compiled)
+    """:func:`node_normal_force` over arrays of one shape (flattened in C order).
+
+    Parameters
+    ----------
+    reference, exponent, delta : numpy.ndarray
+        N, -, m: per contact, C-contiguous float arrays of one size.
+
+    Returns
+    -------
+    numpy.ndarray
+        N, flat, one force per contact.
+    """
+    r, e, d = reference.ravel(), exponent.ravel(), delta.ravel()
+    out = np.empty(d.size)
+    for i in range(d.size):
+        out[i] = node_normal_force(r[i], e[i], d[i])
+    return out
+
+
+@numba.njit(cache=True)
+def node_centre(reference, exponent, delta):  # pragma: no cover (compiled)
+    """The per-node force centre at a penetration: ``c_ref (delta / DELTA_REF)^m``.
+
+    KP's force centre (:func:`force_centre`) is the deepest point at vanishing penetration
+    and moves out as the virtual interpenetration region grows (for a gap rising as t^2
+    on one side and slower on the other it grows as delta^0.5, on the packaged crossings
+    as delta^0.9-1.4); the power law goes through its values at :data:`DELTA_LOW` and
+    :data:`DELTA_HIGH` (m = 1 where they change sign), held at DELTA_HIGH's value beyond
+    it.  The one position law of the kernel and of the tables' lookup.
+
+    Parameters
+    ----------
+    reference : float
+        m, the centre at :data:`DELTA_REF` (field ``patch_centre``).
+    exponent : float
+        Its exponent m (field ``patch_centre_exponent``).
+    delta : float
+        m, normal penetration (<= 0: the deepest point, centre 0).
+
+    Returns
+    -------
+    float
+        m, the force centre from the deepest point along the lateral tangent.
+    """
+    if delta <= 0.0:
+        return 0.0
+    return reference * math.exp(exponent * math.log(min(delta, DELTA_HIGH) / DELTA_REF))
+
+
+@numba.njit(cache=True)
+def node_centres(reference, exponent, delta):  # pragma: no cover (compiled)
+    """:func:`node_centre` over arrays of one size (flattened in C order).
+
+    Parameters
+    ----------
+    reference, exponent, delta : numpy.ndarray
+        m, -, m: per contact, C-contiguous float arrays of one size.
+
+    Returns
+    -------
+    numpy.ndarray
+        m, flat, one centre per contact.
+    """
+    r, k, d = reference.ravel(), exponent.ravel(), delta.ravel()
+    out = np.empty(d.size)
+    for i in range(d.size):
+        out[i] = node_centre(r[i], k[i], d[i])
+    return out
+
+
 def _frames(rail: PreparedRail, wheel: PreparedWheel) -> list:
     """Search frames: (theta, v grid, rail surface, wheel v, wheel surface); vertical first."""
     frames = [(0.0, rail.y, rail.z, wheel.y, wheel.z)]
-    for (theta, v_grid, rail_w, _dw, _k), (_t, wheel_v, wheel_w, _s, _wk) in zip(
+    for (theta, v_grid, rail_w, _dw, _k), wheel_frame in zip(
         rail.directions, wheel.directions, strict=False
     ):
+        wheel_v, wheel_w = wheel_frame[1], wheel_frame[2]
         frames.append((float(theta), v_grid, rail_w, wheel_v, wheel_w))
     return frames
 
@@ -473,7 +632,9 @@ def patch_law(gap, step: float, a_sum, b_sum, modulus: float) -> np.ndarray:
     Returns
     -------
     numpy.ndarray
-        (n, len(PATCH_FIELDS)); the last field is the weight of the KP law.
+        (n, len(PATCH_FIELDS)); field 6 is the weight of the KP law, field 7 KP's force
+        centre (:func:`force_centre`) at :data:`DELTA_REF`, whatever the weight, field 8
+        the exponent of its power law in the penetration (:func:`node_centre`).
     """
     gap = np.atleast_2d(np.asarray(gap, float))
     a_sum = np.broadcast_to(np.asarray(a_sum, float), gap.shape[:1])
@@ -489,6 +650,18 @@ def patch_law(gap, step: float, a_sum, b_sum, modulus: float) -> np.ndarray:
     out[:, 1] = 1.5
     out[:, 2], out[:, 3] = ref.a, 0.5
     out[:, 4], out[:, 5] = ref.b, 0.5
+    # the contact position: KP's force centre, at every node (the Hertz ellipse's centre is
+    # the deepest point, which is not where the load acts when the gap is lopsided), and
+    # how it moves with the penetration (a power law through its values at DELTA_LOW and
+    # DELTA_HIGH: it starts at the deepest point and moves out as the region grows)
+    out[:, 7] = force_centre(gap, step, DELTA_REF)
+    low, high = force_centre(gap, step, DELTA_LOW), force_centre(gap, step, DELTA_HIGH)
+    same = (low * out[:, 7] > 0.0) & (high * out[:, 7] > 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        exponent = np.log(np.abs(high / np.where(same, low, 1.0))) / math.log(
+            DELTA_HIGH / DELTA_LOW
+        )
+    out[:, 8] = np.where(same, np.clip(exponent, 0.0, CENTRE_EXPONENT_MAX), 1.0)
     weight = semi_hertz_weight(hertz_misfit(gap, step, a_sum, b_sum, modulus))
     semi = weight > 0.0
     if np.any(semi):

@@ -44,7 +44,12 @@ from exudyn_turnout.wheel_rail.geometry import (
     surface_derivatives,
 )
 from exudyn_turnout.wheel_rail.hertz import curvature_sums, effective_modulus, hertz_constant
-from exudyn_turnout.wheel_rail.nonhertz import PATCH_FIELDS, patch_law_fields
+from exudyn_turnout.wheel_rail.nonhertz import (
+    PATCH_FIELDS,
+    node_centres,
+    node_normal_forces,
+    patch_law_fields,
+)
 from exudyn_turnout.wheel_rail.sections import SectionGrid, wheel_envelope
 
 __all__ = [
@@ -62,8 +67,11 @@ __all__ = [
 ]
 
 # 10: key and checksum stored in the file; 11: slices interpolated along u as CONTACT and a
-# per-node normal-contact law (semi-Hertzian where the Hertz ellipse does not fit)
-_FORMAT_VERSION = "wheel_rail-table-11"
+# per-node normal-contact law (semi-Hertzian where the Hertz ellipse does not fit); 12: the
+# flange back rounded to the inner face as EN 13715 (geometry.flange_back_arc), the radius
+# of an inner-face contact from its height; 13: KP's force centre per node (patch_centre,
+# patch_centre_exponent), the contact position
+_FORMAT_VERSION = "wheel_rail-table-13"
 _FIELDS = (
     "gap",
     "y_rail",
@@ -146,14 +154,21 @@ class ContactLookup:
 
     gap: np.ndarray  #: m, normal gap (negative: interpenetration); 1 m for empty slots
     penetration: np.ndarray  #: m, normal interpenetration max(-gap, 0)
-    y_rail: np.ndarray  #: m, contact point on the rail (side coordinates)
-    z_rail: np.ndarray  #: m, rail surface height at the contact point
-    s_wheel: np.ndarray  #: m, contact point on the wheel from its taping line
+    #: m, contact position on the rail (side coordinates): the normal force's centre
+    #: (:func:`.nonhertz.force_centre`), moved from the deepest point along the tangent
+    y_rail: np.ndarray
+    z_rail: np.ndarray  #: m, height of that position on the rail surface
+    s_wheel: np.ndarray  #: m, that position on the wheel from its taping line
     angle: np.ndarray  #: rad, contact angle (positive: normal on wheel towards track centre)
     radius: np.ndarray  #: m, rolling radius
     hertz_constant: np.ndarray  #: N/m^1.5
     x_offset: np.ndarray  #: m, longitudinal position of the contact relative to the wheel
     valid: np.ndarray  #: bool, slot holds a candidate
+    patch_force: np.ndarray  #: N, the node law's force at :data:`.nonhertz.DELTA_REF`
+    force_exponent: np.ndarray  #: -, the node law's exponent n
+    #: m, force centre from the deepest point along the lateral tangent at the query's
+    #: penetration (:func:`.nonhertz.node_centre`; y_rail, z_rail and s_wheel include it)
+    centre: np.ndarray
 
 
 def default_cache_dir() -> Path:
@@ -512,17 +527,26 @@ def lookup(table: ContactTable, x, shift, lift=0.0) -> ContactLookup:
     valid = gap < 0.5 * _EMPTY_GAP
     angle = values[..., index["angle"]]
     penetration = np.where(valid, np.maximum(-gap, 0.0), 0.0)
+    centre = node_centres(
+        np.ascontiguousarray(values[..., index["patch_centre"]]),
+        np.ascontiguousarray(values[..., index["patch_centre_exponent"]]),
+        np.ascontiguousarray(penetration),
+    ).reshape(gap.shape)
+    along_y, along_z = centre * np.cos(angle), centre * np.sin(angle)
     return ContactLookup(
         gap=gap,
         penetration=penetration,
-        y_rail=values[..., index["y_rail"]],
-        z_rail=values[..., index["z_rail"]],
-        s_wheel=values[..., index["s_wheel"]],
+        y_rail=values[..., index["y_rail"]] + along_y,
+        z_rail=values[..., index["z_rail"]] + along_z,
+        s_wheel=values[..., index["s_wheel"]] + along_y,
         angle=angle,
         radius=values[..., index["radius"]],
         hertz_constant=values[..., index["hertz_constant"]],
         x_offset=values[..., index["x_offset"]],
         valid=valid,
+        patch_force=values[..., index["patch_force"]],
+        force_exponent=values[..., index["patch_force_exponent"]],
+        centre=centre,
     )
 
 
@@ -564,7 +588,11 @@ def lookup_values(table: ContactTable, x, shift, lift=0.0) -> np.ndarray:
 
 
 def normal_force(contacts: ContactLookup) -> np.ndarray:
-    """One-sided Hertz force ``C_H delta^1.5`` along each contact normal.
+    """One-sided normal force along each contact normal, by the node's law.
+
+    The kernel's law (:func:`.nonhertz.node_normal_force`, the same compiled function):
+    ``N_ref (delta / DELTA_REF)^n`` with the interpolated law fields; exactly
+    ``C_H delta^1.5`` where the nodes are Hertz's.
 
     Parameters
     ----------
@@ -576,8 +604,13 @@ def normal_force(contacts: ContactLookup) -> np.ndarray:
     numpy.ndarray
         N, (n_query, n_candidates); 0 where separated or empty.
     """
-    delta = contacts.penetration
-    return np.where(delta > 0.0, contacts.hertz_constant * delta * np.sqrt(delta), 0.0)
+    delta = np.where(contacts.valid, contacts.penetration, 0.0)
+    forces = node_normal_forces(
+        np.ascontiguousarray(contacts.patch_force, dtype=float),
+        np.ascontiguousarray(contacts.force_exponent, dtype=float),
+        np.ascontiguousarray(delta, dtype=float),
+    )
+    return forces.reshape(delta.shape)
 
 
 #: Arrays of a cached wheel envelope (besides ``key`` and ``checksum``).
