@@ -61,10 +61,10 @@ def test_readme_python_quick_start_runs(tmp_path, monkeypatch, capsys):
 
 def test_track_argument_selects_the_model(turnout):
     settings = et.PassageSettings(x_start=-5.0, x_end=-4.9)
-    two = et.simulate_passage(turnout, settings, track="2-layer")
+    two = et.simulate_passage(turnout, settings, track="2-layer", vehicle="wheelset")
     assert two.model == "2-layer" and two.settings.layers == 2
     with pytest.raises(et.PassageError, match="track must be one of 2-layer, 3-layer, fe"):
-        et.simulate_passage(turnout, settings, track="4-layer")
+        et.simulate_passage(turnout, settings, track="4-layer", vehicle="wheelset")
 
 
 def test_receptance_plots_and_saves(turnout, tmp_path):
