@@ -104,7 +104,7 @@ def main(argv=None) -> None:
         route="diverging", speed_kmh=80.0, x_start=30.0, x_end=31.0 if args.quick else 60.0
     )
     cases = (
-        ("through, wheelset", simulate_passage(turnout, through)),
+        ("through, wheelset", simulate_passage(turnout, through, vehicle="wheelset")),
         ("diverging, Manchester", simulate_passage(turnout, diverging, "manchester")),
     )
     print(f"{'case':<22}{'writer':<26}{'s':>8}{'x yardstick':>13}{'MB':>8}{'empty cells':>13}")

@@ -72,7 +72,9 @@ def main(argv=None):
             f"(built or loaded in {contact.build_seconds:.2f} s, {contact.tables.n_bodies} "
             f"bodies, {contact.tables.values.nbytes / 1e6:.0f} MB)"
         )
-    simulate_passage(turnout, PassageSettings(x_start=-5.0, x_end=-4.9))  # compile, warm up
+    simulate_passage(
+        turnout, PassageSettings(x_start=-5.0, x_end=-4.9), vehicle="wheelset"
+    )  # compile, warm up
     stick = Yardstick()
     table = PassageSettings(contact="height-table")
     cases = [

@@ -5,7 +5,11 @@ Fig. 8), at the route's permitted speed (80 km/h in the packaged turnout file).
 The right wheel, as the paper's figure; ``--wheel left`` tabulates and plots the left wheel,
 which meets the crossing nose on this route.
 
-Run: ``python examples/passage_diverging.py [--out DIR] [--speed KMH] [--wheel right|left]``.
+The vehicle is the package's default, the full Manchester benchmark vehicle (its front
+wheelset shown); ``--vehicle wheelset`` runs the single wheelset under its sprung share.
+
+Run: ``python examples/passage_diverging.py [--out DIR] [--speed KMH] [--wheel right|left]
+[--vehicle manchester|wheelset]``.
 """
 
 import sys
@@ -16,12 +20,13 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import passage_through  # noqa: E402  (the same comparison, another route)
 
 
-def run(out_dir, speed_kmh=None, x_start=None, x_end=None, wheel="right"):
+def run(out_dir, speed_kmh=None, x_start=None, x_end=None, wheel="right", vehicle=None):
     """Run both models on the diverging route; the PassageComparison.
 
-    ``speed_kmh`` defaults to the route's permitted speed (80 km/h).
+    ``speed_kmh`` defaults to the route's permitted speed (80 km/h); ``vehicle`` a packaged
+    name (default: the full Manchester vehicle).
     """
-    return passage_through.run(out_dir, "diverging", speed_kmh, x_start, x_end, wheel)
+    return passage_through.run(out_dir, "diverging", speed_kmh, x_start, x_end, wheel, vehicle)
 
 
 if __name__ == "__main__":

@@ -23,7 +23,8 @@ The front door::
     params = et.co_running_parameters(turnout, zone=2, layers=3)
     h = et.co_running_receptance(turnout, 3, "r2", "vertical", x=47.2)
     result = et.simulate_passage(turnout, et.PassageSettings(route="through"),
-                                 track="3-layer")     # vehicle="manchester": full vehicle
+                                 track="3-layer")     # the full Manchester vehicle;
+                                                      # vehicle="wheelset": one wheelset
     result.plot(); h.plot()
 
 Names that need Exudyn, scipy's FE solvers or matplotlib are imported on first use, so

@@ -438,6 +438,8 @@ def test_implausible_run_exit_3_and_no_stale_output(tmp_path, capsys):
     code = main(
         [
             "simulate",
+            "--vehicle",  # the full vehicle's rear wheelsets would be in zone 2: exit 2
+            "wheelset",
             "--turnout",
             str(path),
             "--layers",

@@ -50,7 +50,7 @@ def test_the_door_refuses_the_height_table_contact_on_the_fe_track(turnout):
 
     settings = PassageSettings(x_start=55.0, x_end=55.02, contact="height-table")
     with pytest.raises(PassageError, match="profile contact only"):
-        simulate_passage(turnout, settings, track="fe")
+        simulate_passage(turnout, settings, track="fe", vehicle="wheelset")
 
 
 def test_cli_writes_the_passage_files(tmp_path):

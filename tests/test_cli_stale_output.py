@@ -11,7 +11,8 @@ from exudyn_turnout.cli.main import main
 from exudyn_turnout.cli.passage import RUNNING_MARKER, safety_text
 
 EARLIER = ("summary.json", "timeseries.csv", "forces.png", "safety.png")
-ARGV = ["simulate", "--layers", "2", "--x-start", "46.5", "--x-end", "48", "--no-plot"]
+ARGV = ["simulate", "--vehicle", "wheelset", "--layers", "2", "--x-start", "46.5", "--x-end", "48"]
+ARGV += ["--no-plot"]
 
 
 def _earlier_run(tmp_path):

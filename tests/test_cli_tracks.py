@@ -20,7 +20,7 @@ from exudyn_turnout.passage.comparison import PassageComparison, difference_perc
 from exudyn_turnout.passage.results import PassageResult, PassageSettings
 from exudyn_turnout.plotting.curves import decimate_min_max, missing_region_note
 
-SHORT = ["--x-start", "46.5", "--x-end", "48"]
+SHORT = ["--vehicle", "wheelset", "--x-start", "46.5", "--x-end", "48"]
 
 
 def test_track_list_reads_one_or_several():

@@ -94,7 +94,7 @@ def test_zone_crossing_of_the_front_wheelset(turnout, model):
     assert result.zone_starts == pytest.approx((44.2, 44.29))
     cols = result.columns
     i = int(np.searchsorted(cols["x_m"], 44.29))
-    single = simulate_passage(turnout, s)
+    single = simulate_passage(turnout, s, vehicle="wheelset")
     j = int(np.searchsorted(single.columns["x_m"], 44.29))
     for wheel in ("right", "left"):
         jump = abs(np.diff(cols[f"Fz_ws1_{wheel}_N"])[i - 1 : i + 1]).max()

@@ -25,12 +25,15 @@ from exudyn_turnout.passage.results import PassageError, PassageSettings, write_
 from exudyn_turnout.passage.run import simulate_passage
 
 W = (1813 + 32000 / 4 + 2615 / 2) * 9.81 / 2
+X_RANGE = ["--x-start", "46.5", "--x-end", "48"]
 
 
 @pytest.fixture(scope="module")
 def plain(turnout):
     """Zone 3 is plain track (stock rails only, Table 3): 51 m to 60 m at 100 km/h."""
-    return simulate_passage(turnout, PassageSettings(layers=3, x_start=51.0, x_end=60.0))
+    return simulate_passage(
+        turnout, PassageSettings(layers=3, x_start=51.0, x_end=60.0), vehicle="wheelset"
+    )
 
 
 def test_static_wheel_loads(plain):
@@ -42,7 +45,9 @@ def test_static_wheel_loads(plain):
 @pytest.mark.parametrize("layers", [2, 3])
 def test_static_rail_deflection_is_load_over_track_stiffness(turnout, layers):
     x = 55.0
-    res = simulate_passage(turnout, PassageSettings(layers=layers, x_start=x, x_end=x + 0.05))
+    res = simulate_passage(
+        turnout, PassageSettings(layers=layers, x_start=x, x_end=x + 0.05), vehicle="wheelset"
+    )
     params = co_running_parameters(turnout, x=x, layers=layers)
     m = assemble_track_matrices(params, x)
     f = np.zeros(len(m.dof))
@@ -69,6 +74,7 @@ def diverging(turnout):
     return simulate_passage(
         turnout,
         PassageSettings(route="diverging", layers=2, x_start=-5.0, x_end=40.0, speed_kmh=80.0),
+        vehicle="wheelset",
     )
 
 
@@ -86,7 +92,9 @@ def test_crossing_peak_grows_with_speed(turnout):
     nose = turnout_plan(turnout).nose_tip_x
     peaks = [
         simulate_passage(
-            turnout, PassageSettings(layers=2, speed_kmh=v, x_start=44.5, x_end=nose + 0.6)
+            turnout,
+            PassageSettings(layers=2, speed_kmh=v, x_start=44.5, x_end=nose + 0.6),
+            vehicle="wheelset",
         ).summary["peak_Fz_crossing_N"]
         for v in (50.0, 100.0, 150.0)
     ]
@@ -101,7 +109,9 @@ def test_halving_the_time_step_changes_the_crossing_peak_by_less_than_1_percent(
     nose = turnout_plan(turnout).nose_tip_x
     peaks = [
         simulate_passage(
-            turnout, PassageSettings(layers=3, time_step=h, x_start=nose - 0.5, x_end=nose + 1.1)
+            turnout,
+            PassageSettings(layers=3, time_step=h, x_start=nose - 0.5, x_end=nose + 1.1),
+            vehicle="wheelset",
         ).summary["peak_Fz_crossing_N"]
         for h in (1e-4, 5e-5)
     ]
@@ -123,7 +133,9 @@ def test_no_force_jump_at_zone_boundary_on_plain_geometry(
 ):
     """Both boundaries lie where the rails do not change (the wing flares from the throat
     at 46.1 m; the nose ends in the plain rail's section at 51 m)."""
-    res = simulate_passage(turnout, PassageSettings(layers=3, x_start=x_from, x_end=x_to))
+    res = simulate_passage(
+        turnout, PassageSettings(layers=3, x_start=x_from, x_end=x_to), vehicle="wheelset"
+    )
     c = res.columns
     i = int(np.searchsorted(c["x_m"], boundary))
     for wheel in ("right", "left"):
@@ -203,14 +215,16 @@ def test_solver_failure_names_time_and_position(turnout, monkeypatch, contact):
     monkeypatch.setattr(element, "__call__", failing)
     with pytest.raises(PassageError, match=r"at t = 0\.01\d* s, x = 5[0-9.]* m \(zone 3"):
         simulate_passage(
-            turnout, PassageSettings(layers=2, x_start=52.0, x_end=53.0, contact=contact)
+            turnout,
+            PassageSettings(layers=2, x_start=52.0, x_end=53.0, contact=contact),
+            vehicle="wheelset",
         )
 
 
 def test_cli_simulate_writes_files(tmp_path, capsys):
     out = tmp_path / "run"
     assert (
-        main(["simulate", "--layers", "2", "--x-start", "46.5", "--x-end", "48", "--out", str(out)])
+        main(["simulate", "--vehicle", "wheelset", "--layers", "2", *X_RANGE, "--out", str(out)])
         == 0
     )
     assert {p.name for p in out.iterdir()} == {
@@ -270,7 +284,9 @@ def test_more_zones_than_three(tmp_path):
     assert len(turnout.zones) == 5 and not turnout.published
     masses = [co_running_parameters(turnout, zone=z).entries["m_r2"].a for z in (1, 2, 3)]
     assert masses[0] < masses[1] < masses[2]  # the switch rail builds up mass from the toe (Eq 17)
-    res = simulate_passage(turnout, PassageSettings(layers=3, x_start=8.0, x_end=12.0))
+    res = simulate_passage(
+        turnout, PassageSettings(layers=3, x_start=8.0, x_end=12.0), vehicle="wheelset"
+    )
     c = res.columns
     i = int(np.searchsorted(c["x_m"], 10.0))
     assert np.max(np.abs(np.diff(c["Fz_right_N"][i - 2 : i + 3]))) < 0.02 * W

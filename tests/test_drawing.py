@@ -183,7 +183,9 @@ def test_passage_frames():
 
 @pytest.mark.slow
 def test_passage_gif(turnout, tmp_path):
-    result = simulate_passage(turnout, PassageSettings(x_start=-5.0, x_end=-4.0))
+    result = simulate_passage(
+        turnout, PassageSettings(x_start=-5.0, x_end=-4.0), vehicle="wheelset"
+    )
     n = len(result.columns["t_s"])
     path = animate_passage(result, tmp_path / "passage.gif", every=60, turnout=turnout)
     assert path.read_bytes()[:4] == b"GIF8"

@@ -40,6 +40,7 @@ def test_through_example(tmp_path, capsys, monkeypatch):
     two, three = comparison["2-layer"], comparison["3-layer"]
     assert three.summary["peak_Fz_crossing_N"] < two.summary["peak_Fz_crossing_N"]
     assert three.settings.speed_kmh == 100.0  # no permitted speed on the through route
+    assert "x_ws4_m" in three.columns  # the package's default: the full vehicle
     out = capsys.readouterr().out
     assert out.index("warm-up") < out.index("3-layer vs 2-layer")
     assert "after the warm-up" in out and "peaks of the right wheel" in out
@@ -49,7 +50,10 @@ def test_diverging_example_within_the_permitted_speed(tmp_path, capsys):
     example = _load("passage_diverging")
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # a speed warning would fail here
-        comparison = example.run(tmp_path, x_start=20.0, x_end=21.0, wheel="left")
+        # the single wheelset: the test is about the route's speed and the wheel named
+        comparison = example.run(
+            tmp_path, x_start=20.0, x_end=21.0, wheel="left", vehicle="wheelset"
+        )
     assert (tmp_path / "diverging_2_vs_3_layers.png").exists()
     assert set(comparison) == {"2-layer", "3-layer"}
     assert all(r.settings.route == "diverging" for r in comparison.values())

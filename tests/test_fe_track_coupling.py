@@ -139,7 +139,7 @@ def test_static_wheel_loads_equal_the_co_running_ones(turnout, short_run):
     vehicle = load_vehicle()
     weight_share = 0.5 * (vehicle.m_w + vehicle.m_s) * GRAVITY
     settings = PassageSettings(route="through", speed_kmh=100.0, x_start=X0, x_end=X0 + 0.05)
-    co_running = simulate_passage(turnout, settings)
+    co_running = simulate_passage(turnout, settings, vehicle="wheelset")
     for wheel in ("left", "right"):
         key = "static_wheel_load_N" if wheel == "right" else "static_wheel_load_left_N"
         fe = short_run.summary[key]

@@ -58,7 +58,9 @@ def test_window_gives_the_whole_models_forces(turnout):
     runs = {}
     for name, length in (("whole", None), ("window", 20.0)):
         options = FEPassageOptions(window_length=length, window_shift=0.2)
-        runs[name] = simulate_passage(turnout, settings, track="fe", fe_options=options)
+        runs[name] = simulate_passage(
+            turnout, settings, track="fe", fe_options=options, vehicle="wheelset"
+        )
     assert "cuts" in runs["window"].summary["fe_window"]
     assert runs["whole"].summary["fe_window"] == "whole model"
     for key in ("Fz_right_N", "Fz_left_N", "Fy_right_N", "Fy_left_N"):

@@ -50,7 +50,11 @@ def test_readme_python_quick_start_runs(tmp_path, monkeypatch, capsys):
         et.co_running_parameters(et.load_turnout(), zone=2, layers=3).at(47.2)["k_rt2_z"]
     )
     assert printed[1].startswith("Receptance(3-layer, r2 vertical at x = 47.2 m")
-    assert printed[2].startswith("PassageResult(3-layer, route 'through', 100 km/h, x 40 to 50")
+    # the default vehicle: the full Manchester vehicle, its front wheelset's forces
+    assert printed[2].startswith(
+        "PassageResult(3-layer, Manchester benchmark vehicle 1 (front wheelset), "
+        "route 'through', 100 km/h, x 40 to 50"
+    )
     assert float(printed[3]) > 1.2 * 54.5e3  # an impact at the nose
     assert (tmp_path / "forces.png").read_bytes()[:4] == b"\x89PNG"
     summary = json.loads((tmp_path / "passage_out" / "summary.json").read_text())
@@ -61,10 +65,10 @@ def test_readme_python_quick_start_runs(tmp_path, monkeypatch, capsys):
 
 def test_track_argument_selects_the_model(turnout):
     settings = et.PassageSettings(x_start=-5.0, x_end=-4.9)
-    two = et.simulate_passage(turnout, settings, track="2-layer")
+    two = et.simulate_passage(turnout, settings, track="2-layer", vehicle="wheelset")
     assert two.model == "2-layer" and two.settings.layers == 2
     with pytest.raises(et.PassageError, match="track must be one of 2-layer, 3-layer, fe"):
-        et.simulate_passage(turnout, settings, track="4-layer")
+        et.simulate_passage(turnout, settings, track="4-layer", vehicle="wheelset")
 
 
 def test_receptance_plots_and_saves(turnout, tmp_path):

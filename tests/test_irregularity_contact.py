@@ -71,11 +71,13 @@ def test_dipped_joint_as_irregularity_equals_the_dip_in_the_rail(turnout, tmp_pa
     vehicle = load_vehicle()
     settings = PassageSettings(layers=3, x_start=54.0, x_end=57.0)
     by_irregularity = simulate_passage(
-        turnout, replace(settings, irregularity=dipped_joint(JOINT_X, ANGLE, LENGTH, "right"))
+        turnout,
+        replace(settings, irregularity=dipped_joint(JOINT_X, ANGLE, LENGTH, "right")),
+        vehicle="wheelset",
     )
     dipped = _dipped_route_contact(turnout, vehicle, tmp_path)
     monkeypatch.setattr(profile_contact, "route_contact", lambda *args, **kwargs: dipped)
-    by_geometry = simulate_passage(turnout, settings)
+    by_geometry = simulate_passage(turnout, settings, vehicle="wheelset")
     a, b = by_irregularity.columns, by_geometry.columns
     smooth = np.abs(a["x_m"] - JOINT_X) < 1.0
     peak_a = a["Fz_right_N"][smooth].max()
@@ -94,7 +96,7 @@ def test_irregularity_needs_the_profile_contact(turnout):
         x_start=54.0, x_end=55.0, contact="height-table", irregularity=dipped_joint(54.5, 0.006)
     )
     with pytest.raises(PassageError, match="irregularities need the profile contact"):
-        simulate_passage(turnout, settings)
+        simulate_passage(turnout, settings, vehicle="wheelset")
 
 
 def test_cli_irregularity(tmp_path, capsys):
@@ -104,7 +106,8 @@ def test_cli_irregularity(tmp_path, capsys):
 
     spec = "joint:x=54.5,angle=0.006,length=1"
     out = tmp_path / "run"
-    argv = ["simulate", "--x-start", "54", "--x-end", "55", "--no-plot", "--out", str(out)]
+    argv = ["simulate", "--vehicle", "wheelset", "--x-start", "54", "--x-end", "55", "--no-plot"]
+    argv += ["--out", str(out)]
     assert main(argv + ["--irregularity", spec]) == 0
     summary = json.loads((out / "summary.json").read_text())
     assert summary["settings"]["irregularity"] == spec

@@ -156,7 +156,8 @@ def test_cli_float32_needs_npz(tmp_path, capsys):
 def test_cli_float32_npz(tmp_path):
     from exudyn_turnout.cli.main import main
 
-    argv = ["simulate", "--x-start", "20", "--x-end", "20.01", "--format", "npz", "--float32"]
+    argv = ["simulate", "--vehicle", "wheelset", "--x-start", "20", "--x-end", "20.01"]
+    argv += ["--format", "npz", "--float32"]
     assert main([*argv, "--no-plot", "--out", str(tmp_path)]) == 0
     with np.load(tmp_path / "timeseries.npz") as data:
         assert data["t_s"].dtype == np.float64 and data["Fz_right_N"].dtype == np.float32

@@ -155,7 +155,9 @@ def test_a_short_real_run_has_the_keys_and_the_columns():
     from exudyn_turnout.inputs.turnout import load_turnout
     from exudyn_turnout.passage.run import simulate_passage
 
-    result = simulate_passage(load_turnout(), PassageSettings(layers=2, x_start=46.5, x_end=48.0))
+    result = simulate_passage(
+        load_turnout(), PassageSettings(layers=2, x_start=46.5, x_end=48.0), vehicle="wheelset"
+    )
     s = result.summary
     for key in (
         "YQ_peak_crossing_right",
@@ -195,7 +197,7 @@ def test_wheelset_at_320_kmh_on_the_760_m_curve_climbs_and_stops():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the speed warnings of the turnout file
         with pytest.raises(PassageFailure, match=r"t = .*x = .*left wheel climbing its flange"):
-            simulate_passage(load_turnout(), settings)
+            simulate_passage(load_turnout(), settings, vehicle="wheelset")
 
 
 def test_nadal_limit_follows_the_vehicle_friction():

@@ -18,7 +18,8 @@ from exudyn_turnout.inputs.turnout import default_turnout_path
 from exudyn_turnout.inputs.vehicle import default_vehicle_path
 from exudyn_turnout.provenance import provenance, reduce_argv, round_floats
 
-SHORT = ["simulate", "--layers", "2", "--x-start", "45.2", "--x-end", "45.6", "--no-plot"]
+SHORT = ["simulate", "--vehicle", "wheelset", "--layers", "2", "--no-plot"]
+SHORT += ["--x-start", "45.2", "--x-end", "45.6"]
 
 
 def _simulate(capsys, out, *extra):

@@ -141,6 +141,8 @@ def test_simulate(tmp_path, capsys, route, speed, x_range):
     code, _, err = _run(
         [
             "simulate",
+            "--vehicle",
+            "wheelset",
             "--turnout",
             SECOND,
             "--route",

@@ -37,7 +37,7 @@ def main() -> None:
     ]
     plain = PassageSettings(route="through", speed_kmh=100.0, x_start=-5.0, x_end=-1.4)
     for track in ("fe", "3-layer"):
-        r = simulate_passage(turnout, plain, track=track)
+        r = simulate_passage(turnout, plain, track=track, vehicle="wheelset")
         c = r.columns
         for wheel, key in (("right", "static_wheel_load_N"), ("left", "static_wheel_load_left_N")):
             mean = float(np.mean(c[f"Fz_{wheel}_N"][1:]))
@@ -54,7 +54,7 @@ def main() -> None:
     curve = PassageSettings(route="diverging", speed_kmh=80.0, x_start=10.0, x_end=32.0)
     target = (vehicle.m_w + vehicle.m_s) * (80.0 / 3.6) ** 2 / 760.0
     for track in ("fe", "3-layer"):
-        c = simulate_passage(turnout, curve, track=track).columns
+        c = simulate_passage(turnout, curve, track=track, vehicle="wheelset").columns
         sel = c["x_m"] > 22.0
         total = float((c["Fy_right_N"] + c["Fy_left_N"])[sel].mean())
         lines.append(

@@ -39,7 +39,11 @@ def peaks(turnout, time_step: float, mesh: FEOptions) -> dict[str, float]:
     for name, x0, x1 in WINDOWS:
         settings = PassageSettings(speed_kmh=100.0, x_start=x0, x_end=x1, time_step=time_step)
         cols = simulate_passage(
-            turnout, settings, track="fe", fe_options=FEPassageOptions(mesh=mesh)
+            turnout,
+            settings,
+            track="fe",
+            fe_options=FEPassageOptions(mesh=mesh),
+            vehicle="wheelset",
         ).columns
         out[f"Fz {name}"] = float(np.nanmax(cols["Fz_right_N"]))
         out[f"Fy {name}"] = float(cols["Fy_right_N"][np.nanargmax(np.abs(cols["Fy_right_N"]))])

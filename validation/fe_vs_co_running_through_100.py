@@ -22,10 +22,14 @@ WINDOWS = (("switch: stock rail to switch blade", (1.0, 8.0)), ("crossing nose",
 
 def run_all(turnout, speed_kmh: float = 100.0) -> dict:
     """{"FE": result, "2-layer": result, "3-layer": result} of the through route."""
-    out = {"FE": simulate_passage(turnout, PassageSettings(speed_kmh=speed_kmh), track="fe")}
+    out = {
+        "FE": simulate_passage(
+            turnout, PassageSettings(speed_kmh=speed_kmh), track="fe", vehicle="wheelset"
+        )
+    }
     for layers in (2, 3):
         out[f"{layers}-layer"] = simulate_passage(
-            turnout, PassageSettings(speed_kmh=speed_kmh, layers=layers)
+            turnout, PassageSettings(speed_kmh=speed_kmh, layers=layers), vehicle="wheelset"
         )
     return out
 

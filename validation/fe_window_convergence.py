@@ -37,18 +37,24 @@ def main(argv=None) -> None:
     parser.add_argument("--out", default=str(Path(__file__).with_suffix(".md")))
     args = parser.parse_args(argv)
     turnout = load_turnout()
-    simulate_passage(turnout, PassageSettings(x_start=-5.0, x_end=-4.9))  # tables, numba
+    simulate_passage(
+        turnout, PassageSettings(x_start=-5.0, x_end=-4.9), vehicle="wheelset"
+    )  # tables, numba
     rows = []
     for region, (a, b) in CASES.items():
         settings = PassageSettings(x_start=a, x_end=b)
         c0 = time.process_time()
-        simulate_passage(turnout, settings, track="3-layer")
+        simulate_passage(turnout, settings, track="3-layer", vehicle="wheelset")
         cpu_3l = time.process_time() - c0
         results = {}
         for length in [None, *args.lengths]:
             c0 = time.process_time()
             r = simulate_passage(
-                turnout, settings, track="fe", fe_options=FEPassageOptions(window_length=length)
+                turnout,
+                settings,
+                track="fe",
+                fe_options=FEPassageOptions(window_length=length),
+                vehicle="wheelset",
             )
             results[length] = (peaks(r), time.process_time() - c0)
         ref = results[None][0]

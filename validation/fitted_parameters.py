@@ -216,7 +216,10 @@ def passage_markdown(turnout, fitted_turnout):
         settings = PassageSettings(route="through", speed_kmh=100.0, x_start=xa, x_end=xb)
         runs = {}
         t0 = time.perf_counter()
-        runs["FE"] = (simulate_passage(turnout, settings, track="fe"), time.perf_counter() - t0)
+        runs["FE"] = (
+            simulate_passage(turnout, settings, track="fe", vehicle="wheelset"),
+            time.perf_counter() - t0,
+        )
         for source, t in (
             ("derived", turnout),
             ("published", turnout),
@@ -226,7 +229,10 @@ def passage_markdown(turnout, fitted_turnout):
                 route="through", speed_kmh=100.0, x_start=xa, x_end=xb, source=source
             )
             t0 = time.perf_counter()
-            runs[source] = (simulate_passage(t, s, track="3-layer"), time.perf_counter() - t0)
+            runs[source] = (
+                simulate_passage(t, s, track="3-layer", vehicle="wheelset"),
+                time.perf_counter() - t0,
+            )
         fe_peak = runs["FE"][0].summary[key]
         for name, (result, wall) in runs.items():
             peak = result.summary[key]

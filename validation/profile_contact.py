@@ -61,7 +61,7 @@ def peak_table(turnout) -> list[str]:
                 settings = PassageSettings(
                     route=route, speed_kmh=speed, layers=layers, contact=contact
                 )
-                p = _peaks(simulate_passage(turnout, settings))
+                p = _peaks(simulate_passage(turnout, settings, vehicle="wheelset"))
                 lines.append(
                     f"| {route} | {speed:g} | {layers}-layer | {contact} | {_kn(p['Fz switch'])} "
                     f"| {_kn(p['Fz crossing'])} | {_kn(p['Fy switch'])} "
@@ -78,7 +78,9 @@ def time_step_check(turnout) -> list[str]:
     peaks = {}
     for h in (1e-4, 5e-5):
         settings = PassageSettings(time_step=h, x_start=nose - 1.5, x_end=nose + 1.5)
-        peaks[h] = simulate_passage(turnout, settings).summary["max_Fz_crossing_N"]
+        peaks[h] = simulate_passage(turnout, settings, vehicle="wheelset").summary[
+            "max_Fz_crossing_N"
+        ]
     change = 100 * (peaks[1e-4] / peaks[5e-5] - 1)
     return [
         f"Crossing peak, 3-layer, through, 100 km/h: {_kn(peaks[1e-4])} kN at h = 1e-4 s, "
@@ -102,7 +104,9 @@ def table_grid_check(turnout) -> list[str]:
         path.write_text(fine, encoding="utf-8")
         for label, t in (("packaged", turnout), ("half tolerance", load_turnout(path))):
             settings = PassageSettings(x_start=nose - 1.5, x_end=nose + 1.5)
-            out[label] = simulate_passage(t, settings).summary["max_Fz_crossing_N"]
+            out[label] = simulate_passage(t, settings, vehicle="wheelset").summary[
+                "max_Fz_crossing_N"
+            ]
     change = 100 * (out["packaged"] / out["half tolerance"] - 1)
     return [
         f"Crossing peak with the packaged table grid (section tolerance {tolerance * 1e3:g} mm, "
@@ -122,7 +126,7 @@ def curving_check(turnout) -> list[str]:
         settings = PassageSettings(
             route="diverging", layers=2, speed_kmh=speed, x_start=-5.0, x_end=40.0
         )
-        c = simulate_passage(turnout, settings).columns
+        c = simulate_passage(turnout, settings, vehicle="wheelset").columns
         sel = (c["x_m"] > 25.0) & (c["x_m"] < 40.0)
         total = float((c["Fy_right_N"] + c["Fy_left_N"])[sel].mean())
         expected = (vehicle.m_w + vehicle.m_s) * (speed / 3.6) ** 2 / 760.0

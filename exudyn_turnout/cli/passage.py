@@ -17,7 +17,7 @@ from exudyn_turnout.cli.main import (
 )
 from exudyn_turnout.passage.events import event_line
 from exudyn_turnout.passage.results import TRACKS
-from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.run import DEFAULT_VEHICLE, simulate_passage
 
 __all__ = [
     "build",
@@ -266,7 +266,10 @@ def _simulate_command(args: argparse.Namespace) -> int:
             )
         runs.append((track, settings))
     if model is not None and base.contact != "profile":
-        raise UsageError("--contact height-table: the full vehicle has the profile contact only")
+        raise UsageError(
+            "--contact height-table: the full vehicle has the profile contact only (the "
+            "height-table contact is the single wheelset's: add --vehicle wheelset)"
+        )
     _check_runs(runs, turnout, vehicle, model)
     if base.contact == "profile":  # the rail geometry, checked before anything runs
         from exudyn_turnout.wheel_rail.turnout_design import rail_geometry
@@ -777,21 +780,37 @@ def safety_text(summary: dict, most: int = 6) -> str:
     return "safety limits exceeded: " + "; ".join(parts) + (f"; {rest} more" if rest > 0 else "")
 
 
-def add_passage_options(p: argparse.ArgumentParser) -> None:
+def add_passage_options(p: argparse.ArgumentParser, full_vehicle: bool = False) -> None:
     """Options shared by ``simulate`` and ``fe simulate``: vehicle, x range, steps, output.
 
     Parameters
     ----------
     p : argparse.ArgumentParser
         The command's parser; the options are added to it.
+    full_vehicle : bool
+        The command runs full vehicles, and without ``--vehicle`` the full Manchester
+        vehicle (``simulate``); else the single wheelset (``fe simulate``).
     """
-    p.add_argument(
-        "--vehicle",
-        metavar="NAME|FILE",
-        help="vehicle: wheelset (default: the packaged Manchester benchmark wheelset with its "
-        "sprung share), manchester (the full Manchester benchmark vehicle, car body on two "
-        "bogies; simulate only, profile contact), or a vehicle file of either kind",
-    )
+    if full_vehicle:
+        p.add_argument(
+            "--vehicle",
+            metavar="NAME|FILE",
+            default=DEFAULT_VEHICLE,
+            help=f"vehicle: {DEFAULT_VEHICLE} (default: the full Manchester benchmark vehicle, "
+            "car body on two bogies, four wheelsets each on its own track; figures and the "
+            "plain columns show its front wheelset, as the paper's Figs 7, 8, and "
+            "wheelsets.png every wheelset), wheelset (the packaged Manchester benchmark "
+            "wheelset with its sprung share, about a quarter of the cost; also the "
+            "height-table contact), or a vehicle file of either kind",
+        )
+    else:
+        p.add_argument(
+            "--vehicle",
+            metavar="NAME|FILE",
+            help="vehicle: wheelset (default: the packaged Manchester benchmark wheelset with "
+            "its sprung share) or a single-wheelset vehicle file (the full vehicle on the FE "
+            "track: simulate --track fe)",
+        )
     p.add_argument("--speed", type=number, default=100.0, metavar="KMH", help="km/h (default 100)")
     p.add_argument(
         "--x-start", type=number, metavar="M", help="start position (m), default: turnout start"
@@ -838,11 +857,12 @@ def build(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser(
         "simulate",
         help="vehicle passage on the co-running or the FE track",
-        description="Run the vehicle (default the Manchester benchmark wheelset with its "
-        "sprung share; --vehicle a full vehicle file) through the turnout on a 2- or "
-        "3-layer co-running track, or on the FE track (--track fe), with penalty "
-        "wheel/rail contact; write timeseries.csv, summary.json, forces.png and (profile "
-        "contact) contact_band.png into --out.",
+        description="Run the vehicle (default the full Manchester benchmark vehicle, its "
+        "front wheelset in the figures; --vehicle wheelset the single wheelset with its "
+        "sprung share) through the turnout on a 2- or 3-layer co-running track, or on the "
+        "FE track (--track fe), with penalty wheel/rail contact; write timeseries.csv, "
+        "summary.json, forces.png, safety.png, (full vehicle) wheelsets.png and bodies.png, "
+        "and (profile contact) contact_band.png into --out.",
     )
     add_turnout_options(parser)
     parser.add_argument("--layers", type=int, choices=(2, 3), default=3)
@@ -880,5 +900,5 @@ def build(sub: argparse._SubParsersAction) -> None:
         "dip:x=X,depth=D,length=L or joint:x=X,angle=TWO_ALPHA,length=L, several joined by "
         "';' (see the README); default none",
     )
-    add_passage_options(parser)
+    add_passage_options(parser, full_vehicle=True)
     parser.set_defaults(run=_run)

@@ -359,8 +359,10 @@ class PassageResult:
             if isinstance(crossing, (int, float)) and math.isfinite(crossing)
             else ""
         )
+        vehicle = self.summary.get("vehicle")  # a full vehicle: its name, the front wheelset
+        who = f", {vehicle} (front wheelset)" if isinstance(vehicle, str) and vehicle else ""
         return (
-            f"PassageResult({self.model}, route {s.route!r}, {s.speed_kmh:g} km/h, "
+            f"PassageResult({self.model}{who}, route {s.route!r}, {s.speed_kmh:g} km/h, "
             f"x {x[0]:g} to {x[-1]:g} m, {len(x)} samples{peak})"
         )
 

@@ -13,9 +13,14 @@ never import each other, and nothing but this module imports the height-table co
 
     vehicle                  track                       contact
     -------                  -----                       -------
-    "wheelset"  Vehicle  --+-- "2-layer" / "3-layer" --+-- "profile"      (RouteContact)
-    "manchester" Model   --+-- "fe"                  --+-- "height-table" (wheelset,
+    "manchester" Model   --+-- "2-layer" / "3-layer" --+-- "profile"      (RouteContact)
+    "wheelset"  Vehicle  --+-- "fe"                  --+-- "height-table" (wheelset,
                                                              co-running only)
+
+The default vehicle (:data:`DEFAULT_VEHICLE`) is the full Manchester benchmark vehicle: the
+paper's Figs 7, 8 show its front axle, and a full vehicle's plain columns (``Fz_right_N``...)
+are its front wheelset's. The single wheelset under its sprung share, four times cheaper,
+is named ``"wheelset"``.
 """
 
 from __future__ import annotations
@@ -42,12 +47,18 @@ from exudyn_turnout.passage.results import (
 from exudyn_turnout.passage.track import TrackImplementation
 
 __all__ = [
+    "DEFAULT_VEHICLE",
     "simulate_passage",
     "compare_layers",
     "compare_tracks",
     "track_of",
     "vehicle_of",
 ]
+
+
+#: The packaged vehicle a passage runs without a ``vehicle`` (``simulate`` without
+#: ``--vehicle``): the full Manchester benchmark vehicle, car body on two bogies.
+DEFAULT_VEHICLE = "manchester"
 
 
 def track_of(settings: PassageSettings, track: str | None) -> tuple[str, PassageSettings]:
@@ -88,8 +99,8 @@ def vehicle_of(vehicle: Vehicle | VehicleModel | str | None) -> Vehicle | Vehicl
     Parameters
     ----------
     vehicle : Vehicle, VehicleModel, str or None
-        ``None`` or ``"wheelset"``: the packaged single wheelset; ``"manchester"``: the
-        full Manchester benchmark vehicle
+        ``None`` (:data:`DEFAULT_VEHICLE`) or ``"manchester"``: the full Manchester
+        benchmark vehicle; ``"wheelset"``: the packaged single wheelset
         (:func:`~exudyn_turnout.inputs.vehicles.packaged_vehicle`); a
         :class:`~exudyn_turnout.inputs.vehicle.Vehicle` (single wheelset) or a
         :class:`~exudyn_turnout.inputs.vehicle_model.VehicleModel` (full vehicle).
@@ -104,7 +115,7 @@ def vehicle_of(vehicle: Vehicle | VehicleModel | str | None) -> Vehicle | Vehicl
         An unknown name (one line listing the names).
     """
     if vehicle is None:
-        vehicle = "wheelset"
+        vehicle = DEFAULT_VEHICLE
     if isinstance(vehicle, str):
         try:
             return packaged_vehicle(vehicle)
@@ -137,9 +148,11 @@ def simulate_passage(
         The scenario: route, speed, x range (the front wheelset's), time step, output step,
         contact, irregularity; for the co-running tracks also the parameter source and the
         spring mechanism.
-    vehicle : {"wheelset", "manchester"}, Vehicle or VehicleModel, optional
-        Default: the packaged single wheelset (the paper's vehicle is one wheelset with its
-        sprung share); ``"manchester"`` the full Manchester benchmark vehicle.
+    vehicle : {"manchester", "wheelset"}, Vehicle or VehicleModel, optional
+        Default (:data:`DEFAULT_VEHICLE`): the full Manchester benchmark vehicle, four
+        wheelsets each on its own co-running track, the plain columns its front
+        wheelset's (the paper's Figs 7, 8 show the front axle); ``"wheelset"`` the packaged
+        single wheelset under its sprung share (about a quarter of the cost).
     progress : callable(fraction, x), optional
         Called about every 2 % of the run.
     track : {"2-layer", "3-layer", "fe"}, optional
@@ -231,7 +244,8 @@ def compare_layers(
     ----------
     turnout : Turnout
     settings : PassageSettings
-    vehicle : {"wheelset", "manchester"}, Vehicle or VehicleModel, optional
+    vehicle : {"manchester", "wheelset"}, Vehicle or VehicleModel, optional
+        Default: the full Manchester vehicle (:data:`DEFAULT_VEHICLE`).
 
     Returns
     -------
@@ -259,7 +273,8 @@ def compare_tracks(
     settings : PassageSettings
     tracks : sequence of {"2-layer", "3-layer", "fe"}
         Each at most once.
-    vehicle : {"wheelset", "manchester"}, Vehicle or VehicleModel, optional
+    vehicle : {"manchester", "wheelset"}, Vehicle or VehicleModel, optional
+        Default: the full Manchester vehicle (:data:`DEFAULT_VEHICLE`).
     progress : callable(track, fraction, x), optional
         Called about every 2 % of each run, with the track's name.
 

@@ -8,11 +8,12 @@ the caller (``fig.savefig(path)``).
 from __future__ import annotations
 
 import math
+import textwrap
 from collections.abc import Sequence
 
 import numpy as np
 
-from exudyn_turnout.plotting.backend import pyplot
+from exudyn_turnout.plotting.backend import TITLE_LINE, place_axes, pyplot
 from exudyn_turnout.receptance import Receptance
 
 __all__ = [
@@ -290,10 +291,15 @@ def plot_passage_forces(
                 ax.set_xlabel("x from switch toe (m)")
     axes[0, 0].legend(fontsize="small")
     missing = [note for note in notes.values() if note is not None]
-    heading = "\n".join(([title] if title else []) + [f"no panel: {n}" for n in missing])
+    width = 5.0 * len(columns)  # in
+    heading = "\n".join(
+        textwrap.fill(line, int(13 * width))  # ~13 characters per inch: inside the figure
+        for line in ([title] if title else []) + [f"no panel: {n}" for n in missing]
+    )
     if heading:
         fig.suptitle(heading, fontsize="medium")
-    fig.tight_layout()
+    lines = heading.count("\n") + 1 if heading else 0
+    place_axes(fig, 0.9, 0.15, 0.58, 0.42 + TITLE_LINE * lines, wspace=0.15, hspace=0.2)
     return fig, axes
 
 

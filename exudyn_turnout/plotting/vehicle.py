@@ -14,7 +14,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from exudyn_turnout.plotting.backend import pyplot
+from exudyn_turnout.plotting.backend import TITLE_LINE, place_axes, pyplot
 
 __all__ = ["MAX_POINTS", "envelope", "plot_wheelset_forces", "plot_vehicle_bodies"]
 
@@ -111,8 +111,10 @@ def plot_wheelset_forces(result, title: str | None = None):
     axes[0, 0].legend(fontsize=8, loc="upper left")
     for ax in axes[-1]:
         ax.set_xlabel("x of the wheelset (m)")
-    fig.suptitle(title or "wheel forces of every wheelset (shaded: switch, crossing)")
-    fig.tight_layout()
+    heading = title or "wheel forces of every wheelset (shaded: switch, crossing)"
+    fig.suptitle(heading)
+    lines = heading.count("\n") + 1
+    place_axes(fig, 0.95, 0.25, 0.6, 0.25 + TITLE_LINE * lines, wspace=0.24, hspace=0.25)
     return fig, axes
 
 
@@ -194,6 +196,8 @@ def plot_vehicle_bodies(result, title: str | None = None):
         ax.set_xlabel("x of the front wheelset (m)")
     note = str(result.summary.get("ride_comfort_note") or "")
     heading = title or "car body and bogies (thin: raw, thick: EN 12299 weighted)"
-    fig.suptitle("\n".join([heading, *textwrap.wrap(note, 150)]), fontsize=9)
-    fig.tight_layout()
+    text = "\n".join([heading, *textwrap.wrap(note, 150)])
+    fig.suptitle(text, fontsize=9)
+    lines = text.count("\n") + 1
+    place_axes(fig, 0.9, 0.25, 0.6, 0.25 + 0.16 * lines, wspace=0.2, hspace=0.1)
     return fig, axes

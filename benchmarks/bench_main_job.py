@@ -1,0 +1,222 @@
+"""The main job's wall time, warm and cold, and where a run spends it (issue 24).
+
+Run: ``python benchmarks/bench_main_job.py [--repeats N] [--cases a,b,c] [--cold]
+[--sections] [--checkout DIR]``.
+
+Cases, each ``exudyn-turnout simulate ... --route through --speed 100 --out DIR`` as a
+fresh process (the whole run: interpreter, imports, files, contact set-up, static start,
+passage, CSV, figures):
+
+- ``a``: one track, the single wheelset (``--vehicle wheelset --layers 3``);
+- ``b``: one track, the full Manchester vehicle (``--vehicle manchester --layers 3``);
+- ``c``: the README's main job, ``--track 2-layer,3-layer``, the full vehicle (the default
+  from issue 24 on; ``--vehicle manchester`` is passed, so that an older checkout whose
+  default was the wheelset runs the same job);
+- ``c1``: the same two tracks under the single wheelset (the main job before issue 24).
+
+*Warm*: after one untimed run (contact tables and numba kernels cached), ``--repeats``
+runs interleaved with the yardstick (``benchmarks/yardstick.py``). *Cold* (``--cold``):
+every run with an empty contact-table cache (``XDG_CACHE_HOME`` a fresh directory; the
+numba kernels stay compiled, they are cached next to the package). Goals (issue 24): warm
+<= 5 s (single wheelset), <= 8 s (full vehicle); cold <= 30 s.
+
+``--sections``: one more warm run per case in a fresh process, with the wall time of each
+stage (import, contact set-up, track runs, CSV, figures) measured by wrapping the
+package's public functions; printed as a table. ``--checkout DIR``: time the package of
+another checkout (its ``PYTHONPATH``), e.g. an earlier commit unpacked with ``git
+archive``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+from yardstick import Yardstick, machine_line
+
+__all__ = ["CASES", "command", "main"]
+
+#: case -> (label, options of ``simulate``).
+CASES = {
+    "a": ("1 track, single wheelset", ["--vehicle", "wheelset", "--layers", "3"]),
+    "b": ("1 track, full vehicle", ["--vehicle", "manchester", "--layers", "3"]),
+    "c": ("2 tracks (README main job), full vehicle", ["--vehicle", "manchester"]),
+    "c1": ("2 tracks, single wheelset", ["--vehicle", "wheelset"]),
+}
+TWO_TRACKS = ["--track", "2-layer,3-layer"]
+
+#: Run in a fresh process with ``--sections``: the CLI with its stages timed (public names).
+SECTIONS = r"""
+import json, sys, time
+T0 = time.perf_counter()
+import exudyn_turnout.cli.main as cli
+times = {"import (package, CLI)": time.perf_counter() - T0}
+
+def timed(owner, name, label):
+    original = getattr(owner, name)
+    def wrapper(*args, **kwargs):
+        start = time.perf_counter()
+        try:
+            return original(*args, **kwargs)
+        finally:
+            times[label] = times.get(label, 0.0) + time.perf_counter() - start
+    setattr(owner, name, wrapper)
+
+import exudyn_turnout.passage.contact.profile as profile
+import exudyn_turnout.passage.corunning_track as corunning
+import exudyn_turnout.passage.results as results
+import exudyn_turnout.plotting.curves as curves
+import exudyn_turnout.plotting.backend as backend
+times["import (Exudyn, numba kernels)"] = time.perf_counter() - T0 - sum(times.values())
+timed(profile, "route_contact", "contact set-up (tables from the cache, wheel grid)")
+timed(corunning, "simulate_wheelset", "track runs (model, static start, passage)")
+timed(corunning, "simulate_vehicle", "track runs (model, static start, passage)")
+timed(results, "csv_text", "CSV text")
+timed(curves, "save_figure", "figures: render and save (PNG)")
+timed(results, "write_passage", "writing (CSV, summary, figures)")
+writer = results.write_passage
+
+def write_passage(*args, **kwargs):
+    if kwargs.get("figure") is not None and "matplotlib.pyplot" not in sys.modules:
+        start = time.perf_counter()
+        backend.pyplot()  # the figures' first call would import it
+        times["figures: import matplotlib"] = time.perf_counter() - start
+    return writer(*args, **kwargs)
+
+results.write_passage = write_passage
+code = cli.main(sys.argv[1:])
+times["whole process after start-up"] = time.perf_counter() - T0
+print(json.dumps(times), file=sys.stderr)
+sys.exit(code)
+"""
+
+
+def command(case: str, out: Path) -> list[str]:
+    """The ``simulate`` command line of a case.
+
+    Parameters
+    ----------
+    case : str
+        A key of :data:`CASES`.
+    out : Path
+        ``--out``.
+
+    Returns
+    -------
+    list of str
+    """
+    options = CASES[case][1] + (TWO_TRACKS if case.startswith("c") else [])
+    return [
+        sys.executable,
+        "-m",
+        "exudyn_turnout",
+        "simulate",
+        *options,
+        "--route",
+        "through",
+        "--speed",
+        "100",
+        "--quiet",
+        "--out",
+        str(out),
+    ]
+
+
+def _run(argv: list[str], env: dict) -> str:
+    done = subprocess.run(argv, capture_output=True, text=True, env=env, check=False)
+    if done.returncode != 0:
+        raise RuntimeError(f"{' '.join(argv)}: exit {done.returncode}: {done.stderr[-2000:]}")
+    return done.stderr
+
+
+def _cold(argv: list[str], env: dict) -> None:
+    """Run with an empty contact-table cache (a fresh ``XDG_CACHE_HOME``)."""
+    cache = Path(tempfile.mkdtemp(prefix="main-job-cache-"))
+    try:
+        _run(argv, dict(env, XDG_CACHE_HOME=str(cache)))
+    finally:
+        shutil.rmtree(cache, ignore_errors=True)
+
+
+def _sections(case: str, work: Path, env: dict) -> dict:
+    argv = command(case, work / f"sections-{case}")
+    argv[1:3] = ["-c", SECTIONS]  # python -c SECTIONS simulate ...
+    err = _run(argv, env)
+    return json.loads(err.strip().splitlines()[-1])
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Measure the cases; print a markdown table (and the sections with ``--sections``).
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Command-line options (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        Exit code.
+    """
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--repeats", type=int, default=2)
+    parser.add_argument("--cases", default="a,b,c")
+    parser.add_argument("--cold", action="store_true", help="also cold (empty table cache)")
+    parser.add_argument("--sections", action="store_true", help="stage times of one run")
+    parser.add_argument("--checkout", help="time this checkout's package (PYTHONPATH)")
+    args = parser.parse_args(argv)
+    cases = [c.strip() for c in args.cases.split(",")]
+    unknown = [c for c in cases if c not in CASES]
+    if unknown:
+        parser.error(f"unknown case(s) {unknown}; cases: {', '.join(CASES)}")
+    env = dict(os.environ)
+    if args.checkout:
+        env["PYTHONPATH"] = str(Path(args.checkout).resolve())
+    stick = Yardstick()
+    work = Path(tempfile.mkdtemp(prefix="main-job-"))
+    rows = []
+    sections = {}
+    try:
+        for case in cases:
+            argv_case = command(case, work / case)
+            print(f"... {case}: {CASES[case][0]}, warm", file=sys.stderr, flush=True)
+            warm = stick.measure(lambda a=argv_case: _run(a, env), args.repeats)
+            rows.append((case, "warm", warm))
+            if args.cold:
+                print(f"... {case}: cold", file=sys.stderr, flush=True)
+                cold = stick.measure(lambda a=argv_case: _cold(a, env), args.repeats, warm_up=False)
+                rows.append((case, "cold", cold))
+            if args.sections:
+                sections[case] = _sections(case, work, env)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    print(machine_line())
+    print(f"checkout: {args.checkout or 'this one'}; repeats {args.repeats}\n")
+    print("| case | cache | wall s (median) | CPU s | yardstick units | wall samples s |")
+    print("|---|---|---|---|---|---|")
+    for case, kind, t in rows:
+        samples = ", ".join(f"{s:.1f}" for s in t.samples)
+        print(
+            f"| {case}: {CASES[case][0]} | {kind} | {t.seconds:.1f} | {t.cpu_seconds:.1f} | "
+            f"{t.units:.1f} | {samples} |"
+        )
+    yard = sorted(stick.times)
+    print(f"\nyardstick: {len(yard)} runs, median {yard[len(yard) // 2]:.3f} s wall")
+    if sections:
+        names = list(dict.fromkeys(name for times in sections.values() for name in times))
+        print("\n| stage (wall s, one warm run) | " + " | ".join(sections) + " |")
+        print("|---|" + "---|" * len(sections))
+        for name in names:
+            cells = [f"{times[name]:.2f}" if name in times else "" for times in sections.values()]
+            print(f"| {name} | " + " | ".join(cells) + " |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
