@@ -120,16 +120,17 @@ MISSES = {
     # 1.16 mm off); on CONTACT's surface (XCP 0.16 mm off) KP and Hertz agree (-6.5 / -6.3 %)
     ("cw_interrupt#1", "approach"): "KP -6.5 % (Hertz -6.3 %) at CONTACT's slice surface; "
     "both undeformed-geometry methods miss CONTACT's elastic approach by the same amount",
-    ("wing_brute#1", "fx"): "FX +12.2 %: Polach on the equivalent ellipse, spin-dominated "
-    "(CPHI a = 8e-4 > |CETA|)",
-    ("cw_interrupt#2", "fx"): "FX +47 %: " + _INTERRUPTED,
-    ("wing_brute#1", "fs"): "FS 470 N vs 107 N: Polach's spin term (CPHI a > |CETA|) is far "
-    "from Kalker's exact theory; FS is 4 % of mu FN",
-    ("cross+wing#1", "fs"): "FS -7 N vs -71 N: pure spin, FS is 2 % of mu FN; Polach's spin "
-    "force is far from the exact theory",
-    ("cw_interrupt#1", "fs"): "FS +102 N vs -178 N: 70 % of mu FN used longitudinally; the "
-    "coupling of spin and saturation is not in Polach's method",
-    ("cw_interrupt#2", "fs"): "FS -28 %: " + _INTERRUPTED,
+    # creep forces by the kernel's law, the FASTSIM table on KP's equivalent ellipse
+    # (validation/contact_vs_contact.md; Kalker's exact theory on CONTACT's own area is within
+    # 10 % in 8 of 10 there, so the remaining misses are the equivalent ellipse's shape)
+    ("cw_interrupt#2", "fx"): "FX +36 %: " + _INTERRUPTED,
+    ("wing_brute#1", "fs"): "FS +16.5 % (125 N vs 107 N, 4 % of mu FN): FASTSIM's spin force "
+    "on the equivalent ellipse; the exact theory on CONTACT's area gives -3 %",
+    ("cross+wing#1", "fx"): "FX -15 %: KP's equivalent ellipse of a skewed band-like patch "
+    "(FASTSIM on an ellipse of CONTACT's own length and area: +5.6 %)",
+    ("cross+wing#1", "fs"): "FS -51 N vs -71 N (2 % of mu FN), pure spin on the equivalent "
+    "ellipse; the exact theory on CONTACT's area gives +4 %",
+    ("cw_interrupt#2", "fs"): "FS -96 %: " + _INTERRUPTED,
 }
 
 

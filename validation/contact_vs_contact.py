@@ -17,7 +17,8 @@ the issue where it gives one):
   two patches (each output says "1 CONTACT PATCH"), so only the number of patches is
   compared;
 - creep forces FX and FS within 10 % at CONTACT's creepages (issue 22), our creep law
-  (Polach, ``creep.polach_creep_forces``) on our patch's semi-axes, CONTACT's FN, mu, G;
+  (the kernel's, the FASTSIM table ``creep_table.table_creep_forces``) on our patch's
+  semi-axes, CONTACT's FN, mu, G;
 - PMAX within 20 %: KP's pressure is semi-elliptic along x in each strip, exact for a
   Hertz gap, but its lateral distribution follows the virtual interpenetration, an
   approximation Piotrowski & Kik (2008) show deviating from CONTACT's by this order;
@@ -205,13 +206,13 @@ def table_lines() -> list[str]:
     return lines + [""]
 
 
-#: Creep force columns of the summary: the exact theory on three areas, Polach on two.
+#: Creep force columns of the summary: the exact theory on three areas, the kernel's law on two.
 CREEP_METHODS = (
     "exact, CONTACT's area",
     "exact, KP ellipse",
     "exact, Hertz ellipse",
-    "Polach, KP",
-    "Polach, Hertz",
+    "kernel (FASTSIM table), KP",
+    "kernel (FASTSIM table), Hertz",
 )
 
 
@@ -277,7 +278,8 @@ def main(argv: list[str] | None = None) -> int:
         " where its normal force acts (the patch's force centre), Hertz's the point of"
         " deepest interpenetration.  Errors are ours minus"
         " CONTACT's; a tick marks a quantity within its tolerance.  FX and FS of the first"
-        " table per case are Polach's law (`creep.polach_creep_forces`) on that method's"
+        " table per case are the passage kernel's creep law (the FASTSIM table,"
+        " `creep_table.table_creep_forces`) on that method's"
         " semi-axes; the second table gives Kalker's exact theory"
         " (`wheel_rail/exact_rolling.py`, areas and pressures in this script's docstring).",
         "",

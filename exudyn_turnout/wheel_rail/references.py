@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from exudyn_turnout.wheel_rail.creep import polach_creep_forces
+from exudyn_turnout.wheel_rail.creep_table import creep_table, table_creep_forces
 from exudyn_turnout.wheel_rail.geometry import (
     FLANGE_DIRECTION,
     WheelGrid,
@@ -398,8 +398,8 @@ class PatchResult:
     area: float  #: m^2, contact area at CONTACT's FN
     a: float  #: m, semi-axis for the creep law (rolling direction)
     b: float  #: m, semi-axis for the creep law (lateral)
-    fx: float  #: N, longitudinal creep force at CONTACT's creepages (Polach, on the wheel)
-    fs: float  #: N, lateral creep force at CONTACT's creepages (Polach, on the wheel)
+    fx: float  #: N, longitudinal creep force at CONTACT's creepages (the kernel's law, on the wheel)
+    fs: float  #: N, lateral creep force at CONTACT's creepages (the kernel's law, on the wheel)
 
 
 @dataclass(frozen=True)
@@ -445,9 +445,9 @@ def contact_at_reference(
     agrees with (validation/contact_vs_contact.md).  Hertz uses the point's curvature
     sums (floored like the tables'), Kik-Piotrowski the undeformed normal gap along the
     lateral tangent (:func:`.nonhertz.normal_gap_function`, sampled at ``step``).  Both
-    are evaluated at CONTACT's FN; the creep forces are Polach's
-    (:func:`.creep.polach_creep_forces`) at CONTACT's creepages CKSI, CETA, CPHI with its
-    FN, friction, G and Poisson's ratio.
+    are evaluated at CONTACT's FN; the creep forces are the passage kernel's law, the FASTSIM table
+    (:func:`.creep_table.table_creep_forces`, Poisson's ratio 0.28 as all the packaged
+    cases) at CONTACT's creepages CKSI, CETA, CPHI with its FN, friction and G.
 
     Parameters
     ----------
@@ -486,10 +486,12 @@ def contact_at_reference(
     patch = case.patches[0]
     force = patch.normal_force
 
+    table = creep_table()  # the kernel's creep law (FASTSIM, tabulated)
+
     def creep(a: float, b: float) -> tuple[float, float]:
-        forces = polach_creep_forces(
-            patch.cksi, patch.ceta, patch.cphi, a, b, force, case.friction,
-            shear_modulus=case.shear_modulus, poisson=case.poisson,
+        forces = table_creep_forces(
+            table, patch.cksi, patch.ceta, patch.cphi, a, b, force, case.friction,
+            shear_modulus=case.shear_modulus,
         )  # fmt: skip
         return float(forces.longitudinal), float(forces.lateral)
 
