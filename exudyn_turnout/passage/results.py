@@ -94,9 +94,10 @@ class PassageSettings:
     #: how track springs follow x: "compiled" (one numba call for all springs), "symbolic",
     #: "python" or "constant" (corunning.track.MECHANISMS)
     track_mechanism: str = "compiled"
-    #: wheel/rail contact: "profile" (S1002 on the turnout's rail sections, multi-point
-    #: Hertz, Polach creep with spin) or "height-table" (the route's rail height tables on a
-    #: conical tread with flange springs: a simplification kept for comparison)
+    #: wheel/rail contact: "profile" (S1002 on the turnout's rail sections, multi-point,
+    #: semi-Hertzian normal contact, FASTSIM creep table with spin) or "height-table" (the
+    #: route's rail height tables on a conical tread with flange springs: a simplification
+    #: kept for comparison)
     contact: str = "profile"
     #: track irregularity (:class:`~exudyn_turnout.inputs.irregularity.Irregularity`) added
     #: to the rails' heights and lateral positions; None: the design geometry

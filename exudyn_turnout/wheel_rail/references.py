@@ -398,7 +398,7 @@ class PatchResult:
     area: float  #: m^2, contact area at CONTACT's FN
     a: float  #: m, semi-axis for the creep law (rolling direction)
     b: float  #: m, semi-axis for the creep law (lateral)
-    fx: float  #: N, longitudinal creep force at CONTACT's creepages (the kernel's law, on the wheel)
+    fx: float  #: N, longitudinal creep force at CONTACT's creepages (kernel's law, on wheel)
     fs: float  #: N, lateral creep force at CONTACT's creepages (the kernel's law, on the wheel)
 
 
