@@ -376,7 +376,7 @@ class PlaneStepper:
         A = self.M + ga.gamma_eff * h * self.D + ga.beta_eff * h * h * self.K
         self.factor = CholeskyFactor(A) if self.n else None
         self.u_hat, self.v_hat, self.qdd_star = (np.zeros(self.n) for _ in range(3))
-        self._columns: dict[tuple, np.ndarray] = {}  #: (dofs, other, factor) -> A^-1 E
+        self._columns: dict = {}  #: key (see columns) -> A^-1 E
 
     def _factor(self) -> CholeskyFactor:
         if self.factor is None:
@@ -384,7 +384,11 @@ class PlaneStepper:
         return self.factor
 
     def columns(
-        self, dofs: np.ndarray, other: np.ndarray | None = None, factor: float = 0.0
+        self,
+        dofs: np.ndarray,
+        other: np.ndarray | None = None,
+        factor: float = 0.0,
+        key: object = None,
     ) -> np.ndarray:
         """A^-1 of the unit vectors of ``dofs`` (plus ``factor`` times those of ``other``).
 
@@ -397,35 +401,54 @@ class PlaneStepper:
             (a rail node's lateral displacement and roll: the head's lateral motion).
         factor : float
             Weight of ``other``.
+        key : hashable, optional
+            The cache key of these columns (the caller's name for ``dofs``, ``other`` and
+            ``factor``); default the three themselves.
 
         Returns
         -------
         numpy.ndarray
-            (n, k), cached per (dofs, other, factor).
+            (n, k), cached per key until :meth:`forget` or :meth:`set_window`.
         """
-        first = tuple(int(d) for d in dofs)
-        second = tuple(int(d) for d in other) if other is not None else ()
-        key = (first, second, float(factor))
+        if key is None:
+            first = tuple(int(d) for d in dofs)
+            second = tuple(int(d) for d in other) if other is not None else ()
+            key = (first, second, float(factor))
         cols = self._columns.get(key)
         if cols is None:
-            k = len(first)
+            k = len(dofs)
             E = np.zeros((self.n, k))
-            E[list(first), np.arange(k)] = 1.0
-            if second:
-                E[list(second), np.arange(k)] += factor
+            E[np.asarray(dofs), np.arange(k)] = 1.0
+            if other is not None:
+                E[np.asarray(other), np.arange(k)] += factor
             cols = self._columns[key] = self._factor().solve(E)
         return cols
 
     def forget(self, keep: set) -> None:
-        """Drop the cached columns whose DOF sets are not in ``keep``.
+        """Drop the cached columns whose keys are not in ``keep``.
 
         Parameters
         ----------
-        keep : set of tuple
-            DOF sets (tuples of int) still in use.
+        keep : set
+            Keys (:meth:`columns`) still in use.
         """
-        for key in [k for k in self._columns if k[0] not in keep]:
+        for key in [k for k in self._columns if k not in keep]:
             del self._columns[key]
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        """A^-1 b on the window.
+
+        Parameters
+        ----------
+        b : numpy.ndarray
+            (n,) or (n, k).
+
+        Returns
+        -------
+        numpy.ndarray
+            Of the shape of b.
+        """
+        return self._factor().solve(b)
 
     def predict(self) -> None:
         """u^, v^ and qdd* of the next step (no contact forces)."""
