@@ -24,6 +24,7 @@ import weakref
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 import scipy.sparse as sp
 
@@ -450,13 +451,26 @@ class PlaneStepper:
         """
         return self._factor().solve(b)
 
+    def _constants(self) -> np.ndarray:
+        ga = self.ga
+        return np.array([self.h, ga.alpha_m, ga.alpha_f, ga.beta, ga.gamma])
+
     def predict(self) -> None:
-        """u^, v^ and qdd* of the next step (no contact forces)."""
-        ga, h = self.ga, self.h
-        carry = (ga.alpha_f * self.qdd - ga.alpha_m * self.a) / (1.0 - ga.alpha_m)
-        self.u_hat = self.u + h * self.v + h * h * ((0.5 - ga.beta) * self.a + ga.beta * carry)
-        self.v_hat = self.v + h * ((1.0 - ga.gamma) * self.a + ga.gamma * carry)
-        self.qdd_star = self._factor().solve(-(self.D @ self.v_hat) - self.K @ self.u_hat)
+        """u^, v^ and qdd* of the next step (no contact forces).
+
+        u^ = u + h v + h^2 ((1/2 - beta) a + beta c), v^ = v + h ((1 - gamma) a + gamma c),
+        c = (alpha_f qdd - alpha_m a) / (1 - alpha_m); qdd* = A^-1 (-D v^ - K u^). The
+        vector updates and the two products are one compiled pass each (the numbers of the
+        NumPy expressions, operation by operation).
+        """
+        self.u_hat, self.v_hat = np.empty(self.n), np.empty(self.n)
+        _free_motion(self._constants(), self.u, self.v, self.a, self.qdd, self.u_hat, self.v_hat)
+        rhs = np.empty(self.n)
+        D, K = self.D, self.K
+        _free_forces(
+            D.indptr, D.indices, D.data, K.indptr, K.indices, K.data, self.v_hat, self.u_hat, rhs
+        )
+        self.qdd_star = self._factor().solve(rhs)
 
     def complete(self, qdd_contact: np.ndarray) -> None:
         """Finish the step with the contact forces' part A^-1 G F of the acceleration.
@@ -466,14 +480,45 @@ class PlaneStepper:
         qdd_contact : numpy.ndarray
             (n,) the acceleration the contact forces add.
         """
-        ga, h = self.ga, self.h
         qdd = self.qdd_star + qdd_contact
-        a = ((1.0 - ga.alpha_f) * qdd + ga.alpha_f * self.qdd - ga.alpha_m * self.a) / (
-            1.0 - ga.alpha_m
-        )
-        self.u = self.u + h * self.v + h * h * ((0.5 - ga.beta) * self.a + ga.beta * a)
-        self.v = self.v + h * ((1.0 - ga.gamma) * self.a + ga.gamma * a)
-        self.qdd, self.a = qdd, a
+        _complete(self._constants(), self.u, self.v, self.a, self.qdd, qdd)
+        self.qdd = qdd
+
+
+@numba.njit(cache=True)
+def _free_motion(c, u, v, a, qdd, u_hat, v_hat):  # pragma: no cover (compiled)
+    """u^, v^ of :meth:`PlaneStepper.predict`, c = (h, alpha_m, alpha_f, beta, gamma)."""
+    h, alpha_m, alpha_f, beta, gamma = c[0], c[1], c[2], c[3], c[4]
+    for i in range(len(u)):
+        carry = (alpha_f * qdd[i] - alpha_m * a[i]) / (1.0 - alpha_m)
+        u_hat[i] = u[i] + h * v[i] + h * h * ((0.5 - beta) * a[i] + beta * carry)
+        v_hat[i] = v[i] + h * ((1.0 - gamma) * a[i] + gamma * carry)
+
+
+@numba.njit(cache=True)
+def _free_forces(
+    d_ptr, d_idx, d_val, k_ptr, k_idx, k_val, v, u, out
+):  # pragma: no cover (compiled)
+    """out = -(D v) - K u for CSR matrices D and K."""
+    for i in range(len(out)):
+        s = 0.0
+        for j in range(d_ptr[i], d_ptr[i + 1]):
+            s += d_val[j] * v[d_idx[j]]
+        t = 0.0
+        for j in range(k_ptr[i], k_ptr[i + 1]):
+            t += k_val[j] * u[k_idx[j]]
+        out[i] = -s - t
+
+
+@numba.njit(cache=True)
+def _complete(c, u, v, a, qdd_old, qdd):  # pragma: no cover (compiled)
+    """u, v, a at the step's end, in place (:meth:`PlaneStepper.complete`)."""
+    h, alpha_m, alpha_f, beta, gamma = c[0], c[1], c[2], c[3], c[4]
+    for i in range(len(u)):
+        a_new = ((1.0 - alpha_f) * qdd[i] + alpha_f * qdd_old[i] - alpha_m * a[i]) / (1.0 - alpha_m)
+        u[i] = u[i] + h * v[i] + h * h * ((0.5 - beta) * a[i] + beta * a_new)
+        v[i] = v[i] + h * ((1.0 - gamma) * a[i] + gamma * a_new)
+        a[i] = a_new
 
 
 def lagrange_weights(p: int, xi: float) -> np.ndarray:
