@@ -1,6 +1,7 @@
 """Benchmark: the FE track under the one vehicle and contact vs the co-running tracks.
 
-Run: ``python benchmarks/bench_fe_profile_passage.py [--x-start X] [--x-end X] [--full]``
+Run: ``python benchmarks/bench_fe_profile_passage.py [--x-start X] [--x-end X] [--full]
+[--full-fe-only]``
 (default: the single wheelset over the crossing, 44-49 m of the through route at 100 km/h,
 h = 1e-4 s: issue 24's case). Every row is run in this one process after a warm-up and
 costed in CPU time and in units of the yardstick, the 3-layer co-running run of the same
@@ -11,7 +12,9 @@ carries over):
 - FE track, profile contact, vertical and lateral planes with rail torsion, co-simulated
   (``passage/fe_track/``): the default moving window and the whole model, with the split
   of the window run's wall time;
-- with ``--full``: the full vehicle (4 wheelsets) on 3-layer tracks and on the FE track.
+- with ``--full``: the full vehicle (4 wheelsets) on 3-layer tracks and on the FE track;
+- with ``--full-fe-only``: the unit and the full vehicle on the FE track only (issue 24's
+  "full vehicle on FE over the through route": ``--x-start -5 --x-end 60 --full-fe-only``).
 
 Every run also alternates with the shared yardstick (``benchmarks/yardstick.py``, a fixed
 workload independent of this package): the "yardstick" column is the run's wall time in
@@ -41,6 +44,9 @@ def main(argv=None) -> None:
     parser.add_argument("--x-start", type=float, default=44.0)
     parser.add_argument("--x-end", type=float, default=49.0)
     parser.add_argument("--full", action="store_true", help="also the full vehicle")
+    parser.add_argument(
+        "--full-fe-only", action="store_true", help="the unit and the full vehicle on FE only"
+    )
     args = parser.parse_args(argv)
     turnout = load_turnout()
     settings = PassageSettings(x_start=args.x_start, x_end=args.x_end)
@@ -59,6 +65,9 @@ def main(argv=None) -> None:
         (f"FE, window {window.window_length:g} m (default)", window),
         ("FE, whole model", FEPassageOptions(window_length=None)),
     )
+    tracks = ("3-layer", "fe") if args.full else ()
+    if args.full_fe_only:
+        cases, tracks = (), ("fe",)
     fe = None
     for name, options in cases:
         cpu, wall, r, units = _timed(
@@ -69,13 +78,13 @@ def main(argv=None) -> None:
         )
         fe = fe or r
         rows.append((name, cpu, wall, r, units))
-    if args.full:
-        for track in ("3-layer", "fe"):
-            cpu, wall, r, units = _timed(
-                stick,
-                lambda track=track: simulate_passage(turnout, settings, "manchester", track=track),
-            )
-            rows.append((f"full vehicle, {track}", cpu, wall, r, units))
+    for track in tracks:
+        cpu, wall, r, units = _timed(
+            stick,
+            lambda track=track: simulate_passage(turnout, settings, "manchester", track=track),
+        )
+        rows.append((f"full vehicle, {track}", cpu, wall, r, units))
+        fe = r if track == "fe" and fe is None else fe
     print(
         f"x {settings.x_start:g}..{settings.x_end:g} m, 100 km/h, h = 1e-4 s, "
         f"{sim:.3f} s simulated; cost in units of the 3-layer run (same process)"

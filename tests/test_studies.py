@@ -129,6 +129,48 @@ def test_process_pool_start_methods():
         process_pool([], 1, "thread")
 
 
+def _openblas_threads(count: int | None = None) -> int:
+    """NumPy's OpenBLAS thread count (set to ``count`` first, if given); -1 if not found."""
+    import ctypes
+
+    with open("/proc/self/maps", encoding="utf-8") as maps:
+        paths = sorted({line.split()[-1] for line in maps if "openblas" in line.lower()})
+    for path in paths:
+        library = ctypes.CDLL(path)
+        for suffix in ("64_", ""):
+            getter = getattr(library, f"scipy_openblas_get_num_threads{suffix}", None)
+            if getter is not None:
+                if count is not None:
+                    getattr(library, f"scipy_openblas_set_num_threads{suffix}")(count)
+                return int(getter())
+    return -1
+
+
+def test_forked_pool_workers_have_one_blas_thread():
+    """The forked workers inherit the parent's BLAS thread count unless they set it: the parent
+    is set to 2 threads here, its workers must report 1 (issue 24: the fork pool inherited
+    the BLAS threads)."""
+    import multiprocessing
+    import sys
+
+    from exudyn_turnout.studies.run import process_pool
+
+    forks = "fork" in multiprocessing.get_all_start_methods()
+    if not (sys.platform.startswith("linux") and forks):
+        pytest.skip("the pool forks on Linux only")
+    before = _openblas_threads()
+    if before < 0:
+        pytest.skip("NumPy's BLAS here is not the OpenBLAS wheel")
+    try:
+        assert _openblas_threads(2) == 2
+        with process_pool([], 2, "fork") as pool:
+            counts = {pool.submit(_openblas_threads).result() for _ in range(4)}
+        assert counts == {1}
+        assert _openblas_threads() == 2  # the parent keeps its own
+    finally:
+        _openblas_threads(before)
+
+
 @pytest.mark.slow
 def test_dask_local_cluster_gives_identical_numbers(serial, tmp_path):
     tmp, reference = serial

@@ -51,6 +51,7 @@ __all__ = [
     "estimated_cost",
     "process_pool",
     "default_start_method",
+    "one_blas_thread",
     "RESULTS_FILES",
 ]
 
@@ -530,6 +531,62 @@ def _one_thread_per_worker(active: bool):
             os.environ.pop(name, None)
 
 
+#: The thread-count setters a BLAS or OpenMP library exports, by build: NumPy's and SciPy's
+#: OpenBLAS wheels (with and without the 64-bit integer suffix), a plain OpenBLAS, MKL's
+#: runtime, an OpenMP runtime. The first one a library has is called.
+_THREAD_SETTERS = (
+    "scipy_openblas_set_num_threads64_",
+    "scipy_openblas_set_num_threads",
+    "openblas_set_num_threads64_",
+    "openblas_set_num_threads",
+    "MKL_Set_Num_Threads",
+    "omp_set_num_threads",
+)
+#: Parts of the file names of the libraries asked (lower case).
+_THREADED_LIBRARIES = ("openblas", "mkl_rt", "libgomp", "libomp", "libiomp")
+
+
+def one_blas_thread() -> int:
+    """Set every BLAS and OpenMP library loaded in this process to one thread.
+
+    A forked pool worker keeps its parent's BLAS thread count (the thread pool is rebuilt
+    after the fork with as many threads as before), and the environment variables
+    (``OPENBLAS_NUM_THREADS`` ...) are read only when a library loads, before the fork.
+    So the forked worker asks each loaded library itself, through the setter its build
+    exports (:data:`_THREAD_SETTERS`): the libraries are found in the process's memory
+    map (``/proc/self/maps``, Linux: where the pool forks), as ``threadpoolctl`` does,
+    which is not a dependency. One thread per worker: the pool already has one process per
+    core, more threads only compete (as a Dask nanny's workers get).
+
+    Returns
+    -------
+    int
+        Libraries set (0 where none is found, e.g. without ``/proc``).
+    """
+    import ctypes
+
+    try:
+        with open("/proc/self/maps", encoding="utf-8") as maps:
+            paths = sorted({line.split()[-1] for line in maps if "/" in line})
+    except OSError:
+        return 0
+    count = 0
+    for path in paths:
+        if not any(part in os.path.basename(path).lower() for part in _THREADED_LIBRARIES):
+            continue
+        try:
+            library = ctypes.CDLL(path)
+        except OSError:
+            continue
+        for name in _THREAD_SETTERS:
+            setter = getattr(library, name, None)
+            if setter is not None:
+                setter(1)
+                count += 1
+                break
+    return count
+
+
 def default_start_method() -> str:
     """How :func:`process_pool` starts its workers here: ``fork`` on Linux, else ``spawn``.
 
@@ -553,8 +610,9 @@ def process_pool(cases: Sequence[Case], workers: int, start_method: str | None =
     files, route, contact, track) loads imports, contact tables and compiled kernels once.
     ``fork`` (default on Linux) warms this process and forks the workers from it, so the
     warm-up is paid once, not once per worker, and the workers skip the imports (~3 s a
-    worker; they keep this process's BLAS threads); ``spawn`` starts fresh interpreters
-    (one BLAS/OpenMP thread each, unless set) that each warm up in an initializer.
+    worker; each sets its BLAS libraries to one thread, :func:`one_blas_thread`); ``spawn``
+    starts fresh interpreters (one BLAS/OpenMP thread each by the environment, unless set)
+    that each warm up in an initializer.
 
     Parameters
     ----------
@@ -578,7 +636,11 @@ def process_pool(cases: Sequence[Case], workers: int, start_method: str | None =
         raise StudyError(f"start_method must be 'fork' or 'spawn', got {method!r}")
     if method == "fork":
         _warm_worker(_warm_cases(cases))  # here: the forked workers inherit it
-        return ProcessPoolExecutor(int(workers), mp_context=multiprocessing.get_context("fork"))
+        return ProcessPoolExecutor(
+            int(workers),
+            mp_context=multiprocessing.get_context("fork"),
+            initializer=one_blas_thread,
+        )
     with _one_thread_per_worker(True):
         pool = ProcessPoolExecutor(
             int(workers),

@@ -126,6 +126,7 @@ class _Coupled:
     bodies: tuple  #: indices of the element's bodies in reach
     points: tuple  #: RailHeadPoint per body
     index: np.ndarray  #: element coordinates (y, z per body) of the coupled rail coordinates
+    cells: tuple = ()  #: per point, its FE rail element (rail id, index): the caches' key
 
 
 class FECoSimulation:
@@ -171,11 +172,19 @@ class FECoSimulation:
         self.t = 0.0  #: s, time of the current state
         self.t_next = math.nan  #: s, time of the predicted step (nan: none predicted)
         self.static = False  #: True: couple to the static compliance (static solve)
+        #: counts the changes of what the elements' rail coordinates obey (a prediction, a
+        #: completed step, a new state): an element's solve is reused while it stands
+        self.revision = 0
         self._predicted: dict[int, tuple] = {}
         self._static_lu: tuple | None = None
         self._static: dict[int, tuple] = {}
         self._static_forces: dict[int, np.ndarray] = {}
         self._grids: dict[str, tuple] = {}
+        #: per window, (rail id, element index) -> the element's local DOFs (w, v, roll)
+        self._cells: dict[tuple, tuple] = {}
+        #: per window, (cell j, cell k) -> (lateral, vertical) one-step compliance blocks
+        #: between the nodes of two cells (the rows of j of A^-1 G_k)
+        self._blocks: dict[tuple, tuple] = {}
         self.timings = {"factorise_s": time.perf_counter() - t0, "predict_s": 0.0}
         self.timings.update({"complete_s": 0.0, "coupling_s": 0.0, "window_s": 0.0})
 
@@ -234,7 +243,9 @@ class FECoSimulation:
             plane.set_window(dofs, eta, self._omega_ref)
             sizes.append(len(dofs))
         self._anchors = xs
+        self.revision += 1
         self._static_lu = None
+        self._cells, self._blocks = {}, {}
         self._predicted = {}
         self.window_cuts += 1
         self.window_dofs.append(sum(sizes))
@@ -270,7 +281,7 @@ class FECoSimulation:
         bounds, layout = element.tables.bounds, self.planes.layout
         x_fe = x if x_fe is None else x_fe
         x_slot = min(max(x_fe, layout.x_start), layout.x_end)
-        bodies, points, index = [], [], []
+        bodies, points, index, cells = [], [], [], []
         for k, body in enumerate(element.bodies):
             lo, hi = bounds[k, 2], bounds[k, 3]
             if not lo - 1e-9 <= x <= hi + 1e-9:
@@ -282,16 +293,20 @@ class FECoSimulation:
                 rail_id = layout.slot_rail(body.rail, inside, self.route)
             except ValueError as err:
                 raise ValueError(f"rail body '{body.name}' at x = {x:.3f} m: {err}") from None
+            point, cell = self._point(rail_id, x_fe)
             bodies.append(k)
-            points.append(self._point(rail_id, x_fe))
+            points.append(point)
+            cells.append(cell)
             index += [body.i_y, body.i_z]
-        return _Coupled(tuple(bodies), tuple(points), np.array(index, dtype=np.int64))
+        return _Coupled(tuple(bodies), tuple(points), np.array(index, dtype=np.int64), tuple(cells))
 
-    def _point(self, rail_id: str, x: float) -> RailHeadPoint:
-        """:func:`~exudyn_turnout.fe.rail_head.rail_head_point` at the rail top, fast.
+    def _point(self, rail_id: str, x: float) -> tuple[RailHeadPoint, tuple]:
+        """:func:`~exudyn_turnout.fe.rail_head.rail_head_point` at the rail top, fast, and
+        its cell (rail id, element index).
 
-        The rails' element bounds are gathered once and the shape functions evaluated by
-        scalar products (the step's hot path; the same values, tested).
+        The rails' element bounds are gathered once, an element's window DOFs once per
+        window, and the shape functions evaluated by scalar products (the step's hot path;
+        the same values, tested).
         """
         grid = self._grids.get(rail_id)
         if grid is not None and not grid[1][0] - 1e-9 <= x <= grid[2][-1] + 1e-9:
@@ -307,16 +322,24 @@ class FECoSimulation:
             x1 = mesh.node_x[mesh.elem_nodes[elements, 1]]
             grid = self._grids[rail_id] = (elements, x0, x1, ref.z)
         elements, x0, x1, z = grid
-        k = int(np.clip(np.searchsorted(x0, x + 1e-9, side="right") - 1, 0, len(elements) - 1))
+        k = int(np.searchsorted(x0, x + 1e-9, side="right")) - 1
+        k = min(max(k, 0), len(elements) - 1)
         xi = min(max((x - x0[k]) / (x1[k] - x0[k]), 0.0), 1.0)
-        nodes = self.planes.vertical.rail_elem_nodes[elements[k]]
-        lateral = self.planes.lateral
-        w_dofs = self.vertical.local[2 * nodes]
-        v_dofs = self.lateral.local[2 * nodes]
-        roll = self.lateral.local[lateral.roll_dof(nodes)] if lateral.torsion is not None else None
-        if np.any(w_dofs < 0) or np.any(v_dofs < 0) or (roll is not None and np.any(roll < 0)):
-            raise ValueError(f"x = {x:.3f} m on rail {rail_id} is outside the FE window")
-        return RailHeadPoint(
+        cell = (rail_id, k)
+        dofs = self._cells.get(cell)
+        if dofs is None:
+            nodes = self.planes.vertical.rail_elem_nodes[elements[k]]
+            lateral = self.planes.lateral
+            w_dofs = self.vertical.local[2 * nodes]
+            v_dofs = self.lateral.local[2 * nodes]
+            roll = (
+                self.lateral.local[lateral.roll_dof(nodes)] if lateral.torsion is not None else None
+            )
+            if np.any(w_dofs < 0) or np.any(v_dofs < 0) or (roll is not None and np.any(roll < 0)):
+                raise ValueError(f"x = {x:.3f} m on rail {rail_id} is outside the FE window")
+            dofs = self._cells[cell] = (w_dofs, v_dofs, roll)
+        w_dofs, v_dofs, roll = dofs
+        point = RailHeadPoint(
             rail_id,
             float(x),
             0.0,
@@ -328,6 +351,24 @@ class FECoSimulation:
             self.vertical.n,
             self.lateral.n,
         )
+        return point, cell
+
+    def _cell_columns(self, point: RailHeadPoint, cell: tuple) -> tuple[np.ndarray, np.ndarray]:
+        """A^-1 of the unit loads on a cell's nodes: lateral (the head's lateral load: v and,
+        with torsion, -z times the roll, (T1, T2)) and vertical, (n, p + 1) each."""
+        lateral = self.lateral.columns(point.v_dofs, point.roll_dofs, -point.z, key=cell)
+        return lateral, self.vertical.columns(point.w_dofs, key=cell)
+
+    def _block(self, p_j: RailHeadPoint, cell_j: tuple, cell_k: tuple, columns: tuple) -> tuple:
+        """The rows of point j's head displacements of A^-1 G_k (lateral, vertical), cached."""
+        block = self._blocks.get((cell_j, cell_k))
+        if block is None:
+            lat, ver = columns
+            rows = lat[p_j.v_dofs]
+            if p_j.roll_dofs is not None:
+                rows = rows - p_j.z * lat[p_j.roll_dofs]
+            block = self._blocks[(cell_j, cell_k)] = (rows, ver[p_j.w_dofs])
+        return block
 
     def _influence(self, point: RailHeadPoint) -> tuple[np.ndarray, np.ndarray]:
         """A^-1 g of a point's lateral and vertical unit loads (lateral, vertical plane)."""
@@ -353,26 +394,20 @@ class FECoSimulation:
         return out
 
     def _compliance(self, coupled: _Coupled) -> tuple[np.ndarray, list]:
-        """G^T A^-1 G (2m x 2m) and the influence vectors per body."""
+        """G^T A^-1 G (2m x 2m) and the column blocks A^-1 G of every point's cell.
+
+        Built from the cached blocks of :meth:`_block`: per pair of points two small
+        products, no vector of the window's length.
+        """
         m = len(coupled.points)
         C = np.zeros((2 * m, 2 * m))
-        influence = [self._influence(p) for p in coupled.points]
-        for k, (x_y, x_z) in enumerate(influence):
-            C[:, 2 * k] = self._gather_lat(coupled, x_y)
-            C[:, 2 * k + 1] = self._gather_ver(coupled, x_z)
-        return C, influence
-
-    def _gather_lat(self, coupled: _Coupled, x_lat: np.ndarray) -> np.ndarray:
-        out = np.zeros(2 * len(coupled.points))
-        for j, p in enumerate(coupled.points):
-            out[2 * j] = self._lateral_at(p, x_lat)
-        return out
-
-    def _gather_ver(self, coupled: _Coupled, x_ver: np.ndarray) -> np.ndarray:
-        out = np.zeros(2 * len(coupled.points))
-        for j, p in enumerate(coupled.points):
-            out[2 * j + 1] = p.weights @ x_ver[p.w_dofs]
-        return out
+        columns = [self._cell_columns(p, c) for p, c in zip(coupled.points, coupled.cells)]
+        for k, (p_k, cell_k) in enumerate(zip(coupled.points, coupled.cells)):
+            for j, (p_j, cell_j) in enumerate(zip(coupled.points, coupled.cells)):
+                lat, ver = self._block(p_j, cell_j, cell_k, columns[k])
+                C[2 * j, 2 * k] = p_j.weights @ (lat @ p_k.weights)
+                C[2 * j + 1, 2 * k + 1] = p_j.weights @ (ver @ p_k.weights)
+        return C, columns
 
     # --- the step -----------------------------------------------------------------------
 
@@ -394,22 +429,23 @@ class FECoSimulation:
         bh2 = ga.beta_eff * h * h
         keep: set = set()
         self._predicted = {}
+        u_lat = self.lateral.u_hat + bh2 * self.lateral.qdd_star
+        u_ver = self.vertical.u_hat + bh2 * self.vertical.qdd_star
+        v_lat = self.lateral.v_hat + ga.gamma_eff * h * self.lateral.qdd_star
+        v_ver = self.vertical.v_hat + ga.gamma_eff * h * self.vertical.qdd_star
         for el in elements:
             coupled = self.points(el.element, *el.positions(t_next))
-            C, influence = self._compliance(coupled)
-            u_lat = self.lateral.u_hat + bh2 * self.lateral.qdd_star
-            u_ver = self.vertical.u_hat + bh2 * self.vertical.qdd_star
-            v_lat = self.lateral.v_hat + ga.gamma_eff * h * self.lateral.qdd_star
-            v_ver = self.vertical.v_hat + ga.gamma_eff * h * self.vertical.qdd_star
+            C, columns = self._compliance(coupled)
             r_free = self._gather(coupled, u_lat, u_ver)
             r_t_free = self._gather(coupled, v_lat, v_ver)
-            self._predicted[id(el)] = (coupled, r_free, r_t_free, bh2 * C, influence)
-            for p in coupled.points:
-                keep.add(tuple(int(d) for d in p.w_dofs))
-                keep.add(tuple(int(d) for d in p.v_dofs))
+            self._predicted[id(el)] = (coupled, r_free, r_t_free, bh2 * C, columns)
+            keep.update(coupled.cells)
+        if len(self._blocks) > 4 * len(keep) ** 2:  # blocks of cells left behind
+            self._blocks = {k: b for k, b in self._blocks.items() if k[0] in keep and k[1] in keep}
         self.vertical.forget(keep)
         self.lateral.forget(keep)
         self.t_next = float(t_next)
+        self.revision += 1
         self.timings["predict_s"] += time.perf_counter() - t0
 
     def coupling(self, element, t: float) -> tuple:
@@ -453,16 +489,21 @@ class FECoSimulation:
             Per element, the forces on its coupled rail coordinates (y, z per body, N).
         """
         t0 = time.perf_counter()
-        add_ver = np.zeros(self.vertical.n)
-        add_lat = np.zeros(self.lateral.n)
+        # A^-1 G F by one solve per plane: cheaper than the sum of the points' influence
+        # columns (a window's length times p + 1 per point, memory bound), equal to round-off
+        g_ver = np.zeros(self.vertical.n)
+        g_lat = np.zeros(self.lateral.n)
         for el, F in forces:
-            coupled, _, _, _, influence = self._predicted[id(el)]
-            for k, (x_y, x_z) in enumerate(influence):
-                add_lat += F[2 * k] * x_y
-                add_ver += F[2 * k + 1] * x_z
-        self.vertical.complete(add_ver)
-        self.lateral.complete(add_lat)
+            coupled = self._predicted[id(el)][0]
+            for k, p in enumerate(coupled.points):
+                g_lat[p.v_dofs] += F[2 * k] * p.weights
+                if p.roll_dofs is not None:  # the head's lateral load (T1, T2)
+                    g_lat[p.roll_dofs] -= p.z * F[2 * k] * p.weights
+                g_ver[p.w_dofs] += F[2 * k + 1] * p.weights
+        self.vertical.complete(self.vertical.solve(g_ver))
+        self.lateral.complete(self.lateral.solve(g_lat))
         self.t, self.t_next = self.t_next, math.nan
+        self.revision += 1
         self.timings["complete_s"] += time.perf_counter() - t0
 
     # --- static state and start ---------------------------------------------------------
@@ -537,6 +578,7 @@ class FECoSimulation:
             self._static[id(el)] = (c, blocks)
             self._static_forces[id(el)] = np.zeros(len(c.index))
         self.static = True
+        self.revision += 1
 
     def report_static(self, element, forces: np.ndarray) -> None:
         """Record an element's latest forces on its rail coordinates in the static solve.
@@ -553,6 +595,7 @@ class FECoSimulation:
     def end_static(self) -> None:
         """Leave the static coupling (the next calls couple dynamically)."""
         self.static = False
+        self.revision += 1
 
     def start(self, elements: Sequence, forces: Sequence[np.ndarray], v: float) -> None:
         """Set the FE state to the static field under the elements' forces, carried at speed v.
@@ -585,6 +628,7 @@ class FECoSimulation:
             plane.qdd = CholeskyFactor(plane.M).solve(rhs)
             plane.a = plane.qdd.copy()
         self.t, self.t_next, self.static = 0.0, math.nan, False
+        self.revision += 1
 
     def rail_displacements(self, coupled: _Coupled) -> np.ndarray:
         """The current state's rail-head displacements at coupled points.
@@ -624,8 +668,15 @@ class FEContactElement:
         self.n = element.n_vehicle
         self.q = np.zeros(element.n)
         self.q_t = np.zeros(element.n)
-        self._jacobian: tuple | None = None  #: (time, coupled bodies, matrix)
+        #: ((t, coupled bodies), Newton matrix, its inverse): one step's calls share it while
+        #: the Newton converges fast with it (a modified Newton; the residual decides). Kept
+        #: from step to step it is too far off: measured 2.9x the iterations
+        self._jacobian: tuple | None = None
         self.last: tuple = ((), np.zeros(0), np.zeros(0))  #: (coupled, r, forces on r)
+        #: (track revision, t, q, q_t, forces) of the last solve: the same call again (the
+        #: post-step call at Exudyn's converged state) returns its result
+        self._solved: tuple | None = None
+        self._last_t = math.nan  #: s, time of the last solve
 
     def positions(self, t: float) -> tuple[float, float]:
         """Positions (m) at time t of the contact tables and on the FE track.
@@ -666,6 +717,17 @@ class FEContactElement:
             The coupling Newton did not converge (with time and position).
         """
         t0 = time.perf_counter()
+        solved, self._solved = self._solved, None
+        if (
+            solved is not None
+            and solved[0] == self.track.revision
+            and solved[1] == t
+            and not self.track.static
+            and np.array_equal(solved[2], q)
+            and np.array_equal(solved[3], q_t)
+        ):  # self.q, self.q_t, self.last are still this call's
+            self._solved = solved
+            return solved[4].copy()
         el, n = self.element, self.n
         x = el.x_at(t)
         coupled, r_free, r_t_free, C, c_v = self.track.coupling(self, t)
@@ -681,7 +743,7 @@ class FEContactElement:
         def rail_forces(r: np.ndarray) -> np.ndarray:
             self.q[idx] = r
             self.q_t[idx] = r_t_free + c_v * (r - r_free)
-            return el.forces_at(x, self.q, self.q_t)[idx].copy()
+            return el.forces_at(x, self.q, self.q_t)[idx]  # a copy (fancy index)
 
         r = r_free.copy()
         if not C.any():  # the rails are where the FE state says
@@ -689,41 +751,44 @@ class FEContactElement:
             self.last = (coupled, r, forces)
             return forces
         if len(self.last[1]) == len(r) and self.last[0].bodies == coupled.bodies:
-            r = self.last[1].copy()  # the previous solution: usually within a few nm
-        J = None
-        if self._jacobian is not None and self._jacobian[:2] == (t, coupled.bodies):
-            J = self._jacobian[2]
-        eye = np.eye(len(r))
+            if t == self._last_t or self.track.static:
+                r = self.last[1].copy()  # the previous solution: usually within a few nm
+            else:  # a new step: the rails' free motion and the last forces' response
+                r = r_free + C @ self.last[2]
+        J_inv = None
+        if self._jacobian is not None and self._jacobian[0] == (t, coupled.bodies):
+            J_inv = self._jacobian[2]
 
         def residual(r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             forces = rail_forces(r)
             return r - r_free - C @ forces, forces
 
         g, forces = residual(r)
-        size = np.max(np.abs(g))
+        size = float(np.abs(g).max())
         fresh = False
         for _ in range(_MAX_ITERATIONS):
             if size <= COUPLING_TARGET:
                 break
-            if J is None or self.track.static:
-                J, fresh = self._newton_matrix(rail_forces, r, forces, C, eye), True
-                self._jacobian = (t, coupled.bodies, J)
-            step = np.linalg.solve(J, g)
+            if J_inv is None or self.track.static:
+                J = self._newton_matrix(rail_forces, r, forces, C)
+                J_inv, fresh = np.linalg.inv(J), True
+                self._jacobian = ((t, coupled.bodies), J, J_inv)
+            step = J_inv @ g
             # backtracking on the largest residual: the creep forces' dependence on the rail
             # velocity makes a full step with an old Jacobian overshoot where points switch
             for damping in _DAMPING:
                 trial = r - damping * step
                 g_trial, f_trial = residual(trial)
-                size_trial = np.max(np.abs(g_trial))
+                size_trial = float(np.abs(g_trial).max())
                 if size_trial < (1.0 - 1e-4 * damping) * size:
                     break
             else:
                 if fresh:  # no descent even with a new Jacobian
                     break
-                J = None  # an old Jacobian: recompute and retry
+                J_inv = None  # an old Jacobian: recompute and retry
                 continue
             if size_trial > 0.25 * size:  # slow: a new Jacobian for the next iteration
-                J = None
+                J_inv = None
             r, g, forces, size, fresh = trial, g_trial, f_trial, size_trial, False
         if size > COUPLING_TOLERANCE:
             raise ArithmeticError(
@@ -733,12 +798,14 @@ class FEContactElement:
         self.q[idx] = r
         self.q_t[idx] = r_t_free + c_v * (r - r_free)
         self.last = (coupled, r, forces)
+        self._last_t = t
         self.track.report_static(self, forces)
+        self._solved = (self.track.revision, t, np.array(q, float), np.array(q_t, float), forces)
         self.track.timings["coupling_s"] += time.perf_counter() - t0
-        return forces
+        return forces.copy()
 
     @staticmethod
-    def _newton_matrix(rail_forces, r, forces, C, eye, scale: float = 1.0) -> np.ndarray:
+    def _newton_matrix(rail_forces, r, forces, C, scale: float = 1.0) -> np.ndarray:
         """I - C dF/dr (dF/dr with the rail velocity's dependence on r) by differences."""
         dF = np.empty((len(r), len(r)))
         step = scale * _FD_STEP
@@ -746,7 +813,7 @@ class FEContactElement:
             dr = r.copy()
             dr[j] += step
             dF[:, j] = (rail_forces(dr) - forces) / step
-        return eye - C @ dF
+        return np.eye(len(r)) - C @ dF
 
     def __call__(self, mbs, t, item_number, q, q_t):
         """Exudyn ``forceUserFunction``: generalised forces on the vehicle's coordinates."""

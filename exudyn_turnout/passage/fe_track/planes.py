@@ -24,6 +24,7 @@ import weakref
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 import scipy.sparse as sp
 
@@ -376,7 +377,7 @@ class PlaneStepper:
         A = self.M + ga.gamma_eff * h * self.D + ga.beta_eff * h * h * self.K
         self.factor = CholeskyFactor(A) if self.n else None
         self.u_hat, self.v_hat, self.qdd_star = (np.zeros(self.n) for _ in range(3))
-        self._columns: dict[tuple, np.ndarray] = {}  #: (dofs, other, factor) -> A^-1 E
+        self._columns: dict = {}  #: key (see columns) -> A^-1 E
 
     def _factor(self) -> CholeskyFactor:
         if self.factor is None:
@@ -384,7 +385,11 @@ class PlaneStepper:
         return self.factor
 
     def columns(
-        self, dofs: np.ndarray, other: np.ndarray | None = None, factor: float = 0.0
+        self,
+        dofs: np.ndarray,
+        other: np.ndarray | None = None,
+        factor: float = 0.0,
+        key: object = None,
     ) -> np.ndarray:
         """A^-1 of the unit vectors of ``dofs`` (plus ``factor`` times those of ``other``).
 
@@ -397,42 +402,70 @@ class PlaneStepper:
             (a rail node's lateral displacement and roll: the head's lateral motion).
         factor : float
             Weight of ``other``.
+        key : hashable, optional
+            The cache key of these columns (the caller's name for ``dofs``, ``other`` and
+            ``factor``); default the three themselves.
 
         Returns
         -------
         numpy.ndarray
-            (n, k), cached per (dofs, other, factor).
+            (n, k), cached per key until :meth:`forget` or :meth:`set_window`.
         """
-        first = tuple(int(d) for d in dofs)
-        second = tuple(int(d) for d in other) if other is not None else ()
-        key = (first, second, float(factor))
+        if key is None:
+            first = tuple(int(d) for d in dofs)
+            second = tuple(int(d) for d in other) if other is not None else ()
+            key = (first, second, float(factor))
         cols = self._columns.get(key)
         if cols is None:
-            k = len(first)
+            k = len(dofs)
             E = np.zeros((self.n, k))
-            E[list(first), np.arange(k)] = 1.0
-            if second:
-                E[list(second), np.arange(k)] += factor
+            E[np.asarray(dofs), np.arange(k)] = 1.0
+            if other is not None:
+                E[np.asarray(other), np.arange(k)] += factor
             cols = self._columns[key] = self._factor().solve(E)
         return cols
 
     def forget(self, keep: set) -> None:
-        """Drop the cached columns whose DOF sets are not in ``keep``.
+        """Drop the cached columns whose keys are not in ``keep``.
 
         Parameters
         ----------
-        keep : set of tuple
-            DOF sets (tuples of int) still in use.
+        keep : set
+            Keys (:meth:`columns`) still in use.
         """
-        for key in [k for k in self._columns if k[0] not in keep]:
+        for key in [k for k in self._columns if k not in keep]:
             del self._columns[key]
 
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        """A^-1 b on the window.
+
+        Parameters
+        ----------
+        b : numpy.ndarray
+            (n,) or (n, k).
+
+        Returns
+        -------
+        numpy.ndarray
+            Of the shape of b.
+        """
+        return self._factor().solve(b)
+
+    def _constants(self) -> np.ndarray:
+        ga = self.ga
+        return np.array([self.h, ga.alpha_m, ga.alpha_f, ga.beta, ga.gamma])
+
     def predict(self) -> None:
-        """u^, v^ and qdd* of the next step (no contact forces)."""
-        ga, h = self.ga, self.h
-        carry = (ga.alpha_f * self.qdd - ga.alpha_m * self.a) / (1.0 - ga.alpha_m)
-        self.u_hat = self.u + h * self.v + h * h * ((0.5 - ga.beta) * self.a + ga.beta * carry)
-        self.v_hat = self.v + h * ((1.0 - ga.gamma) * self.a + ga.gamma * carry)
+        """u^, v^ and qdd* of the next step (no contact forces).
+
+        u^ = u + h v + h^2 ((1/2 - beta) a + beta c), v^ = v + h ((1 - gamma) a + gamma c),
+        c = (alpha_f qdd - alpha_m a) / (1 - alpha_m); qdd* = A^-1 (-D v^ - K u^). The
+        vector updates are one compiled pass (the numbers of the NumPy expressions,
+        operation by operation, 8x faster).
+        """
+        self.u_hat, self.v_hat = np.empty(self.n), np.empty(self.n)
+        _free_motion(self._constants(), self.u, self.v, self.a, self.qdd, self.u_hat, self.v_hat)
+        # SciPy's sparse products: a compiled fused -(D v^) - K u^ took twice as long
         self.qdd_star = self._factor().solve(-(self.D @ self.v_hat) - self.K @ self.u_hat)
 
     def complete(self, qdd_contact: np.ndarray) -> None:
@@ -443,14 +476,30 @@ class PlaneStepper:
         qdd_contact : numpy.ndarray
             (n,) the acceleration the contact forces add.
         """
-        ga, h = self.ga, self.h
         qdd = self.qdd_star + qdd_contact
-        a = ((1.0 - ga.alpha_f) * qdd + ga.alpha_f * self.qdd - ga.alpha_m * self.a) / (
-            1.0 - ga.alpha_m
-        )
-        self.u = self.u + h * self.v + h * h * ((0.5 - ga.beta) * self.a + ga.beta * a)
-        self.v = self.v + h * ((1.0 - ga.gamma) * self.a + ga.gamma * a)
-        self.qdd, self.a = qdd, a
+        _complete(self._constants(), self.u, self.v, self.a, self.qdd, qdd)
+        self.qdd = qdd
+
+
+@numba.njit(cache=True)
+def _free_motion(c, u, v, a, qdd, u_hat, v_hat):  # pragma: no cover (compiled)
+    """u^, v^ of :meth:`PlaneStepper.predict`, c = (h, alpha_m, alpha_f, beta, gamma)."""
+    h, alpha_m, alpha_f, beta, gamma = c[0], c[1], c[2], c[3], c[4]
+    for i in range(len(u)):
+        carry = (alpha_f * qdd[i] - alpha_m * a[i]) / (1.0 - alpha_m)
+        u_hat[i] = u[i] + h * v[i] + h * h * ((0.5 - beta) * a[i] + beta * carry)
+        v_hat[i] = v[i] + h * ((1.0 - gamma) * a[i] + gamma * carry)
+
+
+@numba.njit(cache=True)
+def _complete(c, u, v, a, qdd_old, qdd):  # pragma: no cover (compiled)
+    """u, v, a at the step's end, in place (:meth:`PlaneStepper.complete`)."""
+    h, alpha_m, alpha_f, beta, gamma = c[0], c[1], c[2], c[3], c[4]
+    for i in range(len(u)):
+        a_new = ((1.0 - alpha_f) * qdd[i] + alpha_f * qdd_old[i] - alpha_m * a[i]) / (1.0 - alpha_m)
+        u[i] = u[i] + h * v[i] + h * h * ((0.5 - beta) * a[i] + beta * a_new)
+        v[i] = v[i] + h * ((1.0 - gamma) * a[i] + gamma * a_new)
+        a[i] = a_new
 
 
 def lagrange_weights(p: int, xi: float) -> np.ndarray:

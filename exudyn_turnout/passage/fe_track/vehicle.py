@@ -179,6 +179,14 @@ def _build(turnout, route, model, vehicle, contact, settings, track, x_range, x_
     return system
 
 
+def _all_coordinates(system: _Vehicle) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Every wheelset element's 7 current coordinates and velocities (one read of each)."""
+    data = system.mbs.systemData
+    q = np.asarray(data.GetODE2Coordinates())
+    q_t = np.asarray(data.GetODE2Coordinates_t())
+    return [(q[index].copy(), q_t[index].copy()) for index in system.index]
+
+
 def _coordinates(system: _Vehicle, i: int, initial: bool = False):
     import exudyn as exu
 
@@ -256,7 +264,7 @@ def _relax(system: _Vehicle, track: FECoSimulation, model: VehicleModel, x: floa
         return True
 
     def post_step(mbs, t):
-        states = [_coordinates(system, i) for i in range(len(system.coupled))]
+        states = _all_coordinates(system)
         done = [(c, c.solve(t, q, q_t)) for c, (q, q_t) in zip(system.coupled, states)]
         if t == track.t_next:
             track.complete(done)
@@ -432,7 +440,7 @@ def _simulate(turnout, settings, model, contact, route, x_range, progress, optio
         return True
 
     def post_step(mbs, t):
-        states = [_coordinates(system, i) for i in range(len(system.coupled))]
+        states = _all_coordinates(system)
         if t == track.t_next:
             done = [(c, c.solve(t, q, q_t)) for c, (q, q_t) in zip(system.coupled, states)]
             track.complete(done)
