@@ -44,7 +44,10 @@ def test_vehicles_by_name():
     from exudyn_turnout.inputs.vehicle import Vehicle
     from exudyn_turnout.inputs.vehicle_model import VehicleModel
 
-    assert isinstance(vehicle_of(None), Vehicle) and isinstance(vehicle_of("wheelset"), Vehicle)
+    # the default is the full Manchester vehicle (issue 24: the paper's figures show its front
+    # axle); the single wheelset by name
+    assert isinstance(vehicle_of(None), VehicleModel)
+    assert isinstance(vehicle_of("wheelset"), Vehicle)
     manchester = vehicle_of("manchester")
     assert isinstance(manchester, VehicleModel) and len(manchester.wheelset.x) == 4
     with pytest.raises(PassageError, match="unknown packaged vehicle 'tgv'"):
