@@ -149,3 +149,29 @@ def test_cache_is_written_read_and_a_damaged_file_rebuilt(tmp_path):
         again = ct.creep_table(settings, str(tmp_path))
     np.testing.assert_array_equal(again.values, built.values)
     ct.creep_table.cache_clear()
+
+
+def test_continuous_at_zero_translational_creepage_with_spin(table):
+    """Pure spin (the centred tread contact rolling freely) is a node of every alpha: the
+    force must not jump when a creepage of 1e-11 is added, the size of Exudyn's forward
+    differences in a linearisation (velocity step 1e-9 m/s at ~100 m/s).  Operating point
+    of the Manchester vehicle's tread contact on S1002 / UIC60 1:40 (passage/hunting.py):
+    a = 4.69, b = 8.89 mm, N = 54.5 kN, spin 0.0525 1/m.  Before the pure-spin nodes held
+    exactly zero translational creepage, the jump was ~3e-4 N and the forward-difference
+    slopes at 1e-11 were 1.4-3x those at 1e-7."""
+    a, b, load, mu, phi = 4.6868e-3, 8.8868e-3, 54535.0, 0.4, 0.052453
+    base = ct.table_creep_forces(table, 0.0, 0.0, phi, a, b, load, mu, G)
+    for sign in (1.0, -1.0):
+        for index in (0, 1):  # xi, eta
+            slopes = []
+            for step in (1e-11, 1e-7):
+                creep = [0.0, 0.0]
+                creep[index] = sign * step
+                f = ct.table_creep_forces(table, *creep, sign * phi, a, b, load, mu, G)
+                g = ct.table_creep_forces(table, 0.0, 0.0, sign * phi, a, b, load, mu, G)
+                slopes.append(
+                    (float(f.longitudinal if index == 0 else f.lateral)
+                     - float(g.longitudinal if index == 0 else g.lateral)) / step
+                )  # fmt: skip
+            assert slopes[0] == pytest.approx(slopes[1], rel=0.01)
+    assert abs(float(base.longitudinal)) < 1e-6 * mu * load  # pure spin: no F_x

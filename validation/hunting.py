@@ -51,7 +51,7 @@ CASES = {
     "3 mm, all wheelsets": (3e-3, "all"),
 }
 #: km/h, linearised system: the sweep plus these
-LINEAR_EXTRA = (400.0, 425.0, 450.0, 500.0)
+LINEAR_EXTRA = (325.0, 375.0, 400.0, 450.0)
 #: Hz, band of the bogies' hunting modes in the linearised system (the car body's lateral
 #: modes are below 1.3 Hz, validation/vehicle_modes.md)
 HUNTING_BAND = (1.5, 50.0)
@@ -67,6 +67,12 @@ def _row(run: HuntingRun) -> str:
         f"{1e3 * lead.last_amplitude:.3g} | {run.kinematic_hz:.2f} | "
         f"{run.bogie_kinematic_hz:.2f} | {decays} | {run.wall_seconds:.1f} |"
     )
+
+
+def _span(values: list[float], fmt: str) -> str:
+    """'lo-hi' of some values in a format (one value if they agree in it)."""
+    lo, hi = format(min(values), fmt), format(max(values), fmt)
+    return lo if lo == hi else f"{lo}-{hi}"
 
 
 def _bracket(runs: list[HuntingRun]) -> tuple[float, float] | None:
@@ -139,7 +145,8 @@ def main() -> None:
     bogie_modes = [
         linear_hunting(turnout, kmh, model, band_hz=HUNTING_BAND) for kmh in SPEEDS + LINEAR_EXTRA
     ]
-    linear_bracket = linear_critical_speed(turnout, 350.0, 500.0, 5.0, model)
+    linear_bracket = linear_critical_speed(turnout, 250.0, 450.0, 5.0, model)
+    polach_bracket = linear_critical_speed(turnout, 250.0, 450.0, 5.0, model, creep_law="polach")
     minutes = (time.perf_counter() - wall) / 60.0
 
     # 5. report
@@ -165,11 +172,14 @@ def main() -> None:
         f"- Contact: the package's profile contact (`passage/contact/profile.py`): wheel "
         f"{base.wheel_profile} (S1002), back-to-back {base.back_to_back} m, r0 = 0.46 m; "
         "contact points from the packed contact tables, Hertz normal force per point "
-        "from its curvatures, creep forces by Polach's method (k_A = k_S = 1) with spin, "
+        "from its curvatures, creep forces of FASTSIM with spin from the kernel's creep "
+        "table (`wheel_rail/creep_table.py`; the linearised system also with Polach's "
+        "method, k_A = k_S = 1), "
         f"friction mu = {contact.mu:g}, G = 81 GPa. Equivalent conicity (EN 15302, "
         "validation/contact_geometry.md): 0.372 at 1 mm, 0.232 at 2 mm, 0.185 at 3 mm, "
         "0.166 at 4 mm amplitude; Klingel's frequencies below use 0.18.",
-        f"- Run: steady state at speed (static equilibrium), then the perturbation, "
+        f"- Run: steady state at speed (static equilibrium, wheelsets spinning at free "
+        "rolling: no longitudinal creepage), then the perturbation, "
         f"{DURATION:g} s of generalized-alpha (rho_inf = {template.spectral_radius}, "
         f"h = {template.time_step:g} s, output every {template.output_step:g} s).",
         f"- Decay: `decay_analysis` fits log|extremum| (one per half-cycle) from "
@@ -224,7 +234,8 @@ def main() -> None:
         "",
         "## Linearised system",
         "",
-        "Exudyn's `ComputeLinearizedSystem` at the centred steady state (creep forces and "
+        "Exudyn's `ComputeLinearizedSystem` at the centred steady state, wheelsets at "
+        "free rolling (creep forces and "
         "contact geometry linearised at y = 0: the centred slope of the rolling-radius "
         "difference, not the equivalent conicity at an amplitude), state-space eigenvalues; "
         "least damped oscillatory mode between 0.1 and 50 Hz (below the critical speed "
@@ -244,19 +255,30 @@ def main() -> None:
     lo, hi = linear_bracket
     lines += [
         "",
-        f"Linear critical speed: between {lo:.1f} and {hi:.1f} km/h.",
+        f"Linear critical speed: between {lo:.1f} and {hi:.1f} km/h (FASTSIM table); "
+        f"with Polach's method between {polach_bracket[0]:.1f} and {polach_bracket[1]:.1f} "
+        "km/h. Polach's slopes at free rolling are Kalker's linear ones; the table's "
+        "forward-difference slopes at the tread's spin (0.0525 1/m) are 0.81 C11 and "
+        "0.82 / 1.04 C22 (left / right wheel), direct FASTSIM's 0.90 / 0.95, Kalker's exact "
+        "theory's 0.93 / 0.98: the table's spin-angle interpolation near pure spin "
+        "(n_beta = 33) raises the critical speed by ~20 km/h (n_beta = 65: 329, 129: 322 km/h; "
+        "tests/test_vehicle_linear.py). Before the wheelsets were set to free rolling the "
+        "linearisation carried xi = 2.06e-4 on every wheel, where Polach's lateral slope "
+        "is 1.36 C22 and its critical speed read 425-430 km/h.",
         "",
         "## Result",
         "",
     ]
     if main_onset is not None:
         lo3, hi3 = main_onset.bracket_kmh
+        above_fit = next(r for r in main_onset.runs if r.settings.speed_kmh == hi3).fits[0]
         lines += [
             f"With the leading wheelset 3 mm off centre the offset decays up to {lo3:g} km/h "
             f"and does not from {hi3:g} km/h: **hunting onset {main_onset.onset_kmh:.0f} "
             f"+- {0.5 * (hi3 - lo3):.0f} km/h** (rigid straight track, S1002 / UIC60 1:40 / "
-            f"1435 / 1360, Polach, mu = {contact.mu:g}). Above it the front bogie settles "
-            "into a limit cycle of about 1 mm at ~7 Hz, well clear of the flanges, growing "
+            f"1435 / 1360, FASTSIM table, mu = {contact.mu:g}). Above it the front bogie settles "
+            f"into a limit cycle of {1e3 * above_fit.last_amplitude:.2g} mm at "
+            f"{above_fit.frequency_hz:.1f} Hz just above it, well clear of the flanges, growing "
             "with speed (sweep: ws1 last amp.); at 300 km/h and above the leading wheelset "
             "hunts at ~6.5 mm, flange to flange. The linearised system is stable up to "
             f"{lo:.0f}-{hi:.0f} km/h. The onset is nonlinear (subcritical): the contact "
@@ -267,6 +289,13 @@ def main() -> None:
         ]
         above = next(r for r in main_onset.runs if r.settings.speed_kmh == hi3)
         f_lc = above.fits[0].frequency_hz
+        decaying = [r for r in sweep if r.settings.speed_kmh <= lo3]
+        f_decay = [r.critical_fit.frequency_hz for r in decaying]
+        r_decay = [r.critical_fit.decay_rate for r in decaying]
+        below = [r for r in linear if r.speed_kmh <= lo3]
+        f_linear = [r.frequency_hz for r in below]
+        z_linear = [r.damping_ratio for r in below]
+        r_linear = [-r.growth_rate for r in below]
         v = above.settings.v
         lines += [
             f"Sanity check against Klingel: at {hi3:g} km/h the limit cycle's frequency is "
@@ -276,11 +305,15 @@ def main() -> None:
             f"{bogie_kinematic_frequency(v, 0.372, 0.46, 0.75, 1.28):.2f} Hz for a rigid "
             "bogie: the limit cycle lies between the two, as a bogie whose primary yaw "
             "stiffness lets the wheelsets steer partly on their own. Below the onset the "
-            "decaying motion (0.60-0.61 Hz, rate 0.81-0.85 1/s at every speed of the sweep) "
-            "is the car body's lower sway (linear model: 0.60-0.61 Hz, damping ratio 0.20-"
-            "0.21, decay rate 0.78-0.83 1/s; root locus in validation/vehicle_modes.md), not "
-            "the kinematic mode: the leading wheelset's 0.76 Hz at 50 km/h lies near "
-            "Klingel's rigid-bogie 0.81 Hz for lambda = 0.18 by coincidence of one speed "
+            f"decaying motion ({_span(f_decay, '.2f')} Hz, rate {_span(r_decay, '.2f')} 1/s "
+            "over the sweep's decaying runs) "
+            "is the car body's lower sway (linear model: "
+            f"{_span(f_linear, '.2f')} Hz, damping ratio {_span(z_linear, '.3f')}, decay rate "
+            f"{_span(r_linear, '.2f')} 1/s; root locus in validation/vehicle_modes.md), not "
+            f"the kinematic mode: the leading wheelset's {sweep[0].fits[0].frequency_hz:.2f} "
+            f"Hz at {sweep[0].settings.speed_kmh:g} km/h lies near "
+            f"Klingel's rigid-bogie {sweep[0].bogie_kinematic_hz:.2f} Hz for lambda = 0.18 by "
+            "coincidence of one speed "
             "(the sway's frequency does not grow with v, Klingel's does).",
             "",
         ]

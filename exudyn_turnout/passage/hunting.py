@@ -7,9 +7,10 @@ straight, rigid plain track: the plain rail section of the turnout's route at it
 x_min (UIC60 1:40 in the packaged turnout), constant along x. Every wheel is in contact
 with it through the package's profile contact
 (:class:`~exudyn_turnout.passage.contact.profile.ProfileContactElement`: contact points
-from the S1002/UIC60 tables, Hertz normal force per point, Polach's creep forces with
-spin), the rails held fixed (rigid track). The run starts from the steady state at speed
-(the symmetric static equilibrium; on straight track nothing else differs) with a lateral
+from the S1002/UIC60 tables, Hertz normal force per point, FASTSIM's creep forces with
+spin from the kernel's creep table, or Polach's: :data:`CREEP_LAWS`), the rails held fixed
+(rigid track). The run starts from the steady state at speed (the symmetric static
+equilibrium, the wheelsets spinning at free rolling, xi = 0) with a lateral
 offset of the leading wheelset (or of all), and the lateral motion of the wheelsets is
 measured: :func:`decay_analysis` fits the decay rate of its extrema, their amplitude
 ratio per cycle and the frequency. :func:`find_hunting_onset` bisects the speed above
@@ -24,8 +25,9 @@ at y = 0).
 
 The contact geometry is nonlinear (equivalent conicity 0.37 at 1 mm amplitude, 0.18 at
 3 mm), so the onset depends on the perturbation: ``python validation/hunting.py`` gives
-192 +- 2 km/h for 3 mm on the leading wheelset, 252 +- 2 km/h for 1 mm, and 425-430 km/h
-for the linearised system (validation/hunting.md).
+the onsets per perturbation and the linearised system's critical speed
+(validation/hunting.md; linearised: 340-345 km/h with the FASTSIM table, 315-320 km/h with
+Polach's method, tests/test_vehicle_linear.py).
 """
 
 from __future__ import annotations
@@ -33,7 +35,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from types import SimpleNamespace
 from typing import Any
 
@@ -46,8 +48,10 @@ from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel, load_vehicle_model
 from exudyn_turnout.passage.contact.profile import (
     RigidRailContact,
+    RouteContact,
     route_contact,
 )
+from exudyn_turnout.wheel_rail.kernel import DETAIL_FIELDS
 
 __all__ = [
     "HuntingSettings",
@@ -67,10 +71,14 @@ __all__ = [
     "linear_modes",
     "OFFSET_WHEELSETS",
     "MIN_DECAY_RATE",
+    "CREEP_LAWS",
 ]
 
 #: Which wheelsets start off centre: the leading one or all.
 OFFSET_WHEELSETS = ("leading", "all")
+#: Creep laws of the contact kernel (``wheel_rail.kernel.pack_tables``): FASTSIM's forces
+#: from the creep table (the kernel's default) or Polach's method.
+CREEP_LAWS = ("fastsim", "polach")
 #: 1/s, smallest decay rate counted as decaying: a limit cycle fits |sigma| < 0.01 1/s
 #: (measured), a decaying run at the speeds below the onset > 0.8 1/s (validation/hunting.md)
 MIN_DECAY_RATE = 0.05
@@ -354,9 +362,54 @@ class _Straight:
     x_section: float  #: m
 
 
-def _straight(turnout: Turnout, route_name: str, model: VehicleModel, v: float) -> _Straight:
+def _with_creep_law(contact: RouteContact, creep_law: str) -> RouteContact:
+    """The route's contact with the kernel's creep law set (the last packed value is the
+    law, 1 FASTSIM table, 0 Polach: ``wheel_rail.kernel.pack_tables``)."""
+    if creep_law not in CREEP_LAWS:
+        raise ValueError(f"hunting: creep_law = {creep_law!r} must be one of {CREEP_LAWS}")
+    values = contact.tables.values.copy()
+    values[-1] = 1.0 if creep_law == "fastsim" else 0.0
+    return replace(contact, tables=replace(contact.tables, values=values))
+
+
+def _roll_freely(system: _Straight, v: float) -> None:
+    """Spin every wheelset at the speed of rolling without longitudinal creepage.
+
+    The element turns the wheels at v / r0 + beta_t; the centred contact rolls on the
+    table's radius r (0.45991 m against r0 = 0.46 m on S1002 / UIC60 1:40), so beta_t = 0
+    leaves xi = 1 - r / r0 ~ 2e-4 on every wheel, a braking torque the static solve's spin
+    spring held. Free, the wheelset spins up to xi = 0 within milliseconds; the steady state
+    at speed is that one. beta_t is set (Initial and Current) to xi v / r, which zeroes xi
+    (xi is linear in beta_t, slope -r / v).
+    """
+    import exudyn as exu
+
+    mbs = system.mbs
+    i_normal, i_xi = DETAIL_FIELDS.index("normal"), DETAIL_FIELDS.index("xi")
+    i_radius = DETAIL_FIELDS.index("radius")
+    q = np.array(mbs.systemData.GetODE2Coordinates(exu.ConfigurationType.Initial))
+    q_t = np.array(mbs.systemData.GetODE2Coordinates_t(exu.ConfigurationType.Initial))
+    for ws, force in zip(system.build.wheelsets, system.forces):
+        i = mbs.GetNodeODE2Index(ws.node)
+        for _ in range(2):  # the second pass only checks (round-off)
+            full_q, full_q_t = force.full(q[i : i + force.n], q_t[i : i + force.n])
+            _, details = force.element.evaluate(force.x, full_q, full_q_t)
+            loaded = details[:, i_normal] > 0.0
+            if not np.any(loaded):
+                break
+            xi = float(np.mean(details[loaded, i_xi]))
+            radius = float(np.mean(details[loaded, i_radius]))
+            q_t[i + ws.dof["spin"]] += xi * v / radius
+    for configuration in (exu.ConfigurationType.Initial, exu.ConfigurationType.Current):
+        mbs.systemData.SetODE2Coordinates_t(q_t.tolist(), configuration)
+
+
+def _straight(
+    turnout: Turnout, route_name: str, model: VehicleModel, v: float, creep_law: str = "fastsim"
+) -> _Straight:
     """Build the vehicle on rigid plain track at speed v and solve its static equilibrium
-    (lateral position and spin held by springs, released afterwards)."""
+    (lateral position and spin held by springs, released afterwards); the wheelsets then
+    spin at free rolling (:func:`_roll_freely`)."""
     import exudyn as exu
     from exudyn.itemInterface import ObjectGenericODE2, SensorNode
 
@@ -374,7 +427,7 @@ def _straight(turnout: Turnout, route_name: str, model: VehicleModel, v: float) 
     kappa = float(np.interp(x_section, route.curvature.x, route.curvature.value))
     if kappa != 0.0:
         raise ValueError(f"route {route.name}: curved at x_min = {x_section:g} m, not straight")
-    contact = route_contact(turnout, route.name, base)
+    contact = _with_creep_law(route_contact(turnout, route.name, base), creep_law)
     vehicle = contact_vehicle(base, model)
     container = exu.SystemContainer()
     mbs = container.AddSystem()
@@ -426,7 +479,9 @@ def _straight(turnout: Turnout, route_name: str, model: VehicleModel, v: float) 
         raise ValueError(f"hunting: static equilibrium not found: {str(err).strip()}") from None
     for f in forces:
         f.static = False
-    return _Straight(container, mbs, build, forces, sensors, vehicle.r0, vehicle.b, x_section)
+    system = _Straight(container, mbs, build, forces, sensors, vehicle.r0, vehicle.b, x_section)
+    _roll_freely(system, v)
+    return system
 
 
 class _Quiet:
@@ -464,12 +519,13 @@ def simulate_hunting(
              |o|     |o|   +---------------------------------+     |o|   /|o|/  y0
         ====================================================================  right rail
                                                                     initial offset y0
-        Each wheel: profile contact on its rail (Hertz per contact point, Polach creep),
+        Each wheel: profile contact on its rail (Hertz per contact point, FASTSIM creep),
         rails fixed; suspension: the linear vehicle model (primary, secondary, bumpstops).
 
     The vehicle starts in the steady state at speed (static equilibrium, lateral position
-    and spin held, then released) with the leading wheelset (``offset_wheelsets =
-    "leading"``) or every wheelset moved sideways by ``initial_offset``; the wheelsets'
+    and spin held, then released; the wheelsets spinning at free rolling) with the leading
+    wheelset (``offset_wheelsets = "leading"``) or every wheelset moved sideways by
+    ``initial_offset``; the wheelsets'
     lateral motion is then fitted by :func:`decay_analysis` from ``skip_fraction`` of the
     run on.
 
@@ -510,7 +566,13 @@ def simulate_hunting(
         for ws in offset:
             q[mbs.GetNodeODE2Index(ws.node) + ws.dof["y"]] += settings.initial_offset
         mbs.systemData.SetODE2Coordinates(q.tolist(), exu.ConfigurationType.Initial)
-        mbs.systemData.SetODE2Coordinates_t([0.0] * len(q), exu.ConfigurationType.Initial)
+        # velocities: zero but the wheelsets' spin at free rolling (_roll_freely)
+        q_t = np.array(mbs.systemData.GetODE2Coordinates_t(exu.ConfigurationType.Initial))
+        spin = np.zeros(len(q), bool)
+        for ws in build.wheelsets:
+            spin[mbs.GetNodeODE2Index(ws.node) + ws.dof["spin"]] = True
+        q_t[~spin] = 0.0
+        mbs.systemData.SetODE2Coordinates_t(q_t.tolist(), exu.ConfigurationType.Initial)
         sim = dynamic_settings(settings.duration, settings.time_step)
         sim.timeIntegration.generalizedAlpha.spectralRadius = settings.spectral_radius
         sim.solution.sensors.writePeriod = 0.999 * settings.output_step
@@ -604,12 +666,14 @@ def linear_hunting(
     vehicle_model: VehicleModel | None = None,
     route: str = "through",
     band_hz: tuple[float, float] = (0.1, 50.0),
+    creep_law: str = "fastsim",
 ) -> LinearHunting:
     """Eigenvalues of the straight-track system linearised at its centred steady state.
 
     M, K, D from Exudyn's ``ComputeLinearizedSystem`` (finite differences of the contact
-    force function in coordinates and velocities: the creep forces linearised, Polach's
-    initial slope, and the contact geometry's slopes at the centred position); state-space
+    force function in coordinates and velocities, forward differences of a relative step
+    1e-7, at least 1e-9: the creep forces linearised at free rolling with the centred
+    contact's spin, and the contact geometry's slopes at the centred position); state-space
     eigenvalues of [[0, I], [-M^-1 K, -M^-1 D]]. Oscillatory ones (Im > 0) with frequency
     in ``band_hz`` are kept (the vertical Hertz modes near 200 Hz are outside).
 
@@ -625,6 +689,8 @@ def linear_hunting(
         Route name.
     band_hz : (float, float)
         Hz, frequency band of the modes considered.
+    creep_law : str
+        One of :data:`CREEP_LAWS`: the kernel's FASTSIM table (default) or Polach's method.
 
     Returns
     -------
@@ -641,7 +707,7 @@ def linear_hunting(
         raise ValueError(f"linear hunting: speed_kmh = {speed_kmh!r} must be > 0 km/h")
     model = load_vehicle_model() if vehicle_model is None else vehicle_model
     with _Quiet():
-        system = _straight(turnout, route, model, speed_kmh / 3.6)
+        system = _straight(turnout, route, model, speed_kmh / 3.6, creep_law)
         m, k, d = (np.asarray(a) for a in system.mbs.ComputeLinearizedSystem(static_settings()))
     lam = _state_space_eigenvalues(m, k, d)
     f = lam.imag / (2.0 * math.pi)
@@ -708,6 +774,7 @@ def linear_modes(
     vehicle_model: VehicleModel | None = None,
     route: str = "through",
     band_hz: tuple[float, float] = (0.1, 20.0),
+    creep_law: str = "fastsim",
 ) -> tuple[LinearMode, ...]:
     """Oscillatory modes of the vehicle linearised at the centred steady state (named).
 
@@ -725,6 +792,8 @@ def linear_modes(
     route : str
     band_hz : (float, float)
         Hz, frequency band kept.
+    creep_law : str
+        One of :data:`CREEP_LAWS` (as :func:`linear_hunting`).
 
     Returns
     -------
@@ -742,7 +811,7 @@ def linear_modes(
         raise ValueError(f"linear modes: speed_kmh = {speed_kmh!r} must be > 0 km/h")
     model = load_vehicle_model() if vehicle_model is None else vehicle_model
     with _Quiet():
-        system = _straight(turnout, route, model, speed_kmh / 3.6)
+        system = _straight(turnout, route, model, speed_kmh / 3.6, creep_law)
         mbs = system.mbs
         m, k, d = (np.asarray(a) for a in mbs.ComputeLinearizedSystem(static_settings()))
     n = len(m)
@@ -809,6 +878,7 @@ def linear_critical_speed(
     tolerance_kmh: float = 5.0,
     vehicle_model: VehicleModel | None = None,
     route: str = "through",
+    creep_law: str = "fastsim",
 ) -> tuple[float, float]:
     """Bracket of the speed where the linearised system (:func:`linear_hunting`) turns unstable.
 
@@ -821,6 +891,8 @@ def linear_critical_speed(
         km/h, width of the returned bracket at most.
     vehicle_model : VehicleModel, optional
     route : str
+    creep_law : str
+        One of :data:`CREEP_LAWS` (as :func:`linear_hunting`).
 
     Returns
     -------
@@ -835,7 +907,7 @@ def linear_critical_speed(
     model = load_vehicle_model() if vehicle_model is None else vehicle_model
 
     def stable_at(kmh: float) -> bool:
-        return linear_hunting(turnout, kmh, model, route).stable
+        return linear_hunting(turnout, kmh, model, route, creep_law=creep_law).stable
 
     _check_bracket(low_kmh, high_kmh, tolerance_kmh)
     if not stable_at(low_kmh):
@@ -891,8 +963,6 @@ def find_hunting_onset(
     ValueError
         A bad bracket (it does not hold at its ends) or settings.
     """
-    from dataclasses import replace
-
     _check_bracket(low_kmh, high_kmh, tolerance_kmh)
     template = HuntingSettings(speed_kmh=low_kmh) if settings is None else settings
     model = load_vehicle_model() if vehicle_model is None else vehicle_model

@@ -93,7 +93,7 @@ FULL_SLIP = 1e6
 RATIO_RANGE = (0.05, 20.0)
 #: Length of the header in front of a packed table (:attr:`CreepTable.packed`)
 HEADER = 8
-_FORMAT = "creep-table-3"
+_FORMAT = "creep-table-4"
 
 
 @dataclass(frozen=True)
@@ -220,7 +220,17 @@ def _node_creepages(u, alpha, beta, a, b, c11, c22, c23, scale):
     phi = np.tan(np.clip(beta, -1.5707963, 1.5707963)) / np.hypot(b * xi, a * eta)
     size = np.sqrt((c11 * xi) ** 2 + (c22 * eta) ** 2 + (np.sqrt(a * b) * c23 * phi) ** 2)
     factor = rho * scale / size
-    return factor * xi, factor * eta, factor * phi
+    # beta = +-pi / 2 is pure spin: no translational creepage at all.  The clipped tangent
+    # above leaves (xi, eta) ~ 3e-8 of the spin's share there, which gave these nodes an
+    # f_x up to 9e-8 and an f_y that varied by 8e-8 with alpha; the interpolated force then
+    # jumped by ~1e-3 N at zero translational creepage (xi = eta = 0, spin != 0), and
+    # Exudyn's forward differences (creepage steps ~1e-11) read slopes 1.5-3x too large.
+    spin_only = np.abs(beta) >= 1.5707963
+    return (
+        np.where(spin_only, 0.0, factor * xi),
+        np.where(spin_only, 0.0, factor * eta),
+        factor * phi,
+    )
 
 
 def _fastsim_nodes(settings: CreepTableSettings) -> np.ndarray:
