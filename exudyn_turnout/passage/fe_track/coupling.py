@@ -750,11 +750,14 @@ class FEContactElement:
             forces = rail_forces(r)
             self.last = (coupled, r, forces)
             return forces
+        starts = [r]
         if len(self.last[1]) == len(r) and self.last[0].bodies == coupled.bodies:
-            if t == self._last_t or self.track.static:
-                r = self.last[1].copy()  # the previous solution: usually within a few nm
-            else:  # a new step: the rails' free motion and the last forces' response
-                r = r_free + C @ self.last[2]
+            # the previous solution (usually within a few nm); on a new step first the rails'
+            # free motion plus the last forces' response (fewer iterations), the previous
+            # solution kept as a second start where that one stalls on a kink of the forces
+            starts = [self.last[1].copy()]
+            if not (t == self._last_t or self.track.static):
+                starts.insert(0, r_free + C @ self.last[2])
         J_inv = None
         if self._jacobian is not None and self._jacobian[0] == (t, coupled.bodies):
             J_inv = self._jacobian[2]
@@ -763,6 +766,26 @@ class FEContactElement:
             forces = rail_forces(r)
             return r - r_free - C @ forces, forces
 
+        for r in starts:
+            r, forces, size, J_inv = self._newton(residual, rail_forces, r, C, J_inv, t, coupled)
+            if size <= COUPLING_TOLERANCE:
+                break
+        if size > COUPLING_TOLERANCE:
+            raise ArithmeticError(
+                f"FE coupling did not converge at t = {t:.6f} s, x = {x:.3f} m "
+                f"(residual {size:.3g} m)"
+            )
+        self.q[idx] = r
+        self.q_t[idx] = r_t_free + c_v * (r - r_free)
+        self.last = (coupled, r, forces)
+        self._last_t = t
+        self.track.report_static(self, forces)
+        self._solved = (self.track.revision, t, np.array(q, float), np.array(q_t, float), forces)
+        self.track.timings["coupling_s"] += time.perf_counter() - t0
+        return forces.copy()
+
+    def _newton(self, residual, rail_forces, r, C, J_inv, t, coupled):
+        """The coupling Newton from one start: (r, forces, largest residual, J^-1)."""
         g, forces = residual(r)
         size = float(np.abs(g).max())
         fresh = False
@@ -790,19 +813,7 @@ class FEContactElement:
             if size_trial > 0.25 * size:  # slow: a new Jacobian for the next iteration
                 J_inv = None
             r, g, forces, size, fresh = trial, g_trial, f_trial, size_trial, False
-        if size > COUPLING_TOLERANCE:
-            raise ArithmeticError(
-                f"FE coupling did not converge at t = {t:.6f} s, x = {x:.3f} m "
-                f"(residual {size:.3g} m)"
-            )
-        self.q[idx] = r
-        self.q_t[idx] = r_t_free + c_v * (r - r_free)
-        self.last = (coupled, r, forces)
-        self._last_t = t
-        self.track.report_static(self, forces)
-        self._solved = (self.track.revision, t, np.array(q, float), np.array(q_t, float), forces)
-        self.track.timings["coupling_s"] += time.perf_counter() - t0
-        return forces.copy()
+        return r, forces, size, J_inv
 
     @staticmethod
     def _newton_matrix(rail_forces, r, forces, C, scale: float = 1.0) -> np.ndarray:
