@@ -26,6 +26,8 @@ from exudyn_turnout.passage.run import simulate_passage
 from exudyn_turnout.passage.vehicle.steady_curving import steady_curving
 
 SPEED = 80.0  #: km/h
+#: km/h, speeds of the balance check (issue 22)
+BALANCE_SPEEDS = (50.0, 60.0, 80.0)
 X_FRONT = 40.0  #: m, front wheelset at the end of the passage's window
 RADII = (760.0, 500.0, 350.0, 250.0, 180.0)  #: m
 SPEEDS = (1.0, 40.0, 80.0)  #: km/h
@@ -64,8 +66,8 @@ def main() -> None:
         + ", ".join(f"{X_FRONT + x:.2f}" for x in model.wheelset.x)
         + " m (the rear bogie on the switch panel's curved rails: its outer wheel's contact "
         "differs from the front bogie's).",
-        "- Contact: the package's profile contact (S1002 on the route's rail sections, Hertz "
-        "per point, Polach with spin, mu = 0.4).",
+        "- Contact: the package's profile contact (S1002 on the route's rail sections, "
+        "semi-Hertzian per point, the FASTSIM creep table with spin, mu = 0.4).",
         "- Steady state (`passage/vehicle/steady_curving.py`): every coordinate constant in "
         "the track-following frame, each wheelset's spin rate an unknown; the ODE2 "
         "right-hand side of the same Exudyn model (Exudyn's `ComputeODE2RHS`) set to zero by "
@@ -97,6 +99,22 @@ def main() -> None:
             f"{_kn(steady.Y[i, 1])} | {_kn(steady.Q[i, 0])} | {_kn(steady.Q[i, 1])} | "
             f"{np.degrees(steady.contact_angle[i, 1]):.1f} | {_kn(steady.Fx[i, 0])} / "
             f"{_kn(steady.Fx[i, 1])} | {_kn(steady.yaw_moment[i])} |"
+        )
+    lines += [
+        "",
+        "Balance at other speeds (issue 22: the sum of the lateral forces equals M v^2/R "
+        "within 1 % at 50, 60 and 80 km/h), the same steady solve:",
+        "",
+        "| km/h | v^2/R m/s^2 | sum of H kN | M v^2/R kN | difference | Newton residual N |",
+        "|---|---|---|---|---|---|",
+    ]
+    for kmh in BALANCE_SPEEDS:
+        at = steady if kmh == SPEED else steady_curving(turnout, kmh, X_FRONT)
+        goal = mass * (kmh / 3.6) ** 2 * abs(kappa)
+        lines.append(
+            f"| {kmh:g} | {(kmh / 3.6) ** 2 * abs(kappa):.3f} | {at.total_lateral / 1e3:.4f} | "
+            f"{goal / 1e3:.4f} | {100 * (at.total_lateral / goal - 1):+.4f} % | "
+            f"{at.residual:.2g} |"
         )
     lines += [
         "",
