@@ -4,6 +4,7 @@ summary of the FE track."""
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import asdict
 
 import numpy as np
@@ -173,6 +174,14 @@ def fe_summary(planes, settings, track, h, n_steps, static_s, steps_s) -> dict[s
     all_settings = asdict(settings)
     not_fe = ("layers", "source", "track_mechanism")
     parts = dict(track.timings, build=planes.build_s, static=static_s, steps=steps_s)
+    if track.stalls[0]:
+        warnings.warn(
+            f"FE coupling stalled on a kink of the contact forces in {track.stalls[0]} step(s); "
+            f"accepted with residuals up to {track.stalls[1]:.2g} m (limit 5e-7 m, "
+            "summary['coupling_stalls'])",
+            RuntimeWarning,
+            stacklevel=2,
+        )
     return {
         "settings": {k: val for k, val in all_settings.items() if k not in not_fe},
         "model": "FE",
@@ -204,4 +213,8 @@ def fe_summary(planes, settings, track, h, n_steps, static_s, steps_s) -> dict[s
             )
         ),
         "wall_time_parts_s": {k.removesuffix("_s"): float(t) for k, t in parts.items()},
+        "coupling_stalls": {
+            "count": int(track.stalls[0]),
+            "largest_residual_m": float(track.stalls[1]),
+        },
     }
