@@ -264,7 +264,7 @@ def root_locus() -> list[str]:
         out.append(
             f"Linear critical speed (criterion: the least damped mode's damping ratio crosses "
             f"0): between {low} and {high} km/h, mode {mode.name} at {mode.frequency_hz:.2f} "
-            "Hz (bisection to 5 km/h in validation/hunting.md: 425-430 km/h)."
+            "Hz (bisected in validation/hunting.md)."
         )
     else:
         out.append("No mode unstable up to the highest speed of the table.")
@@ -284,14 +284,16 @@ def root_locus() -> list[str]:
         "frequency grows with v, the sway's does not.",
         "- The bogie hunting mode (wheelsets and bogie frame in y and yaw) becomes "
         "oscillatory between 100 and 150 km/h and loses damping with speed; it is the one "
-        "that turns unstable, at about 5.1-5.3 Hz. Its frequency is Klingel's rigid bogie's "
+        "that turns unstable (its frequency above). Its frequency is Klingel's rigid bogie's "
         "for lambda ~ 0.10-0.2 (last column): the linearisation sees the contact "
         "geometry's slope at the centre, lower than the equivalent conicity at 1-3 mm "
         "(0.37-0.18), which is why the linear critical speed is so high.",
-        "- Critical speeds, by criterion: linear (centred state, slope at y = 0): 425-430 "
-        "km/h. Nonlinear (smallest speed at which a 3 mm kick of the leading wheelset "
-        "ends in a limit cycle instead of decaying, rigid straight track): 192 +- 2 km/h; "
-        "1 mm: 255 +- 2 km/h (validation/hunting.md). The gap is the contact geometry's: "
+        "- Critical speeds, by criterion: linear (centred state, slope at y = 0): "
+        + (f"{critical[0]}-{critical[1]} km/h" if critical is not None else "above the table")
+        + ". Nonlinear (smallest speed at which a 3 mm or 1 mm kick of the leading "
+        "wheelset ends in a limit cycle instead of decaying, rigid straight track): far "
+        "lower (validation/hunting.md, generated from the runs). The gap is the contact "
+        "geometry's: "
         "S1002 on UIC60 1:40 has a low slope at the centre and a high one at 1-3 mm, so "
         "the onset is subcritical and depends on the kick.",
     ]
