@@ -168,6 +168,9 @@ def test_rear_wheelsets_pass_the_crossing_beyond_the_turnout_end(turnout, model)
     for k in (3, 4):
         assert s[f"peak_Fz_crossing_ws{k}_right_N"] > 1.5 * W  # the crossing impact
     assert np.isnan(s["peak_Fz_crossing_ws1_right_N"])  # the front ones are past it
+    # the largest per region names a contact of the front wheelset (wheel, rail slot), never
+    # a rear wheelset's total (it read "ws3 wheel on right" before)
+    assert s["max_Fz_crossing_wheel"] is None and np.isnan(s["max_Fz_crossing_N"])
     too_far = PassageSettings(layers=2, x_start=80.0, x_end=82.0)
     with pytest.raises(PassageError, match="end plus the vehicle's length"):
         simulate_passage(turnout, too_far, model)

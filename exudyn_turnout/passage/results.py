@@ -513,6 +513,8 @@ def _contact_peaks(
                     continue
                 value, x = _argpeak(columns, name, rng, signed)
                 out[f"peak_{q}_{where}_{wheel}_{slot}_N"] = value
+                if wheel not in ("right", "left"):  # a full vehicle's ws<k>_<side> total:
+                    continue  # its peak is kept, the largest is the front wheelset's contact
                 if math.isfinite(value) and (best is None or abs(value) > abs(best[0])):
                     best = (value, wheel, slot, x)
             value, wheel_of, rail_of, x_of = best or (math.nan, None, None, math.nan)
