@@ -58,9 +58,7 @@ from __future__ import annotations
 import functools
 import hashlib
 import math
-import os
 import time
-import uuid
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -71,7 +69,7 @@ import numpy as np
 
 from exudyn_turnout.wheel_rail.creep import CreepForces, kalker_coefficients
 from exudyn_turnout.wheel_rail.fastsim import fastsim_ellipse
-from exudyn_turnout.wheel_rail.tables import default_cache_dir
+from exudyn_turnout.wheel_rail.tables import default_cache_dir, write_cache_file
 
 __all__ = [
     "FULL_SLIP",
@@ -353,23 +351,8 @@ def _largest(values: np.ndarray) -> float:
 
 
 def _write(path: Path, key: str, values: np.ndarray) -> None:
-    temporary = path.with_name(f"{path.stem}.{os.getpid()}-{uuid.uuid4().hex[:8]}.tmp.npz")
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        np.savez(temporary, values=values, key=np.array(key), checksum=np.array(_checksum(values)))
-        os.replace(temporary, path)
-    except OSError as err:
-        warnings.warn(
-            f"creep-table cache {path.parent}: cannot be written ({err.strerror or err}); "
-            "running without a cache",
-            RuntimeWarning,
-            2,
-        )
-    finally:
-        try:
-            temporary.unlink(missing_ok=True)
-        except OSError:
-            pass
+    content = {"values": values, "key": np.array(key), "checksum": np.array(_checksum(values))}
+    write_cache_file(path, content, "creep-table cache")
 
 
 @functools.lru_cache(maxsize=4)

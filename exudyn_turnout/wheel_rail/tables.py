@@ -60,6 +60,7 @@ __all__ = [
     "table_key",
     "build_contact_table",
     "cached_wheel_envelope",
+    "write_cache_file",
     "lookup",
     "lookup_values",
     "cell_coefficients",
@@ -477,23 +478,41 @@ def _read_cached(
 
 def _write_cached(path: Path, key: str, arrays: dict[str, np.ndarray]) -> None:
     """Write a table to the cache; an unusable cache directory: one warning, no cache."""
+    content: dict[str, Any] = dict(arrays, key=np.array(key))
+    content["checksum"] = np.array(_checksum(arrays, tuple(arrays)))
+    write_cache_file(path, content, "contact-table cache")
+
+
+def write_cache_file(path: Path, content: dict[str, Any], what: str) -> None:
+    """Write arrays to a cache file atomically; an unusable directory: one warning, no cache.
+
+    The file is written under a name of its own per writer (parallel workers may build the
+    same entry at once) and moved into place; a directory that cannot be written is
+    remembered for the process and warned about once.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The cache file (``.npz``).
+    content : dict
+        Arrays to store, by name.
+    what : str
+        The cache's name in the warning, e.g. ``"contact-table cache"``.
+    """
     if str(path.parent) in _UNUSABLE:
         return
-    # a name of its own per writer: parallel workers may build the same table at once
     temporary = path.with_name(f"{path.stem}.{os.getpid()}-{uuid.uuid4().hex[:8]}.tmp.npz")
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        content: dict[str, Any] = dict(arrays, key=np.array(key))
-        content["checksum"] = np.array(_checksum(arrays, tuple(arrays)))
         np.savez(temporary, **content)
         os.replace(temporary, path)
     except OSError as err:
         _UNUSABLE.add(str(path.parent))
         warnings.warn(
-            f"contact-table cache {path.parent}: cannot be written "
-            f"({err.strerror or err}); running without a cache",
+            f"{what} {path.parent}: cannot be written ({err.strerror or err}); "
+            "running without a cache",
             RuntimeWarning,
-            2,
+            3,
         )
     finally:
         try:
