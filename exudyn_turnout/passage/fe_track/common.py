@@ -11,6 +11,7 @@ import numpy as np
 
 from exudyn_turnout.inputs.routes import Route
 from exudyn_turnout.inputs.vehicle import Vehicle
+from exudyn_turnout.passage.fe_track.coupling import COUPLING_STALL_TOLERANCE
 from exudyn_turnout.passage.fe_track.planes import generalized_alpha
 from exudyn_turnout.passage.results import PassageError, PassageSettings
 
@@ -177,8 +178,8 @@ def fe_summary(planes, settings, track, h, n_steps, static_s, steps_s) -> dict[s
     if track.stalls[0]:
         warnings.warn(
             f"FE coupling stalled on a kink of the contact forces in {track.stalls[0]} step(s); "
-            f"accepted with residuals up to {track.stalls[1]:.2g} m (limit 5e-7 m, "
-            "summary['coupling_stalls'])",
+            f"accepted with residuals up to {track.stalls[1]:.2g} m (limit "
+            f"{COUPLING_STALL_TOLERANCE:g} m, summary['coupling_stalls'])",
             RuntimeWarning,
             stacklevel=2,
         )

@@ -95,6 +95,7 @@ from exudyn_turnout.passage.fe_track.planes import (
 __all__ = [
     "COUPLING_TARGET",
     "COUPLING_TOLERANCE",
+    "COUPLING_STALL_TOLERANCE",
     "FECoSimulation",
     "FEContactElement",
     "run_progress",
