@@ -35,8 +35,8 @@ along x in every strip) is stated with the comparisons against CONTACT
 on the same gap (:mod:`.exact_normal`; ``validation/normal_vs_contact.md``: on CONTACT's
 five cases KP's approach is 0.2-5.8 % below the exact one and its patch 13-16 % short
 along x; on a wedge, two radii and a flat face -6.3, -5.1 and +4.7 %,
-tests/test_nonhertz_exact.py).  On those cases the larger error of the approach is the
-2-D slice the method works on, not the method (the same page).
+tests/test_nonhertz_exact.py).  In three of those five cases the larger error of the
+approach is the 2-D slice the method works on, not the method (the same page).
 
 The method (Piotrowski & Kik 2008)
 ----------------------------------
