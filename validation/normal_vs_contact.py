@@ -55,46 +55,32 @@ import math  # noqa: E402
 from dataclasses import dataclass  # noqa: E402
 from pathlib import Path  # noqa: E402
 
-import numpy as np  # noqa: E402
-
 from exudyn_turnout.wheel_rail.data import data_dir, s1002_wheel  # noqa: E402
 from exudyn_turnout.wheel_rail.exact_normal import (  # noqa: E402
-    solve_normal,
     solve_on_lateral_gap,
 )
-from exudyn_turnout.wheel_rail.geometry import (  # noqa: E402
-    FLANGE_DIRECTION,
-    prepare_rail,
-    prepare_wheel,
-    search_candidates,
-    surface_derivatives,
-)
-from exudyn_turnout.wheel_rail.hertz import curvature_sums, effective_modulus  # noqa: E402
+from exudyn_turnout.wheel_rail.hertz import effective_modulus  # noqa: E402
 from exudyn_turnout.wheel_rail.nonhertz import (  # noqa: E402
     DELTA_REF,
     GAP_STEP,
     kik_piotrowski,
     node_centre,
-    normal_gap_function,
     patch_law,
 )
-from exudyn_turnout.wheel_rail.profiles import read_slices  # noqa: E402
+from exudyn_turnout.wheel_rail.reference_normal import (  # noqa: E402
+    GAP_SAMPLE_STEP,
+    CaseGeometry,
+    case_geometry,
+    exact_on_surface,
+)
 from exudyn_turnout.wheel_rail.references import (  # noqa: E402
     REFERENCE_FILES,
     ReferenceCase,
     read_reference_output,
 )
-from exudyn_turnout.wheel_rail.sections import (  # noqa: E402
-    lateral_grid,
-    slice_sections,
-    wheel_envelope,
-)
 
 OUT = Path(__file__).with_suffix(".md")
-#: m, sample step and half-width of the gap function (as references.contact_at_reference)
-STEP, WINDOW = 2e-5, 0.02
-#: m, step and reach of the rigid-wheel envelope along x, CONTACT's NOMRAD
-ENVELOPE_STEP, REACH, NOMINAL_RADIUS = 2.5e-4, 0.1, 0.46
+STEP = GAP_SAMPLE_STEP  # m, sample step of the lateral gap function
 
 
 @dataclass(frozen=True)
@@ -107,68 +93,6 @@ class Normal:
     p_max: float  #: Pa
     y_rail: float  #: m, where the normal force acts on the rail profile
     z_rail: float  #: m, its height
-
-
-@dataclass(frozen=True)
-class CaseGeometry:
-    """Our geometry at a CONTACT case: the candidate nearest CONTACT's patch."""
-
-    gap: np.ndarray  #: m, normal gap along the lateral tangent, sampled at STEP
-    table_gap: np.ndarray  #: m, the same sampled at GAP_STEP (the tables' sampling)
-    a_sum: float  #: 1/m, relative curvature along x (floored as in the tables)
-    a_raw: float  #: 1/m, unfloored
-    b_raw: float  #: 1/m, unfloored relative lateral curvature
-    angle: float  #: rad, contact angle
-    y_rail: float  #: m, deepest point on the rail
-    z_rail: float  #: m, its height (at the envelope's x)
-    interpenetration: float  #: m, undeformed interpenetration at CONTACT's position
-    x_offset: float  #: m, where along x the rigid wheel meets the rail (envelope)
-    wheel_y: np.ndarray  #: m, the wheel's surface points at zero shift (lateral)
-    wheel_z: np.ndarray  #: m, their heights at zero lift
-
-
-def case_geometry(case: ReferenceCase, wheel, profiles: Path) -> CaseGeometry:
-    """Our undeformed geometry at a case, built as ``references.contact_at_reference``."""
-    slices = read_slices(profiles / Path(case.rail_file).name)
-    grid = lateral_grid(-0.08, 0.30, wheel.s[1] - wheel.s[0])
-    offsets = np.arange(-REACH, REACH + 0.5 * ENVELOPE_STEP, ENVELOPE_STEP)
-    sections = slice_sections(slices, grid, x=case.s + offsets, interpolation="auto")
-    enveloped = wheel_envelope(
-        sections, np.array([case.s]), NOMINAL_RADIUS, reach=REACH, step=ENVELOPE_STEP
-    )
-    derivatives = surface_derivatives(enveloped)
-    rail = prepare_rail(enveloped.z[0], derivatives.slope[0], derivatives.curvature[0], grid)
-    prepared = prepare_wheel(wheel, 0.0, 0.0, (FLANGE_DIRECTION,))
-    found = search_candidates(rail, prepared, shift=case.y, lift=case.wheel_height)
-    k = int(np.argmin(np.abs(found.y_rail - case.y_contact_rail)))
-    row = slice(k, k + 1)
-    args = (rail, prepared, np.array([case.y]), found.y_rail[row], found.z_rail[row],
-            found.angle[row])  # fmt: skip
-    gap = normal_gap_function(*args, step=STEP, window=WINDOW, lift=case.wheel_height)[0]
-    table_gap = normal_gap_function(*args, lift=case.wheel_height)[0]
-    a_sum, _b = curvature_sums(
-        found.radius[row], found.angle[row], found.curvature_wheel[row],
-        found.curvature_rail[row],
-    )  # fmt: skip
-    index = int(round((found.y_rail[k] - grid[0]) / (grid[1] - grid[0])))
-    assert enveloped.x_offset is not None
-    dx = float(enveloped.x_offset[0, index])
-    return CaseGeometry(
-        gap=gap,
-        table_gap=table_gap,
-        a_sum=float(a_sum[0]),
-        a_raw=float(0.5 * np.cos(found.angle[k]) / found.radius[k]),
-        b_raw=float(
-            0.5 * (np.nan_to_num(found.curvature_wheel[k]) + np.nan_to_num(found.curvature_rail[k]))
-        ),
-        angle=float(found.angle[k]),
-        y_rail=float(found.y_rail[k]),
-        z_rail=float(found.z_rail[k]) + dx * dx / (2 * NOMINAL_RADIUS),
-        interpenetration=-float(found.gap[k]),
-        x_offset=dx,
-        wheel_y=prepared.y,
-        wheel_z=prepared.z,
-    )
 
 
 def _at(geometry: CaseGeometry, t_centre: float) -> tuple[float, float]:
@@ -222,47 +146,13 @@ def exact_normal(geometry: CaseGeometry, force: float, modulus: float, dx: float
     return normal, solved
 
 
-def surface_gap(case: ReferenceCase, geometry: CaseGeometry, profiles: Path, x, t):
-    """m, the undeformed normal gap of the 3-D surfaces on the grid (x, t), negative where
-    they interpenetrate at CONTACT's wheel position.
-
-    The rail is the slice set interpolated along the track at every ``S + x`` (no
-    envelope, no 2-D slice), the wheel its profile at the case's shift and height with
-    the drop ``x^2 / (2 r)`` of its circle (r = NOMRAD); the vertical gap at ``y = y_c +
-    t cos(gamma)`` times ``cos(gamma)`` is the normal gap, as
-    ``nonhertz.normal_gap_function`` takes it in the vertical frame.
-    """
-    slices = read_slices(profiles / Path(case.rail_file).name)
-    cosine = math.cos(geometry.angle)
-    y = geometry.y_rail + t * cosine
-    rail = slice_sections(slices, y, x=case.s + x, interpolation="auto").z
-    order = np.argsort(geometry.wheel_y)
-    wheel = np.interp(y - case.y, geometry.wheel_y[order], geometry.wheel_z[order])
-    vertical = wheel[None, :] + case.wheel_height + x[:, None] ** 2 / (2 * NOMINAL_RADIUS) - rail
-    return np.where(np.isfinite(vertical), cosine * vertical, 1.0)  # no rail: 1 m apart
-
-
 def exact_surface(case, geometry, profiles, force, modulus, dx, ds, reach):
-    """The exact solution on the 3-D gap (:func:`surface_gap`) at FN, and the force at our
-    undeformed interpenetration; the grid spans ``reach`` (x, t half-widths, m) around
-    the envelope's contact point and grows while the contact touches its edge."""
-    half_x, half_t = reach
-    for _ in range(6):
-        nx, ny = 2 * int(half_x / dx) + 1, 2 * int(half_t / ds) + 1
-        x = geometry.x_offset + (np.arange(nx) - 0.5 * (nx - 1)) * dx
-        t = (np.arange(ny) - 0.5 * (ny - 1)) * ds
-        h = surface_gap(case, geometry, profiles, x, t)
-        lowest = float(np.min(h))
-        solved = solve_normal(h - lowest, dx, ds, modulus, force=force)
-        rows, cols = np.nonzero(solved.pressure)
-        if rows.min() > 0 and cols.min() > 0 and rows.max() < nx - 1 and cols.max() < ny - 1:
-            break
-        half_x, half_t = 1.5 * half_x, 1.5 * half_t
-    at_geometry = solve_normal(h - lowest, dx, ds, modulus, approach=-lowest).normal_force
-    t_centre = solved.y_centre + float(t[0] - solved.y[0])
-    y_r, z_r = _at(geometry, t_centre)
+    """The exact solution on the 3-D gap at FN (``reference_normal.exact_on_surface``)."""
+    found = exact_on_surface(case, geometry, profiles, force, modulus, dx, ds, reach)
+    solved = found.solution
+    y_r, z_r = _at(geometry, solved.y_centre)
     normal = Normal(solved.approach, solved.length, solved.width, solved.p_max, y_r, z_r)
-    return normal, solved, at_geometry, -lowest
+    return normal, solved, found.force_at_geometry, found.interpenetration
 
 
 def _pct(ours: float, reference: float) -> str:
@@ -330,7 +220,7 @@ def case_lines(
         f" {case.prescribed}; CONTACT FN = {force:.0f} N.  Our deepest point on the rail at"
         f" y = {geometry.y_rail * 1e3:.2f} mm, x = {geometry.x_offset * 1e3:.2f} mm (CONTACT's"
         f" XCP(TR) {patch.x_contact * 1e3:.2f} mm; the 3-D solution's force centre at x ="
-        f" {(geometry.x_offset + solved.x_centre) * 1e3:.2f} mm), contact angle"
+        f" {solved.x_centre * 1e3:.2f} mm), contact angle"
         f" {math.degrees(geometry.angle):.1f} deg, A = {geometry.a_sum:.3f} 1/m; the table"
         f" law's weight of KP: {weight:.2f} (0: Hertz).  Exact solutions on elements of"
         f" {case.dx * 1e3:.2f} x {case.ds * 1e3:.3f} mm (CONTACT's DX x DS): 2-D gap"
