@@ -202,6 +202,32 @@ def test_number_of_patches_matches(contact_results, name):
     assert len(ours.patch_forces) == len(case.patches)
 
 
+# FASTSIM on the KP patch strip by strip (wheel_rail/kp_creep.py), measured in
+# validation/contact_vs_contact.md: no closer to CONTACT than the kernel's law on the
+# equivalent ellipse, and Kalker's exact theory on KP's own patch misses the same forces
+# (4 of 10 within 10 %), so these misses are KP's patch, not the creep law on it
+STRIP_MISSES = {
+    ("wing_brute#1", "fs"): "FS +19 % (128 N vs 107 N); the exact theory on KP's patch: +66 %",
+    ("cross+wing#1", "fx"): "FX -17.5 %: KP's strips (7.7 mm) shorter than CONTACT's rows (9.0)",
+    ("cross+wing#1", "fs"): "FS +32 %: KP's patch; the exact theory on it: +31 %",
+    ("cw_interrupt#2", "fx"): "FX +33 %: " + _INTERRUPTED,
+    ("cw_interrupt#2", "fs"): "FS -89 %: " + _INTERRUPTED,
+}
+
+
+@pytest.mark.parametrize("quantity", ["fx", "fs"])
+@pytest.mark.parametrize("name", CASES)
+def test_fastsim_on_kp_strips_within_ten_percent(contact_results, name, quantity, request):
+    reason = STRIP_MISSES.get((name, quantity))
+    if reason:
+        request.applymarker(pytest.mark.xfail(strict=True, reason=reason))
+    case, ours = contact_results[name]
+    reference = getattr(case.patches[0], quantity)
+    assert abs(ours.strip_creep[0 if quantity == "fx" else 1] - reference) <= GOAL_CREEP * abs(
+        reference
+    )
+
+
 @pytest.mark.parametrize("quantity", ["fx", "fs"])
 @pytest.mark.parametrize("name", CASES)
 def test_creep_forces_within_ten_percent(contact_results, name, quantity, request):

@@ -35,12 +35,21 @@ contact areas, each at CONTACT's FN, creepages, mu, G and nu, against the same 1
   about the area's centroid (CONTACT's reference point is "centred within the contact
   patch in a weighted sense", its user guide, section "Contact patches").  This checks the
   solver and our reading of CONTACT's conventions; what remains is the rebuilt pressure;
+- KP's own patch, strip by strip with KP's semi-elliptic pressure, on CONTACT's DX and DS
+  (``kp_creep.patch_pressure_grid``), spin about its force centre;
 - the Hertz ellipse of KP's equivalent semi-axes (KP's area and length/width ratio);
 - the Hertz ellipse of the point's curvature sums.
 
-The last two are what a creep law on our patch can reach with the exact theory: the
-difference to the first is the patch's shape (CONTACT's wing-rail patches are skewed
-bands, not ellipses), not the creep law.
+The last three are what a creep law on our patch can reach with the exact theory: the
+difference to the first is the patch (CONTACT's wing-rail patches are skewed bands, not
+ellipses), not the creep law.  The summary also gives FASTSIM on the KP patch strip by
+strip (``kp_creep.fastsim_patch``: KP's strips and loads, the flexibilities of its
+equivalent ellipse, Kalker's parabolic pressure along x), against the kernel's FASTSIM
+table on the equivalent ellipse, and the same FASTSIM on CONTACT's own rows
+(``kp_creep.area_strips``: each row of its map a strip, centred where the row is, so a
+skewed band keeps its skew; the flexibilities of its equivalent ellipse, defined as
+KP's), which separates FASTSIM's strip law from KP's patch; and the patch lengths along
+x (CONTACT's extent, its longest row, the drift of its rows' centres).
 
 ``--tables`` adds, per rail body of the packaged turnout's routes (the vehicle's wheel),
 where the contact tables use the semi-Hertzian law, and what it gives there against the
@@ -65,6 +74,11 @@ from exudyn_turnout.wheel_rail.exact_rolling import (  # noqa: E402
     exact_creep_forces_ellipse,
     solve_steady_rolling,
     strip_pressure,
+)
+from exudyn_turnout.wheel_rail.kp_creep import (  # noqa: E402
+    area_strips,
+    fastsim_patch,
+    patch_pressure_grid,
 )
 from exudyn_turnout.wheel_rail.references import (  # noqa: E402
     REFERENCE_FILES,
@@ -141,6 +155,29 @@ def exact_on_contact_area(reference, found) -> tuple[float, float, float]:
     return solved.fx, solved.fy, float(pressure.max())
 
 
+def exact_on_kp_patch(reference, result) -> tuple[float, float]:
+    """(FX, FS) by the exact theory on KP's own patch and pressure (CONTACT's DX, DS)."""
+    patch = reference.patches[0]
+    pressure, x0, y0 = patch_pressure_grid(
+        result.kp_strips, reference.dx, reference.ds, patch.normal_force
+    )
+    solved = solve_steady_rolling(
+        pressure, reference.dx, reference.ds, x0, y0, patch.cksi, patch.ceta, patch.cphi,
+        reference.friction, reference.shear_modulus, reference.poisson,
+    )  # fmt: skip
+    return solved.fx, solved.fy
+
+
+def strip_lengths(reference, found) -> tuple[float, float]:
+    """CONTACT's longest row (strip) along x and how far the rows' centres drift along x
+    (m): a skewed band is longer along x than any of its strips."""
+    rows = [np.nonzero(found.contact[:, j])[0] for j in range(found.contact.shape[1])]
+    rows = [r for r in rows if r.size]
+    longest = max(int(r.max() - r.min()) + 1 for r in rows) * reference.dx
+    centres = [0.5 * (r.max() + r.min() + 1) * reference.dx for r in rows]
+    return longest, max(centres) - min(centres)
+
+
 def exact_on_ellipse(reference, ours) -> tuple[float, float]:
     """(FX, FS) by the exact theory on the Hertz ellipse of semi-axes ours.a, ours.b."""
     patch = reference.patches[0]
@@ -206,13 +243,17 @@ def table_lines() -> list[str]:
     return lines + [""]
 
 
-#: Creep force columns of the summary: the exact theory on three areas, the kernel's law on two.
+#: Creep force columns of the summary: the exact theory on four areas, the kernel's law on
+#: two, FASTSIM on the KP patch strip by strip (wheel_rail/kp_creep.py).
 CREEP_METHODS = (
     "exact, CONTACT's area",
+    "exact, KP patch",
     "exact, KP ellipse",
     "exact, Hertz ellipse",
     "kernel (FASTSIM table), KP",
     "kernel (FASTSIM table), Hertz",
+    "FASTSIM, KP strips",
+    "FASTSIM, CONTACT's rows",
 )
 
 
@@ -220,24 +261,33 @@ def creep_lines(name, case, result, found, tally) -> tuple[list[str], list[str]]
     """The per-case table of FX, FS by the exact theory, and the case's summary rows."""
     patch = case.patches[0]
     fx_area, fs_area, p_rebuilt = exact_on_contact_area(case, found)
+    on_patch = exact_on_kp_patch(case, result)
     on_kp = exact_on_ellipse(case, result.semi_hertz)
     on_hz = exact_on_ellipse(case, result.hertz)
+    strips = result.strip_creep
+    rows = fastsim_patch(
+        patch.cksi, patch.ceta, patch.cphi, area_strips(found.contact, case.dx, case.ds,
+        patch.normal_force), case.friction, case.shear_modulus, case.poisson,
+    )  # fmt: skip
     values = {
-        "fx": (fx_area, on_kp[0], on_hz[0], result.semi_hertz.fx, result.hertz.fx),
-        "fs": (fs_area, on_kp[1], on_hz[1], result.semi_hertz.fs, result.hertz.fs),
-    }
+        "fx": (fx_area, on_patch[0], on_kp[0], on_hz[0], result.semi_hertz.fx, result.hertz.fx,
+               strips[0], rows[0]),
+        "fs": (fs_area, on_patch[1], on_kp[1], on_hz[1], result.semi_hertz.fs, result.hertz.fs,
+               strips[1], rows[1]),
+    }  # fmt: skip
     lines = [
         f"Kalker's exact theory on CONTACT's area ({int(found.contact.sum())} elements of"
         f" {case.dx * 1e3:.2f} x {case.ds * 1e3:.2f} mm, rebuilt PMAX"
         f" {p_rebuilt / 1e6:.0f} MPa against CONTACT's {patch.p_max / 1e6:.0f}), on KP's"
-        f" equivalent ellipse ({result.semi_hertz.a * 1e3:.2f} x"
+        f" own patch with its pressure (same elements), on KP's equivalent ellipse"
+        f" ({result.semi_hertz.a * 1e3:.2f} x"
         f" {result.semi_hertz.b * 1e3:.2f} mm) and on the Hertz ellipse"
         f" ({result.hertz.a * 1e3:.2f} x {result.hertz.b * 1e3:.2f} mm),"
         f" {ELLIPSE_ELEMENTS} x {ELLIPSE_ELEMENTS} elements:",
         "",
-        "| force | CONTACT | exact, CONTACT's area | error | exact, KP ellipse | error"
-        " | exact, Hertz ellipse | error | tolerance |",
-        "|---|---|---|---|---|---|---|---|---|",
+        "| force | CONTACT | exact, CONTACT's area | error | exact, KP patch | error"
+        " | exact, KP ellipse | error | exact, Hertz ellipse | error | tolerance |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     summary = []
     for key, label, reference in (("fx", "FX", patch.fx), ("fs", "FS", patch.fs)):
@@ -281,12 +331,16 @@ def main(argv: list[str] | None = None) -> int:
         " table per case are the passage kernel's creep law (the FASTSIM table,"
         " `creep_table.table_creep_forces`) on that method's"
         " semi-axes; the second table gives Kalker's exact theory"
-        " (`wheel_rail/exact_rolling.py`, areas and pressures in this script's docstring).",
+        " (`wheel_rail/exact_rolling.py`, areas and pressures in this script's docstring)."
+        "  The summary adds FASTSIM on the KP patch strip by strip"
+        " (`wheel_rail/kp_creep.py`: KP's strips and loads, flexibilities of its equivalent"
+        " ellipse, Kalker's parabolic pressure).",
         "",
     ]
     tally: dict[str, list[int]] = {"KP": [0, 0], "Hertz": [0, 0]}
     creep_tally: dict[str, list[int]] = {m: [0, 0] for m in CREEP_METHODS}
     summary: list[str] = []
+    lengths: list[str] = []
     for name in REFERENCE_FILES:
         path = folder / "reference_outputs" / f"{name}.ref_out"
         for case, found in zip(read_reference_output(path), read_contact_maps(path), strict=True):
@@ -331,6 +385,12 @@ def main(argv: list[str] | None = None) -> int:
                 )
                 lines.append(f"| {label} | " + " | ".join(cells) + f" | {limit} |")
             lines.append("")
+            longest, drift = strip_lengths(case, found)
+            lengths.append(
+                f"| {name}#{case.case} | {patch.length * 1e3:.2f} | {longest * 1e3:.2f}"
+                f" | {drift * 1e3:.2f} | {result.kp_strips.length * 1e3:.2f}"
+                f" | {result.hertz.length * 1e3:.2f} |"
+            )
             exact_lines, exact_summary = creep_lines(name, case, result, found, creep_tally)
             lines += exact_lines
             summary += exact_summary
@@ -350,6 +410,25 @@ def main(argv: list[str] | None = None) -> int:
         "| creep model | FX, FS within 10 % |",
         "|---|---|",
         *(f"| {m} | {ok} of {n} |" for m, (ok, n) in creep_tally.items()),
+        "",
+        "Reading the columns: the exact theory on KP's own patch against that on CONTACT's"
+        " area separates KP's patch from the creep law (where the two differ, the patch"
+        " misses); FASTSIM on CONTACT's rows against the exact theory on the same area"
+        " separates FASTSIM's strip law from the patch (on a skewed band FASTSIM's"
+        " independent springs have no coupling between rows).  cw_interrupt#2's patch is cut"
+        " along x where the interrupted rail ends: a method on the lateral gap of 2-D slices"
+        " cannot end a patch along x, so no column on our patch can match it.",
+        "",
+        "## Patch length along x (mm)",
+        "",
+        "CONTACT's extent along x (its map's columns), its longest row (a strip along x) and"
+        " how far its rows' centres drift along x across the patch (a skewed band is longer"
+        " than its strips); KP's longest strip (FASTSIM on the KP strips uses these strips),"
+        " the Hertz ellipse's length.",
+        "",
+        "| case | CONTACT extent | CONTACT longest row | row centres' drift | KP | Hertz |",
+        "|---|---|---|---|---|---|",
+        *lengths,
         "",
     ]
     if args.tables:

@@ -34,7 +34,7 @@ from exudyn_turnout.wheel_rail.hertz import (
     hertz_constant,
     hertz_contact,
 )
-from exudyn_turnout.wheel_rail.kp_creep import KikPiotrowskiStrips, fastsim_kp, kp_strips
+from exudyn_turnout.wheel_rail.kp_creep import StripPatch, fastsim_patch, kp_strips
 from exudyn_turnout.wheel_rail.nonhertz import hertz_fits, kik_piotrowski, normal_gap_function
 from exudyn_turnout.wheel_rail.profiles import ProfileFormatError, read_slices
 from exudyn_turnout.wheel_rail.sections import lateral_grid, slice_sections, wheel_envelope
@@ -413,8 +413,8 @@ class ContactResult:
     hertz_fits: bool  #: the tables' criterion (:func:`.nonhertz.hertz_fits`)
     #: N, Kik-Piotrowski force of every candidate in interpenetration (our patches)
     patch_forces: tuple[float, ...]
-    kp_strips: KikPiotrowskiStrips  #: KP's patch at CONTACT's FN, strip by strip
-    #: N, (FX, FS) of FASTSIM on the KP strips (:func:`.kp_creep.fastsim_kp`, parabolic
+    kp_strips: StripPatch  #: KP's patch at CONTACT's FN, strip by strip
+    #: N, (FX, FS) of FASTSIM on the KP strips (:func:`.kp_creep.fastsim_patch`, parabolic
     #: pressure) at CONTACT's creepages, FN, mu, G and nu
     strip_creep: tuple[float, float]
 
@@ -453,7 +453,7 @@ def contact_at_reference(
     are evaluated at CONTACT's FN; the creep forces are the passage kernel's law, the FASTSIM table
     (:func:`.creep_table.table_creep_forces`, Poisson's ratio 0.28 as all the packaged
     cases) at CONTACT's creepages CKSI, CETA, CPHI with its FN, friction and G.  FASTSIM
-    on KP's patch strip by strip (:func:`.kp_creep.fastsim_kp`) is given beside them.
+    on KP's patch strip by strip (:func:`.kp_creep.fastsim_patch`) is given beside them.
 
     Parameters
     ----------
@@ -543,7 +543,7 @@ def contact_at_reference(
         fs=creep(a_kp, b_kp)[1],
     )
     strips = kp_strips(gaps[k], step, float(a_sum[k]), delta, modulus)
-    strip_creep = fastsim_kp(
+    strip_creep = fastsim_patch(
         patch.cksi, patch.ceta, patch.cphi, strips, case.friction, case.shear_modulus,
         case.poisson, normal_force=force,
     )  # fmt: skip
