@@ -417,6 +417,9 @@ class ContactResult:
     #: N, (FX, FS) of FASTSIM on the KP strips (:func:`.kp_creep.fastsim_patch`, parabolic
     #: pressure) at CONTACT's creepages, FN, mu, G and nu
     strip_creep: tuple[float, float]
+    #: m, where along x the rigid wheel meets the rail's line under each KP strip (the
+    #: envelope's x offset): the skew a 3-D patch would have, which KP's 2-D patch has not
+    kp_skew: np.ndarray
 
 
 def _solve_penetration(force: float, evaluate) -> float:
@@ -543,6 +546,10 @@ def contact_at_reference(
         fs=creep(a_kp, b_kp)[1],
     )
     strips = kp_strips(gaps[k], step, float(a_sum[k]), delta, modulus)
+    under = geometry.y_contact_rail + strips.t * float(np.cos(found.angle[k]))
+    x_offset = enveloped.x_offset
+    assert x_offset is not None  # wheel_envelope records where along x each height is met
+    skew = np.interp(under, grid, x_offset[0])
     strip_creep = fastsim_patch(
         patch.cksi, patch.ceta, patch.cphi, strips, case.friction, case.shear_modulus,
         case.poisson, normal_force=force,
@@ -553,4 +560,4 @@ def contact_at_reference(
         for j in range(len(found.gap))
         if found.gap[j] < 0.0
     )
-    return ContactResult(geometry, hertz, semi, fits, forces, strips, strip_creep)
+    return ContactResult(geometry, hertz, semi, fits, forces, strips, strip_creep, skew)
