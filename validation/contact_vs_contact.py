@@ -204,6 +204,14 @@ def strip_lengths(reference, found) -> tuple[float, float]:
     return longest, max(centres) - min(centres)
 
 
+def skewed_extent(result) -> float:
+    """m, extent along x of KP's strips moved along x by the envelope (``kp_skew``)."""
+    strips = result.kp_strips
+    ahead = result.kp_skew + strips.half_length
+    behind = result.kp_skew - strips.half_length
+    return float(ahead.max() - behind.min())
+
+
 def exact_on_ellipse(reference, ours) -> tuple[float, float]:
     """(FX, FS) by the exact theory on the Hertz ellipse of semi-axes ours.a, ours.b."""
     patch = reference.patches[0]
@@ -419,7 +427,7 @@ def main(argv: list[str] | None = None) -> int:
             lengths.append(
                 f"| {name}#{case.case} | {patch.length * 1e3:.2f} | {longest * 1e3:.2f}"
                 f" | {drift * 1e3:.2f} | {result.kp_strips.length * 1e3:.2f}"
-                f" | {np.ptp(result.kp_skew) * 1e3:.2f}"
+                f" | {np.ptp(result.kp_skew) * 1e3:.2f} | {skewed_extent(result) * 1e3:.2f}"
                 f" | {result.hertz.length * 1e3:.2f} |"
             )
             exact_lines, exact_summary = creep_lines(name, case, result, found, creep_tally)
@@ -460,11 +468,12 @@ def main(argv: list[str] | None = None) -> int:
         " how far its rows' centres drift along x across the patch (a skewed band is longer"
         " than its strips); KP's longest strip (FASTSIM on the KP strips uses these strips),"
         " how far along x the rigid wheel meets the rail under KP's strips (the skew our"
-        " geometry gives; KP's patch itself has none), the Hertz ellipse's length.",
+        " geometry gives; KP's patch itself has none) and the extent along x of KP's strips"
+        " so skewed, the Hertz ellipse's length.",
         "",
         "| case | CONTACT extent | CONTACT longest row | row centres' drift | KP"
-        " | KP strips' drift by the envelope | Hertz |",
-        "|---|---|---|---|---|---|---|",
+        " | KP strips' drift by the envelope | KP skewed, extent | Hertz |",
+        "|---|---|---|---|---|---|---|---|",
         *lengths,
         "",
     ]
