@@ -34,6 +34,9 @@ XCP move from 1.67 / 1.16 mm to 0.17 / 0.16 mm off and wing_brute's YCP from 0.1
 0.009 mm (:func:`test_slice_interpolation_along_the_track_moves_the_contact_to_contact_s`).
 """
 
+from pathlib import Path
+
+import numpy as np
 import pytest
 
 from exudyn_turnout.wheel_rail.data import data_dir, s1002_wheel
@@ -121,15 +124,16 @@ MISSES = {
     ("cw_interrupt#1", "approach"): "KP -6.5 % (Hertz -6.3 %) at CONTACT's slice surface; "
     "both undeformed-geometry methods miss CONTACT's elastic approach by the same amount",
     # creep forces by the kernel's law, the FASTSIM table on KP's equivalent ellipse
-    # (validation/contact_vs_contact.md; Kalker's exact theory on CONTACT's own area is within
-    # 10 % in 8 of 10 there, so the remaining misses are the equivalent ellipse's shape)
+    # (validation/contact_vs_contact.md).  Kalker's exact theory is within 10 % in 8 of 10 on
+    # CONTACT's own area but in 4 of 10 on KP's own patch, as on its equivalent ellipse: the
+    # misses are KP's patch (and CONTACT's skew on the wing rail), not the equivalent ellipse
     ("cw_interrupt#2", "fx"): "FX +36 %: " + _INTERRUPTED,
-    ("wing_brute#1", "fs"): "FS +16.5 % (125 N vs 107 N, 4 % of mu FN): FASTSIM's spin force "
-    "on the equivalent ellipse; the exact theory on CONTACT's area gives -3 %",
-    ("cross+wing#1", "fx"): "FX -15 %: KP's equivalent ellipse of a skewed band-like patch "
-    "(FASTSIM on an ellipse of CONTACT's own length and area: +5.6 %)",
-    ("cross+wing#1", "fs"): "FS -51 N vs -71 N (2 % of mu FN), pure spin on the equivalent "
-    "ellipse; the exact theory on CONTACT's area gives +4 %",
+    ("wing_brute#1", "fs"): "FS +16.5 % (125 N vs 107 N, 4 % of mu FN); the exact theory on "
+    "CONTACT's skewed area gives -3 %, on its rows de-skewed +102 %, on KP's patch +66 %",
+    ("cross+wing#1", "fx"): "FX -15 %: KP's strips (at most 7.7 mm) are shorter than CONTACT's "
+    "rows (9.0 mm, no skew); the exact theory on KP's own patch gives -12 %",
+    ("cross+wing#1", "fs"): "FS -51 N vs -71 N (2 % of mu FN), mostly spin; the exact theory on "
+    "CONTACT's area gives +4 %, on KP's own patch +31 %",
     ("cw_interrupt#2", "fs"): "FS -96 %: " + _INTERRUPTED,
 }
 
@@ -200,6 +204,60 @@ def test_contact_position_within_half_a_millimetre(contact_results, name):
 def test_number_of_patches_matches(contact_results, name):
     case, ours = contact_results[name]
     assert len(ours.patch_forces) == len(case.patches)
+
+
+# FASTSIM on the KP patch strip by strip (wheel_rail/kp_creep.py), measured in
+# validation/contact_vs_contact.md: no closer to CONTACT than the kernel's law on the
+# equivalent ellipse, and Kalker's exact theory on KP's own patch misses the same forces
+# (4 of 10 within 10 %), so these misses are KP's patch, not the creep law on it
+STRIP_MISSES = {
+    ("wing_brute#1", "fs"): "FS +19 % (128 N vs 107 N); the exact theory on KP's patch: +66 %",
+    ("cross+wing#1", "fx"): "FX -17.5 %: KP's strips (7.7 mm) shorter than CONTACT's rows (9.0)",
+    ("cross+wing#1", "fs"): "FS +32 %: KP's patch; the exact theory on it: +31 %",
+    ("cw_interrupt#2", "fx"): "FX +33 %: " + _INTERRUPTED,
+    ("cw_interrupt#2", "fs"): "FS -89 %: " + _INTERRUPTED,
+}
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_envelope_skews_the_kp_strips_as_contacts_rows(contact_results, name):
+    """CONTACT's wing-rail patches are skewed bands: their rows' centres drift along x
+    across the patch ("FORM OF THE CONTACT" of wing_brute and cw_interrupt case 1: 7.0 and
+    4.2 mm), which the exact theory needs (validation/contact_vs_contact.md).  Where the
+    rigid wheel meets the rail under each KP strip (``kp_skew``) drifts the same way, by
+    4.2 and 2.3 mm (measured); the nose cases (cross_brute, cross+wing) do not drift.
+    cw_interrupt#2's rows drift by 2.4 mm where the interrupted rail ends inside the
+    patch, which our 2-D slices cannot see: there ours does not drift."""
+    from exudyn_turnout.wheel_rail.contact_maps import read_contact_maps
+    from exudyn_turnout.wheel_rail.kp_creep import area_strips
+
+    case, ours = contact_results[name]
+    found = read_contact_maps(data_dir() / "reference_outputs" / Path(case.source).name)
+    rows = area_strips(found[case.case - 1].contact, case.dx, case.ds, case.normal_force)
+    theirs = np.polyfit(rows.t, rows.x_centre, 1)[0]
+    drift = float(np.ptp(ours.kp_skew))
+    if name.startswith("cross") or name == "cw_interrupt#2":
+        assert drift <= 0.5 * case.dx
+        assert name == "cw_interrupt#2" or abs(theirs) < 0.5
+        return
+    slope = np.polyfit(ours.kp_strips.t, ours.kp_skew, 1)[0]
+    assert np.sign(slope) == np.sign(theirs) and abs(theirs) > 1.0
+    # about half of CONTACT's drift (0.60 and 0.54 of it, measured): an elastic patch is
+    # not the rigid envelope's line of first touch
+    assert 0.4 * np.ptp(rows.x_centre) <= drift <= np.ptp(rows.x_centre)
+
+
+@pytest.mark.parametrize("quantity", ["fx", "fs"])
+@pytest.mark.parametrize("name", CASES)
+def test_fastsim_on_kp_strips_within_ten_percent(contact_results, name, quantity, request):
+    reason = STRIP_MISSES.get((name, quantity))
+    if reason:
+        request.applymarker(pytest.mark.xfail(strict=True, reason=reason))
+    case, ours = contact_results[name]
+    reference = getattr(case.patches[0], quantity)
+    assert abs(ours.strip_creep[0 if quantity == "fx" else 1] - reference) <= GOAL_CREEP * abs(
+        reference
+    )
 
 
 @pytest.mark.parametrize("quantity", ["fx", "fs"])

@@ -35,12 +35,28 @@ contact areas, each at CONTACT's FN, creepages, mu, G and nu, against the same 1
   about the area's centroid (CONTACT's reference point is "centred within the contact
   patch in a weighted sense", its user guide, section "Contact patches").  This checks the
   solver and our reading of CONTACT's conventions; what remains is the rebuilt pressure;
+- CONTACT's rows de-skewed: the same rows, each moved along x to the patch's middle (in
+  the summary only), which shows what the skew of a patch does;
+- KP's own patch, strip by strip with KP's semi-elliptic pressure, on CONTACT's DX and DS
+  (``kp_creep.patch_pressure_grid``), spin about its force centre; and the same with each
+  strip moved along x to where the rigid-wheel envelope meets the rail under it
+  (``references.ContactResult.kp_skew``, in the summary only): the skew our 2-D geometry
+  knows of but KP's patch does not carry.  On CONTACT's elements (0.2 mm along x) these
+  forces move by up to 4 % of FS when the grid is shifted by half an element
+  (cw_interrupt#1, unskewed: -135 / -141 N);
 - the Hertz ellipse of KP's equivalent semi-axes (KP's area and length/width ratio);
 - the Hertz ellipse of the point's curvature sums.
 
-The last two are what a creep law on our patch can reach with the exact theory: the
-difference to the first is the patch's shape (CONTACT's wing-rail patches are skewed
-bands, not ellipses), not the creep law.
+The last three are what a creep law on our patch can reach with the exact theory: the
+difference to the first is the patch (CONTACT's wing-rail patches are skewed bands, not
+ellipses), not the creep law.  The summary also gives FASTSIM on the KP patch strip by
+strip (``kp_creep.fastsim_patch``: KP's strips and loads, the flexibilities of its
+equivalent ellipse, Kalker's parabolic pressure along x), against the kernel's FASTSIM
+table on the equivalent ellipse, and the same FASTSIM on CONTACT's own rows
+(``kp_creep.area_strips``: each row of its map a strip, centred where the row is, so a
+skewed band keeps its skew; the flexibilities of its equivalent ellipse, defined as
+KP's), which separates FASTSIM's strip law from KP's patch; and the patch lengths along
+x (CONTACT's extent, its longest row, the drift of its rows' centres).
 
 ``--tables`` adds, per rail body of the packaged turnout's routes (the vehicle's wheel),
 where the contact tables use the semi-Hertzian law, and what it gives there against the
@@ -50,6 +66,7 @@ Hertz ellipse the tables held before (at the law's reference penetration).
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import os
 
 for _name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
@@ -65,6 +82,11 @@ from exudyn_turnout.wheel_rail.exact_rolling import (  # noqa: E402
     exact_creep_forces_ellipse,
     solve_steady_rolling,
     strip_pressure,
+)
+from exudyn_turnout.wheel_rail.kp_creep import (  # noqa: E402
+    area_strips,
+    fastsim_patch,
+    patch_pressure_grid,
 )
 from exudyn_turnout.wheel_rail.references import (  # noqa: E402
     REFERENCE_FILES,
@@ -125,20 +147,69 @@ def rows_of(reference, result) -> list[tuple]:
     ]  # fmt: skip
 
 
-def exact_on_contact_area(reference, found) -> tuple[float, float, float]:
-    """(FX, FS, PMAX of the rebuilt pressure) by the exact theory on CONTACT's own area."""
+def deskewed(contact: np.ndarray) -> np.ndarray:
+    """The same rows (strips) of a contact map, each moved along x to the map's middle
+    (one empty column either side), so a skewed band becomes a symmetric patch."""
+    rows = [np.nonzero(contact[:, j])[0] for j in range(contact.shape[1])]
+    n_x = max((int(r.max() - r.min()) + 1 for r in rows if r.size), default=0) + 2
+    out = np.zeros((n_x, contact.shape[1]), bool)
+    for j, r in enumerate(rows):
+        if r.size:
+            n = int(r.max() - r.min()) + 1
+            start = (n_x - n) // 2
+            out[start : start + n, j] = True
+    return out
+
+
+def exact_on_contact_area(reference, found, area=None) -> tuple[float, float, float]:
+    """(FX, FS, PMAX of the rebuilt pressure) by the exact theory on CONTACT's own area
+    (or on ``area``, a map on CONTACT's elements)."""
     patch = reference.patches[0]
-    pressure = strip_pressure(found.contact, reference.dx, reference.ds, patch.normal_force)
+    contact = found.contact if area is None else area
+    pressure = strip_pressure(contact, reference.dx, reference.ds, patch.normal_force)
     nx, ny = pressure.shape
     x = (np.arange(nx) + 0.5) * reference.dx
     y = (np.arange(ny) + 0.5) * reference.ds
-    x_c = float((x[:, None] * found.contact).sum() / found.contact.sum())
-    y_c = float((y[None, :] * found.contact).sum() / found.contact.sum())
+    x_c = float((x[:, None] * contact).sum() / contact.sum())
+    y_c = float((y[None, :] * contact).sum() / contact.sum())
     solved = solve_steady_rolling(
         pressure, reference.dx, reference.ds, -x_c, -y_c, patch.cksi, patch.ceta,
         patch.cphi, reference.friction, reference.shear_modulus, reference.poisson,
     )  # fmt: skip
     return solved.fx, solved.fy, float(pressure.max())
+
+
+def exact_on_kp_patch(reference, result, skewed: bool = False) -> tuple[float, float]:
+    """(FX, FS) by the exact theory on KP's own patch and pressure (CONTACT's DX, DS);
+    ``skewed``: each strip moved along x to where the rigid wheel meets the rail under it."""
+    patch = reference.patches[0]
+    strips = result.kp_strips
+    if skewed:
+        strips = dataclasses.replace(strips, x_centre=result.kp_skew)
+    pressure, x0, y0 = patch_pressure_grid(strips, reference.dx, reference.ds, patch.normal_force)
+    solved = solve_steady_rolling(
+        pressure, reference.dx, reference.ds, x0, y0, patch.cksi, patch.ceta, patch.cphi,
+        reference.friction, reference.shear_modulus, reference.poisson,
+    )  # fmt: skip
+    return solved.fx, solved.fy
+
+
+def strip_lengths(reference, found) -> tuple[float, float]:
+    """CONTACT's longest row (strip) along x and how far the rows' centres drift along x
+    (m): a skewed band is longer along x than any of its strips."""
+    rows = [np.nonzero(found.contact[:, j])[0] for j in range(found.contact.shape[1])]
+    rows = [r for r in rows if r.size]
+    longest = max(int(r.max() - r.min()) + 1 for r in rows) * reference.dx
+    centres = [0.5 * (r.max() + r.min() + 1) * reference.dx for r in rows]
+    return longest, max(centres) - min(centres)
+
+
+def skewed_extent(result) -> float:
+    """m, extent along x of KP's strips moved along x by the envelope (``kp_skew``)."""
+    strips = result.kp_strips
+    ahead = result.kp_skew + strips.half_length
+    behind = result.kp_skew - strips.half_length
+    return float(ahead.max() - behind.min())
 
 
 def exact_on_ellipse(reference, ours) -> tuple[float, float]:
@@ -206,13 +277,19 @@ def table_lines() -> list[str]:
     return lines + [""]
 
 
-#: Creep force columns of the summary: the exact theory on three areas, the kernel's law on two.
+#: Creep force columns of the summary: the exact theory on four areas, the kernel's law on
+#: two, FASTSIM on the KP patch strip by strip (wheel_rail/kp_creep.py).
 CREEP_METHODS = (
     "exact, CONTACT's area",
+    "exact, CONTACT's rows de-skewed",
+    "exact, KP patch",
+    "exact, KP patch skewed",
     "exact, KP ellipse",
     "exact, Hertz ellipse",
     "kernel (FASTSIM table), KP",
     "kernel (FASTSIM table), Hertz",
+    "FASTSIM, KP strips",
+    "FASTSIM, CONTACT's rows",
 )
 
 
@@ -220,24 +297,35 @@ def creep_lines(name, case, result, found, tally) -> tuple[list[str], list[str]]
     """The per-case table of FX, FS by the exact theory, and the case's summary rows."""
     patch = case.patches[0]
     fx_area, fs_area, p_rebuilt = exact_on_contact_area(case, found)
+    straight = exact_on_contact_area(case, found, deskewed(found.contact))
+    on_patch = exact_on_kp_patch(case, result)
+    on_skewed = exact_on_kp_patch(case, result, skewed=True)
     on_kp = exact_on_ellipse(case, result.semi_hertz)
     on_hz = exact_on_ellipse(case, result.hertz)
+    strips = result.strip_creep
+    rows = fastsim_patch(
+        patch.cksi, patch.ceta, patch.cphi, area_strips(found.contact, case.dx, case.ds,
+        patch.normal_force), case.friction, case.shear_modulus, case.poisson,
+    )  # fmt: skip
     values = {
-        "fx": (fx_area, on_kp[0], on_hz[0], result.semi_hertz.fx, result.hertz.fx),
-        "fs": (fs_area, on_kp[1], on_hz[1], result.semi_hertz.fs, result.hertz.fs),
-    }
+        "fx": (fx_area, straight[0], on_patch[0], on_skewed[0], on_kp[0], on_hz[0],
+               result.semi_hertz.fx, result.hertz.fx, strips[0], rows[0]),
+        "fs": (fs_area, straight[1], on_patch[1], on_skewed[1], on_kp[1], on_hz[1],
+               result.semi_hertz.fs, result.hertz.fs, strips[1], rows[1]),
+    }  # fmt: skip
     lines = [
         f"Kalker's exact theory on CONTACT's area ({int(found.contact.sum())} elements of"
         f" {case.dx * 1e3:.2f} x {case.ds * 1e3:.2f} mm, rebuilt PMAX"
         f" {p_rebuilt / 1e6:.0f} MPa against CONTACT's {patch.p_max / 1e6:.0f}), on KP's"
-        f" equivalent ellipse ({result.semi_hertz.a * 1e3:.2f} x"
+        f" own patch with its pressure (same elements), on KP's equivalent ellipse"
+        f" ({result.semi_hertz.a * 1e3:.2f} x"
         f" {result.semi_hertz.b * 1e3:.2f} mm) and on the Hertz ellipse"
         f" ({result.hertz.a * 1e3:.2f} x {result.hertz.b * 1e3:.2f} mm),"
         f" {ELLIPSE_ELEMENTS} x {ELLIPSE_ELEMENTS} elements:",
         "",
-        "| force | CONTACT | exact, CONTACT's area | error | exact, KP ellipse | error"
-        " | exact, Hertz ellipse | error | tolerance |",
-        "|---|---|---|---|---|---|---|---|---|",
+        "| force | CONTACT | exact, CONTACT's area | error | exact, KP patch | error"
+        " | exact, KP ellipse | error | exact, Hertz ellipse | error | tolerance |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     summary = []
     for key, label, reference in (("fx", "FX", patch.fx), ("fs", "FS", patch.fs)):
@@ -249,7 +337,7 @@ def creep_lines(name, case, result, found, tally) -> tuple[list[str], list[str]]
             tally[method][1] += 1
             text = f"{value:.4g}"
             error = _error(kind, value, reference) + (" ✓" if ok else "")
-            if method.startswith("exact"):
+            if method.startswith("exact") and "skewed" not in method:
                 cells += [text, error]
             brief.append(f"{text} ({error})")
         lines.append(
@@ -281,12 +369,16 @@ def main(argv: list[str] | None = None) -> int:
         " table per case are the passage kernel's creep law (the FASTSIM table,"
         " `creep_table.table_creep_forces`) on that method's"
         " semi-axes; the second table gives Kalker's exact theory"
-        " (`wheel_rail/exact_rolling.py`, areas and pressures in this script's docstring).",
+        " (`wheel_rail/exact_rolling.py`, areas and pressures in this script's docstring)."
+        "  The summary adds FASTSIM on the KP patch strip by strip"
+        " (`wheel_rail/kp_creep.py`: KP's strips and loads, flexibilities of its equivalent"
+        " ellipse, Kalker's parabolic pressure).",
         "",
     ]
     tally: dict[str, list[int]] = {"KP": [0, 0], "Hertz": [0, 0]}
     creep_tally: dict[str, list[int]] = {m: [0, 0] for m in CREEP_METHODS}
     summary: list[str] = []
+    lengths: list[str] = []
     for name in REFERENCE_FILES:
         path = folder / "reference_outputs" / f"{name}.ref_out"
         for case, found in zip(read_reference_output(path), read_contact_maps(path), strict=True):
@@ -331,6 +423,13 @@ def main(argv: list[str] | None = None) -> int:
                 )
                 lines.append(f"| {label} | " + " | ".join(cells) + f" | {limit} |")
             lines.append("")
+            longest, drift = strip_lengths(case, found)
+            lengths.append(
+                f"| {name}#{case.case} | {patch.length * 1e3:.2f} | {longest * 1e3:.2f}"
+                f" | {drift * 1e3:.2f} | {result.kp_strips.length * 1e3:.2f}"
+                f" | {np.ptp(result.kp_skew) * 1e3:.2f} | {skewed_extent(result) * 1e3:.2f}"
+                f" | {result.hertz.length * 1e3:.2f} |"
+            )
             exact_lines, exact_summary = creep_lines(name, case, result, found, creep_tally)
             lines += exact_lines
             summary += exact_summary
@@ -350,6 +449,32 @@ def main(argv: list[str] | None = None) -> int:
         "| creep model | FX, FS within 10 % |",
         "|---|---|",
         *(f"| {m} | {ok} of {n} |" for m, (ok, n) in creep_tally.items()),
+        "",
+        "Reading the columns: the exact theory on KP's own patch against that on CONTACT's"
+        " area separates KP's patch from the creep law (where the two differ, the patch"
+        " misses); FASTSIM on CONTACT's rows against the exact theory on the same area"
+        " separates FASTSIM's strip law from the patch (on a skewed band FASTSIM's"
+        " independent springs have no coupling between rows); the exact theory on CONTACT's"
+        " rows de-skewed (each row moved along x to the patch's middle) against that on its"
+        " area shows what the skew of the wing-rail patches does to the forces, and the"
+        " exact theory on KP's patch skewed by our envelope whether our geometry knows it."
+        "  cw_interrupt#2's patch is cut along x where the interrupted rail ends: a method"
+        " on the lateral gap of 2-D slices cannot end a patch along x, so no column on our"
+        " patch can match it.",
+        "",
+        "## Patch length along x (mm)",
+        "",
+        "CONTACT's extent along x (its map's columns), its longest row (a strip along x) and"
+        " how far its rows' centres drift along x across the patch (a skewed band is longer"
+        " than its strips); KP's longest strip (FASTSIM on the KP strips uses these strips),"
+        " how far along x the rigid wheel meets the rail under KP's strips (the skew our"
+        " geometry gives; KP's patch itself has none) and the extent along x of KP's strips"
+        " so skewed, the Hertz ellipse's length.",
+        "",
+        "| case | CONTACT extent | CONTACT longest row | row centres' drift | KP"
+        " | KP strips' drift by the envelope | KP skewed, extent | Hertz |",
+        "|---|---|---|---|---|---|---|---|",
+        *lengths,
         "",
     ]
     if args.tables:

@@ -119,8 +119,9 @@ def kalker_flexibilities(a, b, shear_modulus: float, poisson: float = 0.28):
 
 @numba.njit(cache=True)
 def strip_forces(
-    y, width, half_length, strip_load, elliptic, flex1, flex2, flex3, xi, eta, phi, mu, n_x
-):  # pragma: no cover (compiled; tested through its Python callers)
+    y, width, half_length, strip_load, elliptic, flex1, flex2, flex3, xi, eta, phi, mu, n_x,
+    x_centre,
+):  # pragma: no cover (compiled; tested through its Python callers)  # fmt: skip
     """FASTSIM on a patch given as strips across the rolling direction (compiled).
 
     Parameters
@@ -145,6 +146,10 @@ def strip_forces(
         Friction coefficient.
     n_x : int
         Elements along x in every strip.
+    x_centre : numpy.ndarray
+        m, (n,) centre of each strip along x (from the spin's pole): a strip at x_c sees
+        the rigid slip ``eta + phi x`` of its own x (a skewed patch); zeros for a patch
+        symmetric about x = 0.
 
     Returns
     -------
@@ -158,11 +163,13 @@ def strip_forces(
         load = strip_load[j]
         if half <= 0.0 or load <= 0.0:
             continue
+        # a strip centred at x_c: the spin's slip phi (x_c + x) about the strip's centre
+        eta_j = eta + phi * x_centre[j] * (flex2 / flex3)
         # Richardson: the sliding update is first order in the element length
         coarse_x, coarse_y = _strip(half, load, y[j], elliptic, flex1, flex2, flex3,
-                                    xi, eta, phi, mu, n_x)  # fmt: skip
+                                    xi, eta_j, phi, mu, n_x)  # fmt: skip
         fine_x, fine_y = _strip(half, load, y[j], elliptic, flex1, flex2, flex3,
-                                xi, eta, phi, mu, 2 * n_x)  # fmt: skip
+                                xi, eta_j, phi, mu, 2 * n_x)  # fmt: skip
         sx = 2.0 * fine_x - coarse_x
         sy = 2.0 * fine_y - coarse_y
         size = math.hypot(sx, sy)
@@ -227,6 +234,7 @@ def fastsim_strips(
     friction: float,
     n_x: int = DEFAULT_ELEMENTS,
     pressure: str = "parabolic",
+    x_centre=None,
 ) -> tuple[float, float]:
     """FASTSIM on an arbitrary patch given as strips (e.g. a Kik-Piotrowski patch).
 
@@ -250,6 +258,8 @@ def fastsim_strips(
         Elements along x per strip.
     pressure : str
         "parabolic" (Kalker's FASTSIM) or "elliptic" along x in every strip.
+    x_centre : array_like, optional
+        m, centre of each strip along x from the spin's pole (default: all at x = 0).
 
     Returns
     -------
@@ -261,10 +271,13 @@ def fastsim_strips(
     y_, width_, half_, load_ = (
         np.ascontiguousarray(v, dtype=float) for v in (y, width, half_length, strip_load)
     )
+    centre_ = (
+        np.zeros(y_.shape) if x_centre is None else np.ascontiguousarray(x_centre, dtype=float)
+    )
     flex1, flex2, flex3 = (float(v) for v in flexibilities)
     fx, fy = strip_forces(
         y_, width_, half_, load_, pressure == "elliptic", flex1, flex2, flex3,
-        float(xi), float(eta), float(phi), float(friction), int(n_x),
+        float(xi), float(eta), float(phi), float(friction), int(n_x), centre_,
     )  # fmt: skip
     return float(fx), float(fy)
 
@@ -294,13 +307,14 @@ def _ellipse_many(
 ):  # pragma: no cover (compiled)
     n = xi.shape[0]
     out = np.zeros((n, 2))
+    centred = np.zeros(n_strips)  # the ellipse's strips are centred at x = 0
     for k in range(n):
         if q[k] <= 0.0 or a[k] <= 0.0 or b[k] <= 0.0:
             continue
         y, width, half, load = _ellipse_strips(a[k], b[k], q[k], n_strips)
         fx, fy = strip_forces(
             y, width, half, load, False, flex1[k], flex2[k], flex3[k], xi[k], eta[k], phi[k],
-            mu[k], n_x,
+            mu[k], n_x, centred,
         )  # fmt: skip
         out[k, 0] = fx
         out[k, 1] = fy

@@ -34,6 +34,7 @@ from exudyn_turnout.wheel_rail.hertz import (
     hertz_constant,
     hertz_contact,
 )
+from exudyn_turnout.wheel_rail.kp_creep import StripPatch, fastsim_patch, kp_strips
 from exudyn_turnout.wheel_rail.nonhertz import hertz_fits, kik_piotrowski, normal_gap_function
 from exudyn_turnout.wheel_rail.profiles import ProfileFormatError, read_slices
 from exudyn_turnout.wheel_rail.sections import lateral_grid, slice_sections, wheel_envelope
@@ -412,6 +413,13 @@ class ContactResult:
     hertz_fits: bool  #: the tables' criterion (:func:`.nonhertz.hertz_fits`)
     #: N, Kik-Piotrowski force of every candidate in interpenetration (our patches)
     patch_forces: tuple[float, ...]
+    kp_strips: StripPatch  #: KP's patch at CONTACT's FN, strip by strip
+    #: N, (FX, FS) of FASTSIM on the KP strips (:func:`.kp_creep.fastsim_patch`, parabolic
+    #: pressure) at CONTACT's creepages, FN, mu, G and nu
+    strip_creep: tuple[float, float]
+    #: m, where along x the rigid wheel meets the rail's line under each KP strip (the
+    #: envelope's x offset): the skew a 3-D patch would have, which KP's 2-D patch has not
+    kp_skew: np.ndarray
 
 
 def _solve_penetration(force: float, evaluate) -> float:
@@ -447,7 +455,8 @@ def contact_at_reference(
     lateral tangent (:func:`.nonhertz.normal_gap_function`, sampled at ``step``).  Both
     are evaluated at CONTACT's FN; the creep forces are the passage kernel's law, the FASTSIM table
     (:func:`.creep_table.table_creep_forces`, Poisson's ratio 0.28 as all the packaged
-    cases) at CONTACT's creepages CKSI, CETA, CPHI with its FN, friction and G.
+    cases) at CONTACT's creepages CKSI, CETA, CPHI with its FN, friction and G.  FASTSIM
+    on KP's patch strip by strip (:func:`.kp_creep.fastsim_patch`) is given beside them.
 
     Parameters
     ----------
@@ -536,10 +545,19 @@ def contact_at_reference(
         fx=creep(a_kp, b_kp)[0],
         fs=creep(a_kp, b_kp)[1],
     )
+    strips = kp_strips(gaps[k], step, float(a_sum[k]), delta, modulus)
+    under = geometry.y_contact_rail + strips.t * float(np.cos(found.angle[k]))
+    x_offset = enveloped.x_offset
+    assert x_offset is not None  # wheel_envelope records where along x each height is met
+    skew = np.interp(under, grid, x_offset[0])
+    strip_creep = fastsim_patch(
+        patch.cksi, patch.ceta, patch.cphi, strips, case.friction, case.shear_modulus,
+        case.poisson, normal_force=force,
+    )  # fmt: skip
     fits = bool(hertz_fits(gaps[k : k + 1], step, a_raw[k], b_raw[k], modulus)[0])
     forces = tuple(
         float(kp(-float(found.gap[j]), j).normal_force[0])
         for j in range(len(found.gap))
         if found.gap[j] < 0.0
     )
-    return ContactResult(geometry, hertz, semi, fits, forces)
+    return ContactResult(geometry, hertz, semi, fits, forces, strips, strip_creep, skew)
