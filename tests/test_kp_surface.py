@@ -138,3 +138,20 @@ def test_at_force_carries_the_force():
 def test_bad_input_is_named(gap, x, t, delta):
     with pytest.raises(ValueError, match="gap|uniform|delta"):
         kp_surface(gap, x, t, delta, MODULUS)
+
+
+def test_condition_at_the_force_centre_is_kps_on_a_symmetric_gap():
+    """Where the force centre is the deepest point both conditions are one (KP's)."""
+    t = (np.arange(201) - 100) * 4e-5
+    x = np.arange(-100, 101) * 1e-4
+    gap = A_SUM * x[:, None] ** 2 + 5.0 * t[None, :] ** 2
+    deepest = kp_surface(gap, x, t, 3e-5, MODULUS)
+    centre = kp_surface(gap, x, t, 3e-5, MODULUS, condition="centre")
+    assert centre.normal_force == pytest.approx(deepest.normal_force, rel=1e-12)
+    lopsided = gap + np.where(t > 0.0, 2e3 * t**3, 0.0)[None, :]
+    moved = kp_surface(lopsided, x, t, 3e-5, MODULUS, condition="centre")
+    # the gap rises faster at t > 0, so the force centre, and the condition, move to t < 0
+    assert moved.t_centre < -2e-5
+    assert moved.t_reference == pytest.approx(moved.t_centre, abs=0.5 * 4e-5)
+    with pytest.raises(ValueError, match="condition"):
+        kp_surface(gap, x, t, 3e-5, MODULUS, condition="middle")
