@@ -207,3 +207,19 @@ def test_rail_end_inside_the_patch_is_where_the_method_fails():
     patch = _kp3d_at_reference(case)
     assert patch.x_low > patch.x_reference - 0.1e-3  # the region starts at the rail end
     assert patch.approach < 0.8 * case.patches[0].approach
+
+
+def test_strip_split_along_x_gives_two_intervals():
+    """A ridge across x = 0 for t > 0.2 mm splits those strips in two (a U-shaped
+    region connected through t < 0.2 mm): one interval either side of the ridge."""
+    t = (np.arange(201) - 100) * 1e-5
+    x = np.arange(-150, 151) * 2e-5
+    gap = A_SUM * x[:, None] ** 2 + 30.0 * t[None, :] ** 2
+    ridge = 1e-4 * np.exp(-((x[:, None] / 3e-4) ** 2)) * (t[None, :] > 2e-4)
+    whole = kp_surface(gap, x, t, 2e-5, MODULUS)
+    split = kp_surface(gap + ridge, x, t, 2e-5, MODULUS)
+    rows, counts = np.unique(split.strips.t, return_counts=True)
+    assert np.all(counts[rows > 2.1e-4] == 2) and np.all(counts[rows < 1.9e-4] == 1)
+    two = np.isin(split.strips.t, rows[counts == 2])
+    assert np.all(np.abs(split.strips.x_centre[two]) > 3e-4)  # either side of the ridge
+    assert 0.0 < split.normal_force < whole.normal_force
