@@ -74,12 +74,15 @@ of the exact solution on the same gap.  It fails where the rail ends inside the 
 point lies on the rail's end, at the region's edge, where the Boussinesq displacement of a
 given load is about half that at an interior point, and the semi-elliptic pressure falls
 to zero where the exact one is singular; the condition at the force centre overshoots
-instead (+2.8 ... +15.2 %, 2 of 5).  The patch is skewed as the surfaces are, but its
-extent along x stays 13-18 % short of the exact one's (the virtual penetration, as KP on
-the slice), and the creep forces gain nothing: 4 of 10 within 10 % by the exact theory on
-the patch (KP 2-D 4), 2 of 10 by FASTSIM on its strips (KP 2-D 5).  One call costs
-2.3-6.2x KP's on the 2-D slice at the tables' resolution; the 3-D gap around a node costs far
-more (same page).
+instead (+2.8 ... +15.2 %, 2 of 5).  On a paraboloid cut at x_end, no profiles involved,
+KP 3-D is within 2.4 % of the exact approach while the cut is 2 mm or more from the deepest
+point, -8.3 % at 1 mm, -33 % at the deepest point: the method's limit, not the geometry's.
+The patch is skewed as the surfaces are, but its extent along x stays 13-18 % short of the
+exact one's (the virtual penetration, as KP on the slice), and the creep forces gain
+nothing: 4 of 10 within 10 % by the exact theory on the patch (KP 2-D 4), 2 of 10 by
+FASTSIM on its strips (KP 2-D 5).  One call costs
+2-6x KP's on the 2-D slice at the tables' resolution (2.3-6.2x and 2.2-4.1x in two runs on
+a shared machine); the 3-D gap around a node costs far more (same page).
 
 The offset strip integral has no closed form used here; it is integrated by
 Gauss-Legendre on panels graded geometrically towards the point nearest the reference
