@@ -171,3 +171,10 @@ def test_spline_pmax_converges_where_the_polygon_did_not():
     assert pmax["linear", 0.5] > 1.1 * pmax["linear", 1.0]
     assert pmax["spline", 0.5] == pytest.approx(pmax["spline", 1.0], rel=0.01)
     assert pmax["spline", 1.0] == pytest.approx(patch.p_max, rel=0.05)
+
+
+def test_unknown_surface_is_named():
+    _name, case = _cases()[0]
+    geometry = case_geometry(case, s1002_wheel(), PROFILES)
+    with pytest.raises(ValueError, match="surface 'cubic'"):
+        surface_gap(case, geometry, PROFILES, np.zeros(1), np.zeros(1), surface="cubic")
