@@ -21,9 +21,12 @@ github eve70a/CONTACT at d431cdb) is used in the literature.
 
 Equal materials: the normal and tangential problems decouple (Kalker 1990, ch. 1), so the
 normal pressure is solved first and held.  Cost: one dense LU of 2 m unknowns per Newton
-iteration for m elements in contact (:mod:`.exact_rolling`), about 1-10 s at CONTACT's
-element size on its five reference cases, 4^3 = 64 times that at half the element size;
-run it with one BLAS thread on a shared machine (``validation/detailed_vs_contact.py``).
+iteration for m elements in contact (:mod:`.exact_rolling`); on CONTACT's five reference
+cases at its element size (469-1281 elements) the tangential problem took 0.2-4.9 s of
+CPU (0.5-15 s wall on a loaded 2-core machine) and the normal one 1.3-3.6 s wall
+(``benchmarks/bench_detailed_contact.py``); at half the element size 40-160 s.  Run it
+with one BLAS thread on a shared machine: two threads made the tangential problem 1.1-5
+times slower there.
 """
 
 from __future__ import annotations
