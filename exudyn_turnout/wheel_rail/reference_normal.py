@@ -206,10 +206,11 @@ def spline_profile(
     """A profile's points joined by a parametric cubic spline, sampled densely.
 
     ``(y, z)(s)`` through every point, ``s`` the accumulated chord length, not-a-knot ends
-    (CONTACT's interpolating spline, ``make_spline`` at SMOOTH = 0, E.A.H. Vollebregt,
-    *User guide for CONTACT*, section "Smoothing of profiles"); where the polygon turns by
-    more than ``kink`` at a point the spline is broken there (CONTACT's kink detection,
-    KINKHIG).  Repeated points are dropped.
+    (CONTACT's interpolating spline: ``make_spline`` with lambda = 0 on the polygon's arc
+    length, as ``matlab/resample_slices.m`` of its distribution calls it, github
+    eve70a/CONTACT, Apache-2.0; the packaged outputs print SMOOTH 0, LAMBDA 0 for both
+    profiles); where the polygon turns by more than ``kink`` at a point the spline is
+    broken there (CONTACT's kink detection, KINKHIG).  Repeated points are dropped.
 
     Parameters
     ----------
