@@ -24,7 +24,7 @@ normal pressure is solved first and held.  Cost: one dense LU of 2 m unknowns pe
 iteration for m elements in contact (:mod:`.exact_rolling`); on CONTACT's five reference
 cases at its element size (469-1281 elements) the tangential problem took 0.2-4.9 s of
 CPU (0.5-15 s wall on a loaded 2-core machine) and the normal one 1.3-3.6 s wall
-(``benchmarks/bench_detailed_contact.py``); at half the element size 40-160 s.  Run it
+(``benchmarks/bench_detailed_contact.py``); at half the element size 23-160 s wall.  Run it
 with one BLAS thread on a shared machine: two threads made the tangential problem 1.1-5
 times slower there.
 """
