@@ -21,7 +21,10 @@ wheel position and normal force FN, four normal solutions of ours against CONTAC
 - **exact, 3-D gap**: the same solver on the gap of the 3-D surfaces: the slices
   interpolated along the track at every ``S + x`` of the grid, the wheel profile at the
   case's shift and height plus the drop ``x^2 / (2 r)`` of its circle (r = NOMRAD),
-  vertical gap times cos(contact angle) on the lateral tangent;
+  vertical gap times cos(contact angle) on the lateral tangent (the ``"linear"``
+  surfaces of ``reference_normal``: the same profile polygons as the 2-D slice, so that
+  the split below compares like with like; the spline surfaces, the wheel as a body of
+  revolution and the tangential problem are in validation/detailed_vs_contact.md);
 - **CONTACT**: its APPROACH, PMAX, reference location YCP(R), ZCP(R), and the extent of its
   printed contact map (columns x DX, rows x DS).
 
@@ -148,7 +151,9 @@ def exact_normal(geometry: CaseGeometry, force: float, modulus: float, dx: float
 
 def exact_surface(case, geometry, profiles, force, modulus, dx, ds, reach):
     """The exact solution on the 3-D gap at FN (``reference_normal.exact_on_surface``)."""
-    found = exact_on_surface(case, geometry, profiles, force, modulus, dx, ds, reach)
+    found = exact_on_surface(
+        case, geometry, profiles, force, modulus, dx, ds, reach, surface="linear"
+    )
     solved = found.solution
     y_r, z_r = _at(geometry, solved.y_centre)
     normal = Normal(solved.approach, solved.length, solved.width, solved.p_max, y_r, z_r)

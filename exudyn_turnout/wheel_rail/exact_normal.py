@@ -38,7 +38,9 @@ What it is for
 undeformed profiles plus the relative curvature in the rolling direction), on a grid
 and solves it exactly.  Kik-Piotrowski against this solution is the error of KP's method
 alone; this solution against CONTACT is the error of the gap (our geometry), see
-``validation/normal_vs_contact.md``.
+``validation/normal_vs_contact.md``.  On the gap of our 3-D surfaces
+(:func:`.reference_normal.exact_on_surface`) it carries the exact tangential solution of
+:mod:`.detailed_contact` (``validation/detailed_vs_contact.md``).
 
 Not modelled: dissimilar materials (no coupling of normal and tangential problems),
 conformal (curved) contact planes, the interaction of the tangential tractions with the
