@@ -39,7 +39,12 @@ from exudyn_turnout.wheel_rail.references import (
     contact_at_reference,
     read_reference_output,
 )
-from exudyn_turnout.wheel_rail.sections import lateral_grid, slice_sections, wheel_envelope
+from exudyn_turnout.wheel_rail.sections import (
+    lateral_grid,
+    slice_sections,
+    wheel_drop,
+    wheel_envelope,
+)
 
 CASES = [
     (name, case)
@@ -85,7 +90,7 @@ def test_table_force_centre_is_contacts_reference_point(name, case):
     # the envelope's height is met x_offset ahead (the tables' x_offset): the rail point
     # there lies dx^2 / (2 r) higher in the wheel's plane (as references.geometry_at_reference)
     dx = x_offset[k]
-    z = found.z_rail[k] + centre * np.sin(found.angle[k]) + dx * dx / (2.0 * 0.46)
+    z = found.z_rail[k] + centre * np.sin(found.angle[k]) + wheel_drop(dx, 0.46)
     assert abs(y - patch.y_contact_rail) <= 0.5e-3
     assert abs(z - patch.z_contact_rail) <= 0.5e-3
     assert abs(y - result.semi_hertz.y_contact_rail) <= 0.1e-3

@@ -28,6 +28,7 @@ from exudyn_turnout.wheel_rail.sections import (
     slice_sections,
     slice_surface,
     switch_sections,
+    wheel_drop,
     wheel_envelope,
 )
 from exudyn_turnout.wheel_rail.tables import (
@@ -162,6 +163,26 @@ def test_wheel_envelope_meets_a_rising_nose_ahead_and_a_flat_rail_under_the_cent
     ramp = SectionGrid(x=x, y=grid, z=np.maximum(x, 0.0)[:, None] / 10 + 0 * grid)
     met = wheel_envelope(ramp, np.array([0.0]), 0.46, reach=0.1, step=0.0005)
     assert met.x_offset[0, 0] == pytest.approx(0.46 * math.sin(math.atan(0.1)), abs=6e-4)
+    # and the height met there is the circle's, r (sqrt(1 + s^2) - 1) = 2.2943 mm (closed
+    # form, s = 1/10); the parabola dx^2 / (2 r) used before gave r s^2 / 2 = 2.3000 mm
+    circle = 0.46 * (math.sqrt(1.0 + 0.01) - 1.0)
+    assert met.z[0, 0] == pytest.approx(circle, abs=2e-7)
+    assert abs(met.z[0, 0] - 0.46 * 0.01 / 2) > 5e-6
+
+
+def test_wheel_drop_is_the_circle_and_the_envelope_rejects_a_reach_beyond_the_radius():
+    dx = np.array([0.0, 0.01, 0.046, 0.12])
+    r = 0.46
+    drop = wheel_drop(dx, r)
+    # closed form: the circle's height above its lowest point, r (1 - cos(asin(dx / r)))
+    np.testing.assert_allclose(drop, r * (1.0 - np.cos(np.arcsin(dx / r))), rtol=1e-12)
+    # the parabola lies below it by dx^4 / (8 r^3) to leading order: 5.7 um at 46 mm
+    # (CONTACT's cross_brute contact, validation/detailed_vs_contact.md)
+    assert drop[2] - 0.046**2 / (2 * r) == pytest.approx(0.046**4 / (8 * r**3), rel=0.02)
+    grid = lateral_grid(-0.01, 0.01, 1e-3)
+    flat = SectionGrid(x=np.array([-1.0, 1.0]), y=grid, z=np.zeros((2, len(grid))))
+    with pytest.raises(ValueError, match="reach"):
+        wheel_envelope(flat, np.array([0.0]), 0.46, reach=0.5)
 
 
 def test_switch_blade_planed_and_lowered_near_the_toe():

@@ -73,6 +73,7 @@ from exudyn_turnout.wheel_rail.sections import (
     slice_sections,
     slice_surface,
     surface_on_grid,
+    wheel_drop,
     wheel_envelope,
 )
 
@@ -192,7 +193,7 @@ def case_geometry(case: ReferenceCase, wheel: WheelGrid, profiles_dir: str | Pat
         b_raw=float(0.5 * lateral),
         angle=float(found.angle[k]),
         y_rail=float(found.y_rail[k]),
-        z_rail=float(found.z_rail[k]) + dx * dx / (2 * NOMINAL_RADIUS),
+        z_rail=float(found.z_rail[k] + wheel_drop(dx, NOMINAL_RADIUS)),
         interpenetration=-float(found.gap[k]),
         x_offset=dx,
         wheel_y=prepared.y,

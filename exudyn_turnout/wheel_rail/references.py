@@ -37,7 +37,12 @@ from exudyn_turnout.wheel_rail.hertz import (
 from exudyn_turnout.wheel_rail.kp_creep import StripPatch, fastsim_patch, kp_strips
 from exudyn_turnout.wheel_rail.nonhertz import hertz_fits, kik_piotrowski, normal_gap_function
 from exudyn_turnout.wheel_rail.profiles import ProfileFormatError, read_slices
-from exudyn_turnout.wheel_rail.sections import lateral_grid, slice_sections, wheel_envelope
+from exudyn_turnout.wheel_rail.sections import (
+    lateral_grid,
+    slice_sections,
+    wheel_drop,
+    wheel_envelope,
+)
 
 __all__ = [
     "ReferencePatch",
@@ -346,7 +351,7 @@ def _geometry(found, k, grid, enveloped, nominal_radius) -> GeometryResult:
     return GeometryResult(
         x_contact=dx,
         y_contact_rail=float(found.y_rail[k]),
-        z_contact_rail=float(found.z_rail[k]) + dx * dx / (2 * nominal_radius),
+        z_contact_rail=float(found.z_rail[k] + wheel_drop(dx, nominal_radius)),
         y_contact_wheel=float(found.s_wheel[k]),
         approach=-float(found.gap[k]),
         angle=float(found.angle[k]),

@@ -72,7 +72,7 @@ __all__ = [
 # flange back rounded to the inner face as EN 13715 (geometry.flange_back_arc), the radius
 # of an inner-face contact from its height; 13: KP's force centre per node (patch_centre,
 # patch_centre_exponent), the contact position
-_FORMAT_VERSION = "wheel_rail-table-13"
+_FORMAT_VERSION = "wheel_rail-table-14"
 _FIELDS = (
     "gap",
     "y_rail",
