@@ -26,8 +26,8 @@ at y = 0).
 The contact geometry is nonlinear (equivalent conicity 0.37 at 1 mm amplitude, 0.18 at
 3 mm), so the onset depends on the perturbation: ``python validation/hunting.py`` gives
 the onsets per perturbation and the linearised system's critical speed
-(validation/hunting.md; linearised: 340-345 km/h with the FASTSIM table, 315-320 km/h with
-Polach's method, tests/test_vehicle_linear.py).
+(validation/hunting.md; linearised: 315 km/h with the FASTSIM table, 319 km/h with
+Polach's method, validation/creep_table_resolution.md, tests/test_vehicle_linear.py).
 """
 
 from __future__ import annotations

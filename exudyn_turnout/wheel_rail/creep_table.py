@@ -306,7 +306,7 @@ def spin_length(xi, eta, a, b, c11, c22, c23, rho, blend):  # pragma: no cover (
     ratio = patch * math.hypot(c11 * cx, c22 * ce) / (math.sqrt(a * b) * c23)
     weight = 1.0
     if blend > 0.0:
-        weight = rho / (rho + blend)
+        weight = rho / max(rho + blend, 1e-300)
     return patch * math.exp((weight - 1.0) * math.log(ratio))
 
 
