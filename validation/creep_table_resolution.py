@@ -100,11 +100,10 @@ def main() -> None:
 
     rows = [("Kalker's linear theory", _slopes(kalker, phi), _slopes(kalker, -phi))]
     rows.append(("direct FASTSIM (40 x 60)", _slopes(direct, phi), _slopes(direct, -phi)))
-    builds = {}
+    sizes = {}
     for label, settings in TABLES.items():
-        start = time.perf_counter()
         table = creep_table(settings)
-        builds[label] = (table.build_seconds, table.values.nbytes, time.perf_counter() - start)
+        sizes[label] = table.values.nbytes
 
         def tabulated(xi, eta, spin, table=table):
             return table_creep_forces(table, xi, eta, spin, a, b, load, mu, G)
@@ -129,6 +128,7 @@ def main() -> None:
         return 0.5 * sum(speeds[label])
 
     finest = mid("present, n_beta 129")
+    middle = mid("present, n_beta 65")
     lines = [
         "# Resolution of the FASTSIM creep table at the hunting linearisation point",
         "",
@@ -164,19 +164,15 @@ def main() -> None:
         "`passage.hunting.linear_critical_speed` (the vehicle linearised on straight rigid "
         "track at free rolling, validation/hunting.md), bisected to "
         f"{TOLERANCE:g} km/h in {BRACKET[0]:g} ... {BRACKET[1]:g} km/h; the change against "
-        "the present table with n_beta 129. Table size: the stored array (float64); build: "
-        "seconds when it was built in this run (0: from the cache).",
+        "the present table with n_beta 129. Table size: the stored array (float64).",
         "",
-        "| creep law | critical speed km/h | vs present n_beta 129 | table MB | build s |",
-        "|---|---|---|---|---|",
+        "| creep law | critical speed km/h | vs present n_beta 129 | table MB |",
+        "|---|---|---|---|",
     ]
     for label, (lo, hi) in speeds.items():
-        size = build = "-"
-        if label in builds:
-            size = f"{builds[label][1] / 1e6:.1f}"
-            build = f"{builds[label][0]:.0f}"
+        size = f"{sizes[label] / 1e6:.1f}" if label in sizes else "-"
         change = 100.0 * (0.5 * (lo + hi) - finest) / finest
-        lines.append(f"| {label} | {lo:.1f}-{hi:.1f} | {change:+.2f} % | {size} | {build} |")
+        lines.append(f"| {label} | {lo:.1f}-{hi:.1f} | {change:+.2f} % | {size} |")
     packaged = mid("present, packaged (n_beta 33)")
     before = mid("creep-table-4 layout, n_beta 33 (before)")
     spread = [mid(k) for k in TABLES if k.startswith("present") and "linear" not in k]
@@ -186,8 +182,10 @@ def main() -> None:
         "",
         f"The packaged table's critical speed is {packaged:.1f} km/h, "
         f"{100.0 * (packaged - finest) / finest:+.2f} % from the one with four times the "
-        f"spin-angle nodes; refining any single axis of the present table moves it by "
-        f"{max(abs(s - packaged) for s in spread):.1f} km/h at most. The creep-table-4 "
+        f"spin-angle nodes ({finest:.1f} km/h; twice: {middle:.1f} km/h, steps "
+        f"{middle - packaged:+.2f} and {finest - middle:+.2f} km/h, so the limit lies within "
+        "a few tenths of a km/h of the finest); refining any single axis of the present table "
+        f"moves it by {max(abs(s - packaged) for s in spread):.1f} km/h at most. The creep-table-4 "
         f"layout read {before:.1f} km/h and converged only as the spin-angle step (first "
         "order, the secant over the first cell next to pure spin). Polach's law gives "
         f"{mid(POLACH):.1f} km/h: at free "
