@@ -28,7 +28,6 @@ coordinates, uniform in each:
   :data:`FULL_SLIP`): the saturation (rho ~ 1, u ~ 0.6) gets most of the nodes, and the
   first node above zero lies at rho ~ 1e-3, so that Kalker's linear range is met to
   0.1 % (with ``rho = u / (1 - u)`` it lay at 0.03 and the linear forces were 3 % off);
-  within a cell the weights are linear in rho (in u in the last cell, to full slip);
 - the direction of the translational creepage, ``alpha = atan2(eta, xi)`` in
   [0, pi / 2] (the direction of the force in full slip without spin);
 - the weight of spin, ``beta = atan2(phi l, |(xi, eta)|)`` in [-pi / 2, pi / 2], with a
@@ -53,9 +52,13 @@ gave dF_x/dxi 0.81 of FASTSIM's slope and a cross slope dF_y/dxi of 0.22 C11 G a
 FASTSIM does not have (its f_y is even in xi); the linear critical speed came out
 342 km/h against 315 km/h converged (validation/creep_table_resolution.md).
 
-Interpolation: linear in tau, rho and alpha; in beta a Catmull-Rom cubic through four
-nodes, whose slopes are central differences, so that the forces are C1 in beta (the
-slopes of linearisations and Newton's Jacobians do not jump at beta's nodes).  beta
+Interpolation: linear in tau and alpha; in rho a cubic Hermite through four nodes whose
+slopes are three-point differences (exact for a quadratic, so Kalker's linear theory at
+small size is kept; node -1 is node 1 mirrored, f(-rho) = -f(rho); linear in u in the
+last cell, to full slip); in beta a Catmull-Rom cubic through four nodes, whose slopes
+are central differences.  The forces are thus C1 in rho and beta: the slopes of
+linearisations and Newton's Jacobians do not jump at their nodes (tested; they still
+do at the nodes of tau and alpha).  beta
 continues past +-pi / 2 antiperiodically, ``f(beta +- pi) = -f(beta)`` (past pure spin
 the translational creepage reverses: the symmetry below), so the end nodes have central
 slopes as well: at pure spin dF_y/dxi is exactly 0 there, as in FASTSIM.  A cubic can
@@ -70,10 +73,10 @@ The interpolation error against direct FASTSIM is measured in
 tests/test_wheel_rail_creep_table.py, the slopes in tests/test_creep_table_slopes.py, the
 cost per call in benchmarks/bench_creep_table.py.
 
-Cost.  1.24 microseconds per call against 0.93 for the multilinear creep-table-4 and
-0.35 for Polach's law (benchmarks/bench_creep_table.py, 200,000 random contacts, the
-least of 5 rounds on 2 shared cores): the table is read at 32 nodes instead of 16, in 8
-runs of 4 consecutive beta nodes.
+Cost.  About 2.0 microseconds per call against 0.93 for the multilinear creep-table-4
+and 0.35-0.41 for Polach's law (benchmarks/bench_creep_table.py, 200,000 random
+contacts, the least of 5 rounds on 2 shared cores; 1.24 with the cubic in beta alone):
+the table is read at 64 nodes instead of 16, in 16 runs of 4 consecutive beta nodes.
 
 Cache.  The FASTSIM table is built once (about 18 s of one core's time) and stored as
 ``.npz`` (11.6 MB) in the cache directory (:func:`.tables.default_cache_dir`), named by
@@ -90,7 +93,7 @@ import math
 import time
 import warnings
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields
 from pathlib import Path
 
 import numba
@@ -140,6 +143,8 @@ class CreepTableSettings:
     spin_blend: float = 0.3
     #: interpolation in beta: Catmull-Rom (True) or linear; not part of the stored values
     cubic_beta: bool = True
+    #: interpolation in rho: cubic Hermite (True) or linear; not part of the stored values
+    cubic_size: bool = True
 
 
 @dataclass(frozen=True, eq=False)
@@ -161,10 +166,12 @@ class CreepTable:
         -------
         numpy.ndarray
             ``[n_ratio, n_size, n_alpha, n_beta, t_first, t_step, cubic, blend, values...]``
-            (cubic: 1 for Catmull-Rom in beta, 0 for linear).
+            (cubic: + 1 for Catmull-Rom in beta, + 2 for a cubic in rho; else linear).
         """
         n_t, n_x, n_e, n_p = self.values.shape[:4]
-        cubic = 1.0 if self.settings.cubic_beta else 0.0
+        cubic = (1.0 if self.settings.cubic_beta else 0.0) + (
+            2.0 if self.settings.cubic_size else 0.0
+        )
         blend = self.settings.spin_blend
         header = [n_t, n_x, n_e, n_p, self.ratio_first, self.ratio_step, cubic, blend]
         return np.concatenate((np.array(header, float), self.values.ravel()))
@@ -400,8 +407,17 @@ def build_creep_table(
 
 
 def _key(settings: CreepTableSettings) -> str:
-    stored = replace(settings, cubic_beta=True)  # the interpolation does not change the values
-    text = repr((_FORMAT, stored, FULL_SLIP, "fastsim-parabolic-3-flexibilities"))
+    # the interpolation flags do not change the values: left out (the text is the one
+    # creep-table-5 was first keyed with, so that its cached tables stay valid)
+    stored = ", ".join(
+        f"{f.name}={getattr(settings, f.name)!r}"
+        for f in fields(settings)
+        if not f.name.startswith("cubic_")
+    )
+    text = (
+        f"({_FORMAT!r}, CreepTableSettings({stored}, cubic_beta=True), {FULL_SLIP!r}, "
+        "'fastsim-parabolic-3-flexibilities')"
+    )
     return hashlib.sha256(text.encode()).hexdigest()
 
 
@@ -479,6 +495,14 @@ def creep_table(
 
 
 @numba.njit(cache=True)
+def _size_node(i, n):  # pragma: no cover (compiled)
+    """Size rho of node i of n (:func:`_axis_creepage`; :data:`FULL_SLIP` at the last)."""
+    if i >= n - 1:
+        return FULL_SLIP
+    return i * i / ((n - 1.0) * (n - 1.0 - i))
+
+
+@numba.njit(cache=True)
 def table_creep_scalar(
     packed, offset, xi, eta, phi, a, b, Q, mu, G, c11, c22, c23
 ):  # pragma: no cover (compiled; tested through table_creep_forces and the kernel)
@@ -537,11 +561,40 @@ def table_creep_scalar(
     rho = math.sqrt(cx * cx + ce * ce + cp * cp)
     position = 0.5 * (math.sqrt(rho * rho + 4.0 * rho) - rho) * (n_r - 1)  # u of rho
     ir = min(int(position), n_r - 2)
-    wr = position - ir
-    if ir < n_r - 2:  # linear in rho within the cell (the last one reaches full slip)
-        low = ir * ir / ((n_r - 1.0) * (n_r - 1.0 - ir))
-        high = (ir + 1.0) * (ir + 1.0) / ((n_r - 1.0) * (n_r - 2.0 - ir))
-        wr = min(max((rho - low) / (high - low), 0.0), 1.0)
+    flags = int(packed[offset + 6] + 0.5)  # 1: cubic in beta, 2: cubic in rho
+    # rho: nodes ir - 1 ... ir + 2 with weights v0 ... v3; linear in u in the last cell (to
+    # full slip); below it linear in rho, or a cubic Hermite in rho whose node slopes are
+    # three-point differences (exact for a quadratic, so Kalker's linear theory is kept);
+    # node -1 is node 1 mirrored, f(-rho) = -f(rho) (the creepages reversed)
+    r0, r3 = ir - 1, ir + 2
+    v0 = v3 = 0.0
+    if ir == n_r - 2:
+        v2 = position - ir
+        v1 = 1.0 - v2
+    else:
+        low = _size_node(ir, n_r)
+        high = _size_node(ir + 1, n_r)
+        d1 = high - low
+        w = min(max((rho - low) / d1, 0.0), 1.0)
+        v1, v2 = 1.0 - w, w
+        if flags & 2:
+            d0 = low - (_size_node(ir - 1, n_r) if ir > 0 else -_size_node(1, n_r))
+            d2 = _size_node(ir + 2, n_r) - high
+            w2 = w * w
+            h10 = (w2 - 2.0 * w + 1.0) * w * d1  # Hermite's basis times the cell length
+            h11 = (w2 - w) * w * d1
+            h01 = (3.0 - 2.0 * w) * w2
+            a0 = -d1 / (d0 * (d0 + d1))  # slope at low: a0 f0 + a1 f1 + a2 f2
+            a2 = d0 / (d1 * (d0 + d1))
+            b1 = -d2 / (d1 * (d1 + d2))  # slope at high: b1 f1 + b2 f2 + b3 f3
+            b3 = d1 / (d2 * (d1 + d2))
+            v0 = h10 * a0
+            v1 = 1.0 - h01 - h10 * (a0 + a2) + h11 * b1
+            v2 = h01 + h10 * a2 - h11 * (b1 + b3)
+            v3 = h11 * b3
+    if r0 < 0:
+        r0 = 1
+        v0 = -v0
     position = math.atan2(eta, xi) * (2.0 / math.pi) * (n_a - 1)
     ia = min(int(position), n_a - 2)
     wa = position - ia
@@ -554,7 +607,7 @@ def table_creep_scalar(
     # or linear (header[6] = 0); beyond +-pi / 2 the nodes continue antiperiodically,
     # f(beta +- pi) = -f(beta) (module docstring), so the ends have central slopes, too
     j0, j1, j2, j3 = ib - 1, ib, ib + 1, ib + 2
-    if packed[offset + 6] > 0.5:
+    if flags & 1:
         w2_ = wb * wb
         w3_ = w2_ * wb
         w0 = 0.5 * (-w3_ + 2.0 * w2_ - wb)
@@ -574,11 +627,20 @@ def table_creep_scalar(
     fy = 0.0
     for dt in range(2):
         w_t = wt if dt else 1.0 - wt
-        for dr in range(2):
-            w_r = w_t * (wr if dr else 1.0 - wr)
+        for dr in range(4):
+            if dr == 0:
+                w_r, jr = w_t * v0, r0
+            elif dr == 1:
+                w_r, jr = w_t * v1, ir
+            elif dr == 2:
+                w_r, jr = w_t * v2, ir + 1
+            else:
+                w_r, jr = w_t * v3, r3
+            if w_r == 0.0:
+                continue
             for da in range(2):
                 w_a = w_r * (wa if da else 1.0 - wa)
-                k = base + 2 * (((it + dt) * n_r + ir + dr) * n_a + ia + da) * n_b
+                k = base + 2 * (((it + dt) * n_r + jr) * n_a + ia + da) * n_b
                 fx += w_a * (
                     w0 * packed[k + 2 * j0] + w1 * packed[k + 2 * j1]
                     + w2 * packed[k + 2 * j2] + w3 * packed[k + 2 * j3]
@@ -588,7 +650,7 @@ def table_creep_scalar(
                     + w2 * packed[k + 2 * j2 + 1] + w3 * packed[k + 2 * j3 + 1]
                 )  # fmt: skip
     size = math.hypot(fx, fy)
-    if size > 1.0:  # the cubic in beta overshoots near saturation: back onto the disc
+    if size > 1.0:  # the cubics may overshoot near saturation: back onto the disc
         fx /= size
         fy /= size
     return sign * q_mu * fx, sign * mirror * q_mu * fy
