@@ -38,9 +38,9 @@ def test_least_damped_mode_below_and_at_the_critical_speed():
     # at 315 km/h the bogie hunting mode is at the stability limit.  Linear critical speed
     # (damping ratio of the bogie hunting mode crossing 0), measured with
     # linear_modes(..., creep_law=...), linearised at free rolling (wheelset spin at xi = 0):
-    #   FASTSIM table (kernel default, creep-table-5): +0.0141 / -0.0003 / -0.0142 / -0.0342
-    #     at 305 / 315 / 325 / 340 km/h -> 315 km/h, 4.49 Hz
-    #     (validation/creep_table_resolution.md: 314.8 km/h, n_beta 129: 315.5 km/h);
+    #   FASTSIM table (kernel default, creep-table-5): +0.0144 / -0.0000 / -0.0139 / -0.0339
+    #     at 305 / 315 / 325 / 340 km/h -> 315 km/h, 4.50 Hz
+    #     (validation/creep_table_resolution.md: 315.0 km/h, n_beta 129: 315.7 km/h);
     #   Polach: +0.0123 / -0.0017 / -0.0085 at 310 / 320 / 325 km/h -> 319 km/h, 4.71 Hz.
     # Earlier numbers (Polach 425-430 km/h, FASTSIM table 340 km/h, 4.29 Hz) were linearised
     # with the wheels' spin at v / r0 while the centred contact rolls on r = 0.45991 m: a

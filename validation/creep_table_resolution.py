@@ -43,8 +43,8 @@ G = 8.1e10
 TREAD = (4.6868e-3, 8.8868e-3, 54535.0, 0.4, 0.052453)
 #: label of the packaged table
 PACKAGED = "present, packaged (n_beta 33)"
-#: The creep-table-4 layout: the patch's length at every size, linear in beta
-OLD = {"spin_blend": 0.0, "cubic_beta": False}
+#: The creep-table-4 layout: the patch's length at every size, linear in beta and rho
+OLD = {"spin_blend": 0.0, "cubic_beta": False, "cubic_size": False}
 #: label -> table settings; the default grid is 39 x 33 x 17 x 33 (ratio, size, alpha, beta)
 TABLES = {
     "creep-table-4 layout, n_beta 33 (before)": CreepTableSettings(**OLD),
@@ -52,6 +52,7 @@ TABLES = {
     "creep-table-4 layout, n_beta 129": CreepTableSettings(n_beta=129, **OLD),
     PACKAGED: CreepTableSettings(),
     "present, linear in beta": CreepTableSettings(cubic_beta=False),
+    "present, linear in rho": CreepTableSettings(cubic_size=False),
     "present, n_beta 65": CreepTableSettings(n_beta=65),
     "present, n_beta 129": CreepTableSettings(n_beta=129),
     "present, n_size 65": CreepTableSettings(n_size=65),
@@ -204,10 +205,10 @@ def main() -> None:
         "",
         "On the slenderest patches (a / b = 0.05, flange and check-rail contacts) spin "
         "alone lowers FASTSIM's slopes steeply (dF_x/dxi 0.88 C11 at phi' = 0.002, 0.36 at "
-        "0.02). The present table's remaining error is mostly its linear interpolation in "
-        "the size rho: with n_size 65 the largest difference on a / b = 0.05 and 0.2 falls "
-        "to 0.015 and 0.013 at phi' = 0.002 and 0.02; at phi' = 0.2 on a / b = 0.05 (0.058, "
-        "the spin slope) no single refinement of the grid moves it (not traced further).",
+        "0.02). Interpolated linearly in the size rho (as creep-table-4), the present table "
+        "was 0.047 and 0.055 off there at phi' = 0.002 and 0.02; the cubic in rho brought "
+        "that to 0.008 and 0.021. At phi' = 0.2 on a / b = 0.05 (the spin slope) no single "
+        "refinement of the grid moves the difference (not traced further).",
         "",
         "## Linear critical speed against the table's grid",
         "",
@@ -226,6 +227,7 @@ def main() -> None:
     packaged = mid(PACKAGED)
     before = mid("creep-table-4 layout, n_beta 33 (before)")
     spread = [mid(k) for k in TABLES if k.startswith("present") and "linear" not in k]
+    linear_rho = mid("present, linear in rho")
     lines += [
         "",
         "## Result",
@@ -235,7 +237,8 @@ def main() -> None:
         f"spin-angle nodes ({finest:.1f} km/h; twice: {middle:.1f} km/h, steps "
         f"{middle - packaged:+.2f} and {finest - middle:+.2f} km/h, so the limit lies within "
         "a few tenths of a km/h of the finest); refining any single axis of the present table "
-        f"moves it by {max(abs(s - packaged) for s in spread):.1f} km/h at most. The creep-table-4 "
+        f"moves it by {max(abs(s - packaged) for s in spread):.1f} km/h at most (linear in "
+        f"rho: {linear_rho:.1f} km/h). The creep-table-4 "
         f"layout read {before:.1f} km/h and converged only as the spin-angle step (first "
         "order, the secant over the first cell next to pure spin). Polach's law gives "
         f"{mid(POLACH):.1f} km/h: at free "
