@@ -73,10 +73,12 @@ The interpolation error against direct FASTSIM is measured in
 tests/test_wheel_rail_creep_table.py, the slopes in tests/test_creep_table_slopes.py, the
 cost per call in benchmarks/bench_creep_table.py.
 
-Cost.  About 2.0 microseconds per call against 0.93 for the multilinear creep-table-4
-and 0.35-0.41 for Polach's law (benchmarks/bench_creep_table.py, 200,000 random
-contacts, the least of 5 rounds on 2 shared cores; 1.24 with the cubic in beta alone):
+Cost.  3.9 times Polach's law per call, the multilinear creep-table-4 2.2 times
+(benchmarks/bench_creep_table.py, 200,000 random contacts, the least of 5 rounds on 2
+shared cores: 0.68, 0.39 and 0.17 microseconds; on a busier moment 2.0, 0.93 and 0.41):
 the table is read at 64 nodes instead of 16, in 16 runs of 4 consecutive beta nodes.
+A contact kernel call (benchmarks/bench_contact_kernel.py, ~6 microseconds) grows by
+about 5 %.
 
 Cache.  The FASTSIM table is built once (about 18 s of one core's time) and stored as
 ``.npz`` (11.6 MB) in the cache directory (:func:`.tables.default_cache_dir`), named by
