@@ -131,13 +131,15 @@ def test_linearised_system_stable_at_low_speed_unstable_at_600(turnout):
     # least damped at 50 km/h: the car body's lower sway, 0.578 Hz, damping ratio 0.207
     # on rigid-track springs without creep (validation/vehicle_modes.md); creep holds the
     # wheelsets here: linearised at free rolling it measured 0.612 Hz, damping ratio 0.198
-    # (FASTSIM table; Polach 0.614 Hz; 0.607 Hz before the wheelsets were set to free
-    # rolling), so the reference is the measured 0.612 Hz, within the 5 % kept
+    # (FASTSIM table, creep-table-4; creep-table-5: 0.614 Hz, 0.196; Polach 0.614 Hz; 0.607
+    # Hz before the wheelsets were set to free rolling), so the reference is the measured
+    # 0.612 Hz, within the 5 % kept
     assert slow.stable
     assert slow.frequency_hz == pytest.approx(0.612, rel=0.05)
     assert slow.damping_ratio == pytest.approx(0.207, abs=0.02)
-    # far above the linear critical speed (340-345 km/h, validation/hunting.md) a bogie
-    # hunting mode grows (measured +5.7 1/s at 5.9 Hz)
+    # far above the linear critical speed (315 km/h, validation/creep_table_resolution.md)
+    # a bogie hunting mode grows (measured +9.1 1/s at 5.7 Hz; +5.7 1/s at 5.9 Hz with the
+    # creep-table-4 layout)
     fast = linear_hunting(turnout, 600.0)
     assert not fast.stable
     assert 3.0 < fast.frequency_hz < 10.0

@@ -145,8 +145,8 @@ def main() -> None:
     bogie_modes = [
         linear_hunting(turnout, kmh, model, band_hz=HUNTING_BAND) for kmh in SPEEDS + LINEAR_EXTRA
     ]
-    linear_bracket = linear_critical_speed(turnout, 250.0, 450.0, 5.0, model)
-    polach_bracket = linear_critical_speed(turnout, 250.0, 450.0, 5.0, model, creep_law="polach")
+    linear_bracket = linear_critical_speed(turnout, 250.0, 450.0, 1.0, model)
+    polach_bracket = linear_critical_speed(turnout, 250.0, 450.0, 1.0, model, creep_law="polach")
     minutes = (time.perf_counter() - wall) / 60.0
 
     # 5. report
@@ -257,12 +257,14 @@ def main() -> None:
         "",
         f"Linear critical speed: between {lo:.1f} and {hi:.1f} km/h (FASTSIM table); "
         f"with Polach's method between {polach_bracket[0]:.1f} and {polach_bracket[1]:.1f} "
-        "km/h. Polach's slopes at free rolling are Kalker's linear ones; the table's "
-        "forward-difference slopes at the tread's spin (0.0525 1/m) are 0.81 C11 and "
-        "0.82 / 1.04 C22 (left / right wheel), direct FASTSIM's 0.90 / 0.95, Kalker's exact "
-        "theory's 0.93 / 0.98: the table's spin-angle interpolation near pure spin "
-        "(n_beta = 33) raises the critical speed by ~20 km/h (n_beta = 65: 329, 129: 322 km/h; "
-        "tests/test_vehicle_linear.py). Before the wheelsets were set to free rolling the "
+        "km/h. Polach's slopes at free rolling are Kalker's linear ones; FASTSIM's at the "
+        "tread's spin (0.0525 1/m) are lower, dF_x/dxi 0.91 C11 and dF_y/deta 0.95 C22 (the "
+        "spin's nonlinearity), and the table's within 0.5 % of them, with the critical speed "
+        "converged in the table's grid to 0.3 % (validation/creep_table_resolution.md). The "
+        "creep table before (creep-table-4 layout) read the secant over its first "
+        "spin-angle cell next to pure spin there (0.81 C11, 0.82 / 1.04 C22 left / right, "
+        "a cross slope dF_y/dxi of 0.22 C11 that FASTSIM does not have), and its linear "
+        "critical speed read 341-344 km/h. Before the wheelsets were set to free rolling the "
         "linearisation carried xi = 2.06e-4 on every wheel, where Polach's lateral slope "
         "is 1.36 C22 and its critical speed read 425-430 km/h.",
         "",

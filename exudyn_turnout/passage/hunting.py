@@ -26,8 +26,8 @@ at y = 0).
 The contact geometry is nonlinear (equivalent conicity 0.37 at 1 mm amplitude, 0.18 at
 3 mm), so the onset depends on the perturbation: ``python validation/hunting.py`` gives
 the onsets per perturbation and the linearised system's critical speed
-(validation/hunting.md; linearised: 340-345 km/h with the FASTSIM table, 315-320 km/h with
-Polach's method, tests/test_vehicle_linear.py).
+(validation/hunting.md; linearised: 315 km/h with the FASTSIM table, 319 km/h with
+Polach's method, validation/creep_table_resolution.md, tests/test_vehicle_linear.py).
 """
 
 from __future__ import annotations
@@ -51,6 +51,7 @@ from exudyn_turnout.passage.contact.profile import (
     RouteContact,
     route_contact,
 )
+from exudyn_turnout.wheel_rail.creep_table import CreepTableSettings, creep_table
 from exudyn_turnout.wheel_rail.kernel import DETAIL_FIELDS
 
 __all__ = [
@@ -362,12 +363,20 @@ class _Straight:
     x_section: float  #: m
 
 
-def _with_creep_law(contact: RouteContact, creep_law: str) -> RouteContact:
+def _with_creep_law(
+    contact: RouteContact, creep_law: str, creep_settings: CreepTableSettings | None = None
+) -> RouteContact:
     """The route's contact with the kernel's creep law set (the last packed value is the
-    law, 1 FASTSIM table, 0 Polach: ``wheel_rail.kernel.pack_tables``)."""
+    law, 1 FASTSIM table, 0 Polach, the one before it the creep table's index:
+    ``wheel_rail.kernel.pack_tables``); ``creep_settings``: that creep table instead of
+    the default one (FASTSIM)."""
     if creep_law not in CREEP_LAWS:
         raise ValueError(f"hunting: creep_law = {creep_law!r} must be one of {CREEP_LAWS}")
     values = contact.tables.values.copy()
+    if creep_settings is not None and creep_law == "fastsim":
+        start = int(values[-2])
+        table = creep_table(creep_settings).packed
+        values = np.concatenate((values[:start], table, values[-2:]))
     values[-1] = 1.0 if creep_law == "fastsim" else 0.0
     return replace(contact, tables=replace(contact.tables, values=values))
 
@@ -405,7 +414,12 @@ def _roll_freely(system: _Straight, v: float) -> None:
 
 
 def _straight(
-    turnout: Turnout, route_name: str, model: VehicleModel, v: float, creep_law: str = "fastsim"
+    turnout: Turnout,
+    route_name: str,
+    model: VehicleModel,
+    v: float,
+    creep_law: str = "fastsim",
+    creep_settings: CreepTableSettings | None = None,
 ) -> _Straight:
     """Build the vehicle on rigid plain track at speed v and solve its static equilibrium
     (lateral position and spin held by springs, released afterwards); the wheelsets then
@@ -427,7 +441,7 @@ def _straight(
     kappa = float(np.interp(x_section, route.curvature.x, route.curvature.value))
     if kappa != 0.0:
         raise ValueError(f"route {route.name}: curved at x_min = {x_section:g} m, not straight")
-    contact = _with_creep_law(route_contact(turnout, route.name, base), creep_law)
+    contact = _with_creep_law(route_contact(turnout, route.name, base), creep_law, creep_settings)
     vehicle = contact_vehicle(base, model)
     container = exu.SystemContainer()
     mbs = container.AddSystem()
@@ -667,6 +681,7 @@ def linear_hunting(
     route: str = "through",
     band_hz: tuple[float, float] = (0.1, 50.0),
     creep_law: str = "fastsim",
+    creep_settings: CreepTableSettings | None = None,
 ) -> LinearHunting:
     """Eigenvalues of the straight-track system linearised at its centred steady state.
 
@@ -691,6 +706,9 @@ def linear_hunting(
         Hz, frequency band of the modes considered.
     creep_law : str
         One of :data:`CREEP_LAWS`: the kernel's FASTSIM table (default) or Polach's method.
+    creep_settings : CreepTableSettings, optional
+        Grid of the FASTSIM table (default: the kernel's, ``CreepTableSettings()``); for
+        the table's convergence (validation/creep_table_resolution.py).
 
     Returns
     -------
@@ -707,7 +725,7 @@ def linear_hunting(
         raise ValueError(f"linear hunting: speed_kmh = {speed_kmh!r} must be > 0 km/h")
     model = load_vehicle_model() if vehicle_model is None else vehicle_model
     with _Quiet():
-        system = _straight(turnout, route, model, speed_kmh / 3.6, creep_law)
+        system = _straight(turnout, route, model, speed_kmh / 3.6, creep_law, creep_settings)
         m, k, d = (np.asarray(a) for a in system.mbs.ComputeLinearizedSystem(static_settings()))
     lam = _state_space_eigenvalues(m, k, d)
     f = lam.imag / (2.0 * math.pi)
@@ -879,6 +897,7 @@ def linear_critical_speed(
     vehicle_model: VehicleModel | None = None,
     route: str = "through",
     creep_law: str = "fastsim",
+    creep_settings: CreepTableSettings | None = None,
 ) -> tuple[float, float]:
     """Bracket of the speed where the linearised system (:func:`linear_hunting`) turns unstable.
 
@@ -893,6 +912,8 @@ def linear_critical_speed(
     route : str
     creep_law : str
         One of :data:`CREEP_LAWS` (as :func:`linear_hunting`).
+    creep_settings : CreepTableSettings, optional
+        Grid of the FASTSIM table (as :func:`linear_hunting`).
 
     Returns
     -------
@@ -907,7 +928,9 @@ def linear_critical_speed(
     model = load_vehicle_model() if vehicle_model is None else vehicle_model
 
     def stable_at(kmh: float) -> bool:
-        return linear_hunting(turnout, kmh, model, route, creep_law=creep_law).stable
+        return linear_hunting(
+            turnout, kmh, model, route, creep_law=creep_law, creep_settings=creep_settings
+        ).stable
 
     _check_bracket(low_kmh, high_kmh, tolerance_kmh)
     if not stable_at(low_kmh):

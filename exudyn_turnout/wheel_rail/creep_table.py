@@ -18,7 +18,7 @@ saturates a pure creepage at xi' = 1).  In these, Kalker's linear theory is
 theory (and of the exact one: both are invariant under a common scaling of lengths,
 loads and moduli) divided by mu N are functions of the ellipse ratio and (xi', eta',
 phi') alone.  The table stores ``f = F / (mu N)`` (so ``|f| <= 1``) over four
-coordinates, multilinear and uniform in each:
+coordinates, uniform in each:
 
 - ``tau = ln(a / b)``, :data:`RATIO_RANGE` (a / b from 0.05 to 20: long lateral flange and
   check-rail patches to slender tread patches; clamped outside; Kalker's coefficients
@@ -28,23 +28,57 @@ coordinates, multilinear and uniform in each:
   :data:`FULL_SLIP`): the saturation (rho ~ 1, u ~ 0.6) gets most of the nodes, and the
   first node above zero lies at rho ~ 1e-3, so that Kalker's linear range is met to
   0.1 % (with ``rho = u / (1 - u)`` it lay at 0.03 and the linear forces were 3 % off);
-  within a cell the weights are linear in rho (in u in the last cell, to full slip);
 - the direction of the translational creepage, ``alpha = atan2(eta, xi)`` in
   [0, pi / 2] (the direction of the force in full slip without spin);
-- the weight of spin, ``beta = atan2(phi l, |(xi, eta)|)`` in [-pi / 2, pi / 2], with
-  ``l = |(b cos(alpha), a sin(alpha))|``: spin slips the material by up to ``phi b``
-  along x and ``phi a`` along y, and this length sets where spin competes with the
-  creepage it adds to.  (A first version measured beta against the friction-normalised
-  creepages; on slender patches it squeezed the change of f into a few degrees, and the
-  interpolation error was twice as large, measured as in the tests.)
+- the weight of spin, ``beta = atan2(phi l, |(xi, eta)|)`` in [-pi / 2, pi / 2], with a
+  length l (:func:`spin_length`) that moves with the size: in saturation it is the
+  patch's ``l_p = |(b cos(alpha), a sin(alpha))|`` (spin slips the material by up to
+  ``phi b`` along x and ``phi a`` along y, and this length sets where spin competes with
+  the creepage it adds to; measured against the friction-normalised creepages instead,
+  the change of f on slender patches was squeezed into a few degrees, and the
+  interpolation error was twice as large); at small size it is the length of the
+  normalised creepages, ``sqrt(a b) C23 / |(C11 cos(alpha), C22 sin(alpha))|``, so
+  that beta is the angle between phi' and |(xi', eta')|, in which Kalker's linear theory
+  is a sine and a cosine.  The two are blended geometrically, with weight
+  ``w = rho / (rho + 0.3)`` (:attr:`CreepTableSettings.spin_blend`) on the patch's.
+
+Why the blend (issue 22).  A vehicle linearised at free rolling (passage/hunting.py)
+reads the forces' slopes at zero translational creepage with spin: pure spin, beta =
++-pi / 2.  With the patch's length alone, the normalised angle is ``atan(K tan)`` of the
+patch's with ``K = l_p |(C11 cos, C22 sin)| / (sqrt(a b) C23)`` from 0.2 to 31 (5.3 on
+the Manchester vehicle's tread patch, a / b = 0.53): near pure spin the force turns
+within a beta of ~1 / K, less than one node step (pi / 32), and the first cell's secant
+gave dF_x/dxi 0.81 of FASTSIM's slope and a cross slope dF_y/dxi of 0.22 C11 G a b that
+FASTSIM does not have (its f_y is even in xi); the linear critical speed came out
+342 km/h against 315 km/h converged (validation/creep_table_resolution.md).
+
+Interpolation: linear in tau and alpha; in rho a cubic Hermite through four nodes whose
+slopes are three-point differences (exact for a quadratic, so Kalker's linear theory at
+small size is kept; node -1 is node 1 mirrored, f(-rho) = -f(rho); linear in u in the
+last cell, to full slip); in beta a Catmull-Rom cubic through four nodes, whose slopes
+are central differences.  The forces are thus C1 in rho and beta: the slopes of
+linearisations and Newton's Jacobians do not jump at their nodes (tested; they still
+do at the nodes of tau and alpha).  beta
+continues past +-pi / 2 antiperiodically, ``f(beta +- pi) = -f(beta)`` (past pure spin
+the translational creepage reverses: the symmetry below), so the end nodes have central
+slopes as well: at pure spin dF_y/dxi is exactly 0 there, as in FASTSIM.  A cubic can
+leave the unit disc where the table saturates; the resultant is then scaled back onto
+it, so ``|F| <= mu N`` holds for any input (tested).
 
 Symmetries of a patch symmetric in x and y: ``f(-xi, -eta, -phi) = -f(xi, eta, phi)``
 and the mirror y -> -y, ``f_x(xi, -eta, -phi) = f_x``, ``f_y(xi, -eta, -phi) = -f_y``;
 so only xi >= 0, eta >= 0 are stored.
 
-Every interpolated value is a convex combination of stored vectors in the unit disc, so
-``|F| <= mu N`` holds by construction for any input.  The interpolation error against
-direct FASTSIM is measured in tests/test_wheel_rail_creep_table.py.
+The interpolation error against direct FASTSIM is measured in
+tests/test_wheel_rail_creep_table.py, the slopes in tests/test_creep_table_slopes.py, the
+cost per call in benchmarks/bench_creep_table.py.
+
+Cost.  3.9 times Polach's law per call, the multilinear creep-table-4 2.2 times
+(benchmarks/bench_creep_table.py, 200,000 random contacts, the least of 5 rounds on 2
+shared cores: 0.68, 0.39 and 0.17 microseconds; on a busier moment 2.0, 0.93 and 0.41):
+the table is read at 64 nodes instead of 16, in 16 runs of 4 consecutive beta nodes.
+A contact kernel call (benchmarks/bench_contact_kernel.py, ~6 microseconds) grows by
+about 5 %.
 
 Cache.  The FASTSIM table is built once (about 18 s of one core's time) and stored as
 ``.npz`` (11.6 MB) in the cache directory (:func:`.tables.default_cache_dir`), named by
@@ -61,7 +95,7 @@ import math
 import time
 import warnings
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from pathlib import Path
 
 import numba
@@ -83,6 +117,7 @@ __all__ = [
     "creep_table",
     "table_creep_scalar",
     "table_creep_forces",
+    "spin_length",
 ]
 
 #: Normalised creepage at which the table's full-slip edge (u = 1) is evaluated
@@ -91,7 +126,7 @@ FULL_SLIP = 1e6
 RATIO_RANGE = (0.05, 20.0)
 #: Length of the header in front of a packed table (:attr:`CreepTable.packed`)
 HEADER = 8
-_FORMAT = "creep-table-4"
+_FORMAT = "creep-table-5"
 
 
 @dataclass(frozen=True)
@@ -105,6 +140,13 @@ class CreepTableSettings:
     n_ratio: int = 39  #: -, nodes of ln(a / b) over RATIO_RANGE
     n_strips: int = 24  #: -, FASTSIM strips across the patch
     n_x: int = 24  #: -, FASTSIM elements along x per strip (and 48, extrapolated)
+    #: -, creepage size rho at which the spin angle's length is half way from Kalker's
+    #: linear scale to the patch's (:func:`spin_length`)
+    spin_blend: float = 0.3
+    #: interpolation in beta: Catmull-Rom (True) or linear; not part of the stored values
+    cubic_beta: bool = True
+    #: interpolation in rho: cubic Hermite (True) or linear; not part of the stored values
+    cubic_size: bool = True
 
 
 @dataclass(frozen=True, eq=False)
@@ -125,10 +167,15 @@ class CreepTable:
         Returns
         -------
         numpy.ndarray
-            ``[n_ratio, n_size, n_alpha, n_beta, t_first, t_step, 0, 0, values...]``.
+            ``[n_ratio, n_size, n_alpha, n_beta, t_first, t_step, cubic, blend, values...]``
+            (cubic: + 1 for Catmull-Rom in beta, + 2 for a cubic in rho; else linear).
         """
         n_t, n_x, n_e, n_p = self.values.shape[:4]
-        header = [n_t, n_x, n_e, n_p, self.ratio_first, self.ratio_step, 0.0, 0.0]
+        cubic = (1.0 if self.settings.cubic_beta else 0.0) + (
+            2.0 if self.settings.cubic_size else 0.0
+        )
+        blend = self.settings.spin_blend
+        header = [n_t, n_x, n_e, n_p, self.ratio_first, self.ratio_step, cubic, blend]
         return np.concatenate((np.array(header, float), self.values.ravel()))
 
 
@@ -209,13 +256,15 @@ def _grid(settings: CreepTableSettings):
     return t, u, alpha, beta
 
 
-def _node_creepages(u, alpha, beta, a, b, c11, c22, c23, scale):
+def _node_creepages(u, alpha, beta, a, b, c11, c22, c23, scale, blend):
     """Creepages (xi, eta, phi) of grid coordinates (module docstring); ``scale`` is
-    ``3 mu N / (G a b)``, so that ``xi' = c11 xi / scale``."""
+    ``3 mu N / (G a b)``, so that ``xi' = c11 xi / scale``; ``blend`` the size
+    :attr:`CreepTableSettings.spin_blend`."""
     rho = _axis_creepage(u)
     xi = np.cos(alpha)
     eta = np.sin(alpha)
-    phi = np.tan(np.clip(beta, -1.5707963, 1.5707963)) / np.hypot(b * xi, a * eta)
+    length = spin_length(xi, eta, a, b, c11, c22, c23, rho, blend)
+    phi = np.tan(np.clip(beta, -1.5707963, 1.5707963)) / length
     size = np.sqrt((c11 * xi) ** 2 + (c22 * eta) ** 2 + (np.sqrt(a * b) * c23 * phi) ** 2)
     factor = rho * scale / size
     # beta = +-pi / 2 is pure spin: no translational creepage at all.  The clipped tangent
@@ -231,13 +280,59 @@ def _node_creepages(u, alpha, beta, a, b, c11, c22, c23, scale):
     )
 
 
+@numba.vectorize(
+    ["float64(float64, float64, float64, float64, float64, float64, float64, float64, float64)"],
+    cache=True,
+)
+def spin_length(xi, eta, a, b, c11, c22, c23, rho, blend):  # pragma: no cover (compiled)
+    """m, the length l of the spin angle ``beta = atan2(phi l, |(xi, eta)|)`` (docstring).
+
+    ``l = l_p K^(w - 1)`` with the patch's length ``l_p = |(b xi, a eta)| / |(xi, eta)|``,
+    ``K = l_p |(C11 xi, C22 eta)| / (sqrt(a b) C23 |(xi, eta)|)`` (the ratio of the
+    patch's angle to the angle of the friction-normalised creepages) and
+    ``w = rho / (rho + blend)``: at small creepage (w -> 0) beta is the angle between the
+    normalised creepages, in which Kalker's linear theory is linear; in saturation
+    (w -> 1) it is the patch's angle (module docstring).  A compiled ufunc.
+
+    Parameters
+    ----------
+    xi, eta : float
+        Creepages, or their direction (only the direction counts; (0, 0) is taken as x).
+    a, b : float
+        m, semi-axes.
+    c11, c22, c23 : float
+        Kalker's coefficients of the ellipse.
+    rho : float
+        Size of the normalised creepages (module docstring).
+    blend : float
+        The size at which w = 1 / 2 (:attr:`CreepTableSettings.spin_blend`).
+
+    Returns
+    -------
+    float
+        m, l.
+    """
+    plane = math.hypot(xi, eta)
+    safe = max(plane, 1e-300)  # not 0: the compiler may divide by it on either branch
+    cx = xi / safe if plane > 0.0 else 1.0
+    ce = eta / safe
+    patch = math.hypot(b * cx, a * ce)
+    ratio = patch * math.hypot(c11 * cx, c22 * ce) / (math.sqrt(a * b) * c23)
+    weight = 1.0
+    if blend > 0.0:
+        weight = rho / max(rho + blend, 1e-300)
+    return patch * math.exp((weight - 1.0) * math.log(ratio))
+
+
 def _fastsim_nodes(settings: CreepTableSettings) -> np.ndarray:
     """FASTSIM at every node, vectorised (the default solver)."""
     grid = np.meshgrid(*_grid(settings), indexing="ij")
     a, b, q, mu, g = _physical(grid[0])
     c = kalker_coefficients(a, b, settings.poisson)
     scale = 3.0 * mu * q / (g * a * b)
-    xi, eta, phi = _node_creepages(grid[1], grid[2], grid[3], a, b, c.c11, c.c22, c.c23, scale)
+    xi, eta, phi = _node_creepages(
+        grid[1], grid[2], grid[3], a, b, c.c11, c.c22, c.c23, scale, settings.spin_blend
+    )
     forces = fastsim_ellipse(
         xi, eta, phi, a, b, q, mu, g, settings.poisson, settings.n_strips, settings.n_x
     )
@@ -292,7 +387,7 @@ def build_creep_table(
             for index in np.ndindex(u.size, alpha.size, beta.size):
                 xi, eta, phi = _node_creepages(
                     u[index[0]], alpha[index[1]], beta[index[2]], a[i], b[i], c.c11[i],
-                    c.c22[i], c.c23[i], scale,
+                    c.c22[i], c.c23[i], scale, settings.spin_blend,
                 )  # fmt: skip
                 fx, fy = solver(
                     a[i], b[i], float(xi), float(eta), float(phi), q[i], mu[i], g,
@@ -314,7 +409,17 @@ def build_creep_table(
 
 
 def _key(settings: CreepTableSettings) -> str:
-    text = repr((_FORMAT, settings, FULL_SLIP, "fastsim-parabolic-3-flexibilities"))
+    # the interpolation flags do not change the values: left out (the text is the one
+    # creep-table-5 was first keyed with, so that its cached tables stay valid)
+    stored = ", ".join(
+        f"{f.name}={getattr(settings, f.name)!r}"
+        for f in fields(settings)
+        if not f.name.startswith("cubic_")
+    )
+    text = (
+        f"({_FORMAT!r}, CreepTableSettings({stored}, cubic_beta=True), {FULL_SLIP!r}, "
+        "'fastsim-parabolic-3-flexibilities')"
+    )
     return hashlib.sha256(text.encode()).hexdigest()
 
 
@@ -392,6 +497,14 @@ def creep_table(
 
 
 @numba.njit(cache=True)
+def _size_node(i, n):  # pragma: no cover (compiled)
+    """Size rho of node i of n (:func:`_axis_creepage`; :data:`FULL_SLIP` at the last)."""
+    if i >= n - 1:
+        return FULL_SLIP
+    return i * i / ((n - 1.0) * (n - 1.0 - i))
+
+
+@numba.njit(cache=True)
 def table_creep_scalar(
     packed, offset, xi, eta, phi, a, b, Q, mu, G, c11, c22, c23
 ):  # pragma: no cover (compiled; tested through table_creep_forces and the kernel)
@@ -450,35 +563,96 @@ def table_creep_scalar(
     rho = math.sqrt(cx * cx + ce * ce + cp * cp)
     position = 0.5 * (math.sqrt(rho * rho + 4.0 * rho) - rho) * (n_r - 1)  # u of rho
     ir = min(int(position), n_r - 2)
-    wr = position - ir
-    if ir < n_r - 2:  # linear in rho within the cell (the last one reaches full slip)
-        low = ir * ir / ((n_r - 1.0) * (n_r - 1.0 - ir))
-        high = (ir + 1.0) * (ir + 1.0) / ((n_r - 1.0) * (n_r - 2.0 - ir))
-        wr = min(max((rho - low) / (high - low), 0.0), 1.0)
+    flags = int(packed[offset + 6] + 0.5)  # 1: cubic in beta, 2: cubic in rho
+    # rho: nodes ir - 1 ... ir + 2 with weights v0 ... v3; linear in u in the last cell (to
+    # full slip); below it linear in rho, or a cubic Hermite in rho whose node slopes are
+    # three-point differences (exact for a quadratic, so Kalker's linear theory is kept);
+    # node -1 is node 1 mirrored, f(-rho) = -f(rho) (the creepages reversed)
+    r0, r3 = ir - 1, ir + 2
+    v0 = v3 = 0.0
+    if ir == n_r - 2:
+        v2 = position - ir
+        v1 = 1.0 - v2
+    else:
+        low = _size_node(ir, n_r)
+        high = _size_node(ir + 1, n_r)
+        d1 = high - low
+        w = min(max((rho - low) / d1, 0.0), 1.0)
+        v1, v2 = 1.0 - w, w
+        if flags & 2:
+            d0 = low - (_size_node(ir - 1, n_r) if ir > 0 else -_size_node(1, n_r))
+            d2 = _size_node(ir + 2, n_r) - high
+            w2 = w * w
+            h10 = (w2 - 2.0 * w + 1.0) * w * d1  # Hermite's basis times the cell length
+            h11 = (w2 - w) * w * d1
+            h01 = (3.0 - 2.0 * w) * w2
+            a0 = -d1 / (d0 * (d0 + d1))  # slope at low: a0 f0 + a1 f1 + a2 f2
+            a2 = d0 / (d1 * (d0 + d1))
+            b1 = -d2 / (d1 * (d1 + d2))  # slope at high: b1 f1 + b2 f2 + b3 f3
+            b3 = d1 / (d2 * (d1 + d2))
+            v0 = h10 * a0
+            v1 = 1.0 - h01 - h10 * (a0 + a2) + h11 * b1
+            v2 = h01 + h10 * a2 - h11 * (b1 + b3)
+            v3 = h11 * b3
+    if r0 < 0:
+        r0 = 1
+        v0 = -v0
     position = math.atan2(eta, xi) * (2.0 / math.pi) * (n_a - 1)
     ia = min(int(position), n_a - 2)
     wa = position - ia
     plane = math.hypot(xi, eta)
-    length = math.hypot(b * xi / plane, a * eta / plane) if plane > 0.0 else b
+    length = spin_length(xi, eta, a, b, c11, c22, c23, rho, packed[offset + 7])
     position = (math.atan2(phi * length, plane) / math.pi + 0.5) * (n_b - 1)
     ib = min(int(position), n_b - 2)
     wb = position - ib
+    # beta: Catmull-Rom through nodes ib - 1 ... ib + 2 (C1, its slopes central differences),
+    # or linear (header[6] = 0); beyond +-pi / 2 the nodes continue antiperiodically,
+    # f(beta +- pi) = -f(beta) (module docstring), so the ends have central slopes, too
+    j0, j1, j2, j3 = ib - 1, ib, ib + 1, ib + 2
+    if flags & 1:
+        w2_ = wb * wb
+        w3_ = w2_ * wb
+        w0 = 0.5 * (-w3_ + 2.0 * w2_ - wb)
+        w1 = 0.5 * (3.0 * w3_ - 5.0 * w2_ + 2.0)
+        w2 = 0.5 * (-3.0 * w3_ + 4.0 * w2_ + wb)
+        w3 = 0.5 * (w3_ - w2_)
+    else:
+        w0, w1, w2, w3 = 0.0, 1.0 - wb, wb, 0.0
+    if j0 < 0:
+        j0 += n_b - 1
+        w0 = -w0
+    if j3 > n_b - 1:
+        j3 -= n_b - 1
+        w3 = -w3
     base = offset + HEADER
     fx = 0.0
     fy = 0.0
     for dt in range(2):
         w_t = wt if dt else 1.0 - wt
-        for dr in range(2):
-            w_r = w_t * (wr if dr else 1.0 - wr)
+        for dr in range(4):
+            if dr == 0:
+                w_r, jr = w_t * v0, r0
+            elif dr == 1:
+                w_r, jr = w_t * v1, ir
+            elif dr == 2:
+                w_r, jr = w_t * v2, ir + 1
+            else:
+                w_r, jr = w_t * v3, r3
+            if w_r == 0.0:
+                continue
             for da in range(2):
                 w_a = w_r * (wa if da else 1.0 - wa)
-                for db in range(2):
-                    w = w_a * (wb if db else 1.0 - wb)
-                    k = base + 2 * ((((it + dt) * n_r + ir + dr) * n_a + ia + da) * n_b + ib + db)
-                    fx += w * packed[k]
-                    fy += w * packed[k + 1]
+                k = base + 2 * (((it + dt) * n_r + jr) * n_a + ia + da) * n_b
+                fx += w_a * (
+                    w0 * packed[k + 2 * j0] + w1 * packed[k + 2 * j1]
+                    + w2 * packed[k + 2 * j2] + w3 * packed[k + 2 * j3]
+                )  # fmt: skip
+                fy += w_a * (
+                    w0 * packed[k + 2 * j0 + 1] + w1 * packed[k + 2 * j1 + 1]
+                    + w2 * packed[k + 2 * j2 + 1] + w3 * packed[k + 2 * j3 + 1]
+                )  # fmt: skip
     size = math.hypot(fx, fy)
-    if size > 1.0:  # a convex combination of unit-disc vectors: round-off only
+    if size > 1.0:  # the cubics may overshoot near saturation: back onto the disc
         fx /= size
         fy /= size
     return sign * q_mu * fx, sign * mirror * q_mu * fy
