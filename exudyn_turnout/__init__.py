@@ -36,6 +36,7 @@ from __future__ import annotations
 import importlib
 from typing import Any
 
+from exudyn_turnout.compiled_cache import refresh_compiled_cache
 from exudyn_turnout.corunning.parameters import (
     CoRunningParameters,
     Readings,
@@ -53,6 +54,10 @@ from exudyn_turnout.inputs.turnout import (
 )
 from exudyn_turnout.inputs.vehicle import Vehicle, load_vehicle
 from exudyn_turnout.receptance import Receptance, log_frequencies
+
+# numba checks a cached function against its own file only: drop the package's compiled
+# cache when any compiled source changed (a kernel kept an old callee's code otherwise)
+refresh_compiled_cache()
 
 __version__ = "0.3.0"
 
