@@ -38,7 +38,7 @@ speed_kmh = [80.0, 100.0]
 """
 
 #: Columns that are timings (differ from run to run by nature).
-TIMINGS = ("wall_time_s", "case_wall_time_s")
+TIMINGS = ("wall_time_s", "case_wall_time_s", "case_cpu_time_s")
 
 
 def _write(tmp_path: Path, text: str, name: str = "study.toml") -> Path:

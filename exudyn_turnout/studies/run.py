@@ -40,7 +40,7 @@ from typing import Any
 
 import numpy as np
 
-from exudyn_turnout.studies.study import Case, Study, StudyError, load_study
+from exudyn_turnout.studies.study import Case, Study, StudyError, load_study, load_study_vehicle
 
 __all__ = [
     "StudyResult",
@@ -60,7 +60,7 @@ RESULTS_FILES = ("results.csv", "results.npz", "results.meta.json")
 
 #: Columns of the results table that are not inputs or results.
 _HEAD = ("case", "key", "status")
-_TAIL = ("case_wall_time_s", "warnings", "error")
+_TAIL = ("case_wall_time_s", "case_cpu_time_s", "warnings", "error")
 
 
 @dataclass(frozen=True)
@@ -194,7 +194,6 @@ def _case_files(
     import tempfile
 
     from exudyn_turnout.inputs.turnout import load_turnout
-    from exudyn_turnout.inputs.vehicle import load_vehicle
 
     with tempfile.TemporaryDirectory(prefix="exudyn-turnout-case-") as tmp:
         turnout_path = Path(tmp) / turnout_name
@@ -202,7 +201,7 @@ def _case_files(
         turnout_path.write_text(turnout_text, encoding="utf-8")
         vehicle_path.write_text(vehicle_text, encoding="utf-8")
         turnout = load_turnout(turnout_path)
-        vehicle = load_vehicle(vehicle_path)
+        vehicle = load_study_vehicle(vehicle_path)
         if parameters_text:
             from exudyn_turnout.corunning.fitted import load_fitted
 
@@ -238,12 +237,13 @@ def run_case(case: Case) -> dict[str, Any]:
     dict
         ``key``, ``index``, ``inputs``, ``status`` ("ok" or "failed"), ``error`` (one
         line, "" if ok), ``results`` (:func:`case_results`), ``warnings`` (list of str),
-        ``wall_time_s``, ``history`` (decimated columns) if the case asks for it, and
-        ``timeseries`` (every column) if ``case.keep_timeseries``.
+        ``wall_time_s``, ``cpu_time_s`` (s, of the process that ran it), ``history``
+        (decimated columns) if the case asks for it, and ``timeseries`` (every column) if
+        ``case.keep_timeseries``.
     """
     import warnings
 
-    start = time.perf_counter()
+    start, cpu_start = time.perf_counter(), time.process_time()
     record: dict[str, Any] = {
         "key": case.key,
         "index": case.index,
@@ -272,6 +272,7 @@ def run_case(case: Case) -> dict[str, Any]:
         text = " ".join(str(err).split()) or type(err).__name__
         record["error"] = f"{type(err).__name__}: {text}"
     record["wall_time_s"] = time.perf_counter() - start
+    record["cpu_time_s"] = time.process_time() - cpu_start
     return record
 
 
@@ -324,7 +325,7 @@ def _warm_worker(cases: Sequence[Case]) -> None:
 
 
 def estimated_cost(case: Case) -> float:
-    """A case's relative cost: simulated steps, times 50 on the FE track.
+    """A case's relative cost: simulated steps, times the wheelsets, times 50 on the FE track.
 
     Used to hand the longest cases out first. Only the order matters.
 
@@ -339,17 +340,19 @@ def estimated_cost(case: Case) -> float:
     """
     s = case.settings
     x_a, x_b = s.get("x_start"), s.get("x_end")
-    if x_a is None or x_b is None:
-        try:
-            turnout, _ = _files_of(case)
-            x_a = turnout.x_min if x_a is None else x_a
-            x_b = turnout.x_max if x_b is None else x_b
-        except Exception:  # noqa: BLE001  (a bad file fails in the case, not here)
-            x_a, x_b = 0.0, 100.0
+    wheelsets = 1
+    try:
+        turnout, vehicle = _files_of(case)
+        x_a = turnout.x_min if x_a is None else x_a
+        x_b = turnout.x_max if x_b is None else x_b
+        wheelsets = int(getattr(vehicle, "n_wheelsets", 1))
+    except Exception:  # noqa: BLE001  (a bad file fails in the case, not here)
+        x_a = 0.0 if x_a is None else x_a
+        x_b = 100.0 if x_b is None else x_b
     speed = float(s.get("speed_kmh") or 100.0) / 3.6
     step = float(s.get("time_step") or 1e-4)
     steps = max(float(x_b) - float(x_a), 0.0) / max(speed, 1e-3) / max(step, 1e-7)
-    return steps * (50.0 if case.track == "fe" else 1.0)
+    return steps * wheelsets * (50.0 if case.track == "fe" else 1.0)
 
 
 def _case_dir(out: Path, key: str) -> Path:
@@ -424,6 +427,7 @@ def _table(records: Sequence[dict[str, Any]], study: Study) -> dict[str, np.ndar
     for name in results:
         table[name] = _column([r.get("results", {}).get(name) for r in records])
     table["case_wall_time_s"] = _column([r.get("wall_time_s") for r in records])
+    table["case_cpu_time_s"] = _column([r.get("cpu_time_s") for r in records])
     table["warnings"] = _column(["; ".join(r.get("warnings", [])) for r in records])
     table["error"] = _column([r.get("error", "") for r in records])
     return table
@@ -774,6 +778,7 @@ def run_study(
                         "results": {},
                         "warnings": [],
                         "wall_time_s": math.nan,
+                        "cpu_time_s": math.nan,
                     }
                     finished(case, record, persist=False)
                     continue
