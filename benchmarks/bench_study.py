@@ -1,25 +1,38 @@
 """Study execution: 1 worker vs 2 workers, and a Dask LocalCluster vs the process pool.
 
 A 24-case study of the default profile contact (2 track models x 6 speeds x 2 rail pad
-stiffnesses, the through route from -5 to 60 m, about 1-2 s a case) is run into fresh
-directories: serially in this process, on ``run_study``'s own process pool of 2 workers
-(warmed once, the longest cases first; forked on Linux, and spawned: each spawned worker
-imports and warms up itself), on the same kind of pool with 1 worker
-(``process_pool(cases, 1)``), and on a Dask LocalCluster of 2 worker processes (cluster
-start-up timed apart). Each run alternates with the yardstick
-(``benchmarks/yardstick.py``): the table gives wall time, yardstick units, per case,
-speed-up over 1 worker, and whether the peaks equal the serial run's to the bit. The
-machine's own 2-process speed-up (the yardstick run in 2 processes at once) is printed
-beside: on a shared machine, the study cannot beat it.
+stiffnesses, the through route from -5 to 60 m) is run into fresh directories, by default
+with the full Manchester vehicle (``--vehicle manchester``, what ``simulate`` and
+``simulate_passage`` run by default: ~2.4 s CPU a case), or with the single wheelset
+(``--vehicle wheelset``, a study's default vehicle: ~1 s a case). This process is warmed
+first (imports, the route's contact tables, compiled kernels: timed apart, as every pool
+row starts from it). Then: serially in this process; on ``run_study``'s own process pool of
+2 workers (warmed, the longest cases first; forked on Linux); on the same kind of pool with
+1 worker (``process_pool(cases, 1)``, its start timed as the 2-worker row's); spawned (each
+worker imports and warms up itself); and on a Dask LocalCluster of 2 worker processes
+(cluster start-up timed apart). Each run alternates with the yardstick
+(``benchmarks/yardstick.py``).
 
-Run: ``python benchmarks/bench_study.py [--cases-dir DIR] [--quick]`` (needs
-dask[distributed] for the Dask row). Issue 24's goal: 2 workers >= 1.8x 1 worker.
+The table gives per row: wall time, yardstick units, CPU time of this process and of the
+worker processes (``resource.getrusage(RUSAGE_CHILDREN)``, taken after the pool's shutdown;
+a Dask cluster's after it closed), the sum of the cases' own CPU time (each worker's
+``time.process_time`` around the case) and the rest (worker start, warm-up, waiting,
+pickling), the wall speed-up over 1 worker, the CPU over 1 worker's, and whether the
+results equal the serial run's to the bit. The machine's own 2-process figures (the
+yardstick in 2 processes at once: throughput gain and CPU time per run over alone) are
+measured before and after the pool rows: on a shared machine the study cannot beat them.
+
+Run: ``python benchmarks/bench_study.py [--vehicle manchester|wheelset] [--quick]
+[--cases-dir DIR] [--no-spawn] [--no-dask]`` (needs dask[distributed] for the Dask row).
+Issue 24's goal: 2 workers >= 1.8x 1 worker.
 """
 
 import argparse
 import os
+import resource
 import shutil
 import tempfile
+import time
 from pathlib import Path
 
 # One BLAS/OpenMP thread per process in every row (run_study's pool and a Dask nanny set
@@ -28,15 +41,16 @@ for _name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_name, "1")
 
 import numpy as np  # noqa: E402
-from yardstick import Yardstick, machine_line, parallel_speedup  # noqa: E402
+from yardstick import Yardstick, machine_line, parallel_cost  # noqa: E402
 
 STUDY = """
 [study]
-name = "benchmark, 24 cases"
+name = "benchmark, {n} cases"
 
 [base]
 contact = "profile"
 route = "through"
+vehicle = "{vehicle}"
 x_start = {x_start}
 x_end = {x_end}
 output_step = 1e-3
@@ -48,97 +62,157 @@ speed_kmh = {speeds}
 """
 
 
+def _children_cpu() -> float:
+    """s, CPU time (user + system) of the child processes waited for so far."""
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def study_text(vehicle: str, quick: bool) -> str:
+    """The benchmark's study file (24 cases, or 8 short ones with ``quick``)."""
+    speeds = [80.0, 100.0] if quick else [60.0, 70.0, 80.0, 90.0, 100.0, 110.0]
+    return STUDY.format(
+        n=4 * len(speeds),
+        vehicle=vehicle,
+        x_start=40.0 if quick else -5.0,
+        x_end=50.0 if quick else 60.0,
+        speeds=str(speeds),
+    )
+
+
 def main(argv=None):
     """Run the study on each executor and print the table."""
     from exudyn_turnout.studies import load_study, run_study
-    from exudyn_turnout.studies.run import default_start_method, process_pool
+    from exudyn_turnout.studies.run import default_start_method, process_pool, warm_up
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument(
+        "--vehicle",
+        choices=("manchester", "wheelset"),
+        default="manchester",
+        help="the full Manchester vehicle (simulate's default) or the single wheelset",
+    )
     parser.add_argument("--cases-dir", help="where the runs are stored (default: a temp dir)")
     parser.add_argument("--quick", action="store_true", help="8 short cases (a smoke run)")
+    parser.add_argument("--no-spawn", action="store_true", help="leave out the spawned pool")
+    parser.add_argument("--no-dask", action="store_true", help="leave out the Dask cluster")
     args = parser.parse_args(argv)
     root = Path(args.cases_dir or tempfile.mkdtemp(prefix="bench_study_"))
     shutil.rmtree(root, ignore_errors=True)
     root.mkdir(parents=True)
-    text = STUDY.format(
-        x_start=44.0 if args.quick else -5.0,
-        x_end=47.0 if args.quick else 60.0,
-        speeds="[80.0, 100.0]" if args.quick else "[60.0, 70.0, 80.0, 90.0, 100.0, 110.0]",
-    )
-    (root / "study.toml").write_text(text, encoding="utf-8")
+    (root / "study.toml").write_text(study_text(args.vehicle, args.quick), encoding="utf-8")
     study = load_study(root / "study.toml")
+    cases = study.cases()
+    start, cpu = time.perf_counter(), time.process_time()
+    warm_up(cases)
+    warm_wall, warm_cpu = time.perf_counter() - start, time.process_time() - cpu
     stick = Yardstick()
     rows = []
 
-    def timed(label, folder, **kwargs):
+    def timed(label, folder, pool_workers=None, **kwargs):
         out = {}
 
         def run():
-            out["result"] = run_study(study, out=root / folder, **kwargs)
+            if pool_workers is None:
+                out["result"] = run_study(study, out=root / folder, **kwargs)
+            else:  # the pool's start inside the timed call, as run_study's own pool
+                with process_pool(cases, pool_workers) as pool:
+                    out["result"] = run_study(study, out=root / folder, executor=pool)
 
+        parent, children = time.process_time(), _children_cpu()
         t = stick.measure(run, repeats=1, warm_up=False)
+        parent = time.process_time() - parent - stick.cpu_times[-1] - stick.cpu_times[-2]
+        children = _children_cpu() - children
         result = out["result"]
         assert result.failed == 0, result.table["error"]
-        rows.append((label, t, result))
+        rows.append((label, t, result, parent, children))
         return t
 
-    timed("serial, in this process", "serial", workers=1)
     method = default_start_method()
-    timed(f"process pool ({method}), 2 workers", "pool2", workers=2)
-    with process_pool(study.cases(), 1) as one:
-        timed(f"process pool ({method}), 1 worker", "pool1", executor=one)
-    if method != "spawn":
+    pool2, pool1 = f"process pool ({method}), 2 workers", f"process pool ({method}), 1 worker"
+    timed("serial, in this process", "serial", workers=1)
+    machine_before = parallel_cost(2, rounds=3)
+    timed(pool2, "pool2", workers=2)
+    timed(pool1, "pool1", pool_workers=1)
+    machine_after = parallel_cost(2, rounds=3)
+    if method != "spawn" and not args.no_spawn:
         timed("process pool (spawn), 2 workers", "spawn2", workers=2, start_method="spawn")
     dask_start = None
     try:
+        if args.no_dask:
+            raise ImportError
         from distributed import Client, LocalCluster
     except ImportError:
-        print("dask[distributed] not installed: no Dask row")
+        print("no Dask row (--no-dask, or dask[distributed] not installed)")
     else:
-        import time
-
         start = time.perf_counter()
-        with (
-            LocalCluster(
-                n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
-            ) as cluster,
-            Client(cluster) as client,
-        ):
+        before = (time.process_time(), _children_cpu())
+        cluster = LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+        )
+        with cluster, Client(cluster) as client:
             dask_start = time.perf_counter() - start
             timed("Dask LocalCluster, 2 workers", "dask", executor=client.get_executor())
-    machine_gain = parallel_speedup(2)
+        # the cluster's workers are counted when the cluster has closed: the whole cluster's
+        # CPU (start-up included) goes to the row
+        label, t, result, parent, children = rows[-1]
+        rows[-1] = (label, t, result, parent, _children_cpu() - before[1])
     n = rows[0][2].n_cases
     reference = rows[0][2].table
-    walls = {label: t.seconds for label, t, _ in rows}
-    one = walls[f"process pool ({method}), 1 worker"]
-    print(f"\n{n} cases, profile contact; {machine_line()}")
-    print(f"yardstick median {stick.median:.3f} s\n")
+    walls = {label: t.seconds for label, t, *_ in rows}
+    cpus = {label: parent + children for label, _, _, parent, children in rows}
+    one = walls[pool1]
     print(
-        f"{'executor':<32}{'wall s':>9}{'yardstick':>11}{'per case s':>12}"
-        f"{'speed-up vs 1':>15}{'same':>6}"
+        f"\n{n} cases, profile contact, {args.vehicle} vehicle, "
+        f"{study.base['x_start']}..{study.base['x_end']} m; {machine_line()}"
     )
-    for label, t, result in rows:
+    print(
+        f"this process warmed up first (imports, contact tables, kernels): {warm_wall:.1f} s "
+        f"wall, {warm_cpu:.1f} s CPU; yardstick median {stick.median:.3f} s wall, "
+        f"{stick.cpu_median:.3f} s CPU\n"
+    )
+    print(
+        f"{'executor':<34}{'wall s':>8}{'units':>7}{'CPU s':>8}{'cases':>8}{'rest':>7}"
+        f"{'case CPU':>9}{'wall x':>8}{'CPU x':>7}{'same':>6}"
+    )
+    for label, t, result, parent, children in rows:
         same = all(
             np.array_equal(result.table[c], reference[c], equal_nan=reference[c].dtype.kind == "f")
             for c in reference
-            if c.startswith(("peak_", "max_", "rms_"))
+            if c.startswith(("peak_", "max_", "rms_", "static_", "contact_"))
         )
+        in_cases = float(np.sum(result.table["case_cpu_time_s"]))
+        total = parent + children
         print(
-            f"{label:<32}{t.seconds:>9.1f}{t.units:>11.1f}{t.seconds / n:>12.3f}"
-            f"{one / t.seconds:>15.2f}{str(same):>6}"
-        )
-    if dask_start is not None:
-        pool2 = walls[f"process pool ({method}), 2 workers"]
-        overhead = (walls["Dask LocalCluster, 2 workers"] - pool2) / n
-        print(
-            f"\nDask LocalCluster start-up {dask_start:.1f} s (not in its row); "
-            f"Dask over the 2-worker pool: {overhead * 1e3:+.0f} ms per case"
+            f"{label:<34}{t.seconds:>8.1f}{t.units:>7.1f}{total:>8.1f}{in_cases:>8.1f}"
+            f"{total - in_cases:>7.1f}{in_cases / n:>9.3f}{one / t.seconds:>8.2f}"
+            f"{total / cpus[pool1]:>7.2f}{str(same):>6}"
         )
     print(
-        f"1 -> 2 workers (process pool): x{one / walls[f'process pool ({method}), 2 workers']:.2f} "
-        f"(goal >= 1.8); the yardstick in 2 processes at the time: x{machine_gain:.2f}"
+        "  CPU s: this process (the yardstick's runs taken out) + its worker processes; "
+        "cases: the sum of the cases' own CPU; rest: CPU s - cases; wall x: 1 worker's wall "
+        "over the row's; CPU x: the row's CPU over 1 worker's"
+    )
+    if dask_start is not None:
+        overhead = (walls["Dask LocalCluster, 2 workers"] - walls[pool2]) / n
+        print(
+            f"\nDask LocalCluster start-up {dask_start:.1f} s (wall, not in its row's wall; its "
+            f"CPU is); Dask over the 2-worker pool: {overhead * 1e3:+.0f} ms per case"
+        )
+    gains = f"x{machine_before[0]:.2f} before, x{machine_after[0]:.2f} after"
+    ratios = f"x{machine_before[1]:.2f} before, x{machine_after[1]:.2f} after"
+    print(
+        f"1 -> 2 workers (process pool): wall x{one / walls[pool2]:.2f} (goal >= 1.8), "
+        f"CPU x{cpus[pool2] / cpus[pool1]:.2f}, CPU in the cases "
+        f"x{_case_cpu(rows, pool2) / _case_cpu(rows, pool1):.2f}; the yardstick in 2 "
+        f"processes at once: throughput {gains}, CPU per run {ratios}"
     )
     shutil.rmtree(root, ignore_errors=True)
+
+
+def _case_cpu(rows, label: str) -> float:
+    """s, the sum of the cases' own CPU time in the row ``label``."""
+    return next(float(np.sum(r[2].table["case_cpu_time_s"])) for r in rows if r[0] == label)
 
 
 if __name__ == "__main__":

@@ -49,6 +49,7 @@ __all__ = [
     "run_study",
     "load_results",
     "estimated_cost",
+    "warm_up",
     "process_pool",
     "default_start_method",
     "one_blas_thread",
@@ -268,6 +269,7 @@ def run_case(case: Case) -> dict[str, Any]:
         if case.keep_timeseries:
             record["timeseries"] = {k: np.asarray(v) for k, v in result.columns.items()}
         record["status"] = "ok"
+        _warm_state(_kind(case))["warm"] = True  # this process has run this kind now
     except Exception as err:  # noqa: BLE001  (a failed case is recorded, the others go on)
         text = " ".join(str(err).split()) or type(err).__name__
         record["error"] = f"{type(err).__name__}: {text}"
@@ -281,18 +283,33 @@ def run_case(case: Case) -> dict[str, Any]:
 _WARM_KEYS = ("route", "layers", "contact", "source", "track_mechanism")
 
 
+def _kind(case: Case) -> tuple:
+    """What a warm-up of ``case`` loads: its files, track and :data:`_WARM_KEYS` settings."""
+    return (
+        _sha_text(case.turnout_text),
+        _sha_text(case.vehicle_text),
+        _sha_text(case.parameters_text),
+        case.track,
+        tuple(str(case.settings.get(k)) for k in _WARM_KEYS),
+    )
+
+
+@functools.lru_cache(maxsize=256)
+def _warm_state(kind: tuple) -> dict[str, bool]:
+    """This process's note on a kind of case: ``warm`` once a passage of that kind ran here.
+
+    Kept per process (a forked worker inherits its parent's notes), so that a process that
+    already ran a kind is not warmed for it again.
+    """
+    return {"warm": False}
+
+
 def _warm_cases(cases: Sequence[Case], limit: int = 3) -> list[Case]:
-    """A 5 cm passage of each kind of case (at most ``limit`` kinds), for a worker's start."""
+    """One case of each kind not warm in this process (at most ``limit`` kinds)."""
     kinds: dict[tuple, Case] = {}
     for case in cases:
-        kind = (
-            _sha_text(case.turnout_text),
-            _sha_text(case.vehicle_text),
-            _sha_text(case.parameters_text),
-            case.track,
-            tuple(str(case.settings.get(k)) for k in _WARM_KEYS),
-        )
-        if kind not in kinds and len(kinds) < limit:
+        kind = _kind(case)
+        if kind not in kinds and len(kinds) < limit and not _warm_state(kind)["warm"]:
             kinds[kind] = case
     return list(kinds.values())
 
@@ -306,6 +323,8 @@ def _sha_text(text: str) -> str:
 def _warm_worker(cases: Sequence[Case]) -> None:
     """Pool initializer: run a 5 cm passage of each case given (results dropped)."""
     for case in cases:
+        if _warm_state(_kind(case))["warm"]:
+            continue
         try:
             turnout, _ = _files_of(case)
             x0 = case.settings.get("x_start")
@@ -322,6 +341,32 @@ def _warm_worker(cases: Sequence[Case]) -> None:
             run_case(short)
         except Exception:  # noqa: BLE001, S112  (a warm-up only: the case itself reports)
             continue
+
+
+def warm_up(cases: Sequence[Case], kinds: int = 3) -> int:
+    """Warm this process for ``cases``: a 5 cm passage of each kind of case not run here yet.
+
+    A kind is the case's files, track, route, contact, parameter source and spring
+    mechanism (what the x range, speed, steps and irregularity do not change): the first
+    ``kinds`` kinds that this process has not run yet (as a case or a warm-up) load the
+    imports, the route's contact tables and the compiled kernels once.
+    :func:`process_pool` calls it (in this process before it forks, or in each spawned
+    worker); call it before making another executor's workers from this process.
+
+    Parameters
+    ----------
+    cases : sequence of Case
+    kinds : int
+        At most this many kinds are warmed.
+
+    Returns
+    -------
+    int
+        Kinds warmed now (0 when this process has run every kind chosen already).
+    """
+    chosen = _warm_cases(cases, kinds)
+    _warm_worker(chosen)
+    return len(chosen)
 
 
 def estimated_cost(case: Case) -> float:
@@ -639,7 +684,7 @@ def process_pool(cases: Sequence[Case], workers: int, start_method: str | None =
     if method not in ("fork", "spawn"):
         raise StudyError(f"start_method must be 'fork' or 'spawn', got {method!r}")
     if method == "fork":
-        _warm_worker(_warm_cases(cases))  # here: the forked workers inherit it
+        warm_up(cases)  # here: the forked workers inherit it
         return ProcessPoolExecutor(
             int(workers),
             mp_context=multiprocessing.get_context("fork"),

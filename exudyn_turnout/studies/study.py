@@ -310,6 +310,7 @@ class Study:
             A file or value the loaders reject, a bad irregularity spec (one line).
         """
         texts: dict[str, tuple[str, dict]] = {}
+        edited_texts: dict[tuple[str, str], str] = {}
         checked: set[str] = set()
         checked_parameters: set[tuple[str, str]] = set()
         irregularities: dict[str, Irregularity] = {}
@@ -327,14 +328,17 @@ class Study:
                 edits = {
                     k[len(kind) + 1 :]: v for k, v in merged.items() if k.startswith(kind + ".")
                 }
-                if edits:
+                edited = (str(path), json.dumps(edits, sort_keys=True, default=str))
+                if edits and edited in edited_texts:
+                    text = edited_texts[edited]  # the same edits of the same file: its text
+                elif edits:
                     data = json.loads(json.dumps(data))  # a deep copy of plain data
                     for dotted, value in edits.items():
                         try:
                             set_dotted(data, dotted, value)
                         except (KeyError, TypeError) as err:
                             raise self._error(f"factor {kind}.{dotted}: {err.args[0]}") from None
-                    text = dumps(data)
+                    text = edited_texts[edited] = dumps(data)
                 if _sha(text) not in checked:
                     loaded = self._check_file(kind, path.name, text, edits)
                     checked.add(_sha(text))
