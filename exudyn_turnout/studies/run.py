@@ -404,6 +404,31 @@ def _case_dir(out: Path, key: str) -> Path:
     return out / "cases" / key
 
 
+def _npz_bytes(columns: Mapping[str, np.ndarray]) -> bytes:
+    """The content of a compressed NPZ file of ``columns``."""
+    import io
+
+    buffer = io.BytesIO()
+    np.savez_compressed(buffer, **columns)  # type: ignore[arg-type]  # numpy's stub: **kwds
+    return buffer.getvalue()
+
+
+def _study_case(case: Case) -> dict[str, Any]:
+    """What :func:`run_study` runs for a case: :func:`run_case`, its histories packed.
+
+    The decimated histories and the whole time series are compressed here, into the bytes
+    of their NPZ files (``history_npz``, ``timeseries_npz``): in the worker, so that the
+    workers compress in parallel and send the calling process (which only writes the
+    bytes) a fraction of the columns.
+    """
+    record = run_case(case)
+    for name in ("history", "timeseries"):
+        columns = record.pop(name, None)
+        if columns is not None:
+            record[f"{name}_npz"] = _npz_bytes(columns)
+    return record
+
+
 def _write_record(out: Path, case: Case, record: dict[str, Any]) -> None:
     """Write a case's files; ``case.json`` last (its presence marks the case done)."""
     from exudyn_turnout.provenance import write_json
@@ -414,14 +439,15 @@ def _write_record(out: Path, case: Case, record: dict[str, Any]) -> None:
         (folder / case.turnout_name).write_text(case.turnout_text, encoding="utf-8")
     if case.vehicle_modified:
         (folder / f"vehicle-{case.vehicle_name}").write_text(case.vehicle_text, encoding="utf-8")
-    history = record.pop("history", None)
-    if history is not None:
-        np.savez_compressed(folder / "history.npz", **history)
-    series = record.pop("timeseries", None)
-    if series is not None:
-        tmp = folder / ".timeseries.partial.npz"
-        np.savez_compressed(tmp, **series)
-        os.replace(tmp, folder / "timeseries.npz")
+    for name in ("history", "timeseries"):
+        packed = record.pop(f"{name}_npz", None)
+        columns = record.pop(name, None)
+        if packed is None and columns is not None:  # a record of run_case itself
+            packed = _npz_bytes(columns)
+        if packed is not None:
+            tmp = folder / f".{name}.partial.npz"
+            tmp.write_bytes(packed)
+            os.replace(tmp, folder / f"{name}.npz")
     stored = dict(record)
     stored["irregularity"] = case.irregularity_spec
     stored["settings"] = dict(case.settings)
@@ -794,7 +820,7 @@ def run_study(
     pool_name = "serial"
     if todo and executor is None and (workers == 1 or len(todo) == 1):
         for case in todo:
-            finished(case, run_case(case))
+            finished(case, _study_case(case))
     elif todo:
         own = executor is None
         if own:
@@ -808,7 +834,7 @@ def run_study(
         futures: dict[Future, Case] = {}
         try:
             longest_first = sorted(todo, key=estimated_cost, reverse=True)
-            futures = {executor.submit(run_case, case): case for case in longest_first}
+            futures = {executor.submit(_study_case, case): case for case in longest_first}
             for future in as_completed(futures):
                 case = futures[future]
                 try:
