@@ -22,8 +22,13 @@ results equal the serial run's to the bit. The machine's own 2-process figures (
 yardstick in 2 processes at once: throughput gain and CPU time per run over alone) are
 measured before and after the pool rows: on a shared machine the study cannot beat them.
 
+Last, the shortest case is run alone and in both workers at once, interleaved with the
+yardstick run the same way (``--pairs`` rounds): the CPU time of a case in 2 processes at
+once over alone, beside the yardstick's.
+
 Run: ``python benchmarks/bench_study.py [--vehicle manchester|wheelset] [--quick]
-[--cases-dir DIR] [--no-spawn] [--no-dask]`` (needs dask[distributed] for the Dask row).
+[--cases-dir DIR] [--no-spawn] [--no-dask] [--pairs N]`` (needs dask[distributed] for the
+Dask row).
 Issue 24's goal: 2 workers >= 1.8x 1 worker.
 """
 
@@ -41,7 +46,7 @@ for _name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_name, "1")
 
 import numpy as np  # noqa: E402
-from yardstick import Yardstick, machine_line, parallel_cost  # noqa: E402
+from yardstick import Yardstick, machine_line, parallel_cost, workload  # noqa: E402
 
 STUDY = """
 [study]
@@ -96,6 +101,14 @@ def main(argv=None):
     parser.add_argument("--quick", action="store_true", help="8 short cases (a smoke run)")
     parser.add_argument("--no-spawn", action="store_true", help="leave out the spawned pool")
     parser.add_argument("--no-dask", action="store_true", help="leave out the Dask cluster")
+    parser.add_argument(
+        "--pairs",
+        type=int,
+        default=3,
+        metavar="N",
+        help="rounds of one case (and the yardstick) alone and in 2 processes at once "
+        "(default 3; 0: none)",
+    )
     args = parser.parse_args(argv)
     root = Path(args.cases_dir or tempfile.mkdtemp(prefix="bench_study_"))
     shutil.rmtree(root, ignore_errors=True)
@@ -207,6 +220,16 @@ def main(argv=None):
         f"x{_case_cpu(rows, pool2) / _case_cpu(rows, pool1):.2f}; the yardstick in 2 "
         f"processes at once: throughput {gains}, CPU per run {ratios}"
     )
+    if args.pairs:
+        from exudyn_turnout.studies.run import estimated_cost
+
+        shortest = min(cases, key=estimated_cost)
+        case_ratio, stick_ratio = pair_cost(shortest, args.pairs)
+        print(
+            f"CPU of one case (case {shortest.index}) in 2 processes at once over alone: "
+            f"x{case_ratio:.2f}; the yardstick's, interleaved with it: x{stick_ratio:.2f} "
+            f"(medians of {args.pairs} rounds)"
+        )
     serial_part = next(r[3] for r in rows if r[0] == pool2)
     print(
         f"an idle 2-core machine, from this run's CPU times (the serial row's cases handed "
@@ -214,6 +237,58 @@ def main(argv=None):
         f"taken as serial): x{idle_speedup(cases, rows[0][2].table, serial_part, 2):.2f}"
     )
     shutil.rmtree(root, ignore_errors=True)
+
+
+def _cpu_of(task) -> float:
+    """s, CPU time of ``task()`` in this (worker) process."""
+    start = time.process_time()
+    task()
+    return time.process_time() - start
+
+
+def _run_case_cpu(case) -> float:
+    from exudyn_turnout.studies.run import run_case
+
+    return _cpu_of(lambda: run_case(case))
+
+
+def _yardstick_cpu(_: int) -> float:
+    return _cpu_of(workload)
+
+
+def pair_cost(case, rounds: int = 3) -> tuple[float, float]:
+    """CPU time of a case, and of the yardstick, run in 2 processes at once over alone.
+
+    On a forked 2-worker pool (warm): ``rounds`` times the case alone, then the same case
+    in both workers at once, and the same for the yardstick, interleaved. The extra CPU a
+    2-worker study takes per case is the machine's when the two ratios agree.
+
+    Parameters
+    ----------
+    case : Case
+        One of the study's cases.
+    rounds : int
+
+    Returns
+    -------
+    tuple of float
+        (case: CPU together / alone, -; yardstick: CPU together / alone, -), medians.
+    """
+    import statistics
+
+    from exudyn_turnout.studies.run import process_pool
+
+    case_ratios, stick_ratios = [], []
+    with process_pool([case], 2) as pool:
+        list(pool.map(_run_case_cpu, [case, case]))  # both workers have run it once
+        for _ in range(rounds):
+            alone = pool.submit(_run_case_cpu, case).result()
+            together = list(pool.map(_run_case_cpu, [case, case]))
+            case_ratios.append(statistics.mean(together) / alone)
+            alone = pool.submit(_yardstick_cpu, 0).result()
+            together = list(pool.map(_yardstick_cpu, [0, 1]))
+            stick_ratios.append(statistics.mean(together) / alone)
+    return statistics.median(case_ratios), statistics.median(stick_ratios)
 
 
 def idle_speedup(cases, table, serial: float, workers: int) -> float:

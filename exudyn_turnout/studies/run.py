@@ -10,14 +10,16 @@ interrupted study resumes). At the end one table is written: ``results.csv`` (wi
 provenance as JSON text).
 
 Workers receive the case with the files' content (nothing on the output disk is needed
-there, so a cluster's workers need not share a file system) and return a record; only
-the calling process writes.
+there, so a cluster's workers need not share a file system) and return a record, its
+histories already compressed (the bytes of their NPZ files); only the calling process
+writes. Each record carries the case's CPU time (``case_cpu_time_s`` in the table).
 
 Workers are reused across cases. A worker keeps the files it loaded (by content), so the
 route's contact tables, kept in memory for the last few routes, are built or read once
 per worker, not once per case (they took ~2.5 s of a ~3 s case before); the default pool
 warms each worker once at its start (a 5 cm passage of each kind of case: imports,
-contact tables, compiled kernels). The pool gets the longest cases first (estimated from
+contact tables, compiled kernels; a process that already ran a kind is not warmed for it
+again). The pool gets the longest cases first (estimated from
 the x range, speed, time step and track), so that no worker is left alone with a long
 case at the end.
 """
