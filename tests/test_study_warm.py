@@ -8,6 +8,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 from exudyn_turnout.studies import load_study, run_case
 from exudyn_turnout.studies.run import warm_up
 
@@ -61,3 +63,20 @@ def test_each_modified_file_is_written_once(tmp_path, monkeypatch):
     cases = _cases(tmp_path, 100e6, 140e6)
     assert len(cases) == 4 and len(calls) == 2
     assert cases[0].turnout_text == cases[2].turnout_text != cases[1].turnout_text
+
+
+@pytest.mark.slow
+def test_spawned_workers_are_warmed_though_this_process_is_warm(tmp_path):
+    """This process's notes do not hold for a new interpreter: a spawned worker is warmed
+    for the kinds by its initializer even when this process has run them all."""
+    import multiprocessing
+
+    from exudyn_turnout.studies.run import process_pool
+
+    if "spawn" not in multiprocessing.get_all_start_methods():
+        pytest.skip("no spawn start method here")
+    cases = _cases(tmp_path, 103.456e6, 143.456e6)
+    warm_up(cases)
+    assert warm_up(cases) == 0  # warm here
+    with process_pool(cases, 1, "spawn") as pool:
+        assert pool.submit(warm_up, cases).result() == 0  # warm there too, by the initializer

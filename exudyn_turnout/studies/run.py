@@ -306,12 +306,14 @@ def _warm_state(kind: tuple) -> dict[str, bool]:
     return {"warm": False}
 
 
-def _warm_cases(cases: Sequence[Case], limit: int = 3) -> list[Case]:
-    """One case of each kind not warm in this process (at most ``limit`` kinds)."""
+def _warm_cases(cases: Sequence[Case], limit: int = 3, here: bool = True) -> list[Case]:
+    """One case of each kind (at most ``limit`` kinds); with ``here``, of the kinds not warm
+    in this process (else for a new process: a spawned worker)."""
     kinds: dict[tuple, Case] = {}
     for case in cases:
         kind = _kind(case)
-        if kind not in kinds and len(kinds) < limit and not _warm_state(kind)["warm"]:
+        cold = not (here and _warm_state(kind)["warm"])
+        if kind not in kinds and len(kinds) < limit and cold:
             kinds[kind] = case
     return list(kinds.values())
 
@@ -723,7 +725,7 @@ def process_pool(cases: Sequence[Case], workers: int, start_method: str | None =
             int(workers),
             mp_context=multiprocessing.get_context("spawn"),
             initializer=_warm_worker,
-            initargs=(_warm_cases(cases),),
+            initargs=(_warm_cases(cases, here=False),),
         )
         # a worker process starts (and reads the environment) at a submit that finds no idle
         # worker: start all of them now, while the environment is set
