@@ -80,3 +80,63 @@ def test_spawned_workers_are_warmed_though_this_process_is_warm(tmp_path):
     assert warm_up(cases) == 0  # warm here
     with process_pool(cases, 1, "spawn") as pool:
         assert pool.submit(warm_up, cases).result() == 0  # warm there too, by the initializer
+
+
+def test_cases_are_handed_out_by_file_longest_first(tmp_path):
+    """2 speeds x 3 pad stiffnesses (3 turnout files): the cases of a file together, the
+    slower (longer) speed first within each; every case once."""
+    from exudyn_turnout.studies.run import estimated_cost, hand_out_order
+    from exudyn_turnout.studies.study import study_from_dict
+
+    study = study_from_dict(
+        {
+            "base": {"x_start": 40.0, "x_end": 50.0},
+            "factors": {
+                "speed_kmh": [100.0, 50.0],
+                "turnout.rail_types.stock.pad.k_z": [100e6, 120e6, 140e6],
+            },
+        }
+    )
+    cases = study.cases()
+    order = hand_out_order(cases)
+    assert sorted(c.index for c in order) == list(range(6))
+    k_z = [c.inputs["turnout.rail_types.stock.pad.k_z"] for c in order]
+    assert k_z == [100e6, 100e6, 120e6, 120e6, 140e6, 140e6]
+    assert [c.inputs["speed_kmh"] for c in order] == [50.0, 100.0] * 3
+    costs = [estimated_cost(c) for c in order]
+    assert costs[0] == pytest.approx(2 * costs[1])  # 10 m at 50 km/h: twice the steps
+
+
+@pytest.mark.slow
+def test_a_serial_study_loads_each_files_contact_tables_once(tmp_path, monkeypatch):
+    """5 pad stiffnesses x 2 tracks: 5 turnout files, more than the 4 routes a process keeps
+    in memory. In case order (the stiffness varies fastest) each case loaded its tables
+    again; by file, once per file."""
+    from exudyn_turnout.studies import run_study
+    from exudyn_turnout.wheel_rail import turnout_sections
+
+    calls = []
+    original = turnout_sections.route_contact_tables
+
+    def counted(*args, **kwargs):
+        calls.append(args[1])
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(turnout_sections, "route_contact_tables", counted)
+    path = tmp_path / "study.toml"
+    path.write_text(
+        """
+[base]
+contact = "profile"
+x_start = 44.0
+x_end = 44.3
+
+[factors]
+track = ["2-layer", "3-layer"]
+"turnout.rail_types.stock.pad.k_z" = [100.5e6, 110.5e6, 120.5e6, 130.5e6, 140.5e6]
+""",
+        encoding="utf-8",
+    )
+    result = run_study(path, workers=1, out=tmp_path / "out")
+    assert result.failed == 0, result.table["error"]
+    assert len(calls) == 5

@@ -19,9 +19,11 @@ route's contact tables, kept in memory for the last few routes, are built or rea
 per worker, not once per case (they took ~2.5 s of a ~3 s case before); the default pool
 warms each worker once at its start (a 5 cm passage of each kind of case: imports,
 contact tables, compiled kernels; a process that already ran a kind is not warmed for it
-again). The pool gets the longest cases first (estimated from
-the x range, speed, time step and track), so that no worker is left alone with a long
-case at the end.
+again). Cases run or are handed out by files (:func:`hand_out_order`: the cases of one
+turnout and vehicle file together, so that their contact tables are loaded once per
+process, not once per case), the longest first within a file and the files in the order
+of their longest case (estimated from the x range, speed, time step, wheelsets and
+track), so that no worker is left alone with a long case at the end.
 """
 
 from __future__ import annotations
@@ -51,6 +53,7 @@ __all__ = [
     "run_study",
     "load_results",
     "estimated_cost",
+    "hand_out_order",
     "warm_up",
     "process_pool",
     "default_start_method",
@@ -402,6 +405,35 @@ def estimated_cost(case: Case) -> float:
     step = float(s.get("time_step") or 1e-4)
     steps = max(float(x_b) - float(x_a), 0.0) / max(speed, 1e-3) / max(step, 1e-7)
     return steps * wheelsets * (50.0 if case.track == "fe" else 1.0)
+
+
+def hand_out_order(cases: Sequence[Case]) -> list[Case]:
+    """The order :func:`run_study` runs or hands out cases: by files, the longest first.
+
+    Cases of the same turnout and vehicle files come one after the other, so that a process
+    loads a route's contact tables once per file, not once per case: a process keeps the
+    last few routes' tables (keyed by the whole turnout file, so every value of a turnout
+    factor is a new file), and a study that cycled through more files than that reloaded
+    them for every case (10 m wheelset cases with 5 pad stiffnesses: 0.27 -> 0.94 s CPU a
+    case). Within a file the longest case (:func:`estimated_cost`) comes first, and the
+    files in the order of their longest case, so that the last cases handed out are short.
+
+    Parameters
+    ----------
+    cases : sequence of Case
+
+    Returns
+    -------
+    list of Case
+        The same cases, reordered.
+    """
+    cost = {id(case): estimated_cost(case) for case in cases}
+    files = {id(case): _sha_text(case.turnout_text + case.vehicle_text) for case in cases}
+    longest: dict[str, float] = {}
+    for case in cases:
+        longest[files[id(case)]] = max(longest.get(files[id(case)], 0.0), cost[id(case)])
+    rank = {f: i for i, f in enumerate(sorted(longest, key=lambda f: -longest[f]))}
+    return sorted(cases, key=lambda c: (rank[files[id(c)]], -cost[id(c)]))
 
 
 def _case_dir(out: Path, key: str) -> Path:
@@ -823,7 +855,7 @@ def run_study(
         progress(len(records), total, None)
     pool_name = "serial"
     if todo and executor is None and (workers == 1 or len(todo) == 1):
-        for case in todo:
+        for case in hand_out_order(todo):
             finished(case, _study_case(case))
     elif todo:
         own = executor is None
@@ -837,8 +869,7 @@ def run_study(
         assert executor is not None
         futures: dict[Future, Case] = {}
         try:
-            longest_first = sorted(todo, key=estimated_cost, reverse=True)
-            futures = {executor.submit(_study_case, case): case for case in longest_first}
+            futures = {executor.submit(_study_case, case): case for case in hand_out_order(todo)}
             for future in as_completed(futures):
                 case = futures[future]
                 try:
