@@ -233,7 +233,7 @@ def main(argv=None):
     serial_part = next(r[3] for r in rows if r[0] == pool2)
     print(
         f"an idle 2-core machine, from this run's CPU times (the serial row's cases handed "
-        f"out longest first, this process's {serial_part:.1f} s CPU in the 2-worker row "
+        f"out in the pool's order, this process's {serial_part:.1f} s CPU in the 2-worker row "
         f"taken as serial): x{idle_speedup(cases, rows[0][2].table, serial_part, 2):.2f}"
     )
     shutil.rmtree(root, ignore_errors=True)
@@ -295,8 +295,8 @@ def idle_speedup(cases, table, serial: float, workers: int) -> float:
     """The speed-up of ``workers`` over 1 on idle cores, from measured CPU times.
 
     The cases' CPU times (``table["case_cpu_time_s"]``, by case index) are handed out in the
-    pool's order (:func:`~exudyn_turnout.studies.run.estimated_cost`, longest first), each to
-    the first worker free; ``serial`` s of the calling process's work come before and after.
+    pool's order (:func:`~exudyn_turnout.studies.run.hand_out_order`), each to the first
+    worker free; ``serial`` s of the calling process's work come before and after.
 
     Parameters
     ----------
@@ -314,11 +314,11 @@ def idle_speedup(cases, table, serial: float, workers: int) -> float:
     """
     import heapq
 
-    from exudyn_turnout.studies.run import estimated_cost
+    from exudyn_turnout.studies.run import hand_out_order
 
     cpu = {int(i): float(t) for i, t in zip(table["case"], table["case_cpu_time_s"])}
     free = [0.0] * workers
-    for case in sorted(cases, key=estimated_cost, reverse=True):
+    for case in hand_out_order(cases):
         heapq.heapreplace(free, free[0] + cpu[case.index])
     return (serial + sum(cpu.values())) / (serial + max(free))
 
