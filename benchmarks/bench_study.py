@@ -27,8 +27,8 @@ yardstick run the same way (``--pairs`` rounds): the CPU time of a case in 2 pro
 once over alone, beside the yardstick's.
 
 Run: ``python benchmarks/bench_study.py [--vehicle manchester|wheelset] [--quick]
-[--cases-dir DIR] [--no-spawn] [--no-dask] [--pairs N]`` (needs dask[distributed] for the
-Dask row).
+[--cases-dir DIR] [--no-spawn] [--no-dask] [--pairs N] [--alternate N]`` (needs
+dask[distributed] for the Dask row; ``--alternate N``: only the two pools, in turn).
 Issue 24's goal: 2 workers >= 1.8x 1 worker.
 """
 
@@ -102,6 +102,14 @@ def main(argv=None):
     parser.add_argument("--no-spawn", action="store_true", help="leave out the spawned pool")
     parser.add_argument("--no-dask", action="store_true", help="leave out the Dask cluster")
     parser.add_argument(
+        "--alternate",
+        type=int,
+        default=0,
+        metavar="N",
+        help="only the 2-worker and 1-worker pools, N times in turn (with the machine's "
+        "2-process gain each time): the wall speed-up per round on a load that drifts",
+    )
+    parser.add_argument(
         "--pairs",
         type=int,
         default=3,
@@ -119,6 +127,10 @@ def main(argv=None):
     start, cpu = time.perf_counter(), time.process_time()
     warm_up(cases)
     warm_wall, warm_cpu = time.perf_counter() - start, time.process_time() - cpu
+    if args.alternate:
+        alternate(study, root, args.alternate)
+        shutil.rmtree(root, ignore_errors=True)
+        return
     stick = Yardstick()
     rows = []
 
@@ -237,6 +249,30 @@ def main(argv=None):
         f"taken as serial): x{idle_speedup(cases, rows[0][2].table, serial_part, 2):.2f}"
     )
     shutil.rmtree(root, ignore_errors=True)
+
+
+def alternate(study, root: Path, rounds: int) -> None:
+    """The 2-worker and the 1-worker pool in turn, ``rounds`` times; print each round."""
+    import statistics
+
+    from exudyn_turnout.studies import run_study
+    from exudyn_turnout.studies.run import process_pool
+
+    cases = study.cases()
+    print(f"{len(cases)} cases; {machine_line()}")
+    print(f"{'round':>5}{'2 workers s':>13}{'1 worker s':>12}{'wall x':>8}{'machine x':>11}")
+    gains = []
+    for i in range(rounds):
+        walls = {}
+        for workers in (2, 1):
+            start = time.perf_counter()
+            with process_pool(cases, workers) as pool:
+                run_study(study, out=root / f"alt-{i}-{workers}", executor=pool)
+            walls[workers] = time.perf_counter() - start
+        machine_gain, _ = parallel_cost(2, rounds=1)
+        gains.append(walls[1] / walls[2])
+        print(f"{i:>5}{walls[2]:>13.1f}{walls[1]:>12.1f}{gains[-1]:>8.2f}{machine_gain:>11.2f}")
+    print(f"median wall speed-up x{statistics.median(gains):.2f} (goal >= 1.8)")
 
 
 def _cpu_of(task) -> float:
