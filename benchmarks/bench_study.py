@@ -1,25 +1,43 @@
 """Study execution: 1 worker vs 2 workers, and a Dask LocalCluster vs the process pool.
 
 A 24-case study of the default profile contact (2 track models x 6 speeds x 2 rail pad
-stiffnesses, the through route from -5 to 60 m, about 1-2 s a case) is run into fresh
-directories: serially in this process, on ``run_study``'s own process pool of 2 workers
-(warmed once, the longest cases first; forked on Linux, and spawned: each spawned worker
-imports and warms up itself), on the same kind of pool with 1 worker
-(``process_pool(cases, 1)``), and on a Dask LocalCluster of 2 worker processes (cluster
-start-up timed apart). Each run alternates with the yardstick
-(``benchmarks/yardstick.py``): the table gives wall time, yardstick units, per case,
-speed-up over 1 worker, and whether the peaks equal the serial run's to the bit. The
-machine's own 2-process speed-up (the yardstick run in 2 processes at once) is printed
-beside: on a shared machine, the study cannot beat it.
+stiffnesses, the through route from -5 to 60 m) is run into fresh directories, by default
+with the full Manchester vehicle (``--vehicle manchester``, what ``simulate`` and
+``simulate_passage`` run by default: ~2.4 s CPU a case), or with the single wheelset
+(``--vehicle wheelset``, a study's default vehicle: ~1 s a case). This process is warmed
+first (imports, the route's contact tables, compiled kernels: timed apart, as every pool
+row starts from it). Then: serially in this process; on ``run_study``'s own process pool of
+2 workers (warmed, the longest cases first; forked on Linux); on the same kind of pool with
+1 worker (``process_pool(cases, 1)``, its start timed as the 2-worker row's); spawned (each
+worker imports and warms up itself); and on a Dask LocalCluster of 2 worker processes
+(cluster start-up timed apart). Each run alternates with the yardstick
+(``benchmarks/yardstick.py``).
 
-Run: ``python benchmarks/bench_study.py [--cases-dir DIR] [--quick]`` (needs
-dask[distributed] for the Dask row). Issue 24's goal: 2 workers >= 1.8x 1 worker.
+The table gives per row: wall time, yardstick units, CPU time of this process and of the
+worker processes (``resource.getrusage(RUSAGE_CHILDREN)``, taken after the pool's shutdown;
+a Dask cluster's after it closed), the sum of the cases' own CPU time (each worker's
+``time.process_time`` around the case) and the rest (worker start, warm-up, waiting,
+pickling), the wall speed-up over 1 worker, the CPU over 1 worker's, and whether the
+results equal the serial run's to the bit. The machine's own 2-process figures (the
+yardstick in 2 processes at once: throughput gain and CPU time per run over alone) are
+measured before and after the pool rows: on a shared machine the study cannot beat them.
+
+Last, the shortest case is run alone and in both workers at once, interleaved with the
+yardstick run the same way (``--pairs`` rounds): the CPU time of a case in 2 processes at
+once over alone, beside the yardstick's.
+
+Run: ``python benchmarks/bench_study.py [--vehicle manchester|wheelset] [--quick]
+[--cases-dir DIR] [--no-spawn] [--no-dask] [--pairs N] [--alternate N]`` (needs
+dask[distributed] for the Dask row; ``--alternate N``: only the two pools, in turn).
+Issue 24's goal: 2 workers >= 1.8x 1 worker.
 """
 
 import argparse
 import os
+import resource
 import shutil
 import tempfile
+import time
 from pathlib import Path
 
 # One BLAS/OpenMP thread per process in every row (run_study's pool and a Dask nanny set
@@ -28,15 +46,16 @@ for _name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_name, "1")
 
 import numpy as np  # noqa: E402
-from yardstick import Yardstick, machine_line, parallel_speedup  # noqa: E402
+from yardstick import Yardstick, machine_line, parallel_cost, workload  # noqa: E402
 
 STUDY = """
 [study]
-name = "benchmark, 24 cases"
+name = "benchmark, {n} cases"
 
 [base]
 contact = "profile"
 route = "through"
+vehicle = "{vehicle}"
 x_start = {x_start}
 x_end = {x_end}
 output_step = 1e-3
@@ -48,97 +67,301 @@ speed_kmh = {speeds}
 """
 
 
+def _children_cpu() -> float:
+    """s, CPU time (user + system) of the child processes waited for so far."""
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def study_text(vehicle: str, quick: bool) -> str:
+    """The benchmark's study file (24 cases, or 8 short ones with ``quick``)."""
+    speeds = [80.0, 100.0] if quick else [60.0, 70.0, 80.0, 90.0, 100.0, 110.0]
+    return STUDY.format(
+        n=4 * len(speeds),
+        vehicle=vehicle,
+        x_start=40.0 if quick else -5.0,
+        x_end=50.0 if quick else 60.0,
+        speeds=str(speeds),
+    )
+
+
 def main(argv=None):
     """Run the study on each executor and print the table."""
     from exudyn_turnout.studies import load_study, run_study
-    from exudyn_turnout.studies.run import default_start_method, process_pool
+    from exudyn_turnout.studies.run import default_start_method, process_pool, warm_up
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument(
+        "--vehicle",
+        choices=("manchester", "wheelset"),
+        default="manchester",
+        help="the full Manchester vehicle (simulate's default) or the single wheelset",
+    )
     parser.add_argument("--cases-dir", help="where the runs are stored (default: a temp dir)")
     parser.add_argument("--quick", action="store_true", help="8 short cases (a smoke run)")
+    parser.add_argument("--no-spawn", action="store_true", help="leave out the spawned pool")
+    parser.add_argument("--no-dask", action="store_true", help="leave out the Dask cluster")
+    parser.add_argument(
+        "--alternate",
+        type=int,
+        default=0,
+        metavar="N",
+        help="only the 2-worker and 1-worker pools, N times in turn (with the machine's "
+        "2-process gain each time): the wall speed-up per round on a load that drifts",
+    )
+    parser.add_argument(
+        "--pairs",
+        type=int,
+        default=3,
+        metavar="N",
+        help="rounds of one case (and the yardstick) alone and in 2 processes at once "
+        "(default 3; 0: none)",
+    )
     args = parser.parse_args(argv)
     root = Path(args.cases_dir or tempfile.mkdtemp(prefix="bench_study_"))
     shutil.rmtree(root, ignore_errors=True)
     root.mkdir(parents=True)
-    text = STUDY.format(
-        x_start=44.0 if args.quick else -5.0,
-        x_end=47.0 if args.quick else 60.0,
-        speeds="[80.0, 100.0]" if args.quick else "[60.0, 70.0, 80.0, 90.0, 100.0, 110.0]",
-    )
-    (root / "study.toml").write_text(text, encoding="utf-8")
+    (root / "study.toml").write_text(study_text(args.vehicle, args.quick), encoding="utf-8")
     study = load_study(root / "study.toml")
+    cases = study.cases()
+    start, cpu = time.perf_counter(), time.process_time()
+    warm_up(cases)
+    warm_wall, warm_cpu = time.perf_counter() - start, time.process_time() - cpu
+    if args.alternate:
+        alternate(study, root, args.alternate)
+        shutil.rmtree(root, ignore_errors=True)
+        return
     stick = Yardstick()
     rows = []
 
-    def timed(label, folder, **kwargs):
+    def timed(label, folder, pool_workers=None, **kwargs):
         out = {}
 
         def run():
-            out["result"] = run_study(study, out=root / folder, **kwargs)
+            if pool_workers is None:
+                out["result"] = run_study(study, out=root / folder, **kwargs)
+            else:  # the pool's start inside the timed call, as run_study's own pool
+                with process_pool(cases, pool_workers) as pool:
+                    out["result"] = run_study(study, out=root / folder, executor=pool)
 
+        parent, children = time.process_time(), _children_cpu()
         t = stick.measure(run, repeats=1, warm_up=False)
+        parent = time.process_time() - parent - stick.cpu_times[-1] - stick.cpu_times[-2]
+        children = _children_cpu() - children
         result = out["result"]
         assert result.failed == 0, result.table["error"]
-        rows.append((label, t, result))
+        rows.append((label, t, result, parent, children))
         return t
 
-    timed("serial, in this process", "serial", workers=1)
     method = default_start_method()
-    timed(f"process pool ({method}), 2 workers", "pool2", workers=2)
-    with process_pool(study.cases(), 1) as one:
-        timed(f"process pool ({method}), 1 worker", "pool1", executor=one)
-    if method != "spawn":
+    pool2, pool1 = f"process pool ({method}), 2 workers", f"process pool ({method}), 1 worker"
+    timed("serial, in this process", "serial", workers=1)
+    machine_before = parallel_cost(2, rounds=3)
+    timed(pool2, "pool2", workers=2)
+    timed(pool1, "pool1", pool_workers=1)
+    machine_after = parallel_cost(2, rounds=3)
+    if method != "spawn" and not args.no_spawn:
         timed("process pool (spawn), 2 workers", "spawn2", workers=2, start_method="spawn")
     dask_start = None
     try:
+        if args.no_dask:
+            raise ImportError
         from distributed import Client, LocalCluster
     except ImportError:
-        print("dask[distributed] not installed: no Dask row")
+        print("no Dask row (--no-dask, or dask[distributed] not installed)")
     else:
-        import time
-
         start = time.perf_counter()
-        with (
-            LocalCluster(
-                n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
-            ) as cluster,
-            Client(cluster) as client,
-        ):
+        before = (time.process_time(), _children_cpu())
+        cluster = LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+        )
+        with cluster, Client(cluster) as client:
             dask_start = time.perf_counter() - start
             timed("Dask LocalCluster, 2 workers", "dask", executor=client.get_executor())
-    machine_gain = parallel_speedup(2)
+        # the cluster's workers are counted when the cluster has closed: the whole cluster's
+        # CPU (start-up included) goes to the row
+        label, t, result, parent, children = rows[-1]
+        rows[-1] = (label, t, result, parent, _children_cpu() - before[1])
     n = rows[0][2].n_cases
     reference = rows[0][2].table
-    walls = {label: t.seconds for label, t, _ in rows}
-    one = walls[f"process pool ({method}), 1 worker"]
-    print(f"\n{n} cases, profile contact; {machine_line()}")
-    print(f"yardstick median {stick.median:.3f} s\n")
+    walls = {label: t.seconds for label, t, *_ in rows}
+    cpus = {label: parent + children for label, _, _, parent, children in rows}
+    one = walls[pool1]
     print(
-        f"{'executor':<32}{'wall s':>9}{'yardstick':>11}{'per case s':>12}"
-        f"{'speed-up vs 1':>15}{'same':>6}"
+        f"\n{n} cases, profile contact, {args.vehicle} vehicle, "
+        f"{study.base['x_start']}..{study.base['x_end']} m; {machine_line()}"
     )
-    for label, t, result in rows:
+    print(
+        f"this process warmed up first (imports, contact tables, kernels): {warm_wall:.1f} s "
+        f"wall, {warm_cpu:.1f} s CPU; yardstick median {stick.median:.3f} s wall, "
+        f"{stick.cpu_median:.3f} s CPU\n"
+    )
+    print(
+        f"{'executor':<34}{'wall s':>8}{'units':>7}{'CPU s':>8}{'cases':>8}{'rest':>7}"
+        f"{'case CPU':>9}{'wall x':>8}{'CPU x':>7}{'same':>6}"
+    )
+    for label, t, result, parent, children in rows:
         same = all(
             np.array_equal(result.table[c], reference[c], equal_nan=reference[c].dtype.kind == "f")
             for c in reference
-            if c.startswith(("peak_", "max_", "rms_"))
+            if c.startswith(("peak_", "max_", "rms_", "static_", "contact_"))
         )
+        in_cases = float(np.sum(result.table["case_cpu_time_s"]))
+        total = parent + children
         print(
-            f"{label:<32}{t.seconds:>9.1f}{t.units:>11.1f}{t.seconds / n:>12.3f}"
-            f"{one / t.seconds:>15.2f}{str(same):>6}"
-        )
-    if dask_start is not None:
-        pool2 = walls[f"process pool ({method}), 2 workers"]
-        overhead = (walls["Dask LocalCluster, 2 workers"] - pool2) / n
-        print(
-            f"\nDask LocalCluster start-up {dask_start:.1f} s (not in its row); "
-            f"Dask over the 2-worker pool: {overhead * 1e3:+.0f} ms per case"
+            f"{label:<34}{t.seconds:>8.1f}{t.units:>7.1f}{total:>8.1f}{in_cases:>8.1f}"
+            f"{total - in_cases:>7.1f}{in_cases / n:>9.3f}{one / t.seconds:>8.2f}"
+            f"{total / cpus[pool1]:>7.2f}{str(same):>6}"
         )
     print(
-        f"1 -> 2 workers (process pool): x{one / walls[f'process pool ({method}), 2 workers']:.2f} "
-        f"(goal >= 1.8); the yardstick in 2 processes at the time: x{machine_gain:.2f}"
+        "  CPU s: this process (the yardstick's runs taken out) + its worker processes; "
+        "cases: the sum of the cases' own CPU; rest: CPU s - cases; wall x: 1 worker's wall "
+        "over the row's; CPU x: the row's CPU over 1 worker's"
+    )
+    if dask_start is not None:
+        overhead = (walls["Dask LocalCluster, 2 workers"] - walls[pool2]) / n
+        print(
+            f"\nDask LocalCluster start-up {dask_start:.1f} s (wall, not in its row's wall; its "
+            f"CPU is); Dask over the 2-worker pool: {overhead * 1e3:+.0f} ms per case"
+        )
+    gains = f"x{machine_before[0]:.2f} before, x{machine_after[0]:.2f} after"
+    ratios = f"x{machine_before[1]:.2f} before, x{machine_after[1]:.2f} after"
+    print(
+        f"1 -> 2 workers (process pool): wall x{one / walls[pool2]:.2f} (goal >= 1.8), "
+        f"CPU x{cpus[pool2] / cpus[pool1]:.2f}, CPU in the cases "
+        f"x{_case_cpu(rows, pool2) / _case_cpu(rows, pool1):.2f}; the yardstick in 2 "
+        f"processes at once: throughput {gains}, CPU per run {ratios}"
+    )
+    if args.pairs:
+        from exudyn_turnout.studies.run import estimated_cost
+
+        shortest = min(cases, key=estimated_cost)
+        case_ratio, stick_ratio = pair_cost(shortest, args.pairs)
+        print(
+            f"CPU of one case (case {shortest.index}) in 2 processes at once over alone: "
+            f"x{case_ratio:.2f}; the yardstick's, interleaved with it: x{stick_ratio:.2f} "
+            f"(medians of {args.pairs} rounds)"
+        )
+    serial_part = next(r[3] for r in rows if r[0] == pool2)
+    print(
+        f"an idle 2-core machine, from this run's CPU times (the serial row's cases handed "
+        f"out in the pool's order, this process's {serial_part:.1f} s CPU in the 2-worker row "
+        f"taken as serial): x{idle_speedup(cases, rows[0][2].table, serial_part, 2):.2f}"
     )
     shutil.rmtree(root, ignore_errors=True)
+
+
+def alternate(study, root: Path, rounds: int) -> None:
+    """The 2-worker and the 1-worker pool in turn, ``rounds`` times; print each round."""
+    import statistics
+
+    from exudyn_turnout.studies import run_study
+    from exudyn_turnout.studies.run import process_pool
+
+    cases = study.cases()
+    print(f"{len(cases)} cases; {machine_line()}")
+    print(f"{'round':>5}{'2 workers s':>13}{'1 worker s':>12}{'wall x':>8}{'machine x':>11}")
+    gains = []
+    for i in range(rounds):
+        walls = {}
+        for workers in (2, 1):
+            start = time.perf_counter()
+            with process_pool(cases, workers) as pool:
+                run_study(study, out=root / f"alt-{i}-{workers}", executor=pool)
+            walls[workers] = time.perf_counter() - start
+        machine_gain, _ = parallel_cost(2, rounds=1)
+        gains.append(walls[1] / walls[2])
+        print(f"{i:>5}{walls[2]:>13.1f}{walls[1]:>12.1f}{gains[-1]:>8.2f}{machine_gain:>11.2f}")
+    print(f"median wall speed-up x{statistics.median(gains):.2f} (goal >= 1.8)")
+
+
+def _cpu_of(task) -> float:
+    """s, CPU time of ``task()`` in this (worker) process."""
+    start = time.process_time()
+    task()
+    return time.process_time() - start
+
+
+def _run_case_cpu(case) -> float:
+    from exudyn_turnout.studies.run import run_case
+
+    return _cpu_of(lambda: run_case(case))
+
+
+def _yardstick_cpu(_: int) -> float:
+    return _cpu_of(workload)
+
+
+def pair_cost(case, rounds: int = 3) -> tuple[float, float]:
+    """CPU time of a case, and of the yardstick, run in 2 processes at once over alone.
+
+    On a forked 2-worker pool (warm): ``rounds`` times the case alone, then the same case
+    in both workers at once, and the same for the yardstick, interleaved. The extra CPU a
+    2-worker study takes per case is the machine's when the two ratios agree.
+
+    Parameters
+    ----------
+    case : Case
+        One of the study's cases.
+    rounds : int
+
+    Returns
+    -------
+    tuple of float
+        (case: CPU together / alone, -; yardstick: CPU together / alone, -), medians.
+    """
+    import statistics
+
+    from exudyn_turnout.studies.run import process_pool
+
+    case_ratios, stick_ratios = [], []
+    with process_pool([case], 2) as pool:
+        list(pool.map(_run_case_cpu, [case, case]))  # both workers have run it once
+        for _ in range(rounds):
+            alone = pool.submit(_run_case_cpu, case).result()
+            together = list(pool.map(_run_case_cpu, [case, case]))
+            case_ratios.append(statistics.mean(together) / alone)
+            alone = pool.submit(_yardstick_cpu, 0).result()
+            together = list(pool.map(_yardstick_cpu, [0, 1]))
+            stick_ratios.append(statistics.mean(together) / alone)
+    return statistics.median(case_ratios), statistics.median(stick_ratios)
+
+
+def idle_speedup(cases, table, serial: float, workers: int) -> float:
+    """The speed-up of ``workers`` over 1 on idle cores, from measured CPU times.
+
+    The cases' CPU times (``table["case_cpu_time_s"]``, by case index) are handed out in the
+    pool's order (:func:`~exudyn_turnout.studies.run.hand_out_order`), each to the first
+    worker free; ``serial`` s of the calling process's work come before and after.
+
+    Parameters
+    ----------
+    cases : list of Case
+    table : dict
+        A run's results table.
+    serial : float
+        s.
+    workers : int
+
+    Returns
+    -------
+    float
+        (serial + sum of the cases) / (serial + the last worker's finish).
+    """
+    import heapq
+
+    from exudyn_turnout.studies.run import hand_out_order
+
+    cpu = {int(i): float(t) for i, t in zip(table["case"], table["case_cpu_time_s"])}
+    free = [0.0] * workers
+    for case in hand_out_order(cases):
+        heapq.heapreplace(free, free[0] + cpu[case.index])
+    return (serial + sum(cpu.values())) / (serial + max(free))
+
+
+def _case_cpu(rows, label: str) -> float:
+    """s, the sum of the cases' own CPU time in the row ``label``."""
+    return next(float(np.sum(r[2].table["case_cpu_time_s"])) for r in rows if r[0] == label)
 
 
 if __name__ == "__main__":

@@ -39,7 +39,15 @@ from importlib import metadata
 import numpy as np
 import scipy.linalg
 
-__all__ = ["workload", "Timing", "Yardstick", "machine", "machine_line", "parallel_speedup"]
+__all__ = [
+    "workload",
+    "Timing",
+    "Yardstick",
+    "machine",
+    "machine_line",
+    "parallel_speedup",
+    "parallel_cost",
+]
 
 #: Sizes of the three parts, fixed: changing them changes the unit (never do it silently).
 _DUFFING_STEPS = 60_000
@@ -238,6 +246,52 @@ class Yardstick:
 def _yardstick_in_child(_: int) -> float:
     wall, _, _ = _timed(workload)
     return wall
+
+
+def _yardstick_cpu_in_child(_: int) -> tuple[float, float]:
+    wall, cpu, _ = _timed(workload)
+    return wall, cpu
+
+
+def _wall_and_cpu(pool, processes: int) -> tuple[float, float]:
+    """s, wall time of ``processes`` yardsticks run at once in ``pool``; their mean CPU time."""
+    start = time.perf_counter()
+    runs = list(pool.map(_yardstick_cpu_in_child, range(processes)))
+    return time.perf_counter() - start, statistics.mean(cpu for _, cpu in runs)
+
+
+def parallel_cost(processes: int = 2, rounds: int = 2) -> tuple[float, float]:
+    """What the machine gives ``processes`` processes now, in wall time and in CPU time.
+
+    As :func:`parallel_speedup` (the throughput gain), and also what one yardstick costs in
+    CPU time when ``processes`` of them run at once, over its CPU time alone: 1.0 on idle
+    cores; more where the processes share a core's caches or hyperthreads, or a virtual
+    machine's host is busy. A parallel run's extra CPU time is the machine's up to this
+    ratio.
+
+    Parameters
+    ----------
+    processes : int
+    rounds : int
+
+    Returns
+    -------
+    tuple of float
+        (throughput of ``processes`` concurrent yardsticks over one, -; CPU time of a
+        yardstick among ``processes`` over alone, -), medians over the rounds.
+    """
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
+    gains, ratios = [], []
+    with ProcessPoolExecutor(processes, mp_context=multiprocessing.get_context("spawn")) as pool:
+        list(pool.map(_yardstick_in_child, range(processes)))  # start and warm the workers
+        for _ in range(rounds):
+            alone_wall, alone_cpu = _wall_and_cpu(pool, 1)
+            together_wall, together_cpu = _wall_and_cpu(pool, processes)
+            gains.append(processes * alone_wall / together_wall)
+            ratios.append(together_cpu / alone_cpu)
+    return statistics.median(gains), statistics.median(ratios)
 
 
 def parallel_speedup(processes: int = 2, rounds: int = 2) -> float:

@@ -38,7 +38,7 @@ speed_kmh = [80.0, 100.0]
 """
 
 #: Columns that are timings (differ from run to run by nature).
-TIMINGS = ("wall_time_s", "case_wall_time_s")
+TIMINGS = ("wall_time_s", "case_wall_time_s", "case_cpu_time_s")
 
 
 def _write(tmp_path: Path, text: str, name: str = "study.toml") -> Path:
@@ -119,6 +119,15 @@ def test_process_pool_gives_identical_numbers(serial, tmp_path, start_method):
     _assert_same_numbers(reference.table, pool.table)
     meta = (tmp_path / "pool" / "results.meta.json").read_text(encoding="utf-8")
     assert f"process pool ({start_method}), 2 workers" in meta
+    # the histories, compressed in the workers, hold the serial run's samples
+    for key in reference.table["key"]:
+        with (
+            np.load(tmp / "out" / "cases" / key / "history.npz") as serial_history,
+            np.load(tmp_path / "pool" / "cases" / key / "history.npz") as pool_history,
+        ):
+            assert serial_history.files == pool_history.files
+            for name in serial_history.files:
+                np.testing.assert_array_equal(serial_history[name], pool_history[name])
 
 
 def test_process_pool_start_methods():

@@ -9,7 +9,8 @@ A study is data (TOML)::
 
     [base]                          # the scenario every case starts from
     turnout = "my_turnout.toml"     # optional, relative to the study file (default: packaged)
-    vehicle = "my_vehicle.toml"     # optional (default: packaged wheelset)
+    vehicle = "my_vehicle.toml"     # optional (default: packaged wheelset); or a packaged
+                                    # name: "wheelset", "manchester" (the full vehicle)
     track = "3-layer"               # "2-layer", "3-layer" or "fe"
     route = "through"
     speed_kmh = 100.0               # any field of PassageSettings
@@ -36,7 +37,8 @@ A study is data (TOML)::
     keep_timeseries = true          # every case's whole time series, cases/<key>/timeseries.npz
 
 A factor is any field of :class:`~exudyn_turnout.passage.results.PassageSettings`,
-``track``, ``turnout`` / ``vehicle`` (a file), ``irregularity`` (a spec), or a field of the
+``track``, ``turnout`` / ``vehicle`` (a file; a vehicle also by a packaged name, a file with
+a car body runs the full vehicle), ``irregularity`` (a spec), or a field of the
 turnout or vehicle file by dotted path (``turnout.<path>``, ``vehicle.<path>``; an integer
 selects an item of an array: ``turnout.zones.0.x_end``). The cases are the product of the
 full-factorial lists, the paired rows, the Latin-hypercube samples and the seeds.
@@ -58,11 +60,22 @@ from typing import Any
 
 from exudyn_turnout.inputs.irregularity import Irregularity, irregularity_from_spec
 from exudyn_turnout.inputs.turnout import default_turnout_path
-from exudyn_turnout.inputs.vehicle import default_vehicle_path
+from exudyn_turnout.inputs.vehicle import Vehicle, default_vehicle_path, load_vehicle
+from exudyn_turnout.inputs.vehicle_data import VehicleModel
+from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
+from exudyn_turnout.inputs.vehicle_names import PACKAGED_VEHICLES, packaged_vehicle_path
 from exudyn_turnout.passage.results import TRACKS
 from exudyn_turnout.studies.toml_writer import dumps, set_dotted
 
-__all__ = ["StudyError", "Case", "Study", "load_study", "study_from_dict", "FILE_FACTORS"]
+__all__ = [
+    "StudyError",
+    "Case",
+    "Study",
+    "load_study",
+    "study_from_dict",
+    "load_study_vehicle",
+    "FILE_FACTORS",
+]
 
 #: Factors that are not PassageSettings fields nor dotted file fields.
 FILE_FACTORS = ("turnout", "vehicle", "track", "irregularity", "parameters")
@@ -124,6 +137,39 @@ class Case:
     history_step: float | None = None  #: s
     key: str = ""
     keep_timeseries: bool = False
+
+
+def load_study_vehicle(path: str | Path) -> Vehicle | VehicleModel:
+    """A study's vehicle file, read by the loader of its kind.
+
+    A file with a ``[vehicle]`` table and no ``[contact]`` table is a vehicle-model file (the
+    full vehicle, car body on bogies), read by
+    :func:`~exudyn_turnout.inputs.vehicle_model.load_vehicle_model`; any other file is a
+    single-wheelset file, read by :func:`~exudyn_turnout.inputs.vehicle.load_vehicle` (which
+    says what is wrong with a bad one).
+
+    Parameters
+    ----------
+    path : str or Path
+        The TOML vehicle file.
+
+    Returns
+    -------
+    Vehicle or VehicleModel
+
+    Raises
+    ------
+    ValueError
+        The loader's one-line error (unreadable file, missing or bad field).
+    """
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        data = {}  # load_vehicle says what is wrong with it
+    if isinstance(data.get("vehicle"), Mapping) and "contact" not in data:
+        return load_vehicle_model(path)
+    return load_vehicle(path)
 
 
 def _settings_fields() -> dict[str, str]:
@@ -264,6 +310,7 @@ class Study:
             A file or value the loaders reject, a bad irregularity spec (one line).
         """
         texts: dict[str, tuple[str, dict]] = {}
+        edited_texts: dict[tuple[str, str], str] = {}
         checked: set[str] = set()
         checked_parameters: set[tuple[str, str]] = set()
         irregularities: dict[str, Irregularity] = {}
@@ -281,14 +328,17 @@ class Study:
                 edits = {
                     k[len(kind) + 1 :]: v for k, v in merged.items() if k.startswith(kind + ".")
                 }
-                if edits:
+                edited = (str(path), json.dumps(edits, sort_keys=True, default=str))
+                if edits and edited in edited_texts:
+                    text = edited_texts[edited]  # the same edits of the same file: its text
+                elif edits:
                     data = json.loads(json.dumps(data))  # a deep copy of plain data
                     for dotted, value in edits.items():
                         try:
                             set_dotted(data, dotted, value)
                         except (KeyError, TypeError) as err:
                             raise self._error(f"factor {kind}.{dotted}: {err.args[0]}") from None
-                    text = dumps(data)
+                    text = edited_texts[edited] = dumps(data)
                 if _sha(text) not in checked:
                     loaded = self._check_file(kind, path.name, text, edits)
                     checked.add(_sha(text))
@@ -394,6 +444,9 @@ class Study:
         path = Path(str(value))
         if path.is_absolute():
             return path
+        by_name = kind == "vehicle" and value in PACKAGED_VEHICLES
+        if by_name and not (self.directory / path).exists():
+            return packaged_vehicle_path(str(value))  # a packaged vehicle by name
         if kind == "parameters" and not (self.directory / path).exists():
             packaged = default_turnout_path().parent / path  # a packaged fitted file
             if packaged.exists():
@@ -432,7 +485,6 @@ class Study:
 
         from exudyn_turnout.inputs.routes import route_names
         from exudyn_turnout.inputs.turnout import load_turnout
-        from exudyn_turnout.inputs.vehicle import load_vehicle
 
         with tempfile.TemporaryDirectory() as tmp:
             path = Path(tmp) / name
@@ -440,7 +492,7 @@ class Study:
             try:
                 if kind == "turnout":
                     return tuple(route_names(load_turnout(path)))
-                load_vehicle(path)
+                load_study_vehicle(path)
                 return None
             except ValueError as err:  # TurnoutFileError and the vehicle loader's errors
                 what = ", ".join(f"{kind}.{k} = {v!r}" for k, v in edits.items())

@@ -1,0 +1,142 @@
+"""A study's serial work in the calling process, which the workers wait for (issue 24):
+warming a process that already ran a kind of case, and writing the same modified file again.
+
+Reference values: counts from the study's own definition (kinds of case, distinct edits).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from exudyn_turnout.studies import load_study, run_case
+from exudyn_turnout.studies.run import warm_up
+
+#: 4 cases of 3 m, the height-table contact (cheap); a pad stiffness no other test uses, so
+#: that its kinds are new to this process.
+STUDY = """
+[base]
+contact = "height-table"
+x_start = 45.0
+x_end = 48.0
+time_step = 1e-4
+output_step = 1e-3
+
+[factors]
+speed_kmh = [80.0, 100.0]
+"turnout.rail_types.stock.pad.k_z" = [{k_a}, {k_b}]
+"""
+
+
+def _cases(tmp_path: Path, k_a: float, k_b: float):
+    path = tmp_path / "study.toml"
+    path.write_text(STUDY.format(k_a=k_a, k_b=k_b), encoding="utf-8")
+    return load_study(path).cases()
+
+
+def test_a_process_is_warmed_once_per_kind(tmp_path):
+    """Two kinds (two turnout files, one track): warmed once; a process that ran a case of a
+    kind (a serial study before a pool is made from it) is not warmed for that kind again."""
+    cases = _cases(tmp_path, 101.234e6, 141.234e6)
+    assert warm_up(cases) == 2
+    assert warm_up(cases) == 0
+    others = _cases(tmp_path, 102.345e6, 142.345e6)
+    record = run_case(others[0])  # kind of k_z = 102.345e6
+    assert record["status"] == "ok", record["error"]
+    assert warm_up(others) == 1  # only the kind of k_z = 142.345e6 is new
+    assert warm_up(others, kinds=5) == 0
+
+
+def test_each_modified_file_is_written_once(tmp_path, monkeypatch):
+    """2 speeds x 2 pad stiffnesses: two modified turnout files, each written once."""
+    from exudyn_turnout.studies import study as study_module
+
+    calls = []
+    original = study_module.dumps
+
+    def counted(data):
+        calls.append(1)
+        return original(data)
+
+    monkeypatch.setattr(study_module, "dumps", counted)
+    cases = _cases(tmp_path, 100e6, 140e6)
+    assert len(cases) == 4 and len(calls) == 2
+    assert cases[0].turnout_text == cases[2].turnout_text != cases[1].turnout_text
+
+
+@pytest.mark.slow
+def test_spawned_workers_are_warmed_though_this_process_is_warm(tmp_path):
+    """This process's notes do not hold for a new interpreter: a spawned worker is warmed
+    for the kinds by its initializer even when this process has run them all."""
+    import multiprocessing
+
+    from exudyn_turnout.studies.run import process_pool
+
+    if "spawn" not in multiprocessing.get_all_start_methods():
+        pytest.skip("no spawn start method here")
+    cases = _cases(tmp_path, 103.456e6, 143.456e6)
+    warm_up(cases)
+    assert warm_up(cases) == 0  # warm here
+    with process_pool(cases, 1, "spawn") as pool:
+        assert pool.submit(warm_up, cases).result() == 0  # warm there too, by the initializer
+
+
+def test_cases_are_handed_out_by_file_longest_first(tmp_path):
+    """2 speeds x 3 pad stiffnesses (3 turnout files): the cases of a file together, the
+    slower (longer) speed first within each; every case once."""
+    from exudyn_turnout.studies.run import estimated_cost, hand_out_order
+    from exudyn_turnout.studies.study import study_from_dict
+
+    study = study_from_dict(
+        {
+            "base": {"x_start": 40.0, "x_end": 50.0},
+            "factors": {
+                "speed_kmh": [100.0, 50.0],
+                "turnout.rail_types.stock.pad.k_z": [100e6, 120e6, 140e6],
+            },
+        }
+    )
+    cases = study.cases()
+    order = hand_out_order(cases)
+    assert sorted(c.index for c in order) == list(range(6))
+    k_z = [c.inputs["turnout.rail_types.stock.pad.k_z"] for c in order]
+    assert k_z == [100e6, 100e6, 120e6, 120e6, 140e6, 140e6]
+    assert [c.inputs["speed_kmh"] for c in order] == [50.0, 100.0] * 3
+    costs = [estimated_cost(c) for c in order]
+    assert costs[0] == pytest.approx(2 * costs[1])  # 10 m at 50 km/h: twice the steps
+
+
+@pytest.mark.slow
+def test_a_serial_study_loads_each_files_contact_tables_once(tmp_path, monkeypatch):
+    """5 pad stiffnesses x 2 tracks: 5 turnout files, more than the 4 routes a process keeps
+    in memory. In case order (the stiffness varies fastest) each case loaded its tables
+    again; by file, once per file."""
+    from exudyn_turnout.studies import run_study
+    from exudyn_turnout.wheel_rail import turnout_sections
+
+    calls = []
+    original = turnout_sections.route_contact_tables
+
+    def counted(*args, **kwargs):
+        calls.append(args[1])
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(turnout_sections, "route_contact_tables", counted)
+    path = tmp_path / "study.toml"
+    path.write_text(
+        """
+[base]
+contact = "profile"
+x_start = 44.0
+x_end = 44.3
+
+[factors]
+track = ["2-layer", "3-layer"]
+"turnout.rail_types.stock.pad.k_z" = [100.5e6, 110.5e6, 120.5e6, 130.5e6, 140.5e6]
+""",
+        encoding="utf-8",
+    )
+    result = run_study(path, workers=1, out=tmp_path / "out")
+    assert result.failed == 0, result.table["error"]
+    assert len(calls) == 5
