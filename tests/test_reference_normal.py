@@ -109,15 +109,22 @@ def _min_gap(case, geometry, surface: str) -> float:
 
 
 def test_linear_surfaces_match_the_2d_slice():
-    # the slice's envelope (sections.wheel_envelope) and the "linear" surfaces take the
-    # wheel's drop as the same parabola and the profiles as the same polygons: their
-    # deepest interpenetrations agree (1 um: the lateral grids differ, 0.1 and 0.01 mm)
+    # the slice's envelope (sections.wheel_envelope) and the "linear+revolution" surfaces
+    # take the wheel's drop as a circle and the profiles as the same polygons: their
+    # deepest interpenetrations agree (1 um: the lateral grids differ, 0.1 and 0.01 mm,
+    # and the envelope's circle has the nominal radius, the surface's the point's own)
     for index in (0, 1):
         _name, case = _cases()[index]
         geometry = case_geometry(case, s1002_wheel(), PROFILES)
-        assert _min_gap(case, geometry, "linear") == pytest.approx(
+        assert _min_gap(case, geometry, "linear+revolution") == pytest.approx(
             geometry.interpenetration, abs=1e-6
         )
+    # with the parabola ("linear") cross_brute's contact 46 mm ahead sits 5.7 um deeper
+    # (x^4 / (8 r^3), closed form): what the envelope did before it took the circle
+    _name, case = _cases()[1]
+    geometry = case_geometry(case, s1002_wheel(), PROFILES)
+    extra = _min_gap(case, geometry, "linear") - geometry.interpenetration
+    assert extra == pytest.approx(0.046**4 / (8 * 0.46**3), abs=1e-6)
 
 
 def test_the_wheel_circle_is_the_cross_brute_geometry_error():

@@ -126,9 +126,10 @@ def geometry_lines(case, geometry, profiles) -> list[str]:
         " two rows less the rolling radius of the contact point's difference from r.  The"
         " error was ours: the wheel's shape, not its yaw or roll (both 0 in CONTACT's"
         " input), the slice position or the rail's inclination (CANT 0).  The 2-D slice"
-        " of the passage's tables (``sections.wheel_envelope``, not changed here) takes"
-        " the same parabola: it overstates the interpenetration of a contact 46 mm ahead"
-        " of the axle by these 6 um (18 % of this case's approach).",
+        " of the passage's tables (``sections.wheel_envelope``) took the same parabola"
+        " and overstated the interpenetration of a contact 46 mm ahead of the axle by"
+        " these 6 um (18 % of this case's approach); it now drops as the circle"
+        " (``sections.wheel_drop``).",
         "",
         *nose_lines(case),
     ]
