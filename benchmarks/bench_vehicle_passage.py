@@ -82,7 +82,7 @@ class _Phases:
         self.stepping = 0.0
         self.calls = 0
         self._solve = exu.MainSystem.SolveDynamic
-        self._call = VehicleContacts.__call__
+        self._function = VehicleContacts.force_function
 
     def __enter__(self):
         def solve(mbs, *args, **kwargs):
@@ -94,17 +94,22 @@ class _Phases:
             finally:
                 self.stepping += time.process_time() - t0
 
-        def call(contacts, *args):
-            self.calls += 1
-            return self._call(contacts, *args)
+        def function(contacts):
+            force = self._function(contacts)
+
+            def counted(*args):
+                self.calls += 1
+                return force(*args)
+
+            return counted
 
         exu.MainSystem.SolveDynamic = solve
-        VehicleContacts.__call__ = call
+        VehicleContacts.force_function = function
         return self
 
     def __exit__(self, *exc):
         exu.MainSystem.SolveDynamic = self._solve
-        VehicleContacts.__call__ = self._call
+        VehicleContacts.force_function = self._function
 
 
 def phases(repeats: int) -> None:

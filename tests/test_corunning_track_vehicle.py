@@ -392,3 +392,24 @@ def test_rear_wheelset_enters_a_zone_exactly_at_its_boundary(turnout, model):
     for side in ("right", "left"):  # the wheel's total (per-rail columns are NaN off-rail)
         fz = result.columns[f"Fz_ws4_{side}_N"]
         assert np.all(np.isfinite(fz)) and np.all(fz > 0.5 * STATIC_WHEEL_LOAD)
+
+
+def test_the_objects_force_function_equals_the_call(turnout, model):
+    # the function Exudyn gets (compiled path bound once, the path chosen once per time)
+    # returns what __call__ returns, bit for bit, at a new time, back at an old one, and on
+    # the Python path (spin held: the steady-state solve)
+    _, contacts, q, q_t = _segment(turnout, model, 46.5, 100.0 / 3.6)
+    force = contacts.force_function()
+    for t in (0.0123, 0.1123, 0.0123):
+        forces = force(None, t, 0, list(q), list(q_t))
+        assert isinstance(forces, list)  # Exudyn's fast type
+        assert forces == contacts(None, t, 0, list(q), list(q_t))
+    assert contacts._fast
+    for el in contacts.elements:
+        el.hold_spin = True
+    held = force(None, 0.2, 0, list(q), list(q_t))
+    assert not contacts._fast
+    assert held == contacts(None, 0.2, 0, list(q), list(q_t))
+    for el in contacts.elements:
+        el.hold_spin = False
+    assert held != force(None, 0.3, 0, list(q), list(q_t))  # the holds did act
