@@ -77,6 +77,7 @@ the vehicle settled).
 
 from __future__ import annotations
 
+import functools
 import gc
 import math
 import time
@@ -212,6 +213,7 @@ def _build(
     frozen: bool,
     x_range: tuple[float, float],
     tables: dict | None = None,
+    parameters: dict | None = None,
 ) -> _System:
     import exudyn as exu
     from exudyn.itemInterface import NodeGenericODE2, ObjectGenericODE2, SensorNode
@@ -242,10 +244,15 @@ def _build(
             if place.beyond
             else inside_zone(place.zone, x_i)
         )
-        params = co_running_parameters(
-            turnout, zone=place.zone.index, layers=settings.layers, source=settings.source
-        )
-        params = replace(params, zone=route.zone(params.zone))
+        # a zone's parameters, derived once per run (``parameters``: zone index -> them)
+        params = None if parameters is None else parameters.get(place.zone.index)
+        if params is None:
+            params = co_running_parameters(
+                turnout, zone=place.zone.index, layers=settings.layers, source=settings.source
+            )
+            params = replace(params, zone=route.zone(params.zone))
+            if parameters is not None:
+                parameters[place.zone.index] = params
         v_track = 0.0 if (place.clamped or place.beyond or frozen) else v
         track = add_co_running_track(
             mbs, params, x_track, v_track, mechanism=settings.track_mechanism, force_object=False
@@ -701,15 +708,17 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
         return tuple(_place(turnout, 0.5 * (x_lo + x_hi) + o) for o in offsets)
 
     first = places(events[0], events[1])
+    parameters: dict = {}  # every zone's co-running parameters, shared by the builds
+    build = functools.partial(_build, parameters=parameters)
     args = (turnout, route, model, vehicle, contact, settings)
-    rest = _build(*args, first, x_a, 0.0, True, x_range)
+    rest = build(*args, first, x_a, 0.0, True, x_range)
     _solve_static(rest, "static equilibrium at rest")
     state = _state(rest)
     static_loads = [
         el.wheel_loads(el.x_at(0.0), _element_vector(rest, state, i, 0))
         for i, el in enumerate(rest.elements)
     ]
-    moving = _build(*args, first, x_a, v, True, x_range)
+    moving = build(*args, first, x_a, v, True, x_range)
     set_named_state(moving.mbs, moving.names, state)  # the rest state has K q_geo balanced already
     curvature = max(abs(float(route.curvature(x_a + o))) for o in offsets)
     start = steady_description(settings.speed_kmh, curvature)
@@ -722,7 +731,7 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
         residual = STATIC_TOLERANCE
         start += f" (static solve, spin holds release {_held_spin_torque(moving):.3g} N m)"
     except PassageFailure:  # e.g. in a curve: relax dynamically with x frozen
-        moving = _build(*args, first, x_a, v, True, x_range)
+        moving = build(*args, first, x_a, v, True, x_range)
         set_named_state(moving.mbs, moving.names, state)
         residual, relaxed = _relax(moving, model)
         start += f" (relaxed {relaxed:g} s with x frozen)"
@@ -733,7 +742,7 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
     tables: dict = {}  # the running loads' table, shared by the segments
     for k in range(len(events) - 1):
         x0, x1 = events[k], events[k + 1]
-        system = _build(*args, places(x0, x1), x0, v, False, x_range, tables)
+        system = build(*args, places(x0, x1), x0, v, False, x_range, tables)
         _carry_over(state, previous, system, route, settings.layers, x0, t_prev)
         duration = (x1 - x0) / v
         cols = _run(system, duration, settings, t_offset, total, progress, model.static_wheel_load)
