@@ -266,6 +266,36 @@ class VehicleContacts:
             out += curved[0]
         return out.tolist()  # Exudyn reads a list faster than a numpy array
 
+    def start_record(self, times: int) -> None:
+        """Record the contacts' forces and detail rows during the coming run (the compiled
+        path's :meth:`CompiledResidual.start_record
+        <exudyn_turnout.passage.contact.vehicle_kernel.CompiledResidual.start_record>`;
+        nothing without it).
+
+        Parameters
+        ----------
+        times : int
+            The run's steps and its start.
+        """
+        if self._compiled is not None:
+            self._compiled.start_record(times)
+
+    def recorded(self, t: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]] | None:
+        """Per element, the recorded (forces, details) at the times ``t``, or None
+        (:meth:`CompiledResidual.recorded
+        <exudyn_turnout.passage.contact.vehicle_kernel.CompiledResidual.recorded>`).
+
+        Parameters
+        ----------
+        t : numpy.ndarray
+            s, the run's sensor times.
+
+        Returns
+        -------
+        list of (numpy.ndarray, numpy.ndarray) or None
+        """
+        return None if self._compiled is None else self._compiled.recorded(t)
+
     def force_function(self) -> Callable:
         """The object's Exudyn ``forceUserFunction``: :meth:`__call__`, with the compiled
         path bound once (:meth:`CompiledResidual.bound

@@ -137,6 +137,8 @@ from exudyn_turnout.passage.vehicle.track_frame import (
 
 __all__ = ["simulate_vehicle", "NEWTON_TOLERANCE_FACTOR"]
 
+#: ``mbs.variables`` key of a built system's (contacts, body loads, kept objects)
+_VARIABLES_KEY = "exudyn_turnout.corunning_track.vehicle"
 #: s, first part of the dynamic relaxation to the steady state at speed (where the static
 #: solve fails, e.g. in a curve): the car body's lateral mode (~0.7 Hz, damping ratio ~0.45)
 #: settles in it; a slower drift does not (the car body still moved at 1.4 mm/s after 8 s in
@@ -374,7 +376,7 @@ def _build(
         )
     )
     keep = add_vehicle_loads(mbs, build, loads) if (loads.curved and not fold) else ()
-    mbs.variables["exudyn_turnout.corunning_track.vehicle"] = (contacts, loads, keep)
+    mbs.variables[_VARIABLES_KEY] = (contacts, loads, keep)
     mbs.Assemble()
     system = _System(
         container, mbs, places, elements, params_all, slots_all, names, sensors, loads, x_front
@@ -565,6 +567,10 @@ def _run(
     # (no reference cycles), yet every ~700 of them started a collection (3 % of a run)
     collecting = gc.isenabled()
     gc.disable()
+    # the contacts' forces and details of every step, recorded by the compiled residual at
+    # Newton's last call of each time: the output columns without evaluating them again
+    contacts = system.mbs.variables[_VARIABLES_KEY][0]
+    contacts.start_record(int(sim.timeIntegration.numberOfSteps) + 1)
     try:
         system.mbs.SolveDynamic(sim)
     except (exu.SolverError, RuntimeError) as err:
@@ -577,6 +583,8 @@ def _run(
         if collecting:
             gc.enable()
     cols: dict[str, np.ndarray] = {}
+    times = np.asarray(system.mbs.GetSensorStoredData(system.sensors[0][0][0]))[:, 0]
+    recorded = contacts.recorded(times)
     for i, (element, (pos, vel)) in enumerate(zip(system.elements, system.sensors)):
         stored = [system.mbs.GetSensorStoredData(s) for s in pos]
         stored_t = [system.mbs.GetSensorStoredData(s) for s in vel]
@@ -592,7 +600,9 @@ def _run(
             )
         label = f"ws{i + 1}"
         x_i = system.x_front + _offset_of(system, i) + v * t
-        element_columns = element.columns(t, q, q_t)
+        element_columns = (
+            element.columns(t, q, q_t) if recorded is None else element.columns_of(*recorded[i])
+        )
         if i == 0:
             cols["t_s"], cols["x_m"] = t + t_offset, system.x_front + v * t
             cols.update(element_columns)
