@@ -490,7 +490,8 @@ class CompiledResidual:
         list of (forces, details) or None
             Per element: (len(t), element size) generalised contact forces (the kernel's,
             without the curving load) and (len(t), rows, fields) detail rows, as
-            :func:`~exudyn_turnout.wheel_rail.kernel.contact_history` returns them.
+            :func:`~exudyn_turnout.wheel_rail.kernel.contact_history` returns them (views of
+            the record where every step was stored).
         """
         record, self._record[0] = self._record[0], np.zeros((1, 2))
         rows = int(record[0, 0])
@@ -498,19 +499,21 @@ class CompiledResidual:
             return None
         times = record[1 : rows + 1, 0]
         t = np.asarray(t, float)
-        at = np.searchsorted(times, t)
-        if np.any(at >= rows) or not np.array_equal(times[np.minimum(at, rows - 1)], t):
-            return None
-        data = record[1 + at, 1:]
+        if np.array_equal(times, t):  # a row per stored time (every step stored): views
+            data = record[1 : rows + 1, 1:]
+        else:
+            at = np.searchsorted(times, t)
+            if np.any(at >= rows) or not np.array_equal(times[np.minimum(at, rows - 1)], t):
+                return None
+            data = record[1 + at, 1:]
         n_max = self._work.shape[2]
         shape = self._details.shape[1:]
         size = n_max + shape[0] * shape[1]
         out = []
         for k, el in enumerate(self.elements):
             block = data[:, k * size : (k + 1) * size]
-            forces = block[:, : el.n].copy()
             details = block[:, n_max:].reshape(len(t), *shape)[:, : el._details.shape[0]]
-            out.append((forces, details.copy()))
+            out.append((block[:, : el.n], details))
         return out
 
     def bound(self) -> Callable[[float, Sequence[float], Sequence[float]], list]:

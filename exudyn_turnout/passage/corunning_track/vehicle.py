@@ -53,13 +53,19 @@ The run uses Exudyn's sparse LU (EigenSparse): each track couples to its wheelse
 run's Newton tolerance is :data:`NEWTON_TOLERANCE_FACTOR` x :func:`newton_tolerance`.
 
 Where a step's time goes (the README's case: through, 100 km/h, -5..60 m; measured with
-``benchmarks/bench_vehicle_passage.py --phases`` and Exudyn's solver timers): 2.63
-residual calls per step, one at the predictor and one after each of 1.63 Newton
-iterations (Exudyn's Newton never stops before its first iteration); a call costs ~12 us
-in Python (the numba residual ~8 us, of it the four contacts ~6 us; packing Exudyn's lists
-and returning a list ~3 us) and ~4 us in Exudyn's marshalling. A fresh Jacobian each step
-would need 1.01 iterations, but one costs ~1-2 ms (its Exudyn side alone ~1 ms), and a
-Jacobian every 200 steps (1.28 iterations, 132 Jacobians) about broke even.
+``benchmarks/bench_vehicle_passage.py --phases``, Exudyn's solver timers and instruction
+counts of callgrind): 2.30 residual calls per step, one at the predictor and one after
+each of 1.30 Newton iterations (Exudyn's Newton never stops before its first iteration);
+the residual evaluations are ~85 % of the stepping. One evaluation (~30 us on a quiet
+core) is ~5 us of Exudyn's own (the objects' coordinates and forces), ~6 us of passing
+Exudyn's two 103-coordinate lists to Python and the list back, ~3.5 us packing the lists
+into the kernel's buffer, ~8.5 us the numba residual (of it the four contacts ~6 us, the
+dispatch of its eight arguments ~1.5 us), ~2 us returning a list. A fresh Jacobian each
+step would need 1.0 iterations, but one costs ~1-2 ms (its Exudyn side alone ~1 ms), and a
+Jacobian every 200 steps (1.28 iterations, 132 Jacobians) about broke even. The contacts'
+forces and details of the output columns are recorded during the run
+(:meth:`~exudyn_turnout.passage.contact.vehicle_contacts.VehicleContacts.start_record`),
+not evaluated again after it.
 
 The run starts in the steady state at speed (at rest in the track-following frame): first
 the static equilibrium at rest (lateral position and spin held, as the single wheelset's),
