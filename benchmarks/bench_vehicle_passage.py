@@ -23,6 +23,30 @@ Exudyn systems, the static solves of the four tracks, the start at speed), the s
 (every segment's ``SolveDynamic``, with the compiled residual calls inside), and the rest
 (the segments' rebuilds and carry-overs, the columns, the summary); with residual
 calls, Newton iterations per step and Jacobian evaluations.
+
+Measured (issue 24; 2 cores shared with five other jobs, load 5-7, so CPU seconds scatter
+by +-30 %: compare the yardstick units of runs made side by side). Commit 4e6e5d3 and
+this code alternately, three rounds of ``--phases --repeats 3`` each, medians per round:
+
+==========  ======================  ======================
+part        4e6e5d3 (yardstick)     now (yardstick)
+==========  ======================  ======================
+set-up      0.37 / 0.33 / 0.40      0.33 / 0.28 / 0.32
+stepping    15.16 / 14.33 / 13.83   15.99 / 13.88 / 16.74
+rest        4.60 / 4.38 / 4.24      3.13 / 2.68 / 3.20
+total       20.29 / 19.00 / 18.66   19.40 / 17.17 / 20.31
+==========  ======================  ======================
+
+Residual calls per step 2.48 -> 2.30, Newton iterations per step 1.482 -> 1.296, Jacobians
+47 -> 42. Instructions (callgrind, which the load does not change; front wheelset -5..16 m,
+7,560 steps): whole passage 5.81e9 -> 5.15e9 (-11 %), stepping 4.46e9 -> 4.23e9 (-5 %), of
+it the residual evaluations 3.85e9 -> 3.66e9, everything else but the solves 1.23e9 ->
+0.80e9 (-35 %: the output columns' contacts are recorded during the run instead of
+evaluated again). On a quiet machine the case cost 1.05 x real time at 4e6e5d3 (set-up
+0.04 s, stepping 1.84 s, rest 0.55 s); the issue's goal, 0.5 x, is not reached: the
+residual evaluations are ~86 % of the stepping, and one of them (~30 us) is ~5 us of
+Exudyn's own, ~6 us passing Exudyn's two 103-coordinate lists to Python and back, ~5.5 us
+packing them into the kernel's buffer and returning a list, ~8.5 us the numba residual.
 """
 
 from __future__ import annotations
@@ -82,7 +106,7 @@ class _Phases:
         self.stepping = 0.0
         self.calls = 0
         self._solve = exu.MainSystem.SolveDynamic
-        self._call = VehicleContacts.__call__
+        self._function = VehicleContacts.force_function
 
     def __enter__(self):
         def solve(mbs, *args, **kwargs):
@@ -94,17 +118,22 @@ class _Phases:
             finally:
                 self.stepping += time.process_time() - t0
 
-        def call(contacts, *args):
-            self.calls += 1
-            return self._call(contacts, *args)
+        def function(contacts):
+            force = self._function(contacts)
+
+            def counted(*args):
+                self.calls += 1
+                return force(*args)
+
+            return counted
 
         exu.MainSystem.SolveDynamic = solve
-        VehicleContacts.__call__ = call
+        VehicleContacts.force_function = function
         return self
 
     def __exit__(self, *exc):
         exu.MainSystem.SolveDynamic = self._solve
-        VehicleContacts.__call__ = self._call
+        VehicleContacts.force_function = self._function
 
 
 def phases(repeats: int) -> None:

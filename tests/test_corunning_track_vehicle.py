@@ -392,3 +392,82 @@ def test_rear_wheelset_enters_a_zone_exactly_at_its_boundary(turnout, model):
     for side in ("right", "left"):  # the wheel's total (per-rail columns are NaN off-rail)
         fz = result.columns[f"Fz_ws4_{side}_N"]
         assert np.all(np.isfinite(fz)) and np.all(fz > 0.5 * STATIC_WHEEL_LOAD)
+
+
+def test_the_objects_force_function_equals_the_call(turnout, model):
+    # the function Exudyn gets (compiled path bound once, the path chosen once per time)
+    # returns what __call__ returns, bit for bit, at a new time, back at an old one, and on
+    # the Python path (spin held: the steady-state solve)
+    _, contacts, q, q_t = _segment(turnout, model, 46.5, 100.0 / 3.6)
+    force = contacts.force_function()
+    for t in (0.0123, 0.1123, 0.0123):
+        forces = force(None, t, 0, list(q), list(q_t))
+        assert isinstance(forces, list)  # Exudyn's fast type
+        assert forces == contacts(None, t, 0, list(q), list(q_t))
+    assert contacts._fast
+    for el in contacts.elements:
+        el.hold_spin = True
+    held = force(None, 0.2, 0, list(q), list(q_t))
+    assert not contacts._fast
+    assert held == contacts(None, 0.2, 0, list(q), list(q_t))
+    for el in contacts.elements:
+        el.hold_spin = False
+    assert held != force(None, 0.3, 0, list(q), list(q_t))  # the holds did act
+
+
+def test_recorded_contact_columns_equal_the_ones_evaluated_after_the_run(
+    turnout, model, monkeypatch
+):
+    # the compiled residual records every time's contact forces and details at Newton's last
+    # call (the accepted state); the columns made of them equal, to round-off (the curvature
+    # and the irregularity at x are evaluated by other code after the run), those evaluated
+    # again from the stored coordinates, at the crossing where contacts jump between rails
+    from exudyn_turnout.passage.contact.vehicle_contacts import VehicleContacts
+
+    s = PassageSettings(layers=3, x_start=46.6, x_end=47.0)
+    used = []
+    recorded = VehicleContacts.recorded
+
+    def spy(self, t):
+        out = recorded(self, t)
+        used.append(out is not None)
+        return out
+
+    monkeypatch.setattr(VehicleContacts, "recorded", spy)
+    fast = simulate_passage(turnout, s, model).columns
+    assert used and all(used)
+    monkeypatch.setattr(VehicleContacts, "start_record", lambda self, times: None)
+    used.clear()
+    slow = simulate_passage(turnout, s, model).columns
+    assert used and not any(used)  # nothing recorded: evaluated after the run
+    assert fast.keys() == slow.keys()
+    for name, column in slow.items():
+        assert np.allclose(fast[name], column, rtol=1e-12, atol=1e-9, equal_nan=True), name
+    assert np.max(np.abs(slow["Fz_ws1_right_N"])) > 1e4  # the wheel carries load (N)
+
+
+def test_the_record_keeps_the_last_call_of_each_time_and_rewinds_a_step_tried_again(turnout, model):
+    _, contacts, q, q_t = _segment(turnout, model, 46.5, 100.0 / 3.6)
+    force = contacts.force_function()
+    other = q + 1e-6  # another state (a Newton iterate)
+    contacts.start_record(4)
+    for t, state in ((0.0, q), (1e-4, other), (1e-4, q), (2e-4, q), (1.5e-4, other)):
+        force(None, t, 0, list(state), list(q_t))
+    # the step to 2e-4 failed and was tried again to 1.5e-4: 2e-4 is gone
+    assert contacts.recorded(np.array([0.0, 1e-4, 2e-4])) is None
+    contacts.start_record(4)
+    for t, state in ((0.0, q), (1e-4, other), (1e-4, q), (2e-4, q), (1.5e-4, other)):
+        force(None, t, 0, list(state), list(q_t))
+    got = contacts.recorded(np.array([0.0, 1e-4, 1.5e-4]))
+    assert got is not None
+    for k, (el, (a, b)) in enumerate(zip(contacts.elements, contacts.spans)):
+        forces, details = got[k]
+        for row, (t, state) in enumerate(((0.0, q), (1e-4, q), (1.5e-4, other))):
+            expected, expected_details = el.evaluate(el.x_at(t), state[a:b], q_t[a:b])
+            assert np.array_equal(forces[row], expected)
+            assert np.array_equal(details[row], expected_details)
+    assert contacts.recorded(np.array([0.0])) is None  # recording stopped
+    contacts.start_record(1)  # more times than rows: given up
+    for t in (0.0, 1e-4):
+        force(None, t, 0, list(q), list(q_t))
+    assert contacts.recorded(np.array([0.0])) is None

@@ -361,6 +361,25 @@ class ProfileContactElement(ContactElement):
             p.bounds,
             self._constants,
         )
+        return self.columns_of(forces, details)
+
+    def columns_of(self, forces: np.ndarray, details: np.ndarray) -> dict[str, np.ndarray]:
+        """:meth:`columns` from the contact kernel's outputs of the samples (e.g. recorded
+        during the run instead of evaluated again after it).
+
+        Parameters
+        ----------
+        forces : numpy.ndarray
+            (n, element size) generalised contact forces.
+        details : numpy.ndarray
+            (n, rows, fields) per-contact rows.
+
+        Returns
+        -------
+        dict
+            As :meth:`columns`.
+        """
+        n = len(forces)
         # per slot, the forces on its distinct coordinate pairs (bodies of one slot share a
         # pair on the co-running track; on the FE track every body has its own)
         rails: dict[str, np.ndarray] = {}

@@ -5,6 +5,7 @@ function with a block Jacobian, and each wheelset's output columns."""
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 
@@ -264,6 +265,59 @@ class VehicleContacts:
         if curved:
             out += curved[0]
         return out.tolist()  # Exudyn reads a list faster than a numpy array
+
+    def start_record(self, times: int) -> None:
+        """Record the contacts' forces and detail rows during the coming run (the compiled
+        path's :meth:`CompiledResidual.start_record
+        <exudyn_turnout.passage.contact.vehicle_kernel.CompiledResidual.start_record>`;
+        nothing without it).
+
+        Parameters
+        ----------
+        times : int
+            The run's steps and its start.
+        """
+        if self._compiled is not None:
+            self._compiled.start_record(times)
+
+    def recorded(self, t: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]] | None:
+        """Per element, the recorded (forces, details) at the times ``t``, or None
+        (:meth:`CompiledResidual.recorded
+        <exudyn_turnout.passage.contact.vehicle_kernel.CompiledResidual.recorded>`).
+
+        Parameters
+        ----------
+        t : numpy.ndarray
+            s, the run's sensor times.
+
+        Returns
+        -------
+        list of (numpy.ndarray, numpy.ndarray) or None
+        """
+        return None if self._compiled is None else self._compiled.recorded(t)
+
+    def force_function(self) -> Callable:
+        """The object's Exudyn ``forceUserFunction``: :meth:`__call__`, with the compiled
+        path bound once (:meth:`CompiledResidual.bound
+        <exudyn_turnout.passage.contact.vehicle_kernel.CompiledResidual.bound>`) and the
+        choice of path made once per time. The same forces as :meth:`__call__`, bit for bit.
+
+        Returns
+        -------
+        callable(mbs, t, item_number, q_list, q_t_list) -> list of float
+        """
+        fast = None if self._compiled is None else self._compiled.bound()
+        slow = self.__call__
+        chosen = [math.nan, False]  #: the last time, and whether the compiled path serves it
+
+        def force(mbs, t: float, item_number: int, q_list, q_t_list) -> list:
+            if t != chosen[0]:
+                chosen[0], chosen[1] = t, self._fast_at(t)
+            if chosen[1] and fast is not None:
+                return fast(t, q_list, q_t_list)
+            return slow(mbs, t, item_number, q_list, q_t_list)
+
+        return force
 
     def jacobian(self, t: float, q: np.ndarray, q_t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """-df/dq and -df/dq_t of the contact forces f (the left-hand side's Jacobians), by

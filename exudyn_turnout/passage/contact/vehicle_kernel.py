@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 import struct
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 
 import numba
 import numpy as np
@@ -196,8 +196,40 @@ def _stop_forces(
 
 
 @numba.njit(cache=True)
-def _residual(t, fbuf, ibuf, header, values, blendable, xs):  # pragma: no cover (compiled)
-    """The whole contact object's forces at time t (module docstring), into ``out``."""
+def _record(t, work, details, record):  # pragma: no cover (compiled)
+    """Store the contacts' forces and detail rows of time t in ``record`` (one row per time,
+    the later call of a time overwriting: Newton's last call is at the accepted state; a
+    time earlier than the last row's, a step tried again smaller, rewinds to it)."""
+    n = record.shape[0] - 1
+    r = int(record[0, 0])
+    if record[0, 1] != 0.0:
+        return
+    if r < 1 or t > record[r, 0]:
+        r += 1
+    else:
+        while r > 1 and record[r - 1, 0] >= t:
+            r -= 1
+    if r > n:  # more times than rows (smaller steps than planned): recording given up
+        record[0, 1] = 1.0
+        return
+    record[0, 0] = r
+    row = record[r]
+    row[0] = t
+    j = 1
+    for k in range(work.shape[0]):
+        for i in range(work.shape[2]):
+            row[j] = work[k, 2, i]
+            j += 1
+        for a in range(details.shape[1]):
+            for b in range(details.shape[2]):
+                row[j] = details[k, a, b]
+                j += 1
+
+
+@numba.njit(cache=True)
+def _residual(t, fbuf, ibuf, header, values, blendable, xs, record):  # pragma: no cover
+    """The whole contact object's forces at time t (module docstring), into ``out``; with a
+    ``record`` of more than one row the contacts' forces and details too (:func:`_record`)."""
     q, q_t, out = _view1(fbuf, header, 0), _view1(fbuf, header, 1), _view1(fbuf, header, 2)
     _all_forces(
         t,
@@ -260,6 +292,8 @@ def _residual(t, fbuf, ibuf, header, values, blendable, xs):  # pragma: no cover
     body = _view1(fbuf, header, 32)
     for j in range(body.shape[0]):
         out[j] += body[j]
+    if record.shape[0] > 1:
+        _record(t, _view3(fbuf, header, 6), _view3(fbuf, header, 7), record)
 
 
 class CompiledResidual:
@@ -357,6 +391,9 @@ class CompiledResidual:
             (k, el) for k, el in enumerate(self.elements) if el.irregularity is not None
         ]
         self._tables = (first.tables.values, first.tables.blendable, first.tables.x)
+        self._work, self._details = views["work"], views["details"]
+        #: the run's record (:meth:`start_record`); one row: nothing recorded
+        self._record = [np.zeros((1, 2))]
 
     @staticmethod
     def serves(elements: Sequence[ProfileContactElement]) -> bool:
@@ -421,8 +458,83 @@ class CompiledResidual:
             The force vector (Exudyn reads a list ~3 us faster than a numpy array).
         """
         self._states.pack_into(self._bytes, 0, *q_list, *q_t_list)
-        _residual(t, self._fbuf, self._ibuf, self._header, *self._tables)
+        _residual(t, self._fbuf, self._ibuf, self._header, *self._tables, self._record[0])
         return self.out.tolist()
+
+    def start_record(self, times: int) -> None:
+        """Record, from now on, the contacts' forces and detail rows at up to ``times``
+        distinct times (a run's steps and its start): what the output columns are made of,
+        without evaluating the contacts again after the run (:meth:`recorded`).
+
+        Parameters
+        ----------
+        times : int
+            Rows to keep (a run that takes more times gives its record up).
+        """
+        width = 1 + self._work.shape[0] * (self._work.shape[2] + self._details[0].size)
+        record = np.zeros((int(times) + 1, width))
+        record[0, 0] = 0.0
+        self._record[0] = record
+
+    def recorded(self, t: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]] | None:
+        """The recorded forces and detail rows of every element at the times ``t``, and stop
+        recording; None where a time is missing (or the record was given up).
+
+        Parameters
+        ----------
+        t : numpy.ndarray
+            s, the times wanted (a run's sensor times), increasing.
+
+        Returns
+        -------
+        list of (forces, details) or None
+            Per element: (len(t), element size) generalised contact forces (the kernel's,
+            without the curving load) and (len(t), rows, fields) detail rows, as
+            :func:`~exudyn_turnout.wheel_rail.kernel.contact_history` returns them (views of
+            the record where every step was stored).
+        """
+        record, self._record[0] = self._record[0], np.zeros((1, 2))
+        rows = int(record[0, 0])
+        if record.shape[0] < 2 or record[0, 1] != 0.0 or rows < 1:
+            return None
+        times = record[1 : rows + 1, 0]
+        t = np.asarray(t, float)
+        if np.array_equal(times, t):  # a row per stored time (every step stored): views
+            data = record[1 : rows + 1, 1:]
+        else:
+            at = np.searchsorted(times, t)
+            if np.any(at >= rows) or not np.array_equal(times[np.minimum(at, rows - 1)], t):
+                return None
+            data = record[1 + at, 1:]
+        n_max = self._work.shape[2]
+        shape = self._details.shape[1:]
+        size = n_max + shape[0] * shape[1]
+        out = []
+        for k, el in enumerate(self.elements):
+            block = data[:, k * size : (k + 1) * size]
+            details = block[:, n_max:].reshape(len(t), *shape)[:, : el._details.shape[0]]
+            out.append((block[:, : el.n], details))
+        return out
+
+    def bound(self) -> Callable[[float, Sequence[float], Sequence[float]], list]:
+        """:meth:`__call__` as a closure over the buffers: the same forces, without the
+        attribute look-ups of every call (the hot path of a run's ~60,000 calls).
+
+        Returns
+        -------
+        callable(t, q_list, q_t_list) -> list of float
+        """
+        pack, data, tolist = self._states.pack_into, self._bytes, self.out.tolist
+        fbuf, ibuf, header = self._fbuf, self._ibuf, self._header
+        values, blendable, xs = self._tables
+        record = self._record
+
+        def call(t: float, q_list: Sequence[float], q_t_list: Sequence[float]) -> list:
+            pack(data, 0, *q_list, *q_t_list)
+            _residual(t, fbuf, ibuf, header, values, blendable, xs, record[0])
+            return tolist()
+
+        return call
 
 
 def _no_springs() -> dict[str, np.ndarray]:

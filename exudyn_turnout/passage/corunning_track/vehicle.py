@@ -50,16 +50,22 @@ object too (their masses stay Exudyn bodies;
 :mod:`~exudyn_turnout.corunning.track_kernel`), and at speed the object's whole residual
 is one numba call (:class:`~exudyn_turnout.passage.contact.vehicle_kernel.CompiledResidual`).
 The run uses Exudyn's sparse LU (EigenSparse): each track couples to its wheelset only. A
-run's Newton tolerance is :func:`newton_tolerance`.
+run's Newton tolerance is :data:`NEWTON_TOLERANCE_FACTOR` x :func:`newton_tolerance`.
 
 Where a step's time goes (the README's case: through, 100 km/h, -5..60 m; measured with
-``benchmarks/bench_vehicle_passage.py --phases`` and Exudyn's solver timers): 2.63
-residual calls per step, one at the predictor and one after each of 1.63 Newton
-iterations (Exudyn's Newton never stops before its first iteration); a call costs ~12 us
-in Python (the numba residual ~8 us, of it the four contacts ~6 us; packing Exudyn's lists
-and returning a list ~3 us) and ~4 us in Exudyn's marshalling. A fresh Jacobian each step
-would need 1.01 iterations, but one costs ~1-2 ms (its Exudyn side alone ~1 ms), and a
-Jacobian every 200 steps (1.28 iterations, 132 Jacobians) about broke even.
+``benchmarks/bench_vehicle_passage.py --phases``, Exudyn's solver timers and instruction
+counts of callgrind): 2.30 residual calls per step, one at the predictor and one after
+each of 1.30 Newton iterations (Exudyn's Newton never stops before its first iteration);
+the residual evaluations are ~85 % of the stepping. One evaluation (~30 us on a quiet
+core) is ~5 us of Exudyn's own (the objects' coordinates and forces), ~6 us of passing
+Exudyn's two 103-coordinate lists to Python and the list back, ~3.5 us packing the lists
+into the kernel's buffer, ~8.5 us the numba residual (of it the four contacts ~6 us, the
+dispatch of its eight arguments ~1.5 us), ~2 us returning a list. A fresh Jacobian each
+step would need 1.0 iterations, but one costs ~1-2 ms (its Exudyn side alone ~1 ms), and a
+Jacobian every 200 steps (1.28 iterations, 132 Jacobians) about broke even. The contacts'
+forces and details of the output columns are recorded during the run
+(:meth:`~exudyn_turnout.passage.contact.vehicle_contacts.VehicleContacts.start_record`),
+not evaluated again after it.
 
 The run starts in the steady state at speed (at rest in the track-following frame): first
 the static equilibrium at rest (lateral position and spin held, as the single wheelset's),
@@ -77,6 +83,8 @@ the vehicle settled).
 
 from __future__ import annotations
 
+import functools
+import gc
 import math
 import time
 from collections.abc import Callable, Mapping
@@ -133,8 +141,10 @@ from exudyn_turnout.passage.vehicle.track_frame import (
     set_initial_vehicle,
 )
 
-__all__ = ["simulate_vehicle"]
+__all__ = ["simulate_vehicle", "NEWTON_TOLERANCE_FACTOR"]
 
+#: ``mbs.variables`` key of a built system's (contacts, body loads, kept objects)
+_VARIABLES_KEY = "exudyn_turnout.corunning_track.vehicle"
 #: s, first part of the dynamic relaxation to the steady state at speed (where the static
 #: solve fails, e.g. in a curve): the car body's lateral mode (~0.7 Hz, damping ratio ~0.45)
 #: settles in it; a slower drift does not (the car body still moved at 1.4 mm/s after 8 s in
@@ -143,6 +153,17 @@ __all__ = ["simulate_vehicle"]
 RELAX_TIME = 8.0
 #: N, the static solves' Newton tolerance (the start residual after the solve at speed)
 STATIC_TOLERANCE = 1e-4
+#: Newton's absolute residual tolerance of a run in units of the passage's
+#: (:func:`~exudyn_turnout.passage.common.newton_tolerance`: 2 N for four wheelsets, so 5 N).
+#: Exudyn's Newton always takes one iteration; a second one is needed where the kept
+#: Jacobian leaves more than the tolerance after it. Measured against 1 (issue 24, README
+#: case: through, 100 km/h, 3 layers, -5..60 m): Newton iterations per step 1.48 -> 1.30,
+#: residual calls per step 2.48 -> 2.30; the 224 per-wheelset peaks of the summary (Fz, Fy
+#: per wheel at switch and crossing, ...) of the through route at 100 km/h and the diverging
+#: route at 80 km/h (check rail), 2 and 3 layers, within 0.058 % (Fz, Fy; the largest a
+#: lateral peak at the switch), their positions within 6 mm. 5.0 (10 N) moved a lateral peak
+#: by 0.11 %.
+NEWTON_TOLERANCE_FACTOR = 2.5
 #: Exudyn's ``modifiedNewtonContractivity`` in a run: the Jacobian is recomputed when a
 #: Newton iteration reduces the residual by less than this factor (Exudyn's default 0.5).
 #: Where contact points move fast (switch, crossing) the kept Jacobian converges slowly;
@@ -200,6 +221,7 @@ def _build(
     frozen: bool,
     x_range: tuple[float, float],
     tables: dict | None = None,
+    parameters: dict | None = None,
 ) -> _System:
     import exudyn as exu
     from exudyn.itemInterface import NodeGenericODE2, ObjectGenericODE2, SensorNode
@@ -230,10 +252,15 @@ def _build(
             if place.beyond
             else inside_zone(place.zone, x_i)
         )
-        params = co_running_parameters(
-            turnout, zone=place.zone.index, layers=settings.layers, source=settings.source
-        )
-        params = replace(params, zone=route.zone(params.zone))
+        # a zone's parameters, derived once per run (``parameters``: zone index -> them)
+        params = None if parameters is None else parameters.get(place.zone.index)
+        if params is None:
+            params = co_running_parameters(
+                turnout, zone=place.zone.index, layers=settings.layers, source=settings.source
+            )
+            params = replace(params, zone=route.zone(params.zone))
+            if parameters is not None:
+                parameters[place.zone.index] = params
         v_track = 0.0 if (place.clamped or place.beyond or frozen) else v
         track = add_co_running_track(
             mbs, params, x_track, v_track, mechanism=settings.track_mechanism, force_object=False
@@ -350,12 +377,12 @@ def _build(
     mbs.AddObject(
         ObjectGenericODE2(
             nodeNumbers=contact_nodes,
-            forceUserFunction=contacts,
+            forceUserFunction=contacts.force_function(),
             jacobianUserFunction=contacts.jacobian_function,
         )
     )
     keep = add_vehicle_loads(mbs, build, loads) if (loads.curved and not fold) else ()
-    mbs.variables["exudyn_turnout.corunning_track.vehicle"] = (contacts, loads, keep)
+    mbs.variables[_VARIABLES_KEY] = (contacts, loads, keep)
     mbs.Assemble()
     system = _System(
         container, mbs, places, elements, params_all, slots_all, names, sensors, loads, x_front
@@ -530,7 +557,9 @@ def _run(
     sim = simulation_settings(duration, h, 0.999 * (settings.output_step or h))
     sim.timeIntegration.numberOfSteps = max(1, int(math.ceil(duration / h - 1e-9)))
     sim.timeIntegration.generalizedAlpha.spectralRadius = settings.spectral_radius
-    sim.timeIntegration.newton.absoluteTolerance = newton_tolerance(len(system.elements))
+    sim.timeIntegration.newton.absoluteTolerance = NEWTON_TOLERANCE_FACTOR * newton_tolerance(
+        len(system.elements)
+    )
     sim.timeIntegration.newton.modifiedNewtonContractivity = _NEWTON_CONTRACTIVITY
     # sparse LU: each track couples to its wheelset only (measured on the full vehicle's
     # through passage: Exudyn's own share of the run -35 %, the run -18 %)
@@ -540,6 +569,14 @@ def _run(
         system.mbs.SetPreStepUserFunction(
             progress_function(progress, t_offset, total, system.x_front, v)
         )
+    # no garbage collection while stepping: the residual calls allocate lists of floats only
+    # (no reference cycles), yet every ~700 of them started a collection (3 % of a run)
+    collecting = gc.isenabled()
+    gc.disable()
+    # the contacts' forces and details of every step, recorded by the compiled residual at
+    # Newton's last call of each time: the output columns without evaluating them again
+    contacts = system.mbs.variables[_VARIABLES_KEY][0]
+    contacts.start_record(int(sim.timeIntegration.numberOfSteps) + 1)
     try:
         system.mbs.SolveDynamic(sim)
     except (exu.SolverError, RuntimeError) as err:
@@ -548,7 +585,12 @@ def _run(
             f"solver failed at t = {t_offset + t:.5f} s, front wheelset at x = "
             f"{system.x_front + v * t:.3f} m: {str(err).strip()}"
         ) from None
+    finally:
+        if collecting:
+            gc.enable()
     cols: dict[str, np.ndarray] = {}
+    times = np.asarray(system.mbs.GetSensorStoredData(system.sensors[0][0][0]))[:, 0]
+    recorded = contacts.recorded(times)
     for i, (element, (pos, vel)) in enumerate(zip(system.elements, system.sensors)):
         stored = [system.mbs.GetSensorStoredData(s) for s in pos]
         stored_t = [system.mbs.GetSensorStoredData(s) for s in vel]
@@ -564,7 +606,9 @@ def _run(
             )
         label = f"ws{i + 1}"
         x_i = system.x_front + _offset_of(system, i) + v * t
-        element_columns = element.columns(t, q, q_t)
+        element_columns = (
+            element.columns(t, q, q_t) if recorded is None else element.columns_of(*recorded[i])
+        )
         if i == 0:
             cols["t_s"], cols["x_m"] = t + t_offset, system.x_front + v * t
             cols.update(element_columns)
@@ -680,15 +724,17 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
         return tuple(_place(turnout, 0.5 * (x_lo + x_hi) + o) for o in offsets)
 
     first = places(events[0], events[1])
+    parameters: dict = {}  # every zone's co-running parameters, shared by the builds
+    build = functools.partial(_build, parameters=parameters)
     args = (turnout, route, model, vehicle, contact, settings)
-    rest = _build(*args, first, x_a, 0.0, True, x_range)
+    rest = build(*args, first, x_a, 0.0, True, x_range)
     _solve_static(rest, "static equilibrium at rest")
     state = _state(rest)
     static_loads = [
         el.wheel_loads(el.x_at(0.0), _element_vector(rest, state, i, 0))
         for i, el in enumerate(rest.elements)
     ]
-    moving = _build(*args, first, x_a, v, True, x_range)
+    moving = build(*args, first, x_a, v, True, x_range)
     set_named_state(moving.mbs, moving.names, state)  # the rest state has K q_geo balanced already
     curvature = max(abs(float(route.curvature(x_a + o))) for o in offsets)
     start = steady_description(settings.speed_kmh, curvature)
@@ -701,7 +747,7 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
         residual = STATIC_TOLERANCE
         start += f" (static solve, spin holds release {_held_spin_torque(moving):.3g} N m)"
     except PassageFailure:  # e.g. in a curve: relax dynamically with x frozen
-        moving = _build(*args, first, x_a, v, True, x_range)
+        moving = build(*args, first, x_a, v, True, x_range)
         set_named_state(moving.mbs, moving.names, state)
         residual, relaxed = _relax(moving, model)
         start += f" (relaxed {relaxed:g} s with x frozen)"
@@ -712,7 +758,7 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
     tables: dict = {}  # the running loads' table, shared by the segments
     for k in range(len(events) - 1):
         x0, x1 = events[k], events[k + 1]
-        system = _build(*args, places(x0, x1), x0, v, False, x_range, tables)
+        system = build(*args, places(x0, x1), x0, v, False, x_range, tables)
         _carry_over(state, previous, system, route, settings.layers, x0, t_prev)
         duration = (x1 - x0) / v
         cols = _run(system, duration, settings, t_offset, total, progress, model.static_wheel_load)
