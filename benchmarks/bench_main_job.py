@@ -59,7 +59,9 @@ import exudyn_turnout.cli.main as cli
 times = {"import (package, CLI)": time.perf_counter() - T0}
 
 def timed(owner, name, label):
-    original = getattr(owner, name)
+    original = getattr(owner, name, None)
+    if original is None:  # an older checkout
+        return
     def wrapper(*args, **kwargs):
         start = time.perf_counter()
         try:
@@ -77,7 +79,8 @@ times["import (Exudyn, numba kernels)"] = time.perf_counter() - T0 - sum(times.v
 timed(profile, "route_contact", "contact set-up (tables from the cache, wheel grid)")
 timed(corunning, "simulate_wheelset", "track runs (model, static start, passage)")
 timed(corunning, "simulate_vehicle", "track runs (model, static start, passage)")
-timed(results, "csv_text", "CSV text")
+timed(results, "csv_text", "CSV (text; write_csv: text and file)")
+timed(results, "write_csv", "CSV (text; write_csv: text and file)")
 timed(curves, "save_figure", "figures: render and save (PNG)")
 timed(results, "write_passage", "writing (CSV, summary, figures)")
 writer = results.write_passage

@@ -191,3 +191,21 @@ def test_contact_points_of_a_result_without_an_unloaded_points_columns():
     assert len(points["x"]) == int(loaded.sum())
     assert np.all(points["y_rail"] == 0.012345678)
     assert np.all(np.isnan(points["angle"]))  # no angle column: NaN
+
+
+@pytest.mark.parametrize("rows", [N, 30_000])  # Python's formatting, the compiled one
+def test_write_csv_writes_the_bytes_of_csv_text(tmp_path, rows):
+    """write_csv (straight from the formatter's buffer) against csv_text written as text."""
+    from exudyn_turnout.passage.results import write_csv
+
+    rng = np.random.default_rng(5)
+    columns = {
+        "t_s": np.arange(rows) * 1e-4,
+        "F_N": rng.normal(size=rows) * 10.0 ** rng.integers(-6, 6, size=rows),
+        "y_m": np.where(rng.random(rows) < 0.3, np.nan, rng.normal(size=rows) * 1e-3),
+        "n": np.arange(rows) % 7,  # integers are written as floats, as csv_text does
+    }
+    write_csv(tmp_path / "a.csv", columns)
+    (tmp_path / "b.csv").write_text(csv_text(columns), encoding="utf-8")
+    assert (tmp_path / "a.csv").read_bytes() == (tmp_path / "b.csv").read_bytes()
+    assert (tmp_path / "a.csv").read_bytes().startswith(b"t_s,F_N,y_m,n\n0,")

@@ -51,6 +51,7 @@ __all__ = [
     "without_empty_columns",
     "keeps_float64",
     "csv_text",
+    "write_csv",
     "NPZ_LEVEL",
     "save_npz",
     "peaks_table",
@@ -736,9 +737,37 @@ def csv_text(columns: Mapping[str, np.ndarray], digits: int = CSV_DIGITS) -> str
     from exudyn_turnout.passage.csv_format import format_rows
 
     names = list(columns)
-    data = np.column_stack([np.asarray(columns[n], dtype=float) for n in names])
-    text = format_rows(data, digits)
-    return ",".join(names) + "\n" + text
+    return ",".join(names) + "\n" + format_rows(_table(columns, names), digits)
+
+
+def _table(columns: Mapping[str, np.ndarray], names: list[str]) -> np.ndarray:
+    """(samples, columns) float64 table of the named columns."""
+    return np.column_stack([np.asarray(columns[n], dtype=float) for n in names])
+
+
+def write_csv(path, columns: Mapping[str, np.ndarray], digits: int = CSV_DIGITS) -> None:
+    """Write :func:`csv_text` of the columns into a file, straight from the formatter's buffer.
+
+    The same bytes as ``Path(path).write_text(csv_text(columns, digits), encoding="utf-8")``
+    (the text is ASCII), without the copies of a ``str``
+    (:func:`~exudyn_turnout.passage.csv_format.format_rows_bytes`).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file, replaced.
+    columns : mapping
+        Name -> 1-D array, all of one length.
+    digits : int
+        Significant digits.
+    """
+    from exudyn_turnout.passage.csv_format import format_rows_bytes
+
+    names = list(columns)
+    body = format_rows_bytes(_table(columns, names), digits)
+    with open(path, "wb") as handle:
+        handle.write((",".join(names) + "\n").encode("utf-8"))
+        handle.write(body)
 
 
 #: zlib level of the NPZ: 1 compresses a passage's doubles as well as numpy's default 6
@@ -845,7 +874,7 @@ def write_passage(
     try:
         series = tmp / f"timeseries.{fmt}"
         if fmt == "csv":
-            series.write_text(csv_text(columns), encoding="utf-8")
+            write_csv(series, columns)
         else:
             arrays = {
                 n: np.asarray(v, dtype=float if keeps_float64(n) else dtype)
