@@ -804,6 +804,7 @@ def write_passage(
     provenance: Mapping | None = None,
     figure: Callable | None = None,
     dtype: str = "float64",
+    parallel: bool | None = None,
 ) -> dict[str, str]:
     """Write the time series and ``summary.json`` into out_dir; return their paths.
 
@@ -834,10 +835,18 @@ def write_passage(
     provenance : mapping, optional
         Stored as ``summary["provenance"]`` (see :mod:`exudyn_turnout.provenance`).
     figure : callable(directory), optional
-        Draws further files (``forces.png``) into the temporary directory before the move.
+        Draws further files (``forces.png``) into the temporary directory before the move;
+        in a forked child process while the time series is written (``parallel``).
     dtype : {"float64", "float32"}
         NPZ only (one of :data:`OUTPUT_DTYPES`): the arrays' type; time and longitudinal
         positions stay float64 (:func:`keeps_float64`).
+    parallel : bool, optional
+        Draw the figures in a child process beside the writing of the time series
+        (:class:`~exudyn_turnout.passage.background.ForkedTask`: the larger of the two
+        times on two cores instead of their sum; a child that fails leaves the figures to
+        this process, which raises their error). Default
+        :func:`~exudyn_turnout.passage.background.can_fork` (Linux, more than one CPU);
+        False: one after the other, in this process.
 
     Returns
     -------
@@ -855,6 +864,7 @@ def write_passage(
     import tempfile
     from pathlib import Path
 
+    from exudyn_turnout.passage.background import ForkedTask
     from exudyn_turnout.provenance import round_floats
 
     if fmt not in ("csv", "npz"):
@@ -873,19 +883,27 @@ def write_passage(
     tmp = Path(tempfile.mkdtemp(prefix=".partial-", dir=out))
     try:
         series = tmp / f"timeseries.{fmt}"
-        if fmt == "csv":
-            write_csv(series, columns)
-        else:
-            arrays = {
-                n: np.asarray(v, dtype=float if keeps_float64(n) else dtype)
-                for n, v in columns.items()
-            }
-            arrays["summary"] = np.array(summary_text)
-            save_npz(series, arrays)
-        (tmp / "summary.json").write_text(summary_text + "\n", encoding="utf-8")
-        files = [series.name]
+        drawing = None
         if figure is not None:
-            figure(tmp)
+            drawing = ForkedTask(lambda: figure(tmp), fork=parallel)
+        try:
+            if fmt == "csv":
+                write_csv(series, columns)
+            else:
+                arrays = {
+                    n: np.asarray(v, dtype=float if keeps_float64(n) else dtype)
+                    for n, v in columns.items()
+                }
+                arrays["summary"] = np.array(summary_text)
+                save_npz(series, arrays)
+            (tmp / "summary.json").write_text(summary_text + "\n", encoding="utf-8")
+        except BaseException:
+            if drawing is not None:
+                drawing.stop()
+            raise
+        files = [series.name]
+        if drawing is not None:
+            drawing.join()
             written = (series.name, "summary.json")
             files += sorted(p.name for p in tmp.iterdir() if p.name not in written)
         for name in files + ["summary.json"]:
