@@ -193,8 +193,11 @@ def test_contact_points_of_a_result_without_an_unloaded_points_columns():
     assert np.all(np.isnan(points["angle"]))  # no angle column: NaN
 
 
-@pytest.mark.parametrize("rows", [N, 30_000])  # Python's formatting, the compiled one
-def test_write_csv_writes_the_bytes_of_csv_text(tmp_path, rows):
+@pytest.mark.parametrize(
+    "rows, block",
+    [(N, 1 << 16), (30_000, 1 << 16), (30_000, 4 * 999), (30_001, 7)],  # Python's, compiled
+)
+def test_write_csv_writes_the_bytes_of_csv_text(tmp_path, rows, block):
     """write_csv (straight from the formatter's buffer) against csv_text written as text."""
     from exudyn_turnout.passage.results import write_csv
 
@@ -205,7 +208,7 @@ def test_write_csv_writes_the_bytes_of_csv_text(tmp_path, rows):
         "y_m": np.where(rng.random(rows) < 0.3, np.nan, rng.normal(size=rows) * 1e-3),
         "n": np.arange(rows) % 7,  # integers are written as floats, as csv_text does
     }
-    write_csv(tmp_path / "a.csv", columns)
+    write_csv(tmp_path / "a.csv", columns, block=block)  # blocks of 1 to 16,384 rows
     (tmp_path / "b.csv").write_text(csv_text(columns), encoding="utf-8")
     assert (tmp_path / "a.csv").read_bytes() == (tmp_path / "b.csv").read_bytes()
     assert (tmp_path / "a.csv").read_bytes().startswith(b"t_s,F_N,y_m,n\n0,")

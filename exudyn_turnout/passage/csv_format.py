@@ -18,7 +18,14 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-__all__ = ["COMPILED_FROM", "format_rows", "format_rows_bytes", "python_rows"]
+__all__ = [
+    "COMPILED_FROM",
+    "format_rows",
+    "format_rows_bytes",
+    "format_into",
+    "buffer_size",
+    "python_rows",
+]
 
 _COMMA, _NEWLINE, _POINT, _MINUS, _ZERO = 44, 10, 46, 45, 48
 
@@ -154,10 +161,46 @@ def _put_value(out, pos, v, digits, top, buf):
     return pos
 
 
+def buffer_size(rows: int, columns: int, digits: int) -> int:
+    """Bytes the text of a table can take at most (the buffer of :func:`format_into`).
+
+    Parameters
+    ----------
+    rows, columns : int
+        The table's shape.
+    digits : int
+        Significant digits.
+
+    Returns
+    -------
+    int
+        ``digits + 8`` per value (sign, point, exponent, separator), one per line end.
+    """
+    return rows * (columns * (digits + 8) + 1)
+
+
 @numba.njit(cache=True)
-def _format(data, digits):
+def format_into(data, digits, out):  # pragma: no cover (compiled)
+    """Write the CSV lines of ``data`` into ``out``; return the number of bytes written.
+
+    The compiled core of :func:`format_rows`, writing into a buffer the caller gives (and
+    may use again: a file is written in blocks of rows through one small buffer).
+
+    Parameters
+    ----------
+    data : numpy.ndarray
+        (rows, columns) float64, C-contiguous.
+    digits : int
+        Significant digits, 1 to 10.
+    out : numpy.ndarray
+        uint8, at least :func:`buffer_size` long.
+
+    Returns
+    -------
+    int
+        Bytes written from ``out[0]`` on.
+    """
     n, m = data.shape
-    out = np.empty(n * (m * (digits + 8) + 1), np.uint8)
     top = np.int64(10) ** digits
     buf = np.empty(digits, np.int64)
     pos = 0
@@ -168,7 +211,14 @@ def _format(data, digits):
                 pos = _put_value(out, pos, v, digits, top, buf)
             out[pos] = _COMMA if j < m - 1 else _NEWLINE
             pos += 1
-    return out[:pos]
+    return pos
+
+
+@numba.njit(cache=True)
+def _format(data, digits):
+    n, m = data.shape
+    out = np.empty(n * (m * (digits + 8) + 1), np.uint8)
+    return out[: format_into(data, digits, out)]
 
 
 #: Tables of fewer values are formatted by Python (no compilation on a first, small run).

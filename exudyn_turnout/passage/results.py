@@ -745,12 +745,16 @@ def _table(columns: Mapping[str, np.ndarray], names: list[str]) -> np.ndarray:
     return np.column_stack([np.asarray(columns[n], dtype=float) for n in names])
 
 
-def write_csv(path, columns: Mapping[str, np.ndarray], digits: int = CSV_DIGITS) -> None:
-    """Write :func:`csv_text` of the columns into a file, straight from the formatter's buffer.
+def write_csv(
+    path, columns: Mapping[str, np.ndarray], digits: int = CSV_DIGITS, block: int = 1 << 16
+) -> None:
+    """Write :func:`csv_text` of the columns into a file, in blocks of rows.
 
     The same bytes as ``Path(path).write_text(csv_text(columns, digits), encoding="utf-8")``
-    (the text is ASCII), without the copies of a ``str``
-    (:func:`~exudyn_turnout.passage.csv_format.format_rows_bytes`).
+    (the text is ASCII), formatted block by block of about ``block`` values into one small
+    buffer (:func:`~exudyn_turnout.passage.csv_format.format_into`) and written from it:
+    neither the whole table (45 MB for the full vehicle's main job) nor its text (58 MB)
+    is ever held, nor copied into a ``str``.
 
     Parameters
     ----------
@@ -759,15 +763,35 @@ def write_csv(path, columns: Mapping[str, np.ndarray], digits: int = CSV_DIGITS)
     columns : mapping
         Name -> 1-D array, all of one length.
     digits : int
-        Significant digits.
+        Significant digits, 1 to 10.
+    block : int
+        Values per block (rows of at least one).
     """
-    from exudyn_turnout.passage.csv_format import format_rows_bytes
+    from exudyn_turnout.passage.csv_format import (
+        COMPILED_FROM,
+        buffer_size,
+        format_into,
+        format_rows_bytes,
+    )
 
     names = list(columns)
-    body = format_rows_bytes(_table(columns, names), digits)
+    arrays = [np.asarray(columns[n]) for n in names]
+    rows = arrays[0].shape[0] if arrays else 0
     with open(path, "wb") as handle:
         handle.write((",".join(names) + "\n").encode("utf-8"))
-        handle.write(body)
+        if rows * len(names) < COMPILED_FROM:  # small: Python's formatting, as csv_text
+            handle.write(format_rows_bytes(_table(columns, names), digits))
+            return
+        if not 1 <= digits <= 10:
+            raise ValueError(f"digits must be 1 to 10, got {digits}")
+        step = max(1, block // len(names))
+        table = np.empty((step, len(names)))
+        text = np.empty(buffer_size(step, len(names), digits), np.uint8)
+        for start in range(0, rows, step):
+            part = table[: min(step, rows - start)]
+            for j, values in enumerate(arrays):
+                part[:, j] = values[start : start + step]
+            handle.write(memoryview(text)[: format_into(part, digits, text)])
 
 
 #: zlib level of the NPZ: 1 compresses a passage's doubles as well as numpy's default 6
