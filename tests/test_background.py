@@ -101,12 +101,19 @@ def _figure(directory) -> None:
     (directory / "figure.txt").write_text(f"{np.sum(_result().columns['Fz_right_N']):.9g}")
 
 
+def _second_figure(directory) -> None:
+    (directory / "second.txt").write_text(f"{np.max(_result().columns['x_m']):.9g}")
+
+
 @pytest.mark.parametrize("parallel", [False, pytest.param(True, marks=linux_only)])
-def test_write_passage_files_are_the_same_drawn_beside_or_after(tmp_path, parallel):
-    write_passage(_result(), tmp_path / "ref", figure=_figure, parallel=False)
-    write_passage(_result(), tmp_path / "run", figure=_figure, parallel=parallel)
+@pytest.mark.parametrize("groups", [1, 2])
+def test_write_passage_files_are_the_same_drawn_beside_or_after(tmp_path, parallel, groups):
+    figure = _figure if groups == 1 else [_figure, _second_figure]
+    write_passage(_result(), tmp_path / "ref", figure=figure, parallel=False)
+    write_passage(_result(), tmp_path / "run", figure=figure, parallel=parallel)
     names = sorted(p.name for p in (tmp_path / "ref").iterdir())
-    assert names == ["figure.txt", "summary.json", "timeseries.csv"]
+    expected = ["figure.txt", "summary.json", "timeseries.csv"]
+    assert names == sorted(expected + ([] if groups == 1 else ["second.txt"]))
     assert sorted(p.name for p in (tmp_path / "run").iterdir()) == names
     for name in names:
         assert (tmp_path / "run" / name).read_bytes() == (tmp_path / "ref" / name).read_bytes()
@@ -119,5 +126,5 @@ def test_write_passage_failing_figure_raises_and_leaves_no_partial_files(tmp_pat
         raise RuntimeError("figure failed")
 
     with pytest.raises(RuntimeError, match="figure failed"):
-        write_passage(_result(), tmp_path, figure=bad, parallel=True)
+        write_passage(_result(), tmp_path, figure=[_figure, bad], parallel=True)
     assert list(tmp_path.iterdir()) == []

@@ -85,7 +85,11 @@ class ForkedTask:
                 pass
         with warnings.catch_warnings():  # Python >= 3.12 warns of fork with threads
             warnings.simplefilter("ignore", DeprecationWarning)
-            pid = os.fork()
+            try:
+                pid = os.fork()
+            except OSError:  # no process to be had: the task runs at join
+                Path(self._report).unlink(missing_ok=True)
+                return
         if pid == 0:  # the child: run, report, never return into the caller's code
             code = 1
             try:

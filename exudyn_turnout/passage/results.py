@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, fields
 from typing import Any
 
@@ -826,7 +826,7 @@ def write_passage(
     out_dir,
     fmt: str = "csv",
     provenance: Mapping | None = None,
-    figure: Callable | None = None,
+    figure: Callable | Sequence[Callable] | None = None,
     dtype: str = "float64",
     parallel: bool | None = None,
 ) -> dict[str, str]:
@@ -858,9 +858,10 @@ def write_passage(
         float32, against 15.0 MB uncompressed).
     provenance : mapping, optional
         Stored as ``summary["provenance"]`` (see :mod:`exudyn_turnout.provenance`).
-    figure : callable(directory), optional
+    figure : callable(directory) or sequence of them, optional
         Draws further files (``forces.png``) into the temporary directory before the move;
-        in a forked child process while the time series is written (``parallel``).
+        each in a forked child process while the time series is written (``parallel``),
+        else one after the other.
     dtype : {"float64", "float32"}
         NPZ only (one of :data:`OUTPUT_DTYPES`): the arrays' type; time and longitudinal
         positions stay float64 (:func:`keeps_float64`).
@@ -907,9 +908,8 @@ def write_passage(
     tmp = Path(tempfile.mkdtemp(prefix=".partial-", dir=out))
     try:
         series = tmp / f"timeseries.{fmt}"
-        drawing = None
-        if figure is not None:
-            drawing = ForkedTask(lambda: figure(tmp), fork=parallel)
+        groups = [] if figure is None else [figure] if callable(figure) else list(figure)
+        drawings = [ForkedTask(lambda draw=draw: draw(tmp), fork=parallel) for draw in groups]
         try:
             if fmt == "csv":
                 write_csv(series, columns)
@@ -921,13 +921,14 @@ def write_passage(
                 arrays["summary"] = np.array(summary_text)
                 save_npz(series, arrays)
             (tmp / "summary.json").write_text(summary_text + "\n", encoding="utf-8")
+            for drawing in drawings:
+                drawing.join()
         except BaseException:
-            if drawing is not None:
+            for drawing in drawings:
                 drawing.stop()
             raise
         files = [series.name]
-        if drawing is not None:
-            drawing.join()
+        if drawings:
             written = (series.name, "summary.json")
             files += sorted(p.name for p in tmp.iterdir() if p.name not in written)
         for name in files + ["summary.json"]:
