@@ -791,7 +791,7 @@ def write_csv(
             part = table[: min(step, rows - start)]
             for j, values in enumerate(arrays):
                 part[:, j] = values[start : start + step]
-            handle.write(memoryview(text)[: format_into(part, digits, text)])
+            handle.write(text[: format_into(part, digits, text)].data)
 
 
 #: zlib level of the NPZ: 1 compresses a passage's doubles as well as numpy's default 6
@@ -887,6 +887,7 @@ def write_passage(
     import os
     import shutil
     import tempfile
+    from functools import partial
     from pathlib import Path
 
     from exudyn_turnout.passage.background import ForkedTask
@@ -909,7 +910,7 @@ def write_passage(
     try:
         series = tmp / f"timeseries.{fmt}"
         groups = [] if figure is None else [figure] if callable(figure) else list(figure)
-        drawings = [ForkedTask(lambda draw=draw: draw(tmp), fork=parallel) for draw in groups]
+        drawings = [ForkedTask(partial(draw, tmp), fork=parallel) for draw in groups]
         try:
             if fmt == "csv":
                 write_csv(series, columns)
