@@ -212,3 +212,30 @@ def test_write_csv_writes_the_bytes_of_csv_text(tmp_path, rows, block):
     (tmp_path / "b.csv").write_text(csv_text(columns), encoding="utf-8")
     assert (tmp_path / "a.csv").read_bytes() == (tmp_path / "b.csv").read_bytes()
     assert (tmp_path / "a.csv").read_bytes().startswith(b"t_s,F_N,y_m,n\n0,")
+
+
+def test_png_figures_are_saved_at_the_fast_compression_level(tmp_path):
+    """save_figure writes PNG at zlib level 1 (the same pixels as Pillow's default level)."""
+    from PIL import Image
+
+    from exudyn_turnout.plotting.backend import PNG_COMPRESS_LEVEL, pyplot, save_options
+    from exudyn_turnout.plotting.curves import save_figure
+
+    assert save_options("a/forces.png") == {"pil_kwargs": {"compress_level": PNG_COMPRESS_LEVEL}}
+    assert save_options("a/forces.pdf") == {}  # other formats take no Pillow options
+    plt = pyplot()
+    pixels = []
+    for name, options in (("fast.png", None), ("default.png", {})):
+        fig, ax = plt.subplots(figsize=(3, 2))
+        ax.plot(np.sin(np.linspace(0.0, 20.0, 500)))
+        if options is None:
+            save_figure(fig, tmp_path / name, dpi=80)
+        else:
+            fig.savefig(tmp_path / name, dpi=80)
+            plt.close(fig)
+        with Image.open(tmp_path / name) as image:
+            pixels.append(np.asarray(image))
+    np.testing.assert_array_equal(pixels[0], pixels[1])
+    fig, ax = plt.subplots(figsize=(3, 2))
+    save_figure(fig, tmp_path / "vector.pdf")  # no Pillow option passed to the PDF writer
+    assert (tmp_path / "vector.pdf").read_bytes().startswith(b"%PDF")
