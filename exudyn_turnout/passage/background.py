@@ -17,6 +17,7 @@ issued again in the caller, with their category, file and line.
 
 from __future__ import annotations
 
+import gc
 import os
 import pickle
 import signal
@@ -92,6 +93,9 @@ class ForkedTask:
                 return
         if pid == 0:  # the child: run, report, never return into the caller's code
             code = 1
+            # the caller's objects out of the collector's reach: a collection walking them
+            # would write to (and so copy) every page of the caller's heap
+            gc.freeze()
             try:
                 with warnings.catch_warnings(record=True) as caught:
                     warnings.simplefilter("always")  # the caller's filters decide
