@@ -1,7 +1,7 @@
 """The main job's wall time, warm and cold, and where a run spends it (issue 24).
 
 Run: ``python benchmarks/bench_main_job.py [--repeats N] [--cases a,b,c] [--cold]
-[--sections] [--checkout DIR]``.
+[--sections] [--checkout DIR] [--versus DIR]``.
 
 Cases, each ``exudyn-turnout simulate ... --route through --speed 100 --out DIR`` as a
 fresh process (the whole run: interpreter, imports, files, contact set-up, static start,
@@ -22,9 +22,15 @@ numba kernels stay compiled, they are cached next to the package). Goals (issue 
 
 ``--sections``: one more warm run per case in a fresh process, with the wall time of each
 stage (import, contact set-up, track runs, CSV, figures) measured by wrapping the
-package's public functions; printed as a table. ``--checkout DIR``: time the package of
-another checkout (its ``PYTHONPATH``), e.g. an earlier commit unpacked with ``git
-archive``.
+package's public functions; printed as a table (figures drawn in forked children, as
+from issue 24 on, are timed only within "writing"). ``--checkout DIR``: time the package
+of another checkout (its ``PYTHONPATH``), e.g. an earlier commit unpacked with ``git
+archive``. ``--versus DIR``: time that checkout as well, run for run alternating with
+this one (``versus, this, versus, this, ...``, each run between two yardstick runs), so
+that both see the same load: the before/after of a change, measured in one run.
+
+CPU s is that of the command and of every process it waited for (the figures' children
+included): on a loaded machine the closest to the cost on an idle one.
 """
 
 from __future__ import annotations
@@ -33,6 +39,7 @@ import argparse
 import json
 import os
 import shutil
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -59,7 +66,9 @@ import exudyn_turnout.cli.main as cli
 times = {"import (package, CLI)": time.perf_counter() - T0}
 
 def timed(owner, name, label):
-    original = getattr(owner, name)
+    original = getattr(owner, name, None)
+    if original is None:  # an older checkout
+        return
     def wrapper(*args, **kwargs):
         start = time.perf_counter()
         try:
@@ -77,13 +86,21 @@ times["import (Exudyn, numba kernels)"] = time.perf_counter() - T0 - sum(times.v
 timed(profile, "route_contact", "contact set-up (tables from the cache, wheel grid)")
 timed(corunning, "simulate_wheelset", "track runs (model, static start, passage)")
 timed(corunning, "simulate_vehicle", "track runs (model, static start, passage)")
-timed(results, "csv_text", "CSV text")
+timed(results, "csv_text", "CSV (text; write_csv: text and file)")
+timed(results, "write_csv", "CSV (text; write_csv: text and file)")
 timed(curves, "save_figure", "figures: render and save (PNG)")
 timed(results, "write_passage", "writing (CSV, summary, figures)")
 writer = results.write_passage
 
+try:  # from issue 24 on the figures are drawn in forked children: no import here
+    import exudyn_turnout.passage.background
+    FORKED = True
+except ImportError:
+    FORKED = False
+
 def write_passage(*args, **kwargs):
-    if kwargs.get("figure") is not None and "matplotlib.pyplot" not in sys.modules:
+    drawn_here = kwargs.get("figure") is not None and not FORKED
+    if drawn_here and "matplotlib.pyplot" not in sys.modules:
         start = time.perf_counter()
         backend.pyplot()  # the figures' first call would import it
         times["figures: import matplotlib"] = time.perf_counter() - start
@@ -151,6 +168,17 @@ def _sections(case: str, work: Path, env: dict) -> dict:
     return json.loads(err.strip().splitlines()[-1])
 
 
+def _summary(timings: list) -> tuple[float, float, float, list[float]]:
+    """Median wall s, CPU s and yardstick units of single-run timings; the wall samples."""
+    walls = [t.seconds for t in timings]
+    return (
+        statistics.median(walls),
+        statistics.median(t.cpu_seconds for t in timings),
+        statistics.median(t.units for t in timings),
+        walls,
+    )
+
+
 def main(argv: list[str] | None = None) -> int:
     """Measure the cases; print a markdown table (and the sections with ``--sections``).
 
@@ -170,41 +198,68 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--cold", action="store_true", help="also cold (empty table cache)")
     parser.add_argument("--sections", action="store_true", help="stage times of one run")
     parser.add_argument("--checkout", help="time this checkout's package (PYTHONPATH)")
+    parser.add_argument(
+        "--versus",
+        metavar="DIR",
+        help="also time this checkout (e.g. the commit before), run for run alternating "
+        "with the other one, each run between two yardstick runs",
+    )
     args = parser.parse_args(argv)
     cases = [c.strip() for c in args.cases.split(",")]
     unknown = [c for c in cases if c not in CASES]
     if unknown:
         parser.error(f"unknown case(s) {unknown}; cases: {', '.join(CASES)}")
-    env = dict(os.environ)
+    checkouts = {"this": dict(os.environ)}
     if args.checkout:
-        env["PYTHONPATH"] = str(Path(args.checkout).resolve())
+        checkouts["this"]["PYTHONPATH"] = str(Path(args.checkout).resolve())
+    if args.versus:
+        checkouts = {
+            "versus": dict(os.environ, PYTHONPATH=str(Path(args.versus).resolve())),
+            **checkouts,
+        }
     stick = Yardstick()
     work = Path(tempfile.mkdtemp(prefix="main-job-"))
     rows = []
-    sections = {}
+    sections: dict[str, dict] = {}
     try:
         for case in cases:
             argv_case = command(case, work / case)
-            print(f"... {case}: {CASES[case][0]}, warm", file=sys.stderr, flush=True)
-            warm = stick.measure(lambda a=argv_case: _run(a, env), args.repeats)
-            rows.append((case, "warm", warm))
-            if args.cold:
-                print(f"... {case}: cold", file=sys.stderr, flush=True)
-                cold = stick.measure(lambda a=argv_case: _cold(a, env), args.repeats, warm_up=False)
-                rows.append((case, "cold", cold))
+            kinds = [("warm", _run)] + ([("cold", _cold)] if args.cold else [])
+            for kind, runner in kinds:
+                print(f"... {case}: {CASES[case][0]}, {kind}", file=sys.stderr, flush=True)
+                if kind == "warm":
+                    for env in checkouts.values():  # untimed: tables cached, kernels compiled
+                        _run(argv_case, env)
+                timings: dict[str, list] = {name: [] for name in checkouts}
+                for _ in range(args.repeats):
+                    for name, env in checkouts.items():
+                        timings[name].append(
+                            stick.measure(
+                                lambda r=runner, a=argv_case, e=env: r(a, e), 1, warm_up=False
+                            )
+                        )
+                for name in checkouts:
+                    rows.append((case, kind, name, _summary(timings[name])))
             if args.sections:
-                sections[case] = _sections(case, work, env)
+                for name, env in checkouts.items():
+                    sections[f"{case} ({name})" if args.versus else case] = _sections(
+                        case, work, env
+                    )
     finally:
         shutil.rmtree(work, ignore_errors=True)
     print(machine_line())
-    print(f"checkout: {args.checkout or 'this one'}; repeats {args.repeats}\n")
-    print("| case | cache | wall s (median) | CPU s | yardstick units | wall samples s |")
-    print("|---|---|---|---|---|---|")
-    for case, kind, t in rows:
-        samples = ", ".join(f"{s:.1f}" for s in t.samples)
+    where = {"this": args.checkout or "this one", "versus": args.versus}
+    print("checkouts: " + "; ".join(f"{n}: {where[n]}" for n in checkouts), end="")
+    print(f"; repeats {args.repeats}\n")
+    print(
+        "| case | cache | checkout | wall s (median) | CPU s | yardstick units | wall samples s |"
+    )
+    print("|---|---|---|---|---|---|---|")
+    for case, kind, name, (wall, cpu, units, samples) in rows:
+        text = ", ".join(f"{s:.1f}" for s in samples)
         print(
-            f"| {case}: {CASES[case][0]} | {kind} | {t.seconds:.1f} | {t.cpu_seconds:.1f} | "
-            f"{t.units:.1f} | {samples} |"
+            f"| {case}: {CASES[case][0]} | {kind} | {name} | {wall:.1f} | {cpu:.1f} | "
+            f"{units:.1f} | {text} |"
         )
     yard = sorted(stick.times)
     print(f"\nyardstick: {len(yard)} runs, median {yard[len(yard) // 2]:.3f} s wall")

@@ -191,3 +191,51 @@ def test_contact_points_of_a_result_without_an_unloaded_points_columns():
     assert len(points["x"]) == int(loaded.sum())
     assert np.all(points["y_rail"] == 0.012345678)
     assert np.all(np.isnan(points["angle"]))  # no angle column: NaN
+
+
+@pytest.mark.parametrize(
+    "rows, block",
+    [(N, 1 << 16), (30_000, 1 << 16), (30_000, 4 * 999), (30_001, 7)],  # Python's, compiled
+)
+def test_write_csv_writes_the_bytes_of_csv_text(tmp_path, rows, block):
+    """write_csv (straight from the formatter's buffer) against csv_text written as text."""
+    from exudyn_turnout.passage.results import write_csv
+
+    rng = np.random.default_rng(5)
+    columns = {
+        "t_s": np.arange(rows) * 1e-4,
+        "F_N": rng.normal(size=rows) * 10.0 ** rng.integers(-6, 6, size=rows),
+        "y_m": np.where(rng.random(rows) < 0.3, np.nan, rng.normal(size=rows) * 1e-3),
+        "n": np.arange(rows) % 7,  # integers are written as floats, as csv_text does
+    }
+    write_csv(tmp_path / "a.csv", columns, block=block)  # blocks of 1 to 16,384 rows
+    (tmp_path / "b.csv").write_text(csv_text(columns), encoding="utf-8")
+    assert (tmp_path / "a.csv").read_bytes() == (tmp_path / "b.csv").read_bytes()
+    assert (tmp_path / "a.csv").read_bytes().startswith(b"t_s,F_N,y_m,n\n0,")
+
+
+def test_png_figures_are_saved_at_the_fast_compression_level(tmp_path):
+    """save_figure writes PNG at zlib level 1 (the same pixels as Pillow's default level)."""
+    from PIL import Image
+
+    from exudyn_turnout.plotting.backend import PNG_COMPRESS_LEVEL, pyplot, save_options
+    from exudyn_turnout.plotting.curves import save_figure
+
+    assert save_options("a/forces.png") == {"pil_kwargs": {"compress_level": PNG_COMPRESS_LEVEL}}
+    assert save_options("a/forces.pdf") == {}  # other formats take no Pillow options
+    plt = pyplot()
+    pixels = []
+    for name, options in (("fast.png", None), ("default.png", {})):
+        fig, ax = plt.subplots(figsize=(3, 2))
+        ax.plot(np.sin(np.linspace(0.0, 20.0, 500)))
+        if options is None:
+            save_figure(fig, tmp_path / name, dpi=80)
+        else:
+            fig.savefig(tmp_path / name, dpi=80)
+            plt.close(fig)
+        with Image.open(tmp_path / name) as image:
+            pixels.append(np.asarray(image))
+    np.testing.assert_array_equal(pixels[0], pixels[1])
+    fig, ax = plt.subplots(figsize=(3, 2))
+    save_figure(fig, tmp_path / "vector.pdf")  # no Pillow option passed to the PDF writer
+    assert (tmp_path / "vector.pdf").read_bytes().startswith(b"%PDF")

@@ -675,26 +675,35 @@ def _run_and_write(
     record = provenance(settings, turnout=turnout, vehicle=vehicle, argv=argv)
     figure = None
     if not args.no_plot:
+        vehicle = "az_car_centre_mps2" in result.columns  # a full vehicle: wheelsets, bodies
 
-        def figure(directory: Path) -> None:
+        def forces_figures(directory: Path) -> None:
             from exudyn_turnout.plotting.curves import plot_passage_forces, save_figure
-            from exudyn_turnout.plotting.safety import plot_passage_safety
 
             if forces:
                 fig, _ = plot_passage_forces([result], wheel="right", title=title)
                 save_figure(fig, str(directory / "forces.png"), dpi=120)
-            fig, _ = plot_passage_safety(result, title=title)
-            save_figure(fig, str(directory / "safety.png"), dpi=110)
-            if "az_car_centre_mps2" in result.columns:  # a full vehicle: wheelsets, bodies
-                for name, draw in (
-                    ("wheelsets", result.plot_wheelsets),
-                    ("bodies", result.plot_bodies),
-                ):
-                    save_figure(draw(title=title)[0], str(directory / f"{name}.png"), dpi=100)
             if len(result.contact_points("right")["x"]):  # profile contact
                 result.plot_contact_band(
                     directory / "contact_band.png", "right", title=f"{title}, right wheel"
                 )
+            if vehicle:
+                fig = result.plot_wheelsets(title=title)[0]
+                save_figure(fig, str(directory / "wheelsets.png"), dpi=100)
+
+        def safety_figures(directory: Path) -> None:
+            from exudyn_turnout.plotting.curves import save_figure
+            from exudyn_turnout.plotting.safety import plot_passage_safety
+
+            fig, _ = plot_passage_safety(result, title=title)
+            save_figure(fig, str(directory / "safety.png"), dpi=110)
+            if vehicle:
+                save_figure(
+                    result.plot_bodies(title=title)[0], str(directory / "bodies.png"), dpi=100
+                )
+
+        # two groups of about equal cost, drawn beside the time series (write_passage)
+        figure = [forces_figures, safety_figures]
 
     try:
         dtype = "float32" if getattr(args, "float32", False) else "float64"

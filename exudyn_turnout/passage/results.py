@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, fields
 from typing import Any
 
@@ -51,6 +51,7 @@ __all__ = [
     "without_empty_columns",
     "keeps_float64",
     "csv_text",
+    "write_csv",
     "NPZ_LEVEL",
     "save_npz",
     "peaks_table",
@@ -736,9 +737,61 @@ def csv_text(columns: Mapping[str, np.ndarray], digits: int = CSV_DIGITS) -> str
     from exudyn_turnout.passage.csv_format import format_rows
 
     names = list(columns)
-    data = np.column_stack([np.asarray(columns[n], dtype=float) for n in names])
-    text = format_rows(data, digits)
-    return ",".join(names) + "\n" + text
+    return ",".join(names) + "\n" + format_rows(_table(columns, names), digits)
+
+
+def _table(columns: Mapping[str, np.ndarray], names: list[str]) -> np.ndarray:
+    """(samples, columns) float64 table of the named columns."""
+    return np.column_stack([np.asarray(columns[n], dtype=float) for n in names])
+
+
+def write_csv(
+    path, columns: Mapping[str, np.ndarray], digits: int = CSV_DIGITS, block: int = 1 << 16
+) -> None:
+    """Write :func:`csv_text` of the columns into a file, in blocks of rows.
+
+    The same bytes as ``Path(path).write_text(csv_text(columns, digits), encoding="utf-8")``
+    (the text is ASCII), formatted block by block of about ``block`` values into one small
+    buffer (:func:`~exudyn_turnout.passage.csv_format.format_into`) and written from it:
+    neither the whole table (45 MB for the full vehicle's main job) nor its text (58 MB)
+    is ever held, nor copied into a ``str``.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file, replaced.
+    columns : mapping
+        Name -> 1-D array, all of one length.
+    digits : int
+        Significant digits, 1 to 10.
+    block : int
+        Values per block (rows of at least one).
+    """
+    from exudyn_turnout.passage.csv_format import (
+        COMPILED_FROM,
+        buffer_size,
+        format_into,
+        format_rows_bytes,
+    )
+
+    names = list(columns)
+    arrays = [np.asarray(columns[n]) for n in names]
+    rows = arrays[0].shape[0] if arrays else 0
+    with open(path, "wb") as handle:
+        handle.write((",".join(names) + "\n").encode("utf-8"))
+        if rows * len(names) < COMPILED_FROM:  # small: Python's formatting, as csv_text
+            handle.write(format_rows_bytes(_table(columns, names), digits))
+            return
+        if not 1 <= digits <= 10:
+            raise ValueError(f"digits must be 1 to 10, got {digits}")
+        step = max(1, block // len(names))
+        table = np.empty((step, len(names)))
+        text = np.empty(buffer_size(step, len(names), digits), np.uint8)
+        for start in range(0, rows, step):
+            part = table[: min(step, rows - start)]
+            for j, values in enumerate(arrays):
+                part[:, j] = values[start : start + step]
+            handle.write(text[: format_into(part, digits, text)].data)
 
 
 #: zlib level of the NPZ: 1 compresses a passage's doubles as well as numpy's default 6
@@ -773,8 +826,9 @@ def write_passage(
     out_dir,
     fmt: str = "csv",
     provenance: Mapping | None = None,
-    figure: Callable | None = None,
+    figure: Callable | Sequence[Callable] | None = None,
     dtype: str = "float64",
+    parallel: bool | None = None,
 ) -> dict[str, str]:
     """Write the time series and ``summary.json`` into out_dir; return their paths.
 
@@ -804,11 +858,20 @@ def write_passage(
         float32, against 15.0 MB uncompressed).
     provenance : mapping, optional
         Stored as ``summary["provenance"]`` (see :mod:`exudyn_turnout.provenance`).
-    figure : callable(directory), optional
-        Draws further files (``forces.png``) into the temporary directory before the move.
+    figure : callable(directory) or sequence of them, optional
+        Draws further files (``forces.png``) into the temporary directory before the move;
+        each in a forked child process while the time series is written (``parallel``),
+        else one after the other.
     dtype : {"float64", "float32"}
         NPZ only (one of :data:`OUTPUT_DTYPES`): the arrays' type; time and longitudinal
         positions stay float64 (:func:`keeps_float64`).
+    parallel : bool, optional
+        Draw the figures in a child process beside the writing of the time series
+        (:class:`~exudyn_turnout.passage.background.ForkedTask`: the larger of the two
+        times on two cores instead of their sum; a child that fails leaves the figures to
+        this process, which raises their error). Default
+        :func:`~exudyn_turnout.passage.background.can_fork` (Linux, more than one CPU);
+        False: one after the other, in this process.
 
     Returns
     -------
@@ -824,8 +887,10 @@ def write_passage(
     import os
     import shutil
     import tempfile
+    from functools import partial
     from pathlib import Path
 
+    from exudyn_turnout.passage.background import ForkedTask
     from exudyn_turnout.provenance import round_floats
 
     if fmt not in ("csv", "npz"):
@@ -844,19 +909,27 @@ def write_passage(
     tmp = Path(tempfile.mkdtemp(prefix=".partial-", dir=out))
     try:
         series = tmp / f"timeseries.{fmt}"
-        if fmt == "csv":
-            series.write_text(csv_text(columns), encoding="utf-8")
-        else:
-            arrays = {
-                n: np.asarray(v, dtype=float if keeps_float64(n) else dtype)
-                for n, v in columns.items()
-            }
-            arrays["summary"] = np.array(summary_text)
-            save_npz(series, arrays)
-        (tmp / "summary.json").write_text(summary_text + "\n", encoding="utf-8")
+        groups = [] if figure is None else [figure] if callable(figure) else list(figure)
+        drawings = [ForkedTask(partial(draw, tmp), fork=parallel) for draw in groups]
+        try:
+            if fmt == "csv":
+                write_csv(series, columns)
+            else:
+                arrays = {
+                    n: np.asarray(v, dtype=float if keeps_float64(n) else dtype)
+                    for n, v in columns.items()
+                }
+                arrays["summary"] = np.array(summary_text)
+                save_npz(series, arrays)
+            (tmp / "summary.json").write_text(summary_text + "\n", encoding="utf-8")
+            for drawing in drawings:
+                drawing.join()
+        except BaseException:
+            for drawing in drawings:
+                drawing.stop()
+            raise
         files = [series.name]
-        if figure is not None:
-            figure(tmp)
+        if drawings:
             written = (series.name, "summary.json")
             files += sorted(p.name for p in tmp.iterdir() if p.name not in written)
         for name in files + ["summary.json"]:

@@ -13,7 +13,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from exudyn_turnout.plotting.backend import TITLE_LINE, place_axes, pyplot
+from exudyn_turnout.plotting.backend import TITLE_LINE, place_axes, pyplot, save_options
 from exudyn_turnout.receptance import Receptance
 
 __all__ = [
@@ -524,7 +524,7 @@ def save_figure(fig, path, dpi: int = 100) -> None:
         Resolution (dots per inch) of raster formats.
     """
     plt = pyplot()
-    fig.savefig(path, dpi=dpi)
+    fig.savefig(path, dpi=dpi, **save_options(path))
     plt.close(fig)
 
 

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_turnout.plotting.backend import pyplot
+from exudyn_turnout.plotting.backend import place_axes, pyplot, save_options
 from exudyn_turnout.wheel_rail.geometry import WheelGrid, WheelsetContact, wheel_heights_on_grid
 from exudyn_turnout.wheel_rail.sections import SectionGrid, section_at
 from exudyn_turnout.wheel_rail.transfer import DipSummary, WheelPath
@@ -237,9 +237,11 @@ def plot_contact_band_along_x(
     axes[0][-1].legend(handles=handles, fontsize=7)
     if title:
         figure.suptitle(title, fontsize=10)
-    figure.tight_layout()
+    # fixed margins (in): room for the tick labels, the long y labels and the title; what
+    # tight_layout measured, without its second layout of every text (~0.2 s a figure)
+    place_axes(figure, 0.75, 0.25, 0.55, 0.45 if title else 0.2, wspace=0.08, hspace=0.18)
     path = Path(path)
-    figure.savefig(path, dpi=120)
+    figure.savefig(path, dpi=120, **save_options(path))
     plt.close(figure)
     return path
 

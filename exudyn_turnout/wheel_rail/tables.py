@@ -124,13 +124,25 @@ class ContactTable:
     #: (n_x, n_s) the cell from this node to the next x and shift node may be interpolated
     #: (its four nodes hold the same slots, contact points within 2 mm)
     blendable: np.ndarray
-    #: (n_x - 1, n_s - 1, n_c, n_fields + 2, 4) per cell: value = c0 + c1 tx + c2 ts
-    #: + c3 tx ts (bilinear in blendable cells; else the cell's first node with the gap's
-    #: first-order change with shift), see :func:`cell_coefficients`
-    coefficients: np.ndarray
     key: str  #: SHA-256 of the inputs
     build_seconds: float  #: s, time to build (0 when loaded from the cache)
     fields: tuple = _FIELDS  #: names of the last axis of ``values``
+
+    @property
+    def coefficients(self) -> np.ndarray:
+        """(n_x - 1, n_s - 1, n_c, n_fields + 2, 4) per cell: value = c0 + c1 tx + c2 ts
+        + c3 tx ts (bilinear in blendable cells; else the cell's first node with the gap's
+        first-order change with shift), see :func:`cell_coefficients`.
+
+        Computed on first use and kept: four times the size of ``values`` (80 MB for the
+        through route), used by :func:`lookup_values` only, not by the compiled kernel of
+        a passage (which interpolates the node values itself).
+        """
+        kept = self.__dict__.get("_coefficients")
+        if kept is None:
+            kept = cell_coefficients(self.values, self.blendable, self.shift)
+            object.__setattr__(self, "_coefficients", kept)  # frozen: set once, same value
+        return kept
 
     def field(self, name: str) -> np.ndarray:
         """One field of every candidate at every node.
@@ -398,7 +410,6 @@ def build_contact_table(
         values=values,
         count=count,
         blendable=blendable,
-        coefficients=cell_coefficients(values, blendable, shifts),
         key=key,
         build_seconds=elapsed,
     )
@@ -466,7 +477,6 @@ def _read_cached(
                     values=values,
                     count=data["count"],
                     blendable=blendable,
-                    coefficients=cell_coefficients(values, blendable, data["shift"]),
                     key=key,
                     build_seconds=0.0,
                 )

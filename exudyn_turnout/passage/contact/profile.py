@@ -42,6 +42,7 @@ __all__ = [
     "RouteContact",
     "route_contact",
     "wheel_and_setup",
+    "wheel_grid",
     "ProfileContactElement",
     "STATIC_LATERAL_STIFFNESS",
     "STATIC_SPIN_STIFFNESS",
@@ -521,7 +522,7 @@ def _contact_key(turnout, route: str, vehicle: Vehicle, cache_dir) -> str:
     return hashlib.sha256("\n".join(parts).encode()).hexdigest()
 
 
-def wheel_and_setup(turnout, vehicle: Vehicle) -> tuple:
+def wheel_and_setup(turnout, vehicle: Vehicle, cache_dir=None) -> tuple:
     """The vehicle's wheel profile, gridded, and the wheelset/track dimensions that place it.
 
     Parameters
@@ -531,6 +532,9 @@ def wheel_and_setup(turnout, vehicle: Vehicle) -> tuple:
     vehicle : Vehicle
         Its ``wheel_profile`` (beside the vehicle file or packaged), ``back_to_back`` and
         wheel radius r0.
+    cache_dir : str or Path, optional
+        Where the gridded wheel is cached (:func:`wheel_grid`; default: the user's cache
+        directory).
 
     Returns
     -------
@@ -540,8 +544,7 @@ def wheel_and_setup(turnout, vehicle: Vehicle) -> tuple:
     from pathlib import Path
 
     from exudyn_turnout.wheel_rail.data import profile_path
-    from exudyn_turnout.wheel_rail.geometry import WheelsetSetup, grid_wheel
-    from exudyn_turnout.wheel_rail.profiles import read_profile
+    from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
     from exudyn_turnout.wheel_rail.turnout_design import rail_geometry
 
     geometry = rail_geometry(turnout)
@@ -555,12 +558,110 @@ def wheel_and_setup(turnout, vehicle: Vehicle) -> tuple:
     if not profile_file.is_absolute():
         beside = Path(vehicle.source).parent / profile_file
         profile_file = beside if beside.exists() else profile_path(str(vehicle.wheel_profile))
-    wheel = grid_wheel(
-        read_profile(profile_file, kind="wheel"),
-        step=setup.grid_step,
-        nominal_radius=setup.nominal_radius,
+    return wheel_grid(profile_file, setup.grid_step, setup.nominal_radius, cache_dir), setup
+
+
+#: Arrays of a cached wheel grid (besides ``key`` and ``checksum``).
+_WHEEL_ARRAYS = ("s", "z", "slope", "curvature", "nominal_radius")
+
+
+def _wheel_grid_key(profile_bytes: bytes, step: float, nominal_radius: float) -> str:
+    """SHA-256 of a wheel grid's inputs: the profile file, the grid, and the code that grids it."""
+    import hashlib
+
+    import scipy
+
+    from exudyn_turnout.wheel_rail import profile_grid, profiles, sections
+
+    digest = hashlib.sha256(b"wheel-grid/1")
+    digest.update(profile_bytes)
+    digest.update(repr((float(step), float(nominal_radius), np.__version__)).encode())
+    digest.update(scipy.__version__.encode())
+    for module in (profiles, profile_grid, sections):  # a change of the code: a new entry
+        with open(str(module.__file__), "rb") as handle:
+            digest.update(handle.read())
+    return digest.hexdigest()
+
+
+def _array_checksum(arrays: Mapping[str, np.ndarray]) -> str:
+    import hashlib
+
+    digest = hashlib.sha256()
+    for name, array in arrays.items():
+        a = np.ascontiguousarray(array)
+        digest.update(f"{name}:{a.dtype.str}:{a.shape}".encode())
+        digest.update(a.tobytes())
+    return digest.hexdigest()
+
+
+def wheel_grid(profile_file, step: float, nominal_radius: float, cache_dir=None):
+    """A wheel profile file gridded with its slopes and curvatures, kept in the table cache.
+
+    :func:`~exudyn_turnout.wheel_rail.geometry.grid_wheel` of the file's profile, stored
+    beside the contact tables under the SHA-256 of the file's bytes, the grid step, the
+    radius, the numpy and scipy versions and the source of the code that reads and grids a
+    profile; the arrays are returned bit for bit as computed. A run then needs neither the
+    Savitzky-Golay filter nor ``scipy.signal`` (0.5 s to import). A damaged or unreadable
+    entry is computed again and overwritten; an unusable cache location means computing it
+    (one warning, :func:`~exudyn_turnout.wheel_rail.tables.write_cache_file`).
+
+    Parameters
+    ----------
+    profile_file : str or Path
+        The wheel profile (a file :func:`~exudyn_turnout.wheel_rail.profiles.read_profile`
+        reads).
+    step : float
+        m, lateral grid step.
+    nominal_radius : float
+        m, wheel radius at the taping line.
+    cache_dir : str or Path, optional
+        Cache location (default :func:`~exudyn_turnout.wheel_rail.tables.default_cache_dir`).
+
+    Returns
+    -------
+    WheelGrid
+        Equal, array for array, to ``grid_wheel(read_profile(profile_file, kind="wheel"),
+        step=step, nominal_radius=nominal_radius)``.
+    """
+    from pathlib import Path
+
+    from exudyn_turnout.wheel_rail.geometry import WheelGrid, grid_wheel
+    from exudyn_turnout.wheel_rail.profiles import read_profile
+    from exudyn_turnout.wheel_rail.tables import default_cache_dir, write_cache_file
+
+    def computed():
+        return grid_wheel(
+            read_profile(profile_file, kind="wheel"), step=step, nominal_radius=nominal_radius
+        )
+
+    try:
+        profile_bytes = Path(profile_file).read_bytes()
+    except OSError:
+        return computed()  # read_profile says what is wrong with the file
+    key = _wheel_grid_key(profile_bytes, step, nominal_radius)
+    path = Path(cache_dir or default_cache_dir()) / f"wheel_grid_{key[:24]}.npz"
+    if path.is_file():
+        try:
+            with open(path, "rb") as handle, np.load(handle, allow_pickle=False) as data:
+                arrays = {name: data[name] for name in _WHEEL_ARRAYS}
+                if str(data["key"]) == key and str(data["checksum"]) == _array_checksum(arrays):
+                    return WheelGrid(
+                        s=arrays["s"],
+                        z=arrays["z"],
+                        slope=arrays["slope"],
+                        curvature=arrays["curvature"],
+                        nominal_radius=float(arrays["nominal_radius"]),
+                    )
+        except Exception:  # noqa: S110 - any unreadable entry is computed again below
+            pass
+    wheel = computed()
+    arrays = {name: np.asarray(getattr(wheel, name), float) for name in _WHEEL_ARRAYS}
+    write_cache_file(
+        path,
+        dict(arrays, key=np.array(key), checksum=np.array(_array_checksum(arrays))),
+        "contact-table cache",
     )
-    return wheel, setup
+    return wheel
 
 
 def route_contact(turnout, route: str, vehicle: Vehicle, cache_dir=None) -> RouteContact:
@@ -612,7 +713,7 @@ def route_contact(turnout, route: str, vehicle: Vehicle, cache_dir=None) -> Rout
                 "(or run with contact='height-table')"
             )
     start = time.perf_counter()
-    wheel, setup = wheel_and_setup(turnout, vehicle)
+    wheel, setup = wheel_and_setup(turnout, vehicle, cache_dir)
     pairs = route_contact_tables(turnout, route, wheel, setup, cache_dir=cache_dir)
     bodies = [body for body, _ in pairs]
     packed = pack_tables(
