@@ -52,7 +52,7 @@ RESULT_STAGES = ("inputs", "wheel_rail", "corunning", "fe", "passage")
 REPORT_RESULT_MODULES = ("report/cache.py", "report/passage_api.py", "report/passages.py")
 
 #: Top-level modules of the package that every stage may execute.
-_TOP_LEVEL = ("__init__.py", "provenance.py", "receptance.py")
+_TOP_LEVEL = ("__init__.py", "compiled_cache.py", "provenance.py", "receptance.py")
 
 #: Package data that change results: turnout and vehicle files, wheel and rail profiles.
 _DATA = ("data/**/*.toml", "data/wheel_rail/profiles/**/*")
@@ -126,10 +126,10 @@ def code_files(
 
     All ``*.py`` files of the stage folders, recursively (a stage reorganised into
     sub-folders stays covered, no module is named), the package's top-level modules
-    (``__init__.py``, ``provenance.py``, ``receptance.py``), the report modules that run or
-    store a cached computation (:data:`REPORT_RESULT_MODULES`) and the package's data files
-    that change results (``data/**/*.toml``, the wheel and rail profiles). Files of these
-    that ``root`` does not have are left out.
+    (``__init__.py``, ``compiled_cache.py``, ``provenance.py``, ``receptance.py``), the
+    report modules that run or store a cached computation (:data:`REPORT_RESULT_MODULES`)
+    and the package's data files that change results (``data/**/*.toml``, the wheel and
+    rail profiles). Files of these that ``root`` does not have are left out.
 
     Parameters
     ----------
