@@ -10,14 +10,8 @@ import json
 import numpy as np
 import pytest
 
-from exudyn_turnout.passage.results import (
-    DEFAULT_SETTINGS,
-    PassageResult,
-    csv_text,
-    keeps_float64,
-    without_empty_columns,
-    write_passage,
-)
+from exudyn_turnout.passage.output_files import csv_text, keeps_float64, without_empty_columns
+from exudyn_turnout.passage.results import DEFAULT_SETTINGS, PassageResult, write_passage
 
 N = 400
 
@@ -199,7 +193,7 @@ def test_contact_points_of_a_result_without_an_unloaded_points_columns():
 )
 def test_write_csv_writes_the_bytes_of_csv_text(tmp_path, rows, block):
     """write_csv (straight from the formatter's buffer) against csv_text written as text."""
-    from exudyn_turnout.passage.results import write_csv
+    from exudyn_turnout.passage.output_files import write_csv
 
     rng = np.random.default_rng(5)
     columns = {

@@ -539,7 +539,7 @@ def _clear_outputs(out: Path) -> None:
     Also the files of an earlier run on several tracks: ``comparison.json`` and the files in
     each track's folder (``out/3-layer/summary.json``...).
     """
-    from exudyn_turnout.passage.results import OUTPUT_FILES
+    from exudyn_turnout.passage.output_files import OUTPUT_FILES
 
     if not out.is_dir():
         return

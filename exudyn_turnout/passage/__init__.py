@@ -5,7 +5,8 @@ door and the only module that knows every track.
 
 - :mod:`.run`: the door and the dispatch;
 - :mod:`.common`: settings checks, time-step limit, Newton tolerance, progress;
-- :mod:`.results`: settings and result types, peaks, summary, output files (no Exudyn);
+- :mod:`.results`: settings and result types, peaks, summary, writing (no Exudyn);
+- :mod:`.output_files`: the output files, their CSV and NPZ formats and writers;
 - :mod:`.vehicle`: the single wheelset and the full vehicle in Exudyn;
 - :mod:`.contact`: the wheel/rail contact (protocol, profile contact, height-table baseline);
 - :mod:`.corunning_track`: the 2- and 3-layer co-running track under every wheelset, zones
