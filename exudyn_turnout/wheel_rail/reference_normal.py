@@ -40,6 +40,7 @@ Two surfaces (:data:`SURFACES`, which also mixes them to split their effects):
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -157,7 +158,7 @@ def case_geometry(case: ReferenceCase, wheel: WheelGrid, profiles_dir: str | Pat
     -------
     CaseGeometry
     """
-    slices = read_slices(Path(profiles_dir) / Path(case.rail_file).name)
+    slices = _slices(str(Path(profiles_dir) / Path(case.rail_file).name))
     grid = lateral_grid(-0.08, 0.30, wheel.s[1] - wheel.s[0])
     offsets = np.arange(-_REACH, _REACH + 0.5 * _ENVELOPE_STEP, _ENVELOPE_STEP)
     sections = slice_sections(slices, grid, x=case.s + offsets, interpolation="auto")
@@ -342,18 +343,17 @@ def surface_gap(
     joined, shape = SURFACES[surface]
     x = np.asarray(x, float)
     t = np.asarray(t, float)
-    slices = read_slices(Path(profiles_dir) / Path(case.rail_file).name)
+    rail_path = str(Path(profiles_dir) / Path(case.rail_file).name)
     cosine = math.cos(geometry.angle) * math.cos(pitch)
     y = geometry.y_rail + t * math.cos(geometry.angle)
     if joined == "linear":
-        rail = slice_sections(slices, y, x=case.s + x, interpolation="auto").z
+        rail = slice_sections(_slices(rail_path), y, x=case.s + x, interpolation="auto").z
         order = np.argsort(geometry.wheel_y)
         wheel = np.interp(y - case.y, geometry.wheel_y[order], geometry.wheel_z[order])
     else:
-        smooth = slice_surface(spline_slices(slices), y, interpolation="auto", step=SPLINE_STEP)
+        smooth = slice_surface(_splined(rail_path), y, interpolation="auto", step=SPLINE_STEP)
         rail = slice_heights(smooth, case.s + x)
-        profile = read_simpack_profile(profile_path(WHEEL_FILE), kind="wheel")
-        wheel = surface_on_grid(spline_profile(profile), y - case.y)
+        wheel = surface_on_grid(_wheel_spline(), y - case.y)
     if shape == "parabola":
         drop = np.broadcast_to(x[:, None] ** 2 / (2 * NOMINAL_RADIUS), (len(x), len(y)))
     else:
@@ -361,6 +361,23 @@ def surface_gap(
         drop = radius - np.sqrt(radius**2 - x[:, None] ** 2)
     vertical = wheel[None, :] + case.wheel_height + drop - rail
     return np.where(np.isfinite(vertical), cosine * vertical, _NO_RAIL)
+
+
+# The slice file, its splines and the wheel's spline are read and built once per process:
+# surface_gap is called again for every grid a solution grows to (and per node by callers).
+@functools.lru_cache(maxsize=8)
+def _slices(path: str):
+    return read_slices(Path(path))
+
+
+@functools.lru_cache(maxsize=8)
+def _splined(path: str):
+    return spline_slices(_slices(path))
+
+
+@functools.lru_cache(maxsize=1)
+def _wheel_spline():
+    return spline_profile(read_simpack_profile(profile_path(WHEEL_FILE), kind="wheel"))
 
 
 @dataclass(frozen=True, eq=False)
