@@ -210,8 +210,9 @@ def root_locus() -> list[str]:
         "## Root locus at speed on straight rigid track (issue 23)",
         "",
         "The vehicle of `passage/hunting.py` (profile contact on the plain UIC60 1:40 section, "
-        "Polach creep, mu = 0.4) linearised by Exudyn's `ComputeLinearizedSystem` at the "
-        "centred steady state at each speed (`hunting.linear_modes`): state-space eigenvalues "
+        "the kernel's FASTSIM creep table, mu = 0.4) linearised by Exudyn's "
+        "`ComputeLinearizedSystem` at the centred steady state at each speed "
+        "(`hunting.linear_modes`): state-space eigenvalues "
         "between 0.1 and 20 Hz, named from each eigenvector's kinetic-energy shares "
         "(`hunting.mode_name`: the car body's y, roll, yaw; wheelsets y + yaw >= 0.7: "
         "wheelset kinematic; wheelsets >= 0.25 and bogies >= 0.15: bogie hunting). Per speed "

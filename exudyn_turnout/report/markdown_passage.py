@@ -143,7 +143,8 @@ def _intro(passage: PassageMetrics, links: Mapping[str, str]) -> list[str]:
     contact = passage.contact or "height-table"
     contact_text = (
         "the profile contact for all three tracks (S1002 wheel on the turnout's rail sections, "
-        "multi-point Hertz, Polach creep with spin), the same contact elements on the "
+        "multi-point, Hertz or Kik-Piotrowski normal law per point, FASTSIM creep table with "
+        "spin), the same contact elements on the "
         "co-running and the FE track; the height-table contact is compared with it in "
         "`validation/profile_contact.md`"
         if contact == "profile"

@@ -10,7 +10,9 @@ Modules: :mod:`.profiles` (Simpack .prw/.prr, CONTACT .slcs readers), :mod:`.sec
 (gridded rail sections along x, placement, slices, switch/crossing design sections, rigid
 wheel envelope), :mod:`.geometry` (candidate contact points, wheelset equilibrium,
 equivalent conicity, flange angle, Nadal), :mod:`.hertz` (exact Hertz ellipse, C_H),
-:mod:`.creep` (Kalker coefficients, Polach's creep forces with spin), :mod:`.tables`
+:mod:`.creep` (Kalker coefficients, Polach's creep forces with spin), :mod:`.fastsim` and
+:mod:`.creep_table` (Kalker's FASTSIM and its table, the kernel's default creep law),
+:mod:`.nonhertz` (Kik-Piotrowski normal contact where Hertz does not fit), :mod:`.tables`
 (cached tables, vectorised lookup), :mod:`.transfer` (load transfer and dips),
 :mod:`.references` (CONTACT reference outputs), :mod:`.data` (packaged data); a turnout's
 rail bodies: :mod:`.turnout_design` (``[wheel_rail]`` design data and formulas),

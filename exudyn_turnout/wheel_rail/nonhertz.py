@@ -62,7 +62,8 @@ With the normal gap ``g(t) >= 0`` of the undeformed surfaces along the lateral t
 For the creep law the patch is replaced by the ellipse of the same area and the same
 ratio of length to width, the "equivalent ellipse" through which Piotrowski & Kik (2008)
 give FASTSIM its flexibility for a non-elliptic patch (see also the review of Piotrowski &
-Chollet, VSD 43 (2005) 455-483); here it feeds Kalker's coefficients and Polach's law.
+Chollet, VSD 43 (2005) 455-483); here it feeds Kalker's coefficients and the creep law
+(the FASTSIM table of :mod:`.creep_table` by default, or Polach's).
 
 Where Hertz is kept.  Hertz's ellipse is exact where the gap is Hertzian, so it stays
 wherever it *fits the surfaces*: at both reference penetrations (:data:`DELTA_LOW`,

@@ -6,9 +6,11 @@ route's rail bodies follow in the current zone (the rail mass for two layers, m_
 three).  Its force function evaluates, in one compiled call
 (:func:`exudyn_turnout.wheel_rail.kernel.contact_forces`), every candidate contact point of
 every rail body at the wheelset's position x = x0 + v t: normal force along the contact
-normal (one-sided Hertz with the point's own Hertz constant), creepages with spin, Polach's
-creep forces, and the resulting generalised forces on the wheelset and the rails.  The
-curving load -m v^2 kappa acts on wheelset and sprung mass (track-following frame).
+normal (the node's law: Hertz where its ellipse fits the surfaces, else a power law through
+two Kik-Piotrowski solutions; :mod:`exudyn_turnout.wheel_rail.nonhertz`), creepages with
+spin, creep forces from Kalker's FASTSIM table (|F| <= mu N), and the resulting generalised
+forces on the wheelset and the rails.  The curving load -m v^2 kappa acts on wheelset and
+sprung mass (track-following frame).
 
 Coordinates of the element: ``[y_w, z_w, phi, psi, beta, y_s, z_s, y_r1, z_r1, ...]``
 (beta: spin perturbation about the axle, the wheel turning at v / r0 + beta_t).

@@ -13,8 +13,9 @@ Omega_i (one per wheelset; its equation is the wheelset's spin moment). f is the
 right-hand side of the same Exudyn system a passage integrates (linear vehicle, primary
 and secondary suspension, bumpstops acting on q - q_geo, curving loads -m v^2 kappa on every
 body) evaluated by Exudyn (``MainSolverStatic.ComputeODE2RHS``), with the profile contact
-(:class:`~exudyn_turnout.passage.contact.profile.ProfileContactElement`: Hertz per contact
-point, Polach's creep forces with spin) on rigid rails held at their design position.
+(:class:`~exudyn_turnout.passage.contact.profile.ProfileContactElement`: the node's normal
+law per contact point, creep forces of the FASTSIM table with spin) on rigid rails held at
+their design position.
 :func:`solve_steady_state` solves it by a damped Newton method with a forward-difference
 Jacobian (:func:`newton_steady`), no time step involved.
 
@@ -245,7 +246,7 @@ def build_rigid_curve(
              +---------------------------+     curving loads -m v^2 kappa on every body,
           bogie 2                    bogie 1   suspension on q - q_geo (q_geo: the
           ws4  ws3                  ws2  ws1   unstrained vehicle's chord in the curve)
-        ===o====o==================o====o====  profile contact per wheel (Hertz, Polach)
+        ===o====o==================o====o====  profile contact per wheel (KP/Hertz, FASTSIM)
 
     The same vehicle model (linear representation, spin free, bumpstops on q - q_geo) and
     curving loads (:class:`~exudyn_turnout.passage.vehicle.track_frame.BodyLoads`, frozen) as
