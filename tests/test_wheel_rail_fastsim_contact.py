@@ -67,7 +67,8 @@ from exudyn_turnout.wheel_rail.geometry import (
     surface_derivatives,
 )
 from exudyn_turnout.wheel_rail.hertz import curvature_sums
-from exudyn_turnout.wheel_rail.nonhertz import EPSILON, normal_gap_function
+from exudyn_turnout.wheel_rail.kp_creep import kp_strips
+from exudyn_turnout.wheel_rail.nonhertz import normal_gap_function
 from exudyn_turnout.wheel_rail.profiles import read_slices
 from exudyn_turnout.wheel_rail.references import (
     REFERENCE_FILES,
@@ -116,18 +117,10 @@ def _kp_strips(case, wheel, folder, delta):
     a_sum, _ = curvature_sums(
         found.radius, found.angle, found.curvature_wheel, found.curvature_rail
     )
-    gap = np.nan_to_num(gaps[k], nan=1.0)
-    centre = gap.size // 2
-    inside = gap < EPSILON * delta
-    run = np.zeros(gap.size, bool)  # the connected run around the contact point
-    for direction in (1, -1):
-        i = centre
-        while 0 <= i < gap.size and inside[i]:
-            run[i] = True
-            i += direction
-    half = np.sqrt(np.where(run, EPSILON * delta - gap, 0.0) / a_sum[k])
-    t = (np.arange(gap.size) - centre) * STEP
-    return t[run], half[run]
+    # KP's strips on that gap (the package's own construction; E* only scales KP's force,
+    # which the caller replaces by CONTACT's)
+    strips = kp_strips(gaps[k], STEP, float(a_sum[k]), delta, modulus=1.0e11)
+    return strips.t, strips.half_length
 
 
 @pytest.fixture(scope="module")
