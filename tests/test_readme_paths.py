@@ -1,4 +1,4 @@
-"""Every repository path, module and script the README names exists.
+"""Every repository path, module and script the README (and CONTRIBUTING.md) names exists.
 
 README.md names files a new user opens or runs: backticked repository paths
 (``exudyn_turnout/...py``, ``validation/...md``, ``benchmarks/...py``, ``examples/...py``,
@@ -6,7 +6,8 @@ README.md names files a new user opens or runs: backticked repository paths
 layout section's way of naming a module), dotted modules (``exudyn_turnout.report.settings``),
 relative links (``[...](validation/report/report.md)``) and commands
 ``python validation/X.py``. A file renamed or removed without the README following fails
-here, with the name. Reads files only (no imports of the package): well under 2 s.
+here, with the name. CONTRIBUTING.md is held to the same (its paths and package paths).
+Reads files only (no imports of the package): well under 2 s.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 README = ROOT / "README.md"
+CONTRIBUTING = ROOT / "CONTRIBUTING.md"
 PACKAGE = ROOT / "exudyn_turnout"
 #: top-level folders of the repository whose paths the README names
 TOP = ("exudyn_turnout", "validation", "benchmarks", "examples", "tests", "docs")
@@ -53,8 +55,8 @@ def repo_paths(text: str) -> list[str]:
     for target in re.findall(r"\]\(([^)#\s]+)\)", text):
         if "://" not in target:
             found.append(target)
-    for script in re.findall(rf"\bpython (?:-m \S+ )?((?:{top})/\S+\.py)\b", text):
-        found.append(script)
+    for script in re.findall(rf"\bpython (?:-m \S+ )?((?:{top})/[\w./-]+\.py)\b", text):
+        found.append(script)  # "python validation/<script>.py", a placeholder, is left out
     return [p for p in dict.fromkeys(found) if not p.startswith(WRITTEN)]
 
 
@@ -125,6 +127,17 @@ def _resolves(dotted: str) -> bool:
 
 
 TEXT = README.read_text(encoding="utf-8")
+#: (file, path) of every repository and package path README.md and CONTRIBUTING.md name
+NAMED = [
+    (doc.name, path)
+    for doc in (README, CONTRIBUTING)
+    for path in repo_paths(doc.read_text(encoding="utf-8"))
+]
+PACKAGE_NAMED = [
+    (doc.name, path)
+    for doc in (README, CONTRIBUTING)
+    for path in package_relative_paths(doc.read_text(encoding="utf-8"))
+]
 
 
 def test_the_readme_names_paths():
@@ -157,14 +170,14 @@ def test_the_parsers_on_a_known_text():
     ]
 
 
-@pytest.mark.parametrize("path", repo_paths(TEXT))
-def test_repository_path_exists(path):
-    assert _exists(path), f"README.md names {path}, which the repository does not have"
+@pytest.mark.parametrize("doc, path", NAMED)
+def test_repository_path_exists(doc, path):
+    assert _exists(path), f"{doc} names {path}, which the repository does not have"
 
 
-@pytest.mark.parametrize("path", package_relative_paths(TEXT))
-def test_package_path_exists(path):
-    assert (PACKAGE / path).exists(), f"README.md names {path}: no exudyn_turnout/{path}"
+@pytest.mark.parametrize("doc, path", PACKAGE_NAMED)
+def test_package_path_exists(doc, path):
+    assert (PACKAGE / path).exists(), f"{doc} names {path}: no exudyn_turnout/{path}"
 
 
 @pytest.mark.parametrize("dotted", dotted_modules(TEXT))
