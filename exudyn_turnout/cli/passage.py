@@ -809,7 +809,7 @@ def add_passage_options(p: argparse.ArgumentParser, full_vehicle: bool = False) 
             "car body on two bogies, four wheelsets each on its own track; figures and the "
             "plain columns show its front wheelset, as the paper's Figs 7, 8, and "
             "wheelsets.png every wheelset), wheelset (the packaged Manchester benchmark "
-            "wheelset with its sprung share, about a quarter of the cost; also the "
+            "wheelset with its sprung share, about half the cost; also the "
             "height-table contact), or a vehicle file of either kind",
         )
     else:
@@ -892,15 +892,20 @@ def build(sub: argparse._SubParsersAction) -> None:
         help="route of the turnout file (default: through, or the file's first route)",
     )
     parser.add_argument(
-        "--time-step", type=number, default=1e-4, metavar="S", help="s (default 1e-4, converged)"
+        "--time-step",
+        type=number,
+        default=1e-4,
+        metavar="S",
+        help="s (default 1e-4; its convergence: the validation report, section 5)",
     )
     parser.add_argument(
         "--contact",
         choices=("profile", "height-table"),
         default="profile",
         help="wheel/rail contact: profile (S1002 on the turnout's rail sections, multi-point "
-        "Hertz, Polach creep with spin; default) or height-table (rail height tables on a "
-        "conical tread with flange springs: a simplification kept for comparison)",
+        "Hertz or Kik-Piotrowski, FASTSIM creep with spin; default) or height-table (rail "
+        "height tables on a conical tread with flange springs: a simplification kept for "
+        "comparison)",
     )
     parser.add_argument(
         "--irregularity",
