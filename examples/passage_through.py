@@ -3,7 +3,7 @@ two-layer vs three-layer co-running track (the layout of the paper's Fig. 7).
 
 The vehicle is the package's default, the full Manchester benchmark vehicle, and the figure
 shows its front wheelset, as the paper's Fig. 7 shows the front axle; ``--vehicle wheelset``
-runs the single wheelset under its sprung share (about a quarter of the time).
+runs the single wheelset under its sprung share (about half the time).
 
 The first passage in a Python process also pays a one-time warm-up (imports, loading the
 compiled contact kernel, reading or building the route's contact tables). The example runs

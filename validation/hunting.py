@@ -171,8 +171,9 @@ def main() -> None:
         "flexibility, no co-running track).",
         f"- Contact: the package's profile contact (`passage/contact/profile.py`): wheel "
         f"{base.wheel_profile} (S1002), back-to-back {base.back_to_back} m, r0 = 0.46 m; "
-        "contact points from the packed contact tables, Hertz normal force per point "
-        "from its curvatures, creep forces of FASTSIM with spin from the kernel's creep "
+        "contact points from the packed contact tables, the node's normal law per point "
+        "(Hertz where its ellipse fits the surfaces, else Kik-Piotrowski), creep forces of "
+        "FASTSIM with spin from the kernel's creep "
         "table (`wheel_rail/creep_table.py`; the linearised system also with Polach's "
         "method, k_A = k_S = 1), "
         f"friction mu = {contact.mu:g}, G = 81 GPa. Equivalent conicity (EN 15302, "

@@ -102,7 +102,8 @@ def add_simulate(fe_sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         type=number,
         default=1e-4,
         metavar="S",
-        help="s (default 1e-4: halving it moves the crossing peak < 2 %%)",
+        help="s (default 1e-4: halving it moves the switch and crossing peaks <= 0.15 %%, "
+        "validation/fe_profile_convergence.md)",
     )
     parser.add_argument(
         "--element-length",

@@ -77,8 +77,9 @@ def build(sub: argparse._SubParsersAction) -> None:
         "--with-fe",
         action="store_true",
         help="also the FE reference's receptance at the same x, rail and direction (the "
-        "rail of the slot on the through route, or the file's first route; as fe frf, about "
-        "0.15 s per frequency): written to <stem>_fe.csv and overlaid in --plot",
+        "rail of the slot on the through route, or the file's first route; as fe frf: 400 "
+        "frequencies took 6 s vertical, 29 s lateral): written to <stem>_fe.csv and overlaid "
+        "in --plot",
     )
     parser.set_defaults(run=_run)
 

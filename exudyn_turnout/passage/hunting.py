@@ -7,7 +7,8 @@ straight, rigid plain track: the plain rail section of the turnout's route at it
 x_min (UIC60 1:40 in the packaged turnout), constant along x. Every wheel is in contact
 with it through the package's profile contact
 (:class:`~exudyn_turnout.passage.contact.profile.ProfileContactElement`: contact points
-from the S1002/UIC60 tables, Hertz normal force per point, FASTSIM's creep forces with
+from the S1002/UIC60 tables, the node's normal law per point (Hertz where its ellipse fits
+the surfaces, else Kik-Piotrowski), FASTSIM's creep forces with
 spin from the kernel's creep table, or Polach's: :data:`CREEP_LAWS`), the rails held fixed
 (rigid track). The run starts from the steady state at speed (the symmetric static
 equilibrium, the wheelsets spinning at free rolling, xi = 0) with a lateral

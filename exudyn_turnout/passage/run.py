@@ -152,7 +152,8 @@ def simulate_passage(
         Default (:data:`DEFAULT_VEHICLE`): the full Manchester benchmark vehicle, four
         wheelsets each on its own co-running track, the plain columns its front
         wheelset's (the paper's Figs 7, 8 show the front axle); ``"wheelset"`` the packaged
-        single wheelset under its sprung share (about a quarter of the cost).
+        single wheelset under its sprung share (about half the CPU time: README's performance
+        table).
     progress : callable(fraction, x), optional
         Called about every 2 % of the run.
     track : {"2-layer", "3-layer", "fe"}, optional
