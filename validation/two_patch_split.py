@@ -53,11 +53,11 @@ for _name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import argparse  # noqa: E402
 import dataclasses  # noqa: E402
+import functools  # noqa: E402
 import math  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
 from dataclasses import dataclass  # noqa: E402
-from functools import lru_cache  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
@@ -67,15 +67,25 @@ from scipy.optimize import brentq  # noqa: E402
 from exudyn_turnout.inputs.vehicle_model import load_vehicle_model  # noqa: E402
 from exudyn_turnout.wheel_rail.data import profile_path, s1002_wheel  # noqa: E402
 from exudyn_turnout.wheel_rail.exact_normal import solve_normal  # noqa: E402
-from exudyn_turnout.wheel_rail.hertz import effective_modulus  # noqa: E402
+from exudyn_turnout.wheel_rail.geometry import (  # noqa: E402
+    FLANGE_DIRECTION,
+    prepare_rail,
+    prepare_wheel,
+    search_candidates,
+    surface_derivatives,
+)
+from exudyn_turnout.wheel_rail.hertz import MIN_CURVATURE_SUM, effective_modulus  # noqa: E402
 from exudyn_turnout.wheel_rail.kernel import (  # noqa: E402
     DETAIL_FIELDS,
     PackedTables,
     contact_forces,
     pack_tables,
 )
+from exudyn_turnout.wheel_rail.nonhertz import kik_piotrowski, normal_gap_function  # noqa: E402
 from exudyn_turnout.wheel_rail.profiles import read_slices  # noqa: E402
 from exudyn_turnout.wheel_rail.reference_normal import (  # noqa: E402
+    GAP_SAMPLE_STEP,
+    GAP_SAMPLE_WINDOW,
     NOMINAL_RADIUS,
     CaseGeometry,
     surface_gap,
@@ -106,6 +116,8 @@ TABLE_X = (0.05, 0.55)
 FINE_X = (0.2, 0.34)
 #: m, its node spacing
 FINE_STEP = 0.002
+#: the third method's name on the page (:func:`kp_split`)
+KP_NAME = "KP, 2-D section"
 #: m, element size of the reference along x and y (halved once at one u: see the page)
 DX, DY = 5e-4, 2.5e-4
 #: m, first window of the reference grid: x from the wheel centre, y on the slices
@@ -162,7 +174,7 @@ _FRAME = CaseGeometry(
 )  # fmt: skip
 
 
-@lru_cache(maxsize=1)
+@functools.lru_cache(maxsize=1)
 def _surface():
     """The slice set as the passage's sections see it (slice frame, 0.1 mm grid)."""
     slices = read_slices(profile_path(SLICE_FILE))
@@ -390,6 +402,85 @@ def table_split(packed: PackedTables, u: float, y: float, load: float) -> Split:
     )  # fmt: skip
 
 
+def kp_split(u: float, y: float, load: float) -> Split:
+    """Kik-Piotrowski on each candidate of the 2-D section at u, in vertical equilibrium.
+
+    The section exactly at u (the slice set interpolated along u, enveloped by the rigid
+    wheel with the passage's reach and step), its candidates (``search_candidates``), each
+    one's lateral gap function (``normal_gap_function``, every 0.02 mm) and KP's force at
+    its penetration (``kik_piotrowski``, A = cos(gamma) / (2 r) floored as the tables);
+    no table, no node interpolation, no Hertz.
+
+    Parameters
+    ----------
+    u, y : float
+        m, wheel position along the slices and lateral position.
+    load : float
+        N, total vertical load.
+
+    Returns
+    -------
+    Split
+        ``regions``: candidates carrying load.
+    """
+    geometry = RailGeometry()
+    _slices, surface = _surface()
+    reach, step = geometry.envelope_reach, geometry.envelope_step
+    x = u + np.arange(-reach, reach + 0.5 * step, step)
+    sections = SectionGrid(x=x, y=surface.y, z=slice_heights(surface, x), name="at u")
+    enveloped = wheel_envelope(sections, np.array([u]), NOMINAL_RADIUS, reach, step)
+    derivatives = surface_derivatives(enveloped)
+    rail = prepare_rail(enveloped.z[0], derivatives.slope[0], derivatives.curvature[0], surface.y)
+    wheel = prepare_wheel(_wheel(), 0.0, 0.0, (FLANGE_DIRECTION,))
+    found = search_candidates(rail, wheel, shift=y, lift=0.0)
+    n = len(found.gap)
+    gaps = normal_gap_function(
+        rail, wheel, np.full(n, y), found.y_rail, found.z_rail, found.angle,
+        step=GAP_SAMPLE_STEP, window=GAP_SAMPLE_WINDOW,
+    )  # fmt: skip
+    cosine = np.cos(found.angle)
+    a_sum = np.maximum(0.5 * cosine / found.radius, MIN_CURVATURE_SUM)
+
+    def vertical(height: float) -> np.ndarray:
+        delta = -(found.gap + cosine * height)
+        out = np.zeros(n)
+        pressed = delta > 0.0
+        if pressed.any():
+            patch = kik_piotrowski(
+                gaps[pressed], GAP_SAMPLE_STEP, a_sum[pressed], delta[pressed], MODULUS
+            )
+            out[pressed] = patch.normal_force * cosine[pressed]
+        return out
+
+    top = float(np.max(-found.gap / cosine))  # first touch
+    low = top - 0.001
+    while vertical(low).sum() < load:
+        low -= 0.001
+    height = brentq(lambda h: vertical(h).sum() - load, low, top, xtol=1e-14)
+    forces = vertical(height)
+    split = split_position(u)
+    on_nose = found.y_rail < split
+
+    def centre(mask):
+        f = forces[mask]
+        return float(np.sum(f * found.y_rail[mask]) / f.sum()) if f.sum() > 0 else math.nan
+
+    return Split(
+        nose=float(forces[on_nose].sum()), wing=float(forces[~on_nose].sum()),
+        height=height, approach=top - height, y_nose=centre(on_nose),
+        y_wing=centre(~on_nose), regions=int(np.count_nonzero(forces)),
+        touch_nose=float(np.max(-found.gap[on_nose] / cosine[on_nose]))
+        if on_nose.any() else math.nan,
+        touch_wing=float(np.max(-found.gap[~on_nose] / cosine[~on_nose]))
+        if (~on_nose).any() else math.nan,
+    )  # fmt: skip
+
+
+@functools.lru_cache(maxsize=1)
+def _wheel():
+    return s1002_wheel()
+
+
 def rigid_transfer(y: float, u_range=(0.15, 0.4), step: float = 0.005) -> float:
     """u where the rigid wheel touches nose and wing rail at once (3-D gap, linear in u).
 
@@ -472,29 +563,31 @@ def _range(u: np.ndarray, share: np.ndarray) -> str:
     return f"{u[both].min():.4f} - {u[both].max():.4f}" if both.any() else "-"
 
 
-def sweep(tables: dict, y: float, load: float, us, lines: list) -> dict:
+def sweep(methods: dict, y: float, load: float, us, lines: list) -> dict:
     """One lateral position and load: the page's rows into ``lines``; summary numbers.
 
-    ``tables``: name -> PackedTables; the first is the passage's.
+    ``methods``: name -> ``f(u, y, load) -> Split``; the first is the passage's tables,
+    then the 2 mm table and KP on the 2-D section.
     """
-    names = list(tables)
+    names = list(methods)
     lines += [
         "| u (m) | regions ref | nose share ref | tables | diff (pp) | diff (% of ref) | "
-        f"{names[1]} | nose - wing first touch ref / tables / {names[1]} (um) | "
+        f"{' | '.join(names[1:])} | nose - wing first touch ref / "
+        f"{' / '.join(names)} (um) | "
         "approach ref / tables (um) | y nose ref / tables (mm) | y wing ref / tables (mm) |",
-        "|---|---|---|---|---|---|---|---|---|---|---|",
+        "|---|---|---|---|---|---|" + "---|" * (len(names) - 1) + "---|---|---|---|",
     ]
     shares: dict[str, list[float]] = {"ref": [], **{n: [] for n in names}}
     touches: dict[str, list[float]] = {"ref": [], **{n: [] for n in names}}
     both = []
-    approaches: list[tuple[float, float, float]] = []  # (share ref, approach ref, tables)
+    approaches: dict[str, list[float]] = {"ref": [], **{n: [] for n in names}}
     for u in us:
         ref, _solution = reference_split(float(u), y, load)
-        splits = {n: table_split(packed, float(u), y, load) for n, packed in tables.items()}
+        splits = {n: method(float(u), y, load) for n, method in methods.items()}
         for split in (ref, *splits.values()):  # vertical equilibrium of every method
             if abs(split.nose + split.wing - load) > 1e-6 * load:
                 raise RuntimeError(f"u = {u}: {split} does not carry {load} N")
-        tab, fine = splits[names[0]], splits[names[1]]
+        tab = splits[names[0]]
         r, s = ref.share, tab.share
         shares["ref"].append(r)
         touches["ref"].append(ref.touch_nose - ref.touch_wing)
@@ -502,12 +595,15 @@ def sweep(tables: dict, y: float, load: float, us, lines: list) -> dict:
             shares[n].append(split.share)
             touches[n].append(split.touch_nose - split.touch_wing)
         both.append(ref.nose > 0.0 and ref.wing > 0.0)
-        approaches.append((r, ref.approach, tab.approach))
+        approaches["ref"].append(ref.approach)
+        for n, split in splits.items():
+            approaches[n].append(split.approach)
         relative = f"{(s - r) / r * 100:+.1f}" if r > 0 else "-"
-        touch = [_fmt(m.touch_nose - m.touch_wing, 1e6, 1) for m in (ref, tab, fine)]
+        touch = [_fmt(m.touch_nose - m.touch_wing, 1e6, 1) for m in (ref, *splits.values())]
+        others = " | ".join(f"{splits[n].share:.3f}" for n in names[1:])
         lines.append(
             f"| {u:.4f} | {ref.regions} | {r:.3f} | {s:.3f} | {(s - r) * 100:+.1f} | "
-            f"{relative} | {fine.share:.3f} | {' / '.join(touch)} | "
+            f"{relative} | {others} | {' / '.join(touch)} | "
             f"{ref.approach * 1e6:.1f} / {tab.approach * 1e6:.1f} | "
             f"{_fmt(ref.y_nose)} / {_fmt(tab.y_nose)} | {_fmt(ref.y_wing)} / {_fmt(tab.y_wing)} |"
         )
@@ -521,17 +617,20 @@ def sweep(tables: dict, y: float, load: float, us, lines: list) -> dict:
     summary["slope"] = (
         float(np.polyfit(d_ref[middle], ref_share[middle], 1)[0]) if middle.sum() >= 2 else math.nan
     )
-    # one rail alone (in both methods): the tables' approach over the exact one, - 1
-    ratios = np.array([a[2] / a[1] - 1.0 for a in approaches])
-    tab_share = np.array(shares[names[0]])
-    summary["stiffness"] = {
-        name: (float(ratios[only].min()), float(ratios[only].max()))
-        for name, only in (
-            ("wing", (ref_share == 0.0) & (tab_share == 0.0)),
-            ("nose", (ref_share == 1.0) & (tab_share == 1.0)),
-        )
-        if only.any()
-    }
+    # one rail alone (in both methods): a method's approach over the exact one, - 1
+    exact = np.array(approaches["ref"])
+    summary["stiffness"] = {}
+    for n in names:
+        ratios = np.array(approaches[n]) / exact - 1.0
+        share = np.array(shares[n])
+        summary["stiffness"][n] = {
+            rail: (float(ratios[only].min()), float(ratios[only].max()))
+            for rail, only in (
+                ("wing", (ref_share == 0.0) & (share == 0.0)),
+                ("nose", (ref_share == 1.0) & (share == 1.0)),
+            )
+            if only.any()
+        }
     share_any = np.array([np.array(v) for v in shares.values()])
     moving = np.flatnonzero(np.any((share_any > 0.0) & (share_any < 1.0), axis=0))
     low, high = max(int(moving.min()) - 2, 0), min(int(moving.max()) + 2, len(u_arr) - 1)
@@ -588,14 +687,17 @@ def _explanation(summaries: list, tables: dict, fine_name: str) -> list[str]:
         for yy, w, s in summaries
         if math.isfinite(s["slope"])
     )
-    stiff = "; ".join(
-        f"Y = {yy * 1e3:+.1f} mm, {w / 1e3:.1f} kN: "
-        + ", ".join(
-            f"{name} alone {lo * 100:+.1f} ... {hi * 100:+.1f} %"
-            for name, (lo, hi) in s["stiffness"].items()
+
+    def stiffness(method: str) -> str:
+        return "; ".join(
+            f"Y = {yy * 1e3:+.1f} mm, {w / 1e3:.1f} kN: "
+            + ", ".join(
+                f"{name} alone {lo * 100:+.1f} ... {hi * 100:+.1f} %"
+                for name, (lo, hi) in s["stiffness"][method].items()
+            )
+            for yy, w, s in summaries
         )
-        for yy, w, s in summaries
-    )
+
     return [
         "## Why the tables differ",
         "",
@@ -628,11 +730,16 @@ def _explanation(summaries: list, tables: dict, fine_name: str) -> list[str]:
         + ", ".join(f"{v:.2f}" for v in semi)
         + "): the tables' law per patch, without the elastic interaction of the two "
         "patches (the exact solution has it: a force F on a half-space lowers the surface "
-        "by F / (pi E* r), about 1 um at the 68 mm between the patches).  Where one rail "
-        "carries alone (in both methods), the tables' approach against the exact one: "
-        f"{stiff}.  The exact approach on the wing rail alone changes along u between two "
-        "slices (the interpolated crown's curvature under the patch changes as the wing "
-        "rail moves sideways at 1:9.25); the tables', linear between the slices, hardly.",
+        "by F / (pi E* r), about 1 um at the 68 mm between the patches).  "
+        f"'{KP_NAME}' sees the geometry of the {FINE_STEP * 1e3:g} mm table (the section "
+        "exactly at u; its first-touch differences above agree within about 1 um) with "
+        "Kik-Piotrowski's law instead of Hertz's: the two differ by the law alone.  Where "
+        "one rail carries alone (in both methods), the approach against the exact one, "
+        f"tables: {stiffness('tables')}; {KP_NAME}: {stiffness(KP_NAME)}.  The exact "
+        "approach on the wing rail alone changes along u between two slices (the 3-D "
+        "surface there is the slices' interpolation along u at constant y, the wing rail's "
+        "crown moving sideways at 1:9.25 through it); the tables', linear between the "
+        "slices, hardly.",
         "",
         "Nothing was tuned: the tables are the passage's (default section tolerance, "
         "envelope and law).",
@@ -650,6 +757,8 @@ def main(argv: list[str] | None = None) -> int:
     fine_name = f"tables, {FINE_STEP * 1e3:g} mm x nodes"
     tables = {"tables": crossing_table(), fine_name: crossing_table(x_step=FINE_STEP)}
     passage_x = tables["tables"].x
+    methods = {name: functools.partial(table_split, packed) for name, packed in tables.items()}
+    methods[KP_NAME] = kp_split
     step = 0.002 if args.quick else 0.0005
     lines = [
         "# Normal-force split between wing rail and nose: passage tables vs exact 3-D",
@@ -661,7 +770,8 @@ def main(argv: list[str] | None = None) -> int:
         f"({DX * 1e3:g} x {DY * 1e3:g} mm elements); tables: the passage's contact table of "
         "the 2-D sections and its kernel; "
         f"{fine_name}: the same on uniform x nodes {FINE_STEP * 1e3:g} mm apart (a "
-        "diagnostic).  Every method at the wheel height that carries the load "
+        f"diagnostic); {KP_NAME}: Kik-Piotrowski on each contact of the 2-D section "
+        "exactly at u (no table).  Every method at the wheel height that carries the load "
         f"(E* = {MODULUS / 1e9:.1f} GPa).",
         "",
         "Loads: the static wheel load of the packaged vehicle "
@@ -684,7 +794,7 @@ def main(argv: list[str] | None = None) -> int:
         count = int(round(SWEEP_HALF_WIDTH / step))
         us = np.round(centre + step * np.arange(-count, count + 1), 5)
         summary_lines: list[str] = []
-        summary = sweep(tables, y, load, us, summary_lines)
+        summary = sweep(methods, y, load, us, summary_lines)
         # the page shows the transfer and 2 points either side of it
         keep = [k for k, u in enumerate(us) if summary["shown"][0] <= u <= summary["shown"][1]]
         lines += [
@@ -707,18 +817,22 @@ def main(argv: list[str] | None = None) -> int:
         "",
         "| Y (mm) | W (kN) | two patches u (m): ref / tables | points | tables: within 10 % / "
         "0.05, worst | u50 ref / tables (m) | u50 shift (mm) | "
-        f"{fine_name}: within 10 % / 0.05, worst | u50 shift (mm) | worst at the reference's "
-        "first-touch difference: tables / 2 mm |",
-        "|---|---|---|---|---|---|---|---|---|---|",
+        f"{fine_name}: within 10 % / 0.05, worst | u50 shift (mm) | {KP_NAME}: within 10 % / "
+        "0.05, worst | u50 shift (mm) | worst at the reference's first-touch difference: "
+        "tables / 2 mm / KP |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for y, load, s in summaries:
-        t, f = s["tables"], s[fine_name]
+        t, f, k = s["tables"], s[fine_name], s[KP_NAME]
         lines.append(
             f"| {y * 1e3:+.1f} | {load / 1e3:.1f} | {s['two_ref']} / {t['two']} | "
             f"{s['points']} | {t['ok10']} / {t['ok05']}, {t['worst']:.3f} | "
             f"{s['u50_ref']:.4f} / {t['u50']:.4f} | {(t['u50'] - s['u50_ref']) * 1e3:+.2f} | "
             f"{f['ok10']} / {f['ok05']}, {f['worst']:.3f} | "
-            f"{(f['u50'] - s['u50_ref']) * 1e3:+.2f} | {t['law']:.3f} / {f['law']:.3f} |"
+            f"{(f['u50'] - s['u50_ref']) * 1e3:+.2f} | "
+            f"{k['ok10']} / {k['ok05']}, {k['worst']:.3f} | "
+            f"{(k['u50'] - s['u50_ref']) * 1e3:+.2f} | "
+            f"{t['law']:.3f} / {f['law']:.3f} / {k['law']:.3f} |"
         )
     lines += ["", *_explanation(summaries, tables, fine_name), "", *_convergence(*cases[0])]
     lines += ["", f"Total run time {time.perf_counter() - start:.0f} s.", ""]
