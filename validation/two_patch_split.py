@@ -11,8 +11,8 @@ position Y, no roll, no yaw, the wheel's height the height of its profile origin
 -Z).  The wheel rolls from the wing rail (field side, y > 0) onto the nose (gauge side);
 where both carry it there are two contact patches.
 
-Per longitudinal position u of the wheel centre, at a fixed total vertical load W, two
-normal solutions, each at the wheel height that carries W (vertical equilibrium):
+Per longitudinal position u of the wheel centre, at a fixed total vertical load W, normal
+solutions of both patches, each at the wheel height that carries W (vertical equilibrium):
 
 - **reference**: the exact half-space solution (``wheel_rail/exact_normal.solve_normal``,
   Boussinesq influence coefficients, Polonsky-Keer CG with FFT) on the undeformed gap of
@@ -31,7 +31,15 @@ normal solutions, each at the wheel height that carries W (vertical equilibrium)
   creep) on it for the wheelset at lateral position Y and height z; its per-candidate rows
   give the normal force of every contact (the per-node law: Hertz where the ellipse fits,
   Kik-Piotrowski's power law where it does not).  The wheel height is solved (brentq) for
-  the sum of the vertical forces = W.
+  the sum of the vertical forces = W;
+- **tables, 2 mm x nodes** (diagnostic): the same table, law and kernel on the slice set's
+  sections every 2 mm along u instead of the passage's nodes;
+- **KP, 2-D section** (diagnostic): Kik-Piotrowski on each contact of the 2-D section
+  exactly at u (:func:`kp_split`; no table, no Hertz).
+
+The sweep covers the rigid transfer (:func:`rigid_transfer`) +- 12 mm every 0.5 mm, at
+two lateral positions for the static wheel load and at Y = 0 for CONTACT's 10 kN; the
+reference's element size is checked once at half of it.
 
 Patches are told apart by the flangeway between the two rail heads of the section at u
 (:func:`split_position`): contact on the gauge side of it is the nose's, on the field side
