@@ -15,7 +15,9 @@ regions): every wheel of the front wheelset; the whole vehicle's (the largest of
 wheelsets' per-wheel peaks); the check rail's lateral force; the wheel unloading Delta Q/Q0
 over the run. Each is given against the default step (1e-4 s) and the reference
 (:data:`REFERENCE`), with the order of convergence from the three finest steps, the CPU time
-and Newton iterations per step of each run.
+and Newton iterations per step of each run. Steps above the package's limit (10 steps per
+period of the wheel's contact resonance on the lightest rail) are run with the limit lifted
+(``--keep-limit``: not run) and marked. About 5 min of CPU in all (one process).
 """
 
 from __future__ import annotations
@@ -96,6 +98,8 @@ class Run:
         h is above ``limit``: run with the limit lifted.
     where : dict
         m, x of some peaks (:func:`summary_positions`).
+    ringing : float
+        Hz, :func:`ringing_frequency` of the check rail's lateral force (NaN: none).
     """
 
     peaks: dict[str, float]  #: N or -
@@ -106,6 +110,7 @@ class Run:
     limit: float = math.nan  #: s
     beyond_limit: bool = False
     where: dict[str, float] = field(default_factory=dict)  #: m
+    ringing: float = math.nan  #: Hz
 
 
 def summary_peaks(summary: Mapping[str, object]) -> dict[str, float]:
@@ -176,6 +181,46 @@ def summary_positions(summary: Mapping[str, object]) -> dict[str, float]:
         value = summary.get(key)
         out[name] = float(value) if isinstance(value, (int, float)) else math.nan
     return out
+
+
+def ringing_frequency(
+    x: Sequence[float], force: Sequence[float], speed: float, x_peak: float
+) -> float:
+    """Frequency (Hz) of the oscillation of a force about its peak: v / spacing of its maxima.
+
+    The local maxima of the force (its peak's sign made positive) from 0.05 m before to
+    0.1 m after ``x_peak`` that exceed 10 % of the peak; their mean spacing in x over the
+    speed.
+
+    Parameters
+    ----------
+    x : sequence of float
+        m, positions of the samples (increasing).
+    force : sequence of float
+        N.
+    speed : float
+        m/s.
+    x_peak : float
+        m, where the peak is.
+
+    Returns
+    -------
+    float
+        Hz; NaN with fewer than two maxima.
+    """
+    import numpy as np
+
+    xs, f = np.asarray(x, dtype=float), np.asarray(force, dtype=float)
+    sel = np.flatnonzero((xs >= x_peak - 0.05) & (xs <= x_peak + 0.1))
+    if len(sel) < 3:
+        return math.nan
+    g = f[sel] * np.sign(f[sel][np.argmax(np.abs(f[sel]))])  # the peak's sign made positive
+    top = g.max()
+    inner = np.arange(1, len(g) - 1)
+    maxima = inner[(g[inner] > g[inner - 1]) & (g[inner] >= g[inner + 1]) & (g[inner] > 0.1 * top)]
+    if len(maxima) < 2:
+        return math.nan
+    return float(speed / np.mean(np.diff(xs[sel][maxima])))
 
 
 def percent(value: float, reference: float) -> float:
@@ -329,6 +374,9 @@ def case_tables(
         if any(math.isfinite(runs[h].where.get(n, math.nan)) for h in ok):
             cells = [_cell(runs[h].where.get(n, math.nan), 4) for h in ok]
             lines.append(f"| {n} (m) | " + " | ".join(cells) + " |")
+    if any(math.isfinite(runs[h].ringing) for h in ok):
+        cells = [_cell(runs[h].ringing, 0) for h in ok]
+        lines.append("| check rail Fy ringing (Hz) | " + " | ".join(cells) + " |")
     lines.append("| CPU s | " + " | ".join(f"{runs[h].cpu:.1f}" for h in ok) + " |")
     lines.append("| steps | " + " | ".join(f"{runs[h].steps}" for h in ok) + " |")
     lines.append("| Newton it./step | " + " | ".join(f"{runs[h].newton:.3f}" for h in ok) + " |")
@@ -353,13 +401,21 @@ def case_tables(
         ps = [_cell(order(t, [runs[h].peaks[n] for h in t]), 2) for t in orders]
         lines.append(f"| {n} | " + " | ".join(cells + ps) + " |")
     failed = [h for h in sorted(runs) if runs[h].error]
+    ringing = runs[reference].ringing
+    if math.isfinite(ringing):
+        lines += [
+            "",
+            f"The check rail's lateral force rings at {ringing:.0f} Hz about its peak in the "
+            f"reference run (spacing of its maxima): {1.0 / (ringing * default):.1f} steps per "
+            "period at the default step.",
+        ]
     limit = next((r.limit for r in runs.values() if math.isfinite(r.limit)), math.nan)
     if any(mark.values()):
         lines += [
             "",
             f"\\* above the package's step limit for this case ({limit:.4g} s: 10 steps per "
-            "period of the wheel on the lightest rail under any wheelset), which refuses it; "
-            "run here with the limit lifted.",
+            f"period of the wheel's contact resonance, {0.1 / limit:.0f} Hz, on the lightest "
+            "rail under any wheelset), which refuses it; run here with the limit lifted.",
         ]
     if dropped:
         lines += ["", "Zero or not reached at every step (left out): " + ", ".join(dropped) + "."]
@@ -461,6 +517,56 @@ def within(worst: Mapping[float, float], limit: float, default: float = DEFAULT)
             break
         best = h
     return best
+
+
+def conclusion_table(
+    groups: Mapping[str, Sequence[str]],
+    vs_default: Mapping[str, Mapping[float, Mapping[str, float]]],
+    vs_reference: Mapping[str, Mapping[float, Mapping[str, float]]],
+    marked: Sequence[float],
+    finest: float,
+) -> str:
+    """Markdown table: per group of cases, the largest steps within the thresholds and errors.
+
+    Parameters
+    ----------
+    groups : mapping
+        Group name -> case names.
+    vs_default, vs_reference : mapping
+        Case -> step -> peak -> %, of :func:`case_tables`.
+    marked : sequence of float
+        s, steps above the package's limit in some case.
+    finest : float
+        s, the finest step run (its change against the reference is the reference's error).
+
+    Returns
+    -------
+    str
+    """
+    head = "| cases | " + " | ".join(
+        f"largest h within {x:g} % (within the limit / lifted)" for x in THRESHOLDS
+    )
+    head += " | default vs reference: max \\|change\\| (%) |"
+    if finest < REFERENCE:
+        head += f" {step_label(finest)} s vs reference: max \\|change\\| (%) |"
+    columns = 2 + len(THRESHOLDS) + (finest < REFERENCE)
+    lines = [head, "|" + "---|" * columns]
+    for group, names in groups.items():
+        d = {n: vs_default[n] for n in names}
+        r = {n: vs_reference[n] for n in names}
+        steps = sorted({h for n in names for h in d[n]})
+        worst = {h: largest(d, h)[0] for h in steps}
+        allowed = {h: w for h, w in worst.items() if h not in marked}
+        cells = [
+            f"{step_label(within(allowed, x))} / {step_label(within(worst, x))}" for x in THRESHOLDS
+        ]
+        err, case, peak = largest(r, DEFAULT)
+        cells.append(f"{err:.3f} ({case}: {peak})")
+        if finest < REFERENCE:
+            err, case, peak = largest(r, finest)
+            cells.append(f"{err:.3f} ({case}: {peak})")
+        lines.append(f"| {group} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
 
 
 def _commit() -> str:
@@ -585,7 +691,19 @@ def run_case(turnout, case: Case, h: float, lift_limit: bool = True) -> Run:
         limit=limit.limit,
         beyond_limit=bool(refused),
         where=summary_positions(result.summary),
+        ringing=_check_rail_ringing(result, settings.v),
     )
+
+
+def _check_rail_ringing(result, speed: float) -> float:
+    """Hz, :func:`ringing_frequency` of the front wheelset's check-rail force (NaN: none)."""
+    summary, columns = result.summary, result.columns
+    name = f"Fy_{summary.get('check_rail_wheel')}_{summary.get('check_rail_rail')}_N"
+    x_peak = summary.get("peak_Fy_check_rail_x_m")
+    peak = summary.get("peak_Fy_check_rail_N")
+    if name not in columns or not isinstance(x_peak, float) or not peak:
+        return math.nan
+    return ringing_frequency(columns["x_m"], columns[name], speed, x_peak)
 
 
 def main(argv: Sequence[str] | None = None) -> None:
@@ -663,35 +781,21 @@ def main(argv: Sequence[str] | None = None) -> None:
     failed = [h for h in steps if any(r[h].error for r in all_runs.values())]
     total = {h: sum(r[h].cpu for r in all_runs.values()) for h in steps if h not in failed}
     cpu = {h: c / total[DEFAULT] for h, c in total.items()}
-    table, worst = overview(vs_default, vs_reference, steps, marked, cpu)
-    allowed = {h: w for h, w in worst.items() if h not in marked}
+    table, _ = overview(vs_default, vs_reference, steps, marked, cpu)
     limits = sorted({r[h].limit for r in all_runs.values() for h in steps})
+    groups = {"all cases": list(all_runs)}
+    for route in dict.fromkeys(CASES[n].route for n in all_runs):
+        groups[f"{route} route"] = [n for n in all_runs if CASES[n].route == route]
     conclusions = [
-        "- The package's step limit (10 steps per period of the wheel on the lightest rail "
-        "under any wheelset): "
+        "The package's step limit (10 steps per period of the wheel's contact resonance on "
+        "the lightest rail under any wheelset): "
         + ", ".join(f"{v:.4g} s" for v in limits if math.isfinite(v))
-        + " in these cases."
+        + " in these cases; a step marked * is above it (run with the limit lifted). "
+        "'largest h within x %': the largest step above the default whose peaks all stay "
+        "within x % of the default's, every step between included (1e-4: none does).",
+        "",
+        conclusion_table(groups, vs_default, vs_reference, marked, steps[0]),
     ]
-    for limit in THRESHOLDS:
-        ok, lifted = within(allowed, limit), within(worst, limit)
-        conclusions.append(
-            f"- Largest step whose peaks all stay within {limit:g} % of the default's: "
-            f"h = {step_label(ok)} s within the package's limit"
-            + ("" if ok > DEFAULT else " (no larger step does)")
-            + f"; with the limit lifted h = {step_label(lifted)} s."
-        )
-    d_ref = largest(vs_reference, DEFAULT)
-    conclusions.append(
-        f"- The default step's own error against the reference ({step_label(REFERENCE)} s): "
-        f"at most {d_ref[0]:.3f} % ({d_ref[1]}: {d_ref[2]})."
-    )
-    finest = steps[0]
-    if finest < REFERENCE:
-        d_fine = largest(vs_reference, finest)
-        conclusions.append(
-            f"- The reference's own error (h = {step_label(finest)} s against it): at most "
-            f"{d_fine[0]:.3f} % ({d_fine[1]}: {d_fine[2]})."
-        )
     load = ", ".join(f"{v:.2f}" for v in load_before + load_after)
     newton_abs = full_vehicle.NEWTON_TOLERANCE_FACTOR * newton_tolerance(4)
     text = "\n".join(
