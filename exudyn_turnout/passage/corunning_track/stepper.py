@@ -542,9 +542,9 @@ def unsupported(mbs: Any, contacts: Any) -> str | None:
     return None
 
 
-def _linear_parts(mbs: Any) -> tuple[tuple, np.ndarray, np.ndarray, int]:
+def _linear_parts(mbs: Any) -> tuple[tuple, np.ndarray, np.ndarray, np.ndarray]:
     """M (Exudyn's), K, D of the linear objects in one CSR pattern, their force vector, the
-    force object's local-to-global indices and its number."""
+    force object's local-to-global indices and M dense."""
     import exudyn as exu
 
     from exudyn_turnout.corunning.track import simulation_settings
@@ -552,14 +552,14 @@ def _linear_parts(mbs: Any) -> tuple[tuple, np.ndarray, np.ndarray, int]:
     n = len(mbs.systemData.GetODE2Coordinates())
     mass = np.asarray(mbs.ComputeLinearizedSystem(simulation_settings(1.0, 1.0))[0], float)
     stiffness, damping, force = np.zeros((n, n)), np.zeros((n, n)), np.zeros(n)
-    ltg, number = None, -1
+    ltg = None
     for i in range(mbs.systemData.NumberOfObjects()):
         item = mbs.GetObject(i)
         if item["objectType"] != "GenericODE2":
             continue
         index = _node_indices(mbs, list(item["nodeNumbers"]))
         if item["forceUserFunction"] != 0:
-            ltg, number = index, i
+            ltg = index
         for name, target in (("stiffnessMatrix", stiffness), ("dampingMatrix", damping)):
             matrix = mbs.GetObjectParameter(i, name)
             if isinstance(matrix, exu.MatrixContainer):

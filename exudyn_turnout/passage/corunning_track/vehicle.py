@@ -569,7 +569,7 @@ def _run(
     sim.linearSolver.solverType = exu.LinearSolverType.EigenSparse
     v = settings.v
     contacts = system.mbs.variables[_VARIABLES_KEY][0]
-    reason = "not asked for"
+    reason: str | None = "not asked for"
     if settings.solver == "compiled":
         from exudyn_turnout.passage.corunning_track import stepper
 
