@@ -62,6 +62,7 @@ __all__ = [
     "sample_rows",
     "unsupported",
     "integrate",
+    "integrate_linear",
 ]
 
 #: Newton's relative tolerance (Exudyn's default ``newton.relativeTolerance``)
@@ -158,13 +159,15 @@ def sample_rows(times: np.ndarray, sizes: np.ndarray, period: float) -> np.ndarr
 def _user(t, q, v, ltg, fbuf, ibuf, header, values, blendable, xs, record, f):  # pragma: no cover
     """The force object's f(q, v, t) scattered into the global vector f."""
     n = ltg.shape[0]
+    f[:] = 0.0
+    if n == 0:  # no force object (integrate_linear)
+        return
     for i in range(n):
         g = ltg[i]
         fbuf[i] = q[g]
         fbuf[n + i] = v[g]
     _residual(t, fbuf, ibuf, header, values, blendable, xs, record)
     o = header[2, 0]
-    f[:] = 0.0
     for i in range(n):
         f[ltg[i]] += fbuf[o + i]
 
@@ -231,6 +234,63 @@ def _lu_solve(a, piv, b):  # pragma: no cover
         for j in range(i + 1, n):
             s -= a[i, j] * b[j]
         b[i] = s / a[i, i]
+
+
+@numba.njit(cache=True)
+def _factor(jac, fac):  # pragma: no cover
+    """LU of J in the fill-reducing order (partial pivoting), kept as compressed rows of L
+    and U for :func:`_solve`; False if J is singular."""
+    order, lu, piv, l_ptr, l_idx, l_val, u_ptr, u_idx, u_val = fac
+    n = order.shape[0]
+    for i in range(n):
+        for j in range(n):
+            lu[i, j] = jac[order[i], order[j]]
+    if not _lu_factor(lu, piv):
+        return False
+    nl = 0
+    nu = 0
+    for i in range(n):
+        l_ptr[i] = nl
+        for j in range(i):
+            if lu[i, j] != 0.0:
+                l_idx[nl] = j
+                l_val[nl] = lu[i, j]
+                nl += 1
+        u_ptr[i] = nu
+        for j in range(i, n):  # the diagonal first
+            if lu[i, j] != 0.0 or j == i:
+                u_idx[nu] = j
+                u_val[nu] = lu[i, j]
+                nu += 1
+    l_ptr[n] = nl
+    u_ptr[n] = nu
+    return True
+
+
+@numba.njit(cache=True)
+def _solve(fac, b, y):  # pragma: no cover
+    """Solve J x = b in place (b becomes x) with :func:`_factor`'s compressed factors."""
+    order, lu, piv, l_ptr, l_idx, l_val, u_ptr, u_idx, u_val = fac
+    n = order.shape[0]
+    for i in range(n):
+        y[i] = b[order[i]]
+    for k in range(n):
+        p = piv[k]
+        if p != k:
+            y[k], y[p] = y[p], y[k]
+    for i in range(n):
+        s = y[i]
+        for m in range(l_ptr[i], l_ptr[i + 1]):
+            s -= l_val[m] * y[l_idx[m]]
+        y[i] = s
+    for i in range(n - 1, -1, -1):
+        s = y[i]
+        a = u_ptr[i]
+        for m in range(a + 1, u_ptr[i + 1]):
+            s -= u_val[m] * y[u_idx[m]]
+        y[i] = s / u_val[a]
+    for i in range(n):
+        b[order[i]] = y[i]
 
 
 @numba.njit(cache=True)
@@ -312,7 +372,7 @@ def _integrate(
     prep,
     segments,
     jac,
-    piv,
+    fac,
     flags,
     counts,
     out_q,
@@ -360,12 +420,12 @@ def _integrate(
                 _jacobian(t, h, q, v, lin, consts, user, norecord, f, f1, jac)
                 counts[2] += 1
                 flags[0] = 0
-                if not _lu_factor(jac, piv):
+                if not _factor(jac, fac):
                     flags[0] = 1
                     return k
             for i in range(n):
                 dx[i] = s * r[i]
-            _lu_solve(jac, piv, dx)
+            _solve(fac, dx, f1)
             for i in range(n):
                 q[i] -= dx[i]
                 v[i] += -gp * dx[i]
@@ -615,6 +675,39 @@ def _per_time(contacts: Any, times: np.ndarray) -> tuple[np.ndarray, np.ndarray]
     return rows, np.array(segments, dtype=np.int64)
 
 
+def _factors(
+    jac: np.ndarray,
+    state: np.ndarray,
+    lin: tuple,
+    consts: np.ndarray,
+    user: tuple,
+    work: np.ndarray,
+    h: float,
+) -> tuple:
+    """The factor arrays of :func:`_factor`, with a fill-reducing order: reverse
+    Cuthill-McKee of the pattern of J at the start (a quarter of the dense solve's work on
+    the full vehicle: L and U 478 and 483 entries instead of 911 and 907)."""
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import reverse_cuthill_mckee
+
+    norecord = np.zeros((1, 2))
+    _jacobian(0.0, h, state[0], state[1], lin, consts, user, norecord, work[4], work[5], jac)
+    pattern = csr_matrix((jac != 0.0) | (jac.T != 0.0))
+    order = np.asarray(reverse_cuthill_mckee(pattern, symmetric_mode=True), dtype=np.int64)
+    n = len(order)
+    return (
+        order,
+        np.zeros((n, n)),
+        np.zeros(n, dtype=np.int64),
+        np.zeros(n + 1, dtype=np.int64),
+        np.zeros(n * n, dtype=np.int64),
+        np.zeros(n * n),
+        np.zeros(n + 1, dtype=np.int64),
+        np.zeros(n * n, dtype=np.int64),
+        np.zeros(n * n),
+    )
+
+
 def integrate(
     mbs: Any,
     contacts: Any,
@@ -658,27 +751,122 @@ def integrate(
 
     lin, force, ltg, mass = _linear_parts(mbs)
     times, sizes = step_times(end_time, steps)
-    stored = sample_rows(times, sizes, sensor_period)
     prep, segments = _per_time(contacts, times)
     compiled = contacts._compiled
-    values, blendable, xs = compiled._tables
-    user = (ltg, compiled._fbuf, compiled._ibuf, compiled._header, values, blendable, xs)
-    record = compiled._record[0]
-    norecord = np.zeros((1, 2))
+    user = (ltg, compiled._fbuf, compiled._ibuf, compiled._header, *compiled._tables)
     data = mbs.systemData
     initial = exu.ConfigurationType.Initial
+    q0 = np.asarray(data.GetODE2Coordinates(initial), float)
+    v0 = np.asarray(data.GetODE2Coordinates_t(initial), float)
+    run, state = _run_steps(
+        (lin, force, mass),
+        user,
+        compiled._record[0],
+        (prep, segments),
+        (q0, v0),
+        (times, sizes, sample_rows(times, sizes, sensor_period)),
+        np.array(
+            [
+                *alpha_constants(spectral_radius),
+                absolute_tolerance,
+                RELATIVE_TOLERANCE,
+                contractivity,
+            ]
+        ),
+        progress,
+    )
+    current = exu.ConfigurationType.Current
+    data.SetODE2Coordinates(state[0], current)
+    data.SetODE2Coordinates_t(state[1], current)
+    data.SetODE2Coordinates_tt(state[2], current)
+    return run
+
+
+def integrate_linear(
+    mass: np.ndarray,
+    stiffness: np.ndarray,
+    damping: np.ndarray,
+    q0: np.ndarray,
+    v0: np.ndarray,
+    end_time: float,
+    steps: int,
+    spectral_radius: float,
+    absolute_tolerance: float = 1e-10,
+) -> StepperRun:
+    """The stepper on M q_tt + D q_t + K q = 0 (no force object): the scheme alone, for
+    checks against Exudyn and closed forms.
+
+    Parameters
+    ----------
+    mass, stiffness, damping : numpy.ndarray
+        (n, n) in kg, N/m, N s/m (or consistent units).
+    q0, v0 : numpy.ndarray
+        Initial coordinates and velocities.
+    end_time : float
+        s.
+    steps : int
+        Number of steps (Exudyn's ``numberOfSteps``).
+    spectral_radius : float
+        Generalized-alpha's rho_inf.
+    absolute_tolerance : float
+        Newton's absolute tolerance (Exudyn's default 1e-10).
+
+    Returns
+    -------
+    StepperRun
+        Every step sampled.
+    """
+    mass, stiffness, damping = (np.asarray(a, float) for a in (mass, stiffness, damping))
+    n = len(mass)
+    pattern = (mass != 0.0) | (stiffness != 0.0) | (damping != 0.0)
+    rows, cols = np.nonzero(pattern)
+    indptr = np.concatenate([[0], np.cumsum(np.bincount(rows, minlength=n))]).astype(np.int64)
+    lin = (
+        indptr,
+        cols.astype(np.int64),
+        mass[rows, cols].copy(),
+        stiffness[rows, cols].copy(),
+        damping[rows, cols].copy(),
+    )
+    user = (
+        np.zeros(0, dtype=np.int64),
+        np.zeros(1),
+        np.zeros(1, dtype=np.int64),
+        np.zeros((len(_PACKED), 4), dtype=np.int64),
+        np.zeros(2),  # the packed contact tables' types (never read here)
+        np.zeros(0, dtype=np.uint8),
+        np.zeros(0),
+    )
+    times, sizes = step_times(end_time, steps)
+    consts = np.array(
+        [*alpha_constants(spectral_radius), absolute_tolerance, RELATIVE_TOLERANCE, 0.5]
+    )
+    run, _ = _run_steps(
+        (lin, np.zeros(n), mass),
+        user,
+        np.zeros((1, 2)),
+        (np.zeros((0, 0)), np.zeros((0, 2), dtype=np.int64)),
+        (np.asarray(q0, float), np.asarray(v0, float)),
+        (times, sizes, np.ones(len(times), dtype=bool)),
+        consts,
+        None,
+    )
+    return run
+
+
+def _run_steps(system, user, record, per_time, start, clock, consts, progress):
+    """The run (:func:`integrate`, :func:`integrate_linear`): initial accelerations, then
+    every step in chunks (``progress`` between them); the run and its final state."""
+    (lin, force, mass), (prep, segments), (times, sizes, stored) = system, per_time, clock
     n = len(force)
     state = np.zeros((4, n))
-    state[0] = data.GetODE2Coordinates(initial)
-    state[1] = data.GetODE2Coordinates_t(initial)
+    state[0], state[1] = start
     work = np.zeros((8, n))
-    consts = np.array(
-        [*alpha_constants(spectral_radius), absolute_tolerance, RELATIVE_TOLERANCE, contractivity]
-    )
+    norecord = np.zeros((1, 2))
     samples = int(stored.sum())
     out_q, out_v, out_a = (np.zeros((samples, n)) for _ in range(3))
     piv = np.zeros(n, dtype=np.int64)
-    _prepare(0, compiled._fbuf, prep, segments)
+    _prepare(0, user[1], prep, segments)
     if not _start(state, lin, force, user, record, work[4], work[6], mass.copy(), piv):
         raise np.linalg.LinAlgError("singular mass matrix")
     out_q[0], out_v[0], out_a[0] = state[0], state[1], state[2]
@@ -686,6 +874,7 @@ def integrate(
     counts = np.zeros(3, dtype=np.int64)
     counts[0] = 1
     jac = np.zeros((n, n))
+    fac = _factors(jac, state, lin, consts, user, work, float(sizes[1]))
     total = len(times) - 1
     chunk = max(1, total // 50) if progress is not None else total
     failed = -1
@@ -709,7 +898,7 @@ def integrate(
             prep,
             segments,
             jac,
-            piv,
+            fac,
             flags,
             counts,
             out_q,
@@ -719,11 +908,7 @@ def integrate(
         if failed >= 0:
             break
     rows = int(flags[1])
-    current = exu.ConfigurationType.Current
-    data.SetODE2Coordinates(state[0], current)
-    data.SetODE2Coordinates_t(state[1], current)
-    data.SetODE2Coordinates_tt(state[2], current)
-    return StepperRun(
+    run = StepperRun(
         times[stored][:rows],
         out_q[:rows],
         out_v[:rows],
@@ -734,3 +919,4 @@ def integrate(
         int(counts[2]),
         math.nan if failed < 0 else float(times[failed + 1]),
     )
+    return run, state
