@@ -52,7 +52,7 @@ from typing import Any
 import numba
 import numpy as np
 
-from exudyn_turnout.passage.contact.vehicle_kernel import _PACKED, _residual
+from exudyn_turnout.passage.contact.vehicle_kernel import PACKED_NAMES, residual_kernel
 
 __all__ = [
     "RELATIVE_TOLERANCE",
@@ -166,7 +166,7 @@ def _user(t, q, v, ltg, fbuf, ibuf, header, values, blendable, xs, record, f):  
         g = ltg[i]
         fbuf[i] = q[g]
         fbuf[n + i] = v[g]
-    _residual(t, fbuf, ibuf, header, values, blendable, xs, record)
+    residual_kernel(t, fbuf, ibuf, header, values, blendable, xs, record)
     o = header[2, 0]
     for i in range(n):
         f[ltg[i]] += fbuf[o + i]
@@ -651,7 +651,7 @@ def _per_time(contacts: Any, times: np.ndarray) -> tuple[np.ndarray, np.ndarray]
     irregularities: what ``CompiledResidual.prepare`` writes), as rows, and their (offset,
     length) segments in its float buffer."""
     compiled = contacts._compiled
-    names = [name for name, _ in _PACKED]
+    names = list(PACKED_NAMES)
     views = {
         "irregularity": compiled._irregularity,
         "body_loads": compiled._body_loads,
@@ -832,7 +832,7 @@ def integrate_linear(
         np.zeros(0, dtype=np.int64),
         np.zeros(1),
         np.zeros(1, dtype=np.int64),
-        np.zeros((len(_PACKED), 4), dtype=np.int64),
+        np.zeros((len(PACKED_NAMES), 4), dtype=np.int64),
         np.zeros(2),  # the packed contact tables' types (never read here)
         np.zeros(0, dtype=np.uint8),
         np.zeros(0),
