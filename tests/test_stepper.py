@@ -30,7 +30,7 @@ from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
 from exudyn_turnout.passage.common import newton_tolerance
 from exudyn_turnout.passage.corunning_track import stepper
 from exudyn_turnout.passage.corunning_track import vehicle as full_vehicle
-from exudyn_turnout.passage.results import PassageError, PassageSettings
+from exudyn_turnout.passage.results import PassageError, PassageFailure, PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
 
 #: kg, N/m: a 2-DOF chain (masses 2 and 1 kg, springs 200 and 100 N/m): omega 5.8, 14.1 rad/s
@@ -200,3 +200,19 @@ def test_compiled_rejected_elsewhere(scene):
         simulate_passage(turnout, PassageSettings(solver="compiled"), "wheelset")
     with pytest.raises(PassageError, match="solver must be"):
         simulate_passage(turnout, PassageSettings(solver="fast"), "wheelset")
+
+
+def test_failed_step_names_time_and_position(scene, monkeypatch):
+    # a step whose Newton fails (not retried smaller, unlike Exudyn's adaptive step): the
+    # run stops with the same PassageFailure as Exudyn's solver error, time and position
+    integrate = stepper.integrate
+
+    def failing(*args, **kwargs):
+        return replace(integrate(*args, **kwargs), failed_at=0.01)
+
+    monkeypatch.setattr(stepper, "integrate", failing)
+    turnout, model = scene
+    case = PassageSettings(x_start=-5.0, x_end=-4.5, solver="compiled")
+    x = -5.0 + case.v * 0.01
+    with pytest.raises(PassageFailure, match=rf"t = 0\.01000 s, front wheelset at x = {x:.3f} m"):
+        simulate_passage(turnout, case, model)
