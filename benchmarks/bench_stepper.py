@@ -6,13 +6,14 @@ README's full-vehicle case, 3-layer, through route, 100 km/h, front wheelset x -
 passage with ``solver="exudyn"``, the yardstick, the passage with ``solver="compiled"``, the
 yardstick (``benchmarks/yardstick.py``): per solver the whole passage's CPU seconds (median
 over the rounds), x real time, yardstick units (its CPU time over the mean of the two
-yardstick runs around it, median), and of the time stepping: steps, Newton iterations per
-step, residual calls per step (Exudyn: calls of the force object's function during
-``SolveDynamic``, its initial accelerations included; compiled: the same count from the
-stepper) and iteration matrices (Jacobians). Then the largest difference between the two
-solvers' peaks: |Fz| and |Fy| of every wheel of every wheelset at the switch (that
-wheelset's x 5..15 m) and at the crossing (x 44..50 m), in percent of Exudyn's peak. The
-contact tables are loaded and the kernels warmed up before, untimed.
+yardstick runs around it, median), the CPU seconds of the stepping alone (Exudyn's
+``SolveDynamic`` or the compiled stepper, every segment, median), and of the stepping:
+steps, Newton iterations per step, residual calls per step (Exudyn: calls of the force
+object's function during ``SolveDynamic``, its initial accelerations included; compiled:
+the same count from the stepper) and iteration matrices (Jacobians). Then the largest
+difference between the two solvers' peaks: |Fz| and |Fy| of every wheel of every wheelset
+at the switch (that wheelset's x 5..15 m) and at the crossing (x 44..50 m), in percent of
+Exudyn's peak. The contact tables are loaded and the kernels warmed up before, untimed.
 """
 
 from __future__ import annotations
@@ -22,12 +23,14 @@ import statistics
 import time
 from dataclasses import replace
 
+import exudyn as exu
 import numpy as np
 from yardstick import Yardstick, machine_line
 
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
 from exudyn_turnout.passage.contact.vehicle_contacts import VehicleContacts
+from exudyn_turnout.passage.corunning_track import stepper
 from exudyn_turnout.passage.corunning_track import vehicle as full_vehicle_passage
 from exudyn_turnout.passage.results import PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
@@ -41,7 +44,10 @@ class _Counts:
 
     def __init__(self):
         self.steps = self.iterations = self.jacobians = self.calls = 0
+        self.stepping = 0.0  #: s, CPU time in SolveDynamic or the stepper
         self._run = full_vehicle_passage._run
+        self._solve = exu.MainSystem.SolveDynamic
+        self._integrate = stepper.integrate
         self._function = VehicleContacts.force_function
         self._live = [0]
 
@@ -74,13 +80,27 @@ class _Counts:
                 self.calls += live[0] - before
             return cols
 
+        def timed(function):
+            def call(*args, **kwargs):
+                t0 = time.process_time()
+                try:
+                    return function(*args, **kwargs)
+                finally:
+                    self.stepping += time.process_time() - t0
+
+            return call
+
         full_vehicle_passage._run = counted_run
         VehicleContacts.force_function = function
+        exu.MainSystem.SolveDynamic = timed(self._solve)
+        stepper.integrate = timed(self._integrate)
         return self
 
     def __exit__(self, *exc):
         full_vehicle_passage._run = self._run
         VehicleContacts.force_function = self._function
+        exu.MainSystem.SolveDynamic = self._solve
+        stepper.integrate = self._integrate
 
 
 def peaks(columns, n_wheelsets: int = 4) -> dict[str, float]:
@@ -124,6 +144,7 @@ def main() -> None:
     stick = Yardstick()
     stick.run()
     cpu: dict[str, list[float]] = {"exudyn": [], "compiled": []}
+    stepping: dict[str, list[float]] = {"exudyn": [], "compiled": []}
     units: dict[str, list[float]] = {"exudyn": [], "compiled": []}
     counts, results = {}, {}
     for _ in range(args.repeats):
@@ -134,6 +155,7 @@ def main() -> None:
                 seconds = time.process_time() - t0
             stick.run()
             cpu[solver].append(seconds)
+            stepping[solver].append(count.stepping)
             units[solver].append(seconds / (0.5 * sum(stick.cpu_times[-2:])))
             counts[solver] = count
     print(
@@ -142,18 +164,22 @@ def main() -> None:
         "whole passage"
     )
     print(
-        f"{'solver':<10}{'CPU s':>8}{'x real':>8}{'units':>8}{'steps':>8}{'it/step':>9}"
-        f"{'calls/step':>12}{'Jacobians':>11}"
+        f"{'solver':<10}{'CPU s':>8}{'x real':>8}{'units':>8}{'stepping s':>12}{'steps':>8}"
+        f"{'it/step':>9}{'calls/step':>12}{'Jacobians':>11}"
     )
     for solver in ("exudyn", "compiled"):
         c = counts[solver]
         seconds = statistics.median(cpu[solver])
         print(
             f"{solver:<10}{seconds:>8.3f}{seconds / simulated:>8.3f}"
-            f"{statistics.median(units[solver]):>8.2f}{c.steps:>8d}"
+            f"{statistics.median(units[solver]):>8.2f}"
+            f"{statistics.median(stepping[solver]):>12.3f}{c.steps:>8d}"
             f"{c.iterations / c.steps:>9.3f}{c.calls / c.steps:>12.3f}{c.jacobians:>11d}"
         )
     a, b = peaks(results["exudyn"].columns), peaks(results["compiled"].columns)
+    if not a:
+        print("no wheel in the peaks' regions")
+        return
     worst = max(a, key=lambda k: abs(b[k] - a[k]) / a[k])
     print(
         f"largest peak difference (|Fz|, |Fy| of {len(a)} wheel-region peaks): "
