@@ -52,7 +52,11 @@ from typing import Any
 import numba
 import numpy as np
 
-from exudyn_turnout.passage.contact.vehicle_kernel import PACKED_NAMES, residual_kernel
+from exudyn_turnout.passage.contact.vehicle_kernel import (
+    PACKED_NAMES,
+    record_kernel,
+    residual_kernel,
+)
 
 __all__ = [
     "RELATIVE_TOLERANCE",
@@ -369,6 +373,7 @@ def _integrate(
     user,
     record,
     norecord,
+    recorded,
     prep,
     segments,
     jac,
@@ -402,7 +407,7 @@ def _integrate(
         a_s[:] = a
         aalg_s[:] = aalg
         _predict(h, q, v, a, aalg, consts)
-        initial = _residual_of(t, q, v, a, lin, f0, user, record, f, r)
+        initial = _residual_of(t, q, v, a, lin, f0, user, norecord, f, r)
         counts[0] += 1
         if initial <= abs_tol:
             initial = 2.0 * abs_tol
@@ -430,7 +435,7 @@ def _integrate(
                 q[i] -= dx[i]
                 v[i] += -gp * dx[i]
                 a[i] += -bp * dx[i]
-            residual = _residual_of(t, q, v, a, lin, f0, user, record, f, r)
+            residual = _residual_of(t, q, v, a, lin, f0, user, norecord, f, r)
             counts[0] += 1
             if residual > initial and it <= 1:
                 initial = residual
@@ -475,11 +480,13 @@ def _integrate(
                         a[:] = a_s
                         aalg[:] = aalg_s
                         _predict(h, q, v, a, aalg, consts)
-                        _residual_of(t, q, v, a, lin, f0, user, record, f, r)
+                        _residual_of(t, q, v, a, lin, f0, user, norecord, f, r)
                         counts[0] += 1
                         add_restart = True
         if stop or not converged:
             return k
+        if record.shape[0] > 1:  # the contacts of the last call: the accepted state's
+            record_kernel(t, recorded[0], recorded[1], record)
         c = (1.0 - alpha_f) / (1.0 - alpha_m)
         for i in range(n):
             aalg[i] += c * a[i]
@@ -774,6 +781,7 @@ def integrate(
             ]
         ),
         progress,
+        (compiled._work, compiled._details),
     )
     current = exu.ConfigurationType.Current
     data.SetODE2Coordinates(state[0], current)
@@ -850,11 +858,12 @@ def integrate_linear(
         (times, sizes, np.ones(len(times), dtype=bool)),
         consts,
         None,
+        (np.zeros((1, 3, 1)), np.zeros((1, 1, 1))),
     )
     return run
 
 
-def _run_steps(system, user, record, per_time, start, clock, consts, progress):
+def _run_steps(system, user, record, per_time, start, clock, consts, progress, recorded):
     """The run (:func:`integrate`, :func:`integrate_linear`): initial accelerations, then
     every step in chunks (``progress`` between them); the run and its final state."""
     (lin, force, mass), (prep, segments), (times, sizes, stored) = system, per_time, clock
@@ -895,6 +904,7 @@ def _run_steps(system, user, record, per_time, start, clock, consts, progress):
             user,
             record,
             norecord,
+            recorded,
             prep,
             segments,
             jac,
