@@ -877,7 +877,7 @@ def _run_steps(system, user, record, per_time, start, clock, consts, progress, r
     piv = np.zeros(n, dtype=np.int64)
     _prepare(0, user[1], prep, segments)
     if not _start(state, lin, force, user, record, work[4], work[6], mass.copy(), piv):
-        raise np.linalg.LinAlgError("singular mass matrix")
+        raise RuntimeError("singular mass matrix")  # _run: a PassageFailure
     out_q[0], out_v[0], out_a[0] = state[0], state[1], state[2]
     flags = np.array([1, 1], dtype=np.int64)
     counts = np.zeros(3, dtype=np.int64)
