@@ -35,8 +35,12 @@ steps (modified Newton) and recomputes it where an iteration after the second re
 residual by less than the run's ``modifiedNewtonContractivity``, after 8 iterations, and
 restarts the step from the predictor where the contraction is worse than 2 (Exudyn's
 rules, literally). K_t, D_t: the linear objects' K, D plus the force object's forward
-differences (Exudyn's step: 1e-7 x max(|q_j|, 0.01)), J dense and LU-factorised with
-partial pivoting. Times and sensor samples follow Exudyn's adaptive-step bookkeeping
+differences (Exudyn's step: 1e-7 x max(|q_j|, 0.01)); J is LU-factorised with partial
+pivoting in a reverse Cuthill-McKee order of its pattern and solved with the compressed
+factors (on the full vehicle's 103 coordinates ~1,000 entries instead of ~10,600 of a dense
+LU: ~3 us a solve). The contacts' forces and details of each accepted step are recorded
+once, after Newton converged (what the residual records at Newton's last call of a time in
+Exudyn's run: the same rows). Times and sensor samples follow Exudyn's adaptive-step bookkeeping
 (t += h, the last step shortened to the end time; a sample where t reaches the last
 sample's time plus the period, and at the end). A step whose Newton fails is not retried
 smaller (Exudyn would): the run stops with the time and position.
