@@ -122,18 +122,30 @@ def step_times(end_time: float, steps: int) -> tuple[np.ndarray, np.ndarray]:
     sizes : numpy.ndarray
         s, every step's size (sizes[0] unused).
     """
+    times, sizes, count = _step_times(float(end_time), int(steps))
+    return times[:count].copy(), sizes[:count].copy()
+
+
+@numba.njit(cache=True)
+def _step_times(end_time, steps):  # pragma: no cover (compiled)
+    """:func:`step_times` (a loop over the run's steps: compiled)."""
     h = end_time / steps
-    times, sizes = [0.0], [h]
+    size = steps + 2  # round-off may add a last, tiny step
+    times, sizes = np.zeros(size), np.full(size, h)
     t = 0.0
+    count = 1
     while True:
         if t + h > end_time:
             h = end_time - t
         t += h
-        times.append(t)
-        sizes.append(h)
+        if count == size:  # never: the loop ends within steps + 1 steps
+            break
+        times[count] = t
+        sizes[count] = h
+        count += 1
         if t >= end_time - 1e-10:
             break
-    return np.array(times), np.array(sizes)
+    return times, sizes, count
 
 
 def sample_rows(times: np.ndarray, sizes: np.ndarray, period: float) -> np.ndarray:
@@ -151,10 +163,17 @@ def sample_rows(times: np.ndarray, sizes: np.ndarray, period: float) -> np.ndarr
     numpy.ndarray
         bool per time.
     """
-    end = float(times[-1])
+    return _sample_rows(np.asarray(times, float), np.asarray(sizes, float), float(period))
+
+
+@numba.njit(cache=True)
+def _sample_rows(times, sizes, period):  # pragma: no cover (compiled)
+    """:func:`sample_rows` (a loop over the run's times: compiled)."""
+    end = times[-1]
     last = 0.0
-    out = np.zeros(len(times), dtype=bool)
-    for k, t in enumerate(times):
+    out = np.zeros(times.shape[0], dtype=np.bool_)
+    for k in range(times.shape[0]):
+        t = times[k]
         if k > 0 and abs(t - end) <= 1e-10:
             last = end - sizes[k]
         if k == 0 or t - last >= -1e-10:
