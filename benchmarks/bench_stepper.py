@@ -14,6 +14,21 @@ the same count from the stepper) and iteration matrices (Jacobians). Then the la
 difference between the two solvers' peaks: |Fz| and |Fy| of every wheel of every wheelset
 at the switch (that wheelset's x 5..15 m) and at the crossing (x 44..50 m), in percent of
 Exudyn's peak. The contact tables are loaded and the kernels warmed up before, untimed.
+
+Measured (2 cores shared with other jobs, load 6-7; three runs of ``--repeats 3`` at
+different times, so the seconds scatter: compare the units and the ratios):
+
+========  ==============  =================  ==============  ===========================
+solver    CPU s           yardstick units    stepping CPU s  it/step, calls/step, Jacs
+========  ==============  =================  ==============  ===========================
+exudyn    2.08/2.79/2.13  18.82/16.47/18.48  1.67/2.30/1.78  1.308, 2.308, 15
+compiled  1.57/1.54/1.25  11.37/10.15/10.73  1.13/1.03/0.85  1.308, 2.308, 15
+========  ==============  =================  ==============  ===========================
+
+The whole passage -40 % (units 0.58-0.62 of Exudyn's), its stepping 1.5-2.2x faster (the
+rest, set-up, columns and summary, ~0.45 s, is the same code); the same Newton iterations,
+residual calls and Jacobians as Exudyn's, every one of the 24 switch and crossing peaks of
+|Fz| within 0.01 N and of |Fy| within 0.22 N (0.012 %).
 """
 
 from __future__ import annotations
