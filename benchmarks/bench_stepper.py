@@ -15,8 +15,8 @@ difference between the two solvers' peaks: |Fz| and |Fy| of every wheel of every
 at the switch (that wheelset's x 5..15 m) and at the crossing (x 44..50 m), in percent of
 Exudyn's peak. The contact tables are loaded and the kernels warmed up before, untimed.
 
-Measured (2 cores shared with other jobs, load 6-7; three runs of ``--repeats 3`` at
-different times, so the seconds scatter: compare the units and the ratios):
+Measured (2 cores shared with other jobs, load 6-7; three runs of ``--repeats 3`` during the
+work, the last on the final code; the seconds scatter: compare the units and the ratios):
 
 ========  ==============  =================  ==============  ===========================
 solver    CPU s           yardstick units    stepping CPU s  it/step, calls/step, Jacs
