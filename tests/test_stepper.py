@@ -216,3 +216,33 @@ def test_failed_step_names_time_and_position(scene, monkeypatch):
     x = -5.0 + case.v * 0.01
     with pytest.raises(PassageFailure, match=rf"t = 0\.01000 s, front wheelset at x = {x:.3f} m"):
         simulate_passage(turnout, case, model)
+
+
+def test_anything_else_acting_goes_to_exudyn(scene, monkeypatch):
+    turnout, model = scene
+    case = PassageSettings(x_start=-5.0, x_end=-4.8, solver="compiled")
+    seen = []
+    integrate = stepper.integrate
+
+    def spy(mbs, contacts, *args, **kwargs):
+        seen.append((mbs, contacts))
+        return integrate(mbs, contacts, *args, **kwargs)
+
+    monkeypatch.setattr(stepper, "integrate", spy)
+    simulate_passage(turnout, case, model)
+    mbs, contacts = seen[0]
+    assert stepper.unsupported(mbs, contacts) is None
+    from exudyn.itemInterface import LoadCoordinate, MarkerNodeCoordinate
+
+    marker = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=0, coordinate=0))
+    mbs.AddLoad(LoadCoordinate(markerNumber=marker, load=1.0))
+    mbs.Assemble()
+    assert stepper.unsupported(mbs, contacts) == "the system has loads"
+    # a segment the stepper does not serve runs in Exudyn: Exudyn's results, bit for bit
+    monkeypatch.setattr(stepper, "unsupported", lambda mbs, contacts: "a load")
+    seen.clear()
+    fallback = simulate_passage(turnout, case, model).columns
+    exudyn = simulate_passage(turnout, replace(case, solver="exudyn"), model).columns
+    assert not seen
+    for name, values in exudyn.items():
+        np.testing.assert_array_equal(fallback[name], values, err_msg=name)
