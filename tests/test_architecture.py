@@ -36,6 +36,7 @@ EXUDYN_BUILDERS = {
     "passage/corunning_track/vehicle.py",
     "passage/corunning_track/relax.py",
     "passage/corunning_track/carry_over.py",
+    "passage/corunning_track/stepper.py",  # reads a built system, writes its final state
     "passage/fe_track/wheelset.py",
     "passage/fe_track/vehicle.py",
     "passage/hunting.py",

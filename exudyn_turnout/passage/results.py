@@ -104,6 +104,10 @@ class PassageSettings:
     #: track irregularity (:class:`~exudyn_turnout.inputs.irregularity.Irregularity`) added
     #: to the rails' heights and lateral positions; None: the design geometry
     irregularity: Any = None
+    #: time integration of the full vehicle on the co-running track: "exudyn" (Exudyn's
+    #: generalized-alpha) or "compiled" (the same scheme in one numba loop,
+    #: :mod:`~exudyn_turnout.passage.corunning_track.stepper`; other runs reject it)
+    solver: str = "exudyn"
 
     @property
     def v(self) -> float:

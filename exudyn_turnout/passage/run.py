@@ -179,6 +179,10 @@ def simulate_passage(
     """
     track, settings = track_of(settings, track)
     model = vehicle_of(vehicle)
+    if settings.solver not in ("exudyn", "compiled"):
+        raise PassageError(f"solver must be 'exudyn' or 'compiled', got {settings.solver!r}")
+    if settings.solver == "compiled" and (track == "fe" or not isinstance(model, VehicleModel)):
+        raise PassageError("solver 'compiled' runs the full vehicle on the co-running track only")
     implementation = _implementation(track)
     if isinstance(model, VehicleModel):
         base = load_vehicle()

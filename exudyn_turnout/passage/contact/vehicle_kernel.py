@@ -42,7 +42,7 @@ from exudyn_turnout.corunning.track_kernel import (
 from exudyn_turnout.passage.contact.profile import ProfileContactElement
 from exudyn_turnout.wheel_rail.kernel import contact_forces
 
-__all__ = ["CompiledResidual"]
+__all__ = ["CompiledResidual", "PACKED_NAMES", "residual_kernel", "record_kernel"]
 
 #: the packed arrays: (name, kind), kind "f" in the float buffer, "i" in the integer one; a
 #: kernel reads array j through the header row j (offset, shape): _residual's indices are
@@ -574,3 +574,16 @@ def _pack(
         view[...] = a
         views[name] = view
     return fbuf, ibuf, header, views
+
+
+#: the packed arrays' names in the order of the header's rows (for compiled callers that
+#: read the buffers: :mod:`~exudyn_turnout.passage.corunning_track.stepper`)
+PACKED_NAMES = tuple(name for name, _ in _PACKED)
+
+#: the whole force object's compiled residual ``(t, fbuf, ibuf, header, values, blendable,
+#: xs, record)``, for compiled callers (the stepper calls it from numba)
+residual_kernel = _residual
+
+#: the record of one time's contact forces and details ``(t, work, details, record)`` (what
+#: the residual stores at each call), for compiled callers that record once per time
+record_kernel = _record

@@ -12,6 +12,7 @@ against a full-vehicle step of ~230 us CPU).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import exudyn as exu
@@ -66,7 +67,9 @@ def add_body_sensors(mbs: Any, build: VehicleBuild, loads: Any = None) -> None:
     mbs.variables[SENSORS_KEY] = (build, sensors, loads)
 
 
-def recorded_body_columns(mbs: Any, t: np.ndarray) -> dict[str, np.ndarray]:
+def recorded_body_columns(
+    mbs: Any, t: np.ndarray, stored_data: Callable[[int], np.ndarray] | None = None
+) -> dict[str, np.ndarray]:
     """The body columns at the times ``t`` of a finished run (empty without sensors).
 
     Parameters
@@ -76,6 +79,9 @@ def recorded_body_columns(mbs: Any, t: np.ndarray) -> dict[str, np.ndarray]:
     t : numpy.ndarray
         s, the run's own times (from its start), one per output row; each is matched to the
         nearest stored sensor sample (the sensors store every step or every output step).
+    stored_data : callable(sensor) -> numpy.ndarray, optional
+        A sensor's samples (default ``mbs.GetSensorStoredData``; a run of the compiled
+        stepper gives its own).
 
     Returns
     -------
@@ -87,7 +93,8 @@ def recorded_body_columns(mbs: Any, t: np.ndarray) -> dict[str, np.ndarray]:
     if entry is None:
         return {}
     build, sensors, loads = entry
-    stored = [np.asarray(mbs.GetSensorStoredData(s), float) for s in sensors]
+    read = mbs.GetSensorStoredData if stored_data is None else stored_data
+    stored = [np.asarray(read(s), float) for s in sensors]
     times = stored[0][:, 0]
     t = np.asarray(t, float)
     rows = np.clip(np.searchsorted(times, t), 1, len(times) - 1)
