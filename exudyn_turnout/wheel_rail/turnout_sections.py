@@ -89,6 +89,7 @@ from exudyn_turnout.wheel_rail.geometry import (
 from exudyn_turnout.wheel_rail.profiles import Profile, read_slices
 from exudyn_turnout.wheel_rail.section_nodes import (
     TOUCHABLE_DEPTH,
+    TRANSFER_MIN_STEP,
     first_touch_heights,
     section_nodes,
     transfer_nodes,
@@ -505,9 +506,18 @@ def _pair_transfer_nodes(
 def _add_nodes(
     context: _Context, segments: tuple[Segment, ...], grid: SectionGrid, extra: np.ndarray
 ) -> SectionGrid:
-    """A body's sections with exact sections at more x nodes (those it lacks)."""
-    new = np.array([v for v in extra if not np.any(np.abs(grid.x - v) < 1e-9)])
-    if not len(new):
+    """A body's sections with exact sections at more x nodes.
+
+    A node within half the transfer floor of one it has (or of one added before) is left
+    out: the other body's nodes may lie a fraction of a mm from its own.
+    """
+    kept = list(grid.x)
+    new = []
+    for v in sorted(extra):
+        if np.min(np.abs(np.asarray(kept) - v)) >= 0.5 * TRANSFER_MIN_STEP:
+            kept.append(float(v))
+            new.append(float(v))
+    if not new:
         return grid
     x = np.concatenate((grid.x, new))
     z = np.concatenate((grid.z, [_body_heights(context, segments, float(v)) for v in new]))
