@@ -45,6 +45,13 @@ are dropped; ``plain`` and ``closure`` keep their two ends.  At a node a section
 the design functions of :mod:`.turnout_design` for the design kinds, and for ``slices`` the
 slice set interpolated along u as CONTACT does (:func:`.sections.slice_surface`; the slice
 positions are break points).  Between nodes every kind is linear, within the tolerance.
+Where two running rails share a wheel (stock rail and blade, wing rail and nose: two bodies
+of one wheel; the nose's and wing rail's heads of a ``slices`` section) the load split
+follows the difference of their first-touch heights, which the tables interpolate linearly
+between nodes: there :func:`.section_nodes.transfer_nodes` adds nodes (the S1002 wheel at
+the nominal taping line over the tables' +-12 mm shifts, :data:`TRANSFER_SHIFTS`), down to
+1 mm, until that difference is linear within 2 um over every cell where both rails are
+within 0.2 mm of first touch; both bodies of a pair get the nodes.
 Where a body begins abruptly (a nose tip), nodes every ``min_step`` over ``envelope_reach``
 before it let the wheel's envelope (:func:`.sections.wheel_envelope`, applied by
 :func:`route_contact_tables`) meet the front ahead of the wheel centre.
