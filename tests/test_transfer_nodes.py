@@ -18,6 +18,7 @@ from exudyn_turnout.wheel_rail.section_nodes import (
     TRANSFER_TOLERANCE,
     first_touch_heights,
     transfer_nodes,
+    wheel_heights,
 )
 
 #: lateral shifts of the synthetic wheel (m)
@@ -94,13 +95,14 @@ def test_first_touch_heights_flat_wheel_is_highest_point_per_rail():
     ]
     wheel_s = np.arange(-0.2, 0.2, 1e-4)
     wheel_z = np.zeros_like(wheel_s)
-    h = first_touch_heights(z, y, wheel_s, wheel_z, 0.05, np.array([0.0]), -0.010)
+    over = wheel_heights(y, wheel_s, wheel_z, 0.05, np.array([0.0]))
+    h = first_touch_heights(z, over, -0.010)
     assert h.shape == (2, 1)
     assert h[0, 0] == pytest.approx(-0.001)
     assert h[1, 0] == pytest.approx(np.nanmax(z[y > 0.04]))
     # one head: the gauge-side rail is absent
     only = np.where(y > 0.04, z, np.nan)
-    h1 = first_touch_heights(only, y, wheel_s, wheel_z, 0.05, np.array([0.0]), -0.010)
+    h1 = first_touch_heights(only, over, -0.010)
     assert np.isnan(h1[0, 0]) and h1[1, 0] == pytest.approx(np.nanmax(z[y > 0.04]))
 
 
@@ -112,7 +114,7 @@ def test_first_touch_heights_coned_wheel_closed_form():
     wheel_s = np.round(np.arange(-0.2, 0.2, 1e-4), 6)
     wheel_z = np.abs(wheel_s) / 20.0
     shifts = np.array([0.0, 0.015, -0.02])
-    h = first_touch_heights(z, y, wheel_s, wheel_z, 0.05, shifts)
+    h = first_touch_heights(z, wheel_heights(y, wheel_s, wheel_z, 0.05, shifts))
     taping = 0.05 + shifts
     distance = np.clip(np.maximum(0.04 - taping, taping - 0.06), 0.0, None)
     assert h[0] == pytest.approx(-distance / 20.0, abs=1e-9)

@@ -106,6 +106,7 @@ from exudyn_turnout.wheel_rail.section_nodes import (  # noqa: E402
     first_touch_heights,
     section_nodes,
     transfer_nodes,
+    wheel_heights,
 )
 from exudyn_turnout.wheel_rail.sections import (  # noqa: E402
     SectionGrid,
@@ -339,17 +340,12 @@ def crossing_table(
         wheel = s1002_wheel()
         low, high, step = TRANSFER_SHIFTS
         shifts = PASSAGE_Y + low + step * np.arange(int(round((high - low) / step)) + 1)
+        over = wheel_heights(surface.y, wheel.s, wheel.z, 0.0, shifts)
         extra = np.zeros(0)
         if transfer:
             extra = transfer_nodes(
                 lambda v: first_touch_heights(
-                    slice_heights(surface, np.array([v]))[0],
-                    surface.y,
-                    wheel.s,
-                    wheel.z,
-                    0.0,
-                    shifts,
-                    HEAD_THRESHOLD,
+                    slice_heights(surface, np.array([v]))[0], over, HEAD_THRESHOLD
                 ),
                 x,
             )

@@ -15,7 +15,7 @@ a grid there: it bisects a cell while, for a rigid wheel at some lateral shift, 
 are within :data:`TRANSFER_NEAR` of first touch (or trade places) and the difference of
 their first-touch heights departs from linear by more than :data:`TRANSFER_TOLERANCE` at
 the cell's middle, down to :data:`TRANSFER_MIN_STEP`.  :func:`first_touch_heights` gives
-those heights of a gridded section.
+those heights of a gridded section (the wheel over its grid: :func:`wheel_heights`).
 
 Stage: pure numpy.
 """
@@ -32,6 +32,7 @@ __all__ = [
     "TRANSFER_TOLERANCE",
     "TRANSFER_MIN_STEP",
     "section_nodes",
+    "wheel_heights",
     "first_touch_heights",
     "transfer_nodes",
 ]
@@ -187,23 +188,19 @@ def section_nodes(
     return x, np.array([at(float(v)) for v in x])
 
 
-def first_touch_heights(
-    heights: np.ndarray,
+def wheel_heights(
     y: np.ndarray,
     wheel_s: np.ndarray,
     wheel_z: np.ndarray,
     taping_line: float,
     shifts: np.ndarray,
-    head_threshold: float | None = None,
 ) -> np.ndarray:
-    """Heights at which a rigid wheel first touches each rail of a section (vertical).
+    """A wheel's lower surface over a section's lateral grid, at several lateral shifts.
 
     Parameters
     ----------
-    heights : numpy.ndarray
-        m, section heights on ``y`` (NaN: no rail).
     y : numpy.ndarray
-        m, lateral grid of the section.
+        m, lateral grid of the sections.
     wheel_s, wheel_z : numpy.ndarray
         m, the wheel's lower surface: lateral coordinate from its taping line and height
         above the taping circle's lowest point (NaN: no wheel).
@@ -211,6 +208,27 @@ def first_touch_heights(
         m, lateral position of the taping line at zero shift.
     shifts : numpy.ndarray
         m, lateral shifts of the wheel.
+
+    Returns
+    -------
+    numpy.ndarray
+        m, (n_shifts, n_y): ``z_wheel(y - taping_line - shift)`` (NaN: no wheel there).
+    """
+    s = np.asarray(y, float)[None, :] - taping_line - np.asarray(shifts, float)[:, None]
+    return np.interp(s, wheel_s, wheel_z, left=np.nan, right=np.nan)
+
+
+def first_touch_heights(
+    heights: np.ndarray, wheel: np.ndarray, head_threshold: float | None = None
+) -> np.ndarray:
+    """Heights at which a rigid wheel first touches each rail of a section (vertical).
+
+    Parameters
+    ----------
+    heights : numpy.ndarray
+        m, section heights on its lateral grid (NaN: no rail).
+    wheel : numpy.ndarray
+        m, (n_shifts, n_y) the wheel over the same grid (:func:`wheel_heights`).
     head_threshold : float, optional
         m, a rail head stands above this height (flangeways are deeper): the section holds
         two rails, its gauge-side head (the nose of a crossing, where there are two or more
@@ -220,11 +238,11 @@ def first_touch_heights(
     -------
     numpy.ndarray
         m, (1 or 2, n_shifts): the height of the wheel's taping circle bottom when the rail
-        first touches it, ``max(z_rail(y) - z_wheel(y - taping_line - shift))`` over the
-        run (NaN: wheel and rail do not overlap laterally).
+        first touches it, ``max(z_rail(y) - z_wheel(y))`` over the rail (NaN: wheel and
+        rail do not overlap laterally).
     """
-    shifts = np.asarray(shifts, float)
-    runs = [slice(0, len(y))]
+    n_y = len(heights)
+    runs = [slice(0, n_y)]
     if head_threshold is not None:
         high = np.concatenate(([False], np.nan_to_num(heights, nan=-np.inf) > head_threshold))
         edges = np.flatnonzero(np.concatenate((high[1:] != high[:-1], [high[-1]])))
@@ -232,11 +250,9 @@ def first_touch_heights(
         if len(heads) >= 2:
             runs = [heads[0], slice(heads[1].start, heads[-1].stop)]
         else:
-            runs = [slice(0, 0), slice(0, len(y))]
-    s = y[None, :] - taping_line - shifts[:, None]
-    wheel = np.interp(s, wheel_s, wheel_z, left=np.nan, right=np.nan)
+            runs = [slice(0, 0), slice(0, n_y)]
     lift = heights[None, :] - wheel
-    out = np.full((len(runs), len(shifts)), np.nan)
+    out = np.full((len(runs), wheel.shape[0]), np.nan)
     for k, run in enumerate(runs):
         part = lift[:, run]
         some = np.any(np.isfinite(part), axis=1)

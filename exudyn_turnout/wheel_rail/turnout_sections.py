@@ -100,6 +100,7 @@ from exudyn_turnout.wheel_rail.section_nodes import (
     first_touch_heights,
     section_nodes,
     transfer_nodes,
+    wheel_heights,
 )
 from exudyn_turnout.wheel_rail.sections import (
     SectionGrid,
@@ -394,20 +395,22 @@ def _tolerance_pieces(context: _Context, segment: Segment) -> list[tuple[float, 
     return [(segment.x_from, segment.x_to, factor)]
 
 
-@functools.lru_cache(maxsize=4)
-def _design_wheel(grid_step: float) -> WheelGrid:
-    """The S1002 wheel that places x nodes where two rails share it (its own grid step)."""
-    return s1002_wheel(WheelsetSetup(grid_step=grid_step))
+@functools.lru_cache(maxsize=8)
+def _design_wheel(y0: float, n_y: int, grid_step: float, taping: float) -> np.ndarray:
+    """The S1002 wheel over a lateral grid at :data:`TRANSFER_SHIFTS` (its own grid step)."""
+    wheel = s1002_wheel(WheelsetSetup(grid_step=grid_step))
+    low, high, step = TRANSFER_SHIFTS
+    shifts = low + step * np.arange(int(round((high - low) / step)) + 1)
+    y = y0 + grid_step * np.arange(n_y)
+    return wheel_heights(y, wheel.s, wheel.z, taping, shifts)
 
 
 def _first_touch(context: _Context, heights: np.ndarray, head_threshold: float | None):
     """First-touch heights of the design wheel on a section (:func:`first_touch_heights`)."""
-    g = context.geometry
-    wheel = _design_wheel(g.grid_step)
-    low, high, step = TRANSFER_SHIFTS
-    shifts = low + step * np.arange(int(round((high - low) / step)) + 1)
+    g, y = context.geometry, context.y
     taping = 0.5 * g.back_to_back + WheelsetSetup().flange_back
-    return first_touch_heights(heights, context.y, wheel.s, wheel.z, taping, shifts, head_threshold)
+    wheel = _design_wheel(float(y[0]), len(y), float(y[1] - y[0]), taping)
+    return first_touch_heights(heights, wheel, head_threshold)
 
 
 def _segment_nodes(
