@@ -158,3 +158,34 @@ def test_packaged_switch_toe_transfer_is_followed():
     stock = bodies["right wheel on right stock rail"]
     blade = bodies["right wheel on switch blade, closure and wing rail"]
     assert _pair_error(stock, blade, 0.0, 0.15) <= 10e-6
+
+
+def test_slices_segment_gets_nodes_in_its_transfer_only():
+    # the packaged turnout with its crossing nose replaced by the UK crossing slices (both
+    # heads in one section): on the slice positions alone the wing rail -> nose transfer lay
+    # in one 19.7 mm cell (u = 0.2484 - 0.2680 m, validation/two_patch_split.md); the
+    # transfer nodes split it, while behind the transfer (u = 0.33 - 0.40 m, the nose
+    # alone carries) the nodes stay the slice positions
+    import copy
+    from dataclasses import replace
+
+    from exudyn_turnout.inputs.turnout import load_turnout
+    from exudyn_turnout.wheel_rail.data import profile_path
+    from exudyn_turnout.wheel_rail.profiles import read_slices
+    from exudyn_turnout.wheel_rail.turnout_sections import route_rail_bodies
+
+    turnout = load_turnout()
+    raw = copy.deepcopy(turnout.raw)
+    x0 = 46.8
+    raw["routes"]["through"]["contacts"][2]["sections"] = [
+        {"kind": "slices", "file": "uk_crossing.slcs", "x0": x0, "x": ["nose_tip - 0.1", 51.0]}
+    ]
+    nose = route_rail_bodies(replace(turnout, raw=raw), "through")[2]
+    u = nose.sections.x - x0
+    slices = read_slices(profile_path("uk_crossing.slcs")).u
+    cell = u[(u > 0.2484 + 1e-4) & (u < 0.2680 - 1e-4)]
+    assert len(cell) >= 3
+    assert np.max(np.diff(np.concatenate(([0.2484], cell, [0.2680])))) <= 0.005
+    behind = u[(u > 0.33) & (u < 0.40)]
+    assert len(behind) > 0
+    assert all(np.min(np.abs(slices - v)) < 1e-6 for v in behind)
