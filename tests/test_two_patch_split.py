@@ -68,13 +68,14 @@ def test_tables_split_the_load_within_ten_percent_of_the_reference(solved):
     _load, _packed, reference, _solution, tables = solved
     r, s = reference.share, tables.share
     # the contact issue's criterion, per patch: |share_tables - share_ref| <= 10 % of the
-    # reference's share (measured at this u: tables 0.469 against 0.498 here, -5.7 % of
-    # the nose's share, +5.6 % of the wing's; against 0.494 on the page's grid -4.9 / +4.8 %)
+    # reference's share (measured at this u: tables 0.470 against 0.498 here, -5.6 % of
+    # the nose's share, +5.5 % of the wing's; on the slice positions alone, before the
+    # transfer nodes, 0.469, -5.7 / +5.6 %)
     assert abs(s - r) <= 0.1 * r
     assert abs((1.0 - s) - (1.0 - r)) <= 0.1 * (1.0 - r)
     # where the patches act: the tables' force centres (the per-node KP force centre on the
     # 2-D section) within 0.5 mm of the exact pressure's on the nose, 1 mm on the wing rail
-    # (measured: 0.01 and 0.47 mm)
+    # (measured: 0.01 and 0.25 mm; 0.01 and 0.47 mm on the slice positions alone)
     assert tables.y_nose == pytest.approx(reference.y_nose, abs=5e-4)
     assert tables.y_wing == pytest.approx(reference.y_wing, abs=1e-3)
 
@@ -94,3 +95,18 @@ def test_tables_two_patches_are_the_kernels_vertical_force(split, solved):
     assert forces[1] == pytest.approx(load, rel=1e-5)
     assert tables.nose + tables.wing == pytest.approx(forces[1], rel=1e-9)
     assert tables.nose > 0.1 * load and tables.wing > 0.1 * load
+
+
+def test_nose_share_late_in_the_transfer_within_0_05(split, solved):
+    # late in the transfer, where the tables on the slice positions alone (one 19.7 mm
+    # cell from 0.2484 to 0.2680 m) met the nose late: with the transfer nodes
+    # (section_nodes.transfer_nodes) the nose share is within the page's 0.05 of the
+    # reference (measured on this coarse grid: 0.836 against 0.878; on the slice
+    # positions alone 0.805, 0.073 off; the page: 0.072 off before, within 0.05 at 20 / 20
+    # points after)
+    load, packed, *_ = solved
+    u = 0.2554
+    reference, _solution = split.reference_split(u, 0.0, load, *COARSE)
+    tables = split.table_split(packed, u, 0.0, load)
+    assert 0.5 < reference.share < 1.0
+    assert abs(tables.share - reference.share) <= 0.05

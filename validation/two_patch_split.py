@@ -24,7 +24,8 @@ solutions of both patches, each at the wheel height that carries W (vertical equ
   Force prescribed: its approach is the wheel's descent below first touch;
 - **tables**: what the passage computes: the slice set's sections on the x nodes the
   passage's ``slices`` segments get (``section_nodes`` with the default ``[wheel_rail]``
-  tolerance and steps at the slice positions), the rigid wheel's envelope along x
+  tolerance and steps at the slice positions, then ``transfer_nodes`` where the two rails
+  share the wheel), the rigid wheel's envelope along x
   (``wheel_envelope``, reach 0.1 m), the contact table of the 2-D sections
   (``build_contact_table``, default settings but the shift range, see
   :data:`TABLE_SHIFTS`), and the compiled kernel (``kernel.contact_forces``, v = 0: no
@@ -34,6 +35,8 @@ solutions of both patches, each at the wheel height that carries W (vertical equ
   the sum of the vertical forces = W;
 - **tables, 2 mm x nodes** (diagnostic): the same table, law and kernel on the slice set's
   sections every 2 mm along u instead of the passage's nodes;
+- **tables, slice nodes only** (before -> after): the passage's tables on the nodes it
+  had before ``transfer_nodes`` (the slice positions alone);
 - **KP, 2-D section** (diagnostic): Kik-Piotrowski on each contact of the 2-D section
   exactly at u (:func:`kp_split`; no table, no Hertz).
 
@@ -99,7 +102,12 @@ from exudyn_turnout.wheel_rail.reference_normal import (  # noqa: E402
     surface_gap,
 )
 from exudyn_turnout.wheel_rail.references import ReferenceCase  # noqa: E402
-from exudyn_turnout.wheel_rail.section_nodes import section_nodes  # noqa: E402
+from exudyn_turnout.wheel_rail.section_nodes import (  # noqa: E402
+    first_touch_heights,
+    section_nodes,
+    transfer_nodes,
+    wheel_heights,
+)
 from exudyn_turnout.wheel_rail.sections import (  # noqa: E402
     SectionGrid,
     lateral_grid,
@@ -110,6 +118,10 @@ from exudyn_turnout.wheel_rail.sections import (  # noqa: E402
 from exudyn_turnout.wheel_rail.tables import TableSettings, build_contact_table  # noqa: E402
 from exudyn_turnout.wheel_rail.transfer import rail_runs  # noqa: E402
 from exudyn_turnout.wheel_rail.turnout_design import RailGeometry  # noqa: E402
+from exudyn_turnout.wheel_rail.turnout_sections import (  # noqa: E402
+    HEAD_THRESHOLD,
+    TRANSFER_SHIFTS,
+)
 
 OUT = Path(__file__).with_suffix(".md")
 SLICE_FILE = "uk_crossing.slcs"
@@ -126,6 +138,9 @@ FINE_X = (0.2, 0.34)
 FINE_STEP = 0.002
 #: the third method's name on the page (:func:`kp_split`)
 KP_NAME = "KP, 2-D section"
+#: the fourth method's name: the passage's tables on the nodes it had before the transfer
+#: nodes (the slice positions alone), for the comparison before -> after
+OLD_NAME = "tables, slice nodes only"
 #: m, element size of the reference along x and y (halved once at one u: see the page)
 DX, DY = 5e-4, 2.5e-4
 #: m, first window of the reference grid: x from the wheel centre, y on the slices
@@ -139,7 +154,8 @@ CONTACT_FN = 1.0e4
 #: m, lateral wheel positions: CONTACT's Y = 0 (every packaged case) and -2.5 mm, where
 #: the passage puts a centred wheelset on this slice set (its gauge point, y = -35.0 mm, at
 #: gauge / 2 = 717.5 mm and the taping line at 750 mm: 32.5 - 35.0 = -2.5 mm)
-POSITIONS = (0.0, -0.0025)
+PASSAGE_Y = -0.0025
+POSITIONS = (0.0, PASSAGE_Y)
 #: m, the sweep covers the rigid transfer +- this (both patches carry within +-10 mm)
 SWEEP_HALF_WIDTH = 0.012
 
@@ -278,13 +294,14 @@ def reference_split(
 
 
 def crossing_table(
-    cache_dir: str | Path | None = None, x_step: float | None = None
+    cache_dir: str | Path | None = None, x_step: float | None = None, transfer: bool = True
 ) -> PackedTables:
     """The passage's contact table of the UK crossing slices, packed for the kernel.
 
     Sections at the x nodes a ``slices`` segment gets (:mod:`.turnout_sections`: the
     slice positions as break points, ``section_nodes`` with the default ``[wheel_rail]``
-    tolerance and minimum step), the rigid wheel's envelope (default reach and step), the
+    tolerance and minimum step, then ``transfer_nodes`` where nose and wing rail share the
+    wheel), the rigid wheel's envelope (default reach and step), the
     table of the S1002 wheel with its profile origin as the taping line (so the table's
     shift is CONTACT's Y and its lift CONTACT's -Z).
 
@@ -295,6 +312,9 @@ def crossing_table(
     x_step : float, optional
         m, instead of the passage's nodes, uniform nodes this far apart over
         :data:`FINE_X` (a diagnostic: the same sections, law and kernel, finer along x).
+    transfer : bool
+        Add the transfer nodes (False: the slice positions' nodes alone, as the passage
+        had them before ``transfer_nodes``).
 
     Returns
     -------
@@ -314,6 +334,23 @@ def crossing_table(
             slice(0, len(surface.y)),
             geometry.grid_step,
         )
+        # the passage's nodes where nose and wing rail share the wheel (turnout_sections:
+        # the S1002 wheel over the running rails' shift range, here in the slice frame,
+        # where the passage's centred wheelset stands at Y = -2.5 mm)
+        wheel = s1002_wheel()
+        low, high, step = TRANSFER_SHIFTS
+        shifts = PASSAGE_Y + low + step * np.arange(int(round((high - low) / step)) + 1)
+        over = wheel_heights(surface.y, wheel.s, wheel.z, 0.0, shifts)
+        extra = np.zeros(0)
+        if transfer:
+            extra = transfer_nodes(
+                lambda v: first_touch_heights(
+                    slice_heights(surface, np.array([v]))[0], over, HEAD_THRESHOLD
+                ),
+                x,
+            )
+        x = np.sort(np.concatenate((x, extra)))
+        z = slice_heights(surface, x)
         nodes = x
     else:
         a, b = FINE_X
@@ -681,17 +718,19 @@ def _explanation(summaries: list, tables: dict, fine_name: str) -> list[str]:
     y, load, first = summaries[0]
     passage = tables["tables"]
     u50 = first["u50_ref"]
-    k = int(np.searchsorted(passage.x, u50))
-    cell = (float(passage.x[k - 1]), float(passage.x[k]))
     packed = tables["tables"]
     at = table_split(packed, u50, y, load)
     rows = kernel_rows(packed, u50, y, at.height)
     semi = rows[rows[:, _NORMAL] > 0.0, DETAIL_FIELDS.index("semi_hertzian")]
     geometry = ", ".join(
-        f"{s['tables']['geometry'] * 1e6:.1f} / {s[fine_name]['geometry'] * 1e6:.1f} um "
-        f"(Y = {yy * 1e3:+.1f} mm, {w / 1e3:.1f} kN)"
+        f"{s[OLD_NAME]['geometry'] * 1e6:.1f} / {s['tables']['geometry'] * 1e6:.1f} / "
+        f"{s[fine_name]['geometry'] * 1e6:.1f} um (Y = {yy * 1e3:+.1f} mm, {w / 1e3:.1f} kN)"
         for yy, w, s in summaries
     )
+    old = tables[OLD_NAME]
+    k_old = int(np.searchsorted(old.x, u50))
+    old_cell = (float(old.x[k_old - 1]), float(old.x[k_old]))
+    inside = passage.x[(passage.x > old_cell[0] - 1e-9) & (passage.x < old_cell[1] + 1e-9)]
     slopes = ", ".join(
         f"{s['slope'] * 1e-6 * 100:.2f} percentage points per um at {w / 1e3:.1f} kN "
         f"(Y = {yy * 1e3:+.1f} mm)"
@@ -718,22 +757,30 @@ def _explanation(summaries: list, tables: dict, fine_name: str) -> list[str]:
         "weighs more the smaller the approach, i.e. the smaller the load.",
         "",
         "- **Geometry along x (the passage's x nodes).**  The largest error of d where the "
-        f"reference has two patches, passage tables / {fine_name}: {geometry}.  The "
-        f"transfer at Y = {y * 1e3:+.1f} mm (u50 = {u50:.4f} m) lies inside one table cell, "
-        f"x nodes {cell[0]:.4f} - {cell[1]:.4f} m ({(cell[1] - cell[0]) * 1e3:.1f} mm): "
-        "two neighbouring slices of the set (``section_nodes`` takes the slice positions "
-        "as break points and adds none between them: midway the section differs from the "
-        "blend of its ends by less than the 0.2 mm section tolerance).  In the cell the "
-        "kernel interpolates each rail's contact linearly along x, while on the 3-D surface "
-        "(the slices interpolated along u at constant y, shape-preserving cubic, as the "
-        "passage's sections between nodes would be if it had more) the rails' first-touch "
-        "heights do not vary linearly between the slices: the tables meet the nose late and "
-        "keep load on the wing rail over the second half of the transfer.  On 2 mm nodes "
-        "(the same interpolated surface sampled densely) the same law and kernel follow d "
-        "within the numbers after the slash; what remains there is the 2-D section (wheel "
-        "envelope of the polygon slices) against the 3-D spline surfaces.  Which of the two "
-        "is the crossing between two slices the data do not say: the slices are its only "
-        "description, and CONTACT interpolates them along u in its own way (by features).",
+        f"reference has two patches, {OLD_NAME} / passage tables / {fine_name}: "
+        f"{geometry}.  On the slice positions alone (``section_nodes`` takes them as break "
+        "points and adds none between them: midway the section differs from the blend of "
+        "its ends by less than the 0.2 mm section tolerance) the transfer at "
+        f"Y = {y * 1e3:+.1f} mm (u50 = {u50:.4f} m) lies inside one table cell, "
+        f"{old_cell[0]:.4f} - {old_cell[1]:.4f} m "
+        f"({(old_cell[1] - old_cell[0]) * 1e3:.1f} mm), where the kernel interpolates each "
+        "rail's contact linearly along x, while on the 3-D surface (the slices interpolated "
+        "along u at constant y, shape-preserving cubic) the rails' first-touch heights do "
+        "not vary linearly between the slices: those tables meet the nose late and keep "
+        "load on the wing rail over the second half of the transfer.  The passage now adds "
+        "x nodes where two rails share the wheel (``section_nodes.transfer_nodes``: a cell "
+        "is halved while, for the rigid S1002 wheel at some shift of the tables' +-12 mm, "
+        "nose and wing rail are both within 0.2 mm of first touch and the difference of "
+        "their first-touch heights departs from linear by more than 2 um at its middle, "
+        f"down to 1 mm): {len(inside)} nodes in that cell, "
+        f"{(float(np.max(np.diff(inside))) if len(inside) > 1 else 0.0) * 1e3:.1f} mm apart "
+        f"at most ({len(passage.x)} nodes over {TABLE_X[0]:g} - {TABLE_X[1]:g} m instead of "
+        f"{len(old.x)}).  On 2 mm nodes (the same interpolated surface sampled densely) the "
+        "same law and kernel follow d within the last numbers; what remains there is the "
+        "2-D section (wheel envelope of the polygon slices) against the 3-D spline "
+        "surfaces.  Which of the two is the crossing between two slices the data do not "
+        "say: the slices are its only description, and CONTACT interpolates them along u "
+        "in its own way (by features).",
         "- **Normal law.**  At the reference's own d (the tables' share interpolated over "
         "their d), the largest difference of the nose share is the last column of the "
         "summary: that part is the law's.  Here both patches are Hertz nodes (weight of "
@@ -750,8 +797,9 @@ def _explanation(summaries: list, tables: dict, fine_name: str) -> list[str]:
         f"tables: {stiffness('tables')}; {KP_NAME}: {stiffness(KP_NAME)}.  The exact "
         "approach on the wing rail alone changes along u between two slices (the 3-D "
         "surface there is the slices' interpolation along u at constant y, the wing rail's "
-        "crown moving sideways at 1:9.25 through it); the tables', linear between the "
-        "slices, hardly.",
+        "crown moving sideways at 1:9.25 through it); on the slice positions alone the "
+        "tables', linear between the slices, hardly "
+        f"({OLD_NAME}: {stiffness(OLD_NAME)}); the transfer nodes follow it in part.",
         "",
         "Nothing was tuned: the tables are the passage's (default section tolerance, "
         "envelope and law).",
@@ -767,10 +815,19 @@ def main(argv: list[str] | None = None) -> int:
     start = time.perf_counter()
     static = float(load_vehicle_model().static_wheel_load)
     fine_name = f"tables, {FINE_STEP * 1e3:g} mm x nodes"
-    tables = {"tables": crossing_table(), fine_name: crossing_table(x_step=FINE_STEP)}
+    tables = {
+        "tables": crossing_table(),
+        fine_name: crossing_table(x_step=FINE_STEP),
+        OLD_NAME: crossing_table(transfer=False),
+    }
     passage_x = tables["tables"].x
-    methods = {name: functools.partial(table_split, packed) for name, packed in tables.items()}
+    methods = {
+        name: functools.partial(table_split, packed)
+        for name, packed in tables.items()
+        if name != OLD_NAME
+    }
     methods[KP_NAME] = kp_split
+    methods[OLD_NAME] = functools.partial(table_split, tables[OLD_NAME])
     step = 0.002 if args.quick else 0.0005
     lines = [
         "# Normal-force split between wing rail and nose: passage tables vs exact 3-D",
@@ -783,7 +840,9 @@ def main(argv: list[str] | None = None) -> int:
         "the 2-D sections and its kernel; "
         f"{fine_name}: the same on uniform x nodes {FINE_STEP * 1e3:g} mm apart (a "
         f"diagnostic); {KP_NAME}: Kik-Piotrowski on each contact of the 2-D section "
-        "exactly at u (no table).  Every method at the wheel height that carries the load "
+        f"exactly at u (no table); {OLD_NAME}: the passage's tables on the nodes it had "
+        "before x nodes were added where two rails share the wheel (the slice positions "
+        "alone).  Every method at the wheel height that carries the load "
         f"(E* = {MODULUS / 1e9:.1f} GPa).",
         "",
         "Loads: the static wheel load of the packaged vehicle "
@@ -831,11 +890,11 @@ def main(argv: list[str] | None = None) -> int:
         "0.05, worst | u50 ref / tables (m) | u50 shift (mm) | "
         f"{fine_name}: within 10 % / 0.05, worst | u50 shift (mm) | {KP_NAME}: within 10 % / "
         "0.05, worst | u50 shift (mm) | worst at the reference's first-touch difference: "
-        "tables / 2 mm / KP |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+        f"tables / 2 mm / KP | {OLD_NAME}: within 10 % / 0.05, worst | u50 shift (mm) |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for y, load, s in summaries:
-        t, f, k = s["tables"], s[fine_name], s[KP_NAME]
+        t, f, k, o = s["tables"], s[fine_name], s[KP_NAME], s[OLD_NAME]
         lines.append(
             f"| {y * 1e3:+.1f} | {load / 1e3:.1f} | {s['two_ref']} / {t['two']} | "
             f"{s['points']} | {t['ok10']} / {t['ok05']}, {t['worst']:.3f} | "
@@ -844,7 +903,9 @@ def main(argv: list[str] | None = None) -> int:
             f"{(f['u50'] - s['u50_ref']) * 1e3:+.2f} | "
             f"{k['ok10']} / {k['ok05']}, {k['worst']:.3f} | "
             f"{(k['u50'] - s['u50_ref']) * 1e3:+.2f} | "
-            f"{t['law']:.3f} / {f['law']:.3f} / {k['law']:.3f} |"
+            f"{t['law']:.3f} / {f['law']:.3f} / {k['law']:.3f} | "
+            f"{o['ok10']} / {o['ok05']}, {o['worst']:.3f} | "
+            f"{(o['u50'] - s['u50_ref']) * 1e3:+.2f} |"
         )
     lines += ["", *_explanation(summaries, tables, fine_name), "", *_convergence(*cases[0])]
     lines += ["", f"Total run time {time.perf_counter() - start:.0f} s.", ""]

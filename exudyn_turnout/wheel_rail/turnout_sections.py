@@ -45,6 +45,13 @@ are dropped; ``plain`` and ``closure`` keep their two ends.  At a node a section
 the design functions of :mod:`.turnout_design` for the design kinds, and for ``slices`` the
 slice set interpolated along u as CONTACT does (:func:`.sections.slice_surface`; the slice
 positions are break points).  Between nodes every kind is linear, within the tolerance.
+Where two running rails share a wheel (stock rail and blade, wing rail and nose: two bodies
+of one wheel; the nose's and wing rail's heads of a ``slices`` section) the load split
+follows the difference of their first-touch heights, which the tables interpolate linearly
+between nodes: there :func:`.section_nodes.transfer_nodes` adds nodes (the S1002 wheel at
+the nominal taping line over the tables' +-12 mm shifts, :data:`TRANSFER_SHIFTS`), down to
+1 mm, until that difference is linear within 2 um over every cell where both rails are
+within 0.2 mm of first touch; both bodies of a pair get the nodes.
 Where a body begins abruptly (a nose tip), nodes every ``min_step`` over ``envelope_reach``
 before it let the wheel's envelope (:func:`.sections.wheel_envelope`, applied by
 :func:`route_contact_tables`) meet the front ahead of the wheel centre.
@@ -72,6 +79,7 @@ numpy (the contact tables are :mod:`.tables`').
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, replace
 
@@ -79,13 +87,21 @@ import numpy as np
 
 from exudyn_turnout.inputs.routes import load_route
 from exudyn_turnout.inputs.turnout import Turnout
+from exudyn_turnout.wheel_rail.data import s1002_wheel
 from exudyn_turnout.wheel_rail.geometry import (
     CHECK_RAIL_DIRECTION,
     WheelGrid,
     WheelsetSetup,
 )
 from exudyn_turnout.wheel_rail.profiles import Profile, read_slices
-from exudyn_turnout.wheel_rail.section_nodes import TOUCHABLE_DEPTH, section_nodes
+from exudyn_turnout.wheel_rail.section_nodes import (
+    TOUCHABLE_DEPTH,
+    TRANSFER_MIN_STEP,
+    first_touch_heights,
+    section_nodes,
+    transfer_nodes,
+    wheel_heights,
+)
 from exudyn_turnout.wheel_rail.sections import (
     SectionGrid,
     SliceSurface,
@@ -132,6 +148,8 @@ __all__ = [
     "route_contact_tables",
     "section_nodes",
     "envelope_sections",
+    "TRANSFER_SHIFTS",
+    "HEAD_THRESHOLD",
 ]
 
 
@@ -174,6 +192,15 @@ _LATERAL_STEP = 1.5e-3
 #: step was 0.025 mm with 1/800, 0.02 mm is the hand-over check's tolerance
 #: (tests/test_turnout_sections.py); 1/1200 (0.067 m on a 2 m twist)
 _TWIST_STEP = 1.0 / 1200.0
+
+
+#: m, lateral shifts of the design wheel (S1002 at the nominal taping line) over which the
+#: x grid looks for two rails sharing the wheel (:func:`.section_nodes.transfer_nodes`): the
+#: running rails' table range (:class:`.tables.TableSettings`, +-12 mm) every 0.5 mm
+TRANSFER_SHIFTS = (-0.012, 0.012, 5e-4)
+
+#: m, a rail head of a slice set stands above this height (flangeways are deeper)
+HEAD_THRESHOLD = -0.010
 
 
 @dataclass(frozen=True, eq=False)
@@ -368,6 +395,24 @@ def _tolerance_pieces(context: _Context, segment: Segment) -> list[tuple[float, 
     return [(segment.x_from, segment.x_to, factor)]
 
 
+@functools.lru_cache(maxsize=8)
+def _design_wheel(y0: float, n_y: int, grid_step: float, taping: float) -> np.ndarray:
+    """The S1002 wheel over a lateral grid at :data:`TRANSFER_SHIFTS` (its own grid step)."""
+    wheel = s1002_wheel(WheelsetSetup(grid_step=grid_step))
+    low, high, step = TRANSFER_SHIFTS
+    shifts = low + step * np.arange(int(round((high - low) / step)) + 1)
+    y = y0 + grid_step * np.arange(n_y)
+    return wheel_heights(y, wheel.s, wheel.z, taping, shifts)
+
+
+def _first_touch(context: _Context, heights: np.ndarray, head_threshold: float | None):
+    """First-touch heights of the design wheel on a section (:func:`first_touch_heights`)."""
+    g, y = context.geometry, context.y
+    taping = 0.5 * g.back_to_back + WheelsetSetup().flange_back
+    wheel = _design_wheel(float(y[0]), len(y), float(y[1] - y[0]), taping)
+    return first_touch_heights(heights, wheel, head_threshold)
+
+
 def _segment_nodes(
     context: _Context, segment: Segment, region: slice
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -390,7 +435,17 @@ def _segment_nodes(
             x, z = x[1:], z[1:]
         xs.append(x)
         zs.append(z)
-    return np.concatenate(xs), np.concatenate(zs)
+    x, z = np.concatenate(xs), np.concatenate(zs)
+    if segment.kind == "slices":  # a crossing's nose and wing rail in one section
+        extra = transfer_nodes(
+            lambda v: _first_touch(context, _heights(context, segment, v), HEAD_THRESHOLD), x
+        )
+        if len(extra):
+            x = np.concatenate((x, extra))
+            z = np.concatenate((z, [_heights(context, segment, float(v)) for v in extra]))
+            order = np.argsort(x)
+            x, z = x[order], z[order]
+    return x, z
 
 
 def _body(context: _Context, segments: tuple[Segment, ...], name: str) -> SectionGrid:
@@ -419,6 +474,65 @@ def _body(context: _Context, segments: tuple[Segment, ...], name: str) -> Sectio
             order = np.argsort(x_all)
             x_all, z_all = x_all[order], z_all[order]
     return SectionGrid(x=x_all, y=context.y, z=z_all, name=name)
+
+
+def _body_heights(context: _Context, segments: tuple[Segment, ...], x: float) -> np.ndarray:
+    """Exact section of a body at x (the segment holding x)."""
+    segment = next(s for s in segments if s.x_from <= x <= s.x_to)
+    return _heights(context, segment, x)
+
+
+def _pair_transfer_nodes(
+    context: _Context,
+    first: tuple[Segment, ...],
+    second: tuple[Segment, ...],
+    nodes: tuple[np.ndarray, np.ndarray],
+) -> np.ndarray:
+    """x nodes both bodies of a wheel need where they share it (:func:`transfer_nodes`).
+
+    On the union of the two bodies' nodes where both are present; the nodes added and the
+    union's nodes of the cells refined (so that both bodies' tables hold every node of
+    those cells).
+    """
+    lo = max(first[0].x_from, second[0].x_from)
+    hi = min(first[-1].x_to, second[-1].x_to)
+    if hi <= lo:
+        return np.zeros(0)
+    union = np.unique(np.concatenate([n[(n >= lo) & (n <= hi)] for n in nodes] + [[lo, hi]]))
+
+    def touch(x: float) -> np.ndarray:
+        return np.concatenate(
+            [_first_touch(context, _body_heights(context, b, x), None) for b in (first, second)]
+        )
+
+    extra = transfer_nodes(touch, union)
+    if not len(extra):
+        return extra
+    cell = np.clip(np.searchsorted(union, extra) - 1, 0, len(union) - 2)
+    ends = np.concatenate((union[cell], union[cell + 1]))
+    return np.unique(np.concatenate((extra, ends)))
+
+
+def _add_nodes(
+    context: _Context, segments: tuple[Segment, ...], grid: SectionGrid, extra: np.ndarray
+) -> SectionGrid:
+    """A body's sections with exact sections at more x nodes.
+
+    A node within half the transfer floor of one it has (or of one added before) is left
+    out: the other body's nodes may lie a fraction of a mm from its own.
+    """
+    kept = list(grid.x)
+    new = []
+    for v in sorted(extra):
+        if np.min(np.abs(np.asarray(kept) - v)) >= 0.5 * TRANSFER_MIN_STEP:
+            kept.append(float(v))
+            new.append(float(v))
+    if not new:
+        return grid
+    x = np.concatenate((grid.x, new))
+    z = np.concatenate((grid.z, [_body_heights(context, segments, float(v)) for v in new]))
+    order = np.argsort(x)
+    return replace(grid, x=x[order], z=z[order])
 
 
 def _check_twist(
@@ -467,12 +581,30 @@ def route_rail_bodies(turnout: Turnout, route: str) -> tuple[RailBody, ...]:
     _check_twist(turnout, geometry, segments)
     pairs = load_route(turnout, route).pairs
     contexts: dict[bool, _Context] = {}
-    bodies = []
+    grids = []
     for pair, body_segments in zip(pairs, segments):
         check = body_segments[0].kind == "check"
         if check not in contexts:
             contexts[check] = _context(geometry, check)
-        sections = _body(contexts[check], body_segments, f"{route}: {pair.name}")
+        grids.append(_body(contexts[check], body_segments, f"{route}: {pair.name}"))
+    # two running rails under one wheel (stock rail and blade, wing rail and nose): nodes
+    # where they share it, in both bodies' grids
+    running = [i for i, seg in enumerate(segments) if seg[0].kind != "check"]
+    for i in running:
+        for j in running:
+            if j <= i or pairs[i].wheel != pairs[j].wheel:
+                continue
+            kinds = {seg.kind for seg in segments[i] + segments[j]}
+            if not kinds & set(_ENVELOPED):
+                continue
+            extra = _pair_transfer_nodes(
+                contexts[False], segments[i], segments[j], (grids[i].x, grids[j].x)
+            )
+            grids[i] = _add_nodes(contexts[False], segments[i], grids[i], extra)
+            grids[j] = _add_nodes(contexts[False], segments[j], grids[j], extra)
+    bodies = []
+    for pair, body_segments, sections in zip(pairs, segments, grids):
+        check = body_segments[0].kind == "check"
         bodies.append(
             RailBody(
                 name=pair.name,
