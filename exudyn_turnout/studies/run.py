@@ -754,7 +754,8 @@ def process_pool(cases: Sequence[Case], workers: int, start_method: str | None =
     """The default executor of :func:`run_study`: worker processes warmed for ``cases``.
 
     The workers start warm: a 5 cm passage of each kind of case (at most three kinds:
-    files, route, contact, track) loads imports, contact tables and compiled kernels once.
+    contact tables, vehicle, route, contact, track; :func:`warm_up`) loads imports, contact
+    tables and compiled kernels once.
     ``fork`` (default on Linux) warms this process and forks the workers from it, so the
     warm-up is paid once, not once per worker, and the workers skip the imports (~3 s a
     worker; each sets its BLAS libraries to one thread, :func:`one_blas_thread`); ``spawn``
