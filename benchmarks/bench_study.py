@@ -32,22 +32,27 @@ dask[distributed] for the Dask row; ``--alternate N``: only the two pools, in tu
 the speed-up on idle cores estimated from the cases' CPU times). Issue 24's goal: 2 workers
 >= 1.8x 1 worker.
 
-Measured 2026-12-02 11:04-11:40 UTC, alternating with the base 95eeea5 (a ``git archive``
-copy, its numba caches filled first) on the 2-core AMD EPYC VM, shared: load average 2.5-7
-throughout, so wall speed-ups were 0.6-1.5 for both and say nothing; the estimates for idle
-cores come from CPU times. ``python benchmarks/study_timeline.py --trees BASE . --rounds N``
-(the performance table's study, 24 single-wheelset passages, 4 pad stiffnesses, as fresh
-``exudyn-turnout study`` processes; 5 rounds each): 1 -> 2 workers x1.70 at the base (rounds
-1.60-1.82), x1.81 here (1.67-1.99), medians. The parent's warm-up before the fork went from
-1.57-1.71 s CPU (3 kinds: the route's tables loaded 3 times, and the 4th pad file's once
-more in a worker) to 0.72-1.12 s (one kind: the pad stiffness no longer keys the tables);
-the serial run's cases 24.7 -> 23.5 s CPU in round 0 (load 3.8-5: the tables loaded once,
-not 4 times). The serial parts of a 2-worker run (the base at load 2.8, 14.4 s wall, x1.81
-that round): imports 1.1 s, study and cases 0.16 s, warm-up 1.36 s (here 0.7-1.1 s),
-writing the cases and the table 0.04 s, exit 0.3 s; the workers ended 0.05 s apart.
-``--alternate 1 --vehicle wheelset`` (pools from a warm parent, so the warm-up is not in
-it; 2 rounds per tree): x1.83, 1.76 at the base, x1.80, 2.18 here on idle cores; the cases'
-CPU in 2 workers over 1: 1.07-1.10 (0.92 once), the same at the base and here.
+Measured 2026-12-02 11:04-11:58 UTC, alternating with the base 95eeea5 (a ``git archive``
+copy, its numba caches filled first) on the 2-core AMD EPYC VM, shared with other jobs: load
+average 1.1-7, so most wall speed-ups say nothing (0.6-1.5); the estimates for idle cores
+come from CPU times. ``python benchmarks/study_timeline.py --trees BASE . --rounds N`` (the
+performance table's study: 24 single-wheelset passages, 4 pad stiffnesses, as fresh
+``exudyn-turnout study`` processes; 10 rounds each): 1 -> 2 workers x1.72 at the base
+(rounds 1.48-1.89), x1.78 here (1.62-1.99), medians; in the rounds that ran undisturbed
+(wall = CPU time with 1 worker, both cores busy with 2): base x1.73 (26.8 vs 15.4 s wall),
+here x1.69 (27.0 vs 15.9 s) and x1.88 (24.9 vs 13.3 s). What changed: the
+parent's warm-up before the fork 1.57-1.71 s CPU (3 kinds: the route's tables loaded 3
+times, the 4th pad file's once more in a worker) -> 0.72-1.12 s (one kind: the pad
+stiffness no longer keys the tables); the serial run's cases 24.7 -> 23.5 s CPU (tables
+loaded once, not 4 times); the exit 0.3-1.6 s -> 0.04-0.09 s (objects frozen at exit, not
+collected). Left serial in a 2-worker run: imports 0.9-1.1 s, study and cases 0.15 s,
+warm-up 0.7-1.1 s, writing cases and table 0.04 s; the workers end 0.03-0.7 s apart. What
+keeps it below x1.8: the cases' CPU in 2 workers over 1, 1.04-1.10 (threads, garbage
+collection and copy-on-write ruled out: extra threads 0 s CPU, one young collection a case,
+~4000 page faults in a worker's first case, as in this process). ``--alternate 1 --vehicle
+wheelset`` (pools from a warm parent, so the warm-up is not in it; 2 rounds per tree):
+x1.83, 1.76 at the base, x1.80, 2.18 here on idle cores; the cases' CPU in 2 workers over
+1: 1.07-1.10 (0.92 once), the same at the base and here.
 """
 
 import argparse
