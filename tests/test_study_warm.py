@@ -13,8 +13,9 @@ import pytest
 from exudyn_turnout.studies import load_study, run_case
 from exudyn_turnout.studies.run import warm_up
 
-#: 4 cases of 3 m, the height-table contact (cheap); a pad stiffness no other test uses, so
-#: that its kinds are new to this process.
+#: 3 m cases, the height-table contact (cheap): 2 check-rail clearances (what the contact
+#: tables are built from; values no other test uses, so that the kinds are new to this
+#: process) x 2 pad stiffnesses (the track only: the same kind) x 2 speeds.
 STUDY = """
 [base]
 contact = "height-table"
@@ -29,27 +30,35 @@ speed_kmh = [80.0, 100.0]
 """
 
 
-def _cases(tmp_path: Path, k_a: float, k_b: float):
+def _cases(tmp_path: Path, k_a: float, k_b: float, c_a: float | None = None, c_b: float = 0.0):
+    """The study's cases; without ``c_a`` the packaged clearance only."""
+    text = STUDY.format(k_a=k_a, k_b=k_b)
+    if c_a is not None:
+        text += f'"turnout.check_rail.clearance" = [{c_a}, {c_b}]\n'
     path = tmp_path / "study.toml"
-    path.write_text(STUDY.format(k_a=k_a, k_b=k_b), encoding="utf-8")
+    path.write_text(text, encoding="utf-8")
     return load_study(path).cases()
 
 
 def test_a_process_is_warmed_once_per_kind(tmp_path):
-    """Two kinds (two turnout files, one track): warmed once; a process that ran a case of a
-    kind (a serial study before a pool is made from it) is not warmed for that kind again."""
-    cases = _cases(tmp_path, 101.234e6, 141.234e6)
+    """Two kinds (two check-rail clearances; the pad stiffness does not make a kind: files that
+    differ in the track only share the contact tables): warmed once; a process that ran a
+    case of a kind (a serial study before a pool is made from it) is not warmed for that
+    kind again."""
+    cases = _cases(tmp_path, 101e6, 141e6, 0.0041234, 0.0042234)
+    assert len({c.turnout_text for c in cases}) == 4  # 4 turnout files, 2 kinds
     assert warm_up(cases) == 2
     assert warm_up(cases) == 0
-    others = _cases(tmp_path, 102.345e6, 142.345e6)
-    record = run_case(others[0])  # kind of k_z = 102.345e6
+    others = _cases(tmp_path, 101e6, 141e6, 0.0043456, 0.0044456)
+    record = run_case(others[0])  # kind of clearance 0.0043456
     assert record["status"] == "ok", record["error"]
-    assert warm_up(others) == 1  # only the kind of k_z = 142.345e6 is new
+    assert warm_up(others) == 1  # only the kind of clearance 0.0044456 is new
     assert warm_up(others, kinds=5) == 0
 
 
 def test_each_modified_file_is_written_once(tmp_path, monkeypatch):
-    """2 speeds x 2 pad stiffnesses: two modified turnout files, each written once."""
+    """2 speeds x 2 pad stiffnesses (x 1 clearance): two modified turnout files, each written
+    once."""
     from exudyn_turnout.studies import study as study_module
 
     calls = []
@@ -75,16 +84,17 @@ def test_spawned_workers_are_warmed_though_this_process_is_warm(tmp_path):
 
     if "spawn" not in multiprocessing.get_all_start_methods():
         pytest.skip("no spawn start method here")
-    cases = _cases(tmp_path, 103.456e6, 143.456e6)
+    cases = _cases(tmp_path, 103e6, 143e6, 0.0045678, 0.0046678)
     warm_up(cases)
     assert warm_up(cases) == 0  # warm here
     with process_pool(cases, 1, "spawn") as pool:
         assert pool.submit(warm_up, cases).result() == 0  # warm there too, by the initializer
 
 
-def test_cases_are_handed_out_by_file_longest_first(tmp_path):
-    """2 speeds x 3 pad stiffnesses (3 turnout files): the cases of a file together, the
-    slower (longer) speed first within each; every case once."""
+def test_cases_are_handed_out_by_contact_tables_longest_first(tmp_path):
+    """3 speeds x 2 check-rail clearances x 2 pad stiffnesses (4 turnout files, 2 sets of
+    contact tables): the cases of a clearance together (its pad stiffnesses mixed: they share
+    the tables), the slowest (longest) speed first within each; every case once."""
     from exudyn_turnout.studies.run import estimated_cost, hand_out_order
     from exudyn_turnout.studies.study import study_from_dict
 
@@ -92,26 +102,31 @@ def test_cases_are_handed_out_by_file_longest_first(tmp_path):
         {
             "base": {"x_start": 40.0, "x_end": 50.0},
             "factors": {
-                "speed_kmh": [100.0, 50.0],
-                "turnout.rail_types.stock.pad.k_z": [100e6, 120e6, 140e6],
+                "speed_kmh": [100.0, 50.0, 80.0],
+                "turnout.check_rail.clearance": [0.004, 0.005],
+                "turnout.rail_types.stock.pad.k_z": [100e6, 140e6],
             },
         }
     )
     cases = study.cases()
     order = hand_out_order(cases)
-    assert sorted(c.index for c in order) == list(range(6))
-    k_z = [c.inputs["turnout.rail_types.stock.pad.k_z"] for c in order]
-    assert k_z == [100e6, 100e6, 120e6, 120e6, 140e6, 140e6]
-    assert [c.inputs["speed_kmh"] for c in order] == [50.0, 100.0] * 3
+    assert sorted(c.index for c in order) == list(range(12))
+    clearance = [c.inputs["turnout.check_rail.clearance"] for c in order]
+    assert clearance in ([0.004] * 6 + [0.005] * 6, [0.005] * 6 + [0.004] * 6)
+    assert [c.inputs["speed_kmh"] for c in order] == [50.0] * 2 + [80.0] * 2 + [100.0] * 2 + [
+        50.0
+    ] * 2 + [80.0] * 2 + [100.0] * 2
     costs = [estimated_cost(c) for c in order]
-    assert costs[0] == pytest.approx(2 * costs[1])  # 10 m at 50 km/h: twice the steps
+    assert costs[0] == pytest.approx(2 * costs[-1])  # 10 m at 50 km/h: twice the steps
 
 
 @pytest.mark.slow
-def test_a_serial_study_loads_each_files_contact_tables_once(tmp_path, monkeypatch):
+def test_a_serial_study_loads_a_routes_contact_tables_once(tmp_path, monkeypatch):
     """5 pad stiffnesses x 2 tracks: 5 turnout files, more than the 4 routes a process keeps
     in memory. In case order (the stiffness varies fastest) each case loaded its tables
-    again; by file, once per file."""
+    again; by file, once per file (5); keyed by what the tables are built from (the pad
+    stiffness is not), once."""
+    from exudyn_turnout.passage.contact import profile
     from exudyn_turnout.studies import run_study
     from exudyn_turnout.wheel_rail import turnout_sections
 
@@ -123,6 +138,7 @@ def test_a_serial_study_loads_each_files_contact_tables_once(tmp_path, monkeypat
         return original(*args, **kwargs)
 
     monkeypatch.setattr(turnout_sections, "route_contact_tables", counted)
+    monkeypatch.setattr(profile, "_RECENT", profile._RecentContacts())  # none in memory yet
     path = tmp_path / "study.toml"
     path.write_text(
         """
@@ -139,4 +155,28 @@ track = ["2-layer", "3-layer"]
     )
     result = run_study(path, workers=1, out=tmp_path / "out")
     assert result.failed == 0, result.table["error"]
-    assert len(calls) == 5
+    assert len(calls) == 1
+
+
+@pytest.mark.parametrize("register", [False, True])
+def test_the_study_command_freezes_the_objects_at_exit(register):
+    """The exit's collection of every object left (0.3-0.6 s of a study's wall time) is
+    skipped: the command registers ``gc.freeze`` to run at exit (seen by a handler that runs
+    after it, in a fresh interpreter); nothing is frozen before."""
+    import subprocess
+    import sys
+
+    code = (
+        "import atexit, gc\n"
+        "atexit.register(lambda: print('frozen at exit', gc.get_freeze_count()))\n"
+        "from exudyn_turnout.cli.study import _quick_exit\n"
+        f"if {register}:\n"
+        "    _quick_exit()\n"
+        "    _quick_exit()\n"
+        "print('frozen before', gc.get_freeze_count())\n"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    before, at_exit = (int(line.split()[-1]) for line in done.stdout.splitlines())
+    assert before == 0
+    assert (at_exit > 0) == register

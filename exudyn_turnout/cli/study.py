@@ -137,6 +137,7 @@ def _client(address: str):
 def _run(args: argparse.Namespace) -> int:
     from exudyn_turnout.studies import StudyError, load_study, run_study
 
+    _quick_exit()
     out = check_out_dir(args.out)
     if args.workers is not None and args.workers < 1:
         raise UsageError(f"--workers {args.workers}: must be >= 1")
@@ -176,6 +177,22 @@ def _run(args: argparse.Namespace) -> int:
         first = next(e for e, s in zip(result.table["error"], result.table["status"]) if s != "ok")
         raise RunFailure(f"{result.failed} of {result.n_cases} cases failed, e.g. {first}")
     return 0
+
+
+def _quick_exit() -> None:
+    """At the interpreter's exit, skip collecting the objects left (nothing is written then).
+
+    The exit's garbage collection walks every object of the process (the route's contact
+    tables, the loaded modules): 0.3-0.6 s of a study's wall time, after its last file was
+    written, in the serial and the parallel run alike; frozen (:func:`gc.freeze`) they are
+    left to the operating system. Registered once per process; at exit only, so a process
+    that runs the command in-process (a test) is not changed before it ends.
+    """
+    import atexit
+    import gc
+
+    atexit.unregister(gc.freeze)
+    atexit.register(gc.freeze)
 
 
 def _figures(table, study, out) -> list[str]:

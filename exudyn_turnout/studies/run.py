@@ -14,16 +14,17 @@ there, so a cluster's workers need not share a file system) and return a record,
 histories already compressed (the bytes of their NPZ files); only the calling process
 writes. Each record carries the case's CPU time (``case_cpu_time_s`` in the table).
 
-Workers are reused across cases. A worker keeps the files it loaded (by content), so the
-route's contact tables, kept in memory for the last few routes, are built or read once
-per worker, not once per case (they took ~2.5 s of a ~3 s case before); the default pool
+Workers are reused across cases. A worker keeps the files it loaded (by content), and the
+route's contact tables, kept in memory for the last few routes and keyed by what they are
+built from (not the track's stiffness, damping or masses), are built or read once per
+worker, not once per case (they took ~2.5 s of a ~3 s case before); the default pool
 warms each worker once at its start (a 5 cm passage of each kind of case: imports,
 contact tables, compiled kernels; a process that already ran a kind is not warmed for it
-again). Cases run or are handed out by files (:func:`hand_out_order`: the cases of one
-turnout and vehicle file together, so that their contact tables are loaded once per
-process, not once per case), the longest first within a file and the files in the order
-of their longest case (estimated from the x range, speed, time step, wheelsets and
-track), so that no worker is left alone with a long case at the end.
+again). Cases run or are handed out by contact tables (:func:`hand_out_order`: the cases
+of the same tables together, so that they are loaded once per process, not once per
+case), the longest first within a group and the groups in the order of their longest case
+(estimated from the x range, speed, time step, wheelsets and track), so that no worker is
+left alone with a long case at the end.
 """
 
 from __future__ import annotations
@@ -288,10 +289,32 @@ def run_case(case: Case) -> dict[str, Any]:
 _WARM_KEYS = ("route", "layers", "contact", "source", "track_mechanism")
 
 
+@functools.lru_cache(maxsize=64)
+def _tables_of(turnout_text: str) -> str:
+    """SHA-256 of what a turnout file's contact tables are built from.
+
+    Its :data:`~exudyn_turnout.passage.contact.profile.CONTACT_SECTIONS` (the sections the
+    route's contact tables in memory are keyed by): turnout files that differ in the track's
+    stiffness, damping or masses only share their tables. A file that is not TOML: its whole
+    text (the case reports the error).
+    """
+    import tomllib
+
+    from exudyn_turnout.passage.contact.profile import CONTACT_SECTIONS
+
+    try:
+        data = tomllib.loads(turnout_text)
+    except tomllib.TOMLDecodeError:
+        return _sha_text(turnout_text)
+    sections = {name: data.get(name) for name in CONTACT_SECTIONS}
+    return _sha_text(json.dumps(sections, sort_keys=True, default=str))
+
+
 def _kind(case: Case) -> tuple:
-    """What a warm-up of ``case`` loads: its files, track and :data:`_WARM_KEYS` settings."""
+    """What a warm-up of ``case`` loads: its turnout's contact tables (:func:`_tables_of`),
+    its vehicle and parameter files, track and :data:`_WARM_KEYS` settings."""
     return (
-        _sha_text(case.turnout_text),
+        _tables_of(case.turnout_text),
         _sha_text(case.vehicle_text),
         _sha_text(case.parameters_text),
         case.track,
@@ -353,8 +376,10 @@ def _warm_worker(cases: Sequence[Case]) -> None:
 def warm_up(cases: Sequence[Case], kinds: int = 3) -> int:
     """Warm this process for ``cases``: a 5 cm passage of each kind of case not run here yet.
 
-    A kind is the case's files, track, route, contact, parameter source and spring
-    mechanism (what the x range, speed, steps and irregularity do not change): the first
+    A kind is the case's contact tables (the turnout file's sections they are built from,
+    :func:`_tables_of`: not its track stiffness, damping or masses), vehicle and parameter
+    files, track, route, contact, parameter source and spring mechanism (what the x range,
+    speed, steps and irregularity do not change): the first
     ``kinds`` kinds that this process has not run yet (as a case or a warm-up) load the
     imports, the route's contact tables and the compiled kernels once.
     :func:`process_pool` calls it (in this process before it forks, or in each spawned
@@ -408,15 +433,17 @@ def estimated_cost(case: Case) -> float:
 
 
 def hand_out_order(cases: Sequence[Case]) -> list[Case]:
-    """The order :func:`run_study` runs or hands out cases: by files, the longest first.
+    """The order :func:`run_study` runs or hands out cases: by contact tables, longest first.
 
-    Cases of the same turnout and vehicle files come one after the other, so that a process
-    loads a route's contact tables once per file, not once per case: a process keeps the
-    last few routes' tables (keyed by the whole turnout file, so every value of a turnout
-    factor is a new file), and a study that cycled through more files than that reloaded
-    them for every case (10 m wheelset cases with 5 pad stiffnesses: 0.27 -> 0.94 s CPU a
-    case). Within a file the longest case (:func:`estimated_cost`) comes first, and the
-    files in the order of their longest case, so that the last cases handed out are short.
+    Cases that use the same contact tables (:func:`_tables_of` of the turnout file, the
+    vehicle file, the route) come one after the other, so that a process loads a route's
+    tables once, not once per case: a process keeps the last few routes' tables, and a study
+    that cycled through more of them than that reloaded them for every case (10 m wheelset
+    cases: 0.27 -> 0.94 s CPU a case). Files that differ in the track only (pad stiffness,
+    ballast, masses) share their tables: their cases form one group. Within a group the
+    longest case (:func:`estimated_cost`) comes first, and the groups in the order of their
+    longest case, so that the last cases handed out are short (longest processing time
+    first: a worker free takes the longest case left).
 
     Parameters
     ----------
@@ -428,12 +455,21 @@ def hand_out_order(cases: Sequence[Case]) -> list[Case]:
         The same cases, reordered.
     """
     cost = {id(case): estimated_cost(case) for case in cases}
-    files = {id(case): _sha_text(case.turnout_text + case.vehicle_text) for case in cases}
+    group = {
+        id(case): "/".join(
+            (
+                _tables_of(case.turnout_text),
+                _sha_text(case.vehicle_text),
+                str(case.settings.get("route")),
+            )
+        )
+        for case in cases
+    }
     longest: dict[str, float] = {}
     for case in cases:
-        longest[files[id(case)]] = max(longest.get(files[id(case)], 0.0), cost[id(case)])
-    rank = {f: i for i, f in enumerate(sorted(longest, key=lambda f: -longest[f]))}
-    return sorted(cases, key=lambda c: (rank[files[id(c)]], -cost[id(c)]))
+        longest[group[id(case)]] = max(longest.get(group[id(case)], 0.0), cost[id(case)])
+    rank = {g: i for i, g in enumerate(sorted(longest, key=lambda g: -longest[g]))}
+    return sorted(cases, key=lambda c: (rank[group[id(c)]], -cost[id(c)]))
 
 
 def _case_dir(out: Path, key: str) -> Path:
@@ -718,7 +754,8 @@ def process_pool(cases: Sequence[Case], workers: int, start_method: str | None =
     """The default executor of :func:`run_study`: worker processes warmed for ``cases``.
 
     The workers start warm: a 5 cm passage of each kind of case (at most three kinds:
-    files, route, contact, track) loads imports, contact tables and compiled kernels once.
+    contact tables, vehicle, route, contact, track; :func:`warm_up`) loads imports, contact
+    tables and compiled kernels once.
     ``fork`` (default on Linux) warms this process and forks the workers from it, so the
     warm-up is paid once, not once per worker, and the workers skip the imports (~3 s a
     worker; each sets its BLAS libraries to one thread, :func:`one_blas_thread`); ``spawn``

@@ -43,6 +43,8 @@ from exudyn_turnout.wheel_rail.kernel import (
 __all__ = [
     "RouteContact",
     "route_contact",
+    "route_contact_key",
+    "CONTACT_SECTIONS",
     "wheel_and_setup",
     "wheel_grid",
     "ProfileContactElement",
@@ -507,18 +509,100 @@ class _RecentContacts:
 _RECENT = _RecentContacts()
 
 
-def _contact_key(turnout, route: str, vehicle: Vehicle, cache_dir) -> str:
+#: Sections of a turnout file that a route's contact tables depend on: the rail design
+#: (``wheel_rail``: profiles, gauge, inclination, switch and crossing design, grid and table
+#: settings), the ``layout`` and ``check_rail`` that fill its defaults (radius, nose tip,
+#: check clearance), the ``routes`` (contact pairs, heights, sections, slice files) and the
+#: ``zones`` (the active rails a route is checked against, the turnout's x range). Not the
+#: track's rail types, sleeper, ballast, stiffness profiles or extra layer (masses,
+#: springs, dampers), nor names, descriptions and regions: a study of the pad stiffness
+#: reuses the route's tables.
+CONTACT_SECTIONS = ("wheel_rail", "layout", "check_rail", "routes", "zones")
+
+
+def _design_files(section: object) -> list[str]:
+    """Every file name a contact section gives (``profile``, ``file`` keys), in file order."""
+    names: list[str] = []
+    if isinstance(section, Mapping):
+        for key, value in section.items():
+            if key in ("profile", "file") and isinstance(value, str):
+                names.append(value)
+            else:
+                names += _design_files(value)
+    elif isinstance(section, (list, tuple)):
+        for item in section:
+            names += _design_files(item)
+    return names
+
+
+def _file_identity(path) -> str:
+    """A file's resolved path and the SHA-256 of its content ("missing" if unreadable)."""
+    import hashlib
+    from pathlib import Path
+
+    resolved = Path(path).resolve()
+    try:
+        digest = hashlib.sha256(resolved.read_bytes()).hexdigest()
+    except OSError:
+        digest = "missing"
+    return f"{resolved}:{digest}"
+
+
+def route_contact_key(turnout, route: str, vehicle: Vehicle, cache_dir=None) -> str:
+    """The key of a route's contact tables in memory: everything the tables depend on.
+
+    The turnout's :data:`CONTACT_SECTIONS` (as parsed), the design files they name
+    (profiles, slice files: resolved beside the turnout file or packaged, by path and
+    content), the route, the wheel profile (resolved beside the vehicle file or packaged,
+    by path and content), back-to-back and radius, the cache location and the package
+    version. The track's stiffness, damping and masses are not in it, nor where the
+    turnout or vehicle file is (only the design files it resolves to).
+
+    Parameters
+    ----------
+    turnout : Turnout
+    route : str
+        Route name.
+    vehicle : Vehicle
+        Its ``wheel_profile``, ``back_to_back``, ``r0`` and ``source``.
+    cache_dir : str or Path, optional
+        Table cache location (part of the key).
+
+    Returns
+    -------
+    str
+        SHA-256, hex.
+    """
     import hashlib
     import json
+    from pathlib import Path
 
     from exudyn_turnout import __version__
+    from exudyn_turnout.wheel_rail.data import profile_path
+    from exudyn_turnout.wheel_rail.turnout_design import RailGeometry, resolve_design_file
 
+    sections = {name: turnout.raw.get(name) for name in CONTACT_SECTIONS}
+    names = _design_files(sections)
+    wheel_rail = sections["wheel_rail"]
+    if not (isinstance(wheel_rail, Mapping) and "profile" in wheel_rail):
+        names.append(RailGeometry.profile)  # the default rail profile
+    files = []
+    for name in names:
+        try:
+            files.append(_file_identity(resolve_design_file(name, str(turnout.source))))
+        except ValueError:  # a name no path can have (a NUL): the name itself
+            files.append(f"unresolved:{name}")
+    wheel = Path(str(vehicle.wheel_profile))
+    if not wheel.is_absolute():  # as wheel_and_setup finds it
+        beside = Path(str(vehicle.source)).parent / wheel
+        wheel = beside if beside.exists() else profile_path(str(vehicle.wheel_profile))
     parts = [
         __version__,
-        json.dumps(turnout.raw, sort_keys=True, default=str),
-        str(turnout.source),
+        json.dumps(sections, sort_keys=True, default=str),
+        json.dumps(files),
         route,
-        repr((vehicle.wheel_profile, vehicle.back_to_back, vehicle.r0, vehicle.source)),
+        repr((vehicle.wheel_profile, vehicle.back_to_back, vehicle.r0)),
+        _file_identity(wheel),
         str(cache_dir),
     ]
     return hashlib.sha256("\n".join(parts).encode()).hexdigest()
@@ -669,9 +753,10 @@ def wheel_grid(profile_file, step: float, nominal_radius: float, cache_dir=None)
 def route_contact(turnout, route: str, vehicle: Vehicle, cache_dir=None) -> RouteContact:
     """Contact tables of every rail body of a route for the vehicle's wheel profile.
 
-    Kept in memory for the last few routes (keyed by the turnout file's content, the route,
-    the wheel's profile, back-to-back and radius), built or loaded from the disk cache
-    otherwise.
+    Kept in memory for the last few routes (keyed by :func:`route_contact_key`: the turnout
+    file's contact sections and design files, the route, the wheel's profile, back-to-back
+    and radius; not the track's stiffness, damping or masses), built or loaded from the disk
+    cache otherwise.
 
     Parameters
     ----------
@@ -699,10 +784,6 @@ def route_contact(turnout, route: str, vehicle: Vehicle, cache_dir=None) -> Rout
     from exudyn_turnout.wheel_rail.kernel import pack_tables
     from exudyn_turnout.wheel_rail.turnout_sections import route_contact_tables
 
-    key = _contact_key(turnout, route, vehicle, cache_dir)
-    recent = _RECENT.get(key)
-    if recent is not None:
-        return recent
     name = Path(vehicle.source).name
     for field, value in (
         ("spin_inertia", vehicle.J_spin),
@@ -714,6 +795,10 @@ def route_contact(turnout, route: str, vehicle: Vehicle, cache_dir=None) -> Rout
                 f"{name}: [wheelset].{field} is needed for profile contact "
                 "(or run with contact='height-table')"
             )
+    key = route_contact_key(turnout, route, vehicle, cache_dir)
+    recent = _RECENT.get(key)
+    if recent is not None:
+        return recent
     start = time.perf_counter()
     wheel, setup = wheel_and_setup(turnout, vehicle, cache_dir)
     pairs = route_contact_tables(turnout, route, wheel, setup, cache_dir=cache_dir)

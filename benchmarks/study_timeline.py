@@ -1,0 +1,312 @@
+"""Where a study's wall time goes: a timeline per process of ``exudyn-turnout study``.
+
+Runs the performance table's study (``performance_table.study_text``: 24 single-wheelset
+passages of the profile contact, 3-layer track, 6 speeds x 4 pad stiffnesses, -5..60 m) as
+``exudyn-turnout study --workers N --no-plot`` in a fresh process each, with hooks around
+the study's steps (nothing in the package changes): the parent's imports, reading the study
+and its cases, the warm-up before the pool forks, the pool's start, each case's start and
+end in its worker (wall and CPU), the parent's writing of each case, the results table, and
+the process's exit. Prints per run the breakdown: the parent's serial parts, each worker's
+start, busy time, the CPU time of its cases, and its idle time until the pool shut down.
+
+Run: ``python benchmarks/study_timeline.py [--workers 1 2] [--rounds N] [--quick]``. The
+runs alternate (``--workers 1 2`` twice: 1, 2, 1, 2), with the yardstick
+(``benchmarks/yardstick.py``) run between them; the load (``os.getloadavg``) is printed.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+
+
+def _child(workers: int, study: str, out: str, events: str) -> int:
+    """In the measured process: install the hooks and run the CLI."""
+    born = time.perf_counter()
+    log = Path(events)
+
+    def note(what: str, **extra) -> None:
+        entry = {"t": time.perf_counter(), "cpu": time.process_time(), "pid": os.getpid()}
+        entry.update(what=what, **extra)
+        with open(log / f"{os.getpid()}.jsonl", "a", encoding="utf-8") as fh:
+            fh.write(json.dumps(entry) + "\n")
+
+    note("born", t0=born)
+    import exudyn_turnout.cli.main as cli
+    import exudyn_turnout.studies as studies
+    from exudyn_turnout.studies import run
+
+    note("imported")
+
+    def around(module, name, before, after=None):
+        inner = getattr(module, name)
+
+        def wrapper(*args, **kwargs):
+            note(before, **(_case_of(args) or {}))
+            try:
+                return inner(*args, **kwargs)
+            finally:
+                if after:
+                    note(after, **(_case_of(args) or {}))
+
+        wrapper.__module__, wrapper.__qualname__ = inner.__module__, inner.__qualname__
+        wrapper.__name__ = inner.__name__
+        setattr(module, name, wrapper)
+
+    def _case_of(args):
+        case = args[0] if args else None
+        index = getattr(case, "index", None)
+        return {"case": index} if isinstance(index, int) else None
+
+    inner_load = studies.load_study
+
+    def load_study(path):
+        note("load_study")
+        study = inner_load(path)
+        cases = type(study).cases
+
+        def timed_cases(self):
+            note("cases")
+            try:
+                return cases(self)
+            finally:
+                note("cases_done")
+
+        type(study).cases = timed_cases  # type: ignore[method-assign]
+        return study
+
+    studies.load_study = load_study  # type: ignore[assignment]
+    around(run, "warm_up", "warm_up", "warm_up_done")
+    around(run, "process_pool", "pool", "pool_done")
+    around(run, "one_blas_thread", "worker_start")
+    around(run, "_study_case", "case_start", "case_end")
+    around(run, "_write_record", "write_record", "write_record_done")
+    around(run, "_table", "table")
+    around(run, "_write_table", "write_table", "write_table_done")
+    code = cli.main(["study", study, "--out", out, "--workers", str(workers), "--no-plot"])
+    note("end")
+    return code
+
+
+def _events(folder: Path) -> list[dict]:
+    out = []
+    for path in folder.glob("*.jsonl"):
+        out += [json.loads(line) for line in path.read_text(encoding="utf-8").splitlines()]
+    return sorted(out, key=lambda e: e["t"])
+
+
+def breakdown(events: list[dict], wall: float, launched: float) -> list[str]:
+    """Lines describing one run's timeline (times from the command's launch).
+
+    Parameters
+    ----------
+    events : list of dict
+        The hooks' notes (``t`` s perf_counter, ``cpu`` s, ``pid``, ``what``, ``case``).
+    wall : float
+        s, the command's wall time measured outside it.
+    launched : float
+        s, perf_counter at the launch.
+
+    Returns
+    -------
+    list of str
+    """
+    parent = events[0]["pid"]
+
+    def first(what, pid=parent):
+        return next((e for e in events if e["what"] == what and e["pid"] == pid), None)
+
+    def last(what, pid=parent):
+        found = [e for e in events if e["what"] == what and e["pid"] == pid]
+        return found[-1] if found else None
+
+    def at(e):
+        return e["t"] - launched if e else float("nan")
+
+    lines = []
+    born, imported = first("born"), first("imported")
+    lines.append(f"  interpreter start {born['t0'] - launched:6.2f} s")
+    lines.append(f"  imports           {imported['t'] - born['t0']:6.2f} s")
+    load, cases_done = first("load_study"), last("cases_done")
+    lines.append(f"  study + cases     {cases_done['t'] - load['t']:6.2f} s")
+    warm, warm_done = first("warm_up"), first("warm_up_done")
+    if warm and warm_done:
+        lines.append(
+            f"  warm-up (parent)  {warm_done['t'] - warm['t']:6.2f} s "
+            f"({warm_done['cpu'] - warm['cpu']:.2f} s CPU)"
+        )
+    pool, pool_done = first("pool"), first("pool_done")
+    if pool and pool_done:
+        lines.append(f"  pool made         {pool_done['t'] - pool['t']:6.2f} s (warm-up included)")
+    runners = sorted({e["pid"] for e in events if e["what"] == "case_start"})
+    ends = []
+    table = first("table")
+    for pid in runners:
+        starts = [e for e in events if e["pid"] == pid and e["what"] == "case_start"]
+        stops = [e for e in events if e["pid"] == pid and e["what"] == "case_end"]
+        busy = sum(b["t"] - a["t"] for a, b in zip(starts, stops))
+        cpu = sum(b["cpu"] - a["cpu"] for a, b in zip(starts, stops))
+        ws = first("worker_start", pid)
+        ends.append(stops[-1]["t"])
+        lines.append(
+            f"  process {pid}: {'started ' + format(at(ws), '.2f') + ' s, ' if ws else ''}"
+            f"first case {at(starts[0]):.2f} s, last case ends {at(stops[-1]):.2f} s; "
+            f"{len(starts)} cases, busy {busy:.2f} s wall, {cpu:.2f} s CPU"
+        )
+    if len(runners) > 1:
+        lines.append(f"  tail: workers end {max(ends) - min(ends):.2f} s apart")
+    writes = [e for e in events if e["pid"] == parent and e["what"].startswith("write_record")]
+    spent = sum(b["t"] - a["t"] for a, b in zip(writes[::2], writes[1::2]))
+    lines.append(f"  writing cases (parent, {len(writes) // 2}) {spent:6.2f} s")
+    done = first("write_table_done")
+    lines.append(
+        f"  last case end -> pool shut, table built {at(table) - at({'t': max(ends)}):6.2f} s"
+    )
+    lines.append(f"  results table     {done['t'] - first('write_table')['t']:6.2f} s")
+    end = last("end")
+    lines.append(f"  after the table   {end['t'] - done['t']:6.2f} s; exit {wall - at(end):.2f} s")
+    lines.append(f"  total             {wall:6.2f} s wall")
+    return lines
+
+
+def idle_estimate(events: list[dict], workers: int, exit_wall: float) -> float:
+    """s, the run's wall time on idle cores, from its CPU times.
+
+    The calling process's CPU up to the pool's start (or to the first case) and after the
+    last case, its exit's wall time, and the cases' CPU times handed out in the order they
+    started to whichever of ``workers`` is free first (the longest-first order of the pool).
+
+    Parameters
+    ----------
+    events : list of dict
+        The hooks' notes of one run.
+    workers : int
+    exit_wall : float
+        s, from the process's last note to its exit.
+
+    Returns
+    -------
+    float
+    """
+    import heapq
+
+    parent = events[0]["pid"]
+    mine = [e for e in events if e["pid"] == parent]
+    start = next((e for e in mine if e["what"] == "pool_done"), None)
+    if start is None:
+        start = next(e for e in mine if e["what"] == "case_start")
+    table = next(e for e in mine if e["what"] == "table")
+    end = [e for e in mine if e["what"] == "end"][-1]
+    before = start["cpu"]
+    starts = {(e["pid"], e["case"]): e for e in events if e["what"] == "case_start" and "case" in e}
+    cases = []
+    for e in events:
+        if e["what"] == "case_end" and "case" in e:
+            s0 = starts[e["pid"], e["case"]]
+            cases.append((s0["t"], e["cpu"] - s0["cpu"]))
+    free = [0.0] * workers
+    for _, cpu in sorted(cases):
+        heapq.heapreplace(free, free[0] + cpu)
+    return before + max(free) + (end["cpu"] - table["cpu"]) + exit_wall
+
+
+def main(argv=None) -> None:
+    """Run the study with each worker count (and tree) in turn and print the timelines."""
+    import resource
+    import statistics
+
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--workers", type=int, nargs="+", default=[1, 2])
+    parser.add_argument("--rounds", type=int, default=1)
+    parser.add_argument("--quick", action="store_true", help="4 short cases")
+    parser.add_argument(
+        "--trees",
+        nargs="+",
+        default=[str(HERE.parent)],
+        metavar="DIR",
+        help="checkouts of the package, run in turn (default: this one)",
+    )
+    parser.add_argument("--brief", action="store_true", help="no timeline, the summary only")
+    parser.add_argument("--child", nargs=4, help=argparse.SUPPRESS)
+    args = parser.parse_args(argv)
+    if args.child:
+        workers, study, out, events = args.child
+        sys.exit(_child(int(workers), study, out, events))
+    sys.path.insert(0, str(HERE))
+    from performance_table import study_text
+    from yardstick import Yardstick, machine_line
+
+    stick = Yardstick()
+    print(machine_line())
+    rows: dict[tuple[str, int], list[tuple[float, float, float]]] = {}
+    with tempfile.TemporaryDirectory(prefix="study_timeline_") as tmp:
+        root = Path(tmp)
+        study = root / "study.toml"
+        study.write_text(study_text(args.quick), encoding="utf-8")
+        for r in range(args.rounds):
+            for t, tree in enumerate(args.trees):
+                for workers in args.workers:
+                    name = f"{r}-{t}-{workers}"
+                    out, events = root / f"out-{name}", root / f"events-{name}"
+                    events.mkdir()
+                    command = [sys.executable, __file__, "--child", str(workers), str(study)]
+                    command += [str(out), str(events)]
+                    env = dict(os.environ, PYTHONPATH=tree)
+                    stick.measure(workload_none, repeats=1, warm_up=False)
+                    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+                    launched = time.perf_counter()
+                    done = subprocess.run(
+                        command, capture_output=True, text=True, check=False, env=env
+                    )
+                    wall = time.perf_counter() - launched
+                    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+                    cpu = after.ru_utime + after.ru_stime - usage.ru_utime - usage.ru_stime
+                    if done.returncode:
+                        sys.exit(f"study failed: {done.stderr[-2000:]}")
+                    notes = _events(events)
+                    exit_wall = wall - (
+                        [e for e in notes if e["what"] == "end"][-1]["t"] - launched
+                    )
+                    idle = idle_estimate(notes, workers, exit_wall)
+                    rows.setdefault((tree, workers), []).append((wall, cpu, idle))
+                    load = ", ".join(f"{x:.2f}" for x in os.getloadavg())
+                    print(
+                        f"\nround {r}, {tree}, --workers {workers}: {wall:.2f} s wall, "
+                        f"{cpu:.2f} s CPU, idle-core estimate {idle:.2f} s (load {load})",
+                        flush=True,
+                    )
+                    if not args.brief:
+                        print("\n".join(breakdown(notes, wall, launched)), flush=True)
+    print(f"\nyardstick median {stick.median:.3f} s wall; {machine_line()}")
+    print(f"{'tree':<40}{'workers':>8}{'wall s':>8}{'CPU s':>8}{'idle s':>8}")
+    for (tree, workers), values in rows.items():
+        med = [statistics.median(v[i] for v in values) for i in range(3)]
+        print(f"{tree:<40}{workers:>8}{med[0]:>8.2f}{med[1]:>8.2f}{med[2]:>8.2f}")
+    if 1 in args.workers and 2 in args.workers:
+        for tree in args.trees:
+            one, two = rows[tree, 1], rows[tree, 2]
+            wall = [a[0] / b[0] for a, b in zip(one, two)]
+            idle = [a[2] / b[2] for a, b in zip(one, two)]
+            cpu = [b[1] / a[1] for a, b in zip(one, two)]
+            print(
+                f"{tree}: 1 -> 2 workers, wall x{statistics.median(wall):.2f} "
+                f"(rounds: {', '.join(f'{x:.2f}' for x in wall)}); idle-core estimate "
+                f"x{statistics.median(idle):.2f}; CPU of 2 workers / 1: "
+                f"{statistics.median(cpu):.2f}"
+            )
+
+
+def workload_none() -> None:
+    """Nothing: the yardstick runs around it (the load before each run)."""
+
+
+if __name__ == "__main__":
+    main()
