@@ -29,8 +29,8 @@ from yardstick import Yardstick, machine_line
 
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.passage.fe_track.options import FEPassageOptions
-from exudyn_turnout.passage.results import PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageSettings
 
 
 def _timed(stick, run) -> tuple[float, float, object, float]:

@@ -28,8 +28,9 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_turnout.inputs.turnout import load_turnout
-from exudyn_turnout.passage.results import PassageSettings, write_passage
+from exudyn_turnout.passage.results import write_passage
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageSettings
 
 
 def previous_csv(columns, path: Path) -> None:

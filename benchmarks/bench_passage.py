@@ -19,8 +19,8 @@ from yardstick import Yardstick, machine_line
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.passage.contact import height_table as wheelrail
 from exudyn_turnout.passage.contact import profile as profile_contact
-from exudyn_turnout.passage.results import PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageSettings
 
 
 def _timed(stick, turnout, settings, repeat):

@@ -47,8 +47,8 @@ from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
 from exudyn_turnout.passage.contact.vehicle_contacts import VehicleContacts
 from exudyn_turnout.passage.corunning_track import stepper
 from exudyn_turnout.passage.corunning_track import vehicle as full_vehicle_passage
-from exudyn_turnout.passage.results import PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageSettings
 
 #: m, the regions of the peaks compared (each wheelset's own x)
 REGIONS = {"switch": (5.0, 15.0), "crossing": (44.0, 50.0)}

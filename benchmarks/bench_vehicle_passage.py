@@ -64,8 +64,8 @@ from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
 from exudyn_turnout.passage.contact.vehicle_contacts import VehicleContacts
 from exudyn_turnout.passage.corunning_track import vehicle as full_vehicle_passage
-from exudyn_turnout.passage.results import PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageSettings
 
 
 class _NewtonCount:

@@ -144,8 +144,8 @@ def _passage_rows(stick: Yardstick, repeats: int, quick: bool) -> tuple[list[Row
     from dataclasses import replace
 
     from exudyn_turnout.inputs.turnout import load_turnout
-    from exudyn_turnout.passage.results import PassageSettings
     from exudyn_turnout.passage.run import simulate_passage
+    from exudyn_turnout.passage.settings import PassageSettings
 
     turnout = load_turnout()
     x_a, x_b = (40.0, 45.0) if quick else (-5.0, 60.0)

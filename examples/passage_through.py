@@ -20,8 +20,8 @@ from pathlib import Path
 
 from exudyn_turnout.inputs.routes import load_route
 from exudyn_turnout.inputs.turnout import load_turnout
-from exudyn_turnout.passage.results import PassageSettings
 from exudyn_turnout.passage.run import compare_tracks, simulate_passage
+from exudyn_turnout.passage.settings import PassageSettings
 from exudyn_turnout.plotting.curves import save_figure
 
 #: m, length of the warm-up passage (its results are not used).

@@ -16,7 +16,8 @@ import numpy as np
 import pytest
 
 from exudyn_turnout.passage.background import NO_FORK_VARIABLE, ForkedTask, can_fork
-from exudyn_turnout.passage.results import DEFAULT_SETTINGS, PassageResult, write_passage
+from exudyn_turnout.passage.results import PassageResult, write_passage
+from exudyn_turnout.passage.settings import DEFAULT_SETTINGS
 
 linux_only = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="fork: Linux only")
 

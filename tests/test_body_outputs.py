@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from exudyn_turnout.inputs.vehicle_model import GRAVITY, load_vehicle_model
-from exudyn_turnout.passage.results import PassageSettings, write_passage
+from exudyn_turnout.passage.results import write_passage
+from exudyn_turnout.passage.settings import PassageSettings
 from exudyn_turnout.passage.vehicle.body_outputs import (
     CAR_POINTS,
     FLOOR_HEIGHT,

@@ -45,8 +45,8 @@ def test_the_height_table_contact_is_not_an_fe_option(tmp_path, capsys):
 
 
 def test_the_door_refuses_the_height_table_contact_on_the_fe_track(turnout):
-    from exudyn_turnout.passage.results import PassageError, PassageSettings
     from exudyn_turnout.passage.run import simulate_passage
+    from exudyn_turnout.passage.settings import PassageError, PassageSettings
 
     settings = PassageSettings(x_start=55.0, x_end=55.02, contact="height-table")
     with pytest.raises(PassageError, match="profile contact only"):

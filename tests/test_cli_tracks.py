@@ -17,7 +17,8 @@ import pytest
 from exudyn_turnout.cli.main import main
 from exudyn_turnout.cli.passage import COMPARISON_FILE, StatusLine, track_list
 from exudyn_turnout.passage.comparison import PassageComparison, difference_percent
-from exudyn_turnout.passage.results import PassageResult, PassageSettings
+from exudyn_turnout.passage.results import PassageResult
+from exudyn_turnout.passage.settings import PassageSettings
 from exudyn_turnout.plotting.curves import decimate_min_max, missing_region_note
 
 SHORT = ["--vehicle", "wheelset", "--x-start", "46.5", "--x-end", "48"]

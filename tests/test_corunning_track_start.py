@@ -22,8 +22,8 @@ import pytest
 
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
-from exudyn_turnout.passage.results import PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageSettings
 from exudyn_turnout.passage.vehicle.start import (
     SETTLING_TIME,
     START_TOLERANCE,

@@ -10,8 +10,8 @@ import pytest
 
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
-from exudyn_turnout.passage.results import PassageError, PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageError, PassageSettings
 from exudyn_turnout.passage.vehicle.track_frame import curve_geometry
 
 #: N, Iwnicki 1998: total mass 32 000 + 2 x 2 615 + 4 x 1 813 = 44 482 kg on 8 wheels.

@@ -21,8 +21,9 @@ from exudyn_turnout.corunning.modal import assemble_track_matrices, wheel_dof
 from exudyn_turnout.corunning.parameters import co_running_parameters
 from exudyn_turnout.inputs.geometry import turnout_plan
 from exudyn_turnout.inputs.vehicle import load_vehicle
-from exudyn_turnout.passage.results import PassageError, PassageSettings, write_passage
+from exudyn_turnout.passage.results import write_passage
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageError, PassageSettings
 
 W = (1813 + 32000 / 4 + 2615 / 2) * 9.81 / 2
 X_RANGE = ["--x-start", "46.5", "--x-end", "48"]

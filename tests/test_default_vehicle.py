@@ -18,8 +18,8 @@ import pytest
 from exudyn_turnout.cli.main import main
 from exudyn_turnout.inputs.vehicle import Vehicle, load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
-from exudyn_turnout.passage.results import PassageSettings
 from exudyn_turnout.passage.run import DEFAULT_VEHICLE, simulate_passage, vehicle_of
+from exudyn_turnout.passage.settings import PassageSettings
 
 #: A short run in plain track of zone 2 for every wheelset of the full vehicle (front at
 #: 20 m, the rear wheelsets about 19 m behind, inside the turnout).

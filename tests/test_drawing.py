@@ -15,8 +15,8 @@ from exudyn_turnout.corunning.cross_section import cross_section_springs
 from exudyn_turnout.corunning.parameters import co_running_parameters
 from exudyn_turnout.inputs.routes import load_route
 from exudyn_turnout.inputs.vehicle import load_vehicle
-from exudyn_turnout.passage.results import PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageSettings
 from exudyn_turnout.plotting.model import (
     animate_passage,
     cross_section_geometry,

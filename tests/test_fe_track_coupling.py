@@ -24,8 +24,8 @@ from exudyn_turnout.passage.fe_track.planes import (
     lagrange_weights,
 )
 from exudyn_turnout.passage.fe_track.wheelset import simulate_wheelset
-from exudyn_turnout.passage.results import PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageSettings
 
 X0 = -3.0  # m, plain track before the toe (the FE layout starts at -6 m)
 

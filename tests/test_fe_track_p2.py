@@ -56,7 +56,7 @@ from scipy.signal import butter, filtfilt
 from exudyn_turnout.fe.mesh import FEOptions
 from exudyn_turnout.inputs.irregularity import Irregularity, irregularity_from_spec
 from exudyn_turnout.inputs.vehicle import load_vehicle
-from exudyn_turnout.passage.results import PassageSettings
+from exudyn_turnout.passage.settings import PassageSettings
 
 #: m, the dip's vertex: above a sleeper, on the plain track after the crossing
 X_DIP = 56.0

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
-from exudyn_turnout.passage.results import PassageError, PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageError, PassageSettings
 
 SETTINGS = PassageSettings(route="through", speed_kmh=100.0, x_start=-5.0, x_end=-4.9)
 

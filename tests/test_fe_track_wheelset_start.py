@@ -17,8 +17,8 @@ import warnings
 import pytest
 
 from exudyn_turnout.inputs.vehicle import load_vehicle
-from exudyn_turnout.passage.results import PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageSettings
 from exudyn_turnout.passage.vehicle.start import START_TOLERANCE, StartWarning
 
 V = 80.0 / 3.6  #: m/s, the diverging route's permitted speed (turnout file)

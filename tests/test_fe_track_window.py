@@ -16,8 +16,8 @@ from exudyn_turnout.passage.fe_track.planes import (
     generalized_alpha,
     window_dofs,
 )
-from exudyn_turnout.passage.results import PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageSettings
 
 
 @pytest.fixture(scope="module")

@@ -10,7 +10,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from exudyn_turnout.passage.results import DEFAULT_SETTINGS, PassageResult
+from exudyn_turnout.passage.results import PassageResult
+from exudyn_turnout.passage.settings import DEFAULT_SETTINGS
 from exudyn_turnout.plotting.backend import place_axes, pyplot
 from exudyn_turnout.plotting.curves import plot_passage_forces
 from exudyn_turnout.plotting.vehicle import plot_vehicle_bodies, plot_wheelset_forces

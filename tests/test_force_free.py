@@ -24,7 +24,7 @@ from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.passage.contact.height_table import HeightTableContact
 from exudyn_turnout.passage.contact.profile import route_contact
 from exudyn_turnout.passage.corunning_track.wheelset import build_zone_system
-from exudyn_turnout.passage.results import PassageSettings
+from exudyn_turnout.passage.settings import PassageSettings
 from exudyn_turnout.passage.vehicle.wheelset import add_vehicle
 
 #: Exudyn connector types that carry a force law; all the package uses are listed here.

@@ -18,8 +18,8 @@ import pytest
 from exudyn_turnout.inputs.irregularity import dipped_joint
 from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.passage.contact import profile as profile_contact
-from exudyn_turnout.passage.results import PassageError, PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageError, PassageSettings
 
 JOINT_X = 55.5  # m, on the plain track after the crossing (zone 3)
 ANGLE = 0.006  # rad, 2 alpha: a moderate dipped joint (depth 1.5 mm over 1 m)

@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 
 from exudyn_turnout.passage.output_files import csv_text, keeps_float64, without_empty_columns
-from exudyn_turnout.passage.results import DEFAULT_SETTINGS, PassageResult, write_passage
+from exudyn_turnout.passage.results import PassageResult, write_passage
+from exudyn_turnout.passage.settings import DEFAULT_SETTINGS
 
 N = 400
 

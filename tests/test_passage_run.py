@@ -6,8 +6,8 @@ import inspect
 
 import pytest
 
-from exudyn_turnout.passage.results import PassageError, PassageSettings
 from exudyn_turnout.passage.run import track_of, vehicle_of
+from exudyn_turnout.passage.settings import PassageError, PassageSettings
 from exudyn_turnout.passage.track import TrackImplementation
 
 

@@ -10,11 +10,6 @@ import warnings
 import numpy as np
 import pytest
 
-from exudyn_turnout.passage.results import (
-    PassageFailure,
-    PassageSettings,
-    check_plausible,
-)
 from exudyn_turnout.passage.safety import (
     SafetyLimits,
     SafetyStop,
@@ -29,6 +24,8 @@ from exudyn_turnout.passage.safety import (
     wheel_unloading,
     y_over_q,
 )
+from exudyn_turnout.passage.settings import PassageFailure, PassageSettings
+from exudyn_turnout.passage.summary import check_plausible
 
 
 def test_nadal_at_70_degrees_and_mu_036():

@@ -22,8 +22,8 @@ from exudyn_turnout.corunning.parameters import (
     reference_support,
 )
 from exudyn_turnout.corunning.track import EntryLaw
-from exudyn_turnout.passage.results import PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageSettings
 
 
 def _static_stiffness(params, x: float, rail: str, direction: str) -> float:

@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from exudyn_turnout.passage.results import DEFAULT_SETTINGS, PassageResult
+from exudyn_turnout.passage.results import PassageResult
+from exudyn_turnout.passage.settings import DEFAULT_SETTINGS
 from exudyn_turnout.plotting.curves import save_figure
 from exudyn_turnout.plotting.vehicle import envelope, plot_vehicle_bodies, plot_wheelset_forces
 

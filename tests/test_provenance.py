@@ -180,7 +180,7 @@ def test_params_carries_its_provenance(capsys):
 
 def test_implausible_dynamics_stop_with_time_and_x(tmp_path, capsys, monkeypatch):
     """A force beyond the limit during the run: exit 3 naming t, x and the quantity, no output."""
-    from exudyn_turnout.passage import results as passage
+    from exudyn_turnout.passage import settings as passage
 
     monkeypatch.setitem(passage.PLAUSIBLE, "force_over_static", 2.0)  # the nose impact is ~3 W
     code = main(

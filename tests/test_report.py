@@ -274,7 +274,7 @@ def test_fe_passage_cache_key_changes_with_contact_vehicle_and_version(turnout, 
 
     import exudyn_turnout.report.metrics as rm
     import exudyn_turnout.report.passages as rp
-    from exudyn_turnout.passage.results import PassageSettings
+    from exudyn_turnout.passage.settings import PassageSettings
 
     settings = PassageSettings(route="through", x_start=46.0, x_end=47.0, contact="profile")
     wheelset = rm.ReportConfig(vehicle="wheelset")

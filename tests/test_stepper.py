@@ -30,8 +30,8 @@ from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
 from exudyn_turnout.passage.common import newton_tolerance
 from exudyn_turnout.passage.corunning_track import stepper
 from exudyn_turnout.passage.corunning_track import vehicle as full_vehicle
-from exudyn_turnout.passage.results import PassageError, PassageFailure, PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageError, PassageFailure, PassageSettings
 
 #: kg, N/m: a 2-DOF chain (masses 2 and 1 kg, springs 200 and 100 N/m): omega 5.8, 14.1 rad/s
 MASS = np.diag([2.0, 1.0])

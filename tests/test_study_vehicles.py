@@ -94,8 +94,8 @@ def test_toml_writer_round_trips_the_full_vehicle_file():
 @pytest.mark.slow
 def test_full_vehicle_case_gives_the_passage_numbers(tmp_path):
     from exudyn_turnout.inputs.turnout import load_turnout
-    from exudyn_turnout.passage.results import PassageSettings
     from exudyn_turnout.passage.run import simulate_passage
+    from exudyn_turnout.passage.settings import PassageSettings
     from exudyn_turnout.studies.run import case_results
 
     case = _study(tmp_path, '["manchester"]').cases()[0]

@@ -196,8 +196,8 @@ def test_passage_has_no_damper_step_where_the_car_body_leaves_the_curve():
     load the secondary lateral forces jumped there by ~975 N per sample (1e-4 s; 8.6 kN in
     all, module docstring); with it, by at most a few N."""
     from exudyn_turnout.inputs.turnout import load_turnout
-    from exudyn_turnout.passage.results import PassageSettings
     from exudyn_turnout.passage.run import simulate_passage
+    from exudyn_turnout.passage.settings import PassageSettings
 
     settings = PassageSettings(
         route="diverging", speed_kmh=80.0, layers=3, x_start=54.5, x_end=55.6

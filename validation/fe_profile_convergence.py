@@ -25,8 +25,8 @@ import numpy as np
 from exudyn_turnout.fe.mesh import FEOptions
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.passage.fe_track.options import FEPassageOptions
-from exudyn_turnout.passage.results import PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageSettings
 
 #: (name, x_start, x_end) of the windows (m): switch blade take-over, crossing nose.
 WINDOWS = (("switch", 2.0, 6.0), ("crossing", 44.0, 49.0))

@@ -13,8 +13,9 @@ from pathlib import Path
 
 from exudyn_turnout.inputs.routes import dip_angle, load_route
 from exudyn_turnout.inputs.turnout import load_turnout
-from exudyn_turnout.passage.results import PassageSettings, write_passage
+from exudyn_turnout.passage.results import write_passage
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageSettings
 
 #: x windows (m) of the overlay: the load transfer at the switch and the crossing nose.
 WINDOWS = (("switch: stock rail to switch blade", (1.0, 8.0)), ("crossing nose", (46.0, 48.5)))

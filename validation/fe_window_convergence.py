@@ -18,8 +18,8 @@ import numpy as np
 
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.passage.fe_track.options import FEPassageOptions
-from exudyn_turnout.passage.results import PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageSettings
 
 CASES = {"switch": (0.0, 5.0), "crossing": (44.0, 49.0)}
 KEYS = {"Fz": ("Fz_right_N", "Fz_left_N"), "Fy": ("Fy_right_N", "Fy_left_N")}

@@ -195,8 +195,8 @@ def receptance_markdown(rows, fits):
 
 
 def passage_markdown(turnout, fitted_turnout):
-    from exudyn_turnout.passage.results import PassageSettings
     from exudyn_turnout.passage.run import simulate_passage
+    from exudyn_turnout.passage.settings import PassageSettings
 
     windows = (
         ("switch", (1.0, 8.0), "peak_Fz_switch_N"),

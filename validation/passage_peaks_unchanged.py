@@ -27,7 +27,7 @@ from pathlib import Path
 
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.passage import simulate_passage
-from exudyn_turnout.passage.results import PassageSettings
+from exudyn_turnout.passage.settings import PassageSettings
 from exudyn_turnout.report.config import report_config, resolve_config
 from exudyn_turnout.report.passages import (
     passage_model_metrics,

@@ -24,8 +24,8 @@ import numpy as np
 from exudyn_turnout.inputs.geometry import turnout_plan
 from exudyn_turnout.inputs.turnout import default_turnout_path, load_turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
-from exudyn_turnout.passage.results import PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageSettings
 
 HERE = Path(__file__).resolve().parent
 

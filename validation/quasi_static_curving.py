@@ -21,8 +21,8 @@ import numpy as np
 
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
-from exudyn_turnout.passage.results import PassageSettings
 from exudyn_turnout.passage.run import simulate_passage
+from exudyn_turnout.passage.settings import PassageSettings
 from exudyn_turnout.passage.vehicle.steady_curving import steady_curving
 
 SPEED = 80.0  #: km/h

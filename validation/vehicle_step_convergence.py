@@ -9,7 +9,7 @@ four wheelsets each on its own co-running track,
 :data:`CASES` (through route at 100 km/h, front wheelset -5..60 m; diverging route at its
 permitted 80 km/h over the crossing and its check rail, 20..55 m; 2 and 3 layers), run at
 every time step of :data:`STEPS` in one process, one after the other. Peaks, in the
-summary's own definitions (:func:`~exudyn_turnout.passage.results.vehicle_summary`: Fz the
+summary's own definitions (:func:`~exudyn_turnout.passage.summary.vehicle_summary`: Fz the
 maximum, Fy the largest magnitude with its sign, in the turnout file's switch and crossing
 regions): every wheel of the front wheelset; the whole vehicle's (the largest of its
 wheelsets' per-wheel peaks); the check rail's lateral force; the wheel unloading Delta Q/Q0
@@ -120,7 +120,7 @@ def summary_peaks(summary: Mapping[str, object]) -> dict[str, float]:
     Parameters
     ----------
     summary : mapping
-        :func:`~exudyn_turnout.passage.results.vehicle_summary` of the run.
+        :func:`~exudyn_turnout.passage.summary.vehicle_summary` of the run.
 
     Returns
     -------
@@ -164,7 +164,7 @@ def summary_positions(summary: Mapping[str, object]) -> dict[str, float]:
     Parameters
     ----------
     summary : mapping
-        :func:`~exudyn_turnout.passage.results.vehicle_summary` of the run.
+        :func:`~exudyn_turnout.passage.summary.vehicle_summary` of the run.
 
     Returns
     -------
@@ -655,8 +655,8 @@ def run_case(turnout, case: Case, h: float, lift_limit: bool = True) -> Run:
     from exudyn_turnout.inputs.vehicle import load_vehicle
     from exudyn_turnout.passage import common
     from exudyn_turnout.passage.corunning_track import vehicle as full_vehicle
-    from exudyn_turnout.passage.results import PassageError, PassageSettings
     from exudyn_turnout.passage.run import simulate_passage, vehicle_of
+    from exudyn_turnout.passage.settings import PassageError, PassageSettings
 
     settings = PassageSettings(
         route=case.route,
@@ -733,8 +733,8 @@ def main(argv: Sequence[str] | None = None) -> None:
     from exudyn_turnout.inputs.turnout import load_turnout
     from exudyn_turnout.passage.common import newton_tolerance
     from exudyn_turnout.passage.corunning_track import vehicle as full_vehicle
-    from exudyn_turnout.passage.results import PassageSettings
     from exudyn_turnout.passage.run import simulate_passage
+    from exudyn_turnout.passage.settings import PassageSettings
 
     turnout = load_turnout()
     load_before = os.getloadavg()

@@ -73,8 +73,8 @@ def _check_passage_options(args: argparse.Namespace, turnout) -> None:
 def _run_passage(args: argparse.Namespace) -> int:
     from exudyn_turnout.cli.passage import route_from_args, settings_from_args
     from exudyn_turnout.inputs.vehicle import load_vehicle
-    from exudyn_turnout.passage.results import PassageError
     from exudyn_turnout.passage.run import simulate_passage
+    from exudyn_turnout.passage.settings import PassageError
     from exudyn_turnout.plotting.model import animate_passage
 
     out = _check_file(args.out, ".gif")

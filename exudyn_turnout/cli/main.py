@@ -25,7 +25,7 @@ from typing import NoReturn
 from exudyn_turnout.corunning.parameters import SOURCES, CoRunningParameters, co_running_parameters
 from exudyn_turnout.inputs.turnout import Turnout, TurnoutFileError, load_turnout
 from exudyn_turnout.inputs.vehicle_model import VehicleModelError
-from exudyn_turnout.passage.results import PassageError, PassageFailure
+from exudyn_turnout.passage.settings import PassageError, PassageFailure
 from exudyn_turnout.wheel_rail.profiles import ProfileFormatError
 
 __all__ = [

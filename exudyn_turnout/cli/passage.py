@@ -16,8 +16,8 @@ from exudyn_turnout.cli.main import (
     turnout_from_args,
 )
 from exudyn_turnout.passage.events import event_line
-from exudyn_turnout.passage.results import TRACKS
 from exudyn_turnout.passage.run import DEFAULT_VEHICLE, simulate_passage
+from exudyn_turnout.passage.settings import TRACKS
 
 __all__ = [
     "build",
@@ -198,14 +198,14 @@ def settings_from_args(args: argparse.Namespace, **track_options):
     args : argparse.Namespace
         Parsed options; ``args.route`` already checked (:func:`route_from_args`).
     **track_options
-        Further :class:`~exudyn_turnout.passage.results.PassageSettings` fields (``layers``,
+        Further :class:`~exudyn_turnout.passage.settings.PassageSettings` fields (``layers``,
         ``source``).
 
     Returns
     -------
     PassageSettings
     """
-    from exudyn_turnout.passage.results import DEFAULT_SETTINGS, PassageSettings
+    from exudyn_turnout.passage.settings import DEFAULT_SETTINGS, PassageSettings
 
     for name in ("contact", "irregularity"):
         if getattr(args, name, None) is not None and name not in track_options:
@@ -345,7 +345,7 @@ def _check_runs(runs, turnout, vehicle, model) -> None:
     """Check every run's settings before anything is printed (bad input: one line, exit 2)."""
     from exudyn_turnout.inputs.vehicle import load_vehicle
     from exudyn_turnout.passage.common import check_settings, check_vehicle_settings
-    from exudyn_turnout.passage.results import PassageError
+    from exudyn_turnout.passage.settings import PassageError
 
     try:
         for _, settings in runs:
@@ -635,12 +635,8 @@ def _run_and_write(
 
     ``forces``: draw forces.png (a run on several tracks draws one overlaid figure instead).
     """
-    from exudyn_turnout.passage.results import (
-        PassageError,
-        PassageFailure,
-        settings_record,
-        write_passage,
-    )
+    from exudyn_turnout.passage.results import write_passage
+    from exudyn_turnout.passage.settings import PassageError, PassageFailure, settings_record
     from exudyn_turnout.provenance import provenance
 
     status = StatusLine(sys.stderr, quiet=getattr(args, "quiet", False))

@@ -5,7 +5,9 @@ door and the only module that knows every track.
 
 - :mod:`.run`: the door and the dispatch;
 - :mod:`.common`: settings checks, time-step limit, Newton tolerance, progress;
-- :mod:`.results`: settings and result types, peaks, summary, writing (no Exudyn);
+- :mod:`.settings`: what a passage is asked (settings, tracks, errors; no Exudyn);
+- :mod:`.summary`: the plausibility stop, peaks and summaries (no Exudyn);
+- :mod:`.results`: the result object and writing it (no Exudyn);
 - :mod:`.output_files`: the output files, their CSV and NPZ formats and writers;
 - :mod:`.vehicle`: the single wheelset and the full vehicle in Exudyn;
 - :mod:`.contact`: the wheel/rail contact (protocol, profile contact, height-table baseline);
@@ -16,15 +18,9 @@ door and the only module that knows every track.
 - :mod:`.hunting`: the full vehicle's hunting stability on rigid straight track.
 """
 
-from exudyn_turnout.passage.results import (
-    TRACKS,
-    PassageError,
-    PassageFailure,
-    PassageResult,
-    PassageSettings,
-    write_passage,
-)
+from exudyn_turnout.passage.results import PassageResult, write_passage
 from exudyn_turnout.passage.run import compare_layers, simulate_passage
+from exudyn_turnout.passage.settings import TRACKS, PassageError, PassageFailure, PassageSettings
 
 __all__ = [
     "TRACKS",

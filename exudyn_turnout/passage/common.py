@@ -14,7 +14,7 @@ from exudyn_turnout.corunning.parameters import co_running_parameters
 from exudyn_turnout.inputs.turnout import Turnout, Zone
 from exudyn_turnout.inputs.vehicle import Vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
-from exudyn_turnout.passage.results import PassageError, PassageSettings
+from exudyn_turnout.passage.settings import PassageError, PassageSettings
 
 __all__ = [
     "CONTACT_MODELS",

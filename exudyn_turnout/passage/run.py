@@ -37,13 +37,8 @@ from exudyn_turnout.inputs.vehicle_model import VehicleModel
 from exudyn_turnout.inputs.vehicles import packaged_vehicle
 from exudyn_turnout.passage.common import check_settings, check_vehicle_settings
 from exudyn_turnout.passage.comparison import PassageComparison
-from exudyn_turnout.passage.results import (
-    DEFAULT_SETTINGS,
-    TRACKS,
-    PassageError,
-    PassageResult,
-    PassageSettings,
-)
+from exudyn_turnout.passage.results import PassageResult
+from exudyn_turnout.passage.settings import DEFAULT_SETTINGS, TRACKS, PassageError, PassageSettings
 from exudyn_turnout.passage.track import TrackImplementation
 
 __all__ = [
@@ -75,7 +70,7 @@ def track_of(settings: PassageSettings, track: str | None) -> tuple[str, Passage
     Returns
     -------
     track : str
-        One of :data:`~exudyn_turnout.passage.results.TRACKS`.
+        One of :data:`~exudyn_turnout.passage.settings.TRACKS`.
     settings : PassageSettings
         With ``layers`` of the co-running track (unchanged for the FE track).
 
@@ -170,7 +165,7 @@ def simulate_passage(
         ``roll``, ``yaw``; per rail touched ``y_rail_<rail>_m``, ``z_rail_<rail>_m`` (NaN
         where that rail is not part of the zone); a full vehicle adds every wheelset's
         columns (``Fz_wsk_<wheel>_N``, ``x_wsk_m``...). ``summary``: peaks
-        (:func:`~exudyn_turnout.passage.results.passage_summary`).
+        (:func:`~exudyn_turnout.passage.summary.passage_summary`).
 
     Raises
     ------

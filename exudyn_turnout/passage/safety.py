@@ -45,7 +45,7 @@ Limits (:class:`SafetyLimits`)
 
 The stop (:func:`check_safety`)
 -------------------------------
-A run stops with :class:`~exudyn_turnout.passage.results.PassageFailure` (exit 3) on
+A run stops with :class:`~exudyn_turnout.passage.settings.PassageFailure` (exit 3) on
 
 - **wheel lift**: a wheel without any contact (total Fz <= 0) over more than
   ``lift_length_m`` = 2 m of track (the length of EN 14363's assessment window: what lasts

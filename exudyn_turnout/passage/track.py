@@ -23,7 +23,8 @@ from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle import Vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
 from exudyn_turnout.passage.contact.protocol import Contact
-from exudyn_turnout.passage.results import PassageResult, PassageSettings
+from exudyn_turnout.passage.results import PassageResult
+from exudyn_turnout.passage.settings import PassageSettings
 
 __all__ = ["TrackImplementation"]
 

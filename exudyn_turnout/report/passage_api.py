@@ -11,7 +11,8 @@ from __future__ import annotations
 from exudyn_turnout.fe.mesh import FEOptions
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.passage.events import nose_region
-from exudyn_turnout.passage.results import PassageResult, PassageSettings
+from exudyn_turnout.passage.results import PassageResult
+from exudyn_turnout.passage.settings import PassageSettings
 
 __all__ = [
     "PassageResult",

@@ -108,7 +108,7 @@ def _rms(values: np.ndarray) -> float:
 def case_results(result: Any) -> dict[str, Any]:
     """The numbers a study keeps of one passage.
 
-    From the summary (:func:`~exudyn_turnout.passage.results.passage_summary`): every peak
+    From the summary (:func:`~exudyn_turnout.passage.summary.passage_summary`): every peak
     per region, wheel and contact (``peak_Fz_crossing_right_r2_N`` ...), the largest
     force of each region with its wheel, rail and x (``max_*``), the contact losses, the
     static wheel loads and the solver's wall time. Computed here from the time series:
@@ -176,7 +176,7 @@ def _decimate(columns: Mapping[str, np.ndarray], step: float) -> dict[str, np.nd
 def _settings_with_irregularity(case: Case):
     from dataclasses import replace
 
-    from exudyn_turnout.passage.results import PassageSettings
+    from exudyn_turnout.passage.settings import PassageSettings
 
     settings = PassageSettings(**case.settings)
     if case.irregularity is not None:

@@ -36,7 +36,7 @@ A study is data (TOML)::
     [output]                        # optional
     keep_timeseries = true          # every case's whole time series, cases/<key>/timeseries.npz
 
-A factor is any field of :class:`~exudyn_turnout.passage.results.PassageSettings`,
+A factor is any field of :class:`~exudyn_turnout.passage.settings.PassageSettings`,
 ``track``, ``turnout`` / ``vehicle`` (a file; a vehicle also by a packaged name, a file with
 a car body runs the full vehicle), ``irregularity`` (a spec), or a field of the
 turnout or vehicle file by dotted path (``turnout.<path>``, ``vehicle.<path>``; an integer
@@ -64,7 +64,7 @@ from exudyn_turnout.inputs.vehicle import Vehicle, default_vehicle_path, load_ve
 from exudyn_turnout.inputs.vehicle_data import VehicleModel
 from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
 from exudyn_turnout.inputs.vehicle_names import PACKAGED_VEHICLES, packaged_vehicle_path
-from exudyn_turnout.passage.results import TRACKS
+from exudyn_turnout.passage.settings import TRACKS
 from exudyn_turnout.studies.toml_writer import dumps, set_dotted
 
 __all__ = [
@@ -174,14 +174,14 @@ def load_study_vehicle(path: str | Path) -> Vehicle | VehicleModel:
 
 def _settings_fields() -> dict[str, str]:
     """PassageSettings field name -> its annotation (as text)."""
-    from exudyn_turnout.passage.results import PassageSettings
+    from exudyn_turnout.passage.settings import PassageSettings
 
     return {f.name: str(f.type) for f in dataclasses.fields(PassageSettings)}
 
 
 def _resolved(settings: Mapping[str, Any]) -> dict[str, Any]:
     """Every PassageSettings field of a case (given or default), the irregularity apart."""
-    from exudyn_turnout.passage.results import PassageSettings
+    from exudyn_turnout.passage.settings import PassageSettings
 
     defaults = PassageSettings()
     out = {name: getattr(defaults, name) for name in _settings_fields() if name != "irregularity"}

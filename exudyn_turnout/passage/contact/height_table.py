@@ -30,7 +30,7 @@ import numpy as np
 from exudyn_turnout.inputs.routes import ContactPair, Route
 from exudyn_turnout.inputs.vehicle import Vehicle
 from exudyn_turnout.passage.contact.protocol import ContactElement
-from exudyn_turnout.passage.results import PassageError
+from exudyn_turnout.passage.settings import PassageError
 from exudyn_turnout.wheel_rail.laws import (
     creep_coefficient,
     flange_force,

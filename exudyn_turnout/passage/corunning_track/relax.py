@@ -16,7 +16,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from exudyn_turnout.passage.common import NEWTON_ABSOLUTE_TOLERANCE
-from exudyn_turnout.passage.results import PassageFailure
+from exudyn_turnout.passage.settings import PassageFailure
 from exudyn_turnout.passage.vehicle.start import (
     RELAX_CHUNK,
     RELAX_MAX_TIME,

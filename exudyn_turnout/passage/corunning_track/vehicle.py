@@ -128,15 +128,10 @@ from exudyn_turnout.passage.corunning_track.carry_over import (
     vehicle_shift,
 )
 from exudyn_turnout.passage.corunning_track.relax import relax_frozen
-from exudyn_turnout.passage.results import (
-    PassageError,
-    PassageFailure,
-    PassageResult,
-    PassageSettings,
-    check_plausible,
-    vehicle_summary,
-)
+from exudyn_turnout.passage.results import PassageResult
 from exudyn_turnout.passage.safety import limits_for_friction
+from exudyn_turnout.passage.settings import PassageError, PassageFailure, PassageSettings
+from exudyn_turnout.passage.summary import check_plausible, vehicle_summary
 from exudyn_turnout.passage.vehicle.body_sensors import add_body_sensors, recorded_body_columns
 from exudyn_turnout.passage.vehicle.start import (
     record_start,
@@ -738,7 +733,7 @@ def simulate_vehicle(
         ``Fy_wsk_<wheel>_N`` (per rail slot too), ``x_wsk_m``, ``y_wsk_m``, ``z_wsk_m``,
         ``roll_wsk_rad``, ``yaw_wsk_rad``; the front wheelset also under the single-wheelset
         names (``Fz_right_N``, contact points, ``y_wheelset_m``, ``z_rail_<slot>_m``...).
-        Summary: :func:`~exudyn_turnout.passage.results.passage_summary` of the front
+        Summary: :func:`~exudyn_turnout.passage.summary.passage_summary` of the front
         wheelset, plus per wheelset ``peak_<Fz|Fy>_<region>_wsk_<wheel>_N`` (region by that
         wheelset's own x) and ``static_wheel_load_wsk_<wheel>_N``.
 

@@ -49,15 +49,10 @@ from exudyn_turnout.passage.corunning_track.carry_over import (
     vehicle_shift,
 )
 from exudyn_turnout.passage.corunning_track.relax import relax_frozen
-from exudyn_turnout.passage.results import (
-    PassageError,
-    PassageFailure,
-    PassageResult,
-    PassageSettings,
-    check_plausible,
-    passage_summary,
-)
+from exudyn_turnout.passage.results import PassageResult
 from exudyn_turnout.passage.safety import limits_for_friction
+from exudyn_turnout.passage.settings import PassageError, PassageFailure, PassageSettings
+from exudyn_turnout.passage.summary import check_plausible, passage_summary
 from exudyn_turnout.passage.vehicle.start import (
     RELAX_CHUNK,
     FrozenPosition,
@@ -444,7 +439,7 @@ def simulate_wheelset(
         left); per wheel ``Fz_<wheel>_N``, ``Fy_<wheel>_N``; wheelset ``y``, ``z``, ``roll``,
         ``yaw``; per rail touched, the contact body's ``y_rail_<rail>_m``, ``z_rail_<rail>_m``
         (NaN where that rail is not part of the zone). ``summary``: peaks (see
-        :func:`~exudyn_turnout.passage.results.passage_summary`).
+        :func:`~exudyn_turnout.passage.summary.passage_summary`).
 
     Raises
     ------

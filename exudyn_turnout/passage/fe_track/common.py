@@ -13,7 +13,7 @@ from exudyn_turnout.inputs.routes import Route
 from exudyn_turnout.inputs.vehicle import Vehicle
 from exudyn_turnout.passage.fe_track.coupling import COUPLING_STALL_TOLERANCE
 from exudyn_turnout.passage.fe_track.planes import generalized_alpha
-from exudyn_turnout.passage.results import PassageError, PassageSettings
+from exudyn_turnout.passage.settings import PassageError, PassageSettings
 
 __all__ = [
     "fe_contact_element",

@@ -60,13 +60,10 @@ from exudyn_turnout.passage.contact.profile import STATIC_SPIN_STIFFNESS, RouteC
 from exudyn_turnout.passage.fe_track.coupling import FEContactElement, FECoSimulation, run_progress
 from exudyn_turnout.passage.fe_track.options import FEPassageOptions
 from exudyn_turnout.passage.fe_track.planes import build_fe_planes
-from exudyn_turnout.passage.results import (
-    PassageFailure,
-    PassageResult,
-    PassageSettings,
-    check_plausible,
-)
+from exudyn_turnout.passage.results import PassageResult
 from exudyn_turnout.passage.safety import limits_for_friction
+from exudyn_turnout.passage.settings import PassageFailure, PassageSettings
+from exudyn_turnout.passage.summary import check_plausible
 from exudyn_turnout.passage.vehicle.body_sensors import add_body_sensors, recorded_body_columns
 from exudyn_turnout.passage.vehicle.start import record_start, steady_description
 
@@ -380,7 +377,7 @@ def _simulate(turnout, settings, model, contact, route, x_range, progress, optio
         fe_summary,
     )
     from exudyn_turnout.passage.fe_track.options import FEPassageOptions
-    from exudyn_turnout.passage.results import vehicle_summary
+    from exudyn_turnout.passage.summary import vehicle_summary
     from exudyn_turnout.passage.vehicle.track_frame import contact_vehicle
 
     wall = time.perf_counter()

@@ -51,15 +51,10 @@ from exudyn_turnout.passage.fe_track.common import (
 from exudyn_turnout.passage.fe_track.coupling import FEContactElement, FECoSimulation, run_progress
 from exudyn_turnout.passage.fe_track.options import FEPassageOptions
 from exudyn_turnout.passage.fe_track.planes import FETrackPlanes, build_fe_planes
-from exudyn_turnout.passage.results import (
-    PassageError,
-    PassageFailure,
-    PassageResult,
-    PassageSettings,
-    check_plausible,
-    passage_summary,
-)
+from exudyn_turnout.passage.results import PassageResult
 from exudyn_turnout.passage.safety import limits_for_friction
+from exudyn_turnout.passage.settings import PassageError, PassageFailure, PassageSettings
+from exudyn_turnout.passage.summary import check_plausible, passage_summary
 from exudyn_turnout.passage.vehicle.start import (
     RELAX_STEP,
     FrozenPosition,
@@ -215,7 +210,7 @@ def simulate_wheelset(
         The columns of :func:`~exudyn_turnout.passage.run.simulate_passage` with the
         profile contact (vertical and lateral forces per wheel and slot, contact points);
         ``y_rail_<slot>_m``, ``z_rail_<slot>_m`` are the FE rail head's displacement under
-        the wheel. Summary: :func:`~exudyn_turnout.passage.results.passage_summary` plus
+        the wheel. Summary: :func:`~exudyn_turnout.passage.summary.passage_summary` plus
         ``model`` "FE", DOF counts, time integration and wall time of each part.
 
     Raises

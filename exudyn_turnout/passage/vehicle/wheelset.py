@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from exudyn_turnout.inputs.vehicle import GRAVITY, Vehicle
-from exudyn_turnout.passage.results import PassageError
+from exudyn_turnout.passage.settings import PassageError
 
 __all__ = ["VehicleHandles", "add_vehicle"]
 

@@ -1,0 +1,103 @@
+"""What a passage is asked: its settings, the tracks it runs on, and its errors.
+
+Pure data (no Exudyn): :class:`PassageSettings` (the scenario, SI units but the speed in
+km/h), :data:`DEFAULT_SETTINGS`, :data:`TRACKS`, :data:`PLAUSIBLE` (the limits beyond which
+a run stops), and :class:`PassageError` / :class:`PassageFailure`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+from typing import Any
+
+__all__ = [
+    "PassageError",
+    "PassageFailure",
+    "PLAUSIBLE",
+    "PassageSettings",
+    "settings_record",
+    "DEFAULT_SETTINGS",
+    "TRACKS",
+]
+
+
+class PassageError(RuntimeError):
+    """Bad passage settings, or a solver failure (the message says when and where)."""
+
+
+class PassageFailure(PassageError):
+    """A run that failed, diverged or left every physical state (the CLI's exit code 3).
+
+    The message gives the time, the position and what went wrong.
+    """
+
+
+#: Plausibility limits of a passage: beyond any of them the run stops with a
+#: :class:`PassageFailure`. m: wheelset vertical and lateral displacement (a wheel 50 mm
+#: up or down has derailed or fallen through the track); m: rail deflection; -: contact
+#: force over the static wheel load.
+PLAUSIBLE = {"wheelset_m": 0.05, "rail_m": 0.02, "force_over_static": 50.0}
+
+
+@dataclass(frozen=True)
+class PassageSettings:
+    """Settings of a passage (SI units but the speed in km/h)."""
+
+    route: str = "through"
+    speed_kmh: float = 100.0  #: km/h
+    layers: int = 3
+    source: str = "derived"
+    x_start: float | None = None  #: m, default: the turnout's start
+    x_end: float | None = None  #: m, default: the turnout's end
+    #: s; converged on the through route (<= 0.16 % against 2.5e-5 s), not for the 2-layer
+    #: check-rail force on the diverging route (-14.9 %): validation/vehicle_step_convergence.md
+    time_step: float = 1e-4
+    output_step: float | None = None  #: s, default: every time step
+    spectral_radius: float = 0.8  #: generalized-alpha rho_inf
+    #: how track springs follow x: "compiled" (one numba call for all springs), "symbolic",
+    #: "python" or "constant" (corunning.track.MECHANISMS)
+    track_mechanism: str = "compiled"
+    #: wheel/rail contact: "profile" (S1002 on the turnout's rail sections, multi-point,
+    #: semi-Hertzian normal contact, FASTSIM creep table with spin) or "height-table" (the
+    #: route's rail height tables on a conical tread with flange springs: a simplification
+    #: kept for comparison)
+    contact: str = "profile"
+    #: track irregularity (:class:`~exudyn_turnout.inputs.irregularity.Irregularity`) added
+    #: to the rails' heights and lateral positions; None: the design geometry
+    irregularity: Any = None
+    #: time integration of the full vehicle on the co-running track: "exudyn" (Exudyn's
+    #: generalized-alpha) or "compiled" (the same scheme in one numba loop,
+    #: :mod:`~exudyn_turnout.passage.corunning_track.stepper`; other runs reject it)
+    solver: str = "exudyn"
+
+    @property
+    def v(self) -> float:
+        """Speed in m/s."""
+        return self.speed_kmh / 3.6
+
+
+def settings_record(settings: PassageSettings) -> dict[str, Any]:
+    """The settings as plain data for summaries and provenance.
+
+    Parameters
+    ----------
+    settings : PassageSettings
+
+    Returns
+    -------
+    dict
+        Every field; the irregularity as its source (spec or file name), not its samples.
+    """
+    record = {f.name: getattr(settings, f.name) for f in fields(settings)}
+    irregularity = record.get("irregularity")
+    if irregularity is not None:
+        record["irregularity"] = str(getattr(irregularity, "source", "") or "given")
+    return record
+
+
+#: The default scenario (frozen, so one instance serves as every function's default).
+DEFAULT_SETTINGS = PassageSettings()
+
+
+#: Track models of :func:`simulate_passage`.
+TRACKS = ("2-layer", "3-layer", "fe")
