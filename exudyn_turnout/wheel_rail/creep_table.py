@@ -286,38 +286,10 @@ def _node_creepages(u, alpha, beta, a, b, c11, c22, c23, scale, blend):
     )
 
 
-@numba.vectorize(
-    ["float64(float64, float64, float64, float64, float64, float64, float64, float64, float64)"],
-    cache=True,
-)
-def spin_length(xi, eta, a, b, c11, c22, c23, rho, blend):  # pragma: no cover (compiled)
-    """m, the length l of the spin angle ``beta = atan2(phi l, |(xi, eta)|)`` (docstring).
-
-    ``l = l_p K^(w - 1)`` with the patch's length ``l_p = |(b xi, a eta)| / |(xi, eta)|``,
-    ``K = l_p |(C11 xi, C22 eta)| / (sqrt(a b) C23 |(xi, eta)|)`` (the ratio of the
-    patch's angle to the angle of the friction-normalised creepages) and
-    ``w = rho / (rho + blend)``: at small creepage (w -> 0) beta is the angle between the
-    normalised creepages, in which Kalker's linear theory is linear; in saturation
-    (w -> 1) it is the patch's angle (module docstring).  A compiled ufunc.
-
-    Parameters
-    ----------
-    xi, eta : float
-        Creepages, or their direction (only the direction counts; (0, 0) is taken as x).
-    a, b : float
-        m, semi-axes.
-    c11, c22, c23 : float
-        Kalker's coefficients of the ellipse.
-    rho : float
-        Size of the normalised creepages (module docstring).
-    blend : float
-        The size at which w = 1 / 2 (:attr:`CreepTableSettings.spin_blend`).
-
-    Returns
-    -------
-    float
-        m, l.
-    """
+@numba.njit(cache=True)
+def _spin_length(xi, eta, a, b, c11, c22, c23, rho, blend):  # pragma: no cover (compiled)
+    """:func:`spin_length` of one contact (compiled; a plain function, where a ufunc cost
+    0.3 s at every import to set up)."""
     plane = math.hypot(xi, eta)
     safe = max(plane, 1e-300)  # not 0: the compiler may divide by it on either branch
     cx = xi / safe if plane > 0.0 else 1.0
@@ -328,6 +300,52 @@ def spin_length(xi, eta, a, b, c11, c22, c23, rho, blend):  # pragma: no cover (
     if blend > 0.0:
         weight = rho / max(rho + blend, 1e-300)
     return patch * math.exp((weight - 1.0) * math.log(ratio))
+
+
+@numba.njit(cache=True)
+def _spin_lengths(xi, eta, a, b, c11, c22, c23, rho, blend, out):  # pragma: no cover
+    for k in range(out.shape[0]):
+        out[k] = _spin_length(xi[k], eta[k], a[k], b[k], c11[k], c22[k], c23[k], rho[k],
+                              blend[k])  # fmt: skip
+
+
+def spin_length(xi, eta, a, b, c11, c22, c23, rho, blend):
+    """m, the length l of the spin angle ``beta = atan2(phi l, |(xi, eta)|)`` (docstring).
+
+    ``l = l_p K^(w - 1)`` with the patch's length ``l_p = |(b xi, a eta)| / |(xi, eta)|``,
+    ``K = l_p |(C11 xi, C22 eta)| / (sqrt(a b) C23 |(xi, eta)|)`` (the ratio of the
+    patch's angle to the angle of the friction-normalised creepages) and
+    ``w = rho / (rho + blend)``: at small creepage (w -> 0) beta is the angle between the
+    normalised creepages, in which Kalker's linear theory is linear; in saturation
+    (w -> 1) it is the patch's angle (module docstring).  Compiled (:func:`_spin_length`
+    for one contact, in the kernel); arrays are broadcast.
+
+    Parameters
+    ----------
+    xi, eta : array_like
+        Creepages, or their direction (only the direction counts; (0, 0) is taken as x).
+    a, b : array_like
+        m, semi-axes.
+    c11, c22, c23 : array_like
+        Kalker's coefficients of the ellipse.
+    rho : array_like
+        Size of the normalised creepages (module docstring).
+    blend : array_like
+        The size at which w = 1 / 2 (:attr:`CreepTableSettings.spin_blend`).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        m, l (a float for scalar inputs).
+    """
+    arrays = np.broadcast_arrays(
+        *(np.asarray(v, dtype=float) for v in (xi, eta, a, b, c11, c22, c23, rho, blend))
+    )
+    shape = arrays[0].shape
+    x, e, a_, b_, k11, k22, k23, r, w = (np.array(v, dtype=float).ravel() for v in arrays)
+    out = np.empty(x.shape[0])
+    _spin_lengths(x, e, a_, b_, k11, k22, k23, r, w, out)
+    return out.reshape(shape) if shape else float(out[0])
 
 
 #: Nodes per chunk of a FASTSIM fill shared between threads (about 0.1 s of one core)
@@ -804,7 +822,7 @@ def table_creep_scalar(
     ia = min(int(position), n_a - 2)
     wa = position - ia
     plane = math.hypot(xi, eta)
-    length = spin_length(xi, eta, a, b, c11, c22, c23, rho, packed[offset + 7])
+    length = _spin_length(xi, eta, a, b, c11, c22, c23, rho, packed[offset + 7])
     position = (math.atan2(phi * length, plane) / math.pi + 0.5) * (n_b - 1)
     ib = min(int(position), n_b - 2)
     wb = position - ib
