@@ -16,18 +16,22 @@ passage, CSV, figures):
 
 *Warm*: after one untimed run (contact tables and numba kernels cached), ``--repeats``
 runs interleaved with the yardstick (``benchmarks/yardstick.py``). *Cold* (``--cold``):
-every run with an empty contact-table cache (``XDG_CACHE_HOME`` a fresh directory; the
-numba kernels stay compiled, they are cached next to the package). Goals (issue 24): warm
+every run with an empty cache (``XDG_CACHE_HOME`` a fresh directory: contact tables, the
+creep table and matplotlib's font cache are built; the numba kernels stay compiled, they
+are cached next to the package). Goals (issue 24): warm
 <= 5 s (single wheelset), <= 8 s (full vehicle); cold <= 30 s.
 
-``--sections``: one more warm run per case in a fresh process, with the wall time of each
-stage (import, contact set-up, track runs, CSV, figures) measured by wrapping the
-package's public functions; printed as a table (figures drawn in forked children, as
-from issue 24 on, are timed only within "writing"). ``--checkout DIR``: time the package
-of another checkout (its ``PYTHONPATH``), e.g. an earlier commit unpacked with ``git
-archive``. ``--versus DIR``: time that checkout as well, run for run alternating with
-this one (``versus, this, versus, this, ...``, each run between two yardstick runs), so
-that both see the same load: the before/after of a change, measured in one run.
+``--sections``: one more warm run per case in a fresh process (with ``--cold`` a cold one
+as well), with the wall time of each stage (import, contact set-up and in it the contact
+tables and the wait for the creep table, track runs, CSV, figures) measured by wrapping
+the package's public functions; printed as a table (figures drawn in forked children, as
+from issue 24 on, are timed only within "writing"; the creep table built in a background
+thread from the cold-start change on is timed only as the wait for it). ``--checkout
+DIR``: time the package of another checkout (its ``PYTHONPATH``), e.g. an earlier commit
+unpacked with ``git archive``. ``--versus DIR``: time that checkout as well, run for run
+alternating with this one (``versus, this, versus, this, ...``, each run between two
+yardstick runs), so that both see the same load: the before/after of a change, measured
+in one run.
 
 CPU s is that of the command and of every process it waited for (the figures' children
 included): on a loaded machine the closest to the cost on an idle one.
@@ -79,11 +83,15 @@ def timed(owner, name, label):
 
 import exudyn_turnout.passage.contact.profile as profile
 import exudyn_turnout.passage.corunning_track as corunning
+import exudyn_turnout.wheel_rail.kernel as kernel
+import exudyn_turnout.wheel_rail.turnout_sections as turnout_sections
 import exudyn_turnout.passage.results as results
 import exudyn_turnout.plotting.curves as curves
 import exudyn_turnout.plotting.backend as backend
 times["import (Exudyn, numba kernels)"] = time.perf_counter() - T0 - sum(times.values())
 timed(profile, "route_contact", "contact set-up (tables from the cache, wheel grid)")
+timed(turnout_sections, "route_contact_tables", "  of it: contact tables (build or read)")
+timed(kernel, "creep_table", "  of it: creep table (read, or wait for its build)")
 timed(corunning, "simulate_wheelset", "track runs (model, static start, passage)")
 timed(corunning, "simulate_vehicle", "track runs (model, static start, passage)")
 timed(results, "csv_text", "CSV (text; write_csv: text and file)")
@@ -161,10 +169,15 @@ def _cold(argv: list[str], env: dict) -> None:
         shutil.rmtree(cache, ignore_errors=True)
 
 
-def _sections(case: str, work: Path, env: dict) -> dict:
+def _sections(case: str, work: Path, env: dict, cold: bool = False) -> dict:
     argv = command(case, work / f"sections-{case}")
     argv[1:3] = ["-c", SECTIONS]  # python -c SECTIONS simulate ...
-    err = _run(argv, env)
+    cache = Path(tempfile.mkdtemp(prefix="main-job-cache-")) if cold else None
+    try:
+        err = _run(argv, env if cache is None else dict(env, XDG_CACHE_HOME=str(cache)))
+    finally:
+        if cache is not None:
+            shutil.rmtree(cache, ignore_errors=True)
     return json.loads(err.strip().splitlines()[-1])
 
 
@@ -241,10 +254,10 @@ def main(argv: list[str] | None = None) -> int:
                 for name in checkouts:
                     rows.append((case, kind, name, _summary(timings[name])))
             if args.sections:
-                for name, env in checkouts.items():
-                    sections[f"{case} ({name})" if args.versus else case] = _sections(
-                        case, work, env
-                    )
+                for kind in ["warm"] + (["cold"] if args.cold else []):
+                    for name, env in checkouts.items():
+                        label = f"{case} {kind}" + (f" ({name})" if args.versus else "")
+                        sections[label] = _sections(case, work, env, cold=kind == "cold")
     finally:
         shutil.rmtree(work, ignore_errors=True)
     print(machine_line())
@@ -265,7 +278,7 @@ def main(argv: list[str] | None = None) -> int:
     print(f"\nyardstick: {len(yard)} runs, median {yard[len(yard) // 2]:.3f} s wall")
     if sections:
         names = list(dict.fromkeys(name for times in sections.values() for name in times))
-        print("\n| stage (wall s, one warm run) | " + " | ".join(sections) + " |")
+        print("\n| stage (wall s, one run) | " + " | ".join(sections) + " |")
         print("|---|" + "---|" * len(sections))
         for name in names:
             cells = [f"{times[name]:.2f}" if name in times else "" for times in sections.values()]

@@ -109,6 +109,15 @@ class StatusLine:
         """
         self._line(text, final=not self.tty)
 
+    def notice(self, text: str) -> None:
+        """Say at once what a long set-up step does (a plain line, also on a terminal).
+
+        Parameters
+        ----------
+        text : str
+        """
+        self._line(text, final=True)
+
     def setup(self, label: str, text: str) -> None:
         """Say what a run's set-up does (:meth:`run` follows).
 
@@ -277,6 +286,8 @@ def _simulate_command(args: argparse.Namespace) -> int:
 
         rail_geometry(turnout)
         route_segments(turnout, args.route)
+    # what a first run builds, the creep table started beside the contact tables
+    notice = _start_cold_builds(args.route) if base.contact == "profile" else None
 
     def simulate_on(track: str, settings):
         def simulate(bar):
@@ -316,6 +327,7 @@ def _simulate_command(args: argparse.Namespace) -> int:
             vehicle=vehicle_record,
             extra_settings=extra(track),
             label=f"{track} track",
+            notice=notice,
         )
     out = start_out_dir(args.out)
     try:
@@ -332,6 +344,7 @@ def _simulate_command(args: argparse.Namespace) -> int:
                 extra(track),
                 label=f"{track} track ({len(results) + 1} of {len(runs)})",
                 forces=False,
+                notice=None if results else notice,
             )
         _write_comparison(args, out, results, title)
     except (UsageError, RunFailure):
@@ -573,6 +586,7 @@ def run_passage_command(
     vehicle=None,
     extra_settings: dict | None = None,
     label: str = "passage",
+    notice: str | None = None,
 ) -> int:
     """Run a passage with a progress line; write its files and print one summary line.
 
@@ -598,6 +612,8 @@ def run_passage_command(
         Settings recorded besides the PassageSettings (model, profiles, FE options).
     label : str
         What runs, in the progress line (e.g. "3-layer track").
+    notice : str, optional
+        A line printed before the set-up (what a first run builds).
 
     Returns
     -------
@@ -610,7 +626,16 @@ def run_passage_command(
     out = start_out_dir(args.out)
     try:
         _run_and_write(
-            args, out, simulate, title, what, turnout, vehicle, extra_settings, label=label
+            args,
+            out,
+            simulate,
+            title,
+            what,
+            turnout,
+            vehicle,
+            extra_settings,
+            label=label,
+            notice=notice,
         )
     except (UsageError, RunFailure):
         _end_running(out)
@@ -630,16 +655,20 @@ def _run_and_write(
     extra_settings,
     label: str = "passage",
     forces: bool = True,
+    notice: str | None = None,
 ):
     """Run one passage and write its files into ``out``; print its lines; the result.
 
-    ``forces``: draw forces.png (a run on several tracks draws one overlaid figure instead).
+    ``forces``: draw forces.png (a run on several tracks draws one overlaid figure instead);
+    ``notice``: a line printed before the set-up (what a first run builds).
     """
     from exudyn_turnout.passage.results import write_passage
     from exudyn_turnout.passage.settings import PassageError, PassageFailure, settings_record
     from exudyn_turnout.provenance import provenance
 
     status = StatusLine(sys.stderr, quiet=getattr(args, "quiet", False))
+    if notice:
+        status.notice(notice)
     status.setup(
         label,
         f"contact tables of the {args.route} route (built on the first run only, cached in "
@@ -726,6 +755,36 @@ def _run_and_write(
         print(event)
     print(safety_text(summary))
     return result
+
+
+def _start_cold_builds(route: str) -> str | None:
+    """Start the creep table's build in a background thread if it is not cached; say what a
+    first run builds.
+
+    The contact tables are named when the cache holds none at all (a first run: their keys
+    need the rail sections, which are only made when the route's contact is set up).
+
+    Parameters
+    ----------
+    route : str
+        The route, named in the line.
+
+    Returns
+    -------
+    str or None
+        The line, or None if nothing is known to be built.
+    """
+    from exudyn_turnout.wheel_rail.creep_table import start_creep_table
+    from exudyn_turnout.wheel_rail.tables import default_cache_dir
+
+    parts = []
+    if not any(default_cache_dir().glob("contact_table_*.npz")):
+        parts.append(f"the contact tables of the {route} route")
+    if start_creep_table():  # the kernel's creep law, the default settings
+        parts.append("the creep table (FASTSIM, in a second thread)")
+    if not parts:
+        return None
+    return f"building {' and '.join(parts)}: first run only, cached in {_cache_place()}"
 
 
 def _cache_place() -> str:

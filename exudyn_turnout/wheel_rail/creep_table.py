@@ -84,7 +84,11 @@ Cache.  The FASTSIM table is built once (about 18 s of one core's time) and stor
 ``.npz`` (11.6 MB) in the cache directory (:func:`.tables.default_cache_dir`), named by
 a SHA-256 of its settings, with a SHA-256 of its array; a damaged or unreadable file is
 named in one warning and rebuilt, an unwritable directory means running without the
-cache (one warning).
+cache (one warning).  The fill runs in chunks of nodes without the GIL: a build is shared
+by the thread that needs the table and a helper thread (two cores), and
+:func:`start_creep_table` starts it early in a thread of its own (``simulate`` does, beside
+the route's contact tables); the values are bit-identical to a fill in one thread, and
+the file is written only when complete (under a name of its own, then renamed).
 """
 
 from __future__ import annotations
@@ -92,6 +96,7 @@ from __future__ import annotations
 import functools
 import hashlib
 import math
+import threading
 import time
 import warnings
 from collections.abc import Callable
@@ -102,7 +107,7 @@ import numba
 import numpy as np
 
 from exudyn_turnout.wheel_rail.creep import CreepForces, kalker_coefficients
-from exudyn_turnout.wheel_rail.fastsim import fastsim_ellipse
+from exudyn_turnout.wheel_rail.fastsim import _ellipse_many, kalker_flexibilities
 from exudyn_turnout.wheel_rail.tables import default_cache_dir, write_cache_file
 
 __all__ = [
@@ -115,6 +120,7 @@ __all__ = [
     "ratio_coordinate",
     "build_creep_table",
     "creep_table",
+    "start_creep_table",
     "table_creep_scalar",
     "table_creep_forces",
     "spin_length",
@@ -280,38 +286,10 @@ def _node_creepages(u, alpha, beta, a, b, c11, c22, c23, scale, blend):
     )
 
 
-@numba.vectorize(
-    ["float64(float64, float64, float64, float64, float64, float64, float64, float64, float64)"],
-    cache=True,
-)
-def spin_length(xi, eta, a, b, c11, c22, c23, rho, blend):  # pragma: no cover (compiled)
-    """m, the length l of the spin angle ``beta = atan2(phi l, |(xi, eta)|)`` (docstring).
-
-    ``l = l_p K^(w - 1)`` with the patch's length ``l_p = |(b xi, a eta)| / |(xi, eta)|``,
-    ``K = l_p |(C11 xi, C22 eta)| / (sqrt(a b) C23 |(xi, eta)|)`` (the ratio of the
-    patch's angle to the angle of the friction-normalised creepages) and
-    ``w = rho / (rho + blend)``: at small creepage (w -> 0) beta is the angle between the
-    normalised creepages, in which Kalker's linear theory is linear; in saturation
-    (w -> 1) it is the patch's angle (module docstring).  A compiled ufunc.
-
-    Parameters
-    ----------
-    xi, eta : float
-        Creepages, or their direction (only the direction counts; (0, 0) is taken as x).
-    a, b : float
-        m, semi-axes.
-    c11, c22, c23 : float
-        Kalker's coefficients of the ellipse.
-    rho : float
-        Size of the normalised creepages (module docstring).
-    blend : float
-        The size at which w = 1 / 2 (:attr:`CreepTableSettings.spin_blend`).
-
-    Returns
-    -------
-    float
-        m, l.
-    """
+@numba.njit(cache=True)
+def _spin_length(xi, eta, a, b, c11, c22, c23, rho, blend):  # pragma: no cover (compiled)
+    """:func:`spin_length` of one contact (compiled; a plain function, where a ufunc cost
+    0.3 s at every import to set up)."""
     plane = math.hypot(xi, eta)
     safe = max(plane, 1e-300)  # not 0: the compiler may divide by it on either branch
     cx = xi / safe if plane > 0.0 else 1.0
@@ -324,8 +302,62 @@ def spin_length(xi, eta, a, b, c11, c22, c23, rho, blend):  # pragma: no cover (
     return patch * math.exp((weight - 1.0) * math.log(ratio))
 
 
-def _fastsim_nodes(settings: CreepTableSettings) -> np.ndarray:
-    """FASTSIM at every node, vectorised (the default solver)."""
+@numba.njit(cache=True)
+def _spin_lengths(xi, eta, a, b, c11, c22, c23, rho, blend, out):  # pragma: no cover
+    for k in range(out.shape[0]):
+        out[k] = _spin_length(xi[k], eta[k], a[k], b[k], c11[k], c22[k], c23[k], rho[k],
+                              blend[k])  # fmt: skip
+
+
+def spin_length(xi, eta, a, b, c11, c22, c23, rho, blend):
+    """m, the length l of the spin angle ``beta = atan2(phi l, |(xi, eta)|)`` (docstring).
+
+    ``l = l_p K^(w - 1)`` with the patch's length ``l_p = |(b xi, a eta)| / |(xi, eta)|``,
+    ``K = l_p |(C11 xi, C22 eta)| / (sqrt(a b) C23 |(xi, eta)|)`` (the ratio of the
+    patch's angle to the angle of the friction-normalised creepages) and
+    ``w = rho / (rho + blend)``: at small creepage (w -> 0) beta is the angle between the
+    normalised creepages, in which Kalker's linear theory is linear; in saturation
+    (w -> 1) it is the patch's angle (module docstring).  Compiled (:func:`_spin_length`
+    for one contact, in the kernel); arrays are broadcast.
+
+    Parameters
+    ----------
+    xi, eta : array_like
+        Creepages, or their direction (only the direction counts; (0, 0) is taken as x).
+    a, b : array_like
+        m, semi-axes.
+    c11, c22, c23 : array_like
+        Kalker's coefficients of the ellipse.
+    rho : array_like
+        Size of the normalised creepages (module docstring).
+    blend : array_like
+        The size at which w = 1 / 2 (:attr:`CreepTableSettings.spin_blend`).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        m, l (a float for scalar inputs).
+    """
+    arrays = np.broadcast_arrays(
+        *(np.asarray(v, dtype=float) for v in (xi, eta, a, b, c11, c22, c23, rho, blend))
+    )
+    shape = arrays[0].shape
+    x, e, a_, b_, k11, k22, k23, r, w = (np.array(v, dtype=float).ravel() for v in arrays)
+    out = np.empty(x.shape[0])
+    _spin_lengths(x, e, a_, b_, k11, k22, k23, r, w, out)
+    return out.reshape(shape) if shape else float(out[0])
+
+
+#: Nodes per chunk of a FASTSIM fill shared between threads (about 0.1 s of one core)
+_CHUNK = 4096
+
+
+def _fastsim_inputs(settings: CreepTableSettings) -> tuple:
+    """The FASTSIM inputs of every node, flat, as :func:`.fastsim.fastsim_ellipse` makes them.
+
+    Returns (xi, eta, phi, a, b, N, mu, L1, L2, L3) of the nodes in the table's order
+    (C order of ``values[..., 0]``) and ``mu N`` on the grid's shape.
+    """
     grid = np.meshgrid(*_grid(settings), indexing="ij")
     a, b, q, mu, g = _physical(grid[0])
     c = kalker_coefficients(a, b, settings.poisson)
@@ -333,10 +365,109 @@ def _fastsim_nodes(settings: CreepTableSettings) -> np.ndarray:
     xi, eta, phi = _node_creepages(
         grid[1], grid[2], grid[3], a, b, c.c11, c.c22, c.c23, scale, settings.spin_blend
     )
-    forces = fastsim_ellipse(
-        xi, eta, phi, a, b, q, mu, g, settings.poisson, settings.n_strips, settings.n_x
-    )
-    return np.stack((forces.longitudinal, forces.lateral), axis=-1) / (mu * q)[..., None]
+    flat = tuple(np.array(v, dtype=float).ravel() for v in (xi, eta, phi, a, b, q, mu))
+    flex = kalker_flexibilities(flat[3], flat[4], g, settings.poisson)
+    return flat + tuple(np.ascontiguousarray(f) for f in flex), mu * q
+
+
+@numba.njit(cache=True, nogil=True)
+def _fastsim_chunk(
+    xi, eta, phi, a, b, q, mu, flex1, flex2, flex3, n_strips, n_x, out, start, stop
+):  # pragma: no cover (compiled; tested through build_creep_table)
+    """FASTSIM (:func:`.fastsim.fastsim_ellipse`'s compiled loop) on nodes start ... stop - 1,
+    into ``out``; without the GIL, so that threads fill a table together."""
+    out[start:stop] = _ellipse_many(
+        xi[start:stop], eta[start:stop], phi[start:stop], a[start:stop], b[start:stop],
+        q[start:stop], mu[start:stop], flex1[start:stop], flex2[start:stop],
+        flex3[start:stop], n_strips, n_x,
+    )  # fmt: skip
+
+
+class _Fill:
+    """A FASTSIM fill of a table's nodes, in chunks that any thread joining it takes.
+
+    The thread that starts it prepares the nodes' inputs and works through the chunks; a
+    thread that needs the table calls :meth:`values`, which takes the chunks still left
+    and waits for the others.  The chunks' results go to disjoint slices of one array, so
+    the values do not depend on which thread computed what (bit-identical to one thread).
+    """
+
+    def __init__(self, settings: CreepTableSettings) -> None:
+        self.settings = settings
+        self._lock = threading.Condition()
+        self._prepared = threading.Event()
+        self._next = 0  # the next chunk to take
+        self._done = 0  # chunks computed
+        self._chunks = 0
+        self._inputs: tuple = ()
+        self._load: np.ndarray | None = None
+        self._out: np.ndarray | None = None
+        self.error: BaseException | None = None
+
+    def prepare(self) -> None:
+        """Make the nodes' inputs (numpy; the starting thread)."""
+        try:
+            self._inputs, self._load = _fastsim_inputs(self.settings)
+            n = self._inputs[0].size
+            self._out = np.zeros((n, 2))
+            self._chunks = -(-n // _CHUNK)
+        except BaseException as err:
+            self.error = err
+            raise
+        finally:
+            self._prepared.set()
+
+    def work(self) -> None:
+        """Compute chunks until none is left (any thread)."""
+        self._prepared.wait()
+        out = self._out
+        while self.error is None and out is not None:
+            with self._lock:
+                chunk = self._next
+                if chunk >= self._chunks:
+                    return
+                self._next += 1
+            start = chunk * _CHUNK
+            try:
+                xi, eta, phi, a, b, q, mu, flex1, flex2, flex3 = self._inputs
+                _fastsim_chunk(
+                    xi, eta, phi, a, b, q, mu, flex1, flex2, flex3, self.settings.n_strips,
+                    self.settings.n_x, out, start, min(start + _CHUNK, out.shape[0]),
+                )  # fmt: skip
+            except BaseException as err:
+                with self._lock:
+                    self.error = err
+                    self._lock.notify_all()
+                raise
+            with self._lock:
+                self._done += 1
+                self._lock.notify_all()
+
+    def values(self) -> np.ndarray:
+        """The normalised forces ``F / (mu N)`` on the grid, when every chunk is done.
+
+        Returns
+        -------
+        numpy.ndarray
+            (n_ratio, n_size, n_alpha, n_beta, 2).
+        """
+        self.work()
+        with self._lock:
+            while self.error is None and self._done < self._chunks:
+                self._lock.wait()
+        if self.error is not None:
+            raise RuntimeError(f"creep table: the FASTSIM fill failed: {self.error}")
+        assert self._out is not None and self._load is not None
+        shape = self._load.shape
+        forces = (self._out[:, 0].reshape(shape), self._out[:, 1].reshape(shape))
+        return np.stack(forces, axis=-1) / self._load[..., None]
+
+
+def _fastsim_nodes(settings: CreepTableSettings) -> np.ndarray:
+    """FASTSIM at every node (the default solver), in the calling thread."""
+    fill = _Fill(settings)
+    fill.prepare()
+    return fill.values()
 
 
 def _physical(t):
@@ -373,7 +504,6 @@ def build_creep_table(
     CreepTable
     """
     start = time.perf_counter()
-    t_axis = _ratio_axis(settings.n_ratio)
     if solver is None:
         values = _fastsim_nodes(settings)
         name = "fastsim"
@@ -395,6 +525,14 @@ def build_creep_table(
                 )  # fmt: skip
                 values[(i, *index)] = (fx / (mu[i] * q[i]), fy / (mu[i] * q[i]))
         name = getattr(solver, "__name__", "solver")
+    return _bounded_table(values, settings, name, start)
+
+
+def _bounded_table(
+    values: np.ndarray, settings: CreepTableSettings, name: str, start: float
+) -> CreepTable:
+    """The table of filled values, scaled onto the unit disc where they leave it."""
+    t_axis = _ratio_axis(settings.n_ratio)
     # a solver may exceed the disc by round-off; the kernel's bound needs |f| <= 1
     size = np.hypot(values[..., 0], values[..., 1])
     values /= np.maximum(size, 1.0)[..., None]
@@ -460,11 +598,89 @@ def _write(path: Path, key: str, values: np.ndarray) -> None:
     write_cache_file(path, content, "creep-table cache")
 
 
+def _cache_path(settings: CreepTableSettings, cache_dir: str | None) -> tuple[str, Path]:
+    """The key of a table and its cache file."""
+    key = _key(settings)
+    return key, Path(cache_dir or default_cache_dir()) / f"creep_table_{key[:24]}.npz"
+
+
+class _Background:
+    """A table filled and cached by a thread of its own (:func:`start_creep_table`); the
+    thread that needs it joins the fill (:meth:`_Fill.work`) and then the thread."""
+
+    def __init__(self, settings: CreepTableSettings, key: str, path: Path) -> None:
+        self.fill = _Fill(settings)
+        self.table: CreepTable | None = None
+        self.thread = threading.Thread(
+            target=self._run, args=(key, path), name="creep-table", daemon=True
+        )
+        self.thread.start()
+
+    def _run(self, key: str, path: Path) -> None:
+        start = time.perf_counter()
+        try:
+            self.fill.prepare()
+            table = _bounded_table(self.fill.values(), self.fill.settings, "fastsim", start)
+        except BaseException:  # noqa: BLE001 (the joining thread builds it again, or fails)
+            return
+        _write(path, key, table.values)  # atomic: a killed build leaves no partial file
+        self.table = table
+
+    def join(self) -> CreepTable | None:
+        """Help fill the table, wait for it; None if the fill failed."""
+        try:
+            self.fill.work()
+        finally:
+            self.thread.join()
+        return self.table
+
+
+#: Fills under way in background threads, by cache file (:func:`start_creep_table`)
+_RUNNING: dict[str, _Background] = {}
+_RUNNING_LOCK = threading.Lock()
+
+
+def start_creep_table(
+    settings: CreepTableSettings = CreepTableSettings(), cache_dir: str | None = None
+) -> bool:
+    """Start building the FASTSIM creep table in a background thread, unless it is cached.
+
+    For a caller that knows early that it will need the table (the ``simulate`` command,
+    before its contact tables are built): the fill runs beside the caller's work without
+    the GIL (compiled, ``nogil``), is written to the cache (atomically) when it is done,
+    and :func:`creep_table` joins it, taking over the chunks still left.
+
+    Parameters
+    ----------
+    settings : CreepTableSettings
+        Grid and discretisation.
+    cache_dir : str, optional
+        Cache location (default :func:`.tables.default_cache_dir`).
+
+    Returns
+    -------
+    bool
+        True if the table is being built (now started, or already under way); False if its
+        cache file exists (it is read, or rebuilt if damaged, by :func:`creep_table`).
+    """
+    key, path = _cache_path(settings, cache_dir)
+    with _RUNNING_LOCK:
+        if str(path) in _RUNNING:
+            return True
+        if path.is_file():
+            return False
+        _RUNNING[str(path)] = _Background(settings, key, path)
+    return True
+
+
 @functools.lru_cache(maxsize=4)
 def creep_table(
     settings: CreepTableSettings = CreepTableSettings(), cache_dir: str | None = None
 ) -> CreepTable:
     """The FASTSIM creep table: from memory, from the disk cache, or built and cached.
+
+    A table to build is filled by this thread and a helper thread together (two cores);
+    a build started by :func:`start_creep_table` is joined.
 
     Parameters
     ----------
@@ -477,12 +693,13 @@ def creep_table(
     -------
     CreepTable
     """
-    key = _key(settings)
-    path = Path(cache_dir or default_cache_dir()) / f"creep_table_{key[:24]}.npz"
-    t_axis = _ratio_axis(settings.n_ratio)
-    if path.is_file():
+    key, path = _cache_path(settings, cache_dir)
+    with _RUNNING_LOCK:
+        running = _RUNNING.pop(str(path), None)
+    if running is None and path.is_file():
         values = _read(path, key, settings)
         if values is not None:
+            t_axis = _ratio_axis(settings.n_ratio)
             return CreepTable(
                 values=values,
                 ratio_first=float(t_axis[0]),
@@ -491,8 +708,12 @@ def creep_table(
                 solver="fastsim",
                 build_seconds=0.0,
             )
-    table = build_creep_table(settings)
-    _write(path, key, table.values)
+    if running is None:
+        running = _Background(settings, key, path)
+    table = running.join()
+    if table is None:  # the helper failed: once more in this thread, its error raised
+        table = build_creep_table(settings)
+        _write(path, key, table.values)
     return table
 
 
@@ -601,7 +822,7 @@ def table_creep_scalar(
     ia = min(int(position), n_a - 2)
     wa = position - ia
     plane = math.hypot(xi, eta)
-    length = spin_length(xi, eta, a, b, c11, c22, c23, rho, packed[offset + 7])
+    length = _spin_length(xi, eta, a, b, c11, c22, c23, rho, packed[offset + 7])
     position = (math.atan2(phi * length, plane) / math.pi + 0.5) * (n_b - 1)
     ib = min(int(position), n_b - 2)
     wb = position - ib
