@@ -195,7 +195,7 @@ def _passage_rows(stick: Yardstick, repeats: int, quick: bool) -> tuple[list[Row
     fast = raw["full Manchester vehicle, 3-layer, `--solver compiled`"]
     rows[3] = replace(
         rows[3],
-        note=f"{fast.units / full.units:.2f}x Exudyn's stepping of the same case (opt-in; "
+        note=f"{fast.units / full.units:.2f}x the units of Exudyn's run of the same case (opt-in; "
         "peaks within Newton's tolerance, tests/test_stepper.py)",
     )
     fe_a, fe_b = (44.0, 44.5) if quick else (44.0, 49.0)
