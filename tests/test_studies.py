@@ -573,3 +573,30 @@ def test_profile_contact_pool_and_dask_give_the_serial_numbers(tmp_path):
         dask = run_study(path, executor=client.get_executor(), out=tmp_path / "dask")
     assert dask.computed == 2
     _assert_same_numbers(pool.table, dask.table)
+
+
+def test_turnout_naming_its_own_rail_profile_beside_it(tmp_path):
+    """A study's turnout file that names a rail profile lying beside it (not packaged) runs:
+    each case's copy of the turnout resolves the profile in the study's folder, and a changed
+    profile file gives new case keys (the case's results depend on it)."""
+    from exudyn_turnout.inputs.turnout import default_turnout_path
+    from exudyn_turnout.wheel_rail.data import data_dir
+
+    text = default_turnout_path().read_text(encoding="utf-8")
+    own = text.replace('profile = "MBench_UIC60_v3.prr"', 'profile = "my_rail.prr"')
+    assert own != text
+    (tmp_path / "t.toml").write_text(own, encoding="utf-8")
+    rail = (data_dir() / "profiles" / "MBench_UIC60_v3.prr").read_bytes()
+    (tmp_path / "my_rail.prr").write_bytes(rail)
+    study_text = TINY.replace('contact = "height-table"', 'contact = "profile"')
+    study_text = study_text.replace("x_end = 48.0", "x_end = 45.5")
+    study_text = study_text.replace("speed_kmh = [80.0, 100.0]\n", "").replace(
+        '"turnout.rail_types.stock.pad.k_z" = [100e6, 140e6]', 'turnout = ["t.toml"]'
+    )
+    study = _write(tmp_path, study_text)
+    result = run_study(study, workers=1, out=tmp_path / "out")
+    assert list(result.table["status"]) == ["ok"], result.table["error"]
+    assert result.table["max_Fz_crossing_N"][0] > 0.0
+    keys = [c.key for c in load_study(study).cases()]
+    (tmp_path / "my_rail.prr").write_bytes(rail + b"\n")
+    assert [c.key for c in load_study(study).cases()] != keys

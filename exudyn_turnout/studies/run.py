@@ -192,15 +192,20 @@ def _case_files(
     vehicle_text: str,
     parameters_name: str,
     parameters_text: str,
+    turnout_dir: str = "",
+    vehicle_dir: str = "",
 ) -> tuple[Any, Any]:
     """The case's turnout and vehicle, loaded by the package's loaders; kept per process.
 
     The same content gives the same objects, so everything keyed by them (the route's
-    contact tables in memory) is reused by the next case of the same files.
+    contact tables in memory) is reused by the next case of the same files. The loaded
+    files' ``source`` is their place in ``turnout_dir`` / ``vehicle_dir`` (the study's
+    folders), where the design files they name (rail profiles, slices, wheel profile) are.
     """
     import tempfile
 
     from exudyn_turnout.inputs.turnout import load_turnout
+    from exudyn_turnout.inputs.vehicle import Vehicle
 
     with tempfile.TemporaryDirectory(prefix="exudyn-turnout-case-") as tmp:
         turnout_path = Path(tmp) / turnout_name
@@ -215,6 +220,10 @@ def _case_files(
             parameters_path = Path(tmp) / parameters_name
             parameters_path.write_text(parameters_text, encoding="utf-8")
             turnout = load_fitted(turnout, parameters_path)
+    if turnout_dir:
+        turnout = dataclasses.replace(turnout, source=str(Path(turnout_dir) / turnout_name))
+    if vehicle_dir and isinstance(vehicle, Vehicle):
+        vehicle = dataclasses.replace(vehicle, source=str(Path(vehicle_dir) / vehicle_name))
     return turnout, vehicle
 
 
@@ -226,6 +235,8 @@ def _files_of(case: Case) -> tuple[Any, Any]:
         case.vehicle_text,
         case.parameters_name,
         case.parameters_text,
+        case.turnout_dir,
+        case.vehicle_dir,
     )
 
 

@@ -114,6 +114,10 @@ class Case:
         Built from the spec.
     history_step : float or None
         s, decimation of the stored time histories (None: not stored).
+    turnout_dir, vehicle_dir : str
+        Folders of the study's turnout and vehicle files: the design files they name
+        (rail profiles, slice files, a wheel profile) are found beside them, as for the files
+        themselves ("" : beside the case's own copy, i.e. packaged data only).
     key : str
         Hash of all of the above and the package version: the case's folder name.
     keep_timeseries : bool
@@ -135,8 +139,35 @@ class Case:
     irregularity_spec: str = ""
     irregularity: Irregularity | None = None
     history_step: float | None = None  #: s
+    turnout_dir: str = ""
+    vehicle_dir: str = ""
     key: str = ""
     keep_timeseries: bool = False
+
+
+def _local_files(data: Any, directory: str) -> list[str]:
+    """Name and SHA-256 of every file a parsed turnout or vehicle file names (string values
+    of ``profile``, ``file`` and ``wheel_profile`` keys) that exists in ``directory``."""
+    names: list[str] = []
+
+    def walk(node: Any) -> None:
+        if isinstance(node, Mapping):
+            for key, value in node.items():
+                if key in ("profile", "file", "wheel_profile") and isinstance(value, str):
+                    names.append(value)
+                else:
+                    walk(value)
+        elif isinstance(node, (list, tuple)):
+            for item in node:
+                walk(item)
+
+    walk(data)
+    out = []
+    for name in sorted(set(names)):
+        path = Path(directory) / name
+        if path.is_file():
+            out.append(f"{name}:{hashlib.sha256(path.read_bytes()).hexdigest()}")
+    return out
 
 
 def load_study_vehicle(path: str | Path) -> Vehicle | VehicleModel:
@@ -344,7 +375,7 @@ class Study:
                     checked.add(_sha(text))
                     if kind == "turnout":
                         routes[_sha(text)] = loaded
-                files[kind] = (text, path.name, bool(edits))
+                files[kind] = (text, path.name, bool(edits), str(path.resolve().parent))
             settings = {k: v for k, v in merged.items() if k in _settings_fields()}
             settings.pop("irregularity", None)
             route = settings.get("route")
@@ -388,6 +419,12 @@ class Study:
                 "irregularity": spec,
                 "irregularity_files": self._spec_files(spec),
                 "history_step": history,
+                # the design files the turnout and vehicle name beside them, by content: a
+                # changed rail profile is a new case
+                "local_files": [
+                    _local_files(texts[str(self._file(k, merged.get(k)))][1], files[k][3])
+                    for k in ("turnout", "vehicle")
+                ],
                 **versions,
             }
             key = _sha(json.dumps(key_data, sort_keys=True, default=str))[:20]
@@ -408,6 +445,8 @@ class Study:
                     irregularity_spec=spec,
                     irregularity=irregularities.get(spec),
                     history_step=history,
+                    turnout_dir=files["turnout"][3],
+                    vehicle_dir=files["vehicle"][3],
                     key=key,
                     keep_timeseries=self.keep_timeseries,
                 )
