@@ -107,7 +107,7 @@ import numba
 import numpy as np
 
 from exudyn_turnout.wheel_rail.creep import CreepForces, kalker_coefficients
-from exudyn_turnout.wheel_rail.fastsim import _ellipse_many, kalker_flexibilities
+from exudyn_turnout.wheel_rail.fastsim import ellipse_many, kalker_flexibilities
 from exudyn_turnout.wheel_rail.tables import default_cache_dir, write_cache_file
 
 __all__ = [
@@ -376,7 +376,7 @@ def _fastsim_chunk(
 ):  # pragma: no cover (compiled; tested through build_creep_table)
     """FASTSIM (:func:`.fastsim.fastsim_ellipse`'s compiled loop) on nodes start ... stop - 1,
     into ``out``; without the GIL, so that threads fill a table together."""
-    out[start:stop] = _ellipse_many(
+    out[start:stop] = ellipse_many(
         xi[start:stop], eta[start:stop], phi[start:stop], a[start:stop], b[start:stop],
         q[start:stop], mu[start:stop], flex1[start:stop], flex2[start:stop],
         flex3[start:stop], n_strips, n_x,

@@ -302,9 +302,31 @@ def _ellipse_strips(a, b, normal_force, n_strips):  # pragma: no cover (compiled
 
 
 @numba.njit(cache=True)
-def _ellipse_many(
+def ellipse_many(
     xi, eta, phi, a, b, q, mu, flex1, flex2, flex3, n_strips, n_x
 ):  # pragma: no cover (compiled)
+    """FASTSIM's creep forces on many elliptic patches, compiled (as :func:`fastsim_ellipse`).
+
+    Parameters
+    ----------
+    xi, eta, phi : numpy.ndarray
+        (n,) longitudinal and lateral creepage, spin (1/m).
+    a, b : numpy.ndarray
+        (n,) m, semi-axes along and across the rolling direction.
+    q : numpy.ndarray
+        (n,) N, normal force (a patch with q, a or b <= 0 gives zero force).
+    mu : numpy.ndarray
+        (n,) friction coefficient.
+    flex1, flex2, flex3 : numpy.ndarray
+        (n,) m/Pa, Kalker's flexibilities (:func:`kalker_flexibilities`).
+    n_strips, n_x : int
+        Strips across the patch and elements along each strip.
+
+    Returns
+    -------
+    numpy.ndarray
+        (n, 2) N, longitudinal and lateral force on the wheel.
+    """
     n = xi.shape[0]
     out = np.zeros((n, 2))
     centred = np.zeros(n_strips)  # the ellipse's strips are centred at x = 0
@@ -372,7 +394,7 @@ def fastsim_ellipse(
         np.where(usable, a_, 1.0), np.where(usable, b_, 1.0), shear_modulus, poisson
     )
     flex1, flex2, flex3 = (np.ascontiguousarray(f) for f in flex)
-    out = _ellipse_many(xi, eta, phi, a_, b_, q, mu, flex1, flex2, flex3, int(n_strips), int(n_x))
+    out = ellipse_many(xi, eta, phi, a_, b_, q, mu, flex1, flex2, flex3, int(n_strips), int(n_x))
     return CreepForces(longitudinal=out[:, 0].reshape(shape), lateral=out[:, 1].reshape(shape))
 
 
