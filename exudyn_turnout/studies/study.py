@@ -346,6 +346,8 @@ class Study:
         checked_parameters: set[tuple[str, str]] = set()
         irregularities: dict[str, Irregularity] = {}
         routes: dict[str, tuple[str, ...]] = {}
+        # (text hash, folder) -> the design files beside it that the text names, hashed
+        local: dict[tuple[str, str], list[str]] = {}
         versions = _versions()
         out = []
         for index, values in enumerate(self.combinations()):
@@ -375,7 +377,10 @@ class Study:
                     checked.add(_sha(text))
                     if kind == "turnout":
                         routes[_sha(text)] = loaded
-                files[kind] = (text, path.name, bool(edits), str(path.resolve().parent))
+                folder = str(path.resolve().parent)
+                if (_sha(text), folder) not in local:  # once per text and folder, not per case
+                    local[_sha(text), folder] = _local_files(tomllib.loads(text), folder)
+                files[kind] = (text, path.name, bool(edits), folder, local[_sha(text), folder])
             settings = {k: v for k, v in merged.items() if k in _settings_fields()}
             settings.pop("irregularity", None)
             route = settings.get("route")
@@ -421,10 +426,7 @@ class Study:
                 "history_step": history,
                 # the design files the turnout and vehicle name beside them, by content: a
                 # changed rail profile is a new case
-                "local_files": [
-                    _local_files(texts[str(self._file(k, merged.get(k)))][1], files[k][3])
-                    for k in ("turnout", "vehicle")
-                ],
+                "local_files": [files[k][4] for k in ("turnout", "vehicle")],
                 **versions,
             }
             key = _sha(json.dumps(key_data, sort_keys=True, default=str))[:20]
