@@ -87,7 +87,8 @@ def test_fits(fits, turnout):
 def test_fitted_turnout_drives_delta(fits, turnout):
     fitted = with_fitted_profiles(turnout, fits)
     assert (
-        fitted.K_sw.coefficients == fits.K_sw.coefficients and fitted.K_sh == fits.K_sh.polynomial
+        fitted.K_sw.coefficients == fits.K_sw.coefficients
+        and fitted.K_sh.coefficients == fits.K_sh.polynomial.coefficients
     )
     assert delta_z(fitted, 10.0) == pytest.approx(
         fits.K_sw(10.0) / reference_support(turnout).K_st_z
@@ -95,6 +96,24 @@ def test_fitted_turnout_drives_delta(fits, turnout):
     assert delta_z(fitted, 30.0) == pytest.approx(
         delta_z(fitted, 22.0)
     )  # held beyond the fit range
+
+
+def test_fitted_turnout_keeps_plain_track_ahead_of_the_toe(fits, turnout):
+    """The file's plain_track_end survives the fit: Delta_z = 1 on plain track, then blends.
+
+    Reference: the packaged file's K_sw.plain_track_end (-1.8 m) and parameters.delta_z's
+    rule (1 at and before it, linear to the toe value at x_min); before the fix the fitted
+    turnout held the fitted toe value on plain track.
+    """
+    fitted = with_fitted_profiles(turnout, fits)
+    end = turnout.K_sw.plain_track_end
+    assert end is not None and fitted.K_sw.plain_track_end == end
+    assert fitted.K_sh.plain_track_end == turnout.K_sh.plain_track_end
+    assert delta_z(fitted, end - 1.0) == 1.0
+    x0 = fitted.K_sw.x_min
+    at_toe = delta_z(fitted, x0)
+    assert at_toe != pytest.approx(1.0, abs=1e-3)
+    assert delta_z(fitted, 0.5 * (end + x0)) == pytest.approx(0.5 * (1.0 + at_toe))
 
 
 def test_profile_csv(profile, tmp_path):

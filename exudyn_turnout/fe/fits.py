@@ -179,6 +179,34 @@ def with_fitted_profiles(turnout: Turnout, fits: TurnoutFits) -> Turnout:
     Returns
     -------
     Turnout
-        A copy whose Delta_z, Delta_y (Eqs 11, 15) follow the FE instead of the paper.
+        A copy whose Delta_z, Delta_y (Eqs 11, 15) follow the FE instead of the paper. The
+        file's ``plain_track_end`` (plain track ahead of the toe, blended to the toe value
+        over the bays before it) is kept where it lies ahead of the fit's range, as for
+        the paper's polynomials; without it the fitted toe value would be held on plain
+        track.
     """
-    return dataclasses.replace(turnout, K_sw=fits.K_sw.polynomial, K_sh=fits.K_sh.polynomial)
+    return dataclasses.replace(
+        turnout,
+        K_sw=_with_plain_end(fits.K_sw.polynomial, turnout.K_sw),
+        K_sh=_with_plain_end(fits.K_sh.polynomial, turnout.K_sh),
+    )
+
+
+def _with_plain_end(fitted: Polynomial, paper: Polynomial) -> Polynomial:
+    """The fitted polynomial with the paper polynomial's plain-track end, if ahead of it.
+
+    Parameters
+    ----------
+    fitted : Polynomial
+        From the FE fit.
+    paper : Polynomial
+        The turnout file's polynomial.
+
+    Returns
+    -------
+    Polynomial
+    """
+    end = paper.plain_track_end
+    if end is None or end >= fitted.x_min:
+        return fitted
+    return dataclasses.replace(fitted, plain_track_end=end)
