@@ -105,3 +105,14 @@ def test_table_study_is_a_valid_profile_contact_study(bench):
         study = study_from_dict(tomllib.loads(table.study_text(quick)))
         assert len(study.combinations()) == n
         assert study.base["contact"] == "profile"
+
+
+def test_versus_passage_rejects_a_folder_without_the_package(monkeypatch, tmp_path, capsys):
+    """benchmarks/versus_passage.py: one error line and exit 2, no run, for bad arguments."""
+    monkeypatch.syspath_prepend(str(ROOT / "benchmarks"))
+    versus = importlib.import_module("versus_passage")
+    assert versus.main(["--versus", str(tmp_path)]) == 2
+    assert capsys.readouterr().err.strip().startswith("error: --versus DIR")
+    assert versus.main(["--versus", str(ROOT), "--cases", "nope"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "unknown case" in err[0]
