@@ -109,10 +109,14 @@ from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Turnout, Zone
 from exudyn_turnout.inputs.vehicle import Vehicle, load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
 from exudyn_turnout.passage.common import (
+    CheckRailSteps,
     QuietExudyn,
     join_segments,
     newton_tolerance,
+    pick_rows,
+    piece_times,
     progress_function,
+    refine_pieces,
 )
 from exudyn_turnout.passage.contact.profile import STATIC_SPIN_STIFFNESS, RouteContact
 from exudyn_turnout.passage.contact.vehicle_contacts import (
@@ -792,15 +796,54 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
     segments, t_offset, total = [], 0.0, (x_b - x_a) / v
     starts = []
     tables: dict = {}  # the running loads' table, shared by the segments
+    check = CheckRailSteps(settings, route, model.static_wheel_load, len(offsets))
     for k in range(len(events) - 1):
         x0, x1 = events[k], events[k + 1]
-        system = build(*args, places(x0, x1), x0, v, False, x_range, tables)
+        at = places(x0, x1)
+        system = build(*args, at, x0, v, False, x_range, tables)
         _carry_over(state, previous, system, route, settings.layers, x0, t_prev)
         duration = (x1 - x0) / v
         cols = _run(system, duration, settings, t_offset, total, progress, model.static_wheel_load)
+        window = check.window(cols)
+        if window is not None and check.step is not None:  # again, the window stepped finer
+            pieces = refine_pieces(
+                duration,
+                settings.time_step,
+                check.step,
+                window[1] - t_offset,
+            )
+            h = duration / pieces[-1][1]
+            parts = []
+            piece_state, piece_previous, piece_t = state, previous, t_prev
+            for a, b, step in pieces:
+                x_p = x0 + v * a * h
+                system = build(*args, at, x_p, v, False, x_range, tables)
+                _carry_over(
+                    piece_state, piece_previous, system, route, settings.layers, x_p, piece_t
+                )
+                fine = replace(settings, time_step=step, output_step=None)  # every step sampled
+                piece = _run(
+                    system,
+                    (b - a) * h,
+                    fine,
+                    t_offset + a * h,
+                    total,
+                    progress,
+                    model.static_wheel_load,
+                )
+                parts.append(pick_rows(piece, piece_times(cols["t_s"], t_offset, a, b, h, step)))
+                piece_state, piece_previous, piece_t = _state(system), system, (b - a) * h
+                if step < h:
+                    check.refined.append((x_p, x0 + v * b * h, step))
+            cols = join_segments(parts)
+            t_prev = piece_t
+        else:
+            if window is not None:
+                check.unrefined(window, cols)
+            t_prev = duration
         segments.append(cols if k == 0 else {n: c[1:] for n, c in cols.items()})
         starts.append(x0)
-        state, previous, t_prev = _state(system), system, duration
+        state, previous = _state(system), system
         t_offset += duration
     columns = join_segments(segments)
     summary = vehicle_summary(
@@ -813,4 +856,5 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
         limits_for_friction(vehicle.contact.mu),
     )
     record_start(summary, turnout, x_a, v, start, residual, stacklevel=4)
+    check.record(summary, stacklevel=4)
     return PassageResult(settings, columns, summary, tuple(starts))
