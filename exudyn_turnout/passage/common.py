@@ -656,7 +656,7 @@ class CheckRailSteps:
         self.threshold = CHECK_RAIL_LOADED * float(static_wheel_load)
         #: s, the refined windows' step, or None (nothing refined)
         self.step = None if where else check_rail_step(settings)
-        self.where = where or "check_rail_time_step None"
+        self.where = where or "check_rail_time_step None, e.g. a --time-step given: used everywhere"
         #: (x_from, x_to, step): m, m, s; the windows run at the finer step
         self.refined: list[tuple[float, float, float]] = []
         #: (x_from, x_to, peak): m, m, N; loaded at the run's step, not refined
