@@ -616,7 +616,8 @@ def check_rail_warning(
     str
     """
     return (
-        f"check rail carried up to {peak / 1e3:.1f} kN at x = {x_range[0]:.2f}-{x_range[1]:.2f} m "
+        f"a check rail's contact force (|(Fy, Fz)|) reached {peak / 1e3:.1f} kN at x = "
+        f"{x_range[0]:.2f}-{x_range[1]:.2f} m "
         f"at a time step of {time_step:g} s, coarser than the check rail's {limit:g} s "
         f"({where}): its force is not converged in the step (14.9 % low at 1e-4 s on the "
         "2-layer diverging route, validation/vehicle_step_convergence.md)"
@@ -656,7 +657,10 @@ class CheckRailSteps:
         self.threshold = CHECK_RAIL_LOADED * float(static_wheel_load)
         #: s, the refined windows' step, or None (nothing refined)
         self.step = None if where else check_rail_step(settings)
-        self.where = where or "check_rail_time_step None, e.g. a --time-step given: used everywhere"
+        self.where = where or (
+            "check_rail_time_step None, as with the CLI's --time-step given: the step is used "
+            "everywhere; leave it at its default or give one <= the check rail's"
+        )
         #: (x_from, x_to, step): m, m, s; the windows run at the finer step
         self.refined: list[tuple[float, float, float]] = []
         #: (x_from, x_to, peak): m, m, N; loaded at the run's step, not refined

@@ -16,7 +16,10 @@ track the static state is kept (the steady state up to what the lateral hold car
 straight-track results do not change). The run is then split at the zone boundaries
 (Table 3): in each zone a new Exudyn system is built with that zone's masses and active
 rails, and the state of everything that continues (vehicle, sleeper, rails present in
-both zones, or a rail slot that a route says continues another) is carried over.
+both zones, or a rail slot that a route says continues another) is carried over. A zone
+where a check-rail contact carried load at a step coarser than
+``settings.check_rail_time_step`` runs again from its start at that step to the load's end
+(:class:`~exudyn_turnout.passage.common.CheckRailSteps`, as the full vehicle's segments).
 """
 
 from __future__ import annotations
