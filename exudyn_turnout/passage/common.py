@@ -619,8 +619,9 @@ def check_rail_warning(
         f"a check rail's contact force (|(Fy, Fz)|) reached {peak / 1e3:.1f} kN at x = "
         f"{x_range[0]:.2f}-{x_range[1]:.2f} m "
         f"at a time step of {time_step:g} s, coarser than the check rail's {limit:g} s "
-        f"({where}): its force is not converged in the step (14.9 % low at 1e-4 s on the "
-        "2-layer diverging route, validation/vehicle_step_convergence.md)"
+        f"({where}): its force is not converged in the step (at 1e-4 s 14.9 % low on the "
+        "2-layer co-running track, 24 % on the FE track: diverging route at 80 km/h, "
+        "validation/vehicle_step_convergence.md)"
     )
 
 
