@@ -634,7 +634,111 @@ class _StepLimit:
         self.module.max_time_step = self._function
 
 
-def run_case(turnout, case: Case, h: float, lift_limit: bool = True) -> Run:
+def default_text(refined: Run, runs: Mapping[float, Run], finest: float) -> str:
+    """The paragraph on a case's package-default run (1e-4 s, the check rail refined).
+
+    Parameters
+    ----------
+    refined : Run
+        :func:`run_case` with ``refine=True`` at :data:`DEFAULT`.
+    runs : mapping
+        Step (s) -> :class:`Run` of the case (h throughout).
+    finest : float
+        s, the finest step run.
+
+    Returns
+    -------
+    str
+    """
+    windows = [
+        f"{refined.where[f'refined {k} from']:.2f}-{refined.where[f'refined {k} to']:.2f} m"
+        for k in range(1, 10)
+        if f"refined {k} from" in refined.where
+    ]
+    head = (
+        "Package default (1e-4 s; "
+        + (
+            f"the check rail's loaded window x = {', '.join(windows)} of the front wheelset "
+            "run again at 2.5e-5 s"
+            if windows
+            else "no check rail loaded: nothing refined"
+        )
+        + f"): CPU {refined.cpu:.1f} s ({refined.cpu / runs[DEFAULT].cpu:.2f} x the run at "
+        f"1e-4 s throughout)."
+    )
+    rows = []
+    for name, value in refined.peaks.items():
+        base, ref, fine = (runs[h].peaks.get(name, math.nan) for h in (DEFAULT, REFERENCE, finest))
+        if not any(math.isfinite(v) and v != 0.0 for v in (value, base, ref)):
+            continue
+        rows.append((name, value, percent(value, base), percent(value, ref), percent(value, fine)))
+    worst = max(rows, key=lambda r: abs(r[3]) if math.isfinite(r[3]) else -1.0, default=None)
+    lines = [head, ""]
+    check = [r for r in rows if r[0] == "check rail Fy"]
+    for name, value, d_base, d_ref, d_fine in check:
+        lines.append(
+            f"- {name}: {_shown(name, value):.3f} kN; against 1e-4 s throughout "
+            f"{_cell(d_base, sign=True)} %, against {REFERENCE:g} s {_cell(d_ref, sign=True)} %, "
+            f"against {finest:g} s {_cell(d_fine, sign=True)} %"
+        )
+    if worst is not None:
+        lines.append(
+            f"- the largest change of any peak against {REFERENCE:g} s: "
+            f"{_cell(worst[3], sign=True)} % ({worst[0]})"
+        )
+    return "\n".join(lines)
+
+
+def defaults_table(
+    defaults: Mapping[str, Run], all_runs: Mapping[str, Mapping[float, Run]], finest: float
+) -> str:
+    """The conclusion's table of the package-default runs against the reference.
+
+    Parameters
+    ----------
+    defaults : mapping
+        Case -> :func:`run_case` with ``refine=True`` at :data:`DEFAULT`.
+    all_runs : mapping
+        Case -> step (s) -> :class:`Run` (h throughout).
+    finest : float
+        s, the finest step run.
+
+    Returns
+    -------
+    str
+        Markdown.
+    """
+    lines = [
+        "The package's default run (1e-4 s, a loaded check rail's window at 2.5e-5 s) "
+        "against the reference:",
+        "",
+        f"| case | check rail Fy (kN) | vs 1e-4 s throughout (%) | vs {REFERENCE:g} s (%) | "
+        f"vs {finest:g} s (%) | max \\|change\\| of any peak vs {REFERENCE:g} s (%) | CPU / "
+        "CPU at 1e-4 s |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for name, run in defaults.items():
+        runs = all_runs[name]
+        value = run.peaks.get("check rail Fy", math.nan)
+        changes = [
+            (abs(percent(v, runs[REFERENCE].peaks.get(k, math.nan))), k)
+            for k, v in run.peaks.items()
+            if math.isfinite(percent(v, runs[REFERENCE].peaks.get(k, math.nan)))
+        ]
+        worst = max(changes, default=(math.nan, "-"))
+        shown = _cell(value / 1e3) if math.isfinite(value) and value != 0.0 else "-"
+        lines.append(
+            f"| {name} | {shown} | "
+            + " | ".join(
+                _cell(percent(value, runs[h].peaks.get("check rail Fy", math.nan)), sign=True)
+                for h in (DEFAULT, REFERENCE, finest)
+            )
+            + f" | {_cell(worst[0])} ({worst[1]}) | {run.cpu / runs[DEFAULT].cpu:.2f} |"
+        )
+    return "\n".join(lines)
+
+
+def run_case(turnout, case: Case, h: float, lift_limit: bool = True, refine: bool = False) -> Run:
     """One passage of the full vehicle at step h: its peaks, CPU time and Newton counts.
 
     Parameters
@@ -646,6 +750,10 @@ def run_case(turnout, case: Case, h: float, lift_limit: bool = True) -> Run:
     lift_limit : bool
         Where the package refuses h (above its limit of 10 steps per period of the wheel on
         the lightest rail), run it with the limit lifted (``Run.beyond_limit``).
+    refine : bool
+        False: h throughout (``check_rail_time_step=None``: the step's own convergence);
+        True: the package's default, a loaded check rail's window at its
+        ``check_rail_time_step``.
 
     Returns
     -------
@@ -665,6 +773,7 @@ def run_case(turnout, case: Case, h: float, lift_limit: bool = True) -> Run:
         x_start=case.x_start,
         x_end=case.x_end,
         time_step=h,
+        check_rail_time_step=PassageSettings().check_rail_time_step if refine else None,
     )
     with _StepLimit(common, lift=False) as limit:
         try:  # the passage's own check of the settings (as simulate_passage makes it)
@@ -684,14 +793,19 @@ def run_case(turnout, case: Case, h: float, lift_limit: bool = True) -> Run:
                 why = f"above the package's limit {limit.limit:.3g} s; with it lifted: {why}"
             return Run({}, time.process_time() - c0, 0, math.nan, why, limit=limit.limit)
         cpu = time.process_time() - c0
+    peaks = summary_peaks(result.summary)
+    windows = result.summary.get("check_rail_refined") or []
+    where = summary_positions(result.summary)
+    for k, w in enumerate(windows):  # the refined windows (x of the front wheelset, m)
+        where[f"refined {k + 1} from"], where[f"refined {k + 1} to"] = w["x_m"]
     return Run(
-        summary_peaks(result.summary),
+        peaks,
         cpu,
         count.steps,
         count.iterations / count.steps,
         limit=limit.limit,
         beyond_limit=bool(refused),
-        where=summary_positions(result.summary),
+        where=where,
         ringing=_check_rail_ringing(result, settings.v),
     )
 
@@ -745,6 +859,7 @@ def main(argv: Sequence[str] | None = None) -> None:
     vs_reference: dict[str, dict[float, dict[str, float]]] = {}
     wall = time.perf_counter()
     all_runs: dict[str, dict[float, Run]] = {}
+    defaults: dict[str, Run] = {}  # the package's default run of each case (refined)
     for name in args.cases:
         case = CASES[name]
         runs = all_runs[name] = {}
@@ -758,7 +873,10 @@ def main(argv: Sequence[str] | None = None) -> None:
         for h in (REFERENCE, DEFAULT):
             if runs[h].error:
                 sys.exit(f"error: {name} at h = {h:g} s failed: {runs[h].error}")
+        refined = defaults[name] = run_case(turnout, case, DEFAULT, refine=True)
+        print(f"{name} package default: CPU {refined.cpu:.1f} s", file=sys.stderr, flush=True)
         text, vs_default[name], vs_reference[name] = case_tables(runs)
+        text += "\n\n" + default_text(refined, runs, steps[0])
         pairs = [p for p in load_route(turnout, case.route).pairs if p.check]
         flare = load_route(turnout, case.route).check_flare[0]
         check = (
@@ -796,6 +914,8 @@ def main(argv: Sequence[str] | None = None) -> None:
         "within x % of the default's, every step between included (1e-4: none does).",
         "",
         conclusion_table(groups, vs_default, vs_reference, marked, steps[0]),
+        "",
+        defaults_table(defaults, all_runs, steps[0]),
     ]
     load = ", ".join(f"{v:.2f}" for v in load_before + load_after)
     newton_abs = full_vehicle.NEWTON_TOLERANCE_FACTOR * newton_tolerance(4)
@@ -809,7 +929,10 @@ def main(argv: Sequence[str] | None = None) -> None:
             "",
             "The full Manchester vehicle (the package's default: four wheelsets each on its "
             "own co-running track, `passage/corunning_track/vehicle.py`), profile contact, "
-            "generalized-alpha (spectral radius 0.8) at a fixed step h, output every step; "
+            "generalized-alpha (spectral radius 0.8) at a fixed step h, output every step "
+            "(`check_rail_time_step=None`: h throughout, also where a check rail carries "
+            "load; 'package default': 1e-4 s with the check rail's loaded windows run again "
+            "at `check_rail_time_step`, `passage/common.py`); "
             "every run starts from its steady state at speed, which does not depend on h. "
             "Peaks as the summary defines them (`vehicle_summary`): Fz the maximum, Fy the "
             "largest magnitude with its sign (+ left), in the turnout file's regions switch "

@@ -1,12 +1,29 @@
 """What every passage shares, whatever its vehicle and track: settings checks, the time-step
-limit of the wheel/rail contact, Newton's tolerance, progress reports, joining run segments
-and keeping Exudyn quiet."""
+limit of the wheel/rail contact, the finer step where a check rail carries load, Newton's
+tolerance, progress reports, joining run segments and keeping Exudyn quiet.
+
+The check rail (issue 22): the back of the flange against the check rail's face is a stiff
+lateral contact whose force rings at ~1.04 kHz after the end of the check rail's entry flare
+(2 layers, diverging route, 80 km/h, full vehicle: validation/vehicle_step_convergence.md).
+At the default step (1e-4 s, 9.6 steps per period) its peak is 14.9 % low, at 5e-5 s 7.6 %;
+2.5e-5 s is within 1.3 % of 6.25e-6 s. The vertical contact's limit
+(:func:`max_time_step`) does not see it. A co-running passage therefore runs every segment
+at its step first, finds where a check-rail contact carried load
+(:func:`check_rail_window`: above :data:`CHECK_RAIL_LOADED` of the static wheel load) and,
+where the step is coarser than ``PassageSettings.check_rail_time_step``, runs the segment
+again from its start to the end of that load at the finer step (:func:`refine_pieces`),
+sampled at the run's own output times (:func:`pick_rows`, :func:`piece_times`). A run
+that cannot (the FE track) or is told not to (the setting None) warns with
+:class:`CheckRailStepWarning` instead.
+"""
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+import warnings
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import replace
+from typing import Any
 
 import numpy as np
 
@@ -17,6 +34,18 @@ from exudyn_turnout.inputs.vehicle_model import VehicleModel
 from exudyn_turnout.passage.settings import PassageError, PassageSettings
 
 __all__ = [
+    "CHECK_RAIL_LOADED",
+    "CHECK_RAIL_MARGIN",
+    "CheckRailStepWarning",
+    "CheckRailSteps",
+    "refined_line",
+    "check_rail_pairs",
+    "check_rail_step",
+    "check_rail_window",
+    "check_rail_warning",
+    "refine_pieces",
+    "pick_rows",
+    "piece_times",
     "CONTACT_MODELS",
     "NEWTON_ABSOLUTE_TOLERANCE",
     "contact_resonance",
@@ -36,6 +65,22 @@ CONTACT_MODELS = ("profile", "height-table")
 
 #: N: Newton's absolute residual tolerance in a passage (see benchmarks/bench_passage.py).
 NEWTON_ABSOLUTE_TOLERANCE = 1.0
+
+#: Fraction of the static wheel load above which a check-rail contact's force (the magnitude
+#: of its lateral and vertical force) counts as carrying load. Below it the contact's error
+#: at a coarse step (measured <= 25 % of its own force: 14.9 % on the full vehicle, 24 % on
+#: the FE track's single wheelset at 1e-4 s) is below 0.25 % of a wheel load, under the
+#: Newton tolerance's effect on the peaks; and a contact that only grazes (a few newtons
+#: while the flange passes the flare) costs nothing.
+CHECK_RAIL_LOADED = 0.01
+#: s, the refined window ends this long after the check rail's last load: 5 periods of its
+#: ~1.04 kHz ringing (it has died down by then).
+CHECK_RAIL_MARGIN = 0.005
+
+
+class CheckRailStepWarning(UserWarning):
+    """A check-rail contact carried load in a run whose step is coarser than
+    ``PassageSettings.check_rail_time_step`` (or than its default where refining is off)."""
 
 
 def contact_resonance(vehicle: Vehicle, m_contact: float) -> float:
@@ -60,6 +105,11 @@ def contact_resonance(vehicle: Vehicle, m_contact: float) -> float:
 
 def max_time_step(vehicle: Vehicle, m_rail: float) -> float:
     """Largest time step (s) that resolves the wheel/rail contact: 10 steps per period.
+
+    The vertical contact only. A check rail's contact (the back of the flange against its
+    face) rings faster, ~1.04 kHz on the 2-layer track, and its force needs ~40 steps per
+    period (the module docstring): the co-running passages step its loaded windows at
+    ``PassageSettings.check_rail_time_step`` (:class:`CheckRailSteps`), whatever this limit.
 
     Parameters
     ----------
@@ -162,8 +212,12 @@ def check_settings(
         raise PassageError(
             f"time step {s.time_step:g} s is too large to resolve the wheel/rail contact "
             f"(~{contact_resonance(vehicle, m_rail):.0f} Hz with the lightest rail, "
-            f"{m_rail:.4g} kg): use a step <= {h_max:.2g} s"
+            f"{m_rail:.4g} kg): use a step <= {h_max:.2g} s (a loaded check rail needs "
+            "check_rail_time_step, finer still)"
         )
+    c = s.check_rail_time_step
+    if c is not None and not (isinstance(c, (int, float)) and math.isfinite(c) and c > 0):
+        raise PassageError(f"check_rail_time_step must be > 0 s or None, got {c!r}")
     _check_output_step(s, (x_b - x_a) / s.v)
     return x_a, x_b
 
@@ -348,3 +402,366 @@ def check_vehicle_settings(
     )
     check_settings(covered, turnout, base)
     return x_a, x_b
+
+
+def check_rail_pairs(route: Any) -> tuple[tuple[str, str], ...]:
+    """The route's check-rail contacts as (wheel, rail slot), e.g. (("right", "r3"),).
+
+    Parameters
+    ----------
+    route : Route
+        :func:`~exudyn_turnout.inputs.routes.load_route`'s.
+
+    Returns
+    -------
+    tuple of (str, str)
+        Empty where the route has no check rail.
+    """
+    out: list[tuple[str, str]] = []
+    for pair in route.pairs:
+        if pair.check and (pair.wheel, pair.rail) not in out:
+            out.append((pair.wheel, pair.rail))
+    return tuple(out)
+
+
+def check_rail_step(settings: PassageSettings) -> float | None:
+    """The step (s) a loaded check rail's window is run at, or None where nothing is refined.
+
+    Parameters
+    ----------
+    settings : PassageSettings
+
+    Returns
+    -------
+    float or None
+        ``settings.check_rail_time_step`` where it is finer than ``settings.time_step``.
+    """
+    h = settings.check_rail_time_step
+    if h is None or not h < settings.time_step * (1.0 - 1e-9):
+        return None
+    return float(h)
+
+
+def check_rail_window(
+    columns: Mapping[str, np.ndarray],
+    pairs: Sequence[tuple[str, str]],
+    threshold: float,
+    labels: Sequence[str] = ("",),
+) -> tuple[float, float, float] | None:
+    """Where a check-rail contact carried load in a run segment's columns.
+
+    Parameters
+    ----------
+    columns : mapping
+        The segment's columns: ``t_s`` and per contact ``Fy_<label><wheel>_<slot>_N``,
+        ``Fz_...`` (missing or NaN: no contact).
+    pairs : sequence of (str, str)
+        :func:`check_rail_pairs`.
+    threshold : float
+        N, the force above which the contact carries load (:data:`CHECK_RAIL_LOADED` x the
+        static wheel load).
+    labels : sequence of str
+        Column prefixes of the wheelsets: ``("",)`` for the single wheelset,
+        ``("ws1_", "ws2_", ...)`` for the full vehicle.
+
+    Returns
+    -------
+    (t_first, t_last, peak) or None
+        s (the columns' own times), N: the first and last times above ``threshold`` and the
+        largest force; None where it was never above.
+    """
+    t = np.asarray(columns["t_s"], float)
+    loaded = np.zeros(len(t), dtype=bool)
+    peak = 0.0
+    for label in labels:
+        for wheel, slot in pairs:
+            name = f"{label}{wheel}_{slot}_N"
+            if f"Fy_{name}" not in columns:
+                continue
+            fy = np.nan_to_num(np.asarray(columns[f"Fy_{name}"], float))
+            fz = np.nan_to_num(np.asarray(columns.get(f"Fz_{name}", np.zeros(len(t))), float))
+            force = np.hypot(fy, fz)
+            loaded |= force > threshold
+            peak = max(peak, float(np.max(force, initial=0.0)))
+    if not loaded.any():
+        return None
+    where = np.flatnonzero(loaded)
+    return float(t[where[0]]), float(t[where[-1]]), peak
+
+
+def refine_pieces(
+    duration: float, time_step: float, fine_step: float, t_last: float
+) -> tuple[tuple[int, int, float], ...]:
+    """Split a run segment into pieces: its start to the check rail's last load at the fine
+    step, the rest at the run's.
+
+    The segment's own grid is that of its first run: n = ceil(duration / time_step) steps
+    of h = duration / n. The fine piece runs from the segment's start (the integrator is not
+    restarted during the check rail's approach: a restart 5-20 ms before the flare's end
+    moved the 2-layer diverging route's check-rail peak by 4 %, 122.5 against 128.1 kN at
+    2.5e-5 s throughout; from the segment's start, 1e-4 s refined to 2.5e-5 s gives
+    126.6 kN) to ``t_last`` + :data:`CHECK_RAIL_MARGIN`, widened to the grid (to the
+    segment's end where less than a margin is left), at h / m, m = ceil(h / fine_step):
+    every m-th of its steps lies on the grid, so that the run's samples keep their times.
+
+    Parameters
+    ----------
+    duration : float
+        s, the segment's duration.
+    time_step : float
+        s, the run's step.
+    fine_step : float
+        s, the check rail's (:func:`check_rail_step`).
+    t_last : float
+        s from the segment's start: the check rail's last load (:func:`check_rail_window`).
+
+    Returns
+    -------
+    tuple of (int, int, float)
+        Per piece, in order: first and last index on the grid (0..n) and its step (s).
+    """
+    n = max(1, int(math.ceil(duration / time_step - 1e-9)))
+    h = duration / n
+    m = max(1, int(math.ceil(h / fine_step - 1e-9)))
+    b = max(1, int(math.ceil((t_last + CHECK_RAIL_MARGIN) / h - 1e-9)))
+    if b > n - int(math.ceil(CHECK_RAIL_MARGIN / h - 1e-9)):
+        b = n
+    pieces = [(0, b, h / m), (b, n, h)]
+    return tuple(p for p in pieces if p[1] > p[0])
+
+
+def pick_rows(columns: Mapping[str, np.ndarray], times: np.ndarray) -> dict[str, np.ndarray]:
+    """The rows of ``columns`` nearest to ``times`` (a finer run sampled at a coarser one's
+    times).
+
+    Parameters
+    ----------
+    columns : mapping
+        A run's columns, ``t_s`` among them.
+    times : numpy.ndarray
+        s, the times wanted (on the columns' clock), each within half a sample of one.
+
+    Returns
+    -------
+    dict
+        The same columns at those rows.
+
+    Raises
+    ------
+    ValueError
+        A time lies further than half a sample from every row.
+    """
+    t = np.asarray(columns["t_s"], float)
+    times = np.asarray(times, float)
+    last = len(t) - 1
+    after = np.clip(np.searchsorted(t, times), 0, last)
+    before = np.clip(after - 1, 0, last)
+    at = np.where(np.abs(t[before] - times) < np.abs(t[after] - times), before, after)
+    spacing = float(np.min(np.diff(t))) if last > 0 else math.inf
+    if len(times) and not float(np.max(np.abs(t[at] - times))) <= 0.5 * spacing:
+        raise ValueError("pick_rows: a time wanted lies between the run's samples")
+    return {name: np.asarray(c)[at] for name, c in columns.items()}
+
+
+def piece_times(
+    t: np.ndarray, t_offset: float, a: int, b: int, h: float, step: float
+) -> np.ndarray:
+    """The first run's output times that a refined piece gives (:func:`refine_pieces`).
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        s, the segment's first run's output times (``t_s``).
+    t_offset : float
+        s, the segment's start.
+    a, b : int
+        The piece's first and last index on the segment's grid.
+    h : float
+        s, the grid's step.
+    step : float
+        s, the piece's step.
+
+    Returns
+    -------
+    numpy.ndarray
+        s: from the piece's start (where a > 0 after it: the piece before gives that one)
+        to its end.
+    """
+    t = np.asarray(t, float)
+    t_a, t_b = t_offset + a * h, t_offset + b * h
+    after = -0.5 * step if a == 0 else 0.5 * step
+    return t[(t > t_a + after) & (t <= t_b + 0.5 * step)]
+
+
+def check_rail_warning(
+    where: str, peak: float, x_range: tuple[float, float], time_step: float, limit: float
+) -> str:
+    """The one-line warning of a check-rail contact that carried load at too coarse a step.
+
+    Parameters
+    ----------
+    where : str
+        E.g. "the FE track" or "--time-step given".
+    peak : float
+        N, the contact's largest force.
+    x_range : (float, float)
+        m, where it carried load.
+    time_step : float
+        s, the run's step.
+    limit : float
+        s, the check rail's step (``PassageSettings.check_rail_time_step`` or its default).
+
+    Returns
+    -------
+    str
+    """
+    return (
+        f"a check rail's contact force (|(Fy, Fz)|) reached {peak / 1e3:.1f} kN at x = "
+        f"{x_range[0]:.2f}-{x_range[1]:.2f} m "
+        f"at a time step of {time_step:g} s, coarser than the check rail's {limit:g} s "
+        f"({where}): its force is not converged in the step (at 1e-4 s 14.9 % low on the "
+        "2-layer co-running track, 24 % on the FE track: diverging route at 80 km/h, "
+        "validation/vehicle_step_convergence.md)"
+    )
+
+
+class CheckRailSteps:
+    """A passage's bookkeeping of its check rail's step: where its contact carried load, which
+    windows ran at the finer step, the warning where none did.
+
+    Parameters
+    ----------
+    settings : PassageSettings
+        ``time_step`` and ``check_rail_time_step``.
+    route : Route
+        Its check-rail contacts (:func:`check_rail_pairs`).
+    static_wheel_load : float
+        N, the threshold's reference (:data:`CHECK_RAIL_LOADED`).
+    wheelsets : int
+        0: the single wheelset's columns (``Fy_right_r3_N``); n: the full vehicle's
+        (``Fy_ws1_right_r3_N`` ... ``Fy_wsn_...``).
+    where : str
+        Why nothing is refined, for the warning (default: the setting is None).
+    """
+
+    def __init__(
+        self,
+        settings: PassageSettings,
+        route: Any,
+        static_wheel_load: float,
+        wheelsets: int = 0,
+        where: str = "",
+    ):
+        self.settings = settings
+        self.pairs = check_rail_pairs(route)
+        self.labels = tuple(f"ws{i + 1}_" for i in range(wheelsets)) if wheelsets else ("",)
+        self.threshold = CHECK_RAIL_LOADED * float(static_wheel_load)
+        #: s, the refined windows' step, or None (nothing refined)
+        self.step = None if where else check_rail_step(settings)
+        self.where = where or (
+            "check_rail_time_step None, as with the CLI's --time-step given: the step is used "
+            "everywhere; leave it at its default or give one <= the check rail's"
+        )
+        #: (x_from, x_to, step): m, m, s; the windows run at the finer step
+        self.refined: list[tuple[float, float, float]] = []
+        #: (x_from, x_to, peak): m, m, N; loaded at the run's step, not refined
+        self.loaded: list[tuple[float, float, float]] = []
+
+    def window(self, columns: Mapping[str, np.ndarray]) -> tuple[float, float, float] | None:
+        """:func:`check_rail_window` of a segment's columns (None: no check rail loaded).
+
+        Parameters
+        ----------
+        columns : mapping
+            The segment's columns.
+
+        Returns
+        -------
+        (t_first, t_last, peak) or None
+        """
+        if not self.pairs:
+            return None
+        return check_rail_window(columns, self.pairs, self.threshold, self.labels)
+
+    def unrefined(
+        self, window: tuple[float, float, float], columns: Mapping[str, np.ndarray]
+    ) -> None:
+        """Note a window loaded at the run's step and not refined.
+
+        Parameters
+        ----------
+        window : (t_first, t_last, peak)
+            :meth:`window`'s.
+        columns : mapping
+            The segment's columns (``t_s``, ``x_m``).
+        """
+        t, x = np.asarray(columns["t_s"]), np.asarray(columns["x_m"])
+        x_from, x_to = np.interp(window[:2], t, x)
+        self.loaded.append((float(x_from), float(x_to), float(window[2])))
+
+    def record(self, summary: dict, stacklevel: int = 2) -> None:
+        """Put the refined windows into ``summary``; warn where a loaded check rail ran at too
+        coarse a step.
+
+        Keys: ``check_rail_time_step_s`` (the setting, None: off), ``check_rail_refined``
+        (per window, merged where they touch: ``x_m`` [from, to] of the front wheelset and
+        ``time_step_s``) and, where the check rail carried load at a step coarser than the
+        setting (or its default where it is None), ``check_rail_step_warning``, also issued
+        as a :class:`CheckRailStepWarning`.
+
+        Parameters
+        ----------
+        summary : dict
+            The passage's summary (changed in place).
+        stacklevel : int
+            Of the warning, counted from the caller of this method.
+        """
+        from exudyn_turnout.passage.settings import DEFAULT_SETTINGS
+
+        summary["check_rail_time_step_s"] = self.settings.check_rail_time_step
+        merged: list[list[float]] = []
+        for x_from, x_to, step in self.refined:
+            # touching windows of about the same step (each segment's own grid: h / m)
+            if (
+                merged
+                and abs(merged[-1][1] - x_from) < 1e-9
+                and abs(merged[-1][2] / step - 1) < 0.01
+            ):
+                merged[-1][1:] = [x_to, max(merged[-1][2], step)]
+            else:
+                merged.append([x_from, x_to, step])
+        summary["check_rail_refined"] = [
+            {"x_m": [round(a, 4), round(b, 4)], "time_step_s": float(h)} for a, b, h in merged
+        ]
+        limit = self.settings.check_rail_time_step or DEFAULT_SETTINGS.check_rail_time_step
+        if not self.loaded or limit is None or not self.settings.time_step > limit:
+            return
+        peak = max(p for *_, p in self.loaded)
+        span = (min(a for a, *_ in self.loaded), max(b for _, b, _ in self.loaded))
+        message = check_rail_warning(self.where, peak, span, self.settings.time_step, limit)
+        summary["check_rail_step_warning"] = message
+        warnings.warn(message, CheckRailStepWarning, stacklevel=stacklevel + 1)
+
+
+def refined_line(summary: Mapping[str, Any]) -> str | None:
+    """One console line on the windows run at the check rail's finer step; None if none.
+
+    Parameters
+    ----------
+    summary : mapping
+        A passage summary with ``check_rail_refined`` (:meth:`CheckRailSteps.record`).
+
+    Returns
+    -------
+    str or None
+        E.g. ``check rail loaded: x = 45.06-47.48 m stepped at 2.5e-05 s (run: 0.0001 s)``.
+    """
+    windows = summary.get("check_rail_refined") or []
+    if not windows:
+        return None
+    parts = [
+        f"x = {w['x_m'][0]:.2f}-{w['x_m'][1]:.2f} m at {w['time_step_s']:.3g} s" for w in windows
+    ]
+    step = summary.get("settings", {}).get("time_step")
+    run = f" (the run's step {step:g} s)" if isinstance(step, float) else ""
+    return f"check rail loaded: stepped finer over {', '.join(parts)}{run}"

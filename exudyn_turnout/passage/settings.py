@@ -50,8 +50,21 @@ class PassageSettings:
     x_start: float | None = None  #: m, default: the turnout's start
     x_end: float | None = None  #: m, default: the turnout's end
     #: s; converged on the through route (<= 0.16 % against 2.5e-5 s), not for the 2-layer
-    #: check-rail force on the diverging route (-14.9 %): validation/vehicle_step_convergence.md
+    #: check-rail force on the diverging route (-14.9 %): validation/vehicle_step_convergence.md;
+    #: where a check rail carries load the co-running track's runs step at
+    #: ``check_rail_time_step`` instead
     time_step: float = 1e-4
+    #: s, the step of a run segment where a check-rail contact carries load: such a segment
+    #: is run again at this step (no finer than needed: the segment's step over an integer)
+    #: over the window of the check rail's load
+    #: (:mod:`~exudyn_turnout.passage.corunning_track.vehicle`); None: never (a run at a
+    #: coarser step warns, :class:`~exudyn_turnout.passage.common.CheckRailStepWarning`).
+    #: 2.5e-5 s: the 2-layer check-rail force on the diverging route, full vehicle at
+    #: 80 km/h, 128.1 kN against 127.1 / 126.5 kN at 1.25e-5 / 6.25e-6 s (+0.8 / +1.3 %),
+    #: 109.1 kN (-14.9 %) at 1e-4 s and 118.4 kN (-7.6 %) at 5e-5 s
+    #: (validation/vehicle_step_convergence.md: it rings at ~1.04 kHz after the check
+    #: rail's flare)
+    check_rail_time_step: float | None = 2.5e-5
     output_step: float | None = None  #: s, default: every time step
     spectral_radius: float = 0.8  #: generalized-alpha rho_inf
     #: how track springs follow x: "compiled" (one numba call for all springs), "symbolic",

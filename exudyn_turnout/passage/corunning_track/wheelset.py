@@ -16,7 +16,10 @@ track the static state is kept (the steady state up to what the lateral hold car
 straight-track results do not change). The run is then split at the zone boundaries
 (Table 3): in each zone a new Exudyn system is built with that zone's masses and active
 rails, and the state of everything that continues (vehicle, sleeper, rails present in
-both zones, or a rail slot that a route says continues another) is carried over.
+both zones, or a rail slot that a route says continues another) is carried over. A zone
+where a check-rail contact carried load at a step coarser than
+``settings.check_rail_time_step`` runs again from its start at that step to the load's end
+(:class:`~exudyn_turnout.passage.common.CheckRailSteps`, as the full vehicle's segments).
 """
 
 from __future__ import annotations
@@ -35,9 +38,13 @@ from exudyn_turnout.inputs.turnout import Turnout, Zone
 from exudyn_turnout.inputs.vehicle import Vehicle
 from exudyn_turnout.passage.common import (
     NEWTON_ABSOLUTE_TOLERANCE,
+    CheckRailSteps,
     QuietExudyn,
     join_segments,
+    pick_rows,
+    piece_times,
     progress_function,
+    refine_pieces,
     zones_of_run,
 )
 from exudyn_turnout.passage.contact.profile import STATIC_LATERAL_STIFFNESS
@@ -490,21 +497,49 @@ def _simulate(
         residual = STATIC_LATERAL_STIFFNESS * abs(float(state["wheelset"][0][0]))
         start = "static at rest"
     segments, x, t_offset, previous, total = [], x_a, 0.0, static, (x_b - x_a) / v
+    # the height-table contact has no per-contact columns: no check rail seen
+    check = CheckRailSteps(settings, route, W)
     for k, zone in enumerate(zones):
+        continues = route.continues.get(zone.index, {}) if k else {}
         system = build_zone_system(turnout, route, vehicle, zone, settings, x, v, contact)
-        _carry_over(
-            state,
-            previous,
-            system,
-            route.continues.get(zone.index, {}) if k else {},
-            settings.layers,
-            x,
-        )
+        _carry_over(state, previous, system, continues, settings.layers, x)
         duration = (min(zone.x_end, x_b) - x) / v
         cols = _run(system, duration, settings, t_offset, total, progress)
-        check_plausible(
-            cols, W, f"zone {zone.index}, {zone.name}", limits_for_friction(vehicle.contact.mu)
-        )
+        where = f"zone {zone.index}, {zone.name}"
+        limits = limits_for_friction(vehicle.contact.mu)
+        check_plausible(cols, W, where, limits)
+        window = check.window(cols)
+        if window is not None and check.step is not None:  # again, the window stepped finer
+            pieces = refine_pieces(
+                duration,
+                settings.time_step,
+                check.step,
+                window[1] - t_offset,
+            )
+            h = duration / pieces[-1][1]
+            parts, piece_state, piece_previous = [], state, previous
+            for a, b, step in pieces:
+                x_p = x + v * a * h
+                system = build_zone_system(turnout, route, vehicle, zone, settings, x_p, v, contact)
+                # the first piece continues the zone before; the others their own zone
+                _carry_over(
+                    piece_state,
+                    piece_previous,
+                    system,
+                    continues if a == 0 else {},
+                    settings.layers,
+                    x_p,
+                )
+                fine = replace(settings, time_step=step, output_step=None)  # every step sampled
+                piece = _run(system, (b - a) * h, fine, t_offset + a * h, total, progress)
+                check_plausible(piece, W, where, limits)
+                parts.append(pick_rows(piece, piece_times(cols["t_s"], t_offset, a, b, h, step)))
+                piece_state, piece_previous = _node_state(system), system
+                if step < h:
+                    check.refined.append((x_p, x + v * b * h, step))
+            cols = join_segments(parts)
+        elif window is not None:
+            check.unrefined(window, cols)
         segments.append(cols if k == 0 else {n: c[1:] for n, c in cols.items()})
         state, previous = _node_state(system), system
         x, t_offset = min(zone.x_end, x_b), t_offset + duration
@@ -518,6 +553,7 @@ def _simulate(
         limits_for_friction(vehicle.contact.mu),
     )
     record_start(summary, turnout, x_a, v, start, residual, stacklevel=4)
+    check.record(summary, stacklevel=4)
     return PassageResult(settings, columns, summary, tuple(max(z.x_start, x_a) for z in zones))
 
 

@@ -372,6 +372,7 @@ def _simulate(turnout, settings, model, contact, route, x_range, progress, optio
     """:func:`simulate_vehicle` with Exudyn silenced."""
     from exudyn_turnout.passage.contact.vehicle_contacts import wheelset_columns
     from exudyn_turnout.passage.fe_track.common import (
+        check_rail_steps,
         failure_reason,
         fe_columns,
         fe_summary,
@@ -504,4 +505,7 @@ def _simulate(turnout, settings, model, contact, route, x_range, progress, optio
     summary.update(fe_summary(planes, settings, track, h, n_steps, static_s, steps_s))
     summary["cross_compliance"] = cross
     record_start(summary, turnout, x_a, v, start, residual, stacklevel=4)
+    check_rail_steps(
+        settings, route, model.static_wheel_load, columns, summary, len(system.elements), 4
+    )
     return PassageResult(replace(settings, x_start=x_a, x_end=x_b), columns, summary, (x_a,))

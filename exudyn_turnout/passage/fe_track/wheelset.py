@@ -42,6 +42,7 @@ from exudyn_turnout.inputs.vehicle import Vehicle
 from exudyn_turnout.passage.common import QuietExudyn
 from exudyn_turnout.passage.contact.profile import RouteContact
 from exudyn_turnout.passage.fe_track.common import (
+    check_rail_steps,
     coupled_run_settings,
     failure_reason,
     fe_columns,
@@ -319,6 +320,7 @@ def _simulate(
     )
     summary.update(fe_summary(planes, settings, track, h, n_steps, static_s, steps_s))
     record_start(summary, turnout, x_a, v, start, residual, stacklevel=5)
+    check_rail_steps(settings, route, W, columns, summary, stacklevel=5)
     return PassageResult(replace(settings, x_start=x_a, x_end=x_b), columns, summary, (x_a,))
 
 
