@@ -1,0 +1,287 @@
+"""How wrong is the passage's contact law at the instants that make the paper's peaks?
+
+Writes peak_contact.md.  Run: ``python validation/peak_contact.py`` (run time in the page).
+
+The packaged turnout (UIC60-760-1:15), the default vehicle (the full Manchester vehicle,
+profile contact, its front wheelset: the plain columns), the default runs of the
+validation report: the through route at 100 km/h and the diverging route at 80 km/h, on
+the 3-layer and the 2-layer co-running track, each over the whole turnout (a full run of
+the front wheelset costs 7-18 s, less than windows that would need a settled start).  In
+every run the instants of the paper's peaks of the front right wheel (the paper's Figs 7,
+8): the largest Fz and the largest |Fy| in the switch and in the crossing regions of
+``[regions]`` (``report.settings``), and the largest |Fy| on a check rail (slot r3).  At
+each instant every contact point of that wheel carrying more than :data:`MIN_LOAD`
+goes through :func:`exudyn_turnout.passage.post_contact.post_contact`: the passage's
+contact rebuilt by its own kernel on the recorded coordinates, then our exact contact on
+the 3-D surfaces at the passage's normal force and creepages (method and choices in
+that module's docstring).
+
+Reading the columns (passage vs exact, difference = exact minus passage, relative to the
+passage):
+
+* **delta**: the passage's penetration and the exact approach at the passage's N;
+* **N at delta**: the exact normal force at the passage's penetration (taken as approach
+  beyond first touch of the 3-D surfaces): the normal law's error as a force, the answer
+  to "would the peak change if the normal law were exact, the wheel and rail where they
+  were";
+* **N at state**: the exact force at the 3-D surfaces' own interpenetration at the
+  recorded positions (adds the difference of the tables' 2-D enveloped geometry);
+* **2a, 2b, PMAX**: the passage's creep-law ellipse (Hertz, or Kik-Piotrowski's equivalent
+  ellipse) and its Hertzian peak 3 N / (2 pi a b), against the exact patch's extent and
+  its largest element pressure;
+* **FX, FS**: the recorded creep forces (FASTSIM table) against Kalker's exact steady
+  rolling at the same creepages, on the exact pressure at the same N;
+* **dy, dx**: the exact force centre minus the recorded contact position, on the rail and
+  along the track.
+
+The wheel forces' change (last table) adds the contacts of the wheel:
+``dFz = sum(cos(gamma) dN + s sin(gamma) dFt)`` and ``dFy = sum(s sin(gamma) dN - cos(gamma) dFt)``
+(forces on the rail, the kernel's frame), with dN the exact force at the passage's
+penetration minus the passage's and dFt the exact FS minus the recorded.  This is the
+change at frozen positions, the quasi-static upper bound: in the dynamics the contact
+spring is in series with the wheel's and rail's compliance, which takes part of any change
+of the contact's stiffness.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import time
+from pathlib import Path
+
+import numpy as np
+
+from exudyn_turnout.inputs.turnout import load_turnout
+from exudyn_turnout.passage import simulate_passage
+from exudyn_turnout.passage.post_contact import PostContact, contact_stems, post_contact
+from exudyn_turnout.passage.settings import PassageSettings
+from exudyn_turnout.report.settings import report_settings
+
+HERE = Path(__file__).resolve().parent
+#: (route, speed km/h, layers): the validation report's co-running runs
+RUNS = (
+    ("through", 100.0, 3),
+    ("through", 100.0, 2),
+    ("diverging", 80.0, 3),
+    ("diverging", 80.0, 2),
+)
+#: N, contacts carrying less at the instant are left out
+MIN_LOAD = 1000.0
+WHEEL = "right"
+
+
+def _instants(result, regions) -> list[tuple[str, int]]:
+    """(label, sample index) of the peaks of the front right wheel and of a check rail."""
+    cols = result.columns
+    x = cols["x_m"]
+    out = []
+    for region in ("switch", "crossing"):
+        lo, hi = regions[region]
+        inside = np.flatnonzero((x >= lo) & (x <= hi))
+        if inside.size == 0:
+            continue
+        fz = np.nan_to_num(cols[f"Fz_{WHEEL}_N"][inside])
+        fy = np.nan_to_num(cols[f"Fy_{WHEEL}_N"][inside])
+        out.append((f"Fz {region}", int(inside[np.argmax(fz)])))
+        out.append((f"Fy {region}", int(inside[np.argmax(np.abs(fy))])))
+    for wheel in ("right", "left"):
+        name = f"Fy_{wheel}_r3_N"
+        if name in cols and np.nanmax(np.abs(cols[name])) > MIN_LOAD:
+            out.append((f"Fy check rail ({wheel})", int(np.nanargmax(np.abs(cols[name])))))
+    return out
+
+
+def _wheel_of(stem: str) -> str:
+    return stem.split("_")[1]
+
+
+def _short(stem: str) -> str:
+    """``cp_right_r2_right_wheel_on_crossing_nose_0`` -> ``r2 crossing nose #0``."""
+    parts = stem.split("_")
+    body = "_".join(parts[3:-1]).replace(f"{parts[1]}_wheel_on_", "").replace("_", " ")
+    return f"{parts[2]} {body} #{parts[-1]}"
+
+
+def _pct(new: float, old: float) -> str:
+    if not (math.isfinite(new) and math.isfinite(old)) or old == 0.0:
+        return "-"
+    return f"{100.0 * (new - old) / abs(old):+.1f} %"
+
+
+def _peak_contacts(label: str, found: list[PostContact]) -> list[PostContact]:
+    """The contacts whose forces make the peak: a check rail's alone, else the wheel's."""
+    return [c for c in found if "_r3_" in c.stem] if "check" in label else found
+
+
+def _wheel_change(found: list[PostContact]) -> tuple[float, float, float, float]:
+    """Rebuilt Fz, Fy on the rail of the contacts, and their change (module docstring)."""
+    fz = fy = dfz = dfy = 0.0
+    for c in found:
+        s = 1.0 if _wheel_of(c.stem) == "left" else -1.0
+        cg, sg = math.cos(c.angle), math.sin(c.angle)
+        fz += cg * c.normal + s * sg * c.fs
+        fy += s * sg * c.normal - cg * c.fs
+        dn, dft = c.force_difference, c.exact_fs - c.fs
+        dfz += cg * dn + s * sg * dft
+        dfy += s * sg * dn - cg * dft
+    return fz, fy, dfz, dfy
+
+
+def main(argv=None) -> None:
+    """Run the passages, post-process their peaks, write peak_contact.md.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Command-line arguments (``--runs N``: only the first N runs, for a quick look).
+    """
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--runs", type=int, default=len(RUNS))
+    parser.add_argument("--out", type=Path, default=HERE / "peak_contact.md")
+    args = parser.parse_args(argv)
+    started = time.perf_counter()
+    cpu_started = time.process_time()
+    turnout = load_turnout()
+    regions = report_settings(turnout).regions
+    records = []  # (run label, peak label, x, wheel force, [PostContact])
+    passage_seconds = exact_seconds = 0.0
+    for route, speed, layers in RUNS[: args.runs]:
+        t0 = time.perf_counter()
+        result = simulate_passage(
+            turnout, PassageSettings(route=route, speed_kmh=speed, layers=layers)
+        )
+        passage_seconds += time.perf_counter() - t0
+        run = f"{route} {speed:.0f} km/h, {layers}-layer"
+        for label, i in _instants(result, regions):
+            wheel = "left" if "(left)" in label else WHEEL
+            found = []
+            for stem in contact_stems(result, wheel):
+                if result.columns[f"{stem}_N_N"][i] > MIN_LOAD:
+                    found.append(post_contact(turnout, result, stem, i))
+                    exact_seconds += found[-1].seconds
+            column = f"Fy_{wheel}_r3_N" if "check" in label else f"{label[:2]}_{wheel}_N"
+            force = result.columns[column][i]
+            records.append((run, label, float(result.columns["x_m"][i]), float(force), found))
+            print(run, label, f"x = {result.columns['x_m'][i]:.3f}", len(found), "contact(s)")
+    wall = time.perf_counter() - started
+    cpu = time.process_time() - cpu_started
+    _write(args.out, records, wall, cpu, passage_seconds, exact_seconds)
+
+
+def _write(path: Path, records, wall, cpu, passage_seconds, exact_seconds) -> None:
+    lines = [
+        "# The passage's contact law against the exact contact at the paper's peaks",
+        "",
+        "Written by `python validation/peak_contact.py` (methods, frames and the meaning of "
+        "every column in its docstring; the post-processing in "
+        "`exudyn_turnout/passage/post_contact.py`).  Full Manchester vehicle, front "
+        "wheelset, the packaged UIC60 turnout, whole-turnout runs; differences are exact "
+        "minus passage, relative to the passage.  "
+        f"Run time: {wall:.0f} s wall ({cpu:.0f} s CPU of this process; passages "
+        f"{passage_seconds:.0f} s, exact contacts {exact_seconds:.0f} s wall, "
+        f"OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS', 'unset')}) on a "
+        "shared 2-core machine.",
+        "",
+        "## Normal contact at the peak instants",
+        "",
+        "| run | peak | x (m) | contact | gamma (deg) | KP weight | N passage (kN) "
+        "| delta passage (um) | delta exact at N | N exact at delta (kN) | N exact at state "
+        "| dy, dx (mm) | elements, s |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for run, label, x, _force, found in records:
+        for c in found:
+            lines.append(
+                f"| {run} | {label} | {x:.3f} | {_short(c.stem)} | {math.degrees(c.angle):.1f} "
+                f"| {c.semi_hertzian:.2f} | {c.normal / 1e3:.1f} | {c.approach * 1e6:.1f} "
+                f"| {c.exact_approach * 1e6:.1f} ({_pct(c.exact_approach, c.approach)}) "
+                f"| {c.exact_normal_at_approach / 1e3:.1f} "
+                f"({_pct(c.exact_normal_at_approach, c.normal)}) "
+                f"| {c.exact_normal_at_state / 1e3:.1f} "
+                f"({_pct(c.exact_normal_at_state, c.normal)}) "
+                f"| {(c.y_rail_exact - c.y_rail) * 1e3:+.2f}, "
+                f"{(c.x_contact_exact - c.x_contact) * 1e3:+.2f} "
+                f"| {c.elements}, {c.seconds:.1f} |"
+            )
+    lines += [
+        "",
+        "## Patch and creep forces at the peak instants",
+        "",
+        "| run | peak | contact | 2a passage / exact (mm) | 2b passage / exact (mm) "
+        "| PMAX passage / exact (MPa) | xi, eta, spin (1/m) | FX passage / exact (N) "
+        "| FS passage / exact (N) |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
+    for run, label, _x, _force, found in records:
+        for c in found:
+            lines.append(
+                f"| {run} | {label} | {_short(c.stem)} "
+                f"| {c.length * 1e3:.1f} / {c.exact_length * 1e3:.1f} "
+                f"({_pct(c.exact_length, c.length)}) "
+                f"| {c.width * 1e3:.1f} / {c.exact_width * 1e3:.1f} "
+                f"({_pct(c.exact_width, c.width)}) "
+                f"| {c.p_max / 1e6:.0f} / {c.exact_p_max / 1e6:.0f} "
+                f"({_pct(c.exact_p_max, c.p_max)}) "
+                f"| {c.xi:.2e}, {c.eta:.2e}, {c.spin:.3f} "
+                f"| {c.fx:.0f} / {c.exact_fx:.0f} ({_pct(c.exact_fx, c.fx)}) "
+                f"| {c.fs:.0f} / {c.exact_fs:.0f} ({_pct(c.exact_fs, c.fs)}) |"
+            )
+    lines += [
+        "",
+        "## What it does to the wheel's peak forces (frozen positions)",
+        "",
+        "Recorded wheel force, the same rebuilt from the contacts (a check of the frames), "
+        "and the change if the contacts' normal law and creep forces were the exact ones at "
+        "the recorded positions and creepages (upper bound, module docstring).",
+        "",
+        "| run | peak | x (m) | recorded (kN) | rebuilt Fz, Fy (kN) | dFz (kN) | dFy (kN) "
+        "| change of the peak |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    for run, label, x, force, found in records:
+        fz, fy, dfz, dfy = _wheel_change(_peak_contacts(label, found))
+        change = dfz if label.startswith("Fz") else dfy
+        lines.append(
+            f"| {run} | {label} | {x:.3f} | {force / 1e3:.1f} | {fz / 1e3:.1f}, {fy / 1e3:.1f} "
+            f"| {dfz / 1e3:+.2f} | {dfy / 1e3:+.2f} | {_pct(force + change, force)} |"
+        )
+    lines += ["", *_reading(records), ""]
+    path.write_text("\n".join(lines))
+
+
+def _reading(records) -> list[str]:
+    """The page's short reading, from the numbers above."""
+    contacts = [c for *_, found in records for c in found]
+    if not contacts:
+        return ["No contact carried load at the instants."]
+    approach = [abs(c.exact_approach / c.approach - 1.0) for c in contacts]
+    force = [abs(c.exact_normal_at_approach / c.normal - 1.0) for c in contacts]
+    worst = max(contacts, key=lambda c: abs(c.exact_normal_at_approach / c.normal - 1.0))
+    changes = []
+    for run, label, _x, force_value, found in records:
+        _fz, _fy, dfz, dfy = _wheel_change(_peak_contacts(label, found))
+        change = dfz if label.startswith("Fz") else dfy
+        changes.append((abs(change / force_value) if force_value else 0.0, run, label, change))
+    changes.sort(reverse=True)
+    top = "; ".join(
+        f"{label} ({run}): {change / 1e3:+.1f} kN ({100 * rel:.1f} %)"
+        for rel, run, label, change in changes[:4]
+    )
+    return [
+        "## Reading",
+        "",
+        f"{len(contacts)} contacts at {len(records)} peak instants.  The exact approach at "
+        f"the passage's normal force differs from the passage's penetration by "
+        f"{100 * float(np.median(approach)):.1f} % (median; largest "
+        f"{100 * max(approach):.1f} %), the exact force at the passage's penetration from "
+        f"the passage's by {100 * float(np.median(force)):.1f} % (median; largest "
+        f"{100 * max(force):.1f} %, {_short(worst.stem)} at x = {worst.x:.3f} m, contact "
+        f"angle {math.degrees(worst.angle):.1f} deg, KP weight {worst.semi_hertzian:.2f}).  "
+        f"The largest changes of a peak at frozen positions: {top}.",
+    ]
+
+
+if __name__ == "__main__":
+    main()
