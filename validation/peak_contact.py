@@ -30,7 +30,9 @@ passage):
   ellipse) and its Hertzian peak 3 N / (2 pi a b), against the exact patch's extent and
   its largest element pressure;
 * **FX, FS**: the recorded creep forces (FASTSIM table) against Kalker's exact steady
-  rolling at the same creepages, on the exact pressure at the same N;
+  rolling at the same creepages, on the exact pressure at the same N; and Kalker's exact
+  theory on the passage's own ellipse with Hertz's pressure (the creep law's error alone,
+  the difference to the exact patch's being the patch's);
 * **dy, dx**: the exact force centre minus the recorded contact position, on the rail and
   along the track.
 
@@ -115,18 +117,31 @@ def _peak_contacts(label: str, found: list[PostContact]) -> list[PostContact]:
     return [c for c in found if "_r3_" in c.stem] if "check" in label else found
 
 
-def _wheel_change(found: list[PostContact]) -> tuple[float, float, float, float]:
-    """Rebuilt Fz, Fy on the rail of the contacts, and their change (module docstring)."""
-    fz = fy = dfz = dfy = 0.0
+def _wheel_change(found: list[PostContact]) -> dict[str, float]:
+    """Rebuilt Fz, Fy on the rail of the contacts and their changes (module docstring).
+
+    ``n``: the part of the normal forces at the passage's penetrations, ``t``: the part of
+    the creep forces at its creepages and normal forces.
+    """
+    out = dict.fromkeys(("Fz", "Fy", "Fz_n", "Fz_t", "Fy_n", "Fy_t"), 0.0)
     for c in found:
         s = 1.0 if _wheel_of(c.stem) == "left" else -1.0
         cg, sg = math.cos(c.angle), math.sin(c.angle)
-        fz += cg * c.normal + s * sg * c.fs
-        fy += s * sg * c.normal - cg * c.fs
+        out["Fz"] += cg * c.normal + s * sg * c.fs
+        out["Fy"] += s * sg * c.normal - cg * c.fs
         dn, dft = c.force_difference, c.exact_fs - c.fs
-        dfz += cg * dn + s * sg * dft
-        dfy += s * sg * dn - cg * dft
-    return fz, fy, dfz, dfy
+        out["Fz_n"] += cg * dn
+        out["Fz_t"] += s * sg * dft
+        out["Fy_n"] += s * sg * dn
+        out["Fy_t"] += -cg * dft
+    return out
+
+
+def _magnitude(change: float, peak: float) -> str:
+    """Relative change of a peak's magnitude."""
+    if peak == 0.0 or not math.isfinite(change):
+        return "-"
+    return f"{100.0 * (abs(peak + change) - abs(peak)) / abs(peak):+.1f} %"
 
 
 def main(argv=None) -> None:
@@ -211,8 +226,8 @@ def _write(path: Path, records, wall, cpu, passage_seconds, exact_seconds) -> No
         "",
         "| run | peak | contact | 2a passage / exact (mm) | 2b passage / exact (mm) "
         "| PMAX passage / exact (MPa) | xi, eta, spin (1/m) | FX passage / exact (N) "
-        "| FS passage / exact (N) |",
-        "|---|---|---|---|---|---|---|---|---|",
+        "| FS passage / exact (N) | FX, FS exact on the passage's ellipse (N) |",
+        "|---|---|---|---|---|---|---|---|---|---|",
     ]
     for run, label, _x, _force, found in records:
         for c in found:
@@ -226,26 +241,38 @@ def _write(path: Path, records, wall, cpu, passage_seconds, exact_seconds) -> No
                 f"({_pct(c.exact_p_max, c.p_max)}) "
                 f"| {c.xi:.2e}, {c.eta:.2e}, {c.spin:.3f} "
                 f"| {c.fx:.0f} / {c.exact_fx:.0f} ({_pct(c.exact_fx, c.fx)}) "
-                f"| {c.fs:.0f} / {c.exact_fs:.0f} ({_pct(c.exact_fs, c.fs)}) |"
+                f"| {c.fs:.0f} / {c.exact_fs:.0f} ({_pct(c.exact_fs, c.fs)}) "
+                f"| {c.ellipse_fx:.0f} ({_pct(c.ellipse_fx, c.fx)}), "
+                f"{c.ellipse_fs:.0f} ({_pct(c.ellipse_fs, c.fs)}) |"
             )
     lines += [
         "",
-        "## What it does to the wheel's peak forces (frozen positions)",
+        "## What it does to the peaks",
         "",
-        "Recorded wheel force, the same rebuilt from the contacts (a check of the frames), "
-        "and the change if the contacts' normal law and creep forces were the exact ones at "
-        "the recorded positions and creepages (upper bound, module docstring).",
+        "Recorded force of the peak; the same rebuilt from the contacts' N, FS and angles "
+        "(a check of the frames); its change if the normal law were exact at the "
+        "passage's penetrations (normal part) and the creep forces exact at its creepages "
+        "and normal forces (creep part), both at frozen positions; the change of the "
+        "peak's magnitude at frozen positions, and the normal part's effect on a peak made "
+        "by an impact on the contact spring (half the relative change of the contact's "
+        "force at equal approach: an impact's peak on a spring alone grows as the square "
+        "root of its stiffness, on Hertz's law as its 2/5 power; the wheel's and rail's "
+        "compliance in series take more).  For a quasi-static peak the normal law's error "
+        "is an approach (first table), not a force: the wheel load is the vehicle's.",
         "",
-        "| run | peak | x (m) | recorded (kN) | rebuilt Fz, Fy (kN) | dFz (kN) | dFy (kN) "
-        "| change of the peak |",
-        "|---|---|---|---|---|---|---|---|",
+        "| run | peak | x (m) | recorded (kN) | rebuilt Fz, Fy (kN) | normal part (kN) "
+        "| creep part (kN) | peak, frozen | peak, impact on the contact |",
+        "|---|---|---|---|---|---|---|---|---|",
     ]
     for run, label, x, force, found in records:
-        fz, fy, dfz, dfy = _wheel_change(_peak_contacts(label, found))
-        change = dfz if label.startswith("Fz") else dfy
+        w = _wheel_change(_peak_contacts(label, found))
+        key = label[:2]
+        normal_part, creep_part = w[f"{key}_n"], w[f"{key}_t"]
         lines.append(
-            f"| {run} | {label} | {x:.3f} | {force / 1e3:.1f} | {fz / 1e3:.1f}, {fy / 1e3:.1f} "
-            f"| {dfz / 1e3:+.2f} | {dfy / 1e3:+.2f} | {_pct(force + change, force)} |"
+            f"| {run} | {label} | {x:.3f} | {force / 1e3:.1f} "
+            f"| {w['Fz'] / 1e3:.1f}, {w['Fy'] / 1e3:.1f} | {normal_part / 1e3:+.2f} "
+            f"| {creep_part / 1e3:+.2f} | {_magnitude(normal_part + creep_part, force)} "
+            f"| {_magnitude(0.5 * normal_part, force)} |"
         )
     lines += ["", *_reading(records), ""]
     path.write_text("\n".join(lines))
@@ -261,12 +288,13 @@ def _reading(records) -> list[str]:
     worst = max(contacts, key=lambda c: abs(c.exact_normal_at_approach / c.normal - 1.0))
     changes = []
     for run, label, _x, force_value, found in records:
-        _fz, _fy, dfz, dfy = _wheel_change(_peak_contacts(label, found))
-        change = dfz if label.startswith("Fz") else dfy
+        w = _wheel_change(_peak_contacts(label, found))
+        key = label[:2]
+        change = w[f"{key}_n"] + w[f"{key}_t"]
         changes.append((abs(change / force_value) if force_value else 0.0, run, label, change))
     changes.sort(reverse=True)
     top = "; ".join(
-        f"{label} ({run}): {change / 1e3:+.1f} kN ({100 * rel:.1f} %)"
+        f"{label} ({run}): {change / 1e3:+.1f} kN ({100 * rel:.1f} % of the peak)"
         for rel, run, label, change in changes[:4]
     )
     return [

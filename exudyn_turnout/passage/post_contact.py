@@ -43,6 +43,9 @@ Rebuilding the instant
   law's error alone, :attr:`PostContact.exact_normal_at_approach`), and the exact force
   at the passage's state, from the 3-D surfaces' own interpenetration (law and geometry,
   :attr:`PostContact.exact_normal_at_state`).
+* **The creep law alone**: Kalker's exact theory on the passage's own ellipse with
+  Hertz's pressure (:func:`~exudyn_turnout.wheel_rail.exact_rolling.exact_creep_forces_ellipse`)
+  at the same creepages separates the FASTSIM table's error from the patch's.
 * **Exact tangential problem** (Kalker's steady rolling,
   :func:`~exudyn_turnout.wheel_rail.detailed_contact.rolling_on_normal`) on the exact
   pressure at the passage's creepages xi, eta and spin (about the force centre), its
@@ -64,6 +67,7 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.interpolate import PchipInterpolator
 
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle import Vehicle, load_vehicle
@@ -71,6 +75,7 @@ from exudyn_turnout.passage.contact.profile import route_contact, wheel_and_setu
 from exudyn_turnout.passage.results import PassageResult
 from exudyn_turnout.wheel_rail.detailed_contact import rolling_on_normal
 from exudyn_turnout.wheel_rail.exact_normal import NormalSolution, solve_normal
+from exudyn_turnout.wheel_rail.exact_rolling import exact_creep_forces_ellipse
 from exudyn_turnout.wheel_rail.geometry import prepare_wheel
 from exudyn_turnout.wheel_rail.hertz import effective_modulus
 from exudyn_turnout.wheel_rail.kernel import DETAIL_FIELDS, contact_forces
@@ -80,6 +85,9 @@ from exudyn_turnout.wheel_rail.turnout_sections import route_rail_bodies
 
 __all__ = [
     "ELEMENTS_ACROSS",
+    "SMOOTHING",
+    "ELLIPSE_ELEMENTS",
+    "smooth_wheel",
     "SHEAR_MODULUS",
     "CREEP_POISSON",
     "PostContact",
@@ -89,6 +97,12 @@ __all__ = [
 
 #: elements along each axis of the exact patch (the element size follows the patch)
 ELEMENTS_ACROSS = 26
+#: elements across each axis of the passage's ellipse for :attr:`PostContact.ellipse_fx`
+#: (Kalker's C11, C22, C23 within 2.6 % from 20 on: ``exact_creep_forces_ellipse``)
+ELLIPSE_ELEMENTS = 30
+#: the rail's section rows and the wheel's points are joined by a shape-preserving cubic,
+#: sampled this many times denser than their 0.1 mm grid (:func:`smooth_wheel`)
+SMOOTHING = 4
 #: Pa, G of the passage's creep law (``ProfileContactElement``'s default)
 SHEAR_MODULUS = 8.1e10
 #: Poisson's ratio of the passage's creep coefficients (``kernel.pack_tables``' default)
@@ -135,6 +149,11 @@ class PostContact:
     exact_fx: float  #: N, exact, at the same creepages
     fs: float  #: N, recorded lateral creep force along the tangent t
     exact_fs: float  #: N, exact
+    #: N, Kalker's exact theory on the passage's own ellipse (Hertzian pressure, 2a x 2b) at
+    #: the same creepages: against ``fx`` the creep law's error alone, against ``exact_fx``
+    #: the patch's
+    ellipse_fx: float
+    ellipse_fs: float  #: N, the same for FS
     dx: float  #: m, element length
     ds: float  #: m, element width
     elements: int  #: -, elements in contact
@@ -216,6 +235,53 @@ class _Instant:
     taping_line: float
 
 
+def _smooth_row(y: np.ndarray, z: np.ndarray, refine: int) -> tuple[np.ndarray, np.ndarray]:
+    """A section row's finite runs through a shape-preserving cubic, ``refine`` x denser.
+
+    The sections are polylines on the lateral grid: between their points the lateral
+    curvature is zero and at them a delta, which the exact solution's pressure peaks on
+    (``reference_normal``'s module docstring); PCHIP (Fritsch-Carlson) removes the kinks
+    without overshooting steps and edges.
+    """
+    finite = np.isfinite(z)
+    edges = np.flatnonzero(np.diff(np.concatenate(([0], finite.astype(np.int8), [0]))))
+    ys, zs = [], []
+    for a, b in zip(edges[::2], edges[1::2]):
+        if b - a < 3:
+            ys.append(y[a:b])
+            zs.append(z[a:b])
+        else:
+            fine = np.linspace(y[a], y[b - 1], (b - a - 1) * refine + 1)
+            ys.append(fine)
+            zs.append(PchipInterpolator(y[a:b], z[a:b])(fine))
+        ys.append(np.array([np.nan]))  # keeps runs apart
+        zs.append(np.array([np.nan]))
+    return np.concatenate(ys), np.concatenate(zs)
+
+
+def smooth_wheel(y, z, refine: int = SMOOTHING) -> tuple[np.ndarray, np.ndarray]:
+    """A wheel's surface points through a parametric shape-preserving cubic.
+
+    Parameters
+    ----------
+    y, z : numpy.ndarray
+        m, the points in order along the profile (may turn back in y: flange back).
+    refine : int
+        Points per original interval.
+
+    Returns
+    -------
+    (numpy.ndarray, numpy.ndarray)
+        m, the denser points (:func:`PchipInterpolator` of y and z over the chord length).
+    """
+    y, z = np.asarray(y, float), np.asarray(z, float)
+    keep = np.concatenate(([True], np.hypot(np.diff(y), np.diff(z)) > 0.0))
+    y, z = y[keep], z[keep]
+    s = np.concatenate(([0.0], np.cumsum(np.hypot(np.diff(y), np.diff(z)))))
+    fine = np.linspace(0.0, s[-1], (len(s) - 1) * refine + 1)
+    return PchipInterpolator(s, y)(fine), PchipInterpolator(s, z)(fine)
+
+
 def _gap(inst: _Instant, sections, wheel_pts, x_ws: float, rows, t) -> np.ndarray:
     """Normal gap (m) at rows X (from the wheel's axle point) and tangent positions t."""
     s = inst.side
@@ -225,7 +291,8 @@ def _gap(inst: _Instant, sections, wheel_pts, x_ws: float, rows, t) -> np.ndarra
     y_p, z_p, r_p = wheel_pts
     out = np.empty((len(rows), len(t)))
     for i, X in enumerate(rows):
-        dy, dz = sections.y - inst.y_c, rail_z[i] - inst.z_c
+        y_r, z_r = _smooth_row(sections.y, rail_z[i], SMOOTHING)
+        dy, dz = y_r - inst.y_c, z_r - inst.z_c
         rail = _envelope(dy * cos_g + dz * sin_g, -dy * sin_g + dz * cos_g, tau, True)
         xi_w = X + s * (y_p - inst.taping_line) * inst.yaw
         y_w = y_p + inst.shift + s * xi_w * inst.yaw - inst.y_c
@@ -351,7 +418,8 @@ def post_contact(
     wheel, setup = wheel_and_setup(turnout, vehicle)
     prepared = prepare_wheel(wheel, setup.taping_line, 0.0, ())
     inst = _Instant(**{**inst.__dict__, "taping_line": setup.taping_line})
-    wheel_pts = (prepared.y, prepared.z, vehicle.r0 - prepared.z)
+    y_p, z_p = smooth_wheel(prepared.y, prepared.z)
+    wheel_pts = (y_p, z_p, vehicle.r0 - z_p)
     rail_body = next(b for b in route_rail_bodies(turnout, route) if b.name == tables.names[body])
     sections = rail_body.sections
     modulus = effective_modulus(_YOUNG, _POISSON)
@@ -378,6 +446,10 @@ def post_contact(
     rolling = rolling_on_normal(
         solved, xi, eta, spin, vehicle.contact.mu, SHEAR_MODULUS, CREEP_POISSON
     )
+    on_ellipse = exact_creep_forces_ellipse(
+        a, b, xi, eta, spin, normal, vehicle.contact.mu, SHEAR_MODULUS, CREEP_POISSON,
+        n=ELLIPSE_ELEMENTS,
+    )  # fmt: skip
     t_centre = _centre(solved, t)
     x_centre = _centre_x(solved, rows)
     gap_step = solved.approach - delta
@@ -418,6 +490,8 @@ def post_contact(
         exact_fx=float(rolling.fx),
         fs=_column(result, f"{stem}_Ft_N", index),
         exact_fs=float(rolling.fy),
+        ellipse_fx=float(on_ellipse[0]),
+        ellipse_fs=float(on_ellipse[1]),
         dx=dx,
         ds=ds,
         elements=int(np.count_nonzero(solved.pressure)),
