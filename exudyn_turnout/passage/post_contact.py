@@ -91,6 +91,8 @@ __all__ = [
     "SHEAR_MODULUS",
     "CREEP_POISSON",
     "PostContact",
+    "RebuiltContact",
+    "rebuild_contact",
     "contact_stems",
     "post_contact",
 ]
@@ -320,6 +322,123 @@ def _solve(inst, sections, wheel_pts, x_ws, pitch, dx, ds, half_x, half_t, modul
     raise ValueError("post_contact: the exact patch does not fit an 8-times grown grid")
 
 
+@dataclass(frozen=True)
+class RebuiltContact:
+    """The passage's own contact at a recorded sample, evaluated again by its kernel (SI)."""
+
+    body: str  #: the rail body's name
+    side: int  #: +1 left wheel, -1 right
+    x: float  #: m, wheelset position
+    shift: float  #: m, the wheel's lateral shift towards its field side, relative to the body
+    lift: float  #: m, the wheel's lift above the body at the contact (the kernel's)
+    yaw: float  #: rad, wheelset yaw
+    approach: float  #: m, penetration delta (<= 0: not in contact)
+    normal: float  #: N, the elastic normal law at ``approach``
+    stiffness: float  #: N/m, its dN/d(delta)
+    a: float  #: m, semi-axis of the creep law's ellipse along x
+    b: float  #: m, lateral semi-axis
+    semi_hertzian: float  #: -, weight of the Kik-Piotrowski law (0: Hertz)
+    angle: float  #: rad, contact angle
+    y_rail: float  #: m, contact position on the rail (side coordinates)
+    z_rail: float  #: m, its height
+    x_contact: float  #: m, contact position ahead of the wheel's axle (lead included)
+
+
+def rebuild_contact(
+    turnout: Turnout,
+    result: PassageResult,
+    stem: str,
+    index: int,
+    vehicle: Vehicle | None = None,
+) -> RebuiltContact:
+    """The passage's contact point at one sample, from its kernel on the recorded coordinates.
+
+    The compiled kernel (:func:`~exudyn_turnout.wheel_rail.kernel.contact_forces`) on the
+    route's contact tables, with the wheelset's and the rail body's recorded coordinates,
+    velocities zero (no creep, no normal damping: the elastic law alone).
+
+    Parameters
+    ----------
+    turnout : Turnout
+        The turnout the passage ran on.
+    result : PassageResult
+        A profile-contact passage on a co-running track.
+    stem : str
+        The contact point (:func:`contact_stems`).
+    index : int
+        Sample index.
+    vehicle : Vehicle, optional
+        Default :func:`.load_vehicle`.
+
+    Returns
+    -------
+    RebuiltContact
+
+    Raises
+    ------
+    ValueError
+        Unknown contact or sample, or a result without the columns.
+    """
+    vehicle = vehicle if vehicle is not None else load_vehicle()
+    n = len(result.columns["x_m"])
+    if not -n <= index < n:
+        raise ValueError(f"post_contact: sample {index} outside the result's {n} samples")
+    x_ws = _column(result, "x_m", index)
+    route = result.settings.route
+    contact = route_contact(turnout, route, vehicle)
+    tables = contact.tables
+    body = next(
+        (
+            k
+            for k, name in enumerate(tables.names)
+            if stem.startswith(f"cp_{contact.wheels[k]}_{contact.rails[k]}_{_slug(name)}_")
+        ),
+        None,
+    )
+    if body is None:
+        raise ValueError(f"post_contact: no rail body of route {route!r} matches {stem!r}")
+    candidate = int(stem.rsplit("_", 1)[1])
+    side = 1 if contact.wheels[body] == "left" else -1
+    slot = contact.rails[body]
+    q = np.zeros(_N_VEHICLE + 2)
+    names = ("y_wheelset_m", "z_wheelset_m", "roll_wheelset_rad", "yaw_wheelset_rad")
+    for k, name in enumerate(names):
+        q[k] = _column(result, name, index)
+    q[_N_VEHICLE] = _column(result, f"y_rail_{slot}_m", index)
+    q[_N_VEHICLE + 1] = _column(result, f"z_rail_{slot}_m", index)
+    packed = tables.select([body], [(_N_VEHICLE, _N_VEHICLE + 1)])
+    n_c = int(packed.layout[0, 5])
+    if not 0 <= candidate < n_c:
+        raise ValueError(f"post_contact: {stem!r} names candidate {candidate} of {n_c}")
+    details = np.zeros((n_c, len(DETAIL_FIELDS)))
+    constants = np.array([0.0, vehicle.r0, vehicle.contact.mu, SHEAR_MODULUS, 0.0, 0.0])
+    contact_forces(
+        x_ws, q, np.zeros_like(q), np.zeros(4), packed.values, packed.blendable, packed.x,
+        packed.layout, packed.bounds, constants, np.zeros_like(q), details,
+    )  # fmt: skip
+    row = details[candidate]
+    y_w, z_w, phi, psi = q[0], q[1], q[2], q[3]
+    y_c = float(row[_D["y_rail"]])
+    return RebuiltContact(
+        body=str(tables.names[body]),
+        side=side,
+        x=x_ws,
+        shift=float(side * (y_w + vehicle.r0 * phi - q[_N_VEHICLE])),
+        lift=float(z_w + (side * y_c - y_w) * phi - q[_N_VEHICLE + 1]),
+        yaw=float(psi),
+        approach=float(row[_D["delta"]]),
+        normal=float(row[_D["normal"]]),
+        stiffness=float(row[_D["stiffness"]]),
+        a=float(row[_D["a"]]),
+        b=float(row[_D["b"]]),
+        semi_hertzian=float(row[_D["semi_hertzian"]]),
+        angle=float(row[_D["angle"]]),
+        y_rail=y_c,
+        z_rail=float(row[_D["z_rail"]]),
+        x_contact=float(row[_D["x_offset"]]),
+    )
+
+
 def post_contact(
     turnout: Turnout,
     result: PassageResult,
@@ -358,60 +477,27 @@ def post_contact(
     """
     started = time.perf_counter()
     vehicle = vehicle if vehicle is not None else load_vehicle()
-    columns = result.columns
-    n = len(columns["x_m"])
-    if not -n <= index < n:
-        raise ValueError(f"post_contact: sample {index} outside the result's {n} samples")
     normal = _column(result, f"{stem}_N_N", index)
     if not normal > 0.0:
         raise ValueError(f"post_contact: {stem} carries no load at sample {index}")
-    x_ws = _column(result, "x_m", index)
-    route = result.settings.route
-    contact = route_contact(turnout, route, vehicle)
-    tables = contact.tables
-    body = next(
-        (
-            k
-            for k, name in enumerate(tables.names)
-            if stem.startswith(f"cp_{contact.wheels[k]}_{contact.rails[k]}_{_slug(name)}_")
-        ),
-        None,
-    )
-    if body is None:
-        raise ValueError(f"post_contact: no rail body of route {route!r} matches {stem!r}")
-    candidate = int(stem.rsplit("_", 1)[1])
-    side = 1 if contact.wheels[body] == "left" else -1
-    slot = contact.rails[body]
-    q = np.zeros(_N_VEHICLE + 2)
-    for k, name in enumerate(("y_wheelset_m", "z_wheelset_m", "roll_wheelset_rad")):
-        q[k] = _column(result, name, index)
-    q[3] = _column(result, "yaw_wheelset_rad", index)
-    q[_N_VEHICLE] = _column(result, f"y_rail_{slot}_m", index)
-    q[_N_VEHICLE + 1] = _column(result, f"z_rail_{slot}_m", index)
-    packed = tables.select([body], [(_N_VEHICLE, _N_VEHICLE + 1)])
-    n_c = int(packed.layout[0, 5])
-    details = np.zeros((n_c, len(DETAIL_FIELDS)))
-    constants = np.array([0.0, vehicle.r0, vehicle.contact.mu, SHEAR_MODULUS, 0.0, 0.0])
-    contact_forces(
-        x_ws, q, np.zeros_like(q), np.zeros(4), packed.values, packed.blendable, packed.x,
-        packed.layout, packed.bounds, constants, np.zeros_like(q), details,
-    )  # fmt: skip
-    row = details[candidate]
-    delta = float(row[_D["delta"]])
-    if not delta > 0.0:
+    rebuilt = rebuild_contact(turnout, result, stem, index, vehicle)
+    if not rebuilt.approach > 0.0:
         raise ValueError(f"post_contact: the rebuilt {stem} is not in contact at sample {index}")
-    angle = float(row[_D["angle"]])
-    y_w, z_w, phi, psi = q[0], q[1], q[2], q[3]
-    y_c = float(row[_D["y_rail"]])
+    x_ws = rebuilt.x
+    route = result.settings.route
+    side = rebuilt.side
+    angle = rebuilt.angle
+    delta = rebuilt.approach
+    y_c = rebuilt.y_rail
     inst = _Instant(
         side=side,
-        shift=side * (y_w + vehicle.r0 * phi - q[_N_VEHICLE]),
-        lift=z_w + (side * y_c - y_w) * phi - q[_N_VEHICLE + 1],
-        yaw=psi,
+        shift=rebuilt.shift,
+        lift=rebuilt.lift,
+        yaw=rebuilt.yaw,
         angle=angle,
         y_c=y_c,
-        z_c=float(row[_D["z_rail"]]),
-        x_c=float(row[_D["x_offset"]]),
+        z_c=rebuilt.z_rail,
+        x_c=rebuilt.x_contact,
         r0=vehicle.r0,
         taping_line=0.0,
     )
@@ -420,11 +506,11 @@ def post_contact(
     inst = _Instant(**{**inst.__dict__, "taping_line": setup.taping_line})
     y_p, z_p = smooth_wheel(prepared.y, prepared.z)
     wheel_pts = (y_p, z_p, vehicle.r0 - z_p)
-    rail_body = next(b for b in route_rail_bodies(turnout, route) if b.name == tables.names[body])
+    rail_body = next(b for b in route_rail_bodies(turnout, route) if b.name == rebuilt.body)
     sections = rail_body.sections
     modulus = effective_modulus(_YOUNG, _POISSON)
     pitch = contact_pitch(inst.x_c, vehicle.r0)
-    a, b = float(row[_D["a"]]), float(row[_D["b"]])
+    a, b = rebuilt.a, rebuilt.b
     dx, ds = 2.0 * a / elements, 2.0 * b / elements
     solved, h, lowest, rows, t = _solve(
         inst, sections, wheel_pts, x_ws, pitch, dx, ds, 1.5 * a, 1.5 * b, modulus, normal
@@ -461,20 +547,20 @@ def post_contact(
         x=x_ws,
         t=_column(result, "t_s", index),
         angle=angle,
-        semi_hertzian=float(row[_D["semi_hertzian"]]),
+        semi_hertzian=rebuilt.semi_hertzian,
         y_rail=_column(result, f"{stem}_y_rail_m", index),
         y_rail_rebuilt=y_c,
         y_rail_exact=y_c + side * t_centre * math.cos(angle),
         x_contact=_column(result, f"{stem}_x_m", index),
         x_contact_exact=x_centre,
         normal=normal,
-        rebuilt_normal=float(row[_D["normal"]]),
+        rebuilt_normal=rebuilt.normal,
         approach=delta,
         exact_approach=float(solved.approach),
         exact_normal_at_approach=float(at_approach),
         interpenetration=max(-lowest, 0.0),
         exact_normal_at_state=float(at_state),
-        stiffness=float(row[_D["stiffness"]]),
+        stiffness=rebuilt.stiffness,
         exact_stiffness=float(stiffness_exact),
         length=2.0 * a,
         exact_length=float(solved.length),
