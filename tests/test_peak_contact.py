@@ -24,7 +24,9 @@ from exudyn_turnout.passage.settings import PassageSettings
 RIGHT_STOCK = "cp_right_r1_right_wheel_on_right_stock_rail_0"
 
 
-def _record(stem: str, x: float, y_w: float, z_w: float, normal: float, xi: float = 0.0):
+def _record(
+    stem: str, x: float, y_w: float, z_w: float, normal: float, xi: float = 0.0, yaw: float = 0.0
+):
     """A one-sample result of the right wheel on the through route's right stock rail."""
 
     def one(v):
@@ -36,7 +38,7 @@ def _record(stem: str, x: float, y_w: float, z_w: float, normal: float, xi: floa
         "y_wheelset_m": one(y_w),
         "z_wheelset_m": one(z_w),
         "roll_wheelset_rad": one(0.0),
-        "yaw_wheelset_rad": one(0.0),
+        "yaw_wheelset_rad": one(yaw),
         "y_rail_r1_m": one(0.0),
         "z_rail_r1_m": one(0.0),
         f"{stem}_N_N": one(normal),
@@ -106,6 +108,29 @@ def test_plain_rail_tread_contact_is_hertz(turnout):
     assert found.exact_fx < 0.0
     assert found.exact_fx == pytest.approx(found.ellipse_fx, rel=0.03)
     assert math.isfinite(found.exact_fs)
+
+
+@pytest.mark.parametrize("yaw", [5e-3, -5e-3])
+def test_yawed_flange_contact_leads_as_the_closed_form(turnout, yaw):
+    """Right wheel in flange contact (wheelset 7 mm to the right, contact angle 70 deg) on
+    the plain stock rail, yawed by 5 mrad, 30 kN.  The exact patch on the yawed body of
+    revolution (this module's own 3-D gap) lies ahead of the axle where the passage's
+    closed form of the lead puts it (``wheel_rail/lead.py``: r s tan(gamma) tan(psi), 6.4 mm
+    here, itself checked against an independent 3-D search in test_wheel_rail_lead.py),
+    within 0.5 mm (issue 22's tolerance for contact positions)."""
+    x, y_w = -3.0, -7e-3
+
+    def excess(z_w: float) -> float:
+        record = _record(RIGHT_STOCK, x, y_w, z_w, 1.0, yaw=yaw)
+        return rebuild_contact(turnout, record, RIGHT_STOCK, 0).normal - 30e3
+
+    z_w = brentq(excess, -3e-3, 3e-3, xtol=1e-11)
+    record = _record(RIGHT_STOCK, x, y_w, z_w, 30e3, yaw=yaw)
+    found = post_contact(turnout, record, RIGHT_STOCK, 0)
+    assert math.degrees(found.angle) > 60.0  # flange contact
+    lead = rebuild_contact(turnout, record, RIGHT_STOCK, 0).x_contact
+    assert abs(lead) > 5e-3 and math.copysign(1.0, lead) == -math.copysign(1.0, yaw)
+    assert found.x_contact_exact == pytest.approx(lead, abs=5e-4)
 
 
 def test_bad_requests_are_one_line_errors(turnout):

@@ -16,7 +16,8 @@ Rebuilding the instant
   columns are its front wheelset's).  This gives what the result does not record: the
   penetration delta, the semi-axes of the creep law's ellipse and the contact stiffness.
   Its normal force must equal the recorded one (checked: :attr:`PostContact.rebuilt_normal`;
-  the normal damping of the packaged vehicles is 0).
+  the normal damping of the packaged vehicles is 0).  :func:`rebuild_contact` alone gives
+  this state (milliseconds once the route's tables are loaded).
 * **The 3-D gap**: the rail body's sections (not enveloped) interpolated along the track at
   ``x + X`` for every row X of the grid, the wheel a body of revolution at the passage's
   lateral shift ``s (y_w + r0 phi - y_r)``, lift ``z_w + Y_c phi - z_r`` (the kernel's, see
@@ -30,7 +31,11 @@ Rebuilding the instant
   taken along that normal (the upper envelope of the rail's polyline, the lower of the
   wheel's), so that flange and check-rail contacts are as well posed as the tread;
   times ``cos(pitch)`` of the contact plane pitched by ``asin(x_c / r0)``
-  (:func:`~exudyn_turnout.wheel_rail.reference_normal.contact_pitch`).  Roll is applied as
+  (:func:`~exudyn_turnout.wheel_rail.reference_normal.contact_pitch`).  The grid is
+  centred on the gap's deepest point along the tangent (within 15 mm of the passage's
+  contact point, which is its law's force centre; at a flange contact that centre lies
+  several millimetres along the tangent from the deepest point, off the rail's surface:
+  9 mm at 30 kN on the plain stock rail, tests/test_peak_contact.py's flange case).  Roll is applied as
   the passage applies it (shift and lift), not as a tilt of the profile across the patch.
 * **Exact normal problem** (:func:`~exudyn_turnout.wheel_rail.exact_normal.solve_normal`)
   on that gap, **at the passage's normal force** (the comparison's primary quantity: the
@@ -111,6 +116,7 @@ SHEAR_MODULUS = 8.1e10
 CREEP_POISSON = 0.28
 _YOUNG, _POISSON = 2.1e11, 0.3  # Pa, -: the tables' E* (TableSettings defaults)
 _D = {name: k for k, name in enumerate(DETAIL_FIELDS)}
+_SEARCH, _SEARCH_STEP = 0.015, 5e-5  # m, the deepest point is searched this far along t
 _N_VEHICLE = 7  # y_w, z_w, phi, psi, beta, y_s, z_s (profile contact element)
 
 
@@ -305,13 +311,24 @@ def _gap(inst: _Instant, sections, wheel_pts, x_ws: float, rows, t) -> np.ndarra
     return np.where(np.isfinite(out), out, 1.0)
 
 
-def _solve(inst, sections, wheel_pts, x_ws, pitch, dx, ds, half_x, half_t, modulus, force):
+def _deepest(inst: _Instant, sections, wheel_pts, x_ws: float) -> float:
+    """Where along the tangent (m, from the passage's contact point) the gap is lowest.
+
+    The passage's contact point is its law's force centre, moved along the tangent from
+    the deepest point; the exact grid is centred on the deepest point itself.
+    """
+    t = np.arange(-_SEARCH, _SEARCH + 0.5 * _SEARCH_STEP, _SEARCH_STEP)
+    gap = _gap(inst, sections, wheel_pts, x_ws, np.array([inst.x_c]), t)[0]
+    return float(t[int(np.argmin(gap))])
+
+
+def _solve(inst, sections, wheel_pts, x_ws, pitch, dx, ds, half_x, half_t, modulus, force, t0):
     """Exact normal solution at ``force`` on a grid grown until the patch fits."""
     along = math.cos(pitch)
     for _ in range(8):
         nx, ny = 2 * int(half_x / dx) + 1, 2 * int(half_t / ds) + 1
         rows = inst.x_c + (np.arange(nx) - 0.5 * (nx - 1)) * dx * along
-        t = (np.arange(ny) - 0.5 * (ny - 1)) * ds
+        t = t0 + (np.arange(ny) - 0.5 * (ny - 1)) * ds
         h = math.cos(pitch) * _gap(inst, sections, wheel_pts, x_ws, rows, t)
         lowest = float(np.min(h))
         solved = solve_normal(h - lowest, dx, ds, modulus, force=force)
@@ -512,14 +529,15 @@ def post_contact(
     pitch = contact_pitch(inst.x_c, vehicle.r0)
     a, b = rebuilt.a, rebuilt.b
     dx, ds = 2.0 * a / elements, 2.0 * b / elements
+    t0 = _deepest(inst, sections, wheel_pts, x_ws)
     solved, h, lowest, rows, t = _solve(
-        inst, sections, wheel_pts, x_ws, pitch, dx, ds, 1.5 * a, 1.5 * b, modulus, normal
+        inst, sections, wheel_pts, x_ws, pitch, dx, ds, 1.5 * a, 1.5 * b, modulus, normal, t0
     )
     # elements sized to the exact patch, then the final solution
     dx, ds = solved.length / elements, solved.width / elements
     solved, h, lowest, rows, t = _solve(
         inst, sections, wheel_pts, x_ws, pitch, dx, ds,
-        0.75 * solved.length, 0.75 * solved.width, modulus, normal,
+        0.75 * solved.length, 0.75 * solved.width, modulus, normal, _centre(solved, t),
     )  # fmt: skip
     shifted = h - lowest
     at_approach = solve_normal(shifted, dx, ds, modulus, approach=delta).normal_force
