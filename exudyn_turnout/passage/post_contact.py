@@ -35,8 +35,9 @@ Rebuilding the instant
   centred on the gap's deepest point along the tangent (within 15 mm of the passage's
   contact point, which is its law's force centre; at a flange contact that centre lies
   several millimetres along the tangent from the deepest point, off the rail's surface:
-  9 mm at 30 kN on the plain stock rail, tests/test_peak_contact.py's flange case).  Roll is applied as
-  the passage applies it (shift and lift), not as a tilt of the profile across the patch.
+  9 mm at 30 kN on the plain stock rail, tests/test_peak_contact.py's flange case).  Roll
+  is applied as the passage applies it (shift and lift), not as a tilt of the profile
+  across the patch.
 * **Exact normal problem** (:func:`~exudyn_turnout.wheel_rail.exact_normal.solve_normal`)
   on that gap, **at the passage's normal force** (the comparison's primary quantity: the
   approach there, against the passage's penetration).  Why the force and not the
