@@ -58,6 +58,7 @@ import numpy as np
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.passage import simulate_passage
 from exudyn_turnout.passage.post_contact import (
+    ELEMENTS_ACROSS,
     SHEAR_MODULUS,
     PostContact,
     contact_stems,
@@ -79,6 +80,10 @@ RUNS = (
 #: N, contacts carrying less at the instant are left out
 MIN_LOAD = 1000.0
 WHEEL = "right"
+#: peaks of the 3-layer runs whose contacts are solved again on finer elements
+CONVERGENCE_PEAKS = ("Fz switch", "Fz crossing", "Fy check rail (right)")
+#: elements across each axis of the patch in that check (the default: ``ELEMENTS_ACROSS``)
+FINE_ELEMENTS = 40
 
 
 def _instants(result, regions) -> list[tuple[str, int]]:
@@ -163,6 +168,9 @@ def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=len(RUNS))
     parser.add_argument("--out", type=Path, default=HERE / "peak_contact.md")
+    parser.add_argument(
+        "--vehicle", default="manchester", help="a packaged vehicle, e.g. 'wheelset'"
+    )
     args = parser.parse_args(argv)
     started = time.perf_counter()
     cpu_started = time.process_time()
@@ -170,10 +178,11 @@ def main(argv=None) -> None:
     regions = report_settings(turnout).regions
     records = []  # (run label, peak label, x, wheel force, [PostContact])
     passage_seconds = exact_seconds = 0.0
+    finer = []  # (run, label, contact, its result and sample): the element-size check
     for route, speed, layers in RUNS[: args.runs]:
         t0 = time.perf_counter()
         result = simulate_passage(
-            turnout, PassageSettings(route=route, speed_kmh=speed, layers=layers)
+            turnout, PassageSettings(route=route, speed_kmh=speed, layers=layers), args.vehicle
         )
         passage_seconds += time.perf_counter() - t0
         run = f"{route} {speed:.0f} km/h, {layers}-layer"
@@ -184,24 +193,34 @@ def main(argv=None) -> None:
                 if result.columns[f"{stem}_N_N"][i] > MIN_LOAD:
                     found.append(post_contact(turnout, result, stem, i))
                     exact_seconds += found[-1].seconds
+                    if layers == 3 and label in CONVERGENCE_PEAKS and "_r1_" not in stem:
+                        finer.append((run, label, found[-1], result, i))
             column = f"Fy_{wheel}_r3_N" if "check" in label else f"{label[:2]}_{wheel}_N"
             force = result.columns[column][i]
             records.append((run, label, float(result.columns["x_m"][i]), float(force), found))
             print(run, label, f"x = {result.columns['x_m'][i]:.3f}", len(found), "contact(s)")
+    convergence = []
+    for run, label, coarse, result, i in finer:
+        fine = post_contact(turnout, result, coarse.stem, i, elements=FINE_ELEMENTS)
+        exact_seconds += fine.seconds
+        convergence.append((run, label, coarse, fine))
     wall = time.perf_counter() - started
     cpu = time.process_time() - cpu_started
-    _write(args.out, records, wall, cpu, passage_seconds, exact_seconds)
+    _write(args.out, records, convergence, wall, cpu, passage_seconds, exact_seconds, args.vehicle)
 
 
-def _write(path: Path, records, wall, cpu, passage_seconds, exact_seconds) -> None:
+def _write(
+    path: Path, records, convergence, wall, cpu, passage_seconds, exact_seconds, vehicle
+) -> None:
     lines = [
         "# The passage's contact law against the exact contact at the paper's peaks",
         "",
         "Written by `python validation/peak_contact.py` (methods, frames and the meaning of "
         "every column in its docstring; the post-processing in "
-        "`exudyn_turnout/passage/post_contact.py`).  Full Manchester vehicle, front "
-        "wheelset, the packaged UIC60 turnout, whole-turnout runs; a difference in per cent "
-        "is exact / passage - 1 (for forces of one sign: the change of magnitude).  "
+        "`exudyn_turnout/passage/post_contact.py`).  Vehicle "
+        f"`{vehicle}` (its front wheelset), the packaged UIC60 turnout, whole-turnout "
+        "runs; a difference in per cent is exact / passage - 1 (for forces of one sign: "
+        "the change of magnitude).  "
         f"Run time: {wall:.0f} s wall ({cpu:.0f} s CPU of this process; passages "
         f"{passage_seconds:.0f} s, exact contacts {exact_seconds:.0f} s wall, "
         f"OPENBLAS_NUM_THREADS={os.environ.get('OPENBLAS_NUM_THREADS', 'unset')}) on a "
@@ -282,6 +301,29 @@ def _write(path: Path, records, wall, cpu, passage_seconds, exact_seconds) -> No
             f"| {creep_part / 1e3:+.2f} | {_magnitude(normal_part + creep_part, force)} "
             f"| {_magnitude(0.5 * normal_part, force)} |"
         )
+    lines += [
+        "",
+        "## Element size",
+        "",
+        f"Some contacts again with {FINE_ELEMENTS} instead of {ELEMENTS_ACROSS} elements "
+        "across the patch (change in per cent):",
+        "",
+        "| run | peak | contact | approach at N | N at approach | length | width | PMAX "
+        "| FX | FS |",
+        "|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for run, label, c, f in convergence:
+        pairs = (
+            (f.exact_approach, c.exact_approach),
+            (f.exact_normal_at_approach, c.exact_normal_at_approach),
+            (f.exact_length, c.exact_length),
+            (f.exact_width, c.exact_width),
+            (f.exact_p_max, c.exact_p_max),
+            (f.exact_fx, c.exact_fx),
+            (f.exact_fs, c.exact_fs),
+        )
+        cells = " | ".join(_pct(new, old) for new, old in pairs)
+        lines.append(f"| {run} | {label} | {_short(c.stem)} | {cells} |")
     lines += ["", *_reading(records), ""]
     path.write_text("\n".join(lines))
 
