@@ -3,8 +3,8 @@
 Writes peak_contact.md.  Run: ``python validation/peak_contact.py`` (run time in the page).
 
 The packaged turnout (UIC60-760-1:15), the default vehicle (the full Manchester vehicle,
-profile contact, its front wheelset: the plain columns), the default runs of the
-validation report: the through route at 100 km/h and the diverging route at 80 km/h, on
+profile contact, its front wheelset: the plain columns) and the single wheelset
+(``--vehicle`` picks), the default runs of the validation report: the through route at 100 km/h and the diverging route at 80 km/h, on
 the 3-layer and the 2-layer co-running track, each over the whole turnout (a full run of
 the front wheelset costs 7-18 s, less than windows that would need a settled start).  In
 every run the instants of the paper's peaks of the front right wheel (the paper's Figs 7,
@@ -167,7 +167,8 @@ def main(argv=None) -> None:
     Parameters
     ----------
     argv : list of str, optional
-        Command-line arguments (``--runs N``: only the first N runs, for a quick look).
+        Command-line arguments (``--runs N``: only the first N runs of each vehicle, for a
+        quick look; ``--vehicle``: the packaged vehicles; ``--out``: the page).
     """
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=len(RUNS))
