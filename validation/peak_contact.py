@@ -4,8 +4,8 @@ Writes peak_contact.md.  Run: ``python validation/peak_contact.py`` (run time in
 
 The packaged turnout (UIC60-760-1:15), the default vehicle (the full Manchester vehicle,
 profile contact, its front wheelset: the plain columns) and the single wheelset
-(``--vehicle`` picks), the default runs of the validation report: the through route at 100 km/h and the diverging route at 80 km/h, on
-the 3-layer and the 2-layer co-running track, each over the whole turnout (a full run of
+(``--vehicle`` picks), the default runs of the validation report: the through route at
+100 km/h and the diverging route at 80 km/h, on the 3-layer and the 2-layer co-running track, each over the whole turnout (a full run of
 the front wheelset costs 7-18 s, less than windows that would need a settled start).  In
 every run the instants of the paper's peaks of the front right wheel (the paper's Figs 7,
 8): the largest Fz and the largest |Fy| in the switch and in the crossing regions of
