@@ -6,12 +6,12 @@ The packaged turnout (UIC60-760-1:15), the default vehicle (the full Manchester 
 profile contact, its front wheelset: the plain columns) and the single wheelset
 (``--vehicle`` picks), the default runs of the validation report: the through route at 100
 km/h and the diverging route at 80 km/h, on the 3-layer and the 2-layer co-running track,
-each over the whole turnout (a full run of the front wheelset costs 7-18 s, less than
-windows that would need a settled start). In every run the instants of the paper's peaks
-of the front right wheel (the paper's Figs 7, 8): the largest Fz and the largest |Fy| in
-the switch and in the crossing regions of ``[regions]`` (``report.settings``), and the
-largest |Fy| on a check rail (slot r3). At each instant every contact point of that wheel
-carrying more than :data:`MIN_LOAD` goes through
+each over the whole turnout (cheaper than windows that would need a settled start; the
+page gives the passages' time). In every run the instants of the paper's peaks of the
+front right wheel (the paper's Figs 7, 8): the largest Fz and the largest |Fy| in the
+switch and in the crossing regions of ``[regions]`` (``report.settings``), and the largest
+|Fy| on a check rail (slot r3). At each instant every contact point of that wheel carrying
+more than :data:`MIN_LOAD` goes through
 :func:`exudyn_turnout.passage.post_contact.post_contact`: the passage's contact rebuilt by
 its own kernel on the recorded coordinates, then our exact contact on the 3-D surfaces at
 the passage's normal force and creepages (method and choices in that module's docstring).
