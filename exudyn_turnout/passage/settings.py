@@ -49,7 +49,7 @@ class PassageSettings:
     source: str = "derived"
     x_start: float | None = None  #: m, default: the turnout's start
     x_end: float | None = None  #: m, default: the turnout's end
-    #: s; converged on the through route (<= 0.16 % against 2.5e-5 s), not for the 2-layer
+    #: s; converged on the through route (<= 0.23 % against 2.5e-5 s), not for the 2-layer
     #: check-rail force on the diverging route (-14.9 %): validation/vehicle_step_convergence.md;
     #: where a check rail carries load the co-running track's runs step at
     #: ``check_rail_time_step`` instead
