@@ -88,7 +88,17 @@ tests/test_wheel_rail_nonhertz.py.  The law itself is one compiled function,
 :func:`node_normal_force`, for the kernel and the tables' lookup alike.  Every node also
 stores KP's force centre (:func:`force_centre`; at DELTA_REF and a power law in the
 penetration, :func:`node_centre`), Hertz node or not: the kernel and the lookup put the
-contact there (its positions on rail and wheel, the moment arms).
+contact there (its positions on rail and wheel, the moment arms).  The centre is a
+position along the lateral tangent of the deepest point; the contact position is the point
+of the rail surface on the normal force's line of action through it (the normal), found in
+the node's section (:func:`surface_offset`) and stored as the surface's offset from the
+tangent line, ``w = a c^2 + b c^3`` in the centre (:func:`centre_offset_law`,
+:func:`node_offset`, :func:`centre_point`).  The tangent point itself lay off the rail at
+a flange: 3.5 mm above it at 7 mm of shift and 30 kN on plain UIC60 (issue 22,
+tests/test_flange_contact_point.py).  It is the line of action, not the arc length along
+the surface, that fixes the point: every strip's force acts along the one normal at its
+tangent position, so their resultant's moments are those of a force through ``P0 + c t``
+along the normal; the point on the surface on that line carries the same moments.
 
 Gap function.  The table search finds each contact point in one of a few frames (vertical,
 and the tilted search directions of :mod:`.geometry`); the gap in the frame closest to the
