@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from exudyn_turnout.wheel_rail import kernel
 from exudyn_turnout.wheel_rail.data import s1002_wheel, standard_track, uic60_rail
 from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
 from exudyn_turnout.wheel_rail.tables import (
@@ -147,3 +148,41 @@ def test_contact_point_is_continuous_over_the_shift(plain):
     for i, _slot in zip(*np.nonzero(moved > 0.25e-3), strict=True):
         assert cell[i + 1] == cell[i] + 1
         assert not table.blendable[ix, cell[i]]
+
+
+def test_kernel_arms_are_the_recorded_point_on_the_line_of_action(plain):
+    """The compiled kernel at the 7 mm flange contact (right wheel, 30 kN, no creep at
+    v = 0): its recorded point is the lookup's, on the profile, and the roll moment on the
+    wheelset is that of the normal force through the recorded point, equal to that through
+    the tangent point (one line of action, the normal); the former arm, the tangent point
+    moved laterally only (its height ignored), was off by c sin(gamma) F_Y."""
+    table, profile = plain
+    shift = np.array([0.007])
+    found, forces, lift = _at_load(table, shift)
+    packed = kernel.pack_tables([table], [-1], [(7, 8)], [(0.0, 1.0)])
+    q = np.zeros(9)
+    q[0], q[1] = -shift[0], lift[0]  # right wheel (s = -1): shift = -(y_w - y_rail)
+    generalised = np.zeros(9)
+    details = np.zeros((packed.n_candidates, len(kernel.DETAIL_FIELDS)))
+    kernel.contact_forces(
+        X, q, np.zeros(9), np.zeros(4), packed.values, packed.blendable, packed.x,
+        packed.layout, packed.bounds, np.array([0.0, 0.46, 0.4, 8.1e10, 0.0, 0.0]),
+        generalised, details,
+    )  # fmt: skip
+    d = {name: details[:, k] for k, name in enumerate(kernel.DETAIL_FIELDS)}
+    k = int(np.argmax(d["normal"]))
+    assert d["normal"][k] == pytest.approx(forces[0, k], rel=1e-9)
+    assert np.degrees(d["angle"][k]) > 60.0
+    assert d["y_rail"][k] == pytest.approx(found.y_rail[0, k], abs=1e-9)
+    assert d["z_rail"][k] == pytest.approx(found.z_rail[0, k], abs=1e-9)
+    assert abs(d["z_rail"][k] - _profile_height(profile, d["y_rail"][k])) < 0.05e-3
+    # the tangent point of the same centre: Y = s y - y_w, Z = -(r - c sin(gamma))
+    values = lookup_values(table, [X], shift, lift)[0]
+    y0 = values[:, table.fields.index("y_rail")]
+    c, gamma = found.centre[0], d["angle"]
+    y_t, r_t = -(y0 + c * np.cos(gamma)) - q[0], d["radius"] - c * np.sin(gamma)
+    tangent = np.sum(y_t * d["Fz"] + r_t * d["Fy"])
+    assert generalised[2] == pytest.approx(tangent, rel=1e-9, abs=1e-6)
+    former = np.sum(y_t * d["Fz"] + d["radius"] * d["Fy"])
+    # measured 280 N m of 5590: c = 10.6 mm, sin(70 deg), F_Y = 28.1 kN
+    assert abs(generalised[2] - former) > 100.0
