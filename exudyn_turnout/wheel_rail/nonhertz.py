@@ -536,10 +536,14 @@ def surface_offset(rail_y, rail_z, y_rail, z_rail, angle, centre) -> np.ndarray:
     c = np.broadcast_to(np.asarray(centre, float), y0.shape)
     out = np.zeros(y0.shape)
     step = float(rail_y[1] - rail_y[0])
-    half = int(round(SURFACE_WINDOW / step))
-    k = np.arange(-half, half + 1)
-    for lo in range(0, y0.size, 512):  # (points x window) in slices of bounded size
-        sl = slice(lo, lo + 512)
+    # (points x window) in slices of bounded size, by growing |c|: the crossing lies within
+    # about 2 |c| of the deepest point: a slice's window is 3 times its largest |c| and 3 mm
+    order = np.argsort(np.abs(c))
+    for lo in range(0, y0.size, 512):
+        sl = order[lo : lo + 512]
+        reach = min(SURFACE_WINDOW, 3.0 * float(np.max(np.abs(c[sl]))) + 3e-3)
+        half = int(np.ceil(reach / step))
+        k = np.arange(-half, half + 1)
         index = np.round((y0[sl] - rail_y[0]) / step).astype(int)[:, None] + k[None, :]
         inside = (index >= 0) & (index < rail_y.size)
         index = np.clip(index, 0, rail_y.size - 1)
