@@ -26,11 +26,13 @@ from exudyn_turnout.wheel_rail.geometry import (
 from exudyn_turnout.wheel_rail.nonhertz import (
     DELTA_REF,
     PATCH_FIELDS,
+    centre_point,
     force_centre,
     kik_piotrowski,
     node_centre,
     node_normal_force,
     node_normal_forces,
+    node_offset,
     patch_law_fields,
 )
 from exudyn_turnout.wheel_rail.profiles import read_slices
@@ -86,14 +88,22 @@ def test_table_force_centre_is_contacts_reference_point(name, case):
         law[k, PATCH_FIELDS.index("patch_centre_exponent")],
         result.semi_hertz.approach,
     )
-    y = found.y_rail[k] + centre * np.cos(found.angle[k])
+    offset = node_offset(
+        law[k, PATCH_FIELDS.index("patch_offset_c2")],
+        law[k, PATCH_FIELDS.index("patch_offset_c3")],
+        centre,
+    )
+    along, up = centre_point(centre, offset, np.sin(found.angle[k]), np.cos(found.angle[k]))
+    y = found.y_rail[k] + along  # the point of the rail on the force's line of action
     # the envelope's height is met x_offset ahead (the tables' x_offset): the rail point
     # there lies dx^2 / (2 r) higher in the wheel's plane (as references.geometry_at_reference)
     dx = x_offset[k]
-    z = found.z_rail[k] + centre * np.sin(found.angle[k]) + wheel_drop(dx, 0.46)
+    z = found.z_rail[k] + up + wheel_drop(dx, 0.46)
     assert abs(y - patch.y_contact_rail) <= 0.5e-3
     assert abs(z - patch.z_contact_rail) <= 0.5e-3
-    assert abs(y - result.semi_hertz.y_contact_rail) <= 0.1e-3
+    # the validation's KP centre is the tangent point (same line of action, the normal)
+    tangent_y = found.y_rail[k] + centre * np.cos(found.angle[k])
+    assert abs(tangent_y - result.semi_hertz.y_contact_rail) <= 0.1e-3
 
 
 def test_force_centre_equals_kik_piotrowskis():

@@ -23,7 +23,12 @@ from exudyn_turnout.wheel_rail import kernel
 from exudyn_turnout.wheel_rail.creep import kalker_coefficients, polach_creep_forces
 from exudyn_turnout.wheel_rail.data import s1002_wheel, standard_track, uic60_rail
 from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
-from exudyn_turnout.wheel_rail.nonhertz import node_centre, node_normal_forces
+from exudyn_turnout.wheel_rail.nonhertz import (
+    centre_point,
+    node_centre,
+    node_normal_forces,
+    node_offset,
+)
 from exudyn_turnout.wheel_rail.sections import (
     CrossingDesign,
     SectionGrid,
@@ -119,15 +124,22 @@ def test_kernel_geometry_equals_table_lookup(crossing_table):
                 continue
             checked += 1
             row = details[c]
-            # positions: the deepest point moved along the tangent to the node's force
-            # centre at the kernel's penetration and angle
+            # positions: the deepest point moved to the node's force centre at the kernel's
+            # penetration and angle, onto the rail surface along the normal (.nonhertz)
             centre = node_centre(
                 reference[c, fields.index("patch_centre")],
                 reference[c, fields.index("patch_centre_exponent")],
                 row[_column("delta")],
             )
-            along = centre * np.cos(row[_column("angle")])
+            offset = node_offset(
+                reference[c, fields.index("patch_offset_c2")],
+                reference[c, fields.index("patch_offset_c3")],
+                centre,
+            )
+            gamma = row[_column("angle")]
+            along, up = centre_point(centre, offset, np.sin(gamma), np.cos(gamma))
             assert row[_column("y_rail")] == pytest.approx(reference[c, 1] + along, abs=1e-11)
+            assert row[_column("z_rail")] == pytest.approx(reference[c, 2] + up, abs=1e-11)
             assert row[_column("s_wheel")] == pytest.approx(reference[c, 3] + along, abs=1e-11)
             assert row[_column("radius")] == pytest.approx(reference[c, 5], abs=1e-12)
             # the kernel's angle is atan2 of the interpolated (sin, cos), the table's the

@@ -12,7 +12,7 @@ from exudyn_turnout.wheel_rail.geometry import (
     rail_row,
     surface_derivatives,
 )
-from exudyn_turnout.wheel_rail.nonhertz import DELTA_REF
+from exudyn_turnout.wheel_rail.nonhertz import DELTA_REF, centre_point, node_offset
 from exudyn_turnout.wheel_rail.profiles import read_simpack_profile, read_slices
 from exudyn_turnout.wheel_rail.sections import (
     CrossingDesign,
@@ -35,6 +35,7 @@ from exudyn_turnout.wheel_rail.tables import (
     TableSettings,
     build_contact_table,
     lookup,
+    lookup_values,
     normal_force,
     table_key,
 )
@@ -264,8 +265,15 @@ def test_lookup_matches_the_direct_search_on_and_between_nodes(plain_table):
         first = int(np.argmin(found.gap[k]))
         # normal gap within 3 micrometres, contact point within 0.5 mm, angle 0.5 deg
         assert found.gap[k, first] == pytest.approx(direct.gap[0], abs=3e-6)
-        # (the lookup's positions are the force centre's; its deepest point is compared)
-        deepest = found.y_rail[k, first] - found.centre[k, first] * np.cos(found.angle[k, first])
+        # (the lookup's positions are the force centre's on the rail surface; its deepest
+        # point, the centre's law moved back along the tangent and normal, is compared)
+        index = {name: i for i, name in enumerate(table.fields)}
+        node = lookup_values(table, [0.5], [shift], [lift])[0, first]
+        centre = found.centre[k, first]
+        offset = node_offset(node[index["patch_offset_c2"]], node[index["patch_offset_c3"]], centre)
+        gamma = found.angle[k, first]
+        along, _up = centre_point(centre, offset, np.sin(gamma), np.cos(gamma))
+        deepest = found.y_rail[k, first] - along
         assert deepest == pytest.approx(direct.y_rail[0], abs=5e-4)
         assert math.degrees(found.angle[k, first]) == pytest.approx(
             math.degrees(direct.angle[0]), abs=0.5

@@ -9,8 +9,9 @@ call, for every body and every candidate at the current state:
    hold the same contact points, else the cell's first node with the gap carried to the
    query's shift to first order), the normal gap carried to the wheel's lift,
    ``gap + cos(gamma) lift``.  The contact's position (on rail and wheel, and the moment
-   arms) is the node's force centre at the penetration (:func:`.nonhertz.node_centre`),
-   moved from the deepest point along the tangent.
+   arms) is the node's force centre at the penetration (:func:`.nonhertz.node_centre`):
+   the point of the rail surface on the normal force's line of action through it
+   (:func:`.nonhertz.centre_point`).
 2. **Normal force** along the contact normal, the node's law
    ``N_ref (delta / DELTA_REF)^n`` (:mod:`.nonhertz`: exact Hertz ``C_H delta^1.5`` where the
    Hertz ellipse fits the surfaces, a power law through two Kik-Piotrowski solutions
@@ -89,8 +90,10 @@ from exudyn_turnout.wheel_rail.lead import MAX_LEAD_SINE
 from exudyn_turnout.wheel_rail.nonhertz import (
     DELTA_REF,
     PATCH_FIELDS,
+    centre_point,
     node_centre,
     node_normal_force,
+    node_offset,
 )
 from exudyn_turnout.wheel_rail.tables import ContactTable
 
@@ -113,7 +116,8 @@ _GAP, _Y_RAIL, _Z_RAIL, _S_WHEEL, _ANGLE, _RADIUS = 0, 1, 2, 3, 4, 5
 _F_REF, _F_EXP, _C_H, _X_OFFSET, _SIN, _COS = 6, 7, 8, 9, 10, 11
 _A_REF, _B_REF, _C11, _C22, _C23, _A_EXP, _B_EXP, _SEMI = 12, 13, 14, 15, 16, 17, 18, 19
 _CENTRE, _CENTRE_EXP = 20, 21  # the force centre's law c_ref (delta / DELTA_REF)^m
-_N_FIELDS = 22
+_OFFSET_C2, _OFFSET_C3 = 22, 23  # the rail surface's offset there, a c^2 + b c^3
+_N_FIELDS = 24
 _GAP_DX = _N_FIELDS  # scratch slot after the node fields: the gap's x-derivative in the cell
 _GEOMETRY = ("gap", "y_rail", "z_rail", "s_wheel", "angle", "radius")
 _EMPTY = 0.5  # m, a gap this large marks an empty candidate slot (tables store 1 m)
@@ -155,7 +159,7 @@ _N_DETAIL = len(DETAIL_FIELDS)
 class PackedTables:
     """The contact tables of one wheelset's rail bodies as flat arrays (kernel input)."""
 
-    values: np.ndarray  #: flat node values, body after body, (n_x, n_s, n_c, 22) each
+    values: np.ndarray  #: flat node values, body after body, (n_x, n_s, n_c, 24) each
     blendable: np.ndarray  #: flat uint8 cell flags, (n_x, n_s) each
     x: np.ndarray  #: m, section positions, body after body
     #: per body: value offset, blend offset, x offset, n_x, n_s, n_c, side (+1 / -1),
@@ -241,7 +245,7 @@ def hertz_axes_per_root(
 
 
 def _node_fields(table: ContactTable, modulus: float, poisson: float) -> np.ndarray:
-    """(n_x, n_s, n_c, 22) node values: geometry, the normal law, semi-axes and Kalker's.
+    """(n_x, n_s, n_c, 24) node values: geometry, the normal law, semi-axes and Kalker's.
 
     A table that carries the per-node law of :mod:`.nonhertz` (``PATCH_FIELDS``) is used
     as it is; an older table (without it) gets Hertz's law from its curvatures.
@@ -259,6 +263,9 @@ def _node_fields(table: ContactTable, modulus: float, poisson: float) -> np.ndar
     if "patch_centre" in index:  # the contact position is the force centre (.nonhertz)
         out[..., _CENTRE] = base[..., index["patch_centre"]]
         out[..., _CENTRE_EXP] = base[..., index["patch_centre_exponent"]]
+    if "patch_offset_c2" in index:  # ... moved onto the rail surface (.nonhertz)
+        out[..., _OFFSET_C2] = base[..., index["patch_offset_c2"]]
+        out[..., _OFFSET_C3] = base[..., index["patch_offset_c3"]]
     valid = base[..., index["gap"]] < _EMPTY
     if not np.any(valid):
         return out
@@ -475,14 +482,17 @@ def _point(
     gap += x_lead * fields[_GAP_DX]  # the rail at x + x_lead, to first order along x
     delta = -(gap + cos_g * lift)
     # the contact position: the force centre at this penetration (.nonhertz.node_centre)
+    # on the rail surface, on the force's line of action (.nonhertz.centre_point)
     moved = node_centre(fields[_CENTRE], fields[_CENTRE_EXP], delta)
-    Y_c += s * moved * cos_g
+    offset = node_offset(fields[_OFFSET_C2], fields[_OFFSET_C3], moved)
+    moved_y, moved_z = centre_point(moved, offset, sin_g, cos_g)
+    Y_c += s * moved_y
     if details[row, 14] == -1.0:  # first corner that finds this slot
         details[row, 14] = 0.0
     details[row, 19] += weight
-    details[row, 7] += weight * (fields[_Y_RAIL] + moved * cos_g)
-    details[row, 8] += weight * (fields[_Z_RAIL] + moved * sin_g)
-    details[row, 9] += weight * (fields[_S_WHEEL] + moved * cos_g)
+    details[row, 7] += weight * (fields[_Y_RAIL] + moved_y)
+    details[row, 8] += weight * (fields[_Z_RAIL] + moved_z)
+    details[row, 9] += weight * (fields[_S_WHEEL] + moved_y)
     details[row, 10] += weight * math.atan2(sin_g, cos_g)
     details[row, 14] += weight * delta
     details[row, 15] += weight * r
@@ -523,11 +533,12 @@ def _point(
     F_Z = weight * (cos_g * normal + s * sin_g * ft)
     fx *= weight
     x_c = fields[_X_OFFSET] + x_lead
+    r_arm = r - moved_z  # the contact position's depth below the axle
     forces[0] += F_Y
     forces[1] += F_Z
-    forces[2] += Y_c * F_Z + r * F_Y
+    forces[2] += Y_c * F_Z + r_arm * F_Y
     forces[3] += x_c * F_Y - Y_c * fx
-    forces[4] += -r * fx - x_c * F_Z
+    forces[4] += -r_arm * fx - x_c * F_Z
     forces[i_y] -= F_Y
     forces[i_z] -= F_Z
     details[row, 20] += weight

@@ -46,8 +46,10 @@ from exudyn_turnout.wheel_rail.geometry import (
 from exudyn_turnout.wheel_rail.hertz import curvature_sums, effective_modulus, hertz_constant
 from exudyn_turnout.wheel_rail.nonhertz import (
     PATCH_FIELDS,
+    centre_point,
     node_centres,
     node_normal_forces,
+    node_offsets,
     patch_law_fields,
 )
 from exudyn_turnout.wheel_rail.sections import SectionGrid, wheel_envelope
@@ -71,8 +73,9 @@ __all__ = [
 # per-node normal-contact law (semi-Hertzian where the Hertz ellipse does not fit); 12: the
 # flange back rounded to the inner face as EN 13715 (geometry.flange_back_arc), the radius
 # of an inner-face contact from its height; 13: KP's force centre per node (patch_centre,
-# patch_centre_exponent), the contact position
-_FORMAT_VERSION = "wheel_rail-table-14"
+# patch_centre_exponent), the contact position; 15: the surface's offset at the force centre
+# (patch_offset_c2, patch_offset_c3): the contact position on the rail
+_FORMAT_VERSION = "wheel_rail-table-15"
 _FIELDS = (
     "gap",
     "y_rail",
@@ -167,8 +170,9 @@ class ContactLookup:
 
     gap: np.ndarray  #: m, normal gap (negative: interpenetration); 1 m for empty slots
     penetration: np.ndarray  #: m, normal interpenetration max(-gap, 0)
-    #: m, contact position on the rail (side coordinates): the normal force's centre
-    #: (:func:`.nonhertz.force_centre`), moved from the deepest point along the tangent
+    #: m, contact position on the rail (side coordinates): the point of the rail surface on
+    #: the normal force's line of action through its centre (:func:`.nonhertz.force_centre`,
+    #: :func:`.nonhertz.centre_point`)
     y_rail: np.ndarray
     z_rail: np.ndarray  #: m, height of that position on the rail surface
     s_wheel: np.ndarray  #: m, that position on the wheel from its taping line
@@ -180,7 +184,8 @@ class ContactLookup:
     patch_force: np.ndarray  #: N, the node law's force at :data:`.nonhertz.DELTA_REF`
     force_exponent: np.ndarray  #: -, the node law's exponent n
     #: m, force centre from the deepest point along the lateral tangent at the query's
-    #: penetration (:func:`.nonhertz.node_centre`; y_rail, z_rail and s_wheel include it)
+    #: penetration (:func:`.nonhertz.node_centre`; y_rail, z_rail and s_wheel include it,
+    #: moved onto the rail surface along the normal)
     centre: np.ndarray
 
 
@@ -561,7 +566,15 @@ def lookup(table: ContactTable, x, shift, lift=0.0) -> ContactLookup:
         np.ascontiguousarray(values[..., index["patch_centre_exponent"]]),
         np.ascontiguousarray(penetration),
     ).reshape(gap.shape)
-    along_y, along_z = centre * np.cos(angle), centre * np.sin(angle)
+    if "patch_offset_c2" in index:
+        offset = node_offsets(
+            np.ascontiguousarray(values[..., index["patch_offset_c2"]]),
+            np.ascontiguousarray(values[..., index["patch_offset_c3"]]),
+            np.ascontiguousarray(centre),
+        ).reshape(gap.shape)
+    else:
+        offset = np.zeros_like(centre)
+    along_y, along_z = centre_point(centre, offset, np.sin(angle), np.cos(angle))
     return ContactLookup(
         gap=gap,
         penetration=penetration,
