@@ -9,9 +9,15 @@ end in its worker (wall and CPU), the parent's writing of each case, the results
 the process's exit. Prints per run the breakdown: the parent's serial parts, each worker's
 start, busy time, the CPU time of its cases, and its idle time until the pool shut down.
 
-Run: ``python benchmarks/study_timeline.py [--workers 1 2] [--rounds N] [--quick]``. The
-runs alternate (``--workers 1 2`` twice: 1, 2, 1, 2), with the yardstick
+Run: ``python benchmarks/study_timeline.py [--workers 1 2] [--rounds N] [--quick]
+[--trees DIR ...] [--brief]``. The runs alternate (``--workers 1 2`` twice: 1, 2, 1, 2;
+with ``--trees OLD NEW`` each round runs OLD's pair, then NEW's), with the yardstick
 (``benchmarks/yardstick.py``) run between them; the load (``os.getloadavg``) is printed.
+After each round the yardstick's own 2-process speed-up (``yardstick.parallel_speedup``:
+what the machine gives two processes at that time) is measured, and the summary gives per
+tree the median 1 -> 2 worker speed-up, the median yardstick speed-up and the median of
+their per-round ratio (speed-up / yardstick's: 1.0 means the study scales as well as the
+machine allows).
 """
 
 from __future__ import annotations
@@ -242,11 +248,12 @@ def main(argv=None) -> None:
         sys.exit(_child(int(workers), study, out, events))
     sys.path.insert(0, str(HERE))
     from performance_table import study_text
-    from yardstick import Yardstick, machine_line
+    from yardstick import Yardstick, machine_line, parallel_speedup
 
     stick = Yardstick()
     print(machine_line())
     rows: dict[tuple[str, int], list[tuple[float, float, float]]] = {}
+    machine_gains: dict[str, list[float]] = {}
     with tempfile.TemporaryDirectory(prefix="study_timeline_") as tmp:
         root = Path(tmp)
         study = root / "study.toml"
@@ -285,6 +292,9 @@ def main(argv=None) -> None:
                     )
                     if not args.brief:
                         print("\n".join(breakdown(notes, wall, launched)), flush=True)
+                gain = parallel_speedup(2)
+                machine_gains.setdefault(tree, []).append(gain)
+                print(f"round {r}, {tree}: the yardstick in 2 processes x{gain:.2f}", flush=True)
     print(f"\nyardstick median {stick.median:.3f} s wall; {machine_line()}")
     print(f"{'tree':<40}{'workers':>8}{'wall s':>8}{'CPU s':>8}{'idle s':>8}")
     for (tree, workers), values in rows.items():
@@ -296,9 +306,15 @@ def main(argv=None) -> None:
             wall = [a[0] / b[0] for a, b in zip(one, two)]
             idle = [a[2] / b[2] for a, b in zip(one, two)]
             cpu = [b[1] / a[1] for a, b in zip(one, two)]
+            gains = machine_gains[tree]
+            ratios = [w / g for w, g in zip(wall, gains)]
             print(
                 f"{tree}: 1 -> 2 workers, wall x{statistics.median(wall):.2f} "
-                f"(rounds: {', '.join(f'{x:.2f}' for x in wall)}); idle-core estimate "
+                f"(rounds: {', '.join(f'{x:.2f}' for x in wall)}); the yardstick in 2 "
+                f"processes x{statistics.median(gains):.2f} "
+                f"(rounds: {', '.join(f'{x:.2f}' for x in gains)}); speed-up / yardstick's "
+                f"{statistics.median(ratios):.3f} (rounds: "
+                f"{', '.join(f'{x:.3f}' for x in ratios)}); idle-core estimate "
                 f"x{statistics.median(idle):.2f}; CPU of 2 workers / 1: "
                 f"{statistics.median(cpu):.2f}"
             )
