@@ -180,3 +180,44 @@ def test_the_study_command_freezes_the_objects_at_exit(register):
     before, at_exit = (int(line.split()[-1]) for line in done.stdout.splitlines())
     assert before == 0
     assert (at_exit > 0) == register
+
+
+def test_the_transfer_nodes_design_wheel_is_the_gridded_wheel_to_the_bit():
+    """The rail bodies' transfer nodes use the S1002 wheel's heights only: gridded without its
+    Savitzky-Golay slopes (``s1002_surface``), they must equal ``s1002_wheel``'s ``s`` and
+    ``z`` bit for bit (reference: the same profile file and grid step), at the default grid
+    step and another."""
+    from exudyn_turnout.wheel_rail.data import s1002_surface, s1002_wheel
+    from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
+
+    for step in (1e-4, 2.5e-4):
+        wheel = s1002_wheel(WheelsetSetup(grid_step=step))
+        s, z = s1002_surface(step)
+        assert s.dtype == wheel.s.dtype and z.dtype == wheel.z.dtype
+        assert s.tobytes() == wheel.s.tobytes()
+        assert z.tobytes() == wheel.z.tobytes()
+
+
+def test_a_routes_rail_bodies_need_no_scipy_signal():
+    """Every study process (and every worker of a spawned pool) builds its route's rail
+    bodies before its first case; their transfer nodes imported ``scipy.signal`` for the
+    design wheel's slopes, which they do not use (0.3-0.6 s of serial start that no number
+    of workers shares: issue 24's study scaling). In a fresh interpreter, after both routes'
+    bodies, ``scipy.signal`` must not be loaded."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys\n"
+        "from exudyn_turnout.inputs.turnout import load_turnout\n"
+        "from exudyn_turnout.wheel_rail.turnout_sections import route_rail_bodies\n"
+        "turnout = load_turnout()\n"
+        "bodies = [route_rail_bodies(turnout, r) for r in ('through', 'diverging')]\n"
+        "assert all(bodies)\n"
+        "print('scipy.signal' in sys.modules)\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=False, timeout=120
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout.strip() == "False"
