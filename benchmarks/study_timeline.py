@@ -224,6 +224,31 @@ def idle_estimate(events: list[dict], workers: int, exit_wall: float) -> float:
     return before + max(free) + (end["cpu"] - table["cpu"]) + exit_wall
 
 
+def start_cpu(events: list[dict]) -> float:
+    """s, CPU time of the calling process until its workers could start.
+
+    Up to the pool's start (its warm-up included) or, without a pool (1 worker), up to the
+    first case: the serial start that no number of workers shares (imports, the study and
+    its cases, the route's contact tables and compiled kernels with a pool; with 1 worker
+    the first case loads the tables and kernels itself).
+
+    Parameters
+    ----------
+    events : list of dict
+        The hooks' notes of one run.
+
+    Returns
+    -------
+    float
+    """
+    parent = events[0]["pid"]
+    mine = [e for e in events if e["pid"] == parent]
+    start = next((e for e in mine if e["what"] == "pool_done"), None)
+    if start is None:
+        start = next(e for e in mine if e["what"] == "case_start")
+    return float(start["cpu"])
+
+
 def main(argv=None) -> None:
     """Run the study with each worker count (and tree) in turn and print the timelines."""
     import resource
@@ -252,7 +277,7 @@ def main(argv=None) -> None:
 
     stick = Yardstick()
     print(machine_line())
-    rows: dict[tuple[str, int], list[tuple[float, float, float]]] = {}
+    rows: dict[tuple[str, int], list[tuple[float, float, float, float]]] = {}
     machine_gains: dict[str, list[float]] = {}
     with tempfile.TemporaryDirectory(prefix="study_timeline_") as tmp:
         root = Path(tmp)
@@ -283,7 +308,8 @@ def main(argv=None) -> None:
                         [e for e in notes if e["what"] == "end"][-1]["t"] - launched
                     )
                     idle = idle_estimate(notes, workers, exit_wall)
-                    rows.setdefault((tree, workers), []).append((wall, cpu, idle))
+                    start = start_cpu(notes)
+                    rows.setdefault((tree, workers), []).append((wall, cpu, idle, start))
                     load = ", ".join(f"{x:.2f}" for x in os.getloadavg())
                     print(
                         f"\nround {r}, {tree}, --workers {workers}: {wall:.2f} s wall, "
@@ -296,10 +322,12 @@ def main(argv=None) -> None:
                 machine_gains.setdefault(tree, []).append(gain)
                 print(f"round {r}, {tree}: the yardstick in 2 processes x{gain:.2f}", flush=True)
     print(f"\nyardstick median {stick.median:.3f} s wall; {machine_line()}")
-    print(f"{'tree':<40}{'workers':>8}{'wall s':>8}{'CPU s':>8}{'idle s':>8}")
+    print(f"{'tree':<40}{'workers':>8}{'wall s':>8}{'CPU s':>8}{'idle s':>8}{'start s':>8}")
     for (tree, workers), values in rows.items():
-        med = [statistics.median(v[i] for v in values) for i in range(3)]
-        print(f"{tree:<40}{workers:>8}{med[0]:>8.2f}{med[1]:>8.2f}{med[2]:>8.2f}")
+        med = [statistics.median(v[i] for v in values) for i in range(4)]
+        print(f"{tree:<40}{workers:>8}{med[0]:>8.2f}{med[1]:>8.2f}{med[2]:>8.2f}{med[3]:>8.2f}")
+    print("(medians; idle: the idle-core estimate; start: the calling process's CPU until its")
+    print(" workers could start, the pool's warm-up included; with 1 worker, until its first case)")
     if 1 in args.workers and 2 in args.workers:
         for tree in args.trees:
             one, two = rows[tree, 1], rows[tree, 2]
