@@ -221,3 +221,34 @@ def test_a_routes_rail_bodies_need_no_scipy_signal():
     )
     assert done.returncode == 0, done.stderr[-2000:]
     assert done.stdout.strip() == "False"
+
+
+def test_the_study_command_reads_the_cases_once(tmp_path, monkeypatch, capsys):
+    """``exudyn-turnout study`` made the cases (every file loaded, edited, hashed: 0.06 s of
+    serial start for the performance table's study) to check them, and ``run_study`` made them
+    again: once now; a bad value still stops it with one line (exit 2) before any case
+    is stored."""
+    from exudyn_turnout.cli.main import main
+    from exudyn_turnout.studies.study import Study
+
+    calls = []
+    original = Study.cases
+
+    def counted(self):
+        calls.append(1)
+        return original(self)
+
+    monkeypatch.setattr(Study, "cases", counted)
+    text = STUDY.format(k_a=100e6, k_b=140e6).replace("[80.0, 100.0]", "[100.0]")
+    path = tmp_path / "study.toml"
+    path.write_text(text.replace("x_end = 48.0", "x_end = 45.5"), encoding="utf-8")
+    out = tmp_path / "out"
+    assert main(["study", str(path), "--out", str(out), "--workers", "1", "--no-plot"]) == 0
+    assert "2 cases, 2 computed" in capsys.readouterr().out
+    assert len(calls) == 1
+    bad = tmp_path / "bad.toml"
+    bad.write_text(STUDY.format(k_a=100e6, k_b=-1e8), encoding="utf-8")
+    assert main(["study", str(bad), "--out", str(tmp_path / "o"), "--workers", "1"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "k_z" in err and "\n" not in err
+    assert not (tmp_path / "o" / "cases").exists()
