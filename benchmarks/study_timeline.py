@@ -18,6 +18,26 @@ what the machine gives two processes at that time) is measured, and the summary 
 tree the median 1 -> 2 worker speed-up, the median yardstick speed-up and the median of
 their per-round ratio (speed-up / yardstick's: 1.0 means the study scales as well as the
 machine allows).
+
+Measured 2026-12-02 13:43-14:36 UTC (issue 24), the 2-core AMD EPYC VM shared with other
+jobs: load average 2-7 throughout, the yardstick's own 2-process speed-up 0.89-1.85 from
+round to round, so the wall speed-ups (0.5-1.5) and their ratios to the yardstick's say
+nothing; the CPU-based figures do. ``--rounds 6 --trees BASE NEW --brief`` (BASE = 3273b6f):
+the calling process's start CPU with 2 workers 2.09 -> 1.60 s, with 1 worker (until its
+first case) 0.98 -> 0.92 s; idle-core estimate x1.75 -> x1.76 (rounds 1.68-1.80 -> 1.73-1.83;
+the change is within the rounds' spread). Where the 2-worker run's wall goes that the
+1-worker run does not spend (a quieter round, 13:48): the fork and the workers' start
+0.01 s, the workers ending 0.02-0.15 s apart, the pool's shutdown 0.01-0.04 s; the parent's
+5 cm warm-up passage itself 0.01 s (the rest of the warm-up, 0.7-1.0 s CPU, is the route's
+contact tables and the compiled kernels, which the 1-worker run loads in its first case:
+1.8 s CPU against 0.85 s for the same case later). A case costs the same CPU in a forked
+worker as in the serial run (per case 0.96-1.07 of it, sum 14.93 vs 14.89 s without the
+first case's loading; garbage collection < 1 ms a case). So the rest is the process's
+serial start, which only one core works through: before 1.8 s (interpreter 0.05, imports
+0.6, the study's cases 0.06 twice, ``scipy.signal`` 0.34 for the transfer nodes' design
+wheel, the track's imports 0.08, the route's contact 0.4, numba's first use 0.22), now
+1.4 s, against 14.9 s of cases: (S + C) / (S + C/2) = 1.78 -> 1.81 with no tail and no
+contention, 1.74 -> 1.77 with the yardstick's own 3.5 % loss in 2 processes (x1.93).
 """
 
 from __future__ import annotations
