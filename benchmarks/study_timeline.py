@@ -36,8 +36,8 @@ first case's loading; garbage collection < 1 ms a case). So the rest is the proc
 serial start, which only one core works through: before 1.8 s (interpreter 0.05, imports
 0.6, the study's cases 0.06 twice, ``scipy.signal`` 0.34 for the transfer nodes' design
 wheel, the track's imports 0.08, the route's contact 0.4, numba's first use 0.22), now
-1.4 s, against 14.9 s of cases: (S + C) / (S + C/2) = 1.78 -> 1.81 with no tail and no
-contention, 1.74 -> 1.77 with the yardstick's own 3.5 % loss in 2 processes (x1.93).
+1.4 s, against C = 14.9 s of cases: (S + C) / (S + C/2 + 0.1 s of tail) = 1.78 -> 1.82
+without contention, 1.74 -> 1.77 with the yardstick's own 3.5 % loss in 2 processes (x1.93).
 """
 
 from __future__ import annotations
