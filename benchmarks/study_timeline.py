@@ -9,9 +9,35 @@ end in its worker (wall and CPU), the parent's writing of each case, the results
 the process's exit. Prints per run the breakdown: the parent's serial parts, each worker's
 start, busy time, the CPU time of its cases, and its idle time until the pool shut down.
 
-Run: ``python benchmarks/study_timeline.py [--workers 1 2] [--rounds N] [--quick]``. The
-runs alternate (``--workers 1 2`` twice: 1, 2, 1, 2), with the yardstick
+Run: ``python benchmarks/study_timeline.py [--workers 1 2] [--rounds N] [--quick]
+[--trees DIR ...] [--brief]``. The runs alternate (``--workers 1 2`` twice: 1, 2, 1, 2;
+with ``--trees OLD NEW`` each round runs OLD's pair, then NEW's), with the yardstick
 (``benchmarks/yardstick.py``) run between them; the load (``os.getloadavg``) is printed.
+After each round the yardstick's own 2-process speed-up (``yardstick.parallel_speedup``:
+what the machine gives two processes at that time) is measured, and the summary gives per
+tree the median 1 -> 2 worker speed-up, the median yardstick speed-up and the median of
+their per-round ratio (speed-up / yardstick's: 1.0 means the study scales as well as the
+machine allows).
+
+Measured 2026-12-02 13:43-14:36 UTC (issue 24), the 2-core AMD EPYC VM shared with other
+jobs: load average 2-7 throughout, the yardstick's own 2-process speed-up 0.89-1.85 from
+round to round, so the wall speed-ups (0.5-1.5) and their ratios to the yardstick's say
+nothing; the CPU-based figures do. ``--rounds 6 --trees BASE NEW --brief`` (BASE = 3273b6f):
+the calling process's start CPU with 2 workers 2.09 -> 1.60 s, with 1 worker (until its
+first case) 0.98 -> 0.92 s; idle-core estimate x1.75 -> x1.76 (rounds 1.68-1.80 -> 1.73-1.83;
+the change is within the rounds' spread). Where the 2-worker run's wall goes that the
+1-worker run does not spend (a quieter round, 13:48): the fork and the workers' start
+0.01 s, the workers ending 0.02-0.15 s apart, the pool's shutdown 0.01-0.04 s; the parent's
+5 cm warm-up passage itself 0.01 s (the rest of the warm-up, 0.7-1.0 s CPU, is the route's
+contact tables and the compiled kernels, which the 1-worker run loads in its first case:
+1.8 s CPU against 0.85 s for the same case later). A case costs the same CPU in a forked
+worker as in the serial run (per case 0.96-1.07 of it, sum 14.93 vs 14.89 s without the
+first case's loading; garbage collection < 1 ms a case). So the rest is the process's
+serial start, which only one core works through: before 1.8 s (interpreter 0.05, imports
+0.6, the study's cases 0.06 twice, ``scipy.signal`` 0.34 for the transfer nodes' design
+wheel, the track's imports 0.08, the route's contact 0.4, numba's first use 0.22), now
+1.4 s, against C = 14.9 s of cases: (S + C) / (S + C/2 + 0.1 s of tail) = 1.78 -> 1.82
+without contention, 1.74 -> 1.77 with the yardstick's own 3.5 % loss in 2 processes (x1.93).
 """
 
 from __future__ import annotations
@@ -218,6 +244,31 @@ def idle_estimate(events: list[dict], workers: int, exit_wall: float) -> float:
     return before + max(free) + (end["cpu"] - table["cpu"]) + exit_wall
 
 
+def start_cpu(events: list[dict]) -> float:
+    """s, CPU time of the calling process until its workers could start.
+
+    Up to the pool's start (its warm-up included) or, without a pool (1 worker), up to the
+    first case: the serial start that no number of workers shares (imports, the study and
+    its cases, the route's contact tables and compiled kernels with a pool; with 1 worker
+    the first case loads the tables and kernels itself).
+
+    Parameters
+    ----------
+    events : list of dict
+        The hooks' notes of one run.
+
+    Returns
+    -------
+    float
+    """
+    parent = events[0]["pid"]
+    mine = [e for e in events if e["pid"] == parent]
+    start = next((e for e in mine if e["what"] == "pool_done"), None)
+    if start is None:
+        start = next(e for e in mine if e["what"] == "case_start")
+    return float(start["cpu"])
+
+
 def main(argv=None) -> None:
     """Run the study with each worker count (and tree) in turn and print the timelines."""
     import resource
@@ -242,11 +293,12 @@ def main(argv=None) -> None:
         sys.exit(_child(int(workers), study, out, events))
     sys.path.insert(0, str(HERE))
     from performance_table import study_text
-    from yardstick import Yardstick, machine_line
+    from yardstick import Yardstick, machine_line, parallel_speedup
 
     stick = Yardstick()
     print(machine_line())
-    rows: dict[tuple[str, int], list[tuple[float, float, float]]] = {}
+    rows: dict[tuple[str, int], list[tuple[float, float, float, float]]] = {}
+    machine_gains: dict[str, list[float]] = {}
     with tempfile.TemporaryDirectory(prefix="study_timeline_") as tmp:
         root = Path(tmp)
         study = root / "study.toml"
@@ -276,7 +328,8 @@ def main(argv=None) -> None:
                         [e for e in notes if e["what"] == "end"][-1]["t"] - launched
                     )
                     idle = idle_estimate(notes, workers, exit_wall)
-                    rows.setdefault((tree, workers), []).append((wall, cpu, idle))
+                    start = start_cpu(notes)
+                    rows.setdefault((tree, workers), []).append((wall, cpu, idle, start))
                     load = ", ".join(f"{x:.2f}" for x in os.getloadavg())
                     print(
                         f"\nround {r}, {tree}, --workers {workers}: {wall:.2f} s wall, "
@@ -285,20 +338,31 @@ def main(argv=None) -> None:
                     )
                     if not args.brief:
                         print("\n".join(breakdown(notes, wall, launched)), flush=True)
+                gain = parallel_speedup(2)
+                machine_gains.setdefault(tree, []).append(gain)
+                print(f"round {r}, {tree}: the yardstick in 2 processes x{gain:.2f}", flush=True)
     print(f"\nyardstick median {stick.median:.3f} s wall; {machine_line()}")
-    print(f"{'tree':<40}{'workers':>8}{'wall s':>8}{'CPU s':>8}{'idle s':>8}")
+    print(f"{'tree':<40}{'workers':>8}{'wall s':>8}{'CPU s':>8}{'idle s':>8}{'start s':>8}")
     for (tree, workers), values in rows.items():
-        med = [statistics.median(v[i] for v in values) for i in range(3)]
-        print(f"{tree:<40}{workers:>8}{med[0]:>8.2f}{med[1]:>8.2f}{med[2]:>8.2f}")
+        med = [statistics.median(v[i] for v in values) for i in range(4)]
+        print(f"{tree:<40}{workers:>8}{med[0]:>8.2f}{med[1]:>8.2f}{med[2]:>8.2f}{med[3]:>8.2f}")
+    print("(medians; idle: the idle-core estimate; start: the calling process's CPU until its")
+    print(" workers could start, the pool's warm-up included; with 1 worker, until its first case)")
     if 1 in args.workers and 2 in args.workers:
         for tree in args.trees:
             one, two = rows[tree, 1], rows[tree, 2]
             wall = [a[0] / b[0] for a, b in zip(one, two)]
             idle = [a[2] / b[2] for a, b in zip(one, two)]
             cpu = [b[1] / a[1] for a, b in zip(one, two)]
+            gains = machine_gains[tree]
+            ratios = [w / g for w, g in zip(wall, gains)]
             print(
                 f"{tree}: 1 -> 2 workers, wall x{statistics.median(wall):.2f} "
-                f"(rounds: {', '.join(f'{x:.2f}' for x in wall)}); idle-core estimate "
+                f"(rounds: {', '.join(f'{x:.2f}' for x in wall)}); the yardstick in 2 "
+                f"processes x{statistics.median(gains):.2f} "
+                f"(rounds: {', '.join(f'{x:.2f}' for x in gains)}); speed-up / yardstick's "
+                f"{statistics.median(ratios):.3f} (rounds: "
+                f"{', '.join(f'{x:.3f}' for x in ratios)}); idle-core estimate "
                 f"x{statistics.median(idle):.2f}; CPU of 2 workers / 1: "
                 f"{statistics.median(cpu):.2f}"
             )

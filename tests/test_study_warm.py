@@ -180,3 +180,75 @@ def test_the_study_command_freezes_the_objects_at_exit(register):
     before, at_exit = (int(line.split()[-1]) for line in done.stdout.splitlines())
     assert before == 0
     assert (at_exit > 0) == register
+
+
+def test_the_transfer_nodes_design_wheel_is_the_gridded_wheel_to_the_bit():
+    """The rail bodies' transfer nodes use the S1002 wheel's heights only: gridded without its
+    Savitzky-Golay slopes (``s1002_surface``), they must equal ``s1002_wheel``'s ``s`` and
+    ``z`` bit for bit (reference: the same profile file and grid step), at the default grid
+    step and another."""
+    from exudyn_turnout.wheel_rail.data import s1002_surface, s1002_wheel
+    from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
+
+    for step in (1e-4, 2.5e-4):
+        wheel = s1002_wheel(WheelsetSetup(grid_step=step))
+        s, z = s1002_surface(step)
+        assert s.dtype == wheel.s.dtype and z.dtype == wheel.z.dtype
+        assert s.tobytes() == wheel.s.tobytes()
+        assert z.tobytes() == wheel.z.tobytes()
+
+
+def test_a_routes_rail_bodies_need_no_scipy_signal():
+    """Every study process (and every worker of a spawned pool) builds its route's rail
+    bodies before its first case; their transfer nodes imported ``scipy.signal`` for the
+    design wheel's slopes, which they do not use (0.3-0.6 s of serial start that no number
+    of workers shares: issue 24's study scaling). In a fresh interpreter, after both routes'
+    bodies, ``scipy.signal`` must not be loaded."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys\n"
+        "from exudyn_turnout.inputs.turnout import load_turnout\n"
+        "from exudyn_turnout.wheel_rail.turnout_sections import route_rail_bodies\n"
+        "turnout = load_turnout()\n"
+        "bodies = [route_rail_bodies(turnout, r) for r in ('through', 'diverging')]\n"
+        "assert all(bodies)\n"
+        "print('scipy.signal' in sys.modules)\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=False, timeout=120
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout.strip() == "False"
+
+
+def test_the_study_command_reads_the_cases_once(tmp_path, monkeypatch, capsys):
+    """``exudyn-turnout study`` made the cases (every file loaded, edited, hashed: 0.06 s of
+    serial start for the performance table's study) to check them, and ``run_study`` made them
+    again: once now; a bad value still stops it with one line (exit 2) before any case
+    is stored."""
+    from exudyn_turnout.cli.main import main
+    from exudyn_turnout.studies.study import Study
+
+    calls = []
+    original = Study.cases
+
+    def counted(self):
+        calls.append(1)
+        return original(self)
+
+    monkeypatch.setattr(Study, "cases", counted)
+    text = STUDY.format(k_a=100e6, k_b=140e6).replace("[80.0, 100.0]", "[100.0]")
+    path = tmp_path / "study.toml"
+    path.write_text(text.replace("x_end = 48.0", "x_end = 45.5"), encoding="utf-8")
+    out = tmp_path / "out"
+    assert main(["study", str(path), "--out", str(out), "--workers", "1", "--no-plot"]) == 0
+    assert "2 cases, 2 computed" in capsys.readouterr().out
+    assert len(calls) == 1
+    bad = tmp_path / "bad.toml"
+    bad.write_text(STUDY.format(k_a=100e6, k_b=-1e8), encoding="utf-8")
+    assert main(["study", str(bad), "--out", str(tmp_path / "o"), "--workers", "1"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "k_z" in err and "\n" not in err
+    assert not (tmp_path / "o" / "cases").exists()

@@ -143,7 +143,8 @@ def _run(args: argparse.Namespace) -> int:
         raise UsageError(f"--workers {args.workers}: must be >= 1")
     try:
         study = load_study(args.study)
-        study.cases()  # every file and value checked before anything runs
+        if args.scheduler:  # checked before connecting; else run_study checks them first
+            study.cases()  # (every file and value, before anything runs: a StudyError)
     except StudyError as err:
         raise UsageError(str(err)) from None
     client = _client(args.scheduler) if args.scheduler else None

@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from exudyn_turnout.wheel_rail.geometry import WheelGrid, WheelsetSetup, grid_wheel
+from exudyn_turnout.wheel_rail.profile_grid import wheel_surface
 from exudyn_turnout.wheel_rail.profiles import Profile, read_simpack_profile
 from exudyn_turnout.wheel_rail.sections import (
     SectionGrid,
@@ -24,6 +25,7 @@ __all__ = [
     "profile_path",
     "reference_output_path",
     "s1002_wheel",
+    "s1002_surface",
     "uic60_rail",
     "standard_track",
 ]
@@ -88,6 +90,26 @@ def s1002_wheel(setup: WheelsetSetup = _BENCHMARK_SETUP) -> WheelGrid:
     """
     profile = read_simpack_profile(profile_path("MBench_S1002_v3.prw"), kind="wheel")
     return grid_wheel(profile, step=setup.grid_step, nominal_radius=setup.nominal_radius)
+
+
+def s1002_surface(step: float = 1e-4) -> tuple[np.ndarray, np.ndarray]:
+    """The Manchester benchmark's S1002 wheel on a lateral grid, heights only.
+
+    Equal, bit for bit, to ``s1002_wheel()``'s ``s`` and ``z`` at the same grid step, without
+    its slopes and curvatures (and so without importing ``scipy.signal``).
+
+    Parameters
+    ----------
+    step : float
+        m, lateral grid step.
+
+    Returns
+    -------
+    s, z : numpy.ndarray
+        m, lateral coordinate and surface height (:func:`.profile_grid.wheel_surface`).
+    """
+    profile = read_simpack_profile(profile_path("MBench_S1002_v3.prw"), kind="wheel")
+    return wheel_surface(profile, step)
 
 
 def uic60_rail(setup: WheelsetSetup = _BENCHMARK_SETUP) -> Profile:

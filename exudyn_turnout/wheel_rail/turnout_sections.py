@@ -87,7 +87,7 @@ import numpy as np
 
 from exudyn_turnout.inputs.routes import load_route
 from exudyn_turnout.inputs.turnout import Turnout
-from exudyn_turnout.wheel_rail.data import s1002_wheel
+from exudyn_turnout.wheel_rail.data import s1002_surface
 from exudyn_turnout.wheel_rail.geometry import (
     CHECK_RAIL_DIRECTION,
     WheelGrid,
@@ -397,12 +397,15 @@ def _tolerance_pieces(context: _Context, segment: Segment) -> list[tuple[float, 
 
 @functools.lru_cache(maxsize=8)
 def _design_wheel(y0: float, n_y: int, grid_step: float, taping: float) -> np.ndarray:
-    """The S1002 wheel over a lateral grid at :data:`TRANSFER_SHIFTS` (its own grid step)."""
-    wheel = s1002_wheel(WheelsetSetup(grid_step=grid_step))
+    """The S1002 wheel over a lateral grid at :data:`TRANSFER_SHIFTS` (its own grid step).
+
+    Its surface only (:func:`.data.s1002_surface`): no slopes, so no ``scipy.signal``.
+    """
+    s, z = s1002_surface(grid_step)
     low, high, step = TRANSFER_SHIFTS
     shifts = low + step * np.arange(int(round((high - low) / step)) + 1)
     y = y0 + grid_step * np.arange(n_y)
-    return wheel_heights(y, wheel.s, wheel.z, taping, shifts)
+    return wheel_heights(y, s, z, taping, shifts)
 
 
 def _first_touch(context: _Context, heights: np.ndarray, head_threshold: float | None):
