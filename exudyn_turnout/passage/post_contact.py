@@ -34,10 +34,11 @@ Rebuilding the instant
   (:func:`~exudyn_turnout.wheel_rail.reference_normal.contact_pitch`).  The grid is
   centred on the gap's deepest point along the tangent (within 15 mm of the passage's
   contact point, which is its law's force centre; at a flange contact that centre lies
-  several millimetres along the tangent from the deepest point, off the rail's surface:
-  9 mm at 30 kN on the plain stock rail, tests/test_peak_contact.py's flange case).  Roll
-  is applied as the passage applies it (shift and lift), not as a tilt of the profile
-  across the patch.
+  several millimetres along the tangent from the deepest point, ~9 mm at 30 kN on the
+  plain stock rail, tests/test_peak_contact.py's flange case; the passage records it
+  moved along its normal onto the rail's surface,
+  :func:`~exudyn_turnout.wheel_rail.nonhertz.surface_offset`).  Roll is applied as the
+  passage applies it (shift and lift), not as a tilt of the profile across the patch.
 * **Exact normal problem** (:func:`~exudyn_turnout.wheel_rail.exact_normal.solve_normal`)
   on that gap, **at the passage's normal force** (the comparison's primary quantity: the
   approach there, against the passage's penetration).  Why the force and not the
@@ -316,7 +317,8 @@ def _deepest(inst: _Instant, sections, wheel_pts, x_ws: float) -> float:
     """Where along the tangent (m, from the passage's contact point) the gap is lowest.
 
     The passage's contact point is its law's force centre, moved along the tangent from
-    the deepest point; the exact grid is centred on the deepest point itself.
+    the deepest point (and along the normal onto the rail, which leaves its tangent
+    coordinate); the exact grid is centred on the deepest point itself.
     """
     t = np.arange(-_SEARCH, _SEARCH + 0.5 * _SEARCH_STEP, _SEARCH_STEP)
     gap = _gap(inst, sections, wheel_pts, x_ws, np.array([inst.x_c]), t)[0]
