@@ -85,10 +85,13 @@ Cost.  3.9 times Polach's law per call, the multilinear creep-table-4 2.2 times
 shared cores: 0.68, 0.39 and 0.17 microseconds; on a busier moment 2.0, 0.93 and 0.41):
 the table is read at 64 nodes instead of 16, in 16 runs of 4 consecutive beta nodes.
 A contact kernel call (benchmarks/bench_contact_kernel.py, ~6 microseconds) grows by
-about 5 %.
+about 5 %.  The wider ratio axis of creep-table-6 (59 nodes instead of 39, the same
+interpolation) left the cost unchanged: 1401 against creep-table-5's 1435 ns per call in
+one run (``--baseline``, rounds alternating, on a busy moment; Polach 267 ns).
 
-Cache.  The FASTSIM table is built once (about 18 s of one core's time) and stored as
-``.npz`` (11.6 MB) in the cache directory (:func:`.tables.default_cache_dir`), named by
+Cache.  The FASTSIM table is built once (22 s of CPU time for creep-table-6's 59 ratio
+nodes, 1.5 times creep-table-5's 39; 24-32 s wall on 2 shared cores) and stored as
+``.npz`` (17.8 MB) in the cache directory (:func:`.tables.default_cache_dir`), named by
 a SHA-256 of its settings, with a SHA-256 of its array; a damaged or unreadable file is
 named in one warning and rebuilt, an unwritable directory means running without the
 cache (one warning).  The fill runs in chunks of nodes without the GIL: a build is shared
@@ -504,9 +507,9 @@ def build_creep_table(
         sign convention of :func:`.creep.polach_creep_forces` (e.g. an exact-theory
         solver); called once per node (``n_ratio n_size n_alpha n_beta`` calls) on a patch of
         ``sqrt(a b)`` = 5 mm, N = 10 kN, mu = 0.3, G = 81 GPa.  None: FASTSIM
-        (:func:`.fastsim.fastsim_ellipse`), vectorised.  The default grid has 722,007
+        (:func:`.fastsim.fastsim_ellipse`), vectorised.  The default grid has 1,092,267
         nodes: an exact-theory solver taking 0.1-1 s per solve (a boundary-element
-        solution on 16-24 elements across the patch, one core) would need 20-200 hours;
+        solution on 16-24 elements across the patch, one core) would need 30-300 hours;
         a grid of 13 x 17 x 9 x 17 nodes (n_ratio, n_size, n_alpha, n_beta) 1-10 hours.
 
     Returns
