@@ -86,8 +86,9 @@ shared cores: 0.68, 0.39 and 0.17 microseconds; on a busier moment 2.0, 0.93 and
 the table is read at 64 nodes instead of 16, in 16 runs of 4 consecutive beta nodes.
 A contact kernel call (benchmarks/bench_contact_kernel.py, ~6 microseconds) grows by
 about 5 %.  The wider ratio axis of creep-table-6 (59 nodes instead of 39, the same
-interpolation) left the cost unchanged: 1401 against creep-table-5's 1435 ns per call in
-one run (``--baseline``, rounds alternating, on a busy moment; Polach 267 ns).
+interpolation) left the cost unchanged within the noise: ``--baseline`` runs (rounds
+alternating, creep-table-5 as the baseline) gave 398 / 419 and 403 / 414 ns per call (9
+rounds), 1401 / 1435 and 677 / 556 ns (5 rounds, busy moments), ratios 0.95-1.22.
 
 Cache.  The FASTSIM table is built once (22 s of CPU time for creep-table-6's 59 ratio
 nodes, 1.5 times creep-table-5's 39; 24-32 s wall on 2 shared cores) and stored as
