@@ -45,7 +45,7 @@ TREAD = (4.6868e-3, 8.8868e-3, 54535.0, 0.4, 0.052453)
 PACKAGED = "present, packaged (n_beta 33)"
 #: The creep-table-4 layout: the patch's length at every size, linear in beta and rho
 OLD = {"spin_blend": 0.0, "cubic_beta": False, "cubic_size": False}
-#: label -> table settings; the default grid is 39 x 33 x 17 x 33 (ratio, size, alpha, beta)
+#: label -> table settings; the default grid is 59 x 33 x 17 x 33 (ratio, size, alpha, beta)
 TABLES = {
     "creep-table-4 layout, n_beta 33 (before)": CreepTableSettings(**OLD),
     "creep-table-4 layout, n_beta 65": CreepTableSettings(n_beta=65, **OLD),
@@ -57,7 +57,7 @@ TABLES = {
     "present, n_beta 129": CreepTableSettings(n_beta=129),
     "present, n_size 65": CreepTableSettings(n_size=65),
     "present, n_alpha 33": CreepTableSettings(n_alpha=33),
-    "present, n_ratio 77": CreepTableSettings(n_ratio=77),
+    "present, n_ratio 117": CreepTableSettings(n_ratio=117),  # the ratio step halved
 }
 POLACH = "Polach's law (k_A = k_S = 1)"
 #: -, ellipse ratios a / b and normalised spins phi' of the pure-spin sweep

@@ -9,7 +9,38 @@ ellipse ratio and in Poisson's ratio from Kalker's table (J.J. Kalker, *Three-di
 elastic bodies in rolling contact*, Kluwer 1990, Table E3; first published in his 1967
 thesis; reproduced in Iwnicki (ed.), *Handbook of Railway Vehicle Dynamics*, CRC 2006,
 ch. 4).  Rows a/b = 0.1 ... 1 and b/a = 0.9 ... 0.1, columns nu = 0, 0.25, 0.5; outside
-a/b in [0.1, 10] the end rows are used (Kalker's slender-ellipse asymptotes are not).
+a/b in [0.1, 10] Kalker's slender-ellipse asymptotes, joined to the end rows without a jump
+(below).
+
+Slender ellipses (issue 22).  Kalker's asymptotes for g = min(a/b, b/a) -> 0 (Kalker
+1990 Table E3, its first and last rows; quoted from CONTACT, ``src/m_hertz.f90``,
+subroutine ``linrol``, commit 0ecc556, which uses them for g < 0.101):
+
+* a/b = g -> 0 (patch wide across the rolling direction; Carter's 2-D theory per strip):
+  ``C11 = pi^2 / (4 (1 - nu))``, ``C22 = pi^2 / 4``,
+  ``C23 = pi sqrt(g) / (3 (1 - nu)) (1 + nu (ln(16 / g) - 5))``, and
+  ``C33 = pi^2 / (16 (1 - nu) g)`` (the strip-theory limit; not in CONTACT);
+* b/a = g -> 0 (patch long in the rolling direction: the crossing nose, check rail and
+  flange patches), with ``L = ln(16 / g^2)``:
+  ``C11 = 2 pi / ((L - 2 nu) g) (1 + (3 - ln 4) / (L - 2 nu))``,
+  ``C22 = 2 pi / (g D) (1 + (1 - nu) (3 - ln 4) / D)``, ``D = (1 - nu) L + 2 nu``,
+  ``C23 = 2 pi / (3 g^1.5 ((1 - nu) L - 2 + 4 nu))``; C33 has no asymptote here (none in
+  CONTACT) and keeps the end row b/a = 0.1 (it is used nowhere in the package).
+
+At g = 0.1 the asymptotes differ from the table's end rows by up to 4 % (C11, C22) and
+7 % (C23 of a wide patch, nu = 0.28); CONTACT switches with that jump.  Here the
+asymptote is multiplied by ``1 + (r - 1) w(g)``, r the ratio of table row to asymptote at
+g = 0.1 (at the given nu), with ``w = g / 0.1`` for a/b < 0.1 and ``w = (L(0.1) / L)^2``
+for b/a < 0.1 (the relative error of a two-term expansion in 1/L): continuous at 0.1 and
+tending to the asymptote.  Checked against the package's exact steady-rolling solver
+(:mod:`.exact_rolling`, full stick, Hertz ellipse on 48 x 48 elements, nu = 0.28; it
+reads the table's rows at a/b = 5 and 10 1.1-1.9 % high in C11 and C22, 1.1-1.4 % low
+in C23, and a/b = 0.1, 0.2 within 1.3 % except C23, 2.7-3.5 % low): at a/b = 20, 30, 50
+it gives C11 19.21, 25.72, 37.74 (joined asymptote 18.84, 25.23, 37.02: +2.0, +2.0,
++1.9 %), C22 22.26, 30.33, 45.31 (+2.0, +2.0, +2.0 %), C23 34.27, 56.88, 109.13 (-1.0,
+-0.9, -0.7 %), at a/b = 0.05, 0.02 C11 and C22 within 0.8 %, C23 3.2 and 2.0 % low: the
+same offsets as on the table's own rows (tests/test_wheel_rail_slender_creep.py).  The
+former end rows held C11, C22, C23 at a/b = 20 at 0.62, 0.59, 0.44 of the exact values.
 
 Provenance of the numbers (checked 2026-11):
 
@@ -99,7 +130,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["KalkerCoefficients", "kalker_coefficients", "CreepForces", "polach_creep_forces"]
+__all__ = [
+    "SLENDER_LIMIT",
+    "KalkerCoefficients",
+    "kalker_coefficients",
+    "slender_asymptotes",
+    "CreepForces",
+    "polach_creep_forces",
+]
+
+#: -, a / b below which (and b / a below which) Kalker's slender asymptotes are joined on
+SLENDER_LIMIT = 0.1
 
 # Kalker (1990) Table E3.  Columns: C11 (nu = 0, .25, .5), C22 (...), C23 (...), C33 (...).
 # Rows: a/b = 0.1 ... 1.0, then b/a = 0.9 ... 0.1.  C11-C23 checked against CONTACT's
@@ -140,7 +181,7 @@ class KalkerCoefficients:
 
 
 def kalker_coefficients(a, b, poisson: float = 0.28) -> KalkerCoefficients:
-    """Kalker's coefficients for a contact ellipse (table interpolation).
+    """Kalker's coefficients for a contact ellipse (table and slender asymptotes).
 
     Parameters
     ----------
@@ -157,18 +198,95 @@ def kalker_coefficients(a, b, poisson: float = 0.28) -> KalkerCoefficients:
     -----
     C11, C22 and C23 are Kalker's published values (checked against CONTACT's copy of
     Table E3); C33 is not checked against a publication and is uncertain to a few per cent
-    (see the module docstring).
+    (see the module docstring).  Beyond a / b in [0.1, 10]: Kalker's asymptotes
+    (:func:`slender_asymptotes`), joined continuously to the end rows (module docstring).
     """
     ratio = np.asarray(a, float) / np.asarray(b, float)
+    nu = float(np.clip(poisson, 0.0, 0.5))
+    values = list(_table_values(ratio, nu))
+    wide = ratio < SLENDER_LIMIT
+    long = ratio > 1.0 / SLENDER_LIMIT
+    if np.any(wide) or np.any(long):
+        end_wide = _table_values(np.asarray(SLENDER_LIMIT), nu)
+        end_long = _table_values(np.asarray(1.0 / SLENDER_LIMIT), nu)
+        limit_wide = _as_list(slender_asymptotes(SLENDER_LIMIT, nu))
+        limit_long = _as_list(slender_asymptotes(1.0 / SLENDER_LIMIT, nu))
+        g_wide = np.where(wide, ratio, SLENDER_LIMIT)
+        g_long = np.where(long, 1.0 / np.where(long, ratio, 1.0), SLENDER_LIMIT)
+        asym_wide = _as_list(slender_asymptotes(g_wide, nu))
+        asym_long = _as_list(slender_asymptotes(1.0 / g_long, nu))
+        w_wide = g_wide / SLENDER_LIMIT
+        w_long = (_log_parameter(SLENDER_LIMIT) / _log_parameter(g_long)) ** 2
+        for k in range(4):
+            joined_wide = asym_wide[k] * (1.0 + (end_wide[k] / limit_wide[k] - 1.0) * w_wide)
+            if k < 3:  # C33 of a long patch: no asymptote, the end row (module docstring)
+                joined_long = asym_long[k] * (1.0 + (end_long[k] / limit_long[k] - 1.0) * w_long)
+            else:
+                joined_long = np.broadcast_to(end_long[k], ratio.shape)
+            values[k] = np.where(wide, joined_wide, np.where(long, joined_long, values[k]))
+    return KalkerCoefficients(*values)
+
+
+def _as_list(c: KalkerCoefficients) -> list:
+    return [c.c11, c.c22, c.c23, c.c33]
+
+
+def _table_values(ratio: np.ndarray, nu: float) -> list:
+    """C11, C22, C23, C33 interpolated in Kalker's table (end rows held outside it)."""
     axis = np.where(ratio <= 1.0, ratio, 2.0 - 1.0 / ratio)
     table = np.asarray(_KALKER_ROWS)
-    nu = float(np.clip(poisson, 0.0, 0.5))
     values = []
     for block in range(4):
         columns = table[:, 3 * block : 3 * block + 3]
         per_nu = [np.interp(axis, _KALKER_AXIS, columns[:, j]) for j in range(3)]
         values.append(_interp_poisson(nu, per_nu))
-    return KalkerCoefficients(*values)
+    return values
+
+
+def _log_parameter(g):
+    """Kalker's ``L = ln(16 / g^2)`` of a long patch, g = b / a."""
+    return np.log(16.0 / np.asarray(g, float) ** 2)
+
+
+def slender_asymptotes(ratio, poisson: float = 0.28) -> KalkerCoefficients:
+    """Kalker's asymptotes of his coefficients for slender ellipses (module docstring).
+
+    Parameters
+    ----------
+    ratio : array_like
+        a / b; below 1 the forms for a / b -> 0 (patch wide across the rolling direction),
+        above 1 those for b / a -> 0 (patch long in the rolling direction).  Meant for
+        ratios beyond :data:`SLENDER_LIMIT` (0.1) and its inverse.
+    poisson : float
+        Poisson's ratio nu.
+
+    Returns
+    -------
+    KalkerCoefficients
+        The leading terms (Kalker 1990 Table E3, as in CONTACT's ``linrol``); C33 of a long
+        patch is NaN (no asymptote available).
+    """
+    ratio = np.asarray(ratio, float)
+    nu = float(poisson)
+    long = ratio > 1.0
+    g = np.where(long, 1.0 / np.where(long, ratio, 1.0), ratio)
+    # a / b -> 0
+    w11 = np.full_like(g, np.pi**2 / (4.0 * (1.0 - nu)))
+    w22 = np.full_like(g, np.pi**2 / 4.0)
+    w23 = np.pi * np.sqrt(g) / (3.0 * (1.0 - nu)) * (1.0 + nu * (np.log(16.0 / g) - 5.0))
+    w33 = np.pi**2 / (16.0 * (1.0 - nu) * g)
+    # b / a -> 0
+    lam = _log_parameter(g)
+    l11 = 2.0 * np.pi / ((lam - 2.0 * nu) * g) * (1.0 + (3.0 - np.log(4.0)) / (lam - 2.0 * nu))
+    d = (1.0 - nu) * lam + 2.0 * nu
+    l22 = 2.0 * np.pi / (g * d) * (1.0 + (1.0 - nu) * (3.0 - np.log(4.0)) / d)
+    l23 = 2.0 * np.pi / (3.0 * g**1.5 * ((1.0 - nu) * lam - 2.0 + 4.0 * nu))
+    return KalkerCoefficients(
+        c11=np.where(long, l11, w11),
+        c22=np.where(long, l22, w22),
+        c23=np.where(long, l23, w23),
+        c33=np.where(long, np.nan, w33),
+    )
 
 
 def _interp_poisson(nu: float, per_nu: list) -> np.ndarray:

@@ -20,9 +20,16 @@ loads and moduli) divided by mu N are functions of the ellipse ratio and (xi', e
 phi') alone.  The table stores ``f = F / (mu N)`` (so ``|f| <= 1``) over four
 coordinates, uniform in each:
 
-- ``tau = ln(a / b)``, :data:`RATIO_RANGE` (a / b from 0.05 to 20: long lateral flange and
-  check-rail patches to slender tread patches; clamped outside; Kalker's coefficients
-  use his end rows outside 0.1 ... 10, as in :mod:`.creep`);
+- ``tau = ln(a / b)``, :data:`RATIO_RANGE` (a / b from 0.0103 to 96.8, clamped outside:
+  patches wide across the rolling direction to the long, narrow ones of the crossing
+  nose (a / b 26-29 at the through route's crossing peak, validation/peak_contact.md)
+  and the check rail (up to 43); Kalker's coefficients beyond a / b in [0.1, 10] are his
+  slender-ellipse asymptotes, :mod:`.creep`).  Until creep-table-6 the axis ended at
+  0.05 and 20 and the coefficients at Kalker's end rows (0.1, 10): on the nose's patch
+  the normalised creepages, and FASTSIM's flexibilities, were those of a / b = 10, and
+  C11, C22, C23 0.62, 0.59, 0.44 of the exact theory's at a / b = 20 (issue 22).  The
+  axis was extended by whole node steps, so the old nodes are kept and the table is
+  unchanged on a / b in [0.1, 10] (validation/creep_table_resolution.md holds);
 - the size of the creepage, ``rho = |(xi', eta', phi')|``, compressed to
   ``u`` in [0, 1] with ``rho = u^2 / (1 - u)`` (u = 1 is full slip, computed at rho =
   :data:`FULL_SLIP`): the saturation (rho ~ 1, u ~ 0.6) gets most of the nodes, and the
@@ -78,10 +85,14 @@ Cost.  3.9 times Polach's law per call, the multilinear creep-table-4 2.2 times
 shared cores: 0.68, 0.39 and 0.17 microseconds; on a busier moment 2.0, 0.93 and 0.41):
 the table is read at 64 nodes instead of 16, in 16 runs of 4 consecutive beta nodes.
 A contact kernel call (benchmarks/bench_contact_kernel.py, ~6 microseconds) grows by
-about 5 %.
+about 5 %.  The wider ratio axis of creep-table-6 (59 nodes instead of 39, the same
+interpolation) left the cost unchanged within the noise: ``--baseline`` runs (rounds
+alternating, creep-table-5 as the baseline) gave 398 / 419 and 403 / 414 ns per call (9
+rounds), 1401 / 1435 and 677 / 556 ns (5 rounds, busy moments), ratios 0.95-1.22.
 
-Cache.  The FASTSIM table is built once (about 18 s of one core's time) and stored as
-``.npz`` (11.6 MB) in the cache directory (:func:`.tables.default_cache_dir`), named by
+Cache.  The FASTSIM table is built once (22 s of CPU time for creep-table-6's 59 ratio
+nodes, 1.5 times creep-table-5's 39; 24-32 s wall on 2 shared cores) and stored as
+``.npz`` (17.8 MB) in the cache directory (:func:`.tables.default_cache_dir`), named by
 a SHA-256 of its settings, with a SHA-256 of its array; a damaged or unreadable file is
 named in one warning and rebuilt, an unwritable directory means running without the
 cache (one warning).  The fill runs in chunks of nodes without the GIL: a build is shared
@@ -128,11 +139,12 @@ __all__ = [
 
 #: Normalised creepage at which the table's full-slip edge (u = 1) is evaluated
 FULL_SLIP = 1e6
-#: -, range of a / b on the table's ratio axis (clamped outside)
-RATIO_RANGE = (0.05, 20.0)
+#: -, range of a / b on the table's ratio axis (clamped outside): creep-table-5's 0.05 ... 20
+#: extended by 10 of its node steps ln(400) / 38 at either end (its nodes kept), 0.0103 ... 96.8
+RATIO_RANGE = (0.05 * 400.0 ** (-10.0 / 38.0), 20.0 * 400.0 ** (10.0 / 38.0))
 #: Length of the header in front of a packed table (:attr:`CreepTable.packed`)
 HEADER = 8
-_FORMAT = "creep-table-5"
+_FORMAT = "creep-table-6"
 
 
 @dataclass(frozen=True)
@@ -143,7 +155,9 @@ class CreepTableSettings:
     n_size: int = 33  #: -, nodes of the compressed size u on [0, 1], rho = u^2 / (1 - u)
     n_alpha: int = 17  #: -, nodes of alpha = atan2(eta, xi) on [0, pi / 2]
     n_beta: int = 33  #: -, nodes of beta (module docstring) on [-pi / 2, pi / 2]
-    n_ratio: int = 39  #: -, nodes of ln(a / b) over RATIO_RANGE
+    #: -, nodes of ln(a / b) over RATIO_RANGE (step ln(400) / 38 = 0.158, as creep-table-5's
+    #: 39 nodes over 0.05 ... 20, which are among them)
+    n_ratio: int = 59
     n_strips: int = 24  #: -, FASTSIM strips across the patch
     n_x: int = 24  #: -, FASTSIM elements along x per strip (and 48, extrapolated)
     #: -, creepage size rho at which the spin angle's length is half way from Kalker's
@@ -494,9 +508,9 @@ def build_creep_table(
         sign convention of :func:`.creep.polach_creep_forces` (e.g. an exact-theory
         solver); called once per node (``n_ratio n_size n_alpha n_beta`` calls) on a patch of
         ``sqrt(a b)`` = 5 mm, N = 10 kN, mu = 0.3, G = 81 GPa.  None: FASTSIM
-        (:func:`.fastsim.fastsim_ellipse`), vectorised.  The default grid has 722,007
+        (:func:`.fastsim.fastsim_ellipse`), vectorised.  The default grid has 1,092,267
         nodes: an exact-theory solver taking 0.1-1 s per solve (a boundary-element
-        solution on 16-24 elements across the patch, one core) would need 20-200 hours;
+        solution on 16-24 elements across the patch, one core) would need 30-300 hours;
         a grid of 13 x 17 x 9 x 17 nodes (n_ratio, n_size, n_alpha, n_beta) 1-10 hours.
 
     Returns
@@ -548,7 +562,7 @@ def _bounded_table(
 
 def _key(settings: CreepTableSettings) -> str:
     # the interpolation flags do not change the values: left out (the text is the one
-    # creep-table-5 was first keyed with, so that its cached tables stay valid)
+    # creep-table-5 was first keyed with; creep-table-6 adds the ratio range)
     stored = ", ".join(
         f"{f.name}={getattr(settings, f.name)!r}"
         for f in fields(settings)
@@ -556,7 +570,7 @@ def _key(settings: CreepTableSettings) -> str:
     )
     text = (
         f"({_FORMAT!r}, CreepTableSettings({stored}, cubic_beta=True), {FULL_SLIP!r}, "
-        "'fastsim-parabolic-3-flexibilities')"
+        f"'fastsim-parabolic-3-flexibilities', {RATIO_RANGE!r})"
     )
     return hashlib.sha256(text.encode()).hexdigest()
 
