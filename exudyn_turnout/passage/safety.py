@@ -1,6 +1,7 @@
 """Running-safety and wear quantities of a passage, their limits, and the climbing stop.
 
-Pure numpy on the columns of a passage (:class:`~exudyn_turnout.passage.results.PassageResult`).
+Numpy on the columns of a passage (:class:`~exudyn_turnout.passage.results.PassageResult`);
+the sliding means' integrals are one compiled loop.
 
 Sign conventions
 ----------------
@@ -63,6 +64,7 @@ import math
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass, replace
 
+import numba
 import numpy as np
 
 from exudyn_turnout.wheel_rail.conicity import nadal_limit
@@ -219,14 +221,55 @@ def sliding_mean(
     out = np.full(x.shape, np.nan)
     if x.size < 2:
         return out
-    cumulative = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(x))])
     lo, hi = (x - window, x) if trailing else (x - 0.5 * window, x + 0.5 * window)
     tol = 1e-9 * max(1.0, abs(window))
     inside = (lo >= x[0] - tol) & (hi <= x[-1] + tol)
     lo, hi = np.clip(lo, x[0], x[-1]), np.clip(hi, x[0], x[-1])
-    integral = _integral_to(x, v, cumulative, hi) - _integral_to(x, v, cumulative, lo)
+    if not np.isfinite(x).all():  # NaN or inf positions: numpy's search, as before
+        cumulative = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(x))])
+        integral = _integral_to(x, v, cumulative, hi) - _integral_to(x, v, cumulative, lo)
+        out[inside] = integral[inside] / window
+        return out
+    integral = _window_integrals(x, v, np.ascontiguousarray(lo), np.ascontiguousarray(hi))
     out[inside] = integral[inside] / window
     return out
+
+
+@numba.njit(cache=True)
+def _window_integrals(x, v, lo, hi):  # pragma: no cover (compiled; tested against numpy)
+    """Integral of the piecewise-linear signal from each ``lo`` to each ``hi`` (both
+    non-decreasing, inside [x[0], x[-1]]): :func:`_integral_to`'s arithmetic, operation for
+    operation (the same floats), with the cells found by walking along x instead of a
+    binary search per query (the post-run safety checks take ~100 sliding means)."""
+    n = x.shape[0]
+    cumulative = np.empty(n)
+    cumulative[0] = 0.0
+    total = 0.0
+    for k in range(n - 1):  # np.cumsum adds in order
+        total += 0.5 * (v[k + 1] + v[k]) * (x[k + 1] - x[k])
+        cumulative[k + 1] = total
+    out = np.empty(lo.shape[0])
+    j_lo = 0  # searchsorted(x, at, side="right"): the count of x <= at
+    j_hi = 0
+    for m in range(lo.shape[0]):
+        a = lo[m]
+        while j_lo < n and x[j_lo] <= a:
+            j_lo += 1
+        b = hi[m]
+        while j_hi < n and x[j_hi] <= b:
+            j_hi += 1
+        out[m] = _integral_at(x, v, cumulative, b, j_hi) - _integral_at(x, v, cumulative, a, j_lo)
+    return out
+
+
+@numba.njit(cache=True, inline="always")
+def _integral_at(x, v, cumulative, at, count):  # pragma: no cover (compiled)
+    """:func:`_integral_to` at one ``at`` whose count of x <= at is ``count``."""
+    i = min(max(count - 1, 0), x.shape[0] - 2)
+    dx = x[i + 1] - x[i]
+    s = (at - x[i]) / dx if dx > 0 else 0.0
+    v_at = v[i] + s * (v[i + 1] - v[i])
+    return cumulative[i] + 0.5 * (v[i] + v_at) * (at - x[i])
 
 
 def _integral_to(x: np.ndarray, v: np.ndarray, cumulative: np.ndarray, at: np.ndarray):
