@@ -221,26 +221,25 @@ def sliding_mean(
     out = np.full(x.shape, np.nan)
     if x.size < 2:
         return out
-    lo, hi = (x - window, x) if trailing else (x - 0.5 * window, x + 0.5 * window)
     tol = 1e-9 * max(1.0, abs(window))
+    if np.isfinite(x).all():
+        return _sliding_mean(x, v, float(window), bool(trailing), tol)
+    # NaN or inf positions: numpy's binary search, as before
+    lo, hi = (x - window, x) if trailing else (x - 0.5 * window, x + 0.5 * window)
     inside = (lo >= x[0] - tol) & (hi <= x[-1] + tol)
     lo, hi = np.clip(lo, x[0], x[-1]), np.clip(hi, x[0], x[-1])
-    if not np.isfinite(x).all():  # NaN or inf positions: numpy's search, as before
-        cumulative = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(x))])
-        integral = _integral_to(x, v, cumulative, hi) - _integral_to(x, v, cumulative, lo)
-        out[inside] = integral[inside] / window
-        return out
-    integral = _window_integrals(x, v, np.ascontiguousarray(lo), np.ascontiguousarray(hi))
+    cumulative = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(x))])
+    integral = _integral_to(x, v, cumulative, hi) - _integral_to(x, v, cumulative, lo)
     out[inside] = integral[inside] / window
     return out
 
 
 @numba.njit(cache=True)
-def _window_integrals(x, v, lo, hi):  # pragma: no cover (compiled; tested against numpy)
-    """Integral of the piecewise-linear signal from each ``lo`` to each ``hi`` (both
-    non-decreasing, inside [x[0], x[-1]]): :func:`_integral_to`'s arithmetic, operation for
-    operation (the same floats), with the cells found by walking along x instead of a
-    binary search per query (the post-run safety checks take ~100 sliding means)."""
+def _sliding_mean(x, v, window, trailing, tol):  # pragma: no cover (compiled; tested)
+    """:func:`sliding_mean` of finite positions (at least two): its numpy arithmetic,
+    operation for operation (the same floats), in one loop; the window ends' cells are
+    found by walking along x instead of a binary search per end (the post-run safety
+    checks take ~100 sliding means)."""
     n = x.shape[0]
     cumulative = np.empty(n)
     cumulative[0] = 0.0
@@ -248,17 +247,28 @@ def _window_integrals(x, v, lo, hi):  # pragma: no cover (compiled; tested again
     for k in range(n - 1):  # np.cumsum adds in order
         total += 0.5 * (v[k + 1] + v[k]) * (x[k + 1] - x[k])
         cumulative[k + 1] = total
-    out = np.empty(lo.shape[0])
-    j_lo = 0  # searchsorted(x, at, side="right"): the count of x <= at
+    first, last = x[0], x[n - 1]
+    out = np.empty(n)
+    j_lo = 0  # searchsorted(x, end, side="right"): the count of x <= end
     j_hi = 0
-    for m in range(lo.shape[0]):
-        a = lo[m]
-        while j_lo < n and x[j_lo] <= a:
+    for m in range(n):
+        if trailing:
+            lo, hi = x[m] - window, x[m]
+        else:
+            lo, hi = x[m] - 0.5 * window, x[m] + 0.5 * window
+        inside = lo >= first - tol and hi <= last + tol
+        lo = min(max(lo, first), last)  # np.clip
+        hi = min(max(hi, first), last)
+        while j_lo < n and x[j_lo] <= lo:
             j_lo += 1
-        b = hi[m]
-        while j_hi < n and x[j_hi] <= b:
+        while j_hi < n and x[j_hi] <= hi:
             j_hi += 1
-        out[m] = _integral_at(x, v, cumulative, b, j_hi) - _integral_at(x, v, cumulative, a, j_lo)
+        if inside:
+            integral = _integral_at(x, v, cumulative, hi, j_hi)
+            integral -= _integral_at(x, v, cumulative, lo, j_lo)
+            out[m] = integral / window
+        else:
+            out[m] = np.nan
     return out
 
 
