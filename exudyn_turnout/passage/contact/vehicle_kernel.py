@@ -237,8 +237,15 @@ def _record(t, work, details, record):  # pragma: no cover (compiled)
 @numba.njit(cache=True)
 def _residual(t, fbuf, ibuf, header, values, blendable, xs, record):  # pragma: no cover
     """The whole contact object's forces at time t (module docstring), into ``out``; with a
-    ``record`` of more than one row the contacts' forces and details too (:func:`_record`)."""
+    ``record`` of more than one row the contacts' forces and details too (:func:`_record`),
+    each time's once: a call's are pending (``record[0, 2:4]``: flag, time) until a call at
+    another time stores them (the last call of a time is the one kept; Newton's iterations
+    share t) or :meth:`CompiledResidual.recorded` does."""
     q, q_t, out = _view1(fbuf, header, 0), _view1(fbuf, header, 1), _view1(fbuf, header, 2)
+    recording = record.shape[0] > 1
+    if recording and record[0, 2] != 0.0 and record[0, 3] != t:  # before work is overwritten
+        _record(record[0, 3], _view3(fbuf, header, 6), _view3(fbuf, header, 7), record)
+        record[0, 2] = 0.0
     _all_forces(
         t,
         q,
@@ -300,8 +307,8 @@ def _residual(t, fbuf, ibuf, header, values, blendable, xs, record):  # pragma: 
     body = _view1(fbuf, header, 32)
     for j in range(body.shape[0]):
         out[j] += body[j]
-    if record.shape[0] > 1:
-        _record(t, _view3(fbuf, header, 6), _view3(fbuf, header, 7), record)
+    if recording:
+        record[0, 2], record[0, 3] = 1.0, t
 
 
 class CompiledResidual:
@@ -492,8 +499,8 @@ class CompiledResidual:
             Rows to keep (a run that takes more times gives its record up).
         """
         width = 1 + self._work.shape[0] * (self._work.shape[2] + self._details[0].size)
-        record = np.zeros((int(times) + 1, width))
-        record[0, 0] = 0.0
+        # row 0: rows used, given up, a call pending and its time (_residual)
+        record = np.zeros((int(times) + 1, max(width, 4)))
         self._record[0] = record
 
     def recorded(self, t: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]] | None:
@@ -514,6 +521,9 @@ class CompiledResidual:
             the record where every step was stored).
         """
         record, self._record[0] = self._record[0], np.zeros((1, 2))
+        if record.shape[0] > 1 and record[0, 2] != 0.0:  # the last call's, pending
+            _record(record[0, 3], self._work, self._details, record)
+            record[0, 2] = 0.0
         rows = int(record[0, 0])
         if record.shape[0] < 2 or record[0, 1] != 0.0 or rows < 1:
             return None
