@@ -166,7 +166,9 @@ def _view1(buf, header, j):  # pragma: no cover (compiled)
 @numba.njit(cache=True)
 def _view2(buf, header, j):  # pragma: no cover (compiled)
     # as_strided, not reshape: a reshape costs ~20 ns (a call into numba's helper), a
-    # residual takes ~24 views
+    # residual takes ~20 2-D views; the 3-D ones (work, details, layout, bounds) stay
+    # reshaped, C-contiguous: the contact kernel's loops over them are faster (measured:
+    # the residual ~0.4 us faster than with all views strided)
     o, a, b = header[j, 0], header[j, 1], header[j, 2]
     s = buf.itemsize
     return np.lib.stride_tricks.as_strided(buf[o : o + a * b], shape=(a, b), strides=(b * s, s))
@@ -175,10 +177,7 @@ def _view2(buf, header, j):  # pragma: no cover (compiled)
 @numba.njit(cache=True)
 def _view3(buf, header, j):  # pragma: no cover (compiled)
     o, a, b, c = header[j, 0], header[j, 1], header[j, 2], header[j, 3]
-    s = buf.itemsize
-    return np.lib.stride_tricks.as_strided(
-        buf[o : o + a * b * c], shape=(a, b, c), strides=(b * c * s, c * s, s)
-    )
+    return buf[o : o + a * b * c].reshape((a, b, c))
 
 
 @numba.njit(cache=True)
