@@ -65,13 +65,14 @@ Python and the list back), ~2.5 us of Python (packing the lists into the kernel'
 ~7.5 us the numba residual: the four contacts ~4.5 us (of it the FASTSIM creep table ~2 us
 for ~8 loaded contacts, the tables' geometry ~1.5 us), the track springs, their laws and
 the bumpstops ~1 us, the packed views and the recording of each time's contacts the rest.
-Issue 24 took out, bit for bit: a reshape per packed view (~20 ns, ~24 a call), the
+Issue 24 took out, bit for bit: a reshape per 2-D packed view (~20 ns, ~20 a call), the
 interpolation of the empty candidate slots' other 21 fields, the recording at every call
 (once per time now), a Python frame per call and the per-time generators; after the run
 the safety checks' sliding means (one compiled loop, ~15x) and the body outputs' look-ups.
 Measured alternately against 3273b6f (7 rounds, fresh processes, medians): CPU 1.38 ->
-1.25 s (0.59 -> 0.53 x real time; stepping 1.12 -> 1.04 s, the rest 0.23 -> 0.17 s), the
-forces and summary unchanged to the bit. What is left is mostly Exudyn's side of the call,
+1.25 s (0.59 -> 0.53 x real time; stepping 1.12 -> 1.04 s, the rest 0.23 -> 0.17 s; at
+load 4-5 with the 3-D views reshaped again 1.49 -> 1.31 s), the forces and summary
+unchanged to the bit. What is left is mostly Exudyn's side of the call,
 out of this package's reach (the opt-in compiled stepper avoids it). A fresh Jacobian each
 step would need 1.0 iterations, but one costs ~1-2 ms (its Exudyn side alone ~1 ms), and a
 Jacobian every 200 steps (1.28 iterations, 132 Jacobians) about broke even; Newton's
