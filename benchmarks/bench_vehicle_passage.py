@@ -47,6 +47,13 @@ evaluated again). On a quiet machine the case cost 1.05 x real time at 4e6e5d3 (
 residual evaluations are ~86 % of the stepping, and one of them (~30 us) is ~5 us of
 Exudyn's own, ~6 us passing Exudyn's two 103-coordinate lists to Python and back, ~5.5 us
 packing them into the kernel's buffer and returning a list, ~8.5 us the numba residual.
+
+Later (issue 24, the residual's views, recording and Python frame, the safety checks'
+sliding means; forces and summary bit-identical): 3273b6f and the new code alternately in
+fresh processes, ``--phases --repeats 1`` each, 7 rounds, medians (load 3-4), CPU s:
+stepping 1.123 -> 1.044, rest 0.225 -> 0.173, total 1.377 -> 1.246 (0.588 -> 0.532 x real
+time; 18.0 -> 17.1 yardstick units, the yardstick itself bimodal that day: 0.074 or
+0.116 s). The goal, 0.5 x real time on a quiet machine, is within reach but not shown.
 """
 
 from __future__ import annotations

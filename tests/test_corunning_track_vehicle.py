@@ -415,6 +415,23 @@ def test_the_objects_force_function_equals_the_call(turnout, model):
     assert held != force(None, 0.3, 0, list(q), list(q_t))  # the holds did act
 
 
+def test_the_force_function_follows_a_frozen_flag(turnout, model):
+    # the compiled path reads the elements' frozen flags once per time (one C loop where
+    # every element has the flag): at one time, a wheelset frozen at x0 gets other forces
+    # than moving (a fresh function: the flags are read anew), equal to __call__'s, and the
+    # moving ones again once released
+    _, contacts, q, q_t = _segment(turnout, model, 46.5, 100.0 / 3.6)
+    t, a, b = 0.061, *contacts.spans[0]
+    moving = contacts.force_function()(None, t, 0, list(q), list(q_t))
+    contacts.elements[0].frozen = True
+    frozen = contacts.force_function()(None, t, 0, list(q), list(q_t))
+    assert contacts._fast
+    assert frozen[a:b] != moving[a:b]
+    assert frozen == contacts(None, t, 0, list(q), list(q_t))
+    contacts.elements[0].frozen = False
+    assert contacts.force_function()(None, t, 0, list(q), list(q_t)) == moving
+
+
 def test_recorded_contact_columns_equal_the_ones_evaluated_after_the_run(
     turnout, model, monkeypatch
 ):

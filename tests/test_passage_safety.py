@@ -77,6 +77,50 @@ def test_sliding_mean_of_a_run_shorter_than_the_window_is_not_evaluated():
         sliding_mean(x[::-1], x, 2.0)
 
 
+def _numpy_sliding_mean(x, v, window, trailing):
+    """sliding_mean as it was before its integrals were compiled (commit 3273b6f): a binary
+    search per window end and numpy's arithmetic, the reference of the test below."""
+    out = np.full(x.shape, np.nan)
+    cumulative = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(x))])
+    lo, hi = (x - window, x) if trailing else (x - 0.5 * window, x + 0.5 * window)
+    tol = 1e-9 * max(1.0, abs(window))
+    inside = (lo >= x[0] - tol) & (hi <= x[-1] + tol)
+    lo, hi = np.clip(lo, x[0], x[-1]), np.clip(hi, x[0], x[-1])
+
+    def integral_to(at):
+        i = np.clip(np.searchsorted(x, at, side="right") - 1, 0, x.size - 2)
+        dx = x[i + 1] - x[i]
+        s = np.where(dx > 0, (at - x[i]) / np.where(dx > 0, dx, 1.0), 0.0)
+        v_at = v[i] + s * (v[i + 1] - v[i])
+        return cumulative[i] + 0.5 * (v[i] + v_at) * (at - x[i])
+
+    out[inside] = (integral_to(hi) - integral_to(lo))[inside] / window
+    return out
+
+
+def test_sliding_mean_equals_the_numpy_formula_bit_for_bit():
+    """The compiled window integrals give the numpy formula's floats exactly, on random
+    signals over random, uniform and repeated positions, centred and trailing."""
+    rng = np.random.default_rng(24)
+    for trial in range(60):
+        n = int(rng.integers(2, 2000))
+        if trial % 3 == 0:
+            x = -5.0 + 27.77 * np.arange(n) * 1e-4  # a run's x: v t
+        else:
+            x = np.sort(rng.uniform(-5.0, 5.0, n))
+        if trial % 4 == 0:
+            x = np.repeat(x[: n // 2 + 1], 2)[:n]  # repeated positions (x frozen)
+        v = 1e4 * rng.standard_normal(n)
+        window = float(rng.choice([0.05, 0.5, 2.0, 7.0]))
+        for trailing in (False, True):
+            new = sliding_mean(x, v, window, trailing)
+            old = _numpy_sliding_mean(x, v, window, trailing)
+            np.testing.assert_array_equal(new, old)
+    x = np.array([0.0, 1.0, np.nan, 3.0, 4.0])  # NaN positions: numpy's search
+    v = np.arange(5.0)
+    np.testing.assert_array_equal(sliding_mean(x, v, 1.0), _numpy_sliding_mean(x, v, 1.0, False))
+
+
 def test_sign_convention_and_ratios():
     """Fy on the rail, positive left: the right wheel pushing its rail right (outwards) is
     Y > 0, the left wheel pushing its rail left is Y > 0."""

@@ -455,6 +455,19 @@ def _interpolate(values, v_base, n_s, n_c, c, tx, ts, blend, out):  # pragma: no
 
 
 @numba.njit(cache=True)
+def _bilinear(values, i00, n_s, n_c, tx, ts):  # pragma: no cover (compiled)
+    """One field of :func:`_interpolate`'s bilinear form (the same floats), its node value
+    at flat index ``i00``."""
+    row = n_c * _N_FIELDS
+    i10 = i00 + n_s * row
+    v00 = values[i00]
+    v10 = values[i10]
+    v01 = values[i00 + row]
+    v11 = values[i10 + row]
+    return v00 + tx * (v10 - v00) + ts * ((v01 - v00) + tx * (v11 - v10 - v01 + v00))
+
+
+@numba.njit(cache=True)
 def _point(
     fields, gap, weight, s, row, i_y, i_z, q, q_t, shift_t, z_irr, omega, constants, forces,
     details, creep, creep_at,
@@ -655,6 +668,9 @@ def contact_forces(
         plane = n_s * n_c * _N_FIELDS
         if blend:
             for c in range(n_c):
+                # the gap first: an empty slot (most of them) skips the other fields
+                if not _bilinear(values, v_base + c * _N_FIELDS, n_s, n_c, tx, ts) < _EMPTY:
+                    continue
                 _interpolate(values, v_base, n_s, n_c, c, tx, ts, True, fields)
                 i00 = v_base + c * _N_FIELDS  # the gap's x-derivative of the bilinear form
                 i01 = i00 + n_c * _N_FIELDS

@@ -194,15 +194,20 @@ class VehicleContacts:
     def _fast_at(self, t: float) -> bool:
         """Whether the compiled path serves time t (all at speed, no holds); prepares it."""
         self._t_fast = t
-        fast = self._compiled is not None and self._running
-        for el in self.elements if fast else ():
+        compiled = self._compiled
+        if compiled is None or not self._running:
+            self._fast = False
+            return False
+        for el in self.elements:
             if el.hold_spin:
-                fast = False
-                break
-        self._fast = fast
-        if fast:
-            self._compiled.prepare(t, *self._body_loads_at(t))  # type: ignore[union-attr]
-        return fast
+                self._fast = False
+                return False
+        self._fast = True
+        if self.body_loads is None:  # straight track: nothing on the vector changes with t
+            compiled.prepare(t)
+        else:
+            compiled.prepare(t, *self._body_loads_at(t))
+        return True
 
     def _body_loads_at(self, t: float) -> tuple[np.ndarray, np.ndarray] | tuple[()]:
         """The body loads on this vector and the stops' q_geo at t (nothing on straight
@@ -298,26 +303,22 @@ class VehicleContacts:
 
     def force_function(self) -> Callable:
         """The object's Exudyn ``forceUserFunction``: :meth:`__call__`, with the compiled
-        path bound once (:meth:`CompiledResidual.bound
-        <exudyn_turnout.passage.contact.vehicle_kernel.CompiledResidual.bound>`) and the
-        choice of path made once per time. The same forces as :meth:`__call__`, bit for bit.
+        path inline (:meth:`CompiledResidual.force_function
+        <exudyn_turnout.passage.contact.vehicle_kernel.CompiledResidual.force_function>`) and
+        the choice of path made once per time. The same forces as :meth:`__call__`, bit for bit.
 
         Returns
         -------
         callable(mbs, t, item_number, q_list, q_t_list) -> list of float
         """
-        fast = None if self._compiled is None else self._compiled.bound()
         slow = self.__call__
-        chosen = [math.nan, False]  #: the last time, and whether the compiled path serves it
+        if self._compiled is None:
 
-        def force(mbs, t: float, item_number: int, q_list, q_t_list) -> list:
-            if t != chosen[0]:
-                chosen[0], chosen[1] = t, self._fast_at(t)
-            if chosen[1] and fast is not None:
-                return fast(t, q_list, q_t_list)
-            return slow(mbs, t, item_number, q_list, q_t_list)
+            def force(mbs, t: float, item_number: int, q_list, q_t_list) -> list:
+                return slow(mbs, t, item_number, q_list, q_t_list)
 
-        return force
+            return force
+        return self._compiled.force_function(self._fast_at, slow)
 
     def jacobian(self, t: float, q: np.ndarray, q_t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """-df/dq and -df/dq_t of the contact forces f (the left-hand side's Jacobians), by

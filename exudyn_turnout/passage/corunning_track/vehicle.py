@@ -65,16 +65,31 @@ The run uses Exudyn's sparse LU (EigenSparse): each track couples to its wheelse
 run's Newton tolerance is :data:`NEWTON_TOLERANCE_FACTOR` x :func:`newton_tolerance`.
 
 Where a step's time goes (the README's case: through, 100 km/h, -5..60 m; measured with
-``benchmarks/bench_vehicle_passage.py --phases``, Exudyn's solver timers and instruction
-counts of callgrind): 2.30 residual calls per step, one at the predictor and one after
-each of 1.30 Newton iterations (Exudyn's Newton never stops before its first iteration);
-the residual evaluations are ~85 % of the stepping. One evaluation (~30 us on a quiet
-core) is ~5 us of Exudyn's own (the objects' coordinates and forces), ~6 us of passing
-Exudyn's two 103-coordinate lists to Python and the list back, ~3.5 us packing the lists
-into the kernel's buffer, ~8.5 us the numba residual (of it the four contacts ~6 us, the
-dispatch of its eight arguments ~1.5 us), ~2 us returning a list. A fresh Jacobian each
+``benchmarks/bench_vehicle_passage.py --phases``, Exudyn's solver timers and a numba loop
+over 996 recorded states of the contacts' object; issue 24, on the 2-core machine at load
+3-4, CPU time): 2.30 residual calls per step, one at the predictor and one after each of
+1.30 Newton iterations (Exudyn's Newton never stops before its first iteration); Exudyn's
+ODE2RHS, the residual evaluations with the user function, is 86 % of the stepping (its
+Newton solves 5 %, the sensors 4 %). One evaluation, ~18 us, is ~8 us of Exudyn's own and
+pybind11's (the objects' coordinates and forces, Exudyn's two 103-coordinate lists to
+Python and the list back), ~2.5 us of Python (packing the lists into the kernel's buffer
+~1.2 us, numba's dispatch of the eight arguments ~0.4 us, the returned list ~0.7 us) and
+~7.5 us the numba residual: the four contacts ~4.5 us (of it the FASTSIM creep table ~2 us
+for ~8 loaded contacts, the tables' geometry ~1.5 us), the track springs, their laws and
+the bumpstops ~1 us, the packed views and the recording of each time's contacts the rest.
+Issue 24 took out, bit for bit: a reshape per 2-D packed view (~20 ns, ~20 a call), the
+interpolation of the empty candidate slots' other 21 fields, the recording at every call
+(once per time now), a Python frame per call and the per-time generators; after the run
+the safety checks' sliding means (one compiled loop, ~15x) and the body outputs' look-ups.
+Measured alternately against 3273b6f (7 rounds, fresh processes, medians): CPU 1.38 ->
+1.25 s (0.59 -> 0.53 x real time; stepping 1.12 -> 1.04 s, the rest 0.23 -> 0.17 s; at
+load 4-5 with the 3-D views reshaped again 1.49 -> 1.31 s), the forces and summary
+unchanged to the bit. What is left is mostly Exudyn's side of the call,
+out of this package's reach (the opt-in compiled stepper avoids it). A fresh Jacobian each
 step would need 1.0 iterations, but one costs ~1-2 ms (its Exudyn side alone ~1 ms), and a
-Jacobian every 200 steps (1.28 iterations, 132 Jacobians) about broke even. The contacts'
+Jacobian every 200 steps (1.28 iterations, 132 Jacobians) about broke even; Newton's
+relative tolerance at 1e-3 (2.23 calls per step) moved a lateral peak by 0.12 % (rejected).
+The contacts'
 forces and details of the output columns are recorded during the run
 (:meth:`~exudyn_turnout.passage.contact.vehicle_contacts.VehicleContacts.start_record`),
 not evaluated again after it.

@@ -176,20 +176,24 @@ def point_motion(
     numpy.ndarray
         (samples, 3): m, lateral (X), vertical (Y), longitudinal (Z).
     """
-    handles = _handles(build, body)
-    part = np.atleast_2d(q)[:, coordinate_slices(build)[body]]
-    return part @ point_transform(list(handles.dof), offset).T
+    return _motion(_handles(build, body), coordinate_slices(build)[body], offset, q)
 
 
-def _relative(build, parent, child, point, q):
-    """Displacement of the child's attachment point minus the parent's (samples, 3)."""
+def _motion(handles, where: slice, offset, q: np.ndarray) -> np.ndarray:
+    """:func:`point_motion` of the body of ``handles``, its coordinates at ``where``."""
+    return np.atleast_2d(q)[:, where] @ point_transform(list(handles.dof), offset).T
+
+
+def _relative(slices, parent, child, point, q):
+    """Displacement of the child's attachment point minus the parent's (samples, 3);
+    ``slices``: :func:`coordinate_slices` (:func:`point_motion`'s operations, the bodies
+    looked up once per call of the caller)."""
 
     def local(handles):
         return tuple(p - r for p, r in zip(point, handles.reference))
 
-    return point_motion(build, child.name, local(child), q) - point_motion(
-        build, parent.name, local(parent), q
-    )
+    child_motion = _motion(child, slices[child.name], local(child), q)
+    return child_motion - _motion(parent, slices[parent.name], local(parent), q)
 
 
 def _bumpstop_forces(stop, u: np.ndarray) -> np.ndarray:
@@ -232,6 +236,7 @@ def suspension_forces(
     primary = model.primary
     wheelset_data = model.wheelset
     sides = ((-1.0, "right"), (1.0, "left"))
+    sl = coordinate_slices(build)
     for ws in build.wheelsets:
         j = wheelset_data.bogie[ws.index]
         if j < 0:
@@ -239,8 +244,8 @@ def suspension_forces(
         bogie = build.bogies[j]
         for side, label in sides:
             point = (side * primary.semi_spacing, primary.height, ws.x)
-            u = _relative(build, bogie, ws, point, q)  # wheelset minus frame
-            u_t = _relative(build, bogie, ws, point, q_t)
+            u = _relative(sl, bogie, ws, point, q)  # wheelset minus frame
+            u_t = _relative(sl, bogie, ws, point, q_t)
             k = (primary.k_x, primary.k_y, primary.k_z)
             c = (primary.c_x, primary.c_y, primary.c_z)
             for a, i, kk, cc in zip(axes, order, k, c):
@@ -249,13 +254,12 @@ def suspension_forces(
     if car is None:
         return out
     _, _, secondary = full_vehicle_parts(model)
-    sl = coordinate_slices(build)
     for j, bogie in enumerate(build.bogies):
         tag = f"b{j + 1}"
         for side, label in sides:
             point = (side * secondary.semi_spacing, secondary.height, bogie.x)
-            u = _relative(build, car, bogie, point, q)  # frame minus car body
-            u_t = _relative(build, car, bogie, point, q_t)
+            u = _relative(sl, car, bogie, point, q)  # frame minus car body
+            u_t = _relative(sl, car, bogie, point, q_t)
             k = (secondary.k_x, secondary.k_y, secondary.k_z)
             c = (secondary.c_x, secondary.c_y, secondary.c_z)
             for a, i, kk, cc in zip(axes, order, k, c):
@@ -266,7 +270,7 @@ def suspension_forces(
         if model.bumpstop is not None:
             stop = model.bumpstop
             point = (0.0, stop.height, bogie.x)
-            u = _relative(build, bogie, car, point, q)[:, 0]  # car body minus frame
+            u = _relative(sl, bogie, car, point, q)[:, 0]  # car body minus frame
             # the force on the car body opposes its displacement relative to the frame
             out[f"Fy_bumpstop_{tag}_N"] = 0.0 - _bumpstop_forces(stop, u)
     return out
@@ -313,21 +317,25 @@ def body_columns(
     static = np.asarray(build.static_state, float)
     dq = q - static
     out: dict[str, np.ndarray] = {}
+    slices = coordinate_slices(build)
+    bodies: dict = {}
+    for handles in build.bodies():  # the first of a name, as point_motion
+        bodies.setdefault(handles.name, handles)
     for point in body_points(build, floor_height):
-        u = point_motion(build, point.body, point.offset, dq)
-        a = point_motion(build, point.body, point.offset, q_tt)
+        handles, where = bodies[point.body], slices[point.body]
+        u = _motion(handles, where, point.offset, dq)
+        a = _motion(handles, where, point.offset, q_tt)
         out[f"y_{point.name}_m"], out[f"z_{point.name}_m"] = u[:, 0], u[:, 1]
         out[f"ay_{point.name}_mps2"], out[f"az_{point.name}_mps2"] = a[:, 0], a[:, 1]
     car = build.car_body
     if car is not None:
-        roll = dq[:, coordinate_slices(build)[car.name]][:, car.dof["roll"]]
+        roll = dq[:, slices[car.name]][:, car.dof["roll"]]
         extra = 0.0 if centripetal is None else np.asarray(centripetal, float)
         turning = 0.0 if frame_yaw_acceleration is None else np.asarray(frame_yaw_acceleration)
         for point in body_points(build, floor_height)[: len(CAR_POINTS)]:
             frame = extra + point.offset[2] * turning  # offset[2]: m ahead of the CoG
             ay = out[f"ay_{point.name}_mps2"]
             out[f"ay_floor_{point.name}_mps2"] = ay + frame + GRAVITY * roll
-    slices = coordinate_slices(build)
     for handles in ([car] if car is not None else []) + list(build.bogies):
         part = dq[:, slices[handles.name]]
         for angle in ("roll", "pitch", "yaw"):
