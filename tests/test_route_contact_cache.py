@@ -80,6 +80,7 @@ def test_loaded_contact_equals_the_built_one(turnout, vehicle, monkeypatch, entr
     assert profile.route_contact(turnout, route, vehicle) is loaded  # kept in memory
 
 
+@pytest.mark.slow  # two passages with their start: 8-12 s on a busy core
 def test_a_passage_on_the_loaded_contact_has_the_same_columns(turnout, monkeypatch, entry):
     from exudyn_turnout.passage.run import simulate_passage
     from exudyn_turnout.passage.settings import PassageSettings

@@ -886,7 +886,7 @@ def _crc_checksum(arrays: Mapping[str, np.ndarray]) -> str:
     for name, array in arrays.items():
         a = np.ascontiguousarray(array)
         crc = zlib.crc32(f"{name}:{a.dtype.str}:{a.shape}".encode(), crc)
-        crc = zlib.crc32(memoryview(a).cast("B"), crc)
+        crc = zlib.crc32(a.reshape(-1).view(np.uint8).data, crc)
     return f"crc32:{crc:08x}"
 
 
