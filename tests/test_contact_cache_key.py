@@ -152,9 +152,11 @@ class _RecordingTurnout:
 
 
 @pytest.mark.parametrize("route", ["through", "diverging"])
-def test_the_key_covers_what_the_tables_are_built_from(monkeypatch, route):
+def test_the_key_covers_what_the_tables_are_built_from(monkeypatch, tmp_path, route):
     """Build the route's tables (from the disk cache) and note what of the turnout is read."""
     monkeypatch.setattr(profile, "_RECENT", profile._RecentContacts())  # nothing in memory
+    # no packed route on disk either: the tables are built (each from its disk cache)
+    monkeypatch.setattr(profile, "_packed_cache_path", lambda key, d=None: tmp_path / "r.npz")
     attributes: set[str] = set()
     sections: set[str] = set()
     turnout = _RecordingTurnout(load_turnout(), attributes, sections)

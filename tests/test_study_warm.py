@@ -139,6 +139,8 @@ def test_a_serial_study_loads_a_routes_contact_tables_once(tmp_path, monkeypatch
 
     monkeypatch.setattr(turnout_sections, "route_contact_tables", counted)
     monkeypatch.setattr(profile, "_RECENT", profile._RecentContacts())  # none in memory yet
+    # nor a packed route on disk
+    monkeypatch.setattr(profile, "_packed_cache_path", lambda key, d=None: tmp_path / "r.npz")
     path = tmp_path / "study.toml"
     path.write_text(
         """

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 import re
+import time
 from bisect import bisect_right
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -755,8 +756,16 @@ def route_contact(turnout, route: str, vehicle: Vehicle, cache_dir=None) -> Rout
 
     Kept in memory for the last few routes (keyed by :func:`route_contact_key`: the turnout
     file's contact sections and design files, the route, the wheel's profile, back-to-back
-    and radius; not the track's stiffness, damping or masses), built or loaded from the disk
-    cache otherwise.
+    and radius; not the track's stiffness, damping or masses). Otherwise loaded from the
+    route's disk entry beside the contact tables (``route_contact_<key>.npz``, uncompressed,
+    read without pickle, ~40 MB for a route of the packaged turnout): the packed arrays, body
+    names, wheels and rail slots as built, bit for bit, under that key plus the source of
+    the code that builds and packs them (every module of ``wheel_rail/``, the route and
+    turnout loaders, this module) and the numpy, scipy and numba versions, with a CRC-32 of
+    the arrays. A process then skips building the rail sections and loading and packing
+    each body's table (~0.4 s). A missing, damaged or foreign entry is built again and
+    overwritten; an unusable cache location means building (one warning,
+    :func:`~exudyn_turnout.wheel_rail.tables.write_cache_file`).
 
     Parameters
     ----------
@@ -778,7 +787,6 @@ def route_contact(turnout, route: str, vehicle: Vehicle, cache_dir=None) -> Rout
     ValueError
         The vehicle file lacks what profile contact needs (one line naming the field).
     """
-    import time
     from pathlib import Path
 
     from exudyn_turnout.wheel_rail.kernel import pack_tables
@@ -800,24 +808,137 @@ def route_contact(turnout, route: str, vehicle: Vehicle, cache_dir=None) -> Rout
     if recent is not None:
         return recent
     start = time.perf_counter()
-    wheel, setup = wheel_and_setup(turnout, vehicle, cache_dir)
-    pairs = route_contact_tables(turnout, route, wheel, setup, cache_dir=cache_dir)
-    bodies = [body for body, _ in pairs]
-    packed = pack_tables(
-        [table for _, table in pairs],
-        [1 if b.wheel == "left" else -1 for b in bodies],
-        [(0, 0)] * len(bodies),
-        [(b.x_from, b.x_to) for b in bodies],
-        names=[b.name for b in bodies],
-    )
-    contact = RouteContact(
-        packed,
-        tuple(b.wheel for b in bodies),
-        tuple(b.rail for b in bodies),
-        time.perf_counter() - start,
-    )
+    path = _packed_cache_path(key, cache_dir)
+    full_key = _packed_key(key)
+    contact = _read_packed(path, full_key, start)
+    if contact is None:
+        wheel, setup = wheel_and_setup(turnout, vehicle, cache_dir)
+        pairs = route_contact_tables(turnout, route, wheel, setup, cache_dir=cache_dir)
+        bodies = [body for body, _ in pairs]
+        packed = pack_tables(
+            [table for _, table in pairs],
+            [1 if b.wheel == "left" else -1 for b in bodies],
+            [(0, 0)] * len(bodies),
+            [(b.x_from, b.x_to) for b in bodies],
+            names=[b.name for b in bodies],
+        )
+        contact = RouteContact(
+            packed,
+            tuple(b.wheel for b in bodies),
+            tuple(b.rail for b in bodies),
+            time.perf_counter() - start,
+        )
+        _write_packed(path, full_key, contact)
     _RECENT.put(key, contact)
     return contact
+
+
+#: Arrays of a cached route contact (besides ``key`` and ``checksum``): the packed tables'
+#: arrays, then the bodies' names, wheels and rail slots as unicode arrays.
+_PACKED_ARRAYS = ("values", "blendable", "x", "layout", "bounds")
+_PACKED_TEXTS = ("names", "wheels", "rails")
+
+
+def _packed_sources() -> list:
+    """The source files a route's packed contact is built by, in a fixed order.
+
+    By the package's import rules (CONTRIBUTING.md) building the rail sections, the tables
+    and the packed arrays can use only ``inputs/`` (turnout and route loaders),
+    ``wheel_rail/`` (sections, transfer nodes, tables and their format version, the
+    non-Hertz node law, the creep table, the kernel's ``pack_tables``), the shared modules
+    at the package's top level and this module: all of them, every ``.py`` file.
+    """
+    from pathlib import Path
+
+    import exudyn_turnout
+
+    package = Path(str(exudyn_turnout.__file__)).parent
+    files = sorted(package.glob("*.py"))
+    for folder in ("inputs", "wheel_rail"):
+        files += sorted((package / folder).rglob("*.py"))
+    return files + [Path(__file__).resolve()]
+
+
+def _packed_key(key: str) -> str:
+    """SHA-256 of a route contact's disk entry: :func:`route_contact_key`, the source of
+    :func:`_packed_sources` (a change of the code: a new entry) and the numpy, scipy and
+    numba versions."""
+    import hashlib
+
+    import numba
+    import scipy
+
+    digest = hashlib.sha256(b"route-contact/1")
+    digest.update(key.encode())
+    digest.update(repr((np.__version__, scipy.__version__, numba.__version__)).encode())
+    for file in _packed_sources():
+        digest.update(f"{file.parent.name}/{file.name}".encode())
+        digest.update(file.read_bytes())
+    return digest.hexdigest()
+
+
+def _crc_checksum(arrays: Mapping[str, np.ndarray]) -> str:
+    """CRC-32 of arrays with their names, dtypes and shapes (a third of SHA-256's time on the
+    ~40 MB of a route: it finds damage, the key in the file finds another entry)."""
+    import zlib
+
+    crc = 0
+    for name, array in arrays.items():
+        a = np.ascontiguousarray(array)
+        crc = zlib.crc32(f"{name}:{a.dtype.str}:{a.shape}".encode(), crc)
+        crc = zlib.crc32(a.reshape(-1).view(np.uint8).data, crc)
+    return f"crc32:{crc:08x}"
+
+
+def _packed_cache_path(key: str, cache_dir=None):
+    """The disk entry of a route's packed contact, beside the contact tables.
+
+    Named by :func:`route_contact_key` alone: one entry per route, wheel and turnout
+    geometry, overwritten when the code that builds it changes (its full key is inside).
+    """
+    from pathlib import Path
+
+    from exudyn_turnout.wheel_rail.tables import default_cache_dir
+
+    return Path(cache_dir or default_cache_dir()) / f"route_contact_{key[:24]}.npz"
+
+
+def _read_packed(path, full_key: str, start: float) -> RouteContact | None:
+    """The route contact stored at ``path`` under ``full_key``, or None (missing, damaged,
+    another key or checksum: built again by the caller)."""
+    if not path.is_file():
+        return None
+    try:
+        with open(path, "rb") as handle, np.load(handle, allow_pickle=False) as data:
+            if str(data["key"]) != full_key:
+                return None
+            arrays = {name: data[name] for name in _PACKED_ARRAYS}
+            texts = {name: tuple(str(a) for a in data[name]) for name in _PACKED_TEXTS}
+            if str(data["checksum"]) != _crc_checksum(arrays):
+                return None
+        n = arrays["layout"].shape[0]
+        if arrays["layout"].shape != (n, 9) or any(len(texts[t]) != n for t in _PACKED_TEXTS):
+            return None
+        tables = PackedTables(names=texts["names"], **arrays)
+        return RouteContact(tables, texts["wheels"], texts["rails"], time.perf_counter() - start)
+    except Exception:  # noqa: BLE001 - any unreadable entry is built again by the caller
+        return None
+
+
+def _write_packed(path, full_key: str, contact: RouteContact) -> None:
+    """Store a route contact at ``path`` (an unusable location: one warning, no entry)."""
+    from exudyn_turnout.wheel_rail.tables import write_cache_file
+
+    p = contact.tables
+    arrays = {name: getattr(p, name) for name in _PACKED_ARRAYS}
+    texts = {
+        "names": np.array(p.names, dtype=str),
+        "wheels": np.array(contact.wheels, dtype=str),
+        "rails": np.array(contact.rails, dtype=str),
+    }
+    content = dict(arrays, **texts)
+    content.update(key=np.array(full_key), checksum=np.array(_crc_checksum(arrays)))
+    write_cache_file(path, content, "contact-table cache")
 
 
 #: Per contact point outputs: column stem -> detail field (SI units in the stem's suffix).
