@@ -139,6 +139,7 @@ def command(case: str, out: Path) -> list[str]:
     options = CASES[case][1] + (TWO_TRACKS if case.startswith("c") else [])
     return [
         sys.executable,
+        "-P",  # not the working directory's package first on sys.path: the PYTHONPATH's
         "-m",
         "exudyn_turnout",
         "simulate",
@@ -222,9 +223,12 @@ def main(argv: list[str] | None = None) -> int:
     unknown = [c for c in cases if c not in CASES]
     if unknown:
         parser.error(f"unknown case(s) {unknown}; cases: {', '.join(CASES)}")
-    checkouts = {"this": dict(os.environ)}
-    if args.checkout:
-        checkouts["this"]["PYTHONPATH"] = str(Path(args.checkout).resolve())
+    # "this": the checkout holding this script (or --checkout), on PYTHONPATH; the commands
+    # run with -P, so the working directory's package cannot stand in for either checkout
+    # (it did: `-m` puts the working directory first, and a run from inside a checkout
+    # timed that checkout twice)
+    this = Path(args.checkout).resolve() if args.checkout else Path(__file__).resolve().parents[1]
+    checkouts = {"this": dict(os.environ, PYTHONPATH=str(this))}
     if args.versus:
         checkouts = {
             "versus": dict(os.environ, PYTHONPATH=str(Path(args.versus).resolve())),

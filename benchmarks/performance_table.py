@@ -30,6 +30,7 @@ loads. The cases (issue 24):
 from __future__ import annotations
 
 import argparse
+import os
 import shutil
 import statistics
 import subprocess
@@ -225,11 +226,20 @@ def _passage_rows(stick: Yardstick, repeats: int, quick: bool) -> tuple[list[Row
 
 
 def _cli(*args: str) -> list[str]:
-    return [sys.executable, "-m", "exudyn_turnout", *args]
+    # -P: the package on _package_path(), not the working directory's (``-m`` puts it first)
+    return [sys.executable, "-P", "-m", "exudyn_turnout", *args]
+
+
+def _package_path() -> str:
+    """The folder holding the exudyn_turnout this process imports (its rows' package)."""
+    import exudyn_turnout
+
+    return str(Path(exudyn_turnout.__file__).resolve().parents[1])
 
 
 def _run(command: list[str]) -> None:
-    done = subprocess.run(command, capture_output=True, text=True, check=False)
+    env = dict(os.environ, PYTHONPATH=_package_path())
+    done = subprocess.run(command, capture_output=True, text=True, check=False, env=env)
     if done.returncode != 0:
         raise RuntimeError(f"{' '.join(command)}: exit {done.returncode}: {done.stderr[-2000:]}")
 

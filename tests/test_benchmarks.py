@@ -116,3 +116,15 @@ def test_versus_passage_rejects_a_folder_without_the_package(monkeypatch, tmp_pa
     assert versus.main(["--versus", str(ROOT), "--cases", "nope"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "unknown case" in err[0]
+
+
+def test_main_job_commands_do_not_import_the_working_directory(monkeypatch):
+    """bench_main_job runs ``python -P -m exudyn_turnout``: with ``-m`` alone the working
+    directory's package came first on sys.path, so ``--versus`` run from inside a checkout
+    timed that checkout twice (found in session 11)."""
+    monkeypatch.syspath_prepend(str(ROOT / "benchmarks"))
+    job = importlib.import_module("bench_main_job")
+    argv = job.command("a", Path("out"))
+    assert argv[1:4] == ["-P", "-m", "exudyn_turnout"]
+    table = importlib.import_module("performance_table")
+    assert table._cli("simulate")[1:3] == ["-P", "-m"]
