@@ -683,6 +683,64 @@ class CheckRailSteps:
             return None
         return check_rail_window(columns, self.pairs, self.threshold, self.labels)
 
+    def rerun(
+        self,
+        columns: Mapping[str, np.ndarray],
+        window: tuple[float, float, float],
+        duration: float,
+        t_offset: float,
+        x0: float,
+        run_piece: Callable[[float, float, float, PassageSettings], Mapping[str, np.ndarray]],
+    ) -> tuple[dict[str, np.ndarray], float]:
+        """Run a segment again in pieces, its loaded window at the finer step.
+
+        The pieces are :func:`refine_pieces`'s; each runs from where the one before ended
+        (the first from the segment's start), every step sampled, and keeps the rows at the
+        first run's output times (:func:`piece_times`, :func:`pick_rows`). Windows run
+        finer than the segment's step are noted for :meth:`record`.
+
+        Parameters
+        ----------
+        columns : mapping
+            The segment's columns of its first run (``t_s``: the output times to keep).
+        window : (t_first, t_last, peak)
+            :meth:`window`'s.
+        duration : float
+            s, the segment's.
+        t_offset : float
+            s, the run's time at the segment's start.
+        x0 : float
+            m, the (front) wheelset's x at the segment's start.
+        run_piece : callable
+            ``run_piece(t_from, t_length, x_from, settings)``: builds the track's system at
+            ``x_from``, carries the state of the piece before over and runs ``t_length``
+            seconds with ``settings`` (the piece's ``time_step``, every step sampled) from
+            the segment's time ``t_from``; returns the piece's columns.
+
+        Returns
+        -------
+        columns : dict
+            The segment's columns, at the first run's output times.
+        last : float
+            s, the last piece's duration (the carry-over's time of the next segment).
+        """
+        settings, fine_step = self.settings, self.step
+        if fine_step is None:
+            raise ValueError("rerun: nothing is refined (check_rail_time_step None)")
+        pieces = refine_pieces(duration, settings.time_step, fine_step, window[1] - t_offset)
+        h = duration / pieces[-1][1]
+        v = settings.v
+        parts = []
+        for a, b, step in pieces:
+            x_p = x0 + v * a * h
+            fine = replace(settings, time_step=step, output_step=None)  # every step sampled
+            piece = run_piece(a * h, (b - a) * h, x_p, fine)
+            parts.append(pick_rows(piece, piece_times(columns["t_s"], t_offset, a, b, h, step)))
+            if step < h:
+                self.refined.append((x_p, x0 + v * b * h, step))
+        a, b, _ = pieces[-1]
+        return join_segments(parts), (b - a) * h
+
     def unrefined(
         self, window: tuple[float, float, float], columns: Mapping[str, np.ndarray]
     ) -> None:

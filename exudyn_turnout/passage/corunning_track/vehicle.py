@@ -140,10 +140,7 @@ from exudyn_turnout.passage.common import (
     QuietExudyn,
     join_segments,
     newton_tolerance,
-    pick_rows,
-    piece_times,
     progress_function,
-    refine_pieces,
 )
 from exudyn_turnout.passage.contact.profile import STATIC_SPIN_STIFFNESS, RouteContact
 from exudyn_turnout.passage.contact.vehicle_contacts import (
@@ -833,37 +830,18 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
         cols = _run(system, duration, settings, t_offset, total, progress, model.static_wheel_load)
         window = check.window(cols)
         if window is not None and check.step is not None:  # again, the window stepped finer
-            pieces = refine_pieces(
-                duration,
-                settings.time_step,
-                check.step,
-                window[1] - t_offset,
-            )
-            h = duration / pieces[-1][1]
-            parts = []
-            piece_state, piece_previous, piece_t = state, previous, t_prev
-            for a, b, step in pieces:
-                x_p = x0 + v * a * h
+            carried = [state, previous, t_prev]
+
+            def run_piece(t_from, length, x_p, fine, at=at, t0=t_offset, carried=carried):
                 system = build(*args, at, x_p, v, False, x_range, tables)
-                _carry_over(
-                    piece_state, piece_previous, system, route, settings.layers, x_p, piece_t
-                )
-                fine = replace(settings, time_step=step, output_step=None)  # every step sampled
-                piece = _run(
-                    system,
-                    (b - a) * h,
-                    fine,
-                    t_offset + a * h,
-                    total,
-                    progress,
-                    model.static_wheel_load,
-                )
-                parts.append(pick_rows(piece, piece_times(cols["t_s"], t_offset, a, b, h, step)))
-                piece_state, piece_previous, piece_t = _state(system), system, (b - a) * h
-                if step < h:
-                    check.refined.append((x_p, x0 + v * b * h, step))
-            cols = join_segments(parts)
-            t_prev = piece_t
+                _carry_over(*carried[:2], system, route, settings.layers, x_p, carried[2])
+                load = model.static_wheel_load
+                piece = _run(system, length, fine, t0 + t_from, total, progress, load)
+                carried[:] = [_state(system), system, length]
+                return piece
+
+            cols, t_prev = check.rerun(cols, window, duration, t_offset, x0, run_piece)
+            system = carried[1]
         else:
             if window is not None:
                 check.unrefined(window, cols)

@@ -41,10 +41,7 @@ from exudyn_turnout.passage.common import (
     CheckRailSteps,
     QuietExudyn,
     join_segments,
-    pick_rows,
-    piece_times,
     progress_function,
-    refine_pieces,
     zones_of_run,
 )
 from exudyn_turnout.passage.contact.profile import STATIC_LATERAL_STIFFNESS
@@ -510,34 +507,23 @@ def _simulate(
         check_plausible(cols, W, where, limits)
         window = check.window(cols)
         if window is not None and check.step is not None:  # again, the window stepped finer
-            pieces = refine_pieces(
-                duration,
-                settings.time_step,
-                check.step,
-                window[1] - t_offset,
-            )
-            h = duration / pieces[-1][1]
-            parts, piece_state, piece_previous = [], state, previous
-            for a, b, step in pieces:
-                x_p = x + v * a * h
+            carried: list[Any] = [state, previous]
+
+            def run_piece(
+                t_from, length, x_p, fine, zone=zone, t0=t_offset, carried=carried,
+                continues=continues, where=where, limits=limits,
+            ):  # fmt: skip
                 system = build_zone_system(turnout, route, vehicle, zone, settings, x_p, v, contact)
                 # the first piece continues the zone before; the others their own zone
-                _carry_over(
-                    piece_state,
-                    piece_previous,
-                    system,
-                    continues if a == 0 else {},
-                    settings.layers,
-                    x_p,
-                )
-                fine = replace(settings, time_step=step, output_step=None)  # every step sampled
-                piece = _run(system, (b - a) * h, fine, t_offset + a * h, total, progress)
+                went_on = continues if t_from == 0.0 else {}
+                _carry_over(*carried, system, went_on, settings.layers, x_p)
+                piece = _run(system, length, fine, t0 + t_from, total, progress)
                 check_plausible(piece, W, where, limits)
-                parts.append(pick_rows(piece, piece_times(cols["t_s"], t_offset, a, b, h, step)))
-                piece_state, piece_previous = _node_state(system), system
-                if step < h:
-                    check.refined.append((x_p, x + v * b * h, step))
-            cols = join_segments(parts)
+                carried[:] = [_node_state(system), system]
+                return piece
+
+            cols, _ = check.rerun(cols, window, duration, t_offset, x, run_piece)
+            system = carried[1]
         elif window is not None:
             check.unrefined(window, cols)
         segments.append(cols if k == 0 else {n: c[1:] for n, c in cols.items()})
