@@ -311,14 +311,9 @@ class VehicleContacts:
         -------
         callable(mbs, t, item_number, q_list, q_t_list) -> list of float
         """
-        slow = self.__call__
         if self._compiled is None:
-
-            def force(mbs, t: float, item_number: int, q_list, q_t_list) -> list:
-                return slow(mbs, t, item_number, q_list, q_t_list)
-
-            return force
-        return self._compiled.force_function(self._fast_at, slow)
+            return self.__call__
+        return self._compiled.force_function(self._fast_at, self.__call__)
 
     def jacobian(self, t: float, q: np.ndarray, q_t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """-df/dq and -df/dq_t of the contact forces f (the left-hand side's Jacobians), by
