@@ -14,7 +14,7 @@ from exudyn_turnout.inputs.vehicle import Vehicle
 from exudyn_turnout.passage.common import CheckRailSteps
 from exudyn_turnout.passage.fe_track.coupling import COUPLING_STALL_TOLERANCE
 from exudyn_turnout.passage.fe_track.planes import generalized_alpha
-from exudyn_turnout.passage.settings import PassageError, PassageSettings
+from exudyn_turnout.passage.settings import DEFAULT_SETTINGS, PassageError, PassageSettings
 
 __all__ = [
     "fe_contact_element",
@@ -258,9 +258,8 @@ def check_rail_steps(
     stacklevel : int
         Of the warning, counted from the caller of this function.
     """
-    where = "the FE track steps its whole run at one step: give it --time-step " + (
-        f"<= {settings.check_rail_time_step or 2.5e-5:g} s"
-    )
+    limit = settings.check_rail_time_step or DEFAULT_SETTINGS.check_rail_time_step
+    where = f"the FE track steps its whole run at one step: give it --time-step <= {limit:g} s"
     check = CheckRailSteps(settings, route, static_wheel_load, wheelsets, where)
     window = check.window(columns)
     if window is not None:
