@@ -2,7 +2,7 @@
 
 The contact position is the normal force's centre (Kik-Piotrowski, ``nonhertz``): a
 position along the lateral tangent of the deepest point, moved onto the rail surface along
-the normal, the force's line of action (``nonhertz.surface_offset``, ``centre_point``).
+the normal, the force's line of action (``node_laws.surface_offset``, ``centre_point``).
 Before, it was the tangent point itself: on the plain stock rail at 7 mm of shift and
 30 kN, a flange contact 9 mm along the 70 deg tangent, 3.5 mm off the rail
 (tests/test_peak_contact.py's flange case, found by the post-processing of a passage).

@@ -23,16 +23,18 @@ from exudyn_turnout.wheel_rail.geometry import (
     search_candidates,
     surface_derivatives,
 )
-from exudyn_turnout.wheel_rail.nonhertz import (
+from exudyn_turnout.wheel_rail.node_laws import (
     DELTA_REF,
-    PATCH_FIELDS,
     centre_point,
-    force_centre,
-    kik_piotrowski,
     node_centre,
     node_normal_force,
     node_normal_forces,
     node_offset,
+)
+from exudyn_turnout.wheel_rail.nonhertz import (
+    PATCH_FIELDS,
+    force_centre,
+    kik_piotrowski,
     patch_law_fields,
 )
 from exudyn_turnout.wheel_rail.profiles import read_slices

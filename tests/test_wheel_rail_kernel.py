@@ -23,7 +23,7 @@ from exudyn_turnout.wheel_rail import kernel
 from exudyn_turnout.wheel_rail.creep import kalker_coefficients, polach_creep_forces
 from exudyn_turnout.wheel_rail.data import s1002_wheel, standard_track, uic60_rail
 from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
-from exudyn_turnout.wheel_rail.nonhertz import (
+from exudyn_turnout.wheel_rail.node_laws import (
     centre_point,
     node_centre,
     node_normal_forces,
@@ -156,7 +156,7 @@ def test_kernel_geometry_equals_table_lookup(crossing_table):
 
 def test_lookup_normal_force_is_the_kernels(crossing_table):
     """tables.normal_force (the lookup path) and the kernel's normal force are one law
-    (nonhertz.node_normal_force): equal to round-off in cells whose nodes hold the same
+    (node_laws.node_normal_force): equal to round-off in cells whose nodes hold the same
     contact points (both bilinear), on the crossing, where semi-Hertzian nodes exist; and
     both put the contact at the same force centre."""
     table = crossing_table
@@ -357,7 +357,7 @@ def test_a_diverged_state_gives_nan_forces_not_a_crash(plain):
 def test_normal_force_and_semi_axes_follow_the_node_law(crossing_table):
     """At a table node the kernel's normal force, stiffness and semi-axes are the node's
     law (wheel_rail/nonhertz.py), for Hertz and for semi-Hertzian nodes alike."""
-    from exudyn_turnout.wheel_rail.nonhertz import DELTA_REF
+    from exudyn_turnout.wheel_rail.node_laws import DELTA_REF
 
     packed = kernel.pack_tables([crossing_table], [-1], [(7, 8)], [(-1.0, 1.0)])
     fields = {name: k for k, name in enumerate(crossing_table.fields)}

@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from exudyn_turnout.wheel_rail import nonhertz
+from exudyn_turnout.wheel_rail import node_laws, nonhertz
 from exudyn_turnout.wheel_rail.hertz import (
     MIN_CURVATURE_SUM,
     effective_modulus,
@@ -76,7 +76,7 @@ def test_kp_patch_on_a_flat_face_stays_on_the_face():
 def test_flat_face_is_softer_than_its_floored_hertz():
     law = nonhertz.patch_law(FACE[None, ::5], 5 * STEP, A_FACE, 0.0, MODULUS)[0]
     assert law[6] == 1.0  # semi-Hertzian
-    hertz = float(hertz_constant(A_FACE, MIN_CURVATURE_SUM, MODULUS)) * nonhertz.DELTA_REF**1.5
+    hertz = float(hertz_constant(A_FACE, MIN_CURVATURE_SUM, MODULUS)) * node_laws.DELTA_REF**1.5
     assert law[0] < 0.3 * hertz  # measured 0.18
 
 
@@ -85,9 +85,9 @@ def test_power_law_between_and_beyond_its_two_points():
     within 3.7 %; tolerance 5 %."""
     gap, step = FACE[None, ::5], 5 * STEP
     law = nonhertz.patch_law(gap, step, A_FACE, 0.0, MODULUS)[0]
-    for delta in (1e-5, 4e-5, nonhertz.DELTA_REF, 1e-4, 4e-4):
+    for delta in (1e-5, 4e-5, node_laws.DELTA_REF, 1e-4, 4e-4):
         exact = nonhertz.kik_piotrowski(gap, step, A_FACE, delta, MODULUS)
-        ratio = delta / nonhertz.DELTA_REF
+        ratio = delta / node_laws.DELTA_REF
         assert law[0] * ratio ** law[1] == pytest.approx(exact.normal_force[0], rel=0.05)
         assert law[4] * ratio ** law[5] == pytest.approx(exact.b[0], rel=0.05)
 
@@ -98,7 +98,7 @@ def test_hertz_law_where_hertz_fits_is_exactly_hertz():
     constant = float(hertz_constant(a_sum, b_sum, MODULUS))
     assert law[6] == 0.0
     assert law[1] == 1.5 and law[3] == 0.5 and law[5] == 0.5
-    assert law[0] == pytest.approx(constant * nonhertz.DELTA_REF**1.5, rel=1e-12)
+    assert law[0] == pytest.approx(constant * node_laws.DELTA_REF**1.5, rel=1e-12)
     ellipse = hertz_contact(a_sum, b_sum, law[0], MODULUS)
     assert (law[2], law[4]) == pytest.approx((float(ellipse.a), float(ellipse.b)), rel=1e-12)
 

@@ -12,7 +12,7 @@ from exudyn_turnout.wheel_rail.geometry import (
     rail_row,
     surface_derivatives,
 )
-from exudyn_turnout.wheel_rail.nonhertz import DELTA_REF, centre_point, node_offset
+from exudyn_turnout.wheel_rail.node_laws import DELTA_REF, centre_point, node_offset
 from exudyn_turnout.wheel_rail.profiles import read_simpack_profile, read_slices
 from exudyn_turnout.wheel_rail.sections import (
     CrossingDesign,

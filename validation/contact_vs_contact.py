@@ -233,7 +233,7 @@ def table_lines() -> list[str]:
         hertz_constant,
         hertz_contact,
     )
-    from exudyn_turnout.wheel_rail.nonhertz import DELTA_REF
+    from exudyn_turnout.wheel_rail.node_laws import DELTA_REF
     from exudyn_turnout.wheel_rail.turnout_sections import route_contact_tables
 
     modulus = effective_modulus()

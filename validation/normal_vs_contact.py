@@ -63,13 +63,8 @@ from exudyn_turnout.wheel_rail.exact_normal import (  # noqa: E402
     solve_on_lateral_gap,
 )
 from exudyn_turnout.wheel_rail.hertz import effective_modulus  # noqa: E402
-from exudyn_turnout.wheel_rail.nonhertz import (  # noqa: E402
-    DELTA_REF,
-    GAP_STEP,
-    kik_piotrowski,
-    node_centre,
-    patch_law,
-)
+from exudyn_turnout.wheel_rail.node_laws import DELTA_REF, node_centre  # noqa: E402
+from exudyn_turnout.wheel_rail.nonhertz import GAP_STEP, kik_piotrowski, patch_law  # noqa: E402
 from exudyn_turnout.wheel_rail.reference_normal import (  # noqa: E402
     GAP_SAMPLE_STEP,
     CaseGeometry,

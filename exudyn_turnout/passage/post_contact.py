@@ -37,7 +37,7 @@ Rebuilding the instant
   several millimetres along the tangent from the deepest point, ~9 mm at 30 kN on the
   plain stock rail, tests/test_peak_contact.py's flange case; the passage records it
   moved along its normal onto the rail's surface,
-  :func:`~exudyn_turnout.wheel_rail.nonhertz.surface_offset`).  Roll is applied as the
+  :func:`~exudyn_turnout.wheel_rail.node_laws.surface_offset`).  Roll is applied as the
   passage applies it (shift and lift), not as a tilt of the profile across the patch.
 * **Exact normal problem** (:func:`~exudyn_turnout.wheel_rail.exact_normal.solve_normal`)
   on that gap, **at the passage's normal force** (the comparison's primary quantity: the

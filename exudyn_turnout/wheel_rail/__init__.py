@@ -12,8 +12,10 @@ wheel envelope), :mod:`.geometry` (candidate contact points, wheelset equilibriu
 equivalent conicity, flange angle, Nadal), :mod:`.hertz` (exact Hertz ellipse, C_H),
 :mod:`.creep` (Kalker coefficients, Polach's creep forces with spin), :mod:`.fastsim` and
 :mod:`.creep_table` (Kalker's FASTSIM and its table, the kernel's default creep law),
-:mod:`.nonhertz` (Kik-Piotrowski normal contact where Hertz does not fit), :mod:`.tables`
-(cached tables, vectorised lookup), :mod:`.transfer` (load transfer and dips),
+:mod:`.nonhertz` (Kik-Piotrowski normal contact where Hertz does not fit),
+:mod:`.node_laws` (the tables' per-node laws: normal force, force centre, contact point on
+the rail), :mod:`.tables` (cached tables, vectorised lookup), :mod:`.transfer` (load transfer
+and dips),
 :mod:`.references` (CONTACT reference outputs), :mod:`.data` (packaged data); a turnout's
 rail bodies: :mod:`.turnout_design` (``[wheel_rail]`` design data and formulas),
 :mod:`.turnout_segments` (the ``sections`` lists), :mod:`.section_nodes` (x grids),

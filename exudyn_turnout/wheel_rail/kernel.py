@@ -9,14 +9,14 @@ call, for every body and every candidate at the current state:
    hold the same contact points, else the cell's first node with the gap carried to the
    query's shift to first order), the normal gap carried to the wheel's lift,
    ``gap + cos(gamma) lift``.  The contact's position (on rail and wheel, and the moment
-   arms) is the node's force centre at the penetration (:func:`.nonhertz.node_centre`):
+   arms) is the node's force centre at the penetration (:func:`.node_laws.node_centre`):
    the point of the rail surface on the normal force's line of action through it
-   (:func:`.nonhertz.centre_point`).
+   (:func:`.node_laws.centre_point`).
 2. **Normal force** along the contact normal, the node's law
    ``N_ref (delta / DELTA_REF)^n`` (:mod:`.nonhertz`: exact Hertz ``C_H delta^1.5`` where the
    Hertz ellipse fits the surfaces, a power law through two Kik-Piotrowski solutions
    where it does not: flat faces, corners, conformal points; one compiled law with the
-   tables' lookup, :func:`.nonhertz.node_normal_force`), plus an optional normal
+   tables' lookup, :func:`.node_laws.node_normal_force`), plus an optional normal
    damping ``c d(delta)/dt`` (never pulling).  The semi-axes for the creep law follow the
    same per-node law (Hertz's ellipse, or the equivalent ellipse of the KP patch).
 3. **Creepages** at the contact point from the wheelset's motion relative to the rail body
@@ -87,14 +87,14 @@ from exudyn_turnout.wheel_rail.creep_table import (
 )
 from exudyn_turnout.wheel_rail.hertz import curvature_sums, ellipse_parameter
 from exudyn_turnout.wheel_rail.lead import MAX_LEAD_SINE
-from exudyn_turnout.wheel_rail.nonhertz import (
+from exudyn_turnout.wheel_rail.node_laws import (
     DELTA_REF,
-    PATCH_FIELDS,
     centre_point,
     node_centre,
     node_normal_force,
     node_offset,
 )
+from exudyn_turnout.wheel_rail.nonhertz import PATCH_FIELDS
 from exudyn_turnout.wheel_rail.tables import ContactTable
 
 __all__ = [
@@ -494,8 +494,8 @@ def _point(
     gap -= r * lead * lead / (1.0 + math.sqrt(1.0 - lead * lead)) * cos_g
     gap += x_lead * fields[_GAP_DX]  # the rail at x + x_lead, to first order along x
     delta = -(gap + cos_g * lift)
-    # the contact position: the force centre at this penetration (.nonhertz.node_centre)
-    # on the rail surface, on the force's line of action (.nonhertz.centre_point)
+    # the contact position: the force centre at this penetration (.node_laws.node_centre)
+    # on the rail surface, on the force's line of action (.node_laws.centre_point)
     moved = node_centre(fields[_CENTRE], fields[_CENTRE_EXP], delta)
     offset = node_offset(fields[_OFFSET_C2], fields[_OFFSET_C3], moved)
     moved_y, moved_z = centre_point(moved, offset, sin_g, cos_g)

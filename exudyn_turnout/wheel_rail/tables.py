@@ -44,14 +44,13 @@ from exudyn_turnout.wheel_rail.geometry import (
     surface_derivatives,
 )
 from exudyn_turnout.wheel_rail.hertz import curvature_sums, effective_modulus, hertz_constant
-from exudyn_turnout.wheel_rail.nonhertz import (
-    PATCH_FIELDS,
+from exudyn_turnout.wheel_rail.node_laws import (
     centre_point,
     node_centres,
     node_normal_forces,
     node_offsets,
-    patch_law_fields,
 )
+from exudyn_turnout.wheel_rail.nonhertz import PATCH_FIELDS, patch_law_fields
 from exudyn_turnout.wheel_rail.sections import SectionGrid, wheel_envelope
 
 __all__ = [
@@ -172,7 +171,7 @@ class ContactLookup:
     penetration: np.ndarray  #: m, normal interpenetration max(-gap, 0)
     #: m, contact position on the rail (side coordinates): the point of the rail surface on
     #: the normal force's line of action through its centre (:func:`.nonhertz.force_centre`,
-    #: :func:`.nonhertz.centre_point`)
+    #: :func:`.node_laws.centre_point`)
     y_rail: np.ndarray
     z_rail: np.ndarray  #: m, height of that position on the rail surface
     s_wheel: np.ndarray  #: m, that position on the wheel from its taping line
@@ -181,10 +180,10 @@ class ContactLookup:
     hertz_constant: np.ndarray  #: N/m^1.5
     x_offset: np.ndarray  #: m, longitudinal position of the contact relative to the wheel
     valid: np.ndarray  #: bool, slot holds a candidate
-    patch_force: np.ndarray  #: N, the node law's force at :data:`.nonhertz.DELTA_REF`
+    patch_force: np.ndarray  #: N, the node law's force at :data:`.node_laws.DELTA_REF`
     force_exponent: np.ndarray  #: -, the node law's exponent n
     #: m, force centre from the deepest point along the lateral tangent at the query's
-    #: penetration (:func:`.nonhertz.node_centre`; y_rail, z_rail and s_wheel include it,
+    #: penetration (:func:`.node_laws.node_centre`; y_rail, z_rail and s_wheel include it,
     #: moved onto the rail surface along the normal)
     centre: np.ndarray
 
@@ -632,7 +631,7 @@ def lookup_values(table: ContactTable, x, shift, lift=0.0) -> np.ndarray:
 def normal_force(contacts: ContactLookup) -> np.ndarray:
     """One-sided normal force along each contact normal, by the node's law.
 
-    The kernel's law (:func:`.nonhertz.node_normal_force`, the same compiled function):
+    The kernel's law (:func:`.node_laws.node_normal_force`, the same compiled function):
     ``N_ref (delta / DELTA_REF)^n`` with the interpolated law fields; exactly
     ``C_H delta^1.5`` where the nodes are Hertz's.
 
