@@ -18,7 +18,7 @@ import pytest
 
 from exudyn_turnout.inputs.turnout import default_turnout_path, load_turnout
 from exudyn_turnout.inputs.vehicle import default_vehicle_path, load_vehicle
-from exudyn_turnout.passage.contact import profile
+from exudyn_turnout.passage.contact import profile, route_cache
 from exudyn_turnout.studies.toml_writer import dumps, set_dotted
 from exudyn_turnout.wheel_rail.data import profile_path
 
@@ -35,7 +35,7 @@ def _turnout_with(tmp_path: Path, name: str, edits: Mapping[str, object]):
 
 
 def _key(turnout, vehicle=None, route="through"):
-    return profile.route_contact_key(turnout, route, vehicle or load_vehicle())
+    return route_cache.route_contact_key(turnout, route, vehicle or load_vehicle())
 
 
 def test_track_parameters_do_not_change_the_key(tmp_path):
@@ -66,7 +66,7 @@ def test_geometry_changes_the_key(tmp_path):
     assert base not in keys.values()
     assert len(set(keys.values())) == len(keys)
     assert _key(_turnout_with(tmp_path, "base-2", {})) == base
-    assert profile.route_contact_key(load_turnout(), "diverging", load_vehicle()) != _key(
+    assert route_cache.route_contact_key(load_turnout(), "diverging", load_vehicle()) != _key(
         load_turnout()
     )
 
@@ -107,9 +107,9 @@ def test_a_pad_stiffness_study_reuses_the_tables_in_memory(tmp_path):
     first = profile.route_contact(softer, "through", vehicle)
     assert profile.route_contact(stiffer, "through", vehicle) is first
     raised = {"routes.through.contacts.0.z": [0.0, 0.0, -0.004]}
-    assert profile.route_contact_key(
+    assert route_cache.route_contact_key(
         _turnout_with(tmp_path, "raised", raised), "through", vehicle
-    ) != profile.route_contact_key(stiffer, "through", vehicle)
+    ) != route_cache.route_contact_key(stiffer, "through", vehicle)
 
 
 class _Recorder(Mapping):
@@ -154,13 +154,13 @@ class _RecordingTurnout:
 @pytest.mark.parametrize("route", ["through", "diverging"])
 def test_the_key_covers_what_the_tables_are_built_from(monkeypatch, tmp_path, route):
     """Build the route's tables (from the disk cache) and note what of the turnout is read."""
-    monkeypatch.setattr(profile, "_RECENT", profile._RecentContacts())  # nothing in memory
+    monkeypatch.setattr(route_cache, "_RECENT", route_cache._RecentContacts())  # nothing in memory
     # no packed route on disk either: the tables are built (each from its disk cache)
-    monkeypatch.setattr(profile, "_packed_cache_path", lambda key, d=None: tmp_path / "r.npz")
+    monkeypatch.setattr(route_cache, "_packed_cache_path", lambda key, d=None: tmp_path / "r.npz")
     attributes: set[str] = set()
     sections: set[str] = set()
     turnout = _RecordingTurnout(load_turnout(), attributes, sections)
     profile.route_contact(turnout, route, load_vehicle())
-    assert sections and sections <= set(profile.CONTACT_SECTIONS), sections
+    assert sections and sections <= set(route_cache.CONTACT_SECTIONS), sections
     # the zones (raw "zones" is in the key) and the file's place (its design files are)
     assert attributes <= {"raw", "source", "zones", "zone", "x_min", "x_max"}, attributes

@@ -17,7 +17,7 @@ import pytest
 
 from exudyn_turnout.inputs.turnout import load_turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
-from exudyn_turnout.passage.contact import profile
+from exudyn_turnout.passage.contact import profile, route_cache
 from exudyn_turnout.wheel_rail import turnout_sections
 
 ARRAYS = ("values", "blendable", "x", "layout", "bounds")
@@ -38,7 +38,7 @@ def entry(tmp_path, monkeypatch):
     """The route's disk entry in ``tmp_path``; counts the builds of the route's tables."""
     folder = tmp_path / "cache"
     monkeypatch.setattr(
-        profile, "_packed_cache_path", lambda key, cache_dir=None: folder / f"rc_{key[:8]}.npz"
+        route_cache, "_packed_cache_path", lambda key, cache_dir=None: folder / f"rc_{key[:8]}.npz"
     )
     builds: list[str] = []
     original = turnout_sections.route_contact_tables
@@ -53,7 +53,7 @@ def entry(tmp_path, monkeypatch):
 
 def _fresh(turnout, vehicle, monkeypatch, route="through"):
     """``route_contact`` in a process with nothing in memory (disk entry or build)."""
-    monkeypatch.setattr(profile, "_RECENT", profile._RecentContacts())
+    monkeypatch.setattr(route_cache, "_RECENT", route_cache._RecentContacts())
     return profile.route_contact(turnout, route, vehicle)
 
 
@@ -89,7 +89,7 @@ def test_a_passage_on_the_loaded_contact_has_the_same_columns(turnout, monkeypat
     settings = replace(PassageSettings(x_start=-5.0, x_end=-4.9), contact="profile")
     runs = []
     for _ in range(2):  # built, then loaded
-        monkeypatch.setattr(profile, "_RECENT", profile._RecentContacts())
+        monkeypatch.setattr(route_cache, "_RECENT", route_cache._RecentContacts())
         runs.append(simulate_passage(turnout, settings, "wheelset"))
     assert len(builds) == 1 and len(list(folder.glob("rc_*.npz"))) == 1
     built, loaded = runs
@@ -143,7 +143,7 @@ def test_an_unusable_cache_location_builds_with_one_warning(
     blocker = tmp_path / "not_a_directory"
     blocker.write_text("a file where the cache should be")
     monkeypatch.setattr(
-        profile, "_packed_cache_path", lambda key, cache_dir=None: blocker / "rc.npz"
+        route_cache, "_packed_cache_path", lambda key, cache_dir=None: blocker / "rc.npz"
     )
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -156,9 +156,9 @@ def test_an_unusable_cache_location_builds_with_one_warning(
 
 
 def test_the_entry_key_covers_the_code_and_numpy(monkeypatch):
-    base = profile._packed_key("a" * 64)
-    assert profile._packed_key("b" * 64) != base  # route_contact_key: inputs, route, wheel
-    files = {f"{p.parent.name}/{p.name}" for p in profile._packed_sources()}
+    base = route_cache._packed_key("a" * 64)
+    assert route_cache._packed_key("b" * 64) != base  # route_contact_key: inputs, route, wheel
+    files = {f"{p.parent.name}/{p.name}" for p in route_cache._packed_sources()}
     for name in (  # the modules that build and pack (issue 24's list) and the loaders
         "wheel_rail/turnout_sections.py",
         "wheel_rail/section_nodes.py",
@@ -173,4 +173,4 @@ def test_the_entry_key_covers_the_code_and_numpy(monkeypatch):
     ):
         assert name in files, name
     monkeypatch.setattr(np, "__version__", "0.0.0")
-    assert profile._packed_key("a" * 64) != base
+    assert route_cache._packed_key("a" * 64) != base

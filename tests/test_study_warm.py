@@ -126,7 +126,7 @@ def test_a_serial_study_loads_a_routes_contact_tables_once(tmp_path, monkeypatch
     in memory. In case order (the stiffness varies fastest) each case loaded its tables
     again; by file, once per file (5); keyed by what the tables are built from (the pad
     stiffness is not), once."""
-    from exudyn_turnout.passage.contact import profile
+    from exudyn_turnout.passage.contact import route_cache
     from exudyn_turnout.studies import run_study
     from exudyn_turnout.wheel_rail import turnout_sections
 
@@ -138,9 +138,9 @@ def test_a_serial_study_loads_a_routes_contact_tables_once(tmp_path, monkeypatch
         return original(*args, **kwargs)
 
     monkeypatch.setattr(turnout_sections, "route_contact_tables", counted)
-    monkeypatch.setattr(profile, "_RECENT", profile._RecentContacts())  # none in memory yet
+    monkeypatch.setattr(route_cache, "_RECENT", route_cache._RecentContacts())  # none in memory yet
     # nor a packed route on disk
-    monkeypatch.setattr(profile, "_packed_cache_path", lambda key, d=None: tmp_path / "r.npz")
+    monkeypatch.setattr(route_cache, "_packed_cache_path", lambda key, d=None: tmp_path / "r.npz")
     path = tmp_path / "study.toml"
     path.write_text(
         """

@@ -11,7 +11,7 @@ import sys
 import numpy as np
 import pytest
 
-from exudyn_turnout.passage.contact.profile import wheel_grid
+from exudyn_turnout.passage.contact.route_cache import wheel_grid
 from exudyn_turnout.wheel_rail.data import profile_path
 from exudyn_turnout.wheel_rail.geometry import grid_wheel
 from exudyn_turnout.wheel_rail.profiles import ProfileFormatError, read_profile

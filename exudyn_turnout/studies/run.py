@@ -304,14 +304,14 @@ _WARM_KEYS = ("route", "layers", "contact", "source", "track_mechanism")
 def _tables_of(turnout_text: str) -> str:
     """SHA-256 of what a turnout file's contact tables are built from.
 
-    Its :data:`~exudyn_turnout.passage.contact.profile.CONTACT_SECTIONS` (the sections the
+    Its :data:`~exudyn_turnout.passage.contact.route_cache.CONTACT_SECTIONS` (the sections the
     route's contact tables in memory are keyed by): turnout files that differ in the track's
     stiffness, damping or masses only share their tables. A file that is not TOML: its whole
     text (the case reports the error).
     """
     import tomllib
 
-    from exudyn_turnout.passage.contact.profile import CONTACT_SECTIONS
+    from exudyn_turnout.passage.contact.route_cache import CONTACT_SECTIONS
 
     try:
         data = tomllib.loads(turnout_text)
