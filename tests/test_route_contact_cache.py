@@ -127,12 +127,21 @@ def test_a_damaged_or_foreign_entry_is_built_again_and_overwritten(
     built = _fresh(turnout, vehicle, monkeypatch)
     (path,) = folder.glob("rc_*.npz")
     _damage(path, how)
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")  # no warning, no traceback: built again quietly
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")  # no traceback: built again
         again = _fresh(turnout, vehicle, monkeypatch)
+    messages = [str(w.message) for w in caught if "route contact cache" in str(w.message)]
+    if how == "foreign":  # another code's or input's entry under this name: quietly replaced
+        assert messages == []
+    else:  # a damaged entry: one warning naming the file and what is wrong
+        assert len(messages) == 1, messages
+        assert path.name in messages[0] and "built again" in messages[0]
+        assert all(w.category is RuntimeWarning for w in caught if str(w.message) in messages)
     assert len(builds) == 2
     _same(again, built)
-    _same(_fresh(turnout, vehicle, monkeypatch), built)  # the overwritten entry is whole
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # the overwritten entry is whole: read quietly
+        _same(_fresh(turnout, vehicle, monkeypatch), built)
     assert len(builds) == 2
 
 

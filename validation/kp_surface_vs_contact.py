@@ -521,7 +521,7 @@ def main() -> int:
         *rail_end_lines(),
         "## Cost, and whether it can be tabulated",
         "",
-        "A table node stores the law at two penetrations (`nonhertz.DELTA_LOW`,"
+        "A table node stores the law at two penetrations (`node_laws.DELTA_LOW`,"
         " `DELTA_HIGH`): two KP calls plus, for KP 3-D, the 3-D gap around the node."
         f"  Measured here (process time, per node, over the {n} cases): KP 3-D at the tables'"
         f" resolution ({TABLE_DX * 1e3:.1f} x {GAP_STEP * 1e3:.1f} mm) with the gap sampled"

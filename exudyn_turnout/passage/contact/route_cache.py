@@ -11,6 +11,7 @@ profile there.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Mapping
 from typing import Any
 
@@ -171,8 +172,9 @@ def wheel_grid(profile_file, step: float, nominal_radius: float, cache_dir=None)
     radius, the numpy and scipy versions and the source of the code that reads and grids a
     profile; the arrays are returned bit for bit as computed. A run then needs neither the
     Savitzky-Golay filter nor ``scipy.signal`` (0.5 s to import). A damaged or unreadable
-    entry is computed again and overwritten; an unusable cache location means computing it
-    (one warning, :func:`~exudyn_turnout.wheel_rail.tables.write_cache_file`).
+    entry is computed again and overwritten (one ``RuntimeWarning`` naming the file); an
+    unusable cache location means computing it (one warning,
+    :func:`~exudyn_turnout.wheel_rail.tables.write_cache_file`).
 
     Parameters
     ----------
@@ -210,19 +212,28 @@ def wheel_grid(profile_file, step: float, nominal_radius: float, cache_dir=None)
     key = _wheel_grid_key(profile_bytes, step, nominal_radius)
     path = Path(cache_dir or default_cache_dir()) / f"wheel_grid_{key[:24]}.npz"
     if path.is_file():
+        problem = None
         try:
             with open(path, "rb") as handle, np.load(handle, allow_pickle=False) as data:
                 arrays = {name: data[name] for name in _WHEEL_ARRAYS}
-                if str(data["key"]) == key and str(data["checksum"]) == _array_checksum(arrays):
-                    return WheelGrid(
-                        s=arrays["s"],
-                        z=arrays["z"],
-                        slope=arrays["slope"],
-                        curvature=arrays["curvature"],
-                        nominal_radius=float(arrays["nominal_radius"]),
-                    )
-        except Exception:  # noqa: S110 - any unreadable entry is computed again below
-            pass
+                if str(data["key"]) == key:
+                    if str(data["checksum"]) == _array_checksum(arrays):
+                        return WheelGrid(
+                            s=arrays["s"],
+                            z=arrays["z"],
+                            slope=arrays["slope"],
+                            curvature=arrays["curvature"],
+                            nominal_radius=float(arrays["nominal_radius"]),
+                        )
+                    problem = "fails its checksum"
+        except Exception as err:  # noqa: BLE001 - any unreadable entry is computed again below
+            problem = f"cannot be read ({type(err).__name__}: {err})".replace("\n", " ")
+        if problem is not None:
+            warnings.warn(
+                f"wheel-grid cache {path}: {problem}; the grid is computed again",
+                RuntimeWarning,
+                2,
+            )
     wheel = computed()
     arrays = {name: np.asarray(getattr(wheel, name), float) for name in _WHEEL_ARRAYS}
     write_cache_file(
@@ -385,8 +396,10 @@ def route_entry(key: str, cache_dir=None) -> tuple:
 def read_route_entry(path, full_key: str) -> tuple | None:
     """The route contact stored at ``path`` under ``full_key``, or None.
 
-    None for a missing or damaged entry, another key or checksum, or arrays that do not fit
-    together: the caller builds the route again.
+    None for a missing entry or one stored under another key (code or inputs changed), and
+    for a damaged one (unreadable, failing its checksum, arrays that do not fit together),
+    which also gives one ``RuntimeWarning`` naming the file and what is wrong with it: the
+    caller builds the route again and overwrites the entry.
 
     Parameters
     ----------
@@ -409,15 +422,25 @@ def read_route_entry(path, full_key: str) -> tuple | None:
                 return None
             arrays = {name: data[name] for name in _PACKED_ARRAYS}
             texts = {name: tuple(str(a) for a in data[name]) for name in _PACKED_TEXTS}
+            problem = None
             if str(data["checksum"]) != _crc_checksum(arrays):
-                return None
-        n = arrays["layout"].shape[0]
-        if arrays["layout"].shape != (n, 9) or any(len(texts[t]) != n for t in _PACKED_TEXTS):
-            return None
-        tables = PackedTables(names=texts["names"], **arrays)
-        return tables, texts["wheels"], texts["rails"]
-    except Exception:  # noqa: BLE001 - any unreadable entry is built again by the caller
-        return None
+                problem = "fails its checksum"
+        if problem is None:
+            n = arrays["layout"].shape[0]
+            shapes_fit = arrays["layout"].shape == (n, 9)
+            if not shapes_fit or any(len(texts[t]) != n for t in _PACKED_TEXTS):
+                problem = "holds arrays that do not fit together"
+        if problem is None:
+            tables = PackedTables(names=texts["names"], **arrays)
+            return tables, texts["wheels"], texts["rails"]
+    except Exception as err:  # noqa: BLE001 - any unreadable entry is built again by the caller
+        problem = f"cannot be read ({type(err).__name__}: {err})".replace("\n", " ")
+    warnings.warn(
+        f"route contact cache {path}: {problem}; the route's contact is built again",
+        RuntimeWarning,
+        2,
+    )
+    return None
 
 
 def write_route_entry(path, full_key: str, tables: PackedTables, wheels, rails) -> None:
