@@ -125,7 +125,8 @@ import functools
 import gc
 import math
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
+from typing import Any
 
 import numpy as np
 
@@ -135,8 +136,10 @@ from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
 from exudyn_turnout.passage.common import (
     CheckRailSteps,
+    CheckRailStop,
     QuietExudyn,
     join_segments,
+    monotone_progress,
     newton_tolerance,
     progress_function,
 )
@@ -261,7 +264,12 @@ def _run(
     total: float,
     progress: Callable | None,
     static_load: float,
+    stop: CheckRailStop | None = None,
 ) -> dict[str, np.ndarray]:
+    """Run a built segment for ``duration`` seconds (Exudyn's ``SolveDynamic`` or, opt-in,
+    the compiled stepper) and return its columns; ``stop`` (Exudyn's path only: the
+    predicted check rail's fine piece, :meth:`~exudyn_turnout.passage.common.CheckRailSteps.
+    run_predicted`) may end the run early."""
     import exudyn as exu
 
     from exudyn_turnout.corunning.track import simulation_settings
@@ -287,8 +295,19 @@ def _run(
     pre_step = None
     if progress is not None:
         pre_step = progress_function(progress, t_offset, total, system.x_front, v)
-        if reason is not None:
-            system.mbs.SetPreStepUserFunction(pre_step)
+    if stop is not None:
+        if reason is None:
+            raise ValueError("_run: the compiled stepper cannot stop a run early")
+        watch, report, force = stop, pre_step, _check_force(system, contacts, stop.pairs)
+        state = functools.partial(named_state, system)
+
+        def pre_step(mbs, t):
+            if report is not None:
+                report(mbs, t)
+            return watch(force, state)
+
+    if pre_step is not None and reason is not None:
+        system.mbs.SetPreStepUserFunction(pre_step)
     # no garbage collection while stepping: the residual calls allocate lists of floats only
     # (no reference cycles), yet every ~700 of them started a collection (3 % of a run)
     collecting = gc.isenabled()
@@ -379,6 +398,42 @@ def _run(
         cols.update(own)
     cols.update(recorded_body_columns(system.mbs, cols["t_s"] - t_offset, stored_data))
     return cols
+
+
+def _lateral(state: Mapping, wheelsets: int) -> list[float]:
+    """m, every wheelset's lateral displacement y in a named state."""
+    return [float(state[f"ws{i + 1}"][0][0]) for i in range(wheelsets)]
+
+
+def _check_force(
+    system: SegmentSystem, contacts: Any, pairs: tuple[tuple[str, str], ...]
+) -> Callable[[], float | None]:
+    """A function giving the check rails' largest contact force (N, |(Fy, Fz)| of each
+    wheelset's check-rail contact, as :func:`~exudyn_turnout.passage.common.
+    check_rail_window` takes it from the columns) at the contacts' last evaluation."""
+    picks = []  #: per element and check pair: (element index, y indices, z indices)
+    for k, element in enumerate(system.elements):
+        for wheel, slot in pairs:
+            seen = {
+                (b.i_y, b.i_z)
+                for b in element.bodies
+                if b.rail == slot and element.wheel_of.get(slot) == wheel
+            }
+            if seen:
+                iy, iz = zip(*sorted(seen))
+                picks.append((k, np.array(iy), np.array(iz)))
+
+    def force() -> float | None:
+        forces = contacts.last_forces()
+        if forces is None:
+            return None
+        largest = 0.0
+        for k, iy, iz in picks:
+            f = forces[k]
+            largest = max(largest, math.hypot(float(f[iy].sum()), float(f[iz].sum())))
+        return largest
+
+    return force
 
 
 def _offset_of(system: SegmentSystem, i: int) -> float:
@@ -498,31 +553,48 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
     starts = []
     tables: dict = {}  # the running loads' table, shared by the segments
     check = CheckRailSteps(settings, route, model.static_wheel_load, len(offsets))
+    progress = monotone_progress(progress)  # a segment run again reports its times again
+    load = model.static_wheel_load
     for k in range(len(events) - 1):
         x0, x1 = events[k], events[k + 1]
         at = places(x0, x1)
-        system = build(*args, at, x0, v, False, x_range, tables)
-        carry_over_state(state, previous, system, route, settings.layers, x0, t_prev)
         duration = (x1 - x0) / v
-        cols = _run(system, duration, settings, t_offset, total, progress, model.static_wheel_load)
-        window = check.window(cols)
-        if window is not None and check.step is not None:  # again, the window stepped finer
-            carried = [state, previous, t_prev]
+        #: the pieces' start states by their start time (s from the segment's start): a
+        #: piece run again starts where it started before, a new one where the last ended
+        begun: dict[float, list] = {}
+        carried = [state, previous, t_prev]
 
-            def run_piece(t_from, length, x_p, fine, at=at, t0=t_offset, carried=carried):
-                system = build(*args, at, x_p, v, False, x_range, tables)
-                carry_over_state(*carried[:2], system, route, settings.layers, x_p, carried[2])
-                load = model.static_wheel_load
-                piece = _run(system, length, fine, t0 + t_from, total, progress, load)
+        def run_piece(t_from, length, x_p, step_settings, stop=None, at=at, t0=t_offset,
+                      carried=carried, begun=begun):  # fmt: skip
+            origin = begun.setdefault(t_from, list(carried))
+            system = build(*args, at, x_p, v, False, x_range, tables)
+            carry_over_state(*origin[:2], system, route, settings.layers, x_p, origin[2])
+            piece = _run(system, length, step_settings, t0 + t_from, total, progress, load, stop)
+            if stop is not None and stop.state is not None:  # the fine piece ends at stop.end
+                carried[:] = [stop.state, system, (stop.end - stop.first) * stop.h]
+            else:
                 carried[:] = [named_state(system), system, length]
-                return piece
+            return piece
 
-            cols, t_prev = check.rerun(cols, window, duration, t_offset, x0, run_piece)
+        # predicted to load a check rail: the fine step directly (Exudyn's path: the stepper
+        # cannot stop a run where the fine stepping ends)
+        fine_from = check.predict(x0, x1, offsets, _lateral(state, len(offsets)))
+        if fine_from is not None and settings.solver != "compiled":
+            cols, t_prev = check.run_predicted(duration, t_offset, x0, fine_from, run_piece)
             system = carried[1]
         else:
-            if window is not None:
-                check.unrefined(window, cols)
-            t_prev = duration
+            cols = run_piece(0.0, duration, x0, settings)
+            system = carried[1]
+            window = check.window(cols)
+            if window is not None and check.step is not None:  # again, the window finer
+                cols, t_prev = check.rerun_unpredicted(
+                    cols, window, duration, t_offset, x0, run_piece
+                )
+                system = carried[1]
+            else:
+                if window is not None:
+                    check.unrefined(window, cols)
+                t_prev = duration
         segments.append(cols if k == 0 else {n: c[1:] for n, c in cols.items()})
         starts.append(x0)
         state, previous = named_state(system), system
