@@ -220,3 +220,18 @@ def test_through_route_bit_for_bit_without_prediction(turnout):
     assert on.summary["check_rail_predicted"] == [] and on.summary["check_rail_rerun"] == []
     for name, column in on.columns.items():
         assert np.array_equal(column, off.columns[name], equal_nan=True), name
+
+
+def test_single_wheelset_rerun_progress_never_goes_back(turnout):
+    # the single wheelset refines after the fact: its loaded zone runs twice, the progress
+    # reported once
+    fractions: list[float] = []
+    run = simulate_passage(
+        turnout,
+        PassageSettings(**WINDOW),
+        vehicle="wheelset",
+        progress=lambda f, x: fractions.append(f),
+    )
+    assert run.summary["check_rail_refined"]  # it did run again
+    assert len(fractions) > 10
+    assert all(b >= a for a, b in zip(fractions, fractions[1:]))

@@ -19,7 +19,9 @@ rails, and the state of everything that continues (vehicle, sleeper, rails prese
 both zones, or a rail slot that a route says continues another) is carried over. A zone
 where a check-rail contact carried load at a step coarser than
 ``settings.check_rail_time_step`` runs again from its start at that step to the load's end
-(:class:`~exudyn_turnout.passage.common.CheckRailSteps`, as the full vehicle's segments).
+(:class:`~exudyn_turnout.passage.common.CheckRailSteps`, as the full vehicle's segments did
+before they were predicted: here every zone runs at its step first; the progress never goes
+back).
 """
 
 from __future__ import annotations
@@ -41,6 +43,7 @@ from exudyn_turnout.passage.common import (
     CheckRailSteps,
     QuietExudyn,
     join_segments,
+    monotone_progress,
     progress_function,
     zones_of_run,
 )
@@ -496,6 +499,7 @@ def _simulate(
     segments, x, t_offset, previous, total = [], x_a, 0.0, static, (x_b - x_a) / v
     # the height-table contact has no per-contact columns: no check rail seen
     check = CheckRailSteps(settings, route, W)
+    progress = monotone_progress(progress)  # a zone run again reports its times again
     for k, zone in enumerate(zones):
         continues = route.continues.get(zone.index, {}) if k else {}
         system = build_zone_system(turnout, route, vehicle, zone, settings, x, v, contact)
