@@ -235,3 +235,76 @@ def test_single_wheelset_rerun_progress_never_goes_back(turnout):
     assert run.summary["check_rail_refined"]  # it did run again
     assert len(fractions) > 10
     assert all(b >= a for a, b in zip(fractions, fractions[1:]))
+
+
+# ------------------------------------------------------- run_predicted's pieces (a fake run)
+
+
+def _fake_run(loads: list[tuple[float, float]], calls: list, t_offset: float = 1.0):
+    """A run_piece that steps a check-rail force of 10 kN on the absolute time ranges
+    ``loads`` (else 0): sampled every step, the stop asked before each step."""
+
+    def force_at(t: float) -> float:
+        return 1e4 if any(a - 1e-12 <= t <= b + 1e-12 for a, b in loads) else 0.0
+
+    def run_piece(t_from, length, x_from, settings, stop=None):
+        h = settings.time_step
+        steps = max(1, int(math.ceil(length / h - 1e-9)))
+        step = length / steps
+        calls.append((round(t_from, 9), round(length, 9), h, stop is not None))
+        times = [t_offset + t_from]
+        for k in range(steps):
+            t = times[-1]
+            go = True if stop is None else stop(lambda t=t: force_at(t), lambda t=t: {"t": t})
+            times.append(t_offset + t_from + (k + 1) * step)
+            if not go:
+                break
+        t = np.array(times)
+        fy = np.array([force_at(x) for x in t])
+        return {"t_s": t, "x_m": 10.0 + V * (t - t_offset), "Fy_ws1_right_r3_N": fy}
+
+    return run_piece
+
+
+def test_run_predicted_fine_to_the_loads_end_then_the_run_step(turnout):
+    check, calls = _check(turnout, "diverging"), []
+    run = _fake_run([(1.02, 1.03)], calls)
+    cols, last = check.run_predicted(0.1, 1.0, 10.0, 0.0, run)
+    h = 1e-4
+    # the segment's grid times, every one once
+    assert np.allclose(cols["t_s"], 1.0 + h * np.arange(1001), atol=1e-12, rtol=0)
+    end = 300 + math.ceil(CHECK_RAIL_MARGIN / h - 1e-9)  # last load at 0.03 s + margin
+    assert [c[3] for c in calls] == [True, False]  # the fine piece (stopped), then the rest
+    assert calls[1][:3] == (round(end * h, 9), round((1000 - end) * h, 9), h)
+    assert calls[0][2] == pytest.approx(h / 4)
+    assert last == pytest.approx((1000 - end) * h)
+    assert check.refined == [(10.0, pytest.approx(10.0 + V * end * h), pytest.approx(h / 4))]
+    assert check.predicted == [(10.0, pytest.approx(10.0 + V * 0.1), True)] and not check.reruns
+
+
+def test_run_predicted_load_after_the_fine_piece_runs_it_again(turnout):
+    # a second load after the quiet time: the rest (at 1e-4 s) finds it, the fine piece runs
+    # again from its start to that load's end (the safety net), then the rest
+    check, calls = _check(turnout, "diverging"), []
+    run = _fake_run([(1.02, 1.03), (1.07, 1.072)], calls)
+    cols, last = check.run_predicted(0.1, 1.0, 10.0, 0.0, run)
+    h, margin = 1e-4, math.ceil(CHECK_RAIL_MARGIN / 1e-4 - 1e-9)
+    assert [(c[0], c[3]) for c in calls] == [(0.0, True), (round(0.035, 9), False), (0.0, False),
+                                            (round((720 + margin) * h, 9), False)]  # fmt: skip
+    assert len(check.reruns) == 1 and check.reruns[0][2] == 1e4
+    assert check.refined[-1][1] == pytest.approx(10.0 + V * (720 + margin) * h)
+    assert np.allclose(cols["t_s"], 1.0 + h * np.arange(1001), atol=1e-12, rtol=0)
+
+
+def test_run_predicted_from_where_the_check_rail_starts(turnout):
+    check, calls = _check(turnout, "diverging"), []
+    run = _fake_run([(1.02, 1.03)], calls)
+    check.run_predicted(0.1, 1.0, 10.0, 0.0153, run)
+    # at the run's step to the grid point before the predicted start, then fine
+    assert [(c[0], c[3]) for c in calls[:2]] == [(0.0, False), (round(0.0153, 9), True)]
+    assert check.refined[0][0] == pytest.approx(10.0 + V * 0.0153)
+    # a load before the predicted start (the safety net): fine from the segment's start
+    check, calls = _check(turnout, "diverging"), []
+    check.run_predicted(0.1, 1.0, 10.0, 0.0153, _fake_run([(1.01, 1.03)], calls))
+    assert [(c[0], c[3]) for c in calls[:2]] == [(0.0, False), (0.0, True)]
+    assert len(check.reruns) == 1 and check.refined[0][0] == 10.0

@@ -98,9 +98,9 @@ CHECK_RAIL_MARGIN = 0.005
 #: start must reach for the segment to be predicted to load it (:meth:`CheckRailSteps.predict`).
 #: The 2-layer full vehicle on the diverging route at 80 km/h (clearance 4 mm): the leading
 #: wheelset, which loads it, runs 6.2 mm towards it at 44.29 m and 5.0 mm at 46.85 m; the
-#: trailing one of the bogie, which does not, 1.3 mm at 51 m; on the through route every
-#: wheelset runs within 0.1 mm of the centre. A wrong guess costs time, not accuracy: a
-#: segment predicted unloaded that loads it runs again (the safety net).
+#: trailing one of the bogie, which does not, 1.3 mm at 51 m; on the through route (100 km/h)
+#: they run within 0.3 mm of the centre towards its check rail. A wrong guess costs time,
+#: not accuracy: a segment predicted unloaded that loads it runs again (the safety net).
 CHECK_RAIL_HEADING = 0.5
 #: s, how long a predicted segment's fine run goes on past where :func:`refine_pieces` would
 #: end it (the last load plus :data:`CHECK_RAIL_MARGIN`) before it stops
