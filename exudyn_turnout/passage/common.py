@@ -851,8 +851,7 @@ class CheckRailSteps:
         of the segment and its lateral displacement towards that check rail (the right
         wheel's check rail stands inside the right rail: +y; the left wheel's: -y) is at least
         :data:`CHECK_RAIL_HEADING` of the least clearance it meets there (the route's
-        clearance opened by the flares, :meth:`~exudyn_turnout.inputs.routes.Route.
-        check_clearance_at`).
+        clearance opened by the flares, ``Route.check_clearance_at``).
 
         Parameters
         ----------

@@ -304,9 +304,9 @@ class VehicleContacts:
     def last_forces(self) -> list[np.ndarray] | None:
         """Per element, its generalised contact forces (the kernel's, without the curving
         load) at the compiled path's last call: during a run, before a step, those of the
-        step's start (the check rail's watch, :class:`~exudyn_turnout.passage.common.
-        CheckRailStop`). Views, overwritten by the next call; None where the compiled path
-        did not serve the last call.
+        step's start (the check rail's watch,
+        :class:`~exudyn_turnout.passage.common.CheckRailStop`). Views, overwritten by the
+        next call; None where the compiled path did not serve the last call.
 
         Returns
         -------

@@ -280,8 +280,8 @@ def _run(
 ) -> dict[str, np.ndarray]:
     """Run a built segment for ``duration`` seconds (Exudyn's ``SolveDynamic`` or, opt-in,
     the compiled stepper) and return its columns; ``stop`` (Exudyn's path only: the
-    predicted check rail's fine piece, :meth:`~exudyn_turnout.passage.common.CheckRailSteps.
-    run_predicted`) may end the run early."""
+    predicted check rail's fine piece, ``CheckRailSteps.run_predicted``) may end the run
+    early."""
     import exudyn as exu
 
     from exudyn_turnout.corunning.track import simulation_settings
@@ -421,8 +421,8 @@ def _check_force(
     system: SegmentSystem, contacts: Any, pairs: tuple[tuple[str, str], ...]
 ) -> Callable[[], float | None]:
     """A function giving the check rails' largest contact force (N, |(Fy, Fz)| of each
-    wheelset's check-rail contact, as :func:`~exudyn_turnout.passage.common.
-    check_rail_window` takes it from the columns) at the contacts' last evaluation."""
+    wheelset's check-rail contact, as ``check_rail_window`` takes it from the columns) at
+    the contacts' last evaluation."""
     picks = []  #: per element and check pair: (element index, y indices, z indices)
     for k, element in enumerate(system.elements):
         for wheel, slot in pairs:
