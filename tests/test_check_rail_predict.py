@@ -222,17 +222,26 @@ def test_through_route_bit_for_bit_without_prediction(turnout):
         assert np.array_equal(column, off.columns[name], equal_nan=True), name
 
 
-def test_single_wheelset_rerun_progress_never_goes_back(turnout):
-    # the single wheelset refines after the fact: its loaded zone runs twice, the progress
-    # reported once
+def test_single_wheelset_predicted_and_safety_net(turnout):
+    # the single wheelset's zone 44.29..51 m: predicted, fine from its start; with the
+    # prediction off the safety net runs it twice, the progress reported once
+    predicted = simulate_passage(turnout, PassageSettings(**WINDOW), vehicle="wheelset")
+    assert predicted.summary["check_rail_predicted"] == [{"x_m": [44.29, 45.6], "loaded": True}]
+    assert predicted.summary["check_rail_rerun"] == []
     fractions: list[float] = []
-    run = simulate_passage(
-        turnout,
-        PassageSettings(**WINDOW),
-        vehicle="wheelset",
-        progress=lambda f, x: fractions.append(f),
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(CheckRailSteps, "predict", lambda self, *a: None)
+        net = simulate_passage(
+            turnout,
+            PassageSettings(**WINDOW),
+            vehicle="wheelset",
+            progress=lambda f, x: fractions.append(f),
+        )
+    assert len(net.summary["check_rail_rerun"]) == 1
+    assert net.summary["check_rail_refined"][0]["x_m"][0] == 44.29
+    assert abs(net.summary["peak_Fy_check_rail_N"]) == pytest.approx(
+        abs(predicted.summary["peak_Fy_check_rail_N"]), rel=1e-9
     )
-    assert run.summary["check_rail_refined"]  # it did run again
     assert len(fractions) > 10
     assert all(b >= a for a, b in zip(fractions, fractions[1:]))
 
