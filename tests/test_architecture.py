@@ -34,6 +34,7 @@ EXUDYN_BUILDERS = {
     "passage/vehicle/steady_curving.py",
     "passage/corunning_track/wheelset.py",
     "passage/corunning_track/vehicle.py",
+    "passage/corunning_track/vehicle_system.py",
     "passage/corunning_track/relax.py",
     "passage/corunning_track/carry_over.py",
     "passage/corunning_track/stepper.py",  # reads a built system, writes its final state

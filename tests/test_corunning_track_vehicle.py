@@ -182,17 +182,18 @@ def _segment(turnout, model, x_front, v, frozen=False, route_name="through", mec
     from exudyn_turnout.inputs.routes import load_route
     from exudyn_turnout.inputs.vehicle import load_vehicle
     from exudyn_turnout.passage.contact.profile import route_contact
-    from exudyn_turnout.passage.corunning_track import vehicle as fvp
+    from exudyn_turnout.passage.corunning_track import vehicle_system as fvp
+    from exudyn_turnout.passage.vehicle.track_frame import contact_vehicle
 
     route, base = load_route(turnout, route_name), load_vehicle()
     settings = PassageSettings(
         route=route_name, speed_kmh=100.0, layers=3, track_mechanism=mechanism
     )
-    places = tuple(fvp._place(turnout, x_front + o) for o in model.wheelset.x)
-    args = (turnout, route, model, fvp.contact_vehicle(base, model))
+    places = tuple(fvp.place_of(turnout, x_front + o) for o in model.wheelset.x)
+    args = (turnout, route, model, contact_vehicle(base, model))
     args += (route_contact(turnout, route_name, base), settings, places, x_front, v, frozen)
-    system = fvp._build(*args, (x_front - 20.0, x_front + 10.0))
-    contacts = system.mbs.variables["exudyn_turnout.corunning_track.vehicle"][0]
+    system = fvp.build_segment(*args, (x_front - 20.0, x_front + 10.0))
+    contacts = system.mbs.variables[fvp.VARIABLES_KEY][0]
     rng = np.random.default_rng(13)
     q = 1e-5 * rng.standard_normal(contacts.n)
     q_t = 1e-2 * rng.standard_normal(contacts.n)

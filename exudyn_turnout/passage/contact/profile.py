@@ -312,6 +312,19 @@ class ProfileContactElement(ContactElement):
             loads[b.wheel] += float(details[k * n_c : (k + 1) * n_c, _DETAIL["Fz"]].sum())
         return loads
 
+    def last_forces(self) -> np.ndarray:
+        """The generalised forces of the last :meth:`__call__` (during a run, before a step:
+        those of the step's start; the check rail's watch,
+        :class:`~exudyn_turnout.passage.common.CheckRailStop`). A view, overwritten by the
+        next call.
+
+        Returns
+        -------
+        numpy.ndarray
+            N, (element size,).
+        """
+        return self._forces
+
     def __call__(self, mbs, t, item_number, q, q_t):
         """Exudyn ``forceUserFunction``: generalised forces on the element's coordinates."""
         if t != self._cached_t:  # Newton iterations of one step share t

@@ -301,6 +301,22 @@ class VehicleContacts:
         """
         return None if self._compiled is None else self._compiled.recorded(t)
 
+    def last_forces(self) -> list[np.ndarray] | None:
+        """Per element, its generalised contact forces (the kernel's, without the curving
+        load) at the compiled path's last call: during a run, before a step, those of the
+        step's start (the check rail's watch,
+        :class:`~exudyn_turnout.passage.common.CheckRailStop`). Views, overwritten by the
+        next call; None where the compiled path did not serve the last call.
+
+        Returns
+        -------
+        list of numpy.ndarray or None
+        """
+        if self._compiled is None or not self._fast:
+            return None
+        work = self._compiled._work
+        return [work[k, 2, : el.n] for k, el in enumerate(self.elements)]
+
     def force_function(self) -> Callable:
         """The object's Exudyn ``forceUserFunction``: :meth:`__call__`, with the compiled
         path inline (:meth:`CompiledResidual.force_function

@@ -38,19 +38,32 @@ and the contact at x clamped to x_min (the plain-track blend of zone 1 at its st
 plain track; the rail sections there are the plain rail). Likewise past x_max: the last
 zone and the contact at x clamped to x_max (plain track in the packaged files), so the
 front wheelset may run up to x_max plus the vehicle's length and the rear wheelsets pass
-the whole turnout.
+the whole turnout. A segment's system and the carry-over are
+:mod:`~exudyn_turnout.passage.corunning_track.vehicle_system`'s.
 
-The check rail (issue 22): after each segment's run, where a check-rail contact carried load
-(:func:`~exudyn_turnout.passage.common.check_rail_window`) and the run's step is coarser than
-``settings.check_rail_time_step``, the segment runs again from its start state: at the finer
-step (the segment's step over an integer) to the load's end and a margin, then at its own
-step (:func:`~exudyn_turnout.passage.common.refine_pieces`), sampled at the first run's output
-times (:func:`~exudyn_turnout.passage.common.pick_rows`; the compiled residual's record of
-every fine step is read at those times). ``summary["check_rail_refined"]`` gives the windows.
-The diverging route at 80 km/h, 2 layers, 20..55 m: the check-rail force 109.1 kN at 1e-4 s,
-126.6 kN refined over 44.29-47.49 m (128.1 / 126.5 kN at 2.5e-5 / 6.25e-6 s throughout),
-~1.2x the CPU time; the through route's check rail carries no load: its run is unchanged bit
-for bit.
+The check rail (issue 22): a segment where a check-rail contact carries load
+(:func:`~exudyn_turnout.passage.common.check_rail_window`) while the run's step is coarser
+than ``settings.check_rail_time_step`` runs at the finer step (the segment's step over an
+integer) from its start, or from where the check rail starts, to the load's end and a margin,
+then at its own step (:func:`~exudyn_turnout.passage.common.refine_pieces`), sampled at the
+segment's grid times (:func:`~exudyn_turnout.passage.common.pick_rows`; the compiled
+residual's record of every fine step is read at those times). Which segments: predicted
+before the run (:meth:`~exudyn_turnout.passage.common.CheckRailSteps.predict`: a wheelset on
+the check rail's x range, displaced towards it by half its clearance at the segment's start),
+those run at the fine step directly, the fine stepping ended during the run where the load
+has ended (:class:`~exudyn_turnout.passage.common.CheckRailStop`, Exudyn's path; the compiled
+stepper, which cannot stop a run, refines after the fact). The after-the-fact check stays as
+a safety net: a segment that loads its check rail where not predicted runs at its step first,
+then again from its start as before (``summary["check_rail_rerun"]``). The progress never
+goes back. ``summary["check_rail_refined"]`` gives the windows, ``check_rail_predicted`` the
+predicted segments. The diverging route at 80 km/h, 2 layers, 20..55 m: the check-rail force
+109.1 kN at 1e-4 s, 129.2 kN refined over 44.29-47.50 m (128.1 / 126.5 kN at 2.5e-5 /
+6.25e-6 s throughout: validation/vehicle_step_convergence.md), every column the same as the
+after-the-fact method's to the bit up to the window's end and within 2e-9 of its largest
+value after it, for 0.91x that method's CPU time (6 rounds alternating in fresh processes,
+medians 1.90 -> 1.72 s). The window's end comes from the fine run's own samples, not from a
+run at 1e-4 s: on 44.29..45.6 m it ends one grid step (2.2 mm) sooner. The through route's
+check rail carries no load: its run is unchanged bit for bit.
 
 Exudyn objects of the user functions (speed, issue 24): the four contact elements are one
 ObjectGenericODE2 (one Python call per residual evaluation) with a forward-difference
@@ -125,62 +138,53 @@ import gc
 import math
 import time
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 
-from exudyn_turnout.corunning.parameters import co_running_parameters
 from exudyn_turnout.inputs.routes import Route
-from exudyn_turnout.inputs.turnout import RAIL_SLOTS, Turnout, Zone
-from exudyn_turnout.inputs.vehicle import Vehicle, load_vehicle
+from exudyn_turnout.inputs.turnout import Turnout
+from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
 from exudyn_turnout.passage.common import (
     CheckRailSteps,
+    CheckRailStop,
     QuietExudyn,
     join_segments,
+    monotone_progress,
     newton_tolerance,
     progress_function,
 )
 from exudyn_turnout.passage.contact.profile import STATIC_SPIN_STIFFNESS, RouteContact
-from exudyn_turnout.passage.contact.vehicle_contacts import (
-    VehicleContacts,
-    WheelsetContactElement,
-    wheelset_columns,
-)
-from exudyn_turnout.passage.corunning_track.carry_over import (
-    dof_of,
-    inside_zone,
-    rebase_track,
-    set_named_state,
-    vehicle_shift,
-)
+from exudyn_turnout.passage.contact.vehicle_contacts import wheelset_columns
+from exudyn_turnout.passage.corunning_track.carry_over import set_named_state
 from exudyn_turnout.passage.corunning_track.relax import relax_frozen
+from exudyn_turnout.passage.corunning_track.vehicle_system import (
+    VARIABLES_KEY,
+    SegmentSystem,
+    WheelsetPlace,
+    build_segment,
+    carry_over_state,
+    element_vector,
+    named_state,
+    place_of,
+)
 from exudyn_turnout.passage.results import PassageResult
 from exudyn_turnout.passage.safety import limits_for_friction
-from exudyn_turnout.passage.settings import PassageError, PassageFailure, PassageSettings
+from exudyn_turnout.passage.settings import PassageFailure, PassageSettings
 from exudyn_turnout.passage.summary import check_plausible, vehicle_summary
-from exudyn_turnout.passage.vehicle.body_sensors import add_body_sensors, recorded_body_columns
+from exudyn_turnout.passage.vehicle.body_sensors import recorded_body_columns
 from exudyn_turnout.passage.vehicle.start import (
     record_start,
     steady_description,
 )
-from exudyn_turnout.passage.vehicle.track_frame import (
-    DUMMY_MASS,
-    DUMMY_STIFFNESS,
-    BodyLoads,
-    add_vehicle_loads,
-    contact_vehicle,
-    set_initial_vehicle,
-)
+from exudyn_turnout.passage.vehicle.track_frame import contact_vehicle
 
 __all__ = ["simulate_vehicle", "NEWTON_TOLERANCE_FACTOR", "STEPPER_KEY"]
 
 #: ``mbs.variables`` key of a segment's compiled run (its
 #: :class:`~exudyn_turnout.passage.corunning_track.stepper.StepperRun`: samples, statistics)
 STEPPER_KEY = "exudyn_turnout.corunning_track.stepper"
-#: ``mbs.variables`` key of a built system's (contacts, body loads, kept objects)
-_VARIABLES_KEY = "exudyn_turnout.corunning_track.vehicle"
 #: s, first part of the dynamic relaxation to the steady state at speed (where the static
 #: solve fails, e.g. in a curve): the car body's lateral mode (~0.7 Hz, damping ratio ~0.45)
 #: settles in it; a slower drift does not (the car body still moved at 1.4 mm/s after 8 s in
@@ -208,319 +212,7 @@ NEWTON_TOLERANCE_FACTOR = 2.5
 _NEWTON_CONTRACTIVITY = 0.1
 
 
-@dataclass(frozen=True)
-class _Place:
-    """Where one wheelset's track and contact are in a run segment."""
-
-    zone: Zone
-    clamped: bool  #: behind the turnout's start: zone 1 at x_min
-    beyond: bool = False  #: past the turnout's end: the last zone at x_max
-
-
-@dataclass
-class _System:
-    """One segment's Exudyn system."""
-
-    container: Any
-    mbs: Any
-    places: tuple[_Place, ...]
-    elements: list  #: per wheelset, its WheelsetContactElement
-    params: list  #: per wheelset, its track's CoRunningParameters
-    slots: list  #: per wheelset, rail slots of its element in coordinate order
-    names: dict  #: node name -> node ("car_body", "bogie1", "ws1", "t1:sleeper", "t1:m0_r1")
-    sensors: list  #: per wheelset, (coordinate sensors, velocity sensors) of its element nodes
-    body_loads: BodyLoads
-    x_front: float  #: m, front wheelset's position at t = 0
-
-
-def _place(turnout: Turnout, x: float) -> _Place:
-    if x < turnout.x_min - 1e-9:
-        return _Place(turnout.zones[0], True)
-    if x > turnout.x_max + 1e-9:
-        return _Place(turnout.zones[-1], False, True)
-    for zone in turnout.zones:
-        if zone.x_start - 1e-9 <= x < zone.x_end - 1e-9:
-            return _Place(zone, False)
-    return _Place(turnout.zones[-1], False)
-
-
-def _build(
-    turnout: Turnout,
-    route: Route,
-    model: VehicleModel,
-    vehicle: Vehicle,
-    contact: RouteContact,
-    settings: PassageSettings,
-    places: tuple[_Place, ...],
-    x_front: float,
-    v: float,
-    frozen: bool,
-    x_range: tuple[float, float],
-    tables: dict | None = None,
-    parameters: dict | None = None,
-) -> _System:
-    import exudyn as exu
-    from exudyn.itemInterface import NodeGenericODE2, ObjectGenericODE2, SensorNode
-
-    from exudyn_turnout.corunning.track import add_co_running_track
-    from exudyn_turnout.corunning.track_kernel import TrackPlacement, track_force
-    from exudyn_turnout.passage.vehicle import builder as vehicle_builder
-    from exudyn_turnout.passage.vehicle.builder import add_vehicle_model
-
-    container = exu.SystemContainer()
-    mbs = container.AddSystem()
-    build = add_vehicle_model(
-        mbs, model, representation="linear", wheelset_spin=True, bumpstop="none"
-    )
-    names: dict[str, int] = {b.name: b.node for b in build.bodies() if b.name[:5] != "wheel"}
-    elements, params_all, slots_all, sensors = [], [], [], []
-    contact_nodes: list[int] = []
-    compiled = settings.track_mechanism == "compiled"
-    placements = []  #: per track (compiled): (params, x, v, {coordinate: (node, local)})
-    for i, (ws, place) in enumerate(zip(build.wheelsets, places)):
-        x_i = x_front + ws.x
-        # a wheelset placed on a zone boundary by round-off (x0 + v t) builds its track at the
-        # boundary itself: the zone's parameters are defined on [x_start, x_end] only
-        x_track = (
-            turnout.x_min
-            if place.clamped
-            else turnout.x_max
-            if place.beyond
-            else inside_zone(place.zone, x_i)
-        )
-        # a zone's parameters, derived once per run (``parameters``: zone index -> them)
-        params = None if parameters is None else parameters.get(place.zone.index)
-        if params is None:
-            params = co_running_parameters(
-                turnout, zone=place.zone.index, layers=settings.layers, source=settings.source
-            )
-            params = replace(params, zone=route.zone(params.zone))
-            if parameters is not None:
-                parameters[place.zone.index] = params
-        v_track = 0.0 if (place.clamped or place.beyond or frozen) else v
-        track = add_co_running_track(
-            mbs, params, x_track, v_track, mechanism=settings.track_mechanism, force_object=False
-        )
-        if compiled:
-            placements.append((params, x_track, v_track, _coordinate_nodes(track)))
-        try:
-            raw, slots = contact.element(vehicle, route, place.zone, x_i, v, settings.irregularity)
-        except ValueError as err:
-            raise PassageError(str(err)) from None
-        element = WheelsetContactElement.of(raw, turnout.x_min, turnout.x_max)
-        element.frozen = frozen
-        dummy = int(
-            mbs.AddNode(
-                NodeGenericODE2(
-                    referenceCoordinates=[0.0, 0.0],
-                    initialCoordinates=[0.0, 0.0],
-                    initialCoordinates_t=[0.0, 0.0],
-                    numberOfODE2Coordinates=2,
-                )
-            )
-        )
-        rail_nodes = [track.wheel_nodes[r] for r in slots]
-        contact_nodes += [ws.node, dummy] + rail_nodes
-        sensors.append(
-            tuple(
-                [
-                    mbs.AddSensor(
-                        SensorNode(
-                            nodeNumber=n,
-                            storeInternal=True,
-                            writeToFile=False,
-                            outputVariableType=kind,
-                        )
-                    )
-                    for n in [ws.node] + rail_nodes
-                ]
-                for kind in (
-                    exu.OutputVariableType.Coordinates,
-                    exu.OutputVariableType.Coordinates_t,
-                )
-            )
-        )
-        names[f"ws{i + 1}"] = ws.node
-        names[f"dummy{i + 1}"] = dummy
-        names[f"t{i + 1}:sleeper"] = track.sleeper_node
-        names.update({f"t{i + 1}:rail_{r}": n for r, n in track.rail_nodes.items()})
-        names.update({f"t{i + 1}:m0_{r}": n for r, n in track.layer_nodes.items()})
-        elements.append(element)
-        params_all.append(params)
-        slots_all.append(slots)
-    stiffness = mbs.GetObjectParameter(build.items["suspension"], "stiffnessMatrix")
-    stiffness = np.asarray(stiffness.GetPythonObject(), float)
-    damping = mbs.GetObjectParameter(build.items["suspension"], "dampingMatrix")
-    damping = np.asarray(damping.GetPythonObject(), float)
-    loads = BodyLoads(build, stiffness, damping, route, x_front, v, *x_range)
-    loads.frozen = frozen
-    add_body_sensors(mbs, build, loads)  # car body, bogies: columns after the run
-    if tables is not None:
-        loads.tabulate(tables)
-    stops = None
-    car = build.car_body
-    # the bumpstops ride on the contacts' object, and in a curve the curving loads too
-    fold = model.bumpstop is not None and car is not None
-    if fold and car is not None:
-        size, (stop_force, stop_jacobian) = vehicle_builder.linear_bumpstop_functions(
-            model, car, build.bogies
-        )
-        arrays = vehicle_builder.linear_bumpstop_arrays(model, car, build.bogies)
-        stops = (size, stop_force, stop_jacobian, arrays)
-        contact_nodes += [car.node] + [b.node for b in build.bogies]
-    forces, n_track = None, 0
-    if compiled:  # the tracks' springs ride on the contacts' object (module docstring)
-        offsets, size = {}, 0
-        for node in contact_nodes:
-            offsets[node] = size
-            size += len(mbs.GetNode(node)["referenceCoordinates"])
-        n_shared = size
-        for *_, coordinates in placements:
-            for node, _ in coordinates.values():
-                if node not in offsets:
-                    offsets[node] = size
-                    size += len(mbs.GetNode(node)["referenceCoordinates"])
-                    contact_nodes.append(node)
-        n_track = size - n_shared
-        forces = track_force(
-            [
-                TrackPlacement(p, x, v_p, {d: offsets[n] + j for d, (n, j) in c.items()})
-                for p, x, v_p, c in placements
-            ]
-        )
-    body_loads = None
-    if fold and loads.curved:  # the loads' coordinates (every body's) in the object's vector
-        at, size = {}, 0
-        for node in contact_nodes:
-            at[node] = size
-            size += len(mbs.GetNode(node)["referenceCoordinates"])
-        index = [
-            at[b.node] + j
-            for b in build.bodies()
-            for j in range(len(mbs.GetNode(b.node)["referenceCoordinates"]))
-        ]
-        body_loads = (loads, np.array(index, dtype=np.int64))
-    contacts = VehicleContacts(elements, stops, forces, n_track, body_loads)
-    dummies = [names[f"dummy{i + 1}"] for i in range(len(elements))]
-    n_dummy = 2 * len(dummies)
-    mbs.AddObject(  # the dummy sprung masses, decoupled
-        ObjectGenericODE2(
-            nodeNumbers=dummies,
-            massMatrix=DUMMY_MASS * np.eye(n_dummy),
-            stiffnessMatrix=DUMMY_STIFFNESS * np.eye(n_dummy),
-        )
-    )
-    mbs.AddObject(
-        ObjectGenericODE2(
-            nodeNumbers=contact_nodes,
-            forceUserFunction=contacts.force_function(),
-            jacobianUserFunction=contacts.jacobian_function,
-        )
-    )
-    keep = add_vehicle_loads(mbs, build, loads) if (loads.curved and not fold) else ()
-    mbs.variables[_VARIABLES_KEY] = (contacts, loads, keep)
-    mbs.Assemble()
-    system = _System(
-        container, mbs, places, elements, params_all, slots_all, names, sensors, loads, x_front
-    )
-    set_initial_vehicle(system, build)
-    return system
-
-
-def _coordinate_nodes(track: Any) -> dict[str, tuple[int, int]]:
-    """A track's coordinates (dof names) as (node, local index)."""
-    pairs = [(track.sleeper_node, j) for j in range(3)]
-    for group in (track.rail_nodes, track.layer_nodes):
-        pairs += [(group[r], j) for r in RAIL_SLOTS if r in group for j in (0, 1)]
-    return dict(zip(track.dof, pairs))
-
-
-def _state(system: _System) -> dict[str, tuple[np.ndarray, np.ndarray]]:
-    import exudyn as exu
-
-    data, mbs = system.mbs.systemData, system.mbs
-    q = np.asarray(data.GetODE2Coordinates(exu.ConfigurationType.Current))
-    q_t = np.asarray(data.GetODE2Coordinates_t(exu.ConfigurationType.Current))
-    out = {}
-    for name, node in system.names.items():
-        i = mbs.GetNodeODE2Index(node)
-        k = np.atleast_1d(mbs.GetNodeOutput(node, exu.OutputVariableType.Coordinates)).size
-        out[name] = (q[i : i + k].copy(), q_t[i : i + k].copy())
-    return out
-
-
-def _element_vector(system: _System, state: Mapping, i: int, index: int) -> np.ndarray:
-    """Element coordinates (index 0) or velocities (1) of wheelset i (0-based) in ``state``."""
-    body = "m0" if system.params[i].layers == 3 else "rail"
-    parts = [state[f"ws{i + 1}"][index], state[f"dummy{i + 1}"][index]]
-    parts += [state[f"t{i + 1}:{body}_{r}"][index] for r in system.slots[i]]
-    return np.concatenate(parts)
-
-
-def _track_vector(state: Mapping, system: _System, i: int, index: int) -> dict[str, float]:
-    out: dict[str, float] = {}
-    prefix = f"t{i + 1}:"
-    for name in system.names:
-        if name.startswith(prefix):
-            out.update(zip(dof_of(name[len(prefix) :]), state[name][index]))
-    return out
-
-
-def _carry_over(
-    state: Mapping,
-    old: _System,
-    new: _System,
-    route: Route,
-    layers: int,
-    x_front: float,
-    t_old: float,
-) -> None:
-    """Set ``new``'s initial state from ``old``'s final ``state`` (module docstring)."""
-
-    values: dict[str, tuple[np.ndarray, np.ndarray]] = {}
-    for name in new.names:
-        if not name.startswith("t"):
-            values[name] = (state[name][0].copy(), state[name][1].copy())
-    for i, (p_old, p_new) in enumerate(zip(old.places, new.places)):
-        prefix = f"t{i + 1}:"
-        if p_old.zone.index == p_new.zone.index:  # same zone (or leaving the clamp): copy
-            for name in new.names:
-                if name.startswith(prefix):
-                    values[name] = state[name]
-            continue
-        el = old.elements[i]
-        x = el.x_at(t_old)
-        q_el, v_el = _element_vector(old, state, i, 0), _element_vector(old, state, i, 1)
-        loads_old = el.rail_loads(x, q_el, v_el)
-        continues = route.continues.get(p_new.zone.index, {})
-        q_old, v_old = _track_vector(state, old, i, 0), _track_vector(state, old, i, 1)
-        # the boundary itself, in each zone's own range (x0 + v t carries round-off)
-        q_new, v_new, u_old, u_new, source = rebase_track(
-            old.params[i],
-            new.params[i],
-            inside_zone(old.params[i].zone, x),
-            inside_zone(new.params[i].zone, x),
-            loads_old,
-            continues,
-            q_old,
-            v_old,
-            layers,
-            True,
-        )
-        for name in new.names:
-            if name.startswith(prefix):
-                dofs = dof_of(name[len(prefix) :])
-                values[name] = (
-                    np.array([q_new[d] for d in dofs]),
-                    np.array([v_new[d] for d in dofs]),
-                )
-        moved = vehicle_shift(el, u_old, u_new, loads_old, source, layers)
-        q_ws = values[f"ws{i + 1}"][0]
-        q_ws[:3] = q_ws[:3] + moved["wheelset"]
-    set_named_state(new.mbs, new.names, values)
-
-
-def _solve_static(system: _System, what: str, load_steps: int = 1) -> None:
+def _solve_static(system: SegmentSystem, what: str, load_steps: int = 1) -> None:
     import exudyn as exu
 
     from exudyn_turnout.corunning.track import simulation_settings
@@ -537,7 +229,7 @@ def _solve_static(system: _System, what: str, load_steps: int = 1) -> None:
         ) from None
 
 
-def _relax(system: _System, model: VehicleModel) -> tuple[float, float]:
+def _relax(system: SegmentSystem, model: VehicleModel) -> tuple[float, float]:
     """Relax with x frozen (the curving loads ramped up over the first second) until the
     vehicle is at rest in the track-following frame: the steady state at speed
     (:func:`~exudyn_turnout.passage.corunning_track.relax.relax_frozen`: :data:`RELAX_TIME`
@@ -561,7 +253,7 @@ def _relax(system: _System, model: VehicleModel) -> tuple[float, float]:
     return relax_frozen(system.mbs, moving, lateral, where, first=RELAX_TIME, carry_time=True)
 
 
-def _held_spin_torque(system: _System) -> float:
+def _held_spin_torque(system: SegmentSystem) -> float:
     """N m: the largest torque the static solve's spin holds carry (what the run releases)."""
     torque = 0.0
     for i in range(len(system.elements)):
@@ -577,14 +269,19 @@ def _coordinates():
 
 
 def _run(
-    system: _System,
+    system: SegmentSystem,
     duration: float,
     settings: PassageSettings,
     t_offset: float,
     total: float,
     progress: Callable | None,
     static_load: float,
+    stop: CheckRailStop | None = None,
 ) -> dict[str, np.ndarray]:
+    """Run a built segment for ``duration`` seconds (Exudyn's ``SolveDynamic`` or, opt-in,
+    the compiled stepper) and return its columns; ``stop`` (Exudyn's path only: the
+    predicted check rail's fine piece, ``CheckRailSteps.run_predicted``) may end the run
+    early."""
     import exudyn as exu
 
     from exudyn_turnout.corunning.track import simulation_settings
@@ -601,7 +298,7 @@ def _run(
     # through passage: Exudyn's own share of the run -35 %, the run -18 %)
     sim.linearSolver.solverType = exu.LinearSolverType.EigenSparse
     v = settings.v
-    contacts = system.mbs.variables[_VARIABLES_KEY][0]
+    contacts = system.mbs.variables[VARIABLES_KEY][0]
     reason: str | None = "not asked for"
     if settings.solver == "compiled":
         from exudyn_turnout.passage.corunning_track import stepper
@@ -610,8 +307,19 @@ def _run(
     pre_step = None
     if progress is not None:
         pre_step = progress_function(progress, t_offset, total, system.x_front, v)
-        if reason is not None:
-            system.mbs.SetPreStepUserFunction(pre_step)
+    if stop is not None:
+        if reason is None:
+            raise ValueError("_run: the compiled stepper cannot stop a run early")
+        watch, report, force = stop, pre_step, _check_force(system, contacts, stop.pairs)
+        state = functools.partial(named_state, system)
+
+        def pre_step(mbs, t):
+            if report is not None:
+                report(mbs, t)
+            return watch(force, state)
+
+    if pre_step is not None and reason is not None:
+        system.mbs.SetPreStepUserFunction(pre_step)
     # no garbage collection while stepping: the residual calls allocate lists of floats only
     # (no reference cycles), yet every ~700 of them started a collection (3 % of a run)
     collecting = gc.isenabled()
@@ -704,7 +412,43 @@ def _run(
     return cols
 
 
-def _offset_of(system: _System, i: int) -> float:
+def _lateral(state: Mapping, wheelsets: int) -> list[float]:
+    """m, every wheelset's lateral displacement y in a named state."""
+    return [float(state[f"ws{i + 1}"][0][0]) for i in range(wheelsets)]
+
+
+def _check_force(
+    system: SegmentSystem, contacts: Any, pairs: tuple[tuple[str, str], ...]
+) -> Callable[[], float | None]:
+    """A function giving the check rails' largest contact force (N, |(Fy, Fz)| of each
+    wheelset's check-rail contact, as ``check_rail_window`` takes it from the columns) at
+    the contacts' last evaluation."""
+    picks = []  #: per element and check pair: (element index, y indices, z indices)
+    for k, element in enumerate(system.elements):
+        for wheel, slot in pairs:
+            seen = {
+                (b.i_y, b.i_z)
+                for b in element.bodies
+                if b.rail == slot and element.wheel_of.get(slot) == wheel
+            }
+            if seen:
+                iy, iz = zip(*sorted(seen))
+                picks.append((k, np.array(iy), np.array(iz)))
+
+    def force() -> float | None:
+        forces = contacts.last_forces()
+        if forces is None:
+            return None
+        largest = 0.0
+        for k, iy, iz in picks:
+            f = forces[k]
+            largest = max(largest, math.hypot(float(f[iy].sum()), float(f[iz].sum())))
+        return largest
+
+    return force
+
+
+def _offset_of(system: SegmentSystem, i: int) -> float:
     """Longitudinal offset (m) of wheelset i (0-based) behind the front one (<= 0)."""
     return system.elements[i].x0 - system.x_front
 
@@ -784,18 +528,18 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
     x_range = (x_a + min(offsets), x_b)
     v = settings.v
 
-    def places(x_lo: float, x_hi: float) -> tuple[_Place, ...]:
-        return tuple(_place(turnout, 0.5 * (x_lo + x_hi) + o) for o in offsets)
+    def places(x_lo: float, x_hi: float) -> tuple[WheelsetPlace, ...]:
+        return tuple(place_of(turnout, 0.5 * (x_lo + x_hi) + o) for o in offsets)
 
     first = places(events[0], events[1])
     parameters: dict = {}  # every zone's co-running parameters, shared by the builds
-    build = functools.partial(_build, parameters=parameters)
+    build = functools.partial(build_segment, parameters=parameters)
     args = (turnout, route, model, vehicle, contact, settings)
     rest = build(*args, first, x_a, 0.0, True, x_range)
     _solve_static(rest, "static equilibrium at rest")
-    state = _state(rest)
+    state = named_state(rest)
     static_loads = [
-        el.wheel_loads(el.x_at(0.0), _element_vector(rest, state, i, 0))
+        el.wheel_loads(el.x_at(0.0), element_vector(rest, state, i, 0))
         for i, el in enumerate(rest.elements)
     ]
     moving = build(*args, first, x_a, v, True, x_range)
@@ -815,40 +559,57 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
         set_named_state(moving.mbs, moving.names, state)
         residual, relaxed = _relax(moving, model)
         start += f" (relaxed {relaxed:g} s with x frozen)"
-    state, previous = _state(moving), moving
+    state, previous = named_state(moving), moving
     t_prev = 0.0
     segments, t_offset, total = [], 0.0, (x_b - x_a) / v
     starts = []
     tables: dict = {}  # the running loads' table, shared by the segments
     check = CheckRailSteps(settings, route, model.static_wheel_load, len(offsets))
+    progress = monotone_progress(progress)  # a segment run again reports its times again
+    load = model.static_wheel_load
     for k in range(len(events) - 1):
         x0, x1 = events[k], events[k + 1]
         at = places(x0, x1)
-        system = build(*args, at, x0, v, False, x_range, tables)
-        _carry_over(state, previous, system, route, settings.layers, x0, t_prev)
         duration = (x1 - x0) / v
-        cols = _run(system, duration, settings, t_offset, total, progress, model.static_wheel_load)
-        window = check.window(cols)
-        if window is not None and check.step is not None:  # again, the window stepped finer
-            carried = [state, previous, t_prev]
+        #: the pieces' start states by their start time (s from the segment's start): a
+        #: piece run again starts where it started before, a new one where the last ended
+        begun: dict[float, list] = {}
+        carried = [state, previous, t_prev]
 
-            def run_piece(t_from, length, x_p, fine, at=at, t0=t_offset, carried=carried):
-                system = build(*args, at, x_p, v, False, x_range, tables)
-                _carry_over(*carried[:2], system, route, settings.layers, x_p, carried[2])
-                load = model.static_wheel_load
-                piece = _run(system, length, fine, t0 + t_from, total, progress, load)
-                carried[:] = [_state(system), system, length]
-                return piece
+        def run_piece(t_from, length, x_p, step_settings, stop=None, at=at, t0=t_offset,
+                      carried=carried, begun=begun):  # fmt: skip
+            origin = begun.setdefault(t_from, list(carried))
+            system = build(*args, at, x_p, v, False, x_range, tables)
+            carry_over_state(*origin[:2], system, route, settings.layers, x_p, origin[2])
+            piece = _run(system, length, step_settings, t0 + t_from, total, progress, load, stop)
+            if stop is not None and stop.state is not None:  # the fine piece ends at stop.end
+                carried[:] = [stop.state, system, (stop.end - stop.first) * stop.h]
+            else:
+                carried[:] = [named_state(system), system, length]
+            return piece
 
-            cols, t_prev = check.rerun(cols, window, duration, t_offset, x0, run_piece)
+        # predicted to load a check rail: the fine step directly (Exudyn's path: the stepper
+        # cannot stop a run where the fine stepping ends)
+        fine_from = check.predict(x0, x1, offsets, _lateral(state, len(offsets)))
+        if fine_from is not None and settings.solver != "compiled":
+            cols, t_prev = check.run_predicted(duration, t_offset, x0, fine_from, run_piece)
             system = carried[1]
         else:
-            if window is not None:
-                check.unrefined(window, cols)
-            t_prev = duration
+            cols = run_piece(0.0, duration, x0, settings)
+            system = carried[1]
+            window = check.window(cols)
+            if window is not None and check.step is not None:  # again, the window finer
+                cols, t_prev = check.rerun_unpredicted(
+                    cols, window, duration, t_offset, x0, run_piece
+                )
+                system = carried[1]
+            else:
+                if window is not None:
+                    check.unrefined(window, cols)
+                t_prev = duration
         segments.append(cols if k == 0 else {n: c[1:] for n, c in cols.items()})
         starts.append(x0)
-        state, previous = _state(system), system
+        state, previous = named_state(system), system
         t_offset += duration
     columns = join_segments(segments)
     summary = vehicle_summary(

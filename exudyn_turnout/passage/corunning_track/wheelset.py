@@ -19,11 +19,19 @@ rails, and the state of everything that continues (vehicle, sleeper, rails prese
 both zones, or a rail slot that a route says continues another) is carried over. A zone
 where a check-rail contact carried load at a step coarser than
 ``settings.check_rail_time_step`` runs again from its start at that step to the load's end
-(:class:`~exudyn_turnout.passage.common.CheckRailSteps`, as the full vehicle's segments).
+(:class:`~exudyn_turnout.passage.common.CheckRailSteps`, as the full vehicle's segments):
+a zone predicted to load it (the wheelset displaced towards it by half its clearance at the
+zone's start; the profile contact only) runs at that step directly, the fine stepping ended
+during the run; one not predicted that loads it runs at its step first, then again (the
+safety net). The progress never goes back. The diverging route at 80 km/h, 2 layers,
+20..55 m: the same windows and peaks as the after-the-fact method's, every column within
+1.7e-9 of its largest value, for 0.90x its CPU time (4 rounds alternating in fresh
+processes, medians 0.575 -> 0.518 s).
 """
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from collections.abc import Callable, Mapping
@@ -39,8 +47,10 @@ from exudyn_turnout.inputs.vehicle import Vehicle
 from exudyn_turnout.passage.common import (
     NEWTON_ABSOLUTE_TOLERANCE,
     CheckRailSteps,
+    CheckRailStop,
     QuietExudyn,
     join_segments,
+    monotone_progress,
     progress_function,
     zones_of_run,
 )
@@ -352,8 +362,11 @@ def _run(
     t_offset: float,
     total: float,
     progress: Callable | None,
+    stop: CheckRailStop | None = None,
 ) -> dict[str, np.ndarray]:
-    """Integrate one zone for ``duration`` s; return its columns (time shifted by t_offset)."""
+    """Integrate one zone for ``duration`` s; return its columns (time shifted by t_offset);
+    ``stop`` (the predicted check rail's fine piece, ``CheckRailSteps.run_predicted``) may
+    end the run early."""
     import exudyn as exu
 
     from exudyn_turnout.corunning.track import simulation_settings
@@ -368,8 +381,21 @@ def _run(
     # the iterations
     sim.timeIntegration.newton.absoluteTolerance = NEWTON_ABSOLUTE_TOLERANCE
     el = system.element
+    pre_step = None
     if progress is not None:
-        system.mbs.SetPreStepUserFunction(progress_function(progress, t_offset, total, el.x0, el.v))
+        pre_step = progress_function(progress, t_offset, total, el.x0, el.v)
+    if stop is not None:
+        watch, report = stop, pre_step
+        check_force = _check_force(el, stop.pairs)
+        state = functools.partial(_node_state, system)
+
+        def pre_step(mbs, t):
+            if report is not None:
+                report(mbs, t)
+            return watch(check_force, state)
+
+    if pre_step is not None:
+        system.mbs.SetPreStepUserFunction(pre_step)
     try:
         system.mbs.SolveDynamic(sim)
     except (exu.SolverError, RuntimeError) as err:
@@ -399,6 +425,30 @@ def _run(
         cols = _profile_columns(el, t, q[:, :n], q[:, n:], system.rails)
     cols["t_s"] = t + t_offset
     return cols
+
+
+def _check_force(element: Any, pairs: tuple[tuple[str, str], ...]) -> Callable[[], float]:
+    """A function giving the check rails' largest contact force (N, |(Fy, Fz)|, as
+    ``check_rail_window`` takes it from the columns) at the element's last evaluation."""
+    picks = []
+    for wheel, slot in pairs:
+        seen = {
+            (b.i_y, b.i_z)
+            for b in element.bodies
+            if b.rail == slot and element.wheel_of.get(slot) == wheel
+        }
+        if seen:
+            iy, iz = zip(*sorted(seen))
+            picks.append((np.array(iy), np.array(iz)))
+
+    def force() -> float:
+        f = element.last_forces()
+        return max(
+            (math.hypot(float(f[iy].sum()), float(f[iz].sum())) for iy, iz in picks),
+            default=0.0,
+        )
+
+    return force
 
 
 def simulate_wheelset(
@@ -496,36 +546,48 @@ def _simulate(
     segments, x, t_offset, previous, total = [], x_a, 0.0, static, (x_b - x_a) / v
     # the height-table contact has no per-contact columns: no check rail seen
     check = CheckRailSteps(settings, route, W)
+    progress = monotone_progress(progress)  # a zone run again reports its times again
     for k, zone in enumerate(zones):
         continues = route.continues.get(zone.index, {}) if k else {}
-        system = build_zone_system(turnout, route, vehicle, zone, settings, x, v, contact)
-        _carry_over(state, previous, system, continues, settings.layers, x)
         duration = (min(zone.x_end, x_b) - x) / v
-        cols = _run(system, duration, settings, t_offset, total, progress)
         where = f"zone {zone.index}, {zone.name}"
         limits = limits_for_friction(vehicle.contact.mu)
-        check_plausible(cols, W, where, limits)
-        window = check.window(cols)
-        if window is not None and check.step is not None:  # again, the window stepped finer
-            carried: list[Any] = [state, previous]
+        #: the pieces' start states by their start time (s from the zone's start): a piece
+        #: run again starts where it started before, a new one where the last ended
+        begun: dict[float, list] = {}
+        carried: list[Any] = [state, previous]
 
-            def run_piece(
-                t_from, length, x_p, fine, zone=zone, t0=t_offset, carried=carried,
-                continues=continues, where=where, limits=limits,
-            ):  # fmt: skip
-                system = build_zone_system(turnout, route, vehicle, zone, settings, x_p, v, contact)
-                # the first piece continues the zone before; the others their own zone
-                went_on = continues if t_from == 0.0 else {}
-                _carry_over(*carried, system, went_on, settings.layers, x_p)
-                piece = _run(system, length, fine, t0 + t_from, total, progress)
-                check_plausible(piece, W, where, limits)
+        def run_piece(
+            t_from, length, x_p, step_settings, stop=None, zone=zone, t0=t_offset,
+            carried=carried, begun=begun, continues=continues, where=where, limits=limits,
+        ):  # fmt: skip
+            origin = begun.setdefault(t_from, list(carried))
+            system = build_zone_system(turnout, route, vehicle, zone, settings, x_p, v, contact)
+            # the first piece continues the zone before; the others their own zone
+            went_on = continues if t_from == 0.0 else {}
+            _carry_over(*origin, system, went_on, settings.layers, x_p)
+            piece = _run(system, length, step_settings, t0 + t_from, total, progress, stop)
+            check_plausible(piece, W, where, limits)
+            if stop is not None and stop.state is not None:  # the fine piece ends at stop.end
+                carried[:] = [stop.state, system]
+            else:
                 carried[:] = [_node_state(system), system]
-                return piece
+            return piece
 
-            cols, _ = check.rerun(cols, window, duration, t_offset, x, run_piece)
-            system = carried[1]
-        elif window is not None:
-            check.unrefined(window, cols)
+        # predicted to load a check rail (the profile contact: the height table has no
+        # check-rail contact): the fine step directly
+        y = [float(state["wheelset"][0][0])]
+        fine_from = check.predict(x, x + v * duration, (0.0,), y) if contact.profile else None
+        if fine_from is not None:
+            cols, _ = check.run_predicted(duration, t_offset, x, fine_from, run_piece)
+        else:
+            cols = run_piece(0.0, duration, x, settings)
+            window = check.window(cols)
+            if window is not None and check.step is not None:  # again, the window finer
+                cols, _ = check.rerun_unpredicted(cols, window, duration, t_offset, x, run_piece)
+            elif window is not None:
+                check.unrefined(window, cols)
+        system = carried[1]
         segments.append(cols if k == 0 else {n: c[1:] for n, c in cols.items()})
         state, previous = _node_state(system), system
         x, t_offset = min(zone.x_end, x_b), t_offset + duration
