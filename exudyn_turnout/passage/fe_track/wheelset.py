@@ -270,8 +270,20 @@ def _simulate(
     start_args = (q0, q0_t)
     t1 = time.perf_counter()
     moving, recorder = _run(
-        settings, vehicle, route, contact, track, x_a, v, irr, duration, n_steps, every,
-        start_args, progress, None,
+        settings,
+        vehicle,
+        route,
+        contact,
+        track,
+        x_a,
+        v,
+        irr,
+        duration,
+        n_steps,
+        every,
+        start_args,
+        progress,
+        None,
     )
     steps_s = time.perf_counter() - t1
     W = 0.5 * (loads["left"] + loads["right"])
@@ -285,8 +297,20 @@ def _simulate(
         track.start([start_element], [forces], v)
         t1 = time.perf_counter()
         moving, recorder = _run(
-            settings, vehicle, route, contact, track, x_a, v, irr, duration, n_steps, every,
-            start_args, None, pieces,
+            settings,
+            vehicle,
+            route,
+            contact,
+            track,
+            x_a,
+            v,
+            irr,
+            duration,
+            n_steps,
+            every,
+            start_args,
+            None,
+            pieces,
         )
         steps_s = time.perf_counter() - t1
         columns = fe_columns(moving, recorder.t, recorder.q, recorder.q_t, x_a, v)
@@ -307,8 +331,20 @@ def _simulate(
 
 
 def _run(
-    settings, vehicle, route, contact, track, x_a, v, irr, duration, n_steps, every, start,
-    progress, pieces,
+    settings,
+    vehicle,
+    route,
+    contact,
+    track,
+    x_a,
+    v,
+    irr,
+    duration,
+    n_steps,
+    every,
+    start,
+    progress,
+    pieces,
 ):
     """One run at speed from the start state: at the run's step throughout (``pieces``
     None: one SolveDynamic) or in pieces (:func:`~exudyn_turnout.passage.fe_track.common.
@@ -357,7 +393,8 @@ def _run(
         if pieces is None:
             system.mbs.SolveDynamic(sim)
         else:
-            solve_in_pieces(system.mbs, sim, pieces, h, duration, track.set_step, grid)
+            solver: Any = exu.MainSolverImplicitSecondOrder()  # (its stubs leave out self)
+            solve_in_pieces(solver, system.mbs, sim, pieces, h, duration, track.set_step, grid)
     except Exception as err:  # Exudyn's SolverError, or ModelError from a user function
         t = track.t_next if math.isfinite(track.t_next) else data.GetTime()
         raise PassageFailure(
