@@ -108,6 +108,16 @@ def test_step_grid_samples_only_on_the_grid():
     assert grid.index == 8
 
 
+def test_step_grid_every_fine_step_when_asked():
+    grid = StepGrid(every=2, every_fine_step=True)
+    sampled = [grid.step()]
+    for substeps, steps in ((1, 2), (4, 8), (1, 2)):  # grid points 1..2, 3..4, 5..6
+        grid.substeps = substeps
+        sampled += [grid.step() for _ in range(steps)]
+    # the grid's output steps (0, 2, 4, 6) and every step of the finer piece
+    assert sampled == [True, False, True] + [True] * 8 + [False, True]
+
+
 # ----------------------------------------------------------------------- plan and bookkeeping
 
 

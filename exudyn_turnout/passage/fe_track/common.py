@@ -450,10 +450,13 @@ class StepGrid:
     ----------
     every : int
         Grid steps per output sample.
+    every_fine_step : bool
+        Sample every step of a piece finer than the grid as well.
     """
 
-    def __init__(self, every: int):
+    def __init__(self, every: int, every_fine_step: bool = False):
         self.every = max(1, int(every))
+        self.every_fine_step = bool(every_fine_step)
         self.substeps = 1  #: steps per grid step in the current piece
         self.index = 0  #: the grid index of the last grid point reached
         self._sub = 0
@@ -475,12 +478,13 @@ class StepGrid:
         if not self._started:
             self._started = True
             return True
+        fine = self.every_fine_step and self.substeps > 1
         self._sub += 1
         if self._sub < self.substeps:
-            return last
+            return last or fine
         self._sub = 0
         self.index += 1
-        return last or self.index % self.every == 0
+        return last or fine or self.index % self.every == 0
 
 
 def solve_in_pieces(

@@ -317,7 +317,7 @@ def _cross_compliance(track: FECoSimulation, elements: list) -> float:
     return cross / own if own > 0 else 0.0
 
 
-def _run(system, track, settings, duration, n_steps, every, progress, x_a, pieces):
+def _run(system, track, settings, duration, n_steps, every, progress, x_a, pieces, fine=False):
     """One run at speed of the built system from its start state: at the run's step
     throughout (``pieces`` None: one SolveDynamic) or in pieces
     (:func:`~exudyn_turnout.passage.fe_track.common.solve_in_pieces`). Returns the sample
@@ -338,7 +338,7 @@ def _run(system, track, settings, duration, n_steps, every, progress, x_a, piece
     times: list[float] = []
     report = run_progress(progress, duration, x_a, v)
     count = [0]
-    grid = None if pieces is None else StepGrid(every)
+    grid = None if pieces is None else StepGrid(every, fine)
 
     def pre_step(mbs, t):
         track.predict(t, system.coupled)
@@ -529,7 +529,10 @@ def _simulate(turnout, settings, model, contact, route, x_range, progress, optio
         _copy(moving, system)
         track.start(system.coupled, forces, v)
         t1 = time.perf_counter()
-        times, records = _run(system, track, settings, duration, n_steps, every, None, x_a, pieces)
+        fine = options.check_rail_every_step
+        times, records = _run(
+            system, track, settings, duration, n_steps, every, None, x_a, pieces, fine
+        )
         steps_s = time.perf_counter() - t1
         refined = [(a * h, b * h, h / m) for a, b, m in pieces if m > 1]
     t = np.array(times)

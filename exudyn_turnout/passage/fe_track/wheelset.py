@@ -284,6 +284,7 @@ def _simulate(
         start_args,
         progress,
         None,
+        options,
     )
     steps_s = time.perf_counter() - t1
     W = 0.5 * (loads["left"] + loads["right"])
@@ -311,6 +312,7 @@ def _simulate(
             start_args,
             None,
             pieces,
+            options,
         )
         steps_s = time.perf_counter() - t1
         columns = fe_columns(moving, recorder.t, recorder.q, recorder.q_t, x_a, v)
@@ -345,6 +347,7 @@ def _run(
     start,
     progress,
     pieces,
+    options,
 ):
     """One run at speed from the start state: at the run's step throughout (``pieces``
     None: one SolveDynamic) or in pieces (:func:`~exudyn_turnout.passage.fe_track.common.
@@ -365,7 +368,7 @@ def _run(
     q_t_init = np.asarray(data.GetODE2Coordinates_t(exu.ConfigurationType.Initial)).copy()
     q_t_init[system.index] = q0_t
     data.SetODE2Coordinates_t(q_t_init, exu.ConfigurationType.Initial)
-    grid = None if pieces is None else StepGrid(every)
+    grid = None if pieces is None else StepGrid(every, options.check_rail_every_step)
     recorder = _Recorder(every, grid)
     report = run_progress(progress, duration, x_a, v)
 
