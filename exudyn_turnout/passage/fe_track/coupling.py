@@ -260,6 +260,34 @@ class FECoSimulation:
         self.timings["window_s"] += time.perf_counter() - t0
         return True
 
+    # --- the step size ------------------------------------------------------------------
+
+    def set_step(self, h: float) -> None:
+        """Step on at ``h`` (a loaded check rail's finer step, or back to the run's).
+
+        Both planes refactorise their step matrix for the new h (:meth:`PlaneStepper.set_step
+        <exudyn_turnout.passage.fe_track.planes.PlaneStepper.set_step>`); the one-step
+        compliance blocks and any prediction are void. The state is carried over: the
+        Exudyn solver steps its next piece at the same h without a restart
+        (:func:`~exudyn_turnout.passage.fe_track.common.solve_in_pieces`).
+
+        Parameters
+        ----------
+        h : float
+            s.
+        """
+        if h == self.h:
+            return
+        t0 = time.perf_counter()
+        self.vertical.set_step(h)
+        self.lateral.set_step(h)
+        self.h = float(h)
+        self._blocks = {}
+        self._predicted = {}
+        self.t_next = math.nan
+        self.revision += 1
+        self.timings["factorise_s"] += time.perf_counter() - t0
+
     # --- where the wheels touch ---------------------------------------------------------
 
     def points(self, element, x: float, x_fe: float | None = None) -> _Coupled:

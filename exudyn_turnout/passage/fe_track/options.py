@@ -26,6 +26,12 @@ class FEPassageOptions:
     window_shift: float = 1.0  #: m, the window is cut anew each time the vehicle moves this far
     window_absorbing_length: float = 4.0  #: m, absorbing zone inside each cut end
     window_eta_max: float = 0.5  #: loss factor added at a cut end (-), grown quadratically
+    #: sample every step of the windows run at the check rail's finer step (the output is
+    #: then denser there than the run's grid; the full vehicle's body columns stay at the
+    #: nearest grid sample), not only the grid's: the FE check-rail force has a spike of
+    #: ~50 us at the end of the check rail's entry flare that a 1e-4 s grid misses
+    #: (:mod:`~exudyn_turnout.passage.fe_track.common`)
+    check_rail_every_step: bool = False
 
     def __post_init__(self):
         if self.window_length is not None and not (

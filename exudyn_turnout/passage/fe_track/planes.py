@@ -379,6 +379,29 @@ class PlaneStepper:
         self.u_hat, self.v_hat, self.qdd_star = (np.zeros(self.n) for _ in range(3))
         self._columns: dict = {}  #: key (see columns) -> A^-1 E
 
+    def set_step(self, h: float) -> None:
+        """Step on at ``h`` from now on: refactorise A = M + gamma' h D + beta' h^2 K of the
+        window (its absorbing ends included) and drop the influence columns.
+
+        The state (u, v, qdd and the algorithmic acceleration a) is carried over as it is:
+        the generalized-alpha update of the next step takes the new h, as Exudyn's own does
+        when its pieces step at another size (no restart).
+
+        Parameters
+        ----------
+        h : float
+            s, the new time step (> 0).
+        """
+        if not (math.isfinite(h) and h > 0):
+            raise ValueError(f"FE plane: time step must be > 0, got {h!r}")
+        if h == self.h:
+            return
+        ga = self.ga
+        self.h = float(h)
+        A = self.M + ga.gamma_eff * h * self.D + ga.beta_eff * h * h * self.K
+        self.factor = CholeskyFactor(A) if self.n else None
+        self._columns = {}
+
     def _factor(self) -> CholeskyFactor:
         if self.factor is None:
             raise RuntimeError("the FE plane has no window yet (FECoSimulation.place)")

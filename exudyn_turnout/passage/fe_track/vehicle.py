@@ -317,6 +317,85 @@ def _cross_compliance(track: FECoSimulation, elements: list) -> float:
     return cross / own if own > 0 else 0.0
 
 
+def _run(system, track, settings, duration, n_steps, every, progress, x_a, pieces, fine=False):
+    """One run at speed of the built system from its start state: at the run's step
+    throughout (``pieces`` None: one SolveDynamic) or in pieces
+    (:func:`~exudyn_turnout.passage.fe_track.common.solve_in_pieces`). Returns the sample
+    times and per wheelset its element's (q, q_t) per sample."""
+    import exudyn as exu
+
+    from exudyn_turnout.passage.common import newton_tolerance
+    from exudyn_turnout.passage.fe_track.common import (
+        StepGrid,
+        coupled_run_settings,
+        failure_reason,
+        solve_in_pieces,
+    )
+
+    v = settings.v
+    h = duration / n_steps
+    records: list[list] = [[] for _ in system.coupled]
+    times: list[float] = []
+    report = run_progress(progress, duration, x_a, v)
+    count = [0]
+    grid = None if pieces is None else StepGrid(every, fine)
+
+    def pre_step(mbs, t):
+        track.predict(t, system.coupled)
+        report(t)
+        return True
+
+    def post_step(mbs, t):
+        if t != track.t_next and times:  # a piece's first call: its start, done
+            return True
+        states = _all_coordinates(system)
+        if t == track.t_next:
+            done = [(c, c.solve(t, q, q_t)) for c, (q, q_t) in zip(system.coupled, states)]
+            track.complete(done)
+        else:  # t = 0: the start state
+            for c, (q, q_t) in zip(system.coupled, states):
+                c.solve(t, q, q_t)
+        last = abs(t - duration) < 0.5 * track.h
+        sample = grid.step(last) if grid is not None else count[0] % every == 0 or last
+        if sample:
+            times.append(t)
+            for rec, c in zip(records, system.coupled):
+                rec.append((c.q.copy(), c.q_t.copy()))
+        count[0] += 1
+        return True
+
+    system.mbs.SetPreStepUserFunction(pre_step)
+    system.mbs.SetPostStepUserFunction(post_step)
+    tolerance = newton_tolerance(len(system.coupled))
+    sim = coupled_run_settings(duration, n_steps, settings, tolerance)
+    try:
+        if pieces is None:
+            system.mbs.SolveDynamic(sim)
+        else:
+            solver: Any = exu.MainSolverImplicitSecondOrder()  # (its stubs leave out self)
+            solve_in_pieces(solver, system.mbs, sim, pieces, h, duration, track.set_step, grid)
+    except Exception as err:  # Exudyn's SolverError, or ModelError from a user function
+        t = track.t_next if math.isfinite(track.t_next) else system.mbs.systemData.GetTime()
+        raise PassageFailure(
+            f"FE passage failed at t = {t:.5f} s, front wheelset at x = {x_a + v * t:.3f} m: "
+            f"{failure_reason(err)}"
+        ) from None
+    return np.array(times), records
+
+
+def _wheelset_force_columns(system, times, records, v) -> dict[str, np.ndarray]:
+    """``t_s`` and every wheelset's ``Fy_ws<i>_<wheel>_<slot>_N``, ``Fz_...`` of a run."""
+    from exudyn_turnout.passage.contact.vehicle_contacts import wheelset_columns
+
+    t = np.asarray(times, float)
+    columns: dict[str, np.ndarray] = {"t_s": t}
+    for i, (el, rec) in enumerate(zip(system.elements, records)):
+        q = np.array([a for a, _ in rec])
+        q_t = np.array([b for _, b in rec])
+        columns.update(wheelset_columns(el, t, q, q_t, f"ws{i + 1}"))
+    return columns
+
+
 def simulate_vehicle(
     turnout: Turnout,
     settings: PassageSettings,
@@ -372,8 +451,8 @@ def _simulate(turnout, settings, model, contact, route, x_range, progress, optio
     """:func:`simulate_vehicle` with Exudyn silenced."""
     from exudyn_turnout.passage.contact.vehicle_contacts import wheelset_columns
     from exudyn_turnout.passage.fe_track.common import (
+        check_rail_plan,
         check_rail_steps,
-        failure_reason,
         fe_columns,
         fe_summary,
     )
@@ -427,48 +506,35 @@ def _simulate(turnout, settings, model, contact, route, x_range, progress, optio
     cross = _cross_compliance(track, system.coupled)
     static_s = time.perf_counter() - t0
     every = max(1, round((settings.output_step or h) / h))
-    records: list[list] = [[] for _ in system.coupled]
-    times: list[float] = []
-    report = run_progress(progress, duration, x_a, v)
-    count = [0]
-
-    def pre_step(mbs, t):
-        track.predict(t, system.coupled)
-        report(t)
-        return True
-
-    def post_step(mbs, t):
-        states = _all_coordinates(system)
-        if t == track.t_next:
-            done = [(c, c.solve(t, q, q_t)) for c, (q, q_t) in zip(system.coupled, states)]
-            track.complete(done)
-        else:  # t = 0: the start state
-            for c, (q, q_t) in zip(system.coupled, states):
-                c.solve(t, q, q_t)
-        if count[0] % every == 0 or abs(t - duration) < 0.5 * h:
-            times.append(t)
-            for rec, c in zip(records, system.coupled):
-                rec.append((c.q.copy(), c.q_t.copy()))
-        count[0] += 1
-        return True
-
-    from exudyn_turnout.passage.common import newton_tolerance
-    from exudyn_turnout.passage.fe_track.common import coupled_run_settings
-
-    system.mbs.SetPreStepUserFunction(pre_step)
-    system.mbs.SetPostStepUserFunction(post_step)
-    tolerance = newton_tolerance(len(system.coupled))
-    sim = coupled_run_settings(duration, n_steps, settings, tolerance)
     t1 = time.perf_counter()
-    try:
-        system.mbs.SolveDynamic(sim)
-    except Exception as err:  # Exudyn's SolverError, or ModelError from a user function
-        t = track.t_next if math.isfinite(track.t_next) else system.mbs.systemData.GetTime()
-        raise PassageFailure(
-            f"FE passage failed at t = {t:.5f} s, front wheelset at x = {x_a + v * t:.3f} m: "
-            f"{failure_reason(err)}"
-        ) from None
+    times, records = _run(system, track, settings, duration, n_steps, every, progress, x_a, None)
     steps_s = time.perf_counter() - t1
+    first_s = 0.0
+    refined: list[tuple[float, float, float]] = []
+    n_ws = len(system.elements)
+    pieces = check_rail_plan(
+        settings,
+        route,
+        model.static_wheel_load,
+        _wheelset_force_columns(system, times, records, v),
+        n_steps,
+        h,
+        n_ws,
+    )
+    if pieces is not None:  # a loaded check rail: the run again, finer through it
+        first_s = steps_s
+        track = FECoSimulation(planes, route.name, h, settings.spectral_radius, options)
+        args = (turnout, route, model, vehicle, contact, settings, track, covered, x_a)
+        system = _build(*args, v, False)
+        _copy(moving, system)
+        track.start(system.coupled, forces, v)
+        t1 = time.perf_counter()
+        fine = options.check_rail_every_step
+        times, records = _run(
+            system, track, settings, duration, n_steps, every, None, x_a, pieces, fine
+        )
+        steps_s = time.perf_counter() - t1
+        refined = [(a * h, b * h, h / m) for a, b, m in pieces if m > 1]
     t = np.array(times)
     columns: dict[str, np.ndarray] = {"t_s": t, "x_m": x_a + v * t}
     for i, (el, rec) in enumerate(zip(system.elements, records)):
@@ -502,10 +568,10 @@ def _simulate(turnout, settings, model, contact, route, x_range, progress, optio
         wall,
         limits_for_friction(vehicle.contact.mu),
     )
-    summary.update(fe_summary(planes, settings, track, h, n_steps, static_s, steps_s))
+    summary.update(fe_summary(planes, settings, track, h, n_steps, static_s, steps_s, first_s))
     summary["cross_compliance"] = cross
     record_start(summary, turnout, x_a, v, start, residual, stacklevel=4)
     check_rail_steps(
-        settings, route, model.static_wheel_load, columns, summary, len(system.elements), 4
+        settings, route, model.static_wheel_load, columns, summary, n_ws, 4, refined=refined
     )
     return PassageResult(replace(settings, x_start=x_a, x_end=x_b), columns, summary, (x_a,))

@@ -42,12 +42,15 @@ from exudyn_turnout.inputs.vehicle import Vehicle
 from exudyn_turnout.passage.common import QuietExudyn
 from exudyn_turnout.passage.contact.profile import RouteContact
 from exudyn_turnout.passage.fe_track.common import (
+    StepGrid,
+    check_rail_plan,
     check_rail_steps,
     coupled_run_settings,
     failure_reason,
     fe_columns,
     fe_contact_element,
     fe_summary,
+    solve_in_pieces,
 )
 from exudyn_turnout.passage.fe_track.coupling import FEContactElement, FECoSimulation, run_progress
 from exudyn_turnout.passage.fe_track.options import FEPassageOptions
@@ -150,16 +153,18 @@ def _solve_static(system: _System, x: float) -> None:
 
 
 class _Recorder:
-    """The full element coordinates (vehicle and rail bodies) at the output times."""
+    """The full element coordinates (vehicle and rail bodies) at the output times (every
+    ``every``-th step, or where ``grid`` says in a run in pieces)."""
 
-    def __init__(self, every: int):
-        self.every, self.count = every, 0
+    def __init__(self, every: int, grid: StepGrid | None = None):
+        self.every, self.count, self.grid = every, 0, grid
         self.t: list[float] = []
         self.q: list[np.ndarray] = []
         self.q_t: list[np.ndarray] = []
 
     def add(self, t: float, coupled: FEContactElement, last: bool = False) -> None:
-        if self.count % self.every == 0 or last:
+        sample = self.grid.step(last) if self.grid is not None else None
+        if sample if sample is not None else (self.count % self.every == 0 or last):
             self.t.append(t)
             self.q.append(coupled.q.copy())
             self.q_t.append(coupled.q_t.copy())
@@ -238,10 +243,6 @@ def simulate_wheelset(
 def _simulate(
     turnout, settings, vehicle, route, contact, planes, x_a, x_b, progress, wall, options
 ):
-    import exudyn as exu
-
-    from exudyn_turnout.passage.common import NEWTON_ABSOLUTE_TOLERANCE
-
     v = settings.v
     duration = (x_b - x_a) / v
     n_steps = max(1, math.ceil(duration / settings.time_step - 1e-9))
@@ -266,7 +267,97 @@ def _simulate(
         start, residual = start_state(vehicle, route, x_a, v)
     track.start([start_element], [forces], v)
     static_s = time.perf_counter() - t0
-    # the run at speed
+    start_args = (q0, q0_t)
+    t1 = time.perf_counter()
+    moving, recorder = _run(
+        settings,
+        vehicle,
+        route,
+        contact,
+        track,
+        x_a,
+        v,
+        irr,
+        duration,
+        n_steps,
+        every,
+        start_args,
+        progress,
+        None,
+        options,
+    )
+    steps_s = time.perf_counter() - t1
+    W = 0.5 * (loads["left"] + loads["right"])
+    columns = fe_columns(moving, recorder.t, recorder.q, recorder.q_t, x_a, v)
+    pieces = check_rail_plan(settings, route, W, columns, n_steps, h)
+    refined: list[tuple[float, float, float]] = []
+    first_s = 0.0
+    if pieces is not None:  # a loaded check rail: the run again, finer through it
+        first_s = steps_s
+        track = FECoSimulation(planes, route.name, h, settings.spectral_radius, options)
+        track.start([start_element], [forces], v)
+        t1 = time.perf_counter()
+        moving, recorder = _run(
+            settings,
+            vehicle,
+            route,
+            contact,
+            track,
+            x_a,
+            v,
+            irr,
+            duration,
+            n_steps,
+            every,
+            start_args,
+            None,
+            pieces,
+            options,
+        )
+        steps_s = time.perf_counter() - t1
+        columns = fe_columns(moving, recorder.t, recorder.q, recorder.q_t, x_a, v)
+        refined = [(a * h, b * h, h / m) for a, b, m in pieces if m > 1]
+    check_plausible(columns, W, "FE track", limits_for_friction(vehicle.contact.mu))
+    summary = passage_summary(
+        columns,
+        turnout,
+        settings,
+        loads,
+        time.perf_counter() - wall,
+        limits_for_friction(vehicle.contact.mu),
+    )
+    summary.update(fe_summary(planes, settings, track, h, n_steps, static_s, steps_s, first_s))
+    record_start(summary, turnout, x_a, v, start, residual, stacklevel=5)
+    check_rail_steps(settings, route, W, columns, summary, stacklevel=5, refined=refined)
+    return PassageResult(replace(settings, x_start=x_a, x_end=x_b), columns, summary, (x_a,))
+
+
+def _run(
+    settings,
+    vehicle,
+    route,
+    contact,
+    track,
+    x_a,
+    v,
+    irr,
+    duration,
+    n_steps,
+    every,
+    start,
+    progress,
+    pieces,
+    options,
+):
+    """One run at speed from the start state: at the run's step throughout (``pieces``
+    None: one SolveDynamic) or in pieces (:func:`~exudyn_turnout.passage.fe_track.common.
+    solve_in_pieces`). Returns the moving contact element and the recorder."""
+    import exudyn as exu
+
+    from exudyn_turnout.passage.common import NEWTON_ABSOLUTE_TOLERANCE
+
+    q0, q0_t = start
+    h = duration / n_steps
     moving = fe_contact_element(contact, vehicle, route, x_a, v, irr)
     coupled = FEContactElement(moving, track)
     system = _build(vehicle, coupled, 0.0, 0.0, 0.0)
@@ -277,7 +368,8 @@ def _simulate(
     q_t_init = np.asarray(data.GetODE2Coordinates_t(exu.ConfigurationType.Initial)).copy()
     q_t_init[system.index] = q0_t
     data.SetODE2Coordinates_t(q_t_init, exu.ConfigurationType.Initial)
-    recorder = _Recorder(every)
+    grid = None if pieces is None else StepGrid(every, options.check_rail_every_step)
+    recorder = _Recorder(every, grid)
     report = run_progress(progress, duration, x_a, v)
 
     def pre_step(mbs, t):
@@ -286,42 +378,32 @@ def _simulate(
         return True
 
     def post_step(mbs, t):
+        if t != track.t_next and recorder.t:  # a piece's first call: its start, done
+            return True
         q, q_t = _coordinates(system)
         if t == track.t_next:
             F = coupled.solve(t, q, q_t)
             track.complete([(coupled, F)])
         else:  # t = 0: the start state
             coupled.solve(t, q, q_t)
-        recorder.add(t, coupled, last=abs(t - duration) < 0.5 * h)
+        recorder.add(t, coupled, last=abs(t - duration) < 0.5 * track.h)
         return True
 
     system.mbs.SetPreStepUserFunction(pre_step)
     system.mbs.SetPostStepUserFunction(post_step)
     sim = coupled_run_settings(duration, n_steps, settings, NEWTON_ABSOLUTE_TOLERANCE)
-    t1 = time.perf_counter()
     try:
-        system.mbs.SolveDynamic(sim)
+        if pieces is None:
+            system.mbs.SolveDynamic(sim)
+        else:
+            solver: Any = exu.MainSolverImplicitSecondOrder()  # (its stubs leave out self)
+            solve_in_pieces(solver, system.mbs, sim, pieces, h, duration, track.set_step, grid)
     except Exception as err:  # Exudyn's SolverError, or ModelError from a user function
         t = track.t_next if math.isfinite(track.t_next) else data.GetTime()
         raise PassageFailure(
             f"FE passage failed at t = {t:.5f} s, x = {x_a + v * t:.3f} m: {failure_reason(err)}"
         ) from None
-    steps_s = time.perf_counter() - t1
-    columns = fe_columns(moving, recorder.t, recorder.q, recorder.q_t, x_a, v)
-    W = 0.5 * (loads["left"] + loads["right"])
-    check_plausible(columns, W, "FE track", limits_for_friction(vehicle.contact.mu))
-    summary = passage_summary(
-        columns,
-        turnout,
-        settings,
-        loads,
-        time.perf_counter() - wall,
-        limits_for_friction(vehicle.contact.mu),
-    )
-    summary.update(fe_summary(planes, settings, track, h, n_steps, static_s, steps_s))
-    record_start(summary, turnout, x_a, v, start, residual, stacklevel=5)
-    check_rail_steps(settings, route, W, columns, summary, stacklevel=5)
-    return PassageResult(replace(settings, x_start=x_a, x_end=x_b), columns, summary, (x_a,))
+    return moving, recorder
 
 
 def start_state(vehicle: Vehicle, route: Route, x: float, v: float) -> tuple[str, float]:
