@@ -132,7 +132,7 @@ def test_lead_along_a_flare_and_a_ramp_matches_a_3d_search(case, kink):
     x_yaw, closing = (float(v) for v in contact_lead(RADIUS, gamma, side, yaw))
     limit = MAX_LEAD_SINE * RADIUS
     lead, change = kernel.lead_along_x(
-        values, xs, 2 * ix, ix, 3, 2, 0, 0.0, 0.0, 0.0, x_yaw, RADIUS / np.cos(gamma), -limit,
+        values, xs, 2 * ix, ix, True, 3, 2, 0, 0.0, 0.0, x_yaw, RADIUS / np.cos(gamma), -limit,
         limit,
     )  # fmt: skip
     vertical = (normal_gap(0.0) + change - closing) / np.cos(gamma)

@@ -521,21 +521,31 @@ def _node_gap(values, i, w_b, b_offset):  # pragma: no cover (compiled)
 
 
 @numba.njit(cache=True)
-def _same_point(values, i, w_b, b_offset, y_ref):  # pragma: no cover (compiled)
-    """1 if the node at ``i`` (and its next shift node if ``w_b`` > 0) holds the point at
-    ``y_ref`` on the rail (within :data:`X_BLEND_DISTANCE`)."""
+def _same_point(values, i, j, w_b, b_offset):  # pragma: no cover (compiled)
+    """1 if the node at flat index ``i`` (and its next shift node if ``w_b`` > 0) holds the
+    point of its neighbour along x at ``j``: a gap, positions on the rail within
+    :data:`X_BLEND_DISTANCE`."""
     dy = _Y_RAIL - _GAP
-    if not (values[i] < _EMPTY and abs(values[i + dy] - y_ref) < _X_BLEND):
+    if not (values[i] < _EMPTY and abs(values[i + dy] - values[j + dy]) < _X_BLEND):
         return False
     if w_b > 0.0:
-        j = i + b_offset
-        return values[j] < _EMPTY and abs(values[j + dy] - y_ref) < _X_BLEND
+        i += b_offset
+        j += b_offset
+        return values[i] < _EMPTY and abs(values[i + dy] - values[j + dy]) < _X_BLEND
     return True
 
 
 @numba.njit(cache=True)
+def _segment_minimum(g0, x0, slope, left, right, x, x_yaw, radius_x):  # pragma: no cover
+    """(value, xi) of ``g0 + slope (x + xi - x0) + (xi - x_yaw)^2 / (2 R_x)`` smallest over
+    xi in ``[left, right]`` (compiled)."""
+    xi = min(max(x_yaw - slope * radius_x, left), right)
+    return g0 + slope * (x + xi - x0) + (xi - x_yaw) * (xi - x_yaw) / (2.0 * radius_x), xi
+
+
+@numba.njit(cache=True)
 def lead_along_x(
-    values, xs, i_node, ix, n_x, plane, b_offset, w_b, x, y_ref, x_yaw, radius_x, lo, hi
+    values, xs, i_node, k0, pair, n_x, plane, b_offset, w_b, x, x_yaw, radius_x, lo, hi
 ):  # pragma: no cover (compiled; tested in tests/test_wheel_rail_lead.py)
     """Lead of a contact along a rail whose gap varies along x, and the gap it closes.
 
@@ -544,25 +554,30 @@ def lead_along_x(
     ``(xi - x_yaw)^2 / (2 R_x)`` minus the yaw's closing (:mod:`.lead`: ``x_yaw = r
     sin(theta)``, closing ``r (1 - cos(theta)) cos(gamma) = x_yaw^2 / (2 R_x)`` to second
     order, so ``R_x = r / cos(gamma)``).  The rail adds its own gap at ``x + xi``, ``g(x +
-    xi)``, piecewise linear between the table's x nodes that hold the same contact point;
-    the contact lies at the minimum of the sum over xi in ``[lo, hi]``: per segment of
-    slope m at ``x_yaw - m R_x`` (clamped to the segment), at a slope change (a flare's end,
-    the top of a ramp: a convex edge of the rail along x) where the stationary points of
-    the two segments lie beyond it.  Beyond the last node holding the point the last
-    segment continues.  On a prismatic rail (equal node gaps) the result is exactly
-    ``(x_yaw, 0)``; on one slope m it is ``x_yaw - m R_x`` and ``m x_yaw - m^2 R_x / 2``.
+    xi)``: piecewise linear between the table's x nodes that hold the same contact point
+    (from node ``k0`` on in both directions, each node's position on the rail within
+    :data:`X_BLEND_DISTANCE` of its neighbour's), constant beyond the last of them in
+    either direction (as the kernel takes a point that one node alone holds, so that the
+    gap stays continuous where the tables' points change).  The contact lies at the
+    minimum of the sum over xi in ``[lo, hi]``: per segment of slope m at ``x_yaw - m R_x``
+    (clamped to the segment), at a slope change (a flare's end, the top of a ramp: a
+    convex edge of the rail along x) where the stationary points of the two segments lie
+    beyond it.  On a prismatic rail (equal node gaps) the result is exactly ``(x_yaw, 0)``;
+    on one slope m it is ``x_yaw - m R_x`` and ``m x_yaw - m^2 R_x / 2``.
 
     Parameters
     ----------
     values : numpy.ndarray
-        Flat node values; the gap of node k of the contact's slot at ``i_node + (k - ix)
-        plane``, its contact position on the rail one entry later.
+        Flat node values; the gap of node k of the contact's slot at ``i_node + (k - k0)
+        plane``, its contact position on the rail ``_Y_RAIL - _GAP`` entries later.
     xs : numpy.ndarray
         m, (n_x,) the table's x nodes.
     i_node : int
-        Flat index of the slot's gap at node ``ix`` (first shift node).
-    ix : int
-        Cell of x (nodes ``ix``, ``ix + 1``).
+        Flat index of the slot's gap at node ``k0`` (first shift node).
+    k0 : int
+        A node that holds the point.
+    pair : bool
+        Node ``k0 + 1`` holds it too (a cell interpolated along x), unchecked.
     n_x : int
         Number of x nodes.
     plane : int
@@ -573,8 +588,6 @@ def lead_along_x(
         Weight of the next shift node (0: the first alone).
     x : float
         m, wheelset position.
-    y_ref : float
-        m, the contact's position on the rail (nodes holding another point end the walk).
     x_yaw : float
         m, the yaw's lead on a prismatic rail.
     radius_x : float
@@ -590,42 +603,60 @@ def lead_along_x(
         m, gap at the contact plus the parabola, minus the rail's gap at x (add it to the
         gap at x, then subtract the yaw's closing).
     """
-    xa = xs[ix]
-    xb = xs[ix + 1]
-    ga = _node_gap(values, i_node, w_b, b_offset)
-    gb = _node_gap(values, i_node + plane, w_b, b_offset)
-    here = ga + (x - xa) * ((gb - ga) / (xb - xa))
-    k_max = ix
+    k_hi = k0 + 1 if pair else k0
     while (
-        k_max + 2 < n_x
-        and xs[k_max + 1] - x < hi
-        and _same_point(values, i_node + (k_max + 2 - ix) * plane, w_b, b_offset, y_ref)
+        k_hi + 1 < n_x
+        and xs[k_hi] - x < hi
+        and _same_point(
+            values, i_node + (k_hi + 1 - k0) * plane, i_node + (k_hi - k0) * plane, w_b, b_offset
+        )
     ):
-        k_max += 1
-    k_min = ix
+        k_hi += 1
+    k_lo = k0
     while (
-        k_min > 0
-        and xs[k_min] - x > lo
-        and _same_point(values, i_node + (k_min - 1 - ix) * plane, w_b, b_offset, y_ref)
+        k_lo > 0
+        and xs[k_lo] - x > lo
+        and _same_point(
+            values, i_node + (k_lo - 1 - k0) * plane, i_node + (k_lo - k0) * plane, w_b, b_offset
+        )
     ):
-        k_min -= 1
-    best = math.inf
-    best_xi = x_yaw
-    for k in range(k_min, k_max + 1):
-        xa = xs[k]
-        xb = xs[k + 1]
-        ga = _node_gap(values, i_node + (k - ix) * plane, w_b, b_offset)
-        gb = _node_gap(values, i_node + (k + 1 - ix) * plane, w_b, b_offset)
-        slope = (gb - ga) / (xb - xa)
-        left = max(xa - x, lo) if k > k_min else lo
-        right = min(xb - x, hi) if k < k_max else hi
+        k_lo -= 1
+    # the rail's gap at x (on the nodes' polyline, constant beyond its ends)
+    first = _node_gap(values, i_node + (k_lo - k0) * plane, w_b, b_offset)
+    last = _node_gap(values, i_node + (k_hi - k0) * plane, w_b, b_offset)
+    if x <= xs[k_lo]:
+        here = first
+    elif x >= xs[k_hi]:
+        here = last
+    else:
+        k = k_lo
+        while xs[k + 1] < x:
+            k += 1
+        ga = _node_gap(values, i_node + (k - k0) * plane, w_b, b_offset)
+        gb = _node_gap(values, i_node + (k + 1 - k0) * plane, w_b, b_offset)
+        here = ga + (x - xs[k]) * ((gb - ga) / (xs[k + 1] - xs[k]))
+    # constant before the first node and after the last, linear between
+    best, best_xi = _segment_minimum(
+        first, xs[k_lo], 0.0, lo, min(xs[k_lo] - x, hi), x, x_yaw, radius_x
+    )
+    if not xs[k_lo] - x > lo:  # the first node lies at or behind the range: no such part
+        best = math.inf
+    value, xi = _segment_minimum(last, xs[k_hi], 0.0, max(xs[k_hi] - x, lo), hi, x, x_yaw, radius_x)
+    if xs[k_hi] - x < hi and value < best:
+        best, best_xi = value, xi
+    gb = first
+    for k in range(k_lo, k_hi):
+        ga = gb
+        gb = _node_gap(values, i_node + (k + 1 - k0) * plane, w_b, b_offset)
+        left = max(xs[k] - x, lo)
+        right = min(xs[k + 1] - x, hi)
         if left > right:
             continue
-        xi = min(max(x_yaw - slope * radius_x, left), right)
-        value = ga + slope * (x + xi - xa) + (xi - x_yaw) * (xi - x_yaw) / (2.0 * radius_x)
+        value, xi = _segment_minimum(
+            ga, xs[k], (gb - ga) / (xs[k + 1] - xs[k]), left, right, x, x_yaw, radius_x
+        )
         if value < best:
-            best = value
-            best_xi = xi
+            best, best_xi = value, xi
     if not best < math.inf:
         return x_yaw, 0.0
     return best_xi, best - here
@@ -639,8 +670,8 @@ def _point(
     """Forces of one contact point (node or interpolated ``fields``, normal ``gap`` at zero
     lift), times ``weight``, added to ``forces`` and ``details[row]``; 1 if it carries load.
     ``creep[creep_at:]`` holds the creep table (``creep_at`` < 0: Polach's law) behind the
-    node values; ``walk`` (i_node, ix, n_x, plane, b_offset, w_b, slope bound) where the
-    slot lies in them for :func:`lead_along_x` (i_node < 0: the rail taken as prismatic),
+    node values; ``walk`` (i_node, k0, n_x, plane, b_offset, w_b, slope bound, pair) where
+    the slot lies in them for :func:`lead_along_x` (i_node < 0: the rail prismatic),
     ``xs`` the body's x nodes, ``x`` the wheelset's position."""
     v, mu, G, damping, kappa = (
         constants[0], constants[2], constants[3], constants[4], constants[5]
@@ -666,9 +697,9 @@ def _point(
         reach = walk[6] * radius_x
         limit = MAX_LEAD_SINE * r
         x_lead, change = lead_along_x(
-            creep, xs, int(walk[0]), int(walk[1]), int(walk[2]), int(walk[3]), int(walk[4]),
-            walk[5], x, fields[_Y_RAIL], x_lead, radius_x, max(x_lead - reach, -limit),
-            min(x_lead + reach, limit),
+            creep, xs, int(walk[0]), int(walk[1]), walk[7] > 0.0, int(walk[2]), int(walk[3]),
+            int(walk[4]), walk[5], x, x_lead, radius_x,
+            max(x_lead - reach, -limit), min(x_lead + reach, limit),
         )  # fmt: skip
         gap += change
     gap -= r * lead * lead / (1.0 + math.sqrt(1.0 - lead * lead)) * cos_g
@@ -807,7 +838,7 @@ def contact_forces(
     n_values = values.shape[0]  # the creep law is packed behind the nodes (pack_tables)
     creep_at = int(values[n_values - 2]) if values[n_values - 1] > 0.5 else -1
     fields = np.empty(_N_FIELDS)
-    walk = np.empty(7)  # where a slot's gaps lie along x, for lead_along_x (see _point)
+    walk = np.empty(8)  # where a slot's gaps lie along x, for lead_along_x (see _point)
     n_max = details.shape[0] // max(layout.shape[0], 1)
     loaded = 0
     for k in range(layout.shape[0]):
@@ -847,7 +878,6 @@ def contact_forces(
         blend = blendable[b_off + ix * n_s + js] != 0
         v_base = v_off + (ix * n_s + js) * n_c * _N_FIELDS
         plane = n_s * n_c * _N_FIELDS
-        walk[1] = ix
         if blend:
             for c in range(n_c):
                 # the gap first: an empty slot (most of them) skips the other fields
@@ -855,7 +885,8 @@ def contact_forces(
                     continue
                 _interpolate(values, v_base, n_s, n_c, c, tx, ts, True, fields)
                 # the slot's gaps along x at the query's shift (bilinear form's x nodes)
-                walk[0], walk[4], walk[5] = v_base + c * _N_FIELDS, n_c * _N_FIELDS, ts
+                walk[0], walk[1], walk[4], walk[5] = v_base + c * _N_FIELDS, ix, n_c * _N_FIELDS, ts
+                walk[7] = 1.0
                 if fields[_GAP] < _EMPTY:
                     loaded += _point(
                         fields, fields[_GAP], 1.0, s, k * n_max + c, i_y, i_z, q, q_t, shift_t,
@@ -884,7 +915,8 @@ def contact_forces(
                 if ok0 and ok1 and abs(values[i0 + _Y_RAIL] - values[i1 + _Y_RAIL]) < _X_BLEND:
                     for f in range(_N_FIELDS):
                         fields[f] = values[i0 + f] + tx * (values[i1 + f] - values[i0 + f])
-                    walk[0], walk[4], walk[5] = i0 + _GAP, 0.0, 0.0  # the shift node's gaps
+                    walk[0], walk[1], walk[4], walk[5] = i0 + _GAP, ix, 0.0, 0.0  # shift node's
+                    walk[7] = 1.0
                     gap = fields[_GAP] - fields[_SIN] * (shift - shift_node)
                     loaded += _point(
                         fields, gap, wb, s, k * n_max + c, i_y, i_z, q, q_t, shift_t, z_irr,
@@ -898,7 +930,9 @@ def contact_forces(
                     i = i1 if da else i0
                     for f in range(_N_FIELDS):
                         fields[f] = values[i + f]
-                    walk[0] = -1.0  # two different points: the rail taken as prismatic
+                    # two different points, each its own node's: along x from that node
+                    walk[0], walk[1], walk[4], walk[5] = i + _GAP, ix + da, 0.0, 0.0
+                    walk[7] = 0.0
                     gap = fields[_GAP] - fields[_SIN] * (shift - shift_node)
                     loaded += _point(
                         fields, gap, w, s, k * n_max + c, i_y, i_z, q, q_t, shift_t, z_irr,
