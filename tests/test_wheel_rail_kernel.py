@@ -100,6 +100,23 @@ def _column(name: str) -> int:
     return kernel.DETAIL_FIELDS.index(name)
 
 
+def _slide(table, x: float, shift: float, c: int) -> float:
+    """1 / (rho_w + rho_r) of slot c at (x, shift) as the kernel has it: per node from the
+    table's lateral curvatures (both convex, else 0), bilinear between the cell's nodes."""
+    names = list(table.fields)
+    k_w = np.nan_to_num(table.values[..., c, names.index("curvature_wheel")])
+    k_r = np.nan_to_num(table.values[..., c, names.index("curvature_rail")])
+    convex = (table.values[..., c, 0] < 0.5) & (k_w > 0.0) & (k_r > 0.0)
+    node = np.where(convex, k_w * k_r / np.where(convex, k_w + k_r, 1.0), 0.0)
+    ix = min(max(int(np.searchsorted(table.x, x, side="right")) - 1, 0), len(table.x) - 2)
+    tx = min(max((x - table.x[ix]) / (table.x[ix + 1] - table.x[ix]), 0.0), 1.0)
+    position = (shift - table.shift[0]) / (table.shift[1] - table.shift[0])
+    js = int(position)
+    ts = position - js
+    v00, v10, v01, v11 = node[ix, js], node[ix + 1, js], node[ix, js + 1], node[ix + 1, js + 1]
+    return float(v00 + tx * (v10 - v00) + ts * ((v01 - v00) + tx * (v11 - v10 - v01 + v00)))
+
+
 def test_kernel_geometry_equals_table_lookup(crossing_table):
     """In cells whose nodes hold the same contact points, positions, angle and gap of every
     candidate equal lookup_values (bilinear)."""
@@ -151,7 +168,8 @@ def test_kernel_geometry_equals_table_lookup(crossing_table):
             # lookup_values uses them as they are: 1 - cos(D / 2) ~ D^2 / 8 < 1e-3 for the
             # < 0.09 rad a cell's angle changes here, times |lift| = 1e-4 m.  Where the rail
             # varies along x (the nose's ramp) the contact lies at the minimum along x of the
-            # wheel's parabola (no yaw: lead**2 / (2 r / cos(gamma))) plus the rail's gap,
+            # wheel's parabola (no yaw: lead**2 / (2 r / cos(gamma))) and profile term
+            # (sin(gamma)^2 lead^4 / (8 r^2 (rho_w + rho_r))) plus the rail's gap,
             # x_offset ahead (kernel.lead_along_x, tests/test_wheel_rail_lead_table.py): the
             # table's gap there plus the parabola, never more than the table's gap at x
             lead = row[_column("x_offset")]
@@ -165,6 +183,10 @@ def test_kernel_geometry_equals_table_lookup(crossing_table):
                 assert -row[_column("delta")] == pytest.approx(
                     there[c, fields.index("gap")]
                     + lead**2 / (2.0 * radius_x)
+                    + np.sin(gamma) ** 2
+                    * _slide(crossing_table, x, shift, c)
+                    / (8.0 * row[_column("radius")] ** 2)
+                    * lead**4
                     + np.cos(gamma) * lift,
                     abs=1e-9,
                 )

@@ -63,6 +63,23 @@ def _column(name: str) -> int:
     return kernel.DETAIL_FIELDS.index(name)
 
 
+def _slide(table, x: float, shift: float, c: int) -> float:
+    """1 / (rho_w + rho_r) of slot c at (x, shift) as the kernel has it: per node from the
+    table's lateral curvatures (both convex, else 0), bilinear between the cell's nodes."""
+    names = list(table.fields)
+    k_w = np.nan_to_num(table.values[..., c, names.index("curvature_wheel")])
+    k_r = np.nan_to_num(table.values[..., c, names.index("curvature_rail")])
+    convex = (table.values[..., c, 0] < 0.5) & (k_w > 0.0) & (k_r > 0.0)
+    node = np.where(convex, k_w * k_r / np.where(convex, k_w + k_r, 1.0), 0.0)
+    ix = min(max(int(np.searchsorted(table.x, x, side="right")) - 1, 0), len(table.x) - 2)
+    tx = min(max((x - table.x[ix]) / (table.x[ix + 1] - table.x[ix]), 0.0), 1.0)
+    position = (shift - table.shift[0]) / (table.shift[1] - table.shift[0])
+    js = int(position)
+    ts = position - js
+    v00, v10, v01, v11 = node[ix, js], node[ix + 1, js], node[ix, js + 1], node[ix + 1, js + 1]
+    return float(v00 + tx * (v10 - v00) + ts * ((v01 - v00) + tx * (v11 - v10 - v01 + v00)))
+
+
 @pytest.mark.parametrize(
     "x, where",
     [(0.11, "on the flare"), (0.135, "on the kink"), (0.16, "beyond the kink")],
@@ -72,7 +89,8 @@ def test_flange_contact_is_the_minimum_along_a_kinked_flare(kinked, x, where):
     at 0.15 m, yawed 6 mrad (flange at ~70 deg, the yaw's lead 7.7 mm): the kernel's
     penetration is the largest over xi of the table's (tables.lookup_values at x + xi, the
     query's shift, in the cells 0.1 ... 0.3 m that hold one point along x) less the
-    parabola, plus the closing, and its lead that xi.  On the flare the contact lies
+    parabola and the profile term (kernel.lead_along_x), plus the closing, and its lead
+    that xi.  On the flare the contact lies
     ``FLARE sin(gamma) r / cos(gamma)`` ~ 12.5 mm ahead of the yaw's lead (and the first
     order along x misses ~60 um of penetration), within that of the kink on the kink,
     beyond it at the yaw's lead.  The xi grid (20 um) holds the table's nodes: within 1 nm
@@ -95,7 +113,10 @@ def test_flange_contact_is_the_minimum_along_a_kinked_flare(kinked, x, where):
     offsets = np.union1d(np.arange(lo, hi, 2e-5), kinked.x[(kinked.x > x + lo)] - x)
     offsets = offsets[offsets <= hi]
     gaps = lookup_values(kinked, x + offsets, np.full(offsets.size, shift))[:, c, 0]
-    candidates = -gaps - (offsets - x_yaw) ** 2 / (2.0 * radius / math.cos(angle))
+    quartic = math.sin(angle) ** 2 * _slide(kinked, x, shift, c) / (8.0 * radius**2)
+    candidates = (
+        -gaps - (offsets - x_yaw) ** 2 / (2.0 * radius / math.cos(angle)) - quartic * offsets**4
+    )
     best = int(np.argmax(candidates))
     assert 0 < best < offsets.size - 1  # a minimum inside the search
     assert row[_column("delta")] == pytest.approx(candidates[best] + closing, abs=1e-9)

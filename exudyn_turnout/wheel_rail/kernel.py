@@ -128,7 +128,10 @@ _F_REF, _F_EXP, _C_H, _X_OFFSET, _SIN, _COS = 6, 7, 8, 9, 10, 11
 _A_REF, _B_REF, _C11, _C22, _C23, _A_EXP, _B_EXP, _SEMI = 12, 13, 14, 15, 16, 17, 18, 19
 _CENTRE, _CENTRE_EXP = 20, 21  # the force centre's law c_ref (delta / DELTA_REF)^m
 _OFFSET_C2, _OFFSET_C3 = 22, 23  # the rail surface's offset there, a c^2 + b c^3
-_N_FIELDS = 24
+#: 1 / (rho_w + rho_r), the profiles' lateral radii of curvature at the contact summed (1/m,
+#: 0 where either is flat or concave: lead_along_x's profile term)
+_SLIDE = 24
+_N_FIELDS = 25
 _GEOMETRY = ("gap", "y_rail", "z_rail", "s_wheel", "angle", "radius")
 _EMPTY = 0.5  # m, a gap this large marks an empty candidate slot (tables store 1 m)
 #: m, a candidate slot held by both x nodes of a cell whose contact positions on the rail
@@ -170,7 +173,7 @@ _N_DETAIL = len(DETAIL_FIELDS)
 class PackedTables:
     """The contact tables of one wheelset's rail bodies as flat arrays (kernel input)."""
 
-    values: np.ndarray  #: flat node values, body after body, (n_x, n_s, n_c, 24) each
+    values: np.ndarray  #: flat node values, body after body, (n_x, n_s, n_c, 25) each
     blendable: np.ndarray  #: flat uint8 cell flags, (n_x, n_s) each
     x: np.ndarray  #: m, section positions, body after body
     #: per body: value offset, blend offset, x offset, n_x, n_s, n_c, side (+1 / -1),
@@ -289,7 +292,7 @@ def gap_slope_bound(gap: np.ndarray, y_rail: np.ndarray, x: np.ndarray) -> float
 
 
 def _node_fields(table: ContactTable, modulus: float, poisson: float) -> np.ndarray:
-    """(n_x, n_s, n_c, 24) node values: geometry, the normal law, semi-axes and Kalker's.
+    """(n_x, n_s, n_c, 25) node values: geometry, the normal law, semi-axes and Kalker's.
 
     A table that carries the per-node law of :mod:`.nonhertz` (``PATCH_FIELDS``) is used
     as it is; an older table (without it) gets Hertz's law from its curvatures.
@@ -311,6 +314,13 @@ def _node_fields(table: ContactTable, modulus: float, poisson: float) -> np.ndar
         out[..., _OFFSET_C2] = base[..., index["patch_offset_c2"]]
         out[..., _OFFSET_C3] = base[..., index["patch_offset_c3"]]
     valid = base[..., index["gap"]] < _EMPTY
+    if "curvature_wheel" in index and "curvature_rail" in index:
+        # two convex profiles slid along their common tangent by u open the gap by
+        # u^2 / (2 (rho_w + rho_r)) (two circles): lead_along_x's profile term
+        k_w = np.nan_to_num(base[..., index["curvature_wheel"]])
+        k_r = np.nan_to_num(base[..., index["curvature_rail"]])
+        convex = valid & (k_w > 0.0) & (k_r > 0.0)
+        out[..., _SLIDE] = np.where(convex, k_w * k_r / np.where(convex, k_w + k_r, 1.0), 0.0)
     if not np.any(valid):
         return out
     if all(name in index for name in PATCH_FIELDS):
@@ -536,16 +546,59 @@ def _same_point(values, i, j, w_b, b_offset):  # pragma: no cover (compiled)
 
 
 @numba.njit(cache=True)
-def _segment_minimum(g0, x0, slope, left, right, x, x_yaw, radius_x):  # pragma: no cover
-    """(value, xi) of ``g0 + slope (x + xi - x0) + (xi - x_yaw)^2 / (2 R_x)`` smallest over
-    xi in ``[left, right]`` (compiled)."""
-    xi = min(max(x_yaw - slope * radius_x, left), right)
-    return g0 + slope * (x + xi - x0) + (xi - x_yaw) * (xi - x_yaw) / (2.0 * radius_x), xi
+def _segment_minimum(g0, x0, slope, left, right, x, x_yaw, radius_x, quartic):  # pragma: no cover
+    """(value, xi) of ``g0 + slope (x + xi - x0) + (xi - x_yaw)^2 / (2 R_x) + quartic xi^4``
+    smallest over xi in ``[left, right]`` (compiled; convex: its derivative increases, its
+    root by Newton's method kept within the bracket, bisection where a step leaves it)."""
+    if quartic == 0.0:  # the parabola alone: its stationary point, clamped
+        xi = min(max(x_yaw - slope * radius_x, left), right)
+        value = g0 + slope * (x + xi - x0) + (xi - x_yaw) * (xi - x_yaw) / (2.0 * radius_x)
+        return value, xi
+    a = left
+    b = right
+    d_a = slope + (a - x_yaw) / radius_x + 4.0 * quartic * a * a * a
+    d_b = slope + (b - x_yaw) / radius_x + 4.0 * quartic * b * b * b
+    if d_a >= 0.0:
+        xi = a
+    elif d_b <= 0.0:
+        xi = b
+    else:
+        xi = min(max(x_yaw - slope * radius_x, a), b)
+        for _ in range(60):
+            d = slope + (xi - x_yaw) / radius_x + 4.0 * quartic * xi * xi * xi
+            if d > 0.0:
+                b = xi
+            else:
+                a = xi
+            step = d / (1.0 / radius_x + 12.0 * quartic * xi * xi)
+            new = xi - step
+            if not (a < new < b):
+                new = 0.5 * (a + b)
+            if abs(new - xi) < 1e-12:
+                xi = new
+                break
+            xi = new
+    value = g0 + slope * (x + xi - x0) + (xi - x_yaw) * (xi - x_yaw) / (2.0 * radius_x)
+    return value + quartic * xi * xi * xi * xi, xi
 
 
 @numba.njit(cache=True)
 def lead_along_x(
-    values, xs, i_node, k0, pair, n_x, plane, b_offset, w_b, x, x_yaw, radius_x, lo, hi
+    values,
+    xs,
+    i_node,
+    k0,
+    pair,
+    n_x,
+    plane,
+    b_offset,
+    w_b,
+    x,
+    x_yaw,
+    radius_x,
+    quartic,
+    lo,
+    hi,
 ):  # pragma: no cover (compiled; tested in tests/test_wheel_rail_lead.py)
     """Lead of a contact along a rail whose gap varies along x, and the gap it closes.
 
@@ -562,8 +615,19 @@ def lead_along_x(
     minimum of the sum over xi in ``[lo, hi]``: per segment of slope m at ``x_yaw - m R_x``
     (clamped to the segment), at a slope change (a flare's end, the top of a ramp: a
     convex edge of the rail along x) where the stationary points of the two segments lie
-    beyond it.  On a prismatic rail (equal node gaps) the result is exactly ``(x_yaw, 0)``;
-    on one slope m it is ``x_yaw - m R_x`` and ``m x_yaw - m^2 R_x / 2``.
+    beyond it.  On a prismatic rail (equal node gaps) and without the profile term the
+    result is exactly ``(x_yaw, 0)``; on one slope m it is ``x_yaw - m R_x`` and ``m x_yaw
+    - m^2 R_x / 2``.
+
+    Profile term (``quartic xi^4``): the wheel's point xi ahead lies ``h = xi^2 / (2 r)``
+    higher; at a steep contact (a flange back at 81 deg) that moves the wheel's profile
+    along the contact's tangent by ``h sin(gamma)``, millimetres at leads of 40 mm, and two
+    convex profiles slid along their tangent by u open the gap by ``u^2 / (2 (rho_w +
+    rho_r))``: ``quartic = sin(gamma)^2 / (8 r^2 (rho_w + rho_r))``.  Without it the gap
+    along x at the packaged check rail's flare end closes far too much at 40 mm leads
+    (validation/check_rail_kink.md: against the 3-D gap on the rail's exact sections).
+    The minimiser lies between ``x_yaw -+ |m|_max R_x`` and 0 (the derivative's root, m
+    the slopes).
 
     Parameters
     ----------
@@ -592,6 +656,8 @@ def lead_along_x(
         m, the yaw's lead on a prismatic rail.
     radius_x : float
         m, ``R_x = r / cos(gamma)``, the radius of the wheel's distance along x.
+    quartic : float
+        1/m^3, the profile term's coefficient (0: the parabola alone).
     lo, hi : float
         m, range of the lead searched (within the lead's cap, around ``x_yaw``).
 
@@ -637,11 +703,13 @@ def lead_along_x(
         here = ga + (x - xs[k]) * ((gb - ga) / (xs[k + 1] - xs[k]))
     # constant before the first node and after the last, linear between
     best, best_xi = _segment_minimum(
-        first, xs[k_lo], 0.0, lo, min(xs[k_lo] - x, hi), x, x_yaw, radius_x
+        first, xs[k_lo], 0.0, lo, min(xs[k_lo] - x, hi), x, x_yaw, radius_x, quartic
     )
     if not xs[k_lo] - x > lo:  # the first node lies at or behind the range: no such part
         best = math.inf
-    value, xi = _segment_minimum(last, xs[k_hi], 0.0, max(xs[k_hi] - x, lo), hi, x, x_yaw, radius_x)
+    value, xi = _segment_minimum(
+        last, xs[k_hi], 0.0, max(xs[k_hi] - x, lo), hi, x, x_yaw, radius_x, quartic
+    )
     if xs[k_hi] - x < hi and value < best:
         best, best_xi = value, xi
     gb = first
@@ -653,7 +721,7 @@ def lead_along_x(
         if left > right:
             continue
         value, xi = _segment_minimum(
-            ga, xs[k], (gb - ga) / (xs[k + 1] - xs[k]), left, right, x, x_yaw, radius_x
+            ga, xs[k], (gb - ga) / (xs[k + 1] - xs[k]), left, right, x, x_yaw, radius_x, quartic
         )
         if value < best:
             best, best_xi = value, xi
@@ -691,15 +759,17 @@ def _point(
     x_lead = r * lead
     if walk[0] >= 0.0 and cos_g > 0.0 and walk[6] > 0.0:
         # the rail's gap along x (piecewise linear between the table's nodes) moves the
-        # contact off the yaw's lead: the minimum of the wheel's parabola plus the rail,
-        # searched within the lead's cap and as far as the table's slopes can take it
+        # contact off the yaw's lead: the minimum of the wheel's parabola and profile term
+        # plus the rail, searched within the lead's cap and as far as the table's slopes
+        # can take it (between x_yaw -+ reach and 0, lead_along_x's docstring)
         radius_x = r / cos_g
         reach = walk[6] * radius_x
         limit = MAX_LEAD_SINE * r
+        quartic = sin_g * sin_g * fields[_SLIDE] / (8.0 * r * r)
         x_lead, change = lead_along_x(
             creep, xs, int(walk[0]), int(walk[1]), walk[7] > 0.0, int(walk[2]), int(walk[3]),
-            int(walk[4]), walk[5], x, x_lead, radius_x,
-            max(x_lead - reach, -limit), min(x_lead + reach, limit),
+            int(walk[4]), walk[5], x, x_lead, radius_x, quartic,
+            max(min(x_lead - reach, 0.0), -limit), min(max(x_lead + reach, 0.0), limit),
         )  # fmt: skip
         gap += change
     gap -= r * lead * lead / (1.0 + math.sqrt(1.0 - lead * lead)) * cos_g
