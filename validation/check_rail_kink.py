@@ -1,6 +1,6 @@
 """The check rail's flare end (a kink of its face in plan): the gap along the track there.
 
-Writes check_rail_kink.md.  Run: ``python validation/check_rail_kink.py`` (~1 min).
+Writes check_rail_kink.md.  Run: ``python validation/check_rail_kink.py`` (~2 min).
 
 At the instants of the check rail's peak (the diverging route at 80 km/h, the runs of
 validation/peak_contact.py) the wheel's normal gap to the check rail is taken along the
@@ -27,11 +27,15 @@ route's contact table at the state's shift and lift, piecewise linear between it
   (2 r)``: the point X ahead lies h higher, which moves the wheel's profile along the
   contact's tangent by ``h sin(gamma)`` and, with the profiles' lateral radii of curvature
   rho_w, rho_r at the contact (the table's), opens the gap by that much (two circles
-  translated along their common tangent).
+  translated along their common tangent); the kernel's since issue 22.
+
+Last, the exact contact of ``passage.post_contact`` (validation/peak_contact.py's columns)
+at the same instants on both rail surfaces: the normal law's error and the 3-D surfaces'.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from pathlib import Path
@@ -75,6 +79,25 @@ def _exact_sections(turnout, body, x_ws: float) -> SectionGrid:
     return SectionGrid(x=x, y=old.y, z=z, name=old.name)
 
 
+def _post_contact(turnout, result, stem, index, body, surfaces):
+    """``post.post_contact`` with the check rail's sections replaced by ``surfaces``."""
+    if surfaces is None:
+        return post.post_contact(turnout, result, stem, index)
+    original = post.route_rail_bodies
+
+    def replaced(turnout_, route):
+        return tuple(
+            dataclasses.replace(b, sections=surfaces) if b.name == body.name else b
+            for b in original(turnout_, route)
+        )
+
+    post.route_rail_bodies = replaced
+    try:
+        return post.post_contact(turnout, result, stem, index)
+    finally:
+        post.route_rail_bodies = original
+
+
 def _minimum(values: np.ndarray) -> tuple[float, float]:
     """(gap um, X mm) of the smallest value over ROWS."""
     i = int(np.argmin(values))
@@ -98,6 +121,7 @@ def main() -> None:
     fields = {name: k for k, name in enumerate(table.fields)}
     lines = []
     profiles = []
+    exact_rows = []
     for name, layers in RUNS:
         result = simulate_passage(
             turnout, PassageSettings(route="diverging", speed_kmh=80.0, layers=layers), name
@@ -144,6 +168,18 @@ def main() -> None:
         )
         profiles.append((run, state.x, gap_exact, gap_body, rail - closing, parabola, profile))
         print(lines[-1], flush=True)
+        for label, surfaces in (("exact sections", exact), ("the body's sections", None)):
+            contact = _post_contact(turnout, result, stem, index, body, surfaces)
+            exact_rows.append(
+                f"| {run} | {label} | {contact.normal / 1e3:.1f} | {1e6 * contact.approach:.1f} "
+                f"| {1e6 * contact.exact_approach:.1f} "
+                f"| {contact.exact_normal_at_approach / 1e3:.1f} "
+                f"| {1e6 * contact.interpenetration:.1f} "
+                f"| {contact.exact_normal_at_state / 1e3:.1f} "
+                f"| {1e3 * contact.x_contact:.1f} / {1e3 * contact.x_contact_exact:.1f} "
+                f"| {1e3 * contact.length:.1f} / {1e3 * contact.exact_length:.1f} |"
+            )
+            print(exact_rows[-1], flush=True)
     out = [
         "# The check rail's flare end: the contact's gap along the track",
         "",
@@ -165,6 +201,20 @@ def main() -> None:
         "| parabola + profile |",
         "|---|---|---|---|---|---|---|---|---|---|---|",
         *lines,
+        "",
+        "## The exact contact at these instants",
+        "",
+        "`passage.post_contact` on each rail surface (its method: the passage's normal force "
+        "N and penetration delta; the exact approach at N, the exact force at delta, the 3-D "
+        "surfaces' interpenetration and the exact force there; the contact's and the exact "
+        "force centre's x ahead of the axle; the passage's ellipse length 2a and the exact "
+        "patch's).",
+        "",
+        "| run | rail surface | N (kN) | delta (um) | approach at N (um) | N at delta (kN) "
+        "| interpenetration (um) | N at state (kN) | x passage / exact (mm) "
+        "| length passage / exact (mm) |",
+        "|---|---|---|---|---|---|---|---|---|---|",
+        *exact_rows,
         "",
         "## The gap along the track at the first run's instant (um)",
         "",
