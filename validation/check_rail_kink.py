@@ -17,8 +17,8 @@ body of revolution, without the contact plane's pitch), on two rail surfaces:
 Beside them the models of the contact's gap along x (the rail's gap ``g(x + X)`` from the
 route's contact table at the state's shift and lift, piecewise linear between its nodes):
 
-* **kernel**: the passage's kernel as it is, the gap at the yaw's lead x_yaw to first order
-  along x, ``g(x) + x_yaw g'(x) - closing`` (``wheel_rail.kernel``, ``wheel_rail.lead``);
+* **first order**: the passage's kernel before issue 22, the gap at the yaw's lead x_yaw to
+  first order along x, ``g(x) + x_yaw g'(x) - closing`` (``wheel_rail.lead``);
 * **parabola**: the minimum over X of ``g(x + X) + (X - x_yaw)^2 / (2 R_x) - closing``,
   ``R_x = r / cos(gamma)``: the yawed wheel's gap along x to second order (issue 22's
   proposal; equal to a 3-D search for a cone against a rail corner, the wheel's generator
@@ -191,13 +191,13 @@ def main() -> None:
         "",
         "## The smallest gap along the track and where it lies (um at mm ahead of the axle)",
         "",
-        "Negative: interpenetration.  `kernel` the passage's own gap (its penetration with "
-        "the sign turned, the column before, less the lift's part, equal to it); "
+        "Negative: interpenetration.  The passage's own gap is its penetration with the sign "
+        "turned (the column before; the kernel's is `parabola + profile`); "
         "rho_w + rho_r the profiles' lateral radii of curvature at the contact (the "
         "table's).",
         "",
         "| run | x (m) | yaw (mrad) | gamma (deg) | rho_w + rho_r (mm) | passage -delta (um) "
-        "| 3-D, exact sections | 3-D, the body's sections | kernel | parabola "
+        "| 3-D, exact sections | 3-D, the body's sections | first order | parabola "
         "| parabola + profile |",
         "|---|---|---|---|---|---|---|---|---|---|---|",
         *lines,
