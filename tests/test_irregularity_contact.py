@@ -85,9 +85,22 @@ def test_dipped_joint_as_irregularity_equals_the_dip_in_the_rail(turnout, tmp_pa
     assert peak_a > 1.3 * by_irregularity.summary["static_wheel_load_N"]  # a real impact
     # Same forces: the peak within 1 %, the histories within 2 % of the peak (the table
     # interpolates the dipped gap linearly between its 10 mm x nodes, the irregularity is
-    # exact at the wheel's x)
+    # exact at the wheel's x).  At the dip's ends (slope changes of alpha = 3 mrad) the
+    # table's path puts the contact on the slope change while it lies within r alpha = 1.4
+    # mm ahead of the axle (kernel.lead_along_x: the wheel's radius), the irregularity at
+    # the wheel's own x: there the histories are shifted by 1.4 mm (2.4 kN apart on their
+    # steep flanks, measured), their extremes within 0.5 % of the peak (80 N measured)
     assert peak_a == pytest.approx(peak_b, rel=0.01)
-    assert np.max(np.abs(a["Fz_right_N"] - b["Fz_right_N"])) < 0.02 * peak_b
+    x = a["x_m"]
+    ends = [JOINT_X - 0.5 * LENGTH, JOINT_X + 0.5 * LENGTH]
+    near_ends = (np.abs(x - ends[0]) < 0.1) | (np.abs(x - ends[1]) < 0.1)
+    assert np.max(np.abs(a["Fz_right_N"] - b["Fz_right_N"])[~near_ends]) < 0.02 * peak_b
+    for end in ends:
+        near = np.abs(x - end) < 0.1
+        for extreme in (np.max, np.min):
+            assert extreme(a["Fz_right_N"][near]) == pytest.approx(
+                extreme(b["Fz_right_N"][near]), abs=0.005 * peak_b
+            )
     assert np.max(np.abs(a["Fz_left_N"] - b["Fz_left_N"])) < 0.02 * peak_b
 
 

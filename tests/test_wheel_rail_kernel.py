@@ -100,6 +100,23 @@ def _column(name: str) -> int:
     return kernel.DETAIL_FIELDS.index(name)
 
 
+def _slide(table, x: float, shift: float, c: int) -> float:
+    """1 / (rho_w + rho_r) of slot c at (x, shift) as the kernel has it: per node from the
+    table's lateral curvatures (both convex, else 0), bilinear between the cell's nodes."""
+    names = list(table.fields)
+    k_w = np.nan_to_num(table.values[..., c, names.index("curvature_wheel")])
+    k_r = np.nan_to_num(table.values[..., c, names.index("curvature_rail")])
+    convex = (table.values[..., c, 0] < 0.5) & (k_w > 0.0) & (k_r > 0.0)
+    node = np.where(convex, k_w * k_r / np.where(convex, k_w + k_r, 1.0), 0.0)
+    ix = min(max(int(np.searchsorted(table.x, x, side="right")) - 1, 0), len(table.x) - 2)
+    tx = min(max((x - table.x[ix]) / (table.x[ix + 1] - table.x[ix]), 0.0), 1.0)
+    position = (shift - table.shift[0]) / (table.shift[1] - table.shift[0])
+    js = int(position)
+    ts = position - js
+    v00, v10, v01, v11 = node[ix, js], node[ix + 1, js], node[ix, js + 1], node[ix + 1, js + 1]
+    return float(v00 + tx * (v10 - v00) + ts * ((v01 - v00) + tx * (v11 - v10 - v01 + v00)))
+
+
 def test_kernel_geometry_equals_table_lookup(crossing_table):
     """In cells whose nodes hold the same contact points, positions, angle and gap of every
     candidate equal lookup_values (bilinear)."""
@@ -107,7 +124,7 @@ def test_kernel_geometry_equals_table_lookup(crossing_table):
     rng = np.random.default_rng(3)
     fields = crossing_table.fields
     step = crossing_table.shift[1] - crossing_table.shift[0]
-    checked = 0
+    checked = moved = 0
     for _ in range(300):
         x, shift, lift = rng.uniform(-0.2, 0.6), rng.uniform(-0.011, 0.011), -1e-4
         ix = min(max(np.searchsorted(crossing_table.x, x, side="right") - 1, 0), 15)
@@ -149,19 +166,45 @@ def test_kernel_geometry_equals_table_lookup(crossing_table):
             # the gap is carried to the lift with the normalised cos(angle); interpolated
             # (sin, cos) of nodes whose angles differ by D have length cos(D / 2), and
             # lookup_values uses them as they are: 1 - cos(D / 2) ~ D^2 / 8 < 1e-3 for the
-            # < 0.09 rad a cell's angle changes here, times |lift| = 1e-4 m
-            assert -row[_column("delta")] == pytest.approx(gap, abs=1e-7)
+            # < 0.09 rad a cell's angle changes here, times |lift| = 1e-4 m.  Where the rail
+            # varies along x (the nose's ramp) the contact lies at the minimum along x of the
+            # wheel's parabola (no yaw: lead**2 / (2 r / cos(gamma))) and profile term
+            # (sin(gamma)^2 lead^4 / (8 r^2 (rho_w + rho_r))) plus the rail's gap,
+            # x_offset ahead (kernel.lead_along_x, tests/test_wheel_rail_lead_table.py): the
+            # table's gap there plus the parabola, never more than the table's gap at x
+            lead = row[_column("x_offset")]
+            radius_x = row[_column("radius")] / np.cos(gamma)
+            assert -row[_column("delta")] <= gap + 1e-7
+            ix_lead = min(max(np.searchsorted(crossing_table.x, x + lead, side="right") - 1, 0), 15)
+            assert crossing_table.x[0] <= x + lead <= crossing_table.x[-1]  # on the rail
+            if crossing_table.blendable[ix_lead, js]:  # at zero lift: the kernel carries
+                # the minimum's gap to the lift with the angle at x
+                there = lookup_values(crossing_table, [x + lead], [shift], [0.0])[0]
+                assert -row[_column("delta")] == pytest.approx(
+                    there[c, fields.index("gap")]
+                    + lead**2 / (2.0 * radius_x)
+                    + np.sin(gamma) ** 2
+                    * _slide(crossing_table, x, shift, c)
+                    / (8.0 * row[_column("radius")] ** 2)
+                    * lead**4
+                    + np.cos(gamma) * lift,
+                    abs=1e-9,
+                )
+                moved += lead != 0.0
     assert checked > 50
+    assert moved > 5  # the nose's ramp moves some contacts along x
 
 
 def test_lookup_normal_force_is_the_kernels(crossing_table):
     """tables.normal_force (the lookup path) and the kernel's normal force are one law
     (node_laws.node_normal_force): equal to round-off in cells whose nodes hold the same
     contact points (both bilinear), on the crossing, where semi-Hertzian nodes exist; and
-    both put the contact at the same force centre."""
+    both put the contact at the same force centre.  The kernel's search along x is off
+    (the tables' slope bound set to 0): its contact at x, as the lookup's."""
     table = crossing_table
     assert np.any(table.field("semi_hertzian") > 0.0)
     packed = kernel.pack_tables([table], [-1], [(7, 8)], [(-1.0, 1.0)])
+    packed.bounds[:, 4] = 0.0
     rng = np.random.default_rng(7)
     step = table.shift[1] - table.shift[0]
     checked = semi = 0
@@ -356,10 +399,12 @@ def test_a_diverged_state_gives_nan_forces_not_a_crash(plain):
 
 def test_normal_force_and_semi_axes_follow_the_node_law(crossing_table):
     """At a table node the kernel's normal force, stiffness and semi-axes are the node's
-    law (wheel_rail/nonhertz.py), for Hertz and for semi-Hertzian nodes alike."""
+    law (wheel_rail/nonhertz.py), for Hertz and for semi-Hertzian nodes alike (the search
+    along x off: the tables' slope bound set to 0, the contact at the node)."""
     from exudyn_turnout.wheel_rail.node_laws import DELTA_REF
 
     packed = kernel.pack_tables([crossing_table], [-1], [(7, 8)], [(-1.0, 1.0)])
+    packed.bounds[:, 4] = 0.0
     fields = {name: k for k, name in enumerate(crossing_table.fields)}
     values = crossing_table.values
     kinds = set()

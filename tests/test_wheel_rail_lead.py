@@ -34,34 +34,59 @@ RADIUS = 0.46  # m
 CORNER = 0.013  # m, radius of the rail's gauge corner in the brute-force search
 
 
-def _touch(gamma: float, yaw: float, side: int, thetas, axial) -> tuple[float, float, float, float]:
-    """Smallest vertical gap of the yawed cone over a grid: (gap, lead, theta, axial)."""
+def _touch(
+    gamma: float, yaw: float, side: int, thetas, axial, towards=None, rise=None, curvature=0.0
+) -> tuple[float, float, float, float]:
+    """Smallest vertical gap of the yawed cone over a grid: (gap, lead, theta, axial).
+
+    ``towards(X)`` and ``rise(X)`` (m, default 0) move the rail's section at track X
+    towards the wheel (laterally) and up: a flaring face, a ramp.  ``curvature`` (1/m, > 0)
+    makes the wheel's profile a circle of that curvature through the contact point,
+    convex towards the rail, ``axial`` then its angle (rad) from the contact point; and
+    the gap the distance to the corner's circle (normal), not the vertical one."""
     slope = np.tan(gamma)
     normal = np.array([-side * np.sin(gamma), np.cos(gamma)])  # rail normal, (Y, Z)
     centre = np.array([0.0, -RADIUS]) - CORNER * normal
     theta, e = np.meshgrid(thetas, axial, indexing="ij")
-    radius = RADIUS - side * slope * e  # the flange side has the larger radius
+    if curvature:  # (axial, radius) of the profile's circle; its outward normal at e = 0
+        beta = np.arctan2(side * np.sin(gamma), np.cos(gamma))  # is (sin beta, cos beta)
+        rho = 1.0 / curvature
+        radius = RADIUS - rho * np.cos(beta) + rho * np.cos(beta + e)
+        along = -rho * np.sin(beta) + rho * np.sin(beta + e)
+    else:  # the cone: the flange side has the larger radius
+        radius, along = RADIUS - side * slope * e, e
     x_wheel, z = radius * np.sin(theta), -radius * np.cos(theta)
-    y = x_wheel * np.sin(yaw) + e * np.cos(yaw)
-    d = y - centre[0]
-    rail = np.where(np.abs(d) < CORNER, centre[1] + np.sqrt(np.abs(CORNER**2 - d**2)), -np.inf)
-    gap = z - rail
+    y = x_wheel * np.sin(yaw) + along * np.cos(yaw)
+    x_track = x_wheel * np.cos(yaw) - along * np.sin(yaw)
+    centre_y = centre[0] + (np.sign(normal[0]) * towards(x_track) if towards else 0.0)
+    centre_z = centre[1] + (rise(x_track) if rise else 0.0)
+    d = y - centre_y
+    if curvature:
+        gap = np.hypot(d, z - centre_z) - CORNER
+    else:
+        rail = np.where(np.abs(d) < CORNER, centre_z + np.sqrt(np.abs(CORNER**2 - d**2)), -np.inf)
+        gap = z - rail
     i = np.unravel_index(np.argmin(gap), gap.shape)
-    return float(gap[i]), float(x_wheel[i]), float(theta[i]), float(e[i])
+    return float(gap[i]), float(x_track[i]), float(theta[i]), float(e[i])
+
+
+def _search(
+    gamma, yaw, side, towards=None, rise=None, span_t=0.2, curvature=0.0, span_e=4e-3
+) -> tuple[float, float]:
+    """Gap and track X of the touching point, from grids 10x finer each pass."""
+    theta, e = 0.0, 0.0
+    for _ in range(5):
+        thetas = np.linspace(theta - span_t, theta + span_t, 201)
+        axial = np.linspace(e - span_e, e + span_e, 201)
+        gap, lead, theta, e = _touch(gamma, yaw, side, thetas, axial, towards, rise, curvature)
+        span_t, span_e = span_t / 10.0, span_e / 10.0
+    return gap, lead
 
 
 def brute_force(gamma: float, yaw: float, side: int) -> tuple[float, float]:
     """Lead (m) and normal gap closed (m) by the yaw, from the 3-D search."""
-    results = []
-    for psi in (0.0, yaw):
-        theta, e, span_t, span_e = 0.0, 0.0, 0.2, 4e-3
-        for _ in range(5):  # a grid around the last minimum, 10x finer each pass
-            thetas = np.linspace(theta - span_t, theta + span_t, 201)
-            axial = np.linspace(e - span_e, e + span_e, 201)
-            gap, lead, theta, e = _touch(gamma, psi, side, thetas, axial)
-            span_t, span_e = span_t / 10.0, span_e / 10.0
-        results.append((gap, lead))
-    (gap0, _), (gap1, lead1) = results
+    gap0, _ = _search(gamma, 0.0, side)
+    gap1, lead1 = _search(gamma, yaw, side)
     return lead1, (gap0 - gap1) * np.cos(gamma)  # vertical lift closes cos(gamma) of it
 
 
@@ -77,6 +102,113 @@ def test_lead_and_closing_match_a_3d_search(gamma_deg, yaw, side):
     assert abs(lead) > 1e-3  # a millimetre or more: worth having
     assert float(lead) == pytest.approx(lead_3d, rel=5e-3, abs=2e-5)
     assert float(closing) == pytest.approx(closing_3d, rel=0.02, abs=2e-7)
+
+
+FLARE = 1.0 / 67.0  # the check rail's flare at the packaged turnout's crossing
+RAMP = 1.0 / 20.0  # a steep ramp of a rail's top (a nose rising), for a clear effect
+
+
+@pytest.mark.parametrize(
+    "case, kink",
+    [
+        ("flare", -0.03), ("flare", 0.0), ("flare", 0.05), ("flare", 0.10),
+        ("ramp", -0.02), ("ramp", 0.01), ("ramp", 0.05),
+    ],
+)  # fmt: skip
+def test_lead_along_a_flare_and_a_ramp_matches_a_3d_search(case, kink):
+    """The rail varies along x up to a kink at ``kink`` (m from the axle), constant beyond:
+    a check rail's face flaring 1:67 towards the back of the flange (-84 deg, yaw 4 mrad,
+    lead 17.5 mm on a prismatic rail) that meets its check line, and a rail's top rising
+    1:20 under the tread (5 deg, yaw 10 mrad, lead 0.4 mm) to a plateau.  The kernel's
+    minimum along x (kernel.lead_along_x on the rail's gap at three x nodes, the exact
+    normal gap of the cone's line against the corner's circle moved by the rail, with
+    R_x = r / cos(gamma)) against the 3-D search on the moving rail: behind the lead the
+    kink changes nothing, ahead of it within |a| R_x the contact sits on the kink, further
+    ahead at x_yaw - a R_x (the flare: 83 mm, the ramp: 23 mm).  Tolerances: 0.5 mm of lead
+    and 1 % of the gap (the parabola stands for the wheel's circle: at theta = 0.18 rad the
+    two differ by theta^2 / 12 ~ 0.3 %); the first-order lead (the rail's slope at the axle
+    times the yaw's lead) is off by 30 ... 430 % of the gap where the kink matters."""
+    if case == "flare":
+        gamma, yaw, side = np.radians(-84.0), 0.004, -1
+        towards, rise = (lambda x: FLARE * np.minimum(x - kink, 0.0)), None
+        normal_gap = lambda x: -abs(np.sin(gamma)) * FLARE * np.minimum(x - kink, 0.0)  # noqa: E731
+    else:
+        gamma, yaw, side = np.radians(5.0), 0.01, 1
+        towards, rise = None, (lambda x: RAMP * np.minimum(x - kink, 0.0))
+        normal_gap = lambda x: -np.cos(gamma) * RAMP * np.minimum(x - kink, 0.0)  # noqa: E731
+    gap0, _ = _search(gamma, 0.0, side)
+    gap_3d, lead_3d = _search(gamma, yaw, side, towards, rise, span_t=0.3)
+    # the rail's normal gap at three x nodes (gap, position on the rail interleaved)
+    xs = np.array([kink - 1.0, kink, kink + 1.0])
+    values = np.zeros(6)
+    values[0::2] = normal_gap(xs)
+    ix = 0 if kink > 0.0 else 1
+    x_yaw, closing = (float(v) for v in contact_lead(RADIUS, gamma, side, yaw))
+    limit = MAX_LEAD_SINE * RADIUS
+    lead, change = kernel.lead_along_x(
+        values, xs, 2 * ix, ix, True, 3, 2, 0, 0.0, 0.0, x_yaw, RADIUS / np.cos(gamma), 0.0,
+        -limit, limit,
+    )  # fmt: skip
+    vertical = (normal_gap(0.0) + change - closing) / np.cos(gamma)
+    assert lead == pytest.approx(lead_3d, abs=5e-4)
+    assert vertical == pytest.approx(gap_3d - gap0, rel=0.01, abs=1e-6)
+    slope = (values[2 * ix + 2] - values[2 * ix]) / (xs[ix + 1] - xs[ix])
+    first_order = (normal_gap(0.0) + x_yaw * slope - closing) / np.cos(gamma)
+    if 0.0 < kink:  # the kink ahead of the axle: the first-order lead misses it
+        assert abs(first_order - (gap_3d - gap0)) > 0.3 * abs(gap_3d - gap0)
+        assert abs(lead - x_yaw) > 9e-3
+    else:  # behind: the rail is prismatic where the contact lies, nothing changes
+        assert lead == x_yaw and change == 0.0
+
+
+def _fine_search(gamma, yaw, side, towards, curvature) -> tuple[float, float]:
+    """Gap and track X of the touching point: a dense first grid over the wheel's angle
+    (-0.01 ... 0.2 rad, 0.2 mrad) and the profile's (+-0.3 rad, 1 mrad), then two grids
+    10x finer around its minimum (the coarse first grid of ``_search`` can settle in the
+    wrong valley of a curved profile)."""
+    thetas, angles = np.linspace(-0.01, 0.2, 1051), np.linspace(-0.3, 0.3, 601)
+    gap, lead, theta, e = _touch(gamma, yaw, side, thetas, angles, towards, None, curvature)
+    span_t, span_e = 2e-3, 1e-2
+    for _ in range(2):
+        thetas = np.linspace(theta - span_t, theta + span_t, 101)
+        angles = np.linspace(e - span_e, e + span_e, 101)
+        gap, lead, theta, e = _touch(gamma, yaw, side, thetas, angles, towards, None, curvature)
+        span_t, span_e = span_t / 10.0, span_e / 10.0
+    return gap, lead
+
+
+@pytest.mark.parametrize("kink", [0.03, 0.05, 0.10])
+def test_profile_term_on_a_curved_flange_back_matches_a_3d_search(kink):
+    """The flare of the test above against a flange back whose profile is curved (20 mm,
+    convex, against the corner's 13 mm): the wheel's point xi ahead lies xi^2 / (2 r)
+    higher, millimetres at these leads, and slides the two curved profiles along their
+    tangent; the parabola alone (cone) closes the gap by up to 0.5 mm too much here, with
+    the profile term (``quartic = sin(gamma)^2 / (8 r^2 (rho_w + rho_r))``) the kernel's
+    minimum is within 2 % (+ 2 um) of the normal gap of the 3-D search and 1 mm of its
+    lead."""
+    gamma, yaw, side, curvature = np.radians(-84.0), 0.004, -1, 50.0
+    towards = lambda x: FLARE * np.minimum(x - kink, 0.0)  # noqa: E731
+    normal_gap = lambda x: -abs(np.sin(gamma)) * FLARE * np.minimum(x - kink, 0.0)  # noqa: E731
+    gap0, _ = _fine_search(gamma, 0.0, side, None, curvature)
+    gap_3d, lead_3d = _fine_search(gamma, yaw, side, towards, curvature)
+    xs = np.array([kink - 1.0, kink, kink + 1.0])
+    values = np.zeros(6)
+    values[0::2] = normal_gap(xs)
+    x_yaw, closing = (float(v) for v in contact_lead(RADIUS, gamma, side, yaw))
+    limit = MAX_LEAD_SINE * RADIUS
+    quartic = np.sin(gamma) ** 2 / (8.0 * RADIUS**2 * (1.0 / curvature + CORNER))
+    results = {}
+    for term in (0.0, quartic):
+        lead, change = kernel.lead_along_x(
+            values, xs, 0, 0, True, 3, 2, 0, 0.0, 0.0, x_yaw, RADIUS / np.cos(gamma), term,
+            -limit, limit,
+        )  # fmt: skip
+        results[term] = (lead, normal_gap(0.0) + change - closing)
+    lead, gap = results[quartic]
+    assert abs(gap0) < 1e-7  # the surfaces touch without yaw and flare
+    assert gap == pytest.approx(gap_3d - gap0, rel=0.02, abs=2e-6)
+    assert lead == pytest.approx(lead_3d, abs=1e-3)
+    assert abs(results[0.0][1] - (gap_3d - gap0)) > 5 * abs(gap - (gap_3d - gap0))
 
 
 def test_lead_sign_and_cap():

@@ -60,10 +60,23 @@ of its nodes; where the angle changes fast with the shift (flange root: ~0.1 rad
 Lead (:mod:`.lead`): on the yawed wheelset a contact lies ``x_lead = r sin(theta)``,
 ``sin(theta) = s tan(gamma) tan(psi)``, ahead of the axle, closer to the rail by
 ``r (1 - cos(theta)) cos(gamma)`` along the normal; its moment arm is ``x_c + x_lead`` and
-the wheel's vertical material velocity there, ``-Omega x_lead``, enters ``eta``, and the
-gap is the rail's at ``x + x_lead`` to first order (the cell's slope of the gap along x
-times x_lead; where a check rail flares, 1:70 at the packaged turnout's entry, a 4 mm lead
-closes the gap by 0.06 mm, validation/check_rail_patch.py).
+the wheel's vertical material velocity there, ``-Omega x_lead``, enters ``eta``.  Where the
+rail varies along x (a flare, a ramp, a blade) the contact is not at the yaw's lead: along
+x the wheel's distance to the rail is the parabola ``(xi - x_yaw)^2 / (2 R_x)``, ``R_x = r /
+cos(gamma)`` (4.4 m for a flange back at 84 deg, 0.46 m on the tread), plus the rail's gap
+at ``x + xi``, piecewise linear between the table's x nodes that hold the point, plus a
+profile term ``sin(gamma)^2 xi^4 / (8 r^2 (rho_w + rho_r))`` (the point xi ahead lies
+``xi^2 / (2 r)`` higher, which slides the two curved profiles along their tangent; it
+matters at a flange back's millimetre rises); :func:`lead_along_x` takes its minimum
+within the lead's cap (on a slope a, without the profile term, at ``x_yaw - a R_x``,
+closing ``a^2 R_x / 2`` more than the first order ``a x_yaw``; at a slope change, the
+flare's end, where the slopes on both sides point to it: on the packaged check rail
+31 ... 36 mm ahead, within 1 mm and 3 ... 15 um of the 3-D gap on its exact sections,
+validation/check_rail_kink.md).  The walk along x stops where the table's slopes
+(:func:`gap_slope_bound`, ``bounds[:, 4]``) cannot move the contact further.  Left out
+there: the tilt of the contact's tangent plane along x (the rail's plan angle alpha adds
+``alpha cos(gamma)`` to ``eta``; the lead's term gives the ``alpha sin(gamma) tan(gamma)``
+part, 98 % of the lateral creepage's change at 81 deg).
 
 Left out (small here, named so a reader can judge): the rail's own roll, the wheel's
 roll relative to the rail in the contact geometry (it tilts the contact angle by phi), and
@@ -106,6 +119,8 @@ __all__ = [
     "polach_scalar",
     "X_BLEND_DISTANCE",
     "hertz_axes_per_root",
+    "lead_along_x",
+    "gap_slope_bound",
 ]
 
 # Node fields of a packed table: geometry (gap, positions, angle, radius), the normal law
@@ -117,14 +132,17 @@ _F_REF, _F_EXP, _C_H, _X_OFFSET, _SIN, _COS = 6, 7, 8, 9, 10, 11
 _A_REF, _B_REF, _C11, _C22, _C23, _A_EXP, _B_EXP, _SEMI = 12, 13, 14, 15, 16, 17, 18, 19
 _CENTRE, _CENTRE_EXP = 20, 21  # the force centre's law c_ref (delta / DELTA_REF)^m
 _OFFSET_C2, _OFFSET_C3 = 22, 23  # the rail surface's offset there, a c^2 + b c^3
-_N_FIELDS = 24
-_GAP_DX = _N_FIELDS  # scratch slot after the node fields: the gap's x-derivative in the cell
+#: 1 / (rho_w + rho_r), the profiles' lateral radii of curvature at the contact summed (1/m,
+#: 0 where either is flat or concave: lead_along_x's profile term)
+_SLIDE = 24
+_N_FIELDS = 25
 _GEOMETRY = ("gap", "y_rail", "z_rail", "s_wheel", "angle", "radius")
 _EMPTY = 0.5  # m, a gap this large marks an empty candidate slot (tables store 1 m)
 #: m, a candidate slot held by both x nodes of a cell whose contact positions on the rail
 #: differ by less than this is one contact point drifting along x (interpolated along x)
 X_BLEND_DISTANCE = 0.01
 _X_BLEND = X_BLEND_DISTANCE
+_N_BOUNDS = 5  # columns of PackedTables.bounds
 
 #: Columns of the per-contact detail rows written by :func:`contact_forces`.
 DETAIL_FIELDS = (
@@ -159,13 +177,14 @@ _N_DETAIL = len(DETAIL_FIELDS)
 class PackedTables:
     """The contact tables of one wheelset's rail bodies as flat arrays (kernel input)."""
 
-    values: np.ndarray  #: flat node values, body after body, (n_x, n_s, n_c, 24) each
+    values: np.ndarray  #: flat node values, body after body, (n_x, n_s, n_c, 25) each
     blendable: np.ndarray  #: flat uint8 cell flags, (n_x, n_s) each
     x: np.ndarray  #: m, section positions, body after body
     #: per body: value offset, blend offset, x offset, n_x, n_s, n_c, side (+1 / -1),
     #: index of the rail body's lateral coordinate, of its vertical coordinate
     layout: np.ndarray
-    #: per body: first shift (m), shift step (m), x_from (m), x_to (m) of its existence
+    #: per body: first shift (m), shift step (m), x_from (m), x_to (m) of its existence, and
+    #: the largest slope of a contact point's gap along x in its table (:func:`gap_slope_bound`)
     bounds: np.ndarray
     names: tuple  #: body names, for outputs
 
@@ -198,7 +217,7 @@ class PackedTables:
             blendable=self.blendable,
             x=self.x,
             layout=layout,
-            bounds=self.bounds[list(indices)].copy().reshape(-1, 4),
+            bounds=self.bounds[list(indices)].copy().reshape(-1, _N_BOUNDS),
             names=tuple(self.names[i] for i in indices),
         )
 
@@ -244,8 +263,40 @@ def hertz_axes_per_root(
     return np.where(rolling_is_major, major, minor), np.where(rolling_is_major, minor, major)
 
 
+def gap_slope_bound(gap: np.ndarray, y_rail: np.ndarray, x: np.ndarray) -> float:
+    """Largest slope along x of a contact point's gap in a table (bounds the lead's search).
+
+    A candidate slot held at two neighbouring x nodes by one contact point (both gaps
+    below the empty mark, positions on the rail within :data:`X_BLEND_DISTANCE`) has the
+    secant slope ``|g1 - g0| / (x1 - x0)``; the largest over the table bounds how far the
+    contact can move from the yaw's lead along x (:func:`lead_along_x`).
+
+    Parameters
+    ----------
+    gap, y_rail : numpy.ndarray
+        m, (n_x, n_s, n_c) node gaps and contact positions on the rail.
+    x : numpy.ndarray
+        m, (n_x,) section positions.
+
+    Returns
+    -------
+    float
+        Largest slope (-), 0 for a prismatic table.
+    """
+    gap = np.asarray(gap, float)
+    y_rail = np.asarray(y_rail, float)
+    dx = np.diff(np.asarray(x, float)).reshape(-1, 1, 1)
+    same = (
+        (gap[:-1] < _EMPTY)
+        & (gap[1:] < _EMPTY)
+        & (np.abs(y_rail[1:] - y_rail[:-1]) < X_BLEND_DISTANCE)
+    )
+    slopes = np.where(same, np.abs(np.diff(gap, axis=0)) / dx, 0.0)
+    return float(slopes.max()) if slopes.size else 0.0
+
+
 def _node_fields(table: ContactTable, modulus: float, poisson: float) -> np.ndarray:
-    """(n_x, n_s, n_c, 24) node values: geometry, the normal law, semi-axes and Kalker's.
+    """(n_x, n_s, n_c, 25) node values: geometry, the normal law, semi-axes and Kalker's.
 
     A table that carries the per-node law of :mod:`.nonhertz` (``PATCH_FIELDS``) is used
     as it is; an older table (without it) gets Hertz's law from its curvatures.
@@ -267,6 +318,13 @@ def _node_fields(table: ContactTable, modulus: float, poisson: float) -> np.ndar
         out[..., _OFFSET_C2] = base[..., index["patch_offset_c2"]]
         out[..., _OFFSET_C3] = base[..., index["patch_offset_c3"]]
     valid = base[..., index["gap"]] < _EMPTY
+    if "curvature_wheel" in index and "curvature_rail" in index:
+        # two convex profiles slid along their common tangent by u open the gap by
+        # u^2 / (2 (rho_w + rho_r)) (two circles): lead_along_x's profile term
+        k_w = np.nan_to_num(base[..., index["curvature_wheel"]])
+        k_r = np.nan_to_num(base[..., index["curvature_rail"]])
+        convex = valid & (k_w > 0.0) & (k_r > 0.0)
+        out[..., _SLIDE] = np.where(convex, k_w * k_r / np.where(convex, k_w + k_r, 1.0), 0.0)
     if not np.any(valid):
         return out
     if all(name in index for name in PATCH_FIELDS):
@@ -351,7 +409,8 @@ def pack_tables(
         xs.append(np.asarray(table.x, float))
         layout.append((v_off, b_off, x_off, n_x, n_s, n_c, int(side), int(i_y), int(i_z)))
         step = float(table.shift[1] - table.shift[0])
-        bounds.append((float(table.shift[0]), step, float(x_from), float(x_to)))
+        slope = gap_slope_bound(fields[..., _GAP], fields[..., _Y_RAIL], np.asarray(table.x, float))
+        bounds.append((float(table.shift[0]), step, float(x_from), float(x_to), slope))
         v_off += fields.size
         b_off += n_x * n_s
         x_off += n_x
@@ -366,7 +425,7 @@ def pack_tables(
         blendable=np.concatenate(blends) if blends else np.zeros(0, np.uint8),
         x=np.concatenate(xs) if xs else np.zeros(0),
         layout=np.array(layout, dtype=np.int64).reshape(-1, 9),
-        bounds=np.array(bounds, dtype=float).reshape(-1, 4),
+        bounds=np.array(bounds, dtype=float).reshape(-1, _N_BOUNDS),
         names=tuple(names) if names is not None else tuple(f"body{i}" for i in range(len(xs))),
     )
 
@@ -468,13 +527,224 @@ def _bilinear(values, i00, n_s, n_c, tx, ts):  # pragma: no cover (compiled)
 
 
 @numba.njit(cache=True)
+def _node_gap(values, i, w_b, b_offset):  # pragma: no cover (compiled)
+    """Gap of a node at flat index ``i``, blended with the next shift node by ``w_b``."""
+    if w_b > 0.0:
+        return (1.0 - w_b) * values[i] + w_b * values[i + b_offset]
+    return values[i]
+
+
+@numba.njit(cache=True)
+def _same_point(values, i, j, w_b, b_offset):  # pragma: no cover (compiled)
+    """1 if the node at flat index ``i`` (and its next shift node if ``w_b`` > 0) holds the
+    point of its neighbour along x at ``j``: a gap, positions on the rail within
+    :data:`X_BLEND_DISTANCE`."""
+    dy = _Y_RAIL - _GAP
+    if not (values[i] < _EMPTY and abs(values[i + dy] - values[j + dy]) < _X_BLEND):
+        return False
+    if w_b > 0.0:
+        i += b_offset
+        j += b_offset
+        return values[i] < _EMPTY and abs(values[i + dy] - values[j + dy]) < _X_BLEND
+    return True
+
+
+@numba.njit(cache=True)
+def _segment_minimum(g0, x0, slope, left, right, x, x_yaw, radius_x, quartic):  # pragma: no cover
+    """(value, xi) of ``g0 + slope (x + xi - x0) + (xi - x_yaw)^2 / (2 R_x) + quartic xi^4``
+    smallest over xi in ``[left, right]`` (compiled; convex: its derivative increases, its
+    root by Newton's method kept within the bracket, bisection where a step leaves it)."""
+    if quartic == 0.0:  # the parabola alone: its stationary point, clamped
+        xi = min(max(x_yaw - slope * radius_x, left), right)
+        value = g0 + slope * (x + xi - x0) + (xi - x_yaw) * (xi - x_yaw) / (2.0 * radius_x)
+        return value, xi
+    a = left
+    b = right
+    d_a = slope + (a - x_yaw) / radius_x + 4.0 * quartic * a * a * a
+    d_b = slope + (b - x_yaw) / radius_x + 4.0 * quartic * b * b * b
+    if d_a >= 0.0:
+        xi = a
+    elif d_b <= 0.0:
+        xi = b
+    else:
+        xi = min(max(x_yaw - slope * radius_x, a), b)
+        for _ in range(60):
+            d = slope + (xi - x_yaw) / radius_x + 4.0 * quartic * xi * xi * xi
+            if d > 0.0:
+                b = xi
+            else:
+                a = xi
+            step = d / (1.0 / radius_x + 12.0 * quartic * xi * xi)
+            new = xi - step
+            if not (a < new < b):
+                new = 0.5 * (a + b)
+            if abs(new - xi) < 1e-12:
+                xi = new
+                break
+            xi = new
+    value = g0 + slope * (x + xi - x0) + (xi - x_yaw) * (xi - x_yaw) / (2.0 * radius_x)
+    return value + quartic * xi * xi * xi * xi, xi
+
+
+@numba.njit(cache=True)
+def lead_along_x(
+    values,
+    xs,
+    i_node,
+    k0,
+    pair,
+    n_x,
+    plane,
+    b_offset,
+    w_b,
+    x,
+    x_yaw,
+    radius_x,
+    quartic,
+    lo,
+    hi,
+):  # pragma: no cover (compiled; tested in tests/test_wheel_rail_lead.py)
+    """Lead of a contact along a rail whose gap varies along x, and the gap it closes.
+
+    Near its contact a yawed wheel's normal distance to a prismatic rail, taken over the
+    points of the wheel ahead of its axle by xi, is the parabola
+    ``(xi - x_yaw)^2 / (2 R_x)`` minus the yaw's closing (:mod:`.lead`: ``x_yaw = r
+    sin(theta)``, closing ``r (1 - cos(theta)) cos(gamma) = x_yaw^2 / (2 R_x)`` to second
+    order, so ``R_x = r / cos(gamma)``).  The rail adds its own gap at ``x + xi``, ``g(x +
+    xi)``: piecewise linear between the table's x nodes that hold the same contact point
+    (from node ``k0`` on in both directions, each node's position on the rail within
+    :data:`X_BLEND_DISTANCE` of its neighbour's), constant beyond the last of them in
+    either direction (as the kernel takes a point that one node alone holds, so that the
+    gap stays continuous where the tables' points change).  The contact lies at the
+    minimum of the sum over xi in ``[lo, hi]``: per segment of slope m at ``x_yaw - m R_x``
+    (clamped to the segment), at a slope change (a flare's end, the top of a ramp: a
+    convex edge of the rail along x) where the stationary points of the two segments lie
+    beyond it.  On a prismatic rail (equal node gaps) and without the profile term the
+    result is exactly ``(x_yaw, 0)``; on one slope m it is ``x_yaw - m R_x`` and ``m x_yaw
+    - m^2 R_x / 2``.
+
+    Profile term (``quartic xi^4``): the wheel's point xi ahead lies ``h = xi^2 / (2 r)``
+    higher; at a steep contact (a flange back at 81 deg) that moves the wheel's profile
+    along the contact's tangent by ``h sin(gamma)``, millimetres at leads of 40 mm, and two
+    convex profiles slid along their tangent by u open the gap by ``u^2 / (2 (rho_w +
+    rho_r))``: ``quartic = sin(gamma)^2 / (8 r^2 (rho_w + rho_r))``.  Without it the gap
+    along x at the packaged check rail's flare end closes far too much at 40 mm leads
+    (validation/check_rail_kink.md: against the 3-D gap on the rail's exact sections).
+    The minimiser lies between ``x_yaw -+ |m|_max R_x`` and 0 (the derivative's root, m
+    the slopes).
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        Flat node values; the gap of node k of the contact's slot at ``i_node + (k - k0)
+        plane``, its contact position on the rail ``_Y_RAIL - _GAP`` entries later.
+    xs : numpy.ndarray
+        m, (n_x,) the table's x nodes.
+    i_node : int
+        Flat index of the slot's gap at node ``k0`` (first shift node).
+    k0 : int
+        A node that holds the point.
+    pair : bool
+        Node ``k0 + 1`` holds it too (a cell interpolated along x), unchecked.
+    n_x : int
+        Number of x nodes.
+    plane : int
+        Flat stride of one x node.
+    b_offset : int
+        Flat offset of the next shift node.
+    w_b : float
+        Weight of the next shift node (0: the first alone).
+    x : float
+        m, wheelset position.
+    x_yaw : float
+        m, the yaw's lead on a prismatic rail.
+    radius_x : float
+        m, ``R_x = r / cos(gamma)``, the radius of the wheel's distance along x.
+    quartic : float
+        1/m^3, the profile term's coefficient (0: the parabola alone).
+    lo, hi : float
+        m, range of the lead searched (within the lead's cap, around ``x_yaw``).
+
+    Returns
+    -------
+    x_lead : float
+        m, the contact's lead ahead of the axle.
+    change : float
+        m, gap at the contact plus the parabola, minus the rail's gap at x (add it to the
+        gap at x, then subtract the yaw's closing).
+    """
+    k_hi = k0 + 1 if pair else k0
+    while (
+        k_hi + 1 < n_x
+        and xs[k_hi] - x < hi
+        and _same_point(
+            values, i_node + (k_hi + 1 - k0) * plane, i_node + (k_hi - k0) * plane, w_b, b_offset
+        )
+    ):
+        k_hi += 1
+    k_lo = k0
+    while (
+        k_lo > 0
+        and xs[k_lo] - x > lo
+        and _same_point(
+            values, i_node + (k_lo - 1 - k0) * plane, i_node + (k_lo - k0) * plane, w_b, b_offset
+        )
+    ):
+        k_lo -= 1
+    # the rail's gap at x (on the nodes' polyline, constant beyond its ends)
+    first = _node_gap(values, i_node + (k_lo - k0) * plane, w_b, b_offset)
+    last = _node_gap(values, i_node + (k_hi - k0) * plane, w_b, b_offset)
+    if x <= xs[k_lo]:
+        here = first
+    elif x >= xs[k_hi]:
+        here = last
+    else:
+        k = k_lo
+        while xs[k + 1] < x:
+            k += 1
+        ga = _node_gap(values, i_node + (k - k0) * plane, w_b, b_offset)
+        gb = _node_gap(values, i_node + (k + 1 - k0) * plane, w_b, b_offset)
+        here = ga + (x - xs[k]) * ((gb - ga) / (xs[k + 1] - xs[k]))
+    # constant before the first node and after the last, linear between
+    best, best_xi = _segment_minimum(
+        first, xs[k_lo], 0.0, lo, min(xs[k_lo] - x, hi), x, x_yaw, radius_x, quartic
+    )
+    if not xs[k_lo] - x > lo:  # the first node lies at or behind the range: no such part
+        best = math.inf
+    value, xi = _segment_minimum(
+        last, xs[k_hi], 0.0, max(xs[k_hi] - x, lo), hi, x, x_yaw, radius_x, quartic
+    )
+    if xs[k_hi] - x < hi and value < best:
+        best, best_xi = value, xi
+    gb = first
+    for k in range(k_lo, k_hi):
+        ga = gb
+        gb = _node_gap(values, i_node + (k + 1 - k0) * plane, w_b, b_offset)
+        left = max(xs[k] - x, lo)
+        right = min(xs[k + 1] - x, hi)
+        if left > right:
+            continue
+        value, xi = _segment_minimum(
+            ga, xs[k], (gb - ga) / (xs[k + 1] - xs[k]), left, right, x, x_yaw, radius_x, quartic
+        )
+        if value < best:
+            best, best_xi = value, xi
+    if not best < math.inf:
+        return x_yaw, 0.0
+    return best_xi, best - here
+
+
+@numba.njit(cache=True)
 def _point(
     fields, gap, weight, s, row, i_y, i_z, q, q_t, shift_t, z_irr, omega, constants, forces,
-    details, creep, creep_at,
+    details, creep, creep_at, walk, xs, x,
 ):  # pragma: no cover (compiled)  # fmt: skip
     """Forces of one contact point (node or interpolated ``fields``, normal ``gap`` at zero
     lift), times ``weight``, added to ``forces`` and ``details[row]``; 1 if it carries load.
-    ``creep[creep_at:]`` holds the creep table (``creep_at`` < 0: Polach's law)."""
+    ``creep[creep_at:]`` holds the creep table (``creep_at`` < 0: Polach's law) behind the
+    node values; ``walk`` (i_node, k0, n_x, plane, b_offset, w_b, slope bound, pair) where
+    the slot lies in them for :func:`lead_along_x` (i_node < 0: the rail prismatic),
+    ``xs`` the body's x nodes, ``x`` the wheelset's position."""
     v, mu, G, damping, kappa = (
         constants[0], constants[2], constants[3], constants[4], constants[5]
     )  # fmt: skip
@@ -491,8 +761,22 @@ def _point(
     cap = MAX_LEAD_SINE * cos_g
     lead = (min(max(lead, -cap), cap) / cos_g) if cos_g > 0.0 else 0.0
     x_lead = r * lead
+    if walk[0] >= 0.0 and cos_g > 0.0 and walk[6] > 0.0:
+        # the rail's gap along x (piecewise linear between the table's nodes) moves the
+        # contact off the yaw's lead: the minimum of the wheel's parabola and profile term
+        # plus the rail, searched within the lead's cap and as far as the table's slopes
+        # can take it (between x_yaw -+ reach and 0, lead_along_x's docstring)
+        radius_x = r / cos_g
+        reach = walk[6] * radius_x
+        limit = MAX_LEAD_SINE * r
+        quartic = sin_g * sin_g * fields[_SLIDE] / (8.0 * r * r)
+        x_lead, change = lead_along_x(
+            creep, xs, int(walk[0]), int(walk[1]), walk[7] > 0.0, int(walk[2]), int(walk[3]),
+            int(walk[4]), walk[5], x, x_lead, radius_x, quartic,
+            max(min(x_lead - reach, 0.0), -limit), min(max(x_lead + reach, 0.0), limit),
+        )  # fmt: skip
+        gap += change
     gap -= r * lead * lead / (1.0 + math.sqrt(1.0 - lead * lead)) * cos_g
-    gap += x_lead * fields[_GAP_DX]  # the rail at x + x_lead, to first order along x
     delta = -(gap + cos_g * lift)
     # the contact position: the force centre at this penetration (.node_laws.node_centre)
     # on the rail surface, on the force's line of action (.node_laws.centre_point)
@@ -627,7 +911,8 @@ def contact_forces(
     omega = (v / r0 + q_t[4]) if v > 0.0 else 0.0
     n_values = values.shape[0]  # the creep law is packed behind the nodes (pack_tables)
     creep_at = int(values[n_values - 2]) if values[n_values - 1] > 0.5 else -1
-    fields = np.empty(_N_FIELDS + 1)
+    fields = np.empty(_N_FIELDS)
+    walk = np.empty(8)  # where a slot's gaps lie along x, for lead_along_x (see _point)
     n_max = details.shape[0] // max(layout.shape[0], 1)
     loaded = 0
     for k in range(layout.shape[0]):
@@ -635,6 +920,8 @@ def contact_forces(
         n_x, n_s, n_c, s = layout[k, 3], layout[k, 4], layout[k, 5], layout[k, 6]
         i_y, i_z = layout[k, 7], layout[k, 8]
         shift0, step, x_from, x_to = bounds[k, 0], bounds[k, 1], bounds[k, 2], bounds[k, 3]
+        walk[2], walk[3], walk[6] = n_x, n_s * n_c * _N_FIELDS, bounds[k, 4]
+        xs_body = xs[x_off : x_off + n_x]
         for c in range(n_max):
             details[k * n_max + c, 0] = k
             details[k * n_max + c, 1] = c
@@ -664,7 +951,6 @@ def contact_forces(
         ts = position - js
         blend = blendable[b_off + ix * n_s + js] != 0
         v_base = v_off + (ix * n_s + js) * n_c * _N_FIELDS
-        dx = xs[x_off + ix + 1] - x0
         plane = n_s * n_c * _N_FIELDS
         if blend:
             for c in range(n_c):
@@ -672,15 +958,14 @@ def contact_forces(
                 if not _bilinear(values, v_base + c * _N_FIELDS, n_s, n_c, tx, ts) < _EMPTY:
                     continue
                 _interpolate(values, v_base, n_s, n_c, c, tx, ts, True, fields)
-                i00 = v_base + c * _N_FIELDS  # the gap's x-derivative of the bilinear form
-                i01 = i00 + n_c * _N_FIELDS
-                d0 = values[i00 + plane] - values[i00]
-                d1 = values[i01 + plane] - values[i01]
-                fields[_GAP_DX] = (d0 + ts * (d1 - d0)) / dx
+                # the slot's gaps along x at the query's shift (bilinear form's x nodes)
+                walk[0], walk[1], walk[4], walk[5] = v_base + c * _N_FIELDS, ix, n_c * _N_FIELDS, ts
+                walk[7] = 1.0
                 if fields[_GAP] < _EMPTY:
                     loaded += _point(
                         fields, fields[_GAP], 1.0, s, k * n_max + c, i_y, i_z, q, q_t, shift_t,
-                        z_irr, omega, constants, forces, details, values, creep_at,
+                        z_irr, omega, constants, forces, details, values, creep_at, walk,
+                        xs_body, x,
                     )  # fmt: skip
             continue
         # cell whose nodes hold different contact points.  Per shift node of the cell and
@@ -704,11 +989,12 @@ def contact_forces(
                 if ok0 and ok1 and abs(values[i0 + _Y_RAIL] - values[i1 + _Y_RAIL]) < _X_BLEND:
                     for f in range(_N_FIELDS):
                         fields[f] = values[i0 + f] + tx * (values[i1 + f] - values[i0 + f])
-                    fields[_GAP_DX] = (values[i1 + _GAP] - values[i0 + _GAP]) / dx
+                    walk[0], walk[1], walk[4], walk[5] = i0 + _GAP, ix, 0.0, 0.0  # shift node's
+                    walk[7] = 1.0
                     gap = fields[_GAP] - fields[_SIN] * (shift - shift_node)
                     loaded += _point(
                         fields, gap, wb, s, k * n_max + c, i_y, i_z, q, q_t, shift_t, z_irr,
-                        omega, constants, forces, details, values, creep_at,
+                        omega, constants, forces, details, values, creep_at, walk, xs_body, x,
                     )  # fmt: skip
                     continue
                 for da in range(2):
@@ -718,11 +1004,13 @@ def contact_forces(
                     i = i1 if da else i0
                     for f in range(_N_FIELDS):
                         fields[f] = values[i + f]
-                    fields[_GAP_DX] = 0.0  # two different points: no slope along x
+                    # two different points, each its own node's: along x from that node
+                    walk[0], walk[1], walk[4], walk[5] = i + _GAP, ix + da, 0.0, 0.0
+                    walk[7] = 0.0
                     gap = fields[_GAP] - fields[_SIN] * (shift - shift_node)
                     loaded += _point(
                         fields, gap, w, s, k * n_max + c, i_y, i_z, q, q_t, shift_t, z_irr,
-                        omega, constants, forces, details, values, creep_at,
+                        omega, constants, forces, details, values, creep_at, walk, xs_body, x,
                     )  # fmt: skip
         for c in range(n_c):  # positions: averages over the nodes that hold the point
             row = k * n_max + c

@@ -345,7 +345,7 @@ class CompiledResidual:
         n_bodies = [el.tables.layout.shape[0] for el in self.elements]
         n_rows = [el._details.shape[0] for el in self.elements]
         layout = np.zeros((n_el, max(n_bodies), 9), dtype=np.int64)
-        bounds = np.zeros((n_el, max(n_bodies), 4))
+        bounds = np.zeros((n_el, max(n_bodies), first.tables.bounds.shape[1]))
         for k, el in enumerate(self.elements):
             layout[k, : n_bodies[k]] = el.tables.layout
             bounds[k, : n_bodies[k]] = el.tables.bounds
