@@ -176,25 +176,28 @@ def test_predicted_segment_covers_the_load_without_a_rerun(predicted_and_net):
     assert summary["check_rail_rerun"] == []  # the prediction covered the load
     (window,) = summary["check_rail_refined"]
     assert window["x_m"][0] == pytest.approx(44.29) and window["time_step_s"] < 2.5e-5 + 1e-12
-    assert abs(summary["peak_Fy_check_rail_N"]) > 100e3  # the flare's end: loaded
+    # the flare's end: loaded, far above CHECK_RAIL_LOADED (1 % of the ~54 kN wheel load);
+    # 85.8 kN measured since the contact's lead along x (issue 22), 126 kN before it
+    assert abs(summary["peak_Fy_check_rail_N"]) > 50e3
 
 
 def test_safety_net_reruns_and_gives_the_same_forces(predicted_and_net):
     predicted, net, _ = predicted_and_net
     (rerun,) = net.summary["check_rail_rerun"]
-    assert rerun["peak_N"] > 100e3 and net.summary["check_rail_predicted"] == []
+    assert rerun["peak_N"] > 50e3 and net.summary["check_rail_predicted"] == []
     (w_net,), (w_pred,) = (r.summary["check_rail_refined"] for r in (net, predicted))
     # the same start and step; the end a margin after the last load, which the net takes
-    # from its run at 1e-4 s and the prediction from its fine run: one grid step (2.2 mm)
-    # apart here, 45.4779 against 45.4757 m
+    # from its run at 1e-4 s and the prediction from its fine run: at most one grid step
+    # (2.2 mm) apart, either way (45.4779 against 45.4757 m before the contact's lead along
+    # x, issue 22; 45.4535 against 45.4557 m since)
     grid = (WINDOW["x_end"] - WINDOW["x_start"]) / math.ceil((1.31 / V) / 1e-4 - 1e-9)
     assert w_net["x_m"][0] == w_pred["x_m"][0] and w_net["time_step_s"] == w_pred["time_step_s"]
-    assert 0.0 <= w_net["x_m"][1] - w_pred["x_m"][1] <= 1.01 * grid
+    assert abs(w_net["x_m"][1] - w_pred["x_m"][1]) <= 1.01 * grid
     # the same fine piece from the same start: the same forces inside both windows (to
     # round-off: the fine run's step is its length over its steps, a longer length here)
     assert len(net.columns["t_s"]) == len(predicted.columns["t_s"])
     at = pick_rows(predicted.columns, net.columns["t_s"])
-    inside = net.columns["x_m"] <= w_pred["x_m"][1] + 1e-9
+    inside = net.columns["x_m"] <= min(w_pred["x_m"][1], w_net["x_m"][1]) + 1e-9
     for name in ("Fy_ws1_right_r3_N", "Fz_ws1_left_N", "Fy_ws1_right_N"):
         a, b = np.nan_to_num(net.columns[name]), np.nan_to_num(at[name])
         assert np.max(np.abs(a - b)[inside]) <= 1e-6 * np.max(np.abs(a)), name
