@@ -73,7 +73,13 @@ closing ``a^2 R_x / 2`` more than the first order ``a x_yaw``; at a slope change
 flare's end, where the slopes on both sides point to it: on the packaged check rail
 31 ... 36 mm ahead, within 1 mm and 3 ... 15 um of the 3-D gap on its exact sections,
 validation/check_rail_kink.md).  The walk along x stops where the table's slopes
-(:func:`gap_slope_bound`, ``bounds[:, 4]``) cannot move the contact further.  Left out
+(:func:`gap_slope_bound`, ``bounds[:, 4]``) cannot move the contact further.  Not on a
+body whose table is already the rigid wheel's envelope along x (blade, wing rail, nose,
+slices: :func:`.sections.wheel_envelope`, the table's ``x_offset`` not all 0; its bound is
+stored negative): the envelope holds the wheel's circle already, a second minimum with the
+parabola would count it twice (on the UK crossing it moved the nose's first touch against
+the wing rail's by 11-16 um, validation/two_patch_split.md), so there the contact stays at
+the yaw's lead and takes the envelope's gap there (the first order of before).  Left out
 there: the tilt of the contact's tangent plane along x (the rail's plan angle alpha adds
 ``alpha cos(gamma)`` to ``eta``; the lead's term gives the ``alpha sin(gamma) tan(gamma)``
 part, 98 % of the lateral creepage's change at 81 deg).
@@ -184,7 +190,8 @@ class PackedTables:
     #: index of the rail body's lateral coordinate, of its vertical coordinate
     layout: np.ndarray
     #: per body: first shift (m), shift step (m), x_from (m), x_to (m) of its existence, and
-    #: the largest slope of a contact point's gap along x in its table (:func:`gap_slope_bound`)
+    #: the largest slope of a contact point's gap along x in its table (:func:`gap_slope_bound`;
+    #: stored negative for a table of the wheel's envelope: no search along x there)
     bounds: np.ndarray
     names: tuple  #: body names, for outputs
 
@@ -410,6 +417,12 @@ def pack_tables(
         layout.append((v_off, b_off, x_off, n_x, n_s, n_c, int(side), int(i_y), int(i_z)))
         step = float(table.shift[1] - table.shift[0])
         slope = gap_slope_bound(fields[..., _GAP], fields[..., _Y_RAIL], np.asarray(table.x, float))
+        if np.any(fields[..., _X_OFFSET] != 0.0):
+            # the table's gap is already the rigid wheel's envelope along x (the minimum over
+            # the wheel's circle, .sections.wheel_envelope: blade, wing, nose, slices): a
+            # search with the wheel's parabola again would count it twice; the contact stays
+            # at the yaw's lead on it (a negative bound tells the kernel so)
+            slope = -slope
         bounds.append((float(table.shift[0]), step, float(x_from), float(x_to), slope))
         v_off += fields.size
         b_off += n_x * n_s
@@ -761,19 +774,25 @@ def _point(
     cap = MAX_LEAD_SINE * cos_g
     lead = (min(max(lead, -cap), cap) / cos_g) if cos_g > 0.0 else 0.0
     x_lead = r * lead
-    if walk[0] >= 0.0 and cos_g > 0.0 and walk[6] > 0.0:
+    if walk[0] >= 0.0 and cos_g > 0.0 and walk[6] != 0.0:
         # the rail's gap along x (piecewise linear between the table's nodes) moves the
         # contact off the yaw's lead: the minimum of the wheel's parabola and profile term
         # plus the rail, searched within the lead's cap and as far as the table's slopes
-        # can take it (between x_yaw -+ reach and 0, lead_along_x's docstring)
+        # can take it (between x_yaw -+ reach and 0, lead_along_x's docstring); on a table
+        # of the wheel's envelope (negative bound) the rail's gap at the yaw's lead alone
         radius_x = r / cos_g
-        reach = walk[6] * radius_x
         limit = MAX_LEAD_SINE * r
         quartic = sin_g * sin_g * fields[_SLIDE] / (8.0 * r * r)
+        if walk[6] > 0.0:
+            reach = walk[6] * radius_x
+            lo = max(min(x_lead - reach, 0.0), -limit)
+            hi = min(max(x_lead + reach, 0.0), limit)
+        else:
+            lo = x_lead
+            hi = x_lead
         x_lead, change = lead_along_x(
             creep, xs, int(walk[0]), int(walk[1]), walk[7] > 0.0, int(walk[2]), int(walk[3]),
-            int(walk[4]), walk[5], x, x_lead, radius_x, quartic,
-            max(min(x_lead - reach, 0.0), -limit), min(max(x_lead + reach, 0.0), limit),
+            int(walk[4]), walk[5], x, x_lead, radius_x, quartic, lo, hi,
         )  # fmt: skip
         gap += change
     gap -= r * lead * lead / (1.0 + math.sqrt(1.0 - lead * lead)) * cos_g
