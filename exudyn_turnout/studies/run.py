@@ -906,6 +906,9 @@ def run_study(
         for case in hand_out_order(todo):
             finished(case, _study_case(case))
     elif todo:
+        # ordered before the pool forks: the files loaded for the order (each case's turnout
+        # and vehicle) are then inherited by the workers, not loaded again in each of them
+        order = hand_out_order(todo)
         own = executor is None
         if own:
             n = min(int(workers or os.cpu_count() or 1), len(todo))
@@ -917,7 +920,7 @@ def run_study(
         assert executor is not None
         futures: dict[Future, Case] = {}
         try:
-            futures = {executor.submit(_study_case, case): case for case in hand_out_order(todo)}
+            futures = {executor.submit(_study_case, case): case for case in order}
             for future in as_completed(futures):
                 case = futures[future]
                 try:

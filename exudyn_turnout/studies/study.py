@@ -341,7 +341,7 @@ class Study:
             A file or value the loaders reject, a bad irregularity spec (one line).
         """
         texts: dict[str, tuple[str, dict]] = {}
-        edited_texts: dict[tuple[str, str], str] = {}
+        edited_texts: dict[tuple[str, str], tuple[str, Any]] = {}
         checked: set[str] = set()
         checked_parameters: set[tuple[str, str]] = set()
         irregularities: dict[str, Irregularity] = {}
@@ -363,7 +363,7 @@ class Study:
                 }
                 edited = (str(path), json.dumps(edits, sort_keys=True, default=str))
                 if edits and edited in edited_texts:
-                    text = edited_texts[edited]  # the same edits of the same file: its text
+                    text, data = edited_texts[edited]  # the same edits of the same file
                 elif edits:
                     data = json.loads(json.dumps(data))  # a deep copy of plain data
                     for dotted, value in edits.items():
@@ -371,7 +371,8 @@ class Study:
                             set_dotted(data, dotted, value)
                         except (KeyError, TypeError) as err:
                             raise self._error(f"factor {kind}.{dotted}: {err.args[0]}") from None
-                    text = edited_texts[edited] = dumps(data)
+                    text = dumps(data)
+                    edited_texts[edited] = (text, data)
                 if _sha(text) not in checked:
                     loaded = self._check_file(kind, path.name, text, edits)
                     checked.add(_sha(text))
@@ -379,7 +380,9 @@ class Study:
                         routes[_sha(text)] = loaded
                 folder = str(path.resolve().parent)
                 if (_sha(text), folder) not in local:  # once per text and folder, not per case
-                    local[_sha(text), folder] = _local_files(tomllib.loads(text), folder)
+                    # ``data`` is what ``text`` reads back into (toml_writer.dumps's promise):
+                    # not parsed again (~3 ms a turnout file, in the study's serial start)
+                    local[_sha(text), folder] = _local_files(data, folder)
                 files[kind] = (text, path.name, bool(edits), folder, local[_sha(text), folder])
             settings = {k: v for k, v in merged.items() if k in _settings_fields()}
             settings.pop("irregularity", None)
