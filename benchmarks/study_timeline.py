@@ -10,8 +10,9 @@ the process's exit. Prints per run the breakdown: the parent's serial parts, eac
 start, busy time, the CPU time of its cases, and its idle time until the pool shut down.
 
 Run: ``python benchmarks/study_timeline.py [--workers 1 2] [--rounds N] [--quick]
-[--trees DIR ...] [--brief]``. The runs alternate (``--workers 1 2`` twice: 1, 2, 1, 2;
-with ``--trees OLD NEW`` each round runs OLD's pair, then NEW's), with the yardstick
+[--trees DIR ...] [--brief] [--vehicle wheelset|manchester] [--output-step S]
+[--bytecode]``. The runs alternate (``--workers 1 2`` twice: 1, 2, 1, 2; with ``--trees
+OLD NEW`` each round runs OLD's pair, then NEW's), with the yardstick
 (``benchmarks/yardstick.py``) run between them; the load (``os.getloadavg``) is printed.
 After each round the yardstick's own 2-process speed-up (``yardstick.parallel_speedup``:
 what the machine gives two processes at that time) is measured, and the summary gives per
@@ -279,6 +280,27 @@ def main(argv=None) -> None:
     parser.add_argument("--rounds", type=int, default=1)
     parser.add_argument("--quick", action="store_true", help="4 short cases")
     parser.add_argument(
+        "--vehicle",
+        choices=("wheelset", "manchester"),
+        help="the study's vehicle (default: none named, the study's default, the single "
+        "wheelset, as the performance table runs it); manchester: the full vehicle",
+    )
+    parser.add_argument(
+        "--output-step",
+        type=float,
+        metavar="S",
+        help="s, the study's output step (default: the performance table's 1e-3; the full "
+        "vehicle's ride comfort rejects some 1e-3 grids as below 1000 Hz by rounding: 5e-4)",
+    )
+    parser.add_argument(
+        "--bytecode",
+        action="store_true",
+        help="let the measured processes read and write bytecode (.pyc) in a temporary "
+        "PYTHONPYCACHEPREFIX, as an installed package has it (default: the environment's "
+        "setting; with PYTHONDONTWRITEBYTECODE=1 every process compiles the package's "
+        "modules from source); a --quick study per tree fills it before the rounds",
+    )
+    parser.add_argument(
         "--trees",
         nargs="+",
         default=[str(HERE.parent)],
@@ -302,7 +324,27 @@ def main(argv=None) -> None:
     with tempfile.TemporaryDirectory(prefix="study_timeline_") as tmp:
         root = Path(tmp)
         study = root / "study.toml"
-        study.write_text(study_text(args.quick), encoding="utf-8")
+        text = study_text(args.quick)
+        if args.output_step:
+            text = text.replace("output_step = 1e-3", f"output_step = {args.output_step!r}")
+        if args.vehicle:
+            text = text.replace("[base]\n", f'[base]\nvehicle = "{args.vehicle}"\n', 1)
+        study.write_text(text, encoding="utf-8")
+        env_of = {tree: dict(os.environ, PYTHONPATH=tree) for tree in args.trees}
+        if args.bytecode:
+            prime = root / "prime.toml"
+            prime.write_text(study_text(True), encoding="utf-8")
+            for t, tree in enumerate(args.trees):
+                env_of[tree].pop("PYTHONDONTWRITEBYTECODE", None)
+                env_of[tree]["PYTHONPYCACHEPREFIX"] = str(root / f"pycache-{t}")
+                command = [sys.executable, "-m", "exudyn_turnout", "study", str(prime)]
+                command += ["--out", str(root / f"prime-{t}"), "--workers", "1", "--no-plot"]
+                subprocess.run(command, capture_output=True, check=True, env=env_of[tree])
+        print(
+            f"study: {text.splitlines()[1]}, vehicle {args.vehicle or '(default)'}; "
+            f"bytecode {'cached' if args.bytecode else 'as the environment has it'} "
+            f"(PYTHONDONTWRITEBYTECODE={os.environ.get('PYTHONDONTWRITEBYTECODE', '')!r})"
+        )
         for r in range(args.rounds):
             for t, tree in enumerate(args.trees):
                 for workers in args.workers:
@@ -311,7 +353,7 @@ def main(argv=None) -> None:
                     events.mkdir()
                     command = [sys.executable, __file__, "--child", str(workers), str(study)]
                     command += [str(out), str(events)]
-                    env = dict(os.environ, PYTHONPATH=tree)
+                    env = env_of[tree]
                     stick.measure(workload_none, repeats=1, warm_up=False)
                     usage = resource.getrusage(resource.RUSAGE_CHILDREN)
                     launched = time.perf_counter()
