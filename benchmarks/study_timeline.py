@@ -39,6 +39,26 @@ serial start, which only one core works through: before 1.8 s (interpreter 0.05,
 wheel, the track's imports 0.08, the route's contact 0.4, numba's first use 0.22), now
 1.4 s, against C = 14.9 s of cases: (S + C) / (S + C/2 + 0.1 s of tail) = 1.78 -> 1.82
 without contention, 1.74 -> 1.77 with the yardstick's own 3.5 % loss in 2 processes (x1.93).
+
+Measured 2026-12-02 16:16-16:51 UTC (issue 24, against BASE = 9e99960: scipy.interpolate
+imported where sections are built, the study's edited files not parsed again, the hand-out
+order before the fork), load average 2-6 (other jobs kept a core busy: the yardstick's own
+2-process gain 0.95-1.3 in most rounds), so the wall speed-ups (0.6-1.8) say nothing.
+``--rounds 8`` and ``--rounds 6 --trees BASE NEW --brief``: start CPU with 2 workers 1.32 ->
+1.30 s and 1.29 -> 1.28 s, with 1 worker 0.95 -> 0.92 and 0.93 -> 0.90 s; idle-core
+estimate x1.82 -> x1.81 and x1.84 -> x1.78 (within the rounds' spread). ``--bytecode``
+(4 rounds): start CPU with 2 workers 1.13 and 1.14 s, with 1 worker 0.85 and 0.80 s: the
+environment's ``PYTHONDONTWRITEBYTECODE=1`` (each process compiles the package from
+source) costs ~0.17 s of the 2-worker start. ``--vehicle manchester --output-step 5e-4``
+(3 rounds, NEW): cases 34 s CPU, start 1.35 s, idle-core estimate x1.99 (rounds 1.73,
+1.99, 2.00; wall x1.96 in the one quiet round). The 2-worker start (CPU, cProfile and
+imports apart): numpy 0.11 s, scipy.optimize 0.31 s (the turnout plan's ``brentq``, which
+every case calls; the rest of scipy adds 0.03 s), numba 0.15 s and its first use 0.25 s
+(typing registries), exudyn 0.03 s, the package's modules ~0.15 s, the cases and their
+order 0.12 s (each turnout file loaded twice, by the check and for the order), the route's
+contact tables 0.1 s (an npz read): all but ~0.05 s is work every process running a case
+needs, so a fork earlier (each worker warming itself) would run it on both cores at once
+for the same wall time.
 """
 
 from __future__ import annotations
