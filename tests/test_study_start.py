@@ -61,3 +61,24 @@ def test_a_dotted_profile_factor_keys_the_profile_file_it_names(tmp_path: Path):
     after = [c.key for c in load_study(tmp_path / "study.toml").cases()]
     assert after[0] != before[0]  # the edited file names my_rail.prr: its content counts
     assert after[1] == before[1]  # the other names the packaged profile, not beside t.toml
+
+
+def test_a_case_runs_with_the_turnout_the_check_loaded(tmp_path: Path):
+    """``Study.cases`` loads each distinct turnout file once to check it; the cases' runs in
+    this process (and workers forked from it) take that turnout instead of loading the same
+    text again, and a text the check did not load is not found."""
+    from exudyn_turnout.studies.study import checked_turnout
+
+    (tmp_path / "study.toml").write_text(
+        '[study]\nname = "two pads"\n\n[base]\ncontact = "profile"\nroute = "through"\n'
+        'x_start = 44.0\nx_end = 45.0\n\n[factors]\n"turnout.rail_types.stock.pad.k_z" = '
+        "[101e6, 139e6]\n",
+        encoding="utf-8",
+    )
+    cases = load_study(tmp_path / "study.toml").cases()
+    loaded = [checked_turnout(c.turnout_name, c.turnout_text) for c in cases]
+    assert all(t is not None for t in loaded)
+    assert loaded[0] is not loaded[1]  # two files (pad stiffness 101 and 139 MN/m)
+    assert loaded[0].rail_types["stock"].pad.k_z == 101e6
+    assert loaded[1].rail_types["stock"].pad.k_z == 139e6
+    assert checked_turnout(cases[0].turnout_name, cases[0].turnout_text + "\n") is None

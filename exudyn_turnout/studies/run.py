@@ -45,7 +45,14 @@ from typing import Any
 
 import numpy as np
 
-from exudyn_turnout.studies.study import Case, Study, StudyError, load_study, load_study_vehicle
+from exudyn_turnout.studies.study import (
+    Case,
+    Study,
+    StudyError,
+    checked_turnout,
+    load_study,
+    load_study_vehicle,
+)
 
 __all__ = [
     "StudyResult",
@@ -212,7 +219,10 @@ def _case_files(
         vehicle_path = Path(tmp) / f"vehicle-{vehicle_name}"
         turnout_path.write_text(turnout_text, encoding="utf-8")
         vehicle_path.write_text(vehicle_text, encoding="utf-8")
-        turnout = load_turnout(turnout_path)
+        # as the study's check loaded it here (the same name and text), else loaded now
+        turnout = checked_turnout(turnout_name, turnout_text)
+        if turnout is None:
+            turnout = load_turnout(turnout_path)
         vehicle = load_study_vehicle(vehicle_path)
         if parameters_text:
             from exudyn_turnout.corunning.fitted import load_fitted

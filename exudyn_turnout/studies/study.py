@@ -74,11 +74,47 @@ __all__ = [
     "load_study",
     "study_from_dict",
     "load_study_vehicle",
+    "checked_turnout",
     "FILE_FACTORS",
 ]
 
 #: Factors that are not PassageSettings fields nor dotted file fields.
 FILE_FACTORS = ("turnout", "vehicle", "track", "irregularity", "parameters")
+
+
+#: The turnouts this process loaded to check a study's cases (:meth:`Study.cases`), by file
+#: name and content: the last few, for the cases' runs in this process or its forked workers.
+_CHECKED_TURNOUTS: dict[tuple[str, str], Any] = {}
+_CHECKED_KEPT = 16
+
+
+def checked_turnout(name: str, text: str) -> Any:
+    """The turnout file ``name`` with content ``text`` as :meth:`Study.cases` loaded it here.
+
+    :meth:`Study.cases` loads each distinct turnout file with the package's loader (from a
+    temporary copy named ``name``) to check it; a case's run (in this process, or in a
+    worker forked from it) takes that turnout instead of loading the same text again.
+
+    Parameters
+    ----------
+    name : str
+        The file's name.
+    text : str
+        Its content.
+
+    Returns
+    -------
+    Turnout or None
+        None when this process has not loaded it (or no longer keeps it).
+    """
+    return _CHECKED_TURNOUTS.get((name, text))
+
+
+def _remember_turnout(name: str, text: str, turnout: Any) -> None:
+    _CHECKED_TURNOUTS.pop((name, text), None)
+    _CHECKED_TURNOUTS[name, text] = turnout
+    while len(_CHECKED_TURNOUTS) > _CHECKED_KEPT:
+        del _CHECKED_TURNOUTS[next(iter(_CHECKED_TURNOUTS))]
 
 
 class StudyError(ValueError):
@@ -535,7 +571,9 @@ class Study:
             path.write_text(text, encoding="utf-8")
             try:
                 if kind == "turnout":
-                    return tuple(route_names(load_turnout(path)))
+                    turnout = load_turnout(path)
+                    _remember_turnout(name, text, turnout)
+                    return tuple(route_names(turnout))
                 load_study_vehicle(path)
                 return None
             except ValueError as err:  # TurnoutFileError and the vehicle loader's errors
