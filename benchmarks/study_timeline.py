@@ -40,13 +40,17 @@ wheel, the track's imports 0.08, the route's contact 0.4, numba's first use 0.22
 1.4 s, against C = 14.9 s of cases: (S + C) / (S + C/2 + 0.1 s of tail) = 1.78 -> 1.82
 without contention, 1.74 -> 1.77 with the yardstick's own 3.5 % loss in 2 processes (x1.93).
 
-Measured 2026-12-02 16:16-16:51 UTC (issue 24, against BASE = 9e99960: scipy.interpolate
+Measured 2026-12-02 16:16-17:06 UTC (issue 24, against BASE = 9e99960: scipy.interpolate
 imported where sections are built, the study's edited files not parsed again, the hand-out
-order before the fork), load average 2-6 (other jobs kept a core busy: the yardstick's own
+order before the fork, a case's turnout the one the study's check loaded), load average 2-6 (other jobs kept a core busy: the yardstick's own
 2-process gain 0.95-1.3 in most rounds), so the wall speed-ups (0.6-1.8) say nothing.
 ``--rounds 8`` and ``--rounds 6 --trees BASE NEW --brief``: start CPU with 2 workers 1.32 ->
 1.30 s and 1.29 -> 1.28 s, with 1 worker 0.95 -> 0.92 and 0.93 -> 0.90 s; idle-core
-estimate x1.82 -> x1.81 and x1.84 -> x1.78 (within the rounds' spread). ``--bytecode``
+estimate x1.82 -> x1.81 and x1.84 -> x1.78 (within the rounds' spread). The start alone
+(a process importing the command and the studies, then ``load_study(...).cases()``,
+``hand_out_order`` and ``warm_up``: its CPU time at the point of the fork), 12 pairs
+alternating BASE and NEW: 1.18 -> 1.10 s (medians; lower in every pair, by 0.02-0.30 s):
+by the arithmetic above worth ~+0.01 on the speed-up. ``--bytecode``
 (4 rounds): start CPU with 2 workers 1.13 and 1.14 s, with 1 worker 0.85 and 0.80 s: the
 environment's ``PYTHONDONTWRITEBYTECODE=1`` (each process compiles the package from
 source) costs ~0.17 s of the 2-worker start. ``--vehicle manchester --output-step 5e-4``
