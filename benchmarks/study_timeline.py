@@ -42,8 +42,9 @@ without contention, 1.74 -> 1.77 with the yardstick's own 3.5 % loss in 2 proces
 
 Measured 2026-12-02 16:16-17:06 UTC (issue 24, against BASE = 9e99960: scipy.interpolate
 imported where sections are built, the study's edited files not parsed again, the hand-out
-order before the fork, a case's turnout the one the study's check loaded), load average 2-6 (other jobs kept a core busy: the yardstick's own
-2-process gain 0.95-1.3 in most rounds), so the wall speed-ups (0.6-1.8) say nothing.
+order before the fork, a case's turnout the one the study's check loaded), load average
+2-6 (other jobs kept a core busy: the yardstick's own 2-process gain 0.95-1.3 in most
+rounds), so the wall speed-ups (0.6-1.8) say nothing.
 ``--rounds 8`` and ``--rounds 6 --trees BASE NEW --brief``: start CPU with 2 workers 1.32 ->
 1.30 s and 1.29 -> 1.28 s, with 1 worker 0.95 -> 0.92 and 0.93 -> 0.90 s; idle-core
 estimate x1.82 -> x1.81 and x1.84 -> x1.78 (within the rounds' spread). The start alone
@@ -59,7 +60,7 @@ source) costs ~0.17 s of the 2-worker start. ``--vehicle manchester --output-ste
 imports apart): numpy 0.11 s, scipy.optimize 0.31 s (the turnout plan's ``brentq``, which
 every case calls; the rest of scipy adds 0.03 s), numba 0.15 s and its first use 0.25 s
 (typing registries), exudyn 0.03 s, the package's modules ~0.15 s, the cases and their
-order 0.12 s (each turnout file loaded twice, by the check and for the order), the route's
+order 0.12 s (0.09 s now: each turnout file was loaded twice and parsed 5 times), the route's
 contact tables 0.1 s (an npz read): all but ~0.05 s is work every process running a case
 needs, so a fork earlier (each worker warming itself) would run it on both cores at once
 for the same wall time.
