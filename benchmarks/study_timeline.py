@@ -10,8 +10,9 @@ the process's exit. Prints per run the breakdown: the parent's serial parts, eac
 start, busy time, the CPU time of its cases, and its idle time until the pool shut down.
 
 Run: ``python benchmarks/study_timeline.py [--workers 1 2] [--rounds N] [--quick]
-[--trees DIR ...] [--brief]``. The runs alternate (``--workers 1 2`` twice: 1, 2, 1, 2;
-with ``--trees OLD NEW`` each round runs OLD's pair, then NEW's), with the yardstick
+[--trees DIR ...] [--brief] [--vehicle wheelset|manchester] [--output-step S]
+[--bytecode]``. The runs alternate (``--workers 1 2`` twice: 1, 2, 1, 2; with ``--trees
+OLD NEW`` each round runs OLD's pair, then NEW's), with the yardstick
 (``benchmarks/yardstick.py``) run between them; the load (``os.getloadavg``) is printed.
 After each round the yardstick's own 2-process speed-up (``yardstick.parallel_speedup``:
 what the machine gives two processes at that time) is measured, and the summary gives per
@@ -38,6 +39,31 @@ serial start, which only one core works through: before 1.8 s (interpreter 0.05,
 wheel, the track's imports 0.08, the route's contact 0.4, numba's first use 0.22), now
 1.4 s, against C = 14.9 s of cases: (S + C) / (S + C/2 + 0.1 s of tail) = 1.78 -> 1.82
 without contention, 1.74 -> 1.77 with the yardstick's own 3.5 % loss in 2 processes (x1.93).
+
+Measured 2026-12-02 16:16-17:06 UTC (issue 24, against BASE = 9e99960: scipy.interpolate
+imported where sections are built, the study's edited files not parsed again, the hand-out
+order before the fork, a case's turnout the one the study's check loaded), load average
+2-6 (other jobs kept a core busy: the yardstick's own 2-process gain 0.95-1.3 in most
+rounds), so the wall speed-ups (0.6-1.8) say nothing.
+``--rounds 8`` and ``--rounds 6 --trees BASE NEW --brief``: start CPU with 2 workers 1.32 ->
+1.30 s and 1.29 -> 1.28 s, with 1 worker 0.95 -> 0.92 and 0.93 -> 0.90 s; idle-core
+estimate x1.82 -> x1.81 and x1.84 -> x1.78 (within the rounds' spread). The start alone
+(a process importing the command and the studies, then ``load_study(...).cases()``,
+``hand_out_order`` and ``warm_up``: its CPU time at the point of the fork), 12 pairs
+alternating BASE and NEW: 1.18 -> 1.10 s (medians; lower in every pair, by 0.02-0.30 s):
+by the arithmetic above worth ~+0.01 on the speed-up. ``--bytecode``
+(4 rounds): start CPU with 2 workers 1.13 and 1.14 s, with 1 worker 0.85 and 0.80 s: the
+environment's ``PYTHONDONTWRITEBYTECODE=1`` (each process compiles the package from
+source) costs ~0.17 s of the 2-worker start. ``--vehicle manchester --output-step 5e-4``
+(3 rounds, NEW): cases 34 s CPU, start 1.35 s, idle-core estimate x1.99 (rounds 1.73,
+1.99, 2.00; wall x1.96 in the one quiet round). The 2-worker start (CPU, cProfile and
+imports apart): numpy 0.11 s, scipy.optimize 0.31 s (the turnout plan's ``brentq``, which
+every case calls; the rest of scipy adds 0.03 s), numba 0.15 s and its first use 0.25 s
+(typing registries), exudyn 0.03 s, the package's modules ~0.15 s, the cases and their
+order 0.12 s (0.09 s now: each turnout file was loaded twice and parsed 5 times), the route's
+contact tables 0.1 s (an npz read): all but ~0.05 s is work every process running a case
+needs, so a fork earlier (each worker warming itself) would run it on both cores at once
+for the same wall time.
 """
 
 from __future__ import annotations
@@ -279,6 +305,27 @@ def main(argv=None) -> None:
     parser.add_argument("--rounds", type=int, default=1)
     parser.add_argument("--quick", action="store_true", help="4 short cases")
     parser.add_argument(
+        "--vehicle",
+        choices=("wheelset", "manchester"),
+        help="the study's vehicle (default: none named, the study's default, the single "
+        "wheelset, as the performance table runs it); manchester: the full vehicle",
+    )
+    parser.add_argument(
+        "--output-step",
+        type=float,
+        metavar="S",
+        help="s, the study's output step (default: the performance table's 1e-3; the full "
+        "vehicle's ride comfort rejects some 1e-3 grids as below 1000 Hz by rounding: 5e-4)",
+    )
+    parser.add_argument(
+        "--bytecode",
+        action="store_true",
+        help="let the measured processes read and write bytecode (.pyc) in a temporary "
+        "PYTHONPYCACHEPREFIX, as an installed package has it (default: the environment's "
+        "setting; with PYTHONDONTWRITEBYTECODE=1 every process compiles the package's "
+        "modules from source); a --quick study per tree fills it before the rounds",
+    )
+    parser.add_argument(
         "--trees",
         nargs="+",
         default=[str(HERE.parent)],
@@ -302,7 +349,27 @@ def main(argv=None) -> None:
     with tempfile.TemporaryDirectory(prefix="study_timeline_") as tmp:
         root = Path(tmp)
         study = root / "study.toml"
-        study.write_text(study_text(args.quick), encoding="utf-8")
+        text = study_text(args.quick)
+        if args.output_step:
+            text = text.replace("output_step = 1e-3", f"output_step = {args.output_step!r}")
+        if args.vehicle:
+            text = text.replace("[base]\n", f'[base]\nvehicle = "{args.vehicle}"\n', 1)
+        study.write_text(text, encoding="utf-8")
+        env_of = {tree: dict(os.environ, PYTHONPATH=tree) for tree in args.trees}
+        if args.bytecode:
+            prime = root / "prime.toml"
+            prime.write_text(study_text(True), encoding="utf-8")
+            for t, tree in enumerate(args.trees):
+                env_of[tree].pop("PYTHONDONTWRITEBYTECODE", None)
+                env_of[tree]["PYTHONPYCACHEPREFIX"] = str(root / f"pycache-{t}")
+                command = [sys.executable, "-m", "exudyn_turnout", "study", str(prime)]
+                command += ["--out", str(root / f"prime-{t}"), "--workers", "1", "--no-plot"]
+                subprocess.run(command, capture_output=True, check=True, env=env_of[tree])
+        print(
+            f"study: {text.splitlines()[1]}, vehicle {args.vehicle or '(default)'}; "
+            f"bytecode {'cached' if args.bytecode else 'as the environment has it'} "
+            f"(PYTHONDONTWRITEBYTECODE={os.environ.get('PYTHONDONTWRITEBYTECODE', '')!r})"
+        )
         for r in range(args.rounds):
             for t, tree in enumerate(args.trees):
                 for workers in args.workers:
@@ -311,7 +378,7 @@ def main(argv=None) -> None:
                     events.mkdir()
                     command = [sys.executable, __file__, "--child", str(workers), str(study)]
                     command += [str(out), str(events)]
-                    env = dict(os.environ, PYTHONPATH=tree)
+                    env = env_of[tree]
                     stick.measure(workload_none, repeats=1, warm_up=False)
                     usage = resource.getrusage(resource.RUSAGE_CHILDREN)
                     launched = time.perf_counter()

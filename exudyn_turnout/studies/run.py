@@ -45,7 +45,14 @@ from typing import Any
 
 import numpy as np
 
-from exudyn_turnout.studies.study import Case, Study, StudyError, load_study, load_study_vehicle
+from exudyn_turnout.studies.study import (
+    Case,
+    Study,
+    StudyError,
+    checked_turnout,
+    load_study,
+    load_study_vehicle,
+)
 
 __all__ = [
     "StudyResult",
@@ -212,7 +219,10 @@ def _case_files(
         vehicle_path = Path(tmp) / f"vehicle-{vehicle_name}"
         turnout_path.write_text(turnout_text, encoding="utf-8")
         vehicle_path.write_text(vehicle_text, encoding="utf-8")
-        turnout = load_turnout(turnout_path)
+        # as the study's check loaded it here (the same name and text), else loaded now
+        turnout = checked_turnout(turnout_name, turnout_text)
+        if turnout is None:
+            turnout = load_turnout(turnout_path)
         vehicle = load_study_vehicle(vehicle_path)
         if parameters_text:
             from exudyn_turnout.corunning.fitted import load_fitted
@@ -906,6 +916,9 @@ def run_study(
         for case in hand_out_order(todo):
             finished(case, _study_case(case))
     elif todo:
+        # ordered before the pool forks: the files loaded for the order (each case's turnout
+        # and vehicle) are then inherited by the workers, not loaded again in each of them
+        order = hand_out_order(todo)
         own = executor is None
         if own:
             n = min(int(workers or os.cpu_count() or 1), len(todo))
@@ -917,7 +930,7 @@ def run_study(
         assert executor is not None
         futures: dict[Future, Case] = {}
         try:
-            futures = {executor.submit(_study_case, case): case for case in hand_out_order(todo)}
+            futures = {executor.submit(_study_case, case): case for case in order}
             for future in as_completed(futures):
                 case = futures[future]
                 try:

@@ -74,11 +74,47 @@ __all__ = [
     "load_study",
     "study_from_dict",
     "load_study_vehicle",
+    "checked_turnout",
     "FILE_FACTORS",
 ]
 
 #: Factors that are not PassageSettings fields nor dotted file fields.
 FILE_FACTORS = ("turnout", "vehicle", "track", "irregularity", "parameters")
+
+
+#: The turnouts this process loaded to check a study's cases (:meth:`Study.cases`), by file
+#: name and content: the last few, for the cases' runs in this process or its forked workers.
+_CHECKED_TURNOUTS: dict[tuple[str, str], Any] = {}
+_CHECKED_KEPT = 16
+
+
+def checked_turnout(name: str, text: str) -> Any:
+    """The turnout file ``name`` with content ``text`` as :meth:`Study.cases` loaded it here.
+
+    :meth:`Study.cases` loads each distinct turnout file with the package's loader (from a
+    temporary copy named ``name``) to check it; a case's run (in this process, or in a
+    worker forked from it) takes that turnout instead of loading the same text again.
+
+    Parameters
+    ----------
+    name : str
+        The file's name.
+    text : str
+        Its content.
+
+    Returns
+    -------
+    Turnout or None
+        None when this process has not loaded it (or no longer keeps it).
+    """
+    return _CHECKED_TURNOUTS.get((name, text))
+
+
+def _remember_turnout(name: str, text: str, turnout: Any) -> None:
+    _CHECKED_TURNOUTS.pop((name, text), None)
+    _CHECKED_TURNOUTS[name, text] = turnout
+    while len(_CHECKED_TURNOUTS) > _CHECKED_KEPT:
+        del _CHECKED_TURNOUTS[next(iter(_CHECKED_TURNOUTS))]
 
 
 class StudyError(ValueError):
@@ -341,7 +377,7 @@ class Study:
             A file or value the loaders reject, a bad irregularity spec (one line).
         """
         texts: dict[str, tuple[str, dict]] = {}
-        edited_texts: dict[tuple[str, str], str] = {}
+        edited_texts: dict[tuple[str, str], tuple[str, Any]] = {}
         checked: set[str] = set()
         checked_parameters: set[tuple[str, str]] = set()
         irregularities: dict[str, Irregularity] = {}
@@ -363,7 +399,7 @@ class Study:
                 }
                 edited = (str(path), json.dumps(edits, sort_keys=True, default=str))
                 if edits and edited in edited_texts:
-                    text = edited_texts[edited]  # the same edits of the same file: its text
+                    text, data = edited_texts[edited]  # the same edits of the same file
                 elif edits:
                     data = json.loads(json.dumps(data))  # a deep copy of plain data
                     for dotted, value in edits.items():
@@ -371,7 +407,8 @@ class Study:
                             set_dotted(data, dotted, value)
                         except (KeyError, TypeError) as err:
                             raise self._error(f"factor {kind}.{dotted}: {err.args[0]}") from None
-                    text = edited_texts[edited] = dumps(data)
+                    text = dumps(data)
+                    edited_texts[edited] = (text, data)
                 if _sha(text) not in checked:
                     loaded = self._check_file(kind, path.name, text, edits)
                     checked.add(_sha(text))
@@ -379,7 +416,9 @@ class Study:
                         routes[_sha(text)] = loaded
                 folder = str(path.resolve().parent)
                 if (_sha(text), folder) not in local:  # once per text and folder, not per case
-                    local[_sha(text), folder] = _local_files(tomllib.loads(text), folder)
+                    # ``data`` is what ``text`` reads back into (toml_writer.dumps's promise):
+                    # not parsed again (~3 ms a turnout file, in the study's serial start)
+                    local[_sha(text), folder] = _local_files(data, folder)
                 files[kind] = (text, path.name, bool(edits), folder, local[_sha(text), folder])
             settings = {k: v for k, v in merged.items() if k in _settings_fields()}
             settings.pop("irregularity", None)
@@ -532,7 +571,9 @@ class Study:
             path.write_text(text, encoding="utf-8")
             try:
                 if kind == "turnout":
-                    return tuple(route_names(load_turnout(path)))
+                    turnout = load_turnout(path)
+                    _remember_turnout(name, text, turnout)
+                    return tuple(route_names(turnout))
                 load_study_vehicle(path)
                 return None
             except ValueError as err:  # TurnoutFileError and the vehicle loader's errors

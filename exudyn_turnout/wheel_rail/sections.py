@@ -61,7 +61,6 @@ import math
 from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy.interpolate import CubicSpline, PchipInterpolator, make_interp_spline
 
 from exudyn_turnout.wheel_rail.profiles import Profile, SliceSet
 
@@ -366,6 +365,10 @@ def _runs(present: np.ndarray) -> list[tuple[int, int]]:
 
 def _interpolant(u: np.ndarray, values: np.ndarray, method: str):
     """Interpolant along u of the rows of ``values`` (None for a single slice)."""
+    # imported here: a passage whose route tables are stored never builds sections, and
+    # scipy.interpolate is ~0.03 s of every process's start (a study's serial part)
+    from scipy.interpolate import CubicSpline, PchipInterpolator, make_interp_spline
+
     if len(u) == 1:
         return None
     if method == "linear" or len(u) == 2:
