@@ -94,6 +94,17 @@ def test_sampling_rate_too_low():
     assert note.startswith("not computed: EN 12299 filters need samples at >= 1000 Hz")
 
 
+def test_an_output_step_of_exactly_1e_3_s_is_filtered():
+    # 1 / (t[1] - t[0]) of such a grid lies a few ulp below 1000 Hz: comfort_columns
+    # accepted it, weighted raised (a full-vehicle study at output_step 1e-3 failed)
+    assert weighted(np.ones(100), MIN_SAMPLING_RATE * (1.0 - 1e-12), WB).shape == (100,)
+    t = np.arange(3000) * 1e-3  # its uniform grid's rate: 999.9999999999991 Hz
+    columns = {"t_s": t, "ay_floor_car_centre_mps2": np.sin(t), "az_car_centre_mps2": np.cos(t)}
+    assert set(comfort_columns(columns)) == {"awd_y_car_centre_mps2", "awb_z_car_centre_mps2"}
+    with pytest.raises(ValueError, match="got 999 Hz"):
+        weighted(np.zeros(100), 999.0, WB)
+
+
 def test_summary_of_a_sine_and_why_no_n_mv():
     fs = 2000.0
     t = np.arange(0.0, 8.0, 1.0 / fs)

@@ -268,7 +268,9 @@ def weighted(signal: np.ndarray, fs: float, weighting: Weighting) -> np.ndarray:
         fs below :data:`MIN_SAMPLING_RATE`, or a non-finite sample.
     """
     x = np.asarray(signal, dtype=float)
-    if fs < MIN_SAMPLING_RATE:
+    # the same round-off allowance as ride_comfort's: an output step of exactly 1e-3 s
+    # gives 1 / (t[1] - t[0]) a few ulp below 1000 Hz
+    if fs < MIN_SAMPLING_RATE * (1.0 - 1e-9):
         raise ValueError(
             f"ride comfort needs >= {MIN_SAMPLING_RATE:g} Hz samples (an output step <= "
             f"{1.0 / MIN_SAMPLING_RATE:g} s), got {fs:.4g} Hz"
