@@ -269,23 +269,15 @@ def _simulate(
     static_s = time.perf_counter() - t0
     start_args = (q0, q0_t)
     t1 = time.perf_counter()
-    moving, recorder = _run(
-        settings,
-        vehicle,
-        route,
-        contact,
-        track,
-        x_a,
-        v,
-        irr,
-        duration,
-        n_steps,
-        every,
-        start_args,
-        progress,
-        None,
-        options,
-    )
+
+    def run(track, progress, pieces):
+        """The run from the start state on ``track`` (``pieces``: the finer windows)."""
+        return _run(
+            settings, vehicle, route, contact, track, x_a, v, irr, duration, n_steps, every,
+            start_args, progress, pieces, options,
+        )  # fmt: skip
+
+    moving, recorder = run(track, progress, None)
     steps_s = time.perf_counter() - t1
     W = 0.5 * (loads["left"] + loads["right"])
     columns = fe_columns(moving, recorder.t, recorder.q, recorder.q_t, x_a, v)
@@ -297,23 +289,7 @@ def _simulate(
         track = FECoSimulation(planes, route.name, h, settings.spectral_radius, options)
         track.start([start_element], [forces], v)
         t1 = time.perf_counter()
-        moving, recorder = _run(
-            settings,
-            vehicle,
-            route,
-            contact,
-            track,
-            x_a,
-            v,
-            irr,
-            duration,
-            n_steps,
-            every,
-            start_args,
-            None,
-            pieces,
-            options,
-        )
+        moving, recorder = run(track, None, pieces)
         steps_s = time.perf_counter() - t1
         columns = fe_columns(moving, recorder.t, recorder.q, recorder.q_t, x_a, v)
         refined = [(a * h, b * h, h / m) for a, b, m in pieces if m > 1]
