@@ -25,6 +25,13 @@ loads. The cases (issue 24):
   the order alternating, each beside the speed-up the machine gives the yardstick itself
   in 2 processes at the time: the medians of both and their ratio (one pair of runs on a
   shared machine swung 0.95-1.74 in the yardstick's own speed-up).
+
+The main job's and the study's fresh processes read and write bytecode (``.pyc``) in a
+temporary ``PYTHONPYCACHEPREFIX``, filled by their untimed first run, as an installed
+package has it (pip compiles it at install): the machine the table was first made on sets
+``PYTHONDONTWRITEBYTECODE=1``, and there every process compiled the package from its source,
+~0.17 s of a study's serial start (``benchmarks/study_timeline.py --bytecode``). Rows made
+before this (session 12) include that compilation.
 """
 
 from __future__ import annotations
@@ -237,8 +244,11 @@ def _package_path() -> str:
     return str(Path(exudyn_turnout.__file__).resolve().parents[1])
 
 
-def _run(command: list[str]) -> None:
+def _run(command: list[str], pycache: Path | None = None) -> None:
     env = dict(os.environ, PYTHONPATH=_package_path())
+    if pycache is not None:  # bytecode read and written there, as an installed package has it
+        env.pop("PYTHONDONTWRITEBYTECODE", None)
+        env["PYTHONPYCACHEPREFIX"] = str(pycache)
     done = subprocess.run(command, capture_output=True, text=True, check=False, env=env)
     if done.returncode != 0:
         raise RuntimeError(f"{' '.join(command)}: exit {done.returncode}: {done.stderr[-2000:]}")
@@ -255,10 +265,12 @@ def _main_job_rows(stick: Yardstick, repeats: int, quick: bool, work: Path) -> l
         command = _cli("simulate", *vehicle, *job, *extra) + ["--out", str(work / "simulate")]
         shown = " ".join(["exudyn-turnout simulate", *vehicle, *job, "--out DIR"])
         print(f"... main job {' '.join(vehicle) or '(default vehicle)'}", file=sys.stderr)
-        t = stick.measure(lambda command=command: _run(command), repeats)
+        # the untimed warm-up run writes the bytecode the timed runs read
+        t = stick.measure(lambda command=command: _run(command, work / "pycache"), repeats)
         rows.append(
             Row(
-                f"warm main job: `{shown}`{' (x 40..45 m)' if quick else ''}, a fresh process",
+                f"warm main job: `{shown}`{' (x 40..45 m)' if quick else ''}, a fresh process "
+                "(bytecode cached)",
                 f"{t.seconds:.1f}",
                 f"{t.cpu_seconds:.1f}",
                 "",
@@ -312,12 +324,16 @@ def _study_row(stick: Yardstick, quick: bool, work: Path) -> Row:
     runs = [0]
     rounds = 1 if quick else 3
 
-    def run(workers: int) -> None:
+    def run(workers: int, file: Path = study) -> None:
         runs[0] += 1
         out = work / f"study-{workers}-{runs[0]}"
-        _run(_cli("study", str(study), "--out", str(out), "--workers", str(workers), "--no-plot"))
+        command = _cli("study", str(file), "--out", str(out), "--workers", str(workers))
+        _run(command + ["--no-plot"], work / "pycache")
         shutil.rmtree(out, ignore_errors=True)
 
+    prime = work / "prime.toml"  # untimed: the bytecode of every module a study imports
+    prime.write_text(study_text(True), encoding="utf-8")
+    run(1, prime)
     gains, machine_gains = [], []
     for k in range(rounds):
         for workers in (1, 2) if k % 2 == 0 else (2, 1):
@@ -331,7 +347,8 @@ def _study_row(stick: Yardstick, quick: bool, work: Path) -> Row:
     one, two = (min(walls[w], key=lambda t: t.seconds) for w in (1, 2))
     return Row(
         f"study, {n_cases} passages, profile contact: `exudyn-turnout study --workers 2` "
-        f"vs `--workers 1`, fresh processes, {rounds} round{'s' if rounds > 1 else ''} alternating",
+        f"vs `--workers 1`, fresh processes, {rounds} round{'s' if rounds > 1 else ''} "
+        "alternating, bytecode cached",
         f"{two.seconds:.1f} vs {one.seconds:.1f}",
         f"{two.cpu_seconds:.1f} vs {one.cpu_seconds:.1f}",
         "",
