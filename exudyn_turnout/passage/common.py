@@ -85,10 +85,10 @@ NEWTON_ABSOLUTE_TOLERANCE = 1.0
 
 #: Fraction of the static wheel load above which a check-rail contact's force (the magnitude
 #: of its lateral and vertical force) counts as carrying load. Below it the contact's error
-#: at a coarse step (measured <= 25 % of its own force: 14.9 % on the full vehicle, 24 % on
-#: the FE track's single wheelset at 1e-4 s) is below 0.25 % of a wheel load, under the
-#: Newton tolerance's effect on the peaks; and a contact that only grazes (a few newtons
-#: while the flange passes the flare) costs nothing.
+#: at a coarse step (measured <= 25 % of its own force before issue 22's contact lead along
+#: x, 14.9 % on the full vehicle at 1e-4 s; 1.8 % since) is below 0.25 % of a wheel load,
+#: under the Newton tolerance's effect on the peaks; and a contact that only grazes (a few
+#: newtons while the flange passes the flare) costs nothing.
 CHECK_RAIL_LOADED = 0.01
 #: s, the refined window ends this long after the check rail's last load: 5 periods of its
 #: ~1.04 kHz ringing (it has died down by then).
@@ -532,9 +532,10 @@ def refine_pieces(
     of h = duration / n. The fine piece runs from the segment's start (the integrator is not
     restarted during the check rail's approach: a restart 5-20 ms before the flare's end
     moved the 2-layer diverging route's check-rail peak by 4 %, 122.5 against 128.1 kN at
-    2.5e-5 s throughout; from the segment's start, 1e-4 s refined to 2.5e-5 s gives
-    126.6 kN) to ``t_last`` + :data:`CHECK_RAIL_MARGIN`, widened to the grid (to the
-    segment's end where less than a margin is left), at h / m, m = ceil(h / fine_step):
+    2.5e-5 s throughout; from the segment's start, 1e-4 s refined to 2.5e-5 s gave
+    126.6 kN; numbers before issue 22's contact lead along x, 86.3 kN since) to
+    ``t_last`` + :data:`CHECK_RAIL_MARGIN`, widened to the grid (to the segment's end
+    where less than a margin is left), at h / m, m = ceil(h / fine_step):
     every m-th of its steps lies on the grid, so that the run's samples keep their times.
 
     Parameters
@@ -652,8 +653,8 @@ def check_rail_warning(
         f"a check rail's contact force (|(Fy, Fz)|) reached {peak / 1e3:.1f} kN at x = "
         f"{x_range[0]:.2f}-{x_range[1]:.2f} m "
         f"at a time step of {time_step:g} s, coarser than the check rail's {limit:g} s "
-        f"({where}): its force is not converged in the step (at 1e-4 s 14.9 % low on the "
-        "2-layer co-running track, 24 % on the FE track: diverging route at 80 km/h, "
+        f"({where}): its force may not be converged in the step (diverging route at "
+        "80 km/h, 2-layer track, 1e-4 s throughout: 1.8 % above the converged force, "
         "validation/vehicle_step_convergence.md)"
     )
 

@@ -55,15 +55,16 @@ class PassageSettings:
     #: ``check_rail_time_step`` instead
     time_step: float = 1e-4
     #: s, the step of a run segment where a check-rail contact carries load: such a segment
-    #: is run again at this step (no finer than needed: the segment's step over an integer)
-    #: over the window of the check rail's load
-    #: (:mod:`~exudyn_turnout.passage.corunning_track.vehicle`); None: never (a run at a
-    #: coarser step warns, :class:`~exudyn_turnout.passage.common.CheckRailStepWarning`).
-    #: 2.5e-5 s: the 2-layer check-rail force on the diverging route, full vehicle at
-    #: 80 km/h, 128.1 kN against 127.1 / 126.5 kN at 1.25e-5 / 6.25e-6 s (+0.8 / +1.3 %),
-    #: 109.1 kN (-14.9 %) at 1e-4 s and 118.4 kN (-7.6 %) at 5e-5 s
-    #: (validation/vehicle_step_convergence.md: it rings at ~1.04 kHz after the check
-    #: rail's flare)
+    #: runs at this step (no finer than needed: the segment's step over an integer) over the
+    #: window of the check rail's load, predicted or run again
+    #: (:mod:`~exudyn_turnout.passage.corunning_track.vehicle`; the FE track runs again,
+    #: :mod:`~exudyn_turnout.passage.fe_track.common`); None: never (a run at a coarser step
+    #: warns, :class:`~exudyn_turnout.passage.common.CheckRailStepWarning`). 2.5e-5 s: the
+    #: 2-layer check-rail force on the diverging route, full vehicle at 80 km/h, 86.43 kN
+    #: against 86.34 / 86.32 kN at 1.25e-5 / 6.25e-6 s, 87.91 kN (+1.8 %) at 1e-4 s
+    #: throughout (validation/vehicle_step_convergence.md; before issue 22's contact lead
+    #: along x the flange back struck the flare's end in the wrong place and the force rang
+    #: at ~1 kHz: 128.1 kN at 2.5e-5 s, 109.1 kN at 1e-4 s)
     check_rail_time_step: float | None = 2.5e-5
     output_step: float | None = None  #: s, default: every time step
     spectral_radius: float = 0.8  #: generalized-alpha rho_inf

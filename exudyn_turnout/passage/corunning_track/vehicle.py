@@ -56,13 +56,15 @@ stepper, which cannot stop a run, refines after the fact). The after-the-fact ch
 a safety net: a segment that loads its check rail where not predicted runs at its step first,
 then again from its start as before (``summary["check_rail_rerun"]``). The progress never
 goes back. ``summary["check_rail_refined"]`` gives the windows, ``check_rail_predicted`` the
-predicted segments. The diverging route at 80 km/h, 2 layers, 20..55 m: the check-rail force
-109.1 kN at 1e-4 s, 129.2 kN refined over 44.29-47.50 m (128.1 / 126.5 kN at 2.5e-5 /
-6.25e-6 s throughout: validation/vehicle_step_convergence.md), every column the same as the
-after-the-fact method's to the bit up to the window's end and within 2e-9 of its largest
-value after it, for 0.91x that method's CPU time (6 rounds alternating in fresh processes,
-medians 1.90 -> 1.72 s). The window's end comes from the fine run's own samples, not from a
-run at 1e-4 s: on 44.29..45.6 m it ends one grid step (2.2 mm) sooner. The through route's
+predicted segments. The diverging route at 80 km/h, 2 layers, 20..55 m (measured before
+issue 22's contact lead along x): the check-rail force 109.1 kN at 1e-4 s, 129.2 kN refined
+over 44.29-47.50 m (128.1 / 126.5 kN at 2.5e-5 / 6.25e-6 s throughout), every column the
+same as the after-the-fact method's to the bit up to the window's end and within 2e-9 of
+its largest value after it, for 0.91x that method's CPU time (6 rounds alternating in fresh
+processes, medians 1.90 -> 1.72 s). Since the lead along x: 87.9 kN at 1e-4 s, 86.3 kN
+refined and at 6.25e-6 s throughout (validation/vehicle_step_convergence.md). The window's
+end comes from the fine run's own samples, not from a run at 1e-4 s: on 44.29..45.6 m it
+ends within one grid step (2.2 mm) of the after-the-fact method's. The through route's
 check rail carries no load: its run is unchanged bit for bit.
 
 Exudyn objects of the user functions (speed, issue 24): the four contact elements are one
