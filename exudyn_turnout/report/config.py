@@ -46,12 +46,12 @@ __all__ = [
 #: Vehicles the report can run: the full Manchester vehicle (front wheelset's wheel plotted,
 #: as the paper) or the single benchmark wheelset under its sprung share (fast).
 VEHICLES = ("full", "wheelset")
-#: s, the full report's time step (:func:`report_config`): the check-rail force of a diverging
-#: route needs it. At 1e-4 s it reads 14.9 % low on the full vehicle's 2-layer track
-#: (validation/vehicle_step_convergence.md: 109.1 / 118.4 / 128.1 kN at 1e-4 / 5e-5 /
-#: 2.5e-5 s, 127.1 at 1.25e-5 s) and 24 % low on the FE track (``simulate --track fe
-#: --vehicle wheelset --route diverging --speed 80 --x-start 42 --x-end 48``: 48.6 / 62.9 /
-#: 63.8 kN); the quick report keeps 1e-4 s.
+#: s, the full report's time step (:func:`report_config`): a reference's. At 1e-4 s the full
+#: vehicle's peaks move by up to 1.8 % against it (validation/vehicle_step_convergence.md:
+#: the 2-layer lateral crossing peak on the through route, the check-rail force on the
+#: diverging route 87.9 against 86.4 kN); at 6.25e-6 s by up to 0.16 %. The quick report
+#: keeps 1e-4 s. (Before issue 22's contact lead along x the check-rail force read 14.9 %
+#: low at 1e-4 s on the co-running track and 24 % between the FE track's samples.)
 FULL_REPORT_TIME_STEP = 2.5e-5
 
 
