@@ -217,6 +217,34 @@ def test_resume_computes_only_the_rest(serial, tmp_path):
     assert (third.computed, third.reused) == (0, 4)
 
 
+def test_cases_stored_by_other_code_are_computed_again(serial, tmp_path, monkeypatch):
+    import shutil
+    import warnings
+
+    import exudyn_turnout.studies.run as study_run
+
+    tmp, reference = serial
+    shutil.copytree(tmp / "out", tmp_path / "out")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # the same code: reused without a word
+        same = run_study(tmp / "study.toml", workers=1, out=tmp_path / "out")
+    assert (same.computed, same.reused) == (0, 4)
+    # a source file changed since the cases were stored
+    monkeypatch.setattr(study_run, "code_digest", lambda: "0" * 64)
+    with pytest.warns(UserWarning, match="4 case.* computed by other code.*computed again"):
+        again = run_study(tmp / "study.toml", workers=1, out=tmp_path / "out")
+    assert (again.computed, again.reused) == (4, 0)
+    _assert_same_numbers(reference.table, again.table)  # (the code did not really change)
+    third = run_study(tmp / "study.toml", workers=1, out=tmp_path / "out")
+    assert (third.computed, third.reused) == (0, 4)  # stored now under the new digest
+
+
+def test_code_digest_covers_the_computing_code_only():
+    from exudyn_turnout.studies.run import code_digest
+
+    assert len(code_digest()) == 64 and code_digest() == code_digest()
+
+
 def test_failed_case_is_recorded_and_the_others_run(tmp_path):
     # 1 ms is above the contact's time-step limit (common.max_time_step: ~0.12 ms here, the
     # check rail's 41.5 kg bracket-derived mass, corunning.check_rail)

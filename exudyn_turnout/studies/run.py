@@ -1,13 +1,15 @@
 """Run a study's cases on one core, a process pool, or any executor (a Dask cluster).
 
 Each case is stored under ``OUT/cases/<key>/case.json`` (its inputs, results or error,
-wall time; the key hashes every input, files' content and the package version), with the
+wall time, and :func:`code_digest` of the code that computed it; the key hashes every
+input, files' content and the package version), with the
 case's modified turnout/vehicle file, its decimated histories (``history.npz``) and its
 whole time series (``timeseries.npz``, every column of the passage at its output step) when
 asked; both NPZ files are compressed. A rerun skips the cases already stored (an
-interrupted study resumes). At the end one table is written: ``results.csv`` (with
-``results.meta.json``, the provenance) and ``results.npz`` (the same columns and the
-provenance as JSON text).
+interrupted study resumes), unless another code of the package computed them (a changed
+source file: they are computed again, with one warning). At the end one table is written:
+``results.csv`` (with ``results.meta.json``, the provenance) and ``results.npz`` (the same
+columns and the provenance as JSON text).
 
 Workers receive the case with the files' content (nothing on the output disk is needed
 there, so a cluster's workers need not share a file system) and return a record, its
@@ -66,11 +68,43 @@ __all__ = [
     "process_pool",
     "default_start_method",
     "one_blas_thread",
+    "code_digest",
     "RESULTS_FILES",
 ]
 
 #: Files of the results table in the output directory.
 RESULTS_FILES = ("results.csv", "results.npz", "results.meta.json")
+
+#: Folders of the package whose code does not compute a case (left out of :func:`code_digest`).
+_NOT_COMPUTING = ("cli", "report", "plotting")
+
+
+@functools.lru_cache(maxsize=1)
+def code_digest() -> str:
+    """SHA-256 of the package's code that computes a case, stored with each case.
+
+    Every ``*.py`` file of the package outside ``cli/``, ``report/`` and ``plotting/``
+    (their paths and bytes, with lengths first). A stored case whose digest differs was
+    computed by other code: :func:`run_study` computes it again. Read once per process
+    (~200 files, ~10 ms).
+
+    Returns
+    -------
+    str
+        64 hex digits.
+    """
+    import hashlib
+
+    root = Path(__file__).resolve().parents[1]
+    digest = hashlib.sha256()
+    for path in sorted(root.rglob("*.py")):
+        name = path.relative_to(root).as_posix()
+        if name.split("/", 1)[0] in _NOT_COMPUTING:
+            continue
+        data = path.read_bytes()
+        digest.update(f"{len(name)}:{len(data)}:".encode() + name.encode() + data)
+    return digest.hexdigest()
+
 
 #: Columns of the results table that are not inputs or results.
 _HEAD = ("case", "key", "status")
@@ -545,16 +579,21 @@ def _write_record(out: Path, case: Case, record: dict[str, Any]) -> None:
     stored["irregularity"] = case.irregularity_spec
     stored["settings"] = dict(case.settings)
     stored["track"] = case.track
+    stored["code"] = code_digest()
     write_json(folder / "case.json", stored)
 
 
-def _stored(out: Path, case: Case) -> dict[str, Any] | None:
+def _stored(out: Path, case: Case, stale: list[int] | None = None) -> dict[str, Any] | None:
     path = _case_dir(out, case.key) / "case.json"
     if not path.is_file():
         return None
     try:
         record = json.loads(path.read_text(encoding="utf-8"))
     except (OSError, ValueError):
+        return None
+    if record.get("code") != code_digest():  # computed by other code: run it again
+        if stale is not None:
+            stale.append(case.index)
         return None
     series = _case_dir(out, case.key) / "timeseries.npz"
     if case.keep_timeseries and record.get("status") == "ok" and not series.is_file():
@@ -887,12 +926,22 @@ def run_study(
     (out_dir / "cases").mkdir(parents=True, exist_ok=True)
     records: dict[int, dict[str, Any]] = {}
     todo: list[Case] = []
+    stale: list[int] = []
     for case in cases:
-        stored = _stored(out_dir, case)
+        stored = _stored(out_dir, case, stale)
         if stored is not None and (stored.get("status") == "ok" or not retry_failed):
             records[case.index] = stored
         else:
             todo.append(case)
+    if stale:
+        import warnings
+
+        warnings.warn(
+            f"{len(stale)} case(s) stored in {out_dir} were computed by other code of the "
+            "package (a source file changed since): computed again",
+            UserWarning,
+            2,
+        )
     reused = len(records)
     total = len(cases)
     computed_start = time.perf_counter()
