@@ -142,3 +142,63 @@ def test_pack_tables_refuses_a_friction_list_of_the_wrong_length(plain):
         kernel.pack_tables([plain], [1], [(7, 8)], [(-10.0, 70.0)], friction=[0.1, 0.2])
     with pytest.raises(ValueError, match="one coefficient"):
         kernel.pack_tables([plain], [1], [(7, 8)], [(-10.0, 70.0)], friction=[math.nan])
+
+
+CHECK_STEM = "cp_right_r3_right_wheel_against_the_check_rail_"  # the front wheelset's
+
+
+@pytest.fixture(scope="module")
+def passages(tmp_path_factory):
+    """The full vehicle on the diverging route at 80 km/h, front wheelset 44-46 m (the check
+    rail's entry, where its flange-back contact lifts the leading right wheel, Delta Q/Q0 = 1
+    at x = 45.35 m with mu 0.4), the friction absent, written as the vehicle's 0.4, and 0.1."""
+    from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
+    from exudyn_turnout.passage.run import simulate_passage
+    from exudyn_turnout.passage.settings import PassageSettings
+
+    model = load_vehicle_model()
+    # the contact law's mu 0.4, data/manchester_wheelset.toml (the full vehicle's contact)
+    assert load_vehicle(default_vehicle_path()).contact.mu == 0.4
+    settings = PassageSettings(
+        route="diverging", speed_kmh=80.0, layers=2, x_start=44.0, x_end=46.0
+    )
+    out = {}
+    for label, line in (("absent", None), ("0.4", "friction = 0.4"), ("0.1", "friction = 0.1")):
+        folder = tmp_path_factory.mktemp(label.replace(".", "_"))
+        out[label] = simulate_passage(load_turnout(_turnout_file(folder, line)), settings, model)
+    return out
+
+
+@pytest.mark.slow
+def test_the_vehicles_mu_written_out_changes_nothing_bit_for_bit(passages):
+    a, b = passages["absent"].columns, passages["0.4"].columns
+    assert set(a) == set(b) and len(a) > 100
+    for name in a:
+        assert np.array_equal(a[name], b[name], equal_nan=True), name
+
+
+@pytest.mark.slow
+def test_a_lubricated_check_rail_bounds_its_creep_forces_and_lifts_less(passages):
+    cols = passages["0.1"].columns
+    stems = {n[: -len("_N_N")] for n in cols if n.startswith(CHECK_STEM) and n.endswith("_N_N")}
+    assert stems  # the check rail carries load in this window
+    for stem in stems:
+        # NaN where the wheelset's contact element has no check rail (before its zone)
+        there = np.isfinite(cols[f"{stem}_N_N"])
+        normal = cols[f"{stem}_N_N"][there]
+        creep = np.hypot(cols[f"{stem}_Fx_N"][there], cols[f"{stem}_Ft_N"][there])
+        assert there.sum() > 100 and normal.max() > 1e4 and np.all(np.isfinite(creep))
+        # |F| <= mu N (the creep laws' Coulomb bound), round-off allowed
+        assert np.all(creep <= 0.1 * normal * (1.0 + 1e-9) + 1e-9), stem
+        assert creep.max() > 0.05 * normal.max()  # it does slide: the bound is reached
+    # the friction's share of the check rail's push on the wheel's flange back is upward: with
+    # 0.1 the check rail's vertical force and the front right wheel's unloading are smaller
+    lube, dry = passages["0.1"], passages["0.4"]
+    up = {k: np.nanmax(p.columns["Fz_ws1_right_r3_N"]) for k, p in (("0.1", lube), ("0.4", dry))}
+    assert up["0.1"] < 0.7 * up["0.4"]
+    q0 = dry.summary["static_wheel_load_N"]
+    unloading = {
+        k: np.max(1.0 - p.columns["Fz_ws1_right_N"] / q0) for k, p in (("0.1", lube), ("0.4", dry))
+    }
+    assert unloading["0.4"] == pytest.approx(1.0)  # lifted (the issue's Delta Q/Q0 = 1)
+    assert unloading["0.1"] < unloading["0.4"] - 0.03
