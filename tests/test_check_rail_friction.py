@@ -151,7 +151,7 @@ CHECK_STEM = "cp_right_r3_right_wheel_against_the_check_rail_"  # the front whee
 def passages(tmp_path_factory):
     """The full vehicle on the diverging route at 80 km/h, front wheelset 44-46 m (the check
     rail's entry, where its flange-back contact lifts the leading right wheel, Delta Q/Q0 = 1
-    at x = 45.35 m with mu 0.4), the friction absent, written as the vehicle's 0.4, and 0.1."""
+    at x = 45.35 m with mu 0.4), the friction absent, written as the vehicle's 0.4, 0.1, 0.8."""
     from exudyn_turnout.inputs.vehicle_model import load_vehicle_model
     from exudyn_turnout.passage.run import simulate_passage
     from exudyn_turnout.passage.settings import PassageSettings
@@ -163,7 +163,8 @@ def passages(tmp_path_factory):
         route="diverging", speed_kmh=80.0, layers=2, x_start=44.0, x_end=46.0
     )
     out = {}
-    for label, line in (("absent", None), ("0.4", "friction = 0.4"), ("0.1", "friction = 0.1")):
+    runs = [(label, f"friction = {label}") for label in ("0.4", "0.1", "0.8")]
+    for label, line in [("absent", None), *runs]:
         folder = tmp_path_factory.mktemp(label.replace(".", "_"))
         out[label] = simulate_passage(load_turnout(_turnout_file(folder, line)), settings, model)
     return out
@@ -202,3 +203,14 @@ def test_a_lubricated_check_rail_bounds_its_creep_forces_and_lifts_less(passages
     }
     assert unloading["0.4"] == pytest.approx(1.0)  # lifted (the issue's Delta Q/Q0 = 1)
     assert unloading["0.1"] < unloading["0.4"] - 0.03
+
+
+@pytest.mark.slow
+def test_a_check_rail_rougher_than_the_wheel_rail_contact_raises_no_false_alarm(passages):
+    # Nadal's limit (the climbing stop) is the running rail's, with the vehicle's mu: a check
+    # rail's mu 0.8 must not lower it (0.4 -> Nadal 1.12 at 70.13 deg; 0.8 would give 0.61)
+    rough, plain = passages["0.8"].summary, passages["absent"].summary
+    assert rough["safety_limits"] == plain["safety_limits"]
+    assert rough["safety_limits"]["friction"] == 0.4
+    # the run went to its end (a stop raises PassageFailure in the fixture)
+    assert passages["0.8"].columns["x_m"][-1] == pytest.approx(46.0, abs=1e-3)
