@@ -49,6 +49,7 @@ CHECK_RAIL_KEYS = (
     "flare_length",
     "flare_opening",
     "flare_shape",
+    "friction",
     "support",
     "co_running",
 )

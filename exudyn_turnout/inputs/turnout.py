@@ -563,6 +563,8 @@ def _check_rail(r: FieldReader) -> None:
     r.number("check_rail.flare_length", False, 0.0, upper=100.0)
     r.number("check_rail.flare_opening", False, 0.0, upper=0.1)
     r.choice("check_rail.flare_shape", FLARE_SHAPES, default="straight")
+    if r.get("check_rail.friction", None) is not None:  # absent: the vehicle's mu
+        r.number("check_rail.friction", upper=2.0)
     r.keys("check_rail", CHECK_RAIL_KEYS)
     section = r.get("check_rail")
     try:

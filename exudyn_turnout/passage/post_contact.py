@@ -88,6 +88,7 @@ from exudyn_turnout.wheel_rail.hertz import effective_modulus
 from exudyn_turnout.wheel_rail.kernel import DETAIL_FIELDS, contact_forces
 from exudyn_turnout.wheel_rail.reference_normal import contact_pitch
 from exudyn_turnout.wheel_rail.sections import sections_at
+from exudyn_turnout.wheel_rail.turnout_design import rail_geometry
 from exudyn_turnout.wheel_rail.turnout_sections import route_rail_bodies
 
 __all__ = [
@@ -528,6 +529,10 @@ def post_contact(
     wheel_pts = (y_p, z_p, vehicle.r0 - z_p)
     rail_body = next(b for b in route_rail_bodies(turnout, route) if b.name == rebuilt.body)
     sections = rail_body.sections
+    # the friction the passage's kernel used there: a check rail's own, else the vehicle's
+    mu = float(vehicle.contact.mu)
+    if rail_body.back_of_flange and rail_geometry(turnout).check_rail.friction > 0.0:
+        mu = rail_geometry(turnout).check_rail.friction
     modulus = effective_modulus(_YOUNG, _POISSON)
     pitch = contact_pitch(inst.x_c, vehicle.r0)
     a, b = rebuilt.a, rebuilt.b
@@ -550,11 +555,9 @@ def post_contact(
         else 0.0
     )
     xi, eta, spin = (_column(result, f"{stem}_{k}", index) for k in ("xi_1", "eta_1", "spin_1pm"))
-    rolling = rolling_on_normal(
-        solved, xi, eta, spin, vehicle.contact.mu, SHEAR_MODULUS, CREEP_POISSON
-    )
+    rolling = rolling_on_normal(solved, xi, eta, spin, mu, SHEAR_MODULUS, CREEP_POISSON)
     on_ellipse = exact_creep_forces_ellipse(
-        a, b, xi, eta, spin, normal, vehicle.contact.mu, SHEAR_MODULUS, CREEP_POISSON,
+        a, b, xi, eta, spin, normal, mu, SHEAR_MODULUS, CREEP_POISSON,
         n=ELLIPSE_ELEMENTS,
     )  # fmt: skip
     t_centre = _centre(solved, t)
@@ -592,7 +595,7 @@ def post_contact(
         xi=xi,
         eta=eta,
         spin=spin,
-        friction=float(vehicle.contact.mu),
+        friction=mu,
         fx=_column(result, f"{stem}_Fx_N", index),
         exact_fx=float(rolling.fx),
         fs=_column(result, f"{stem}_Ft_N", index),

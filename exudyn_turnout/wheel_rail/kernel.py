@@ -148,7 +148,7 @@ _EMPTY = 0.5  # m, a gap this large marks an empty candidate slot (tables store 
 #: differ by less than this is one contact point drifting along x (interpolated along x)
 X_BLEND_DISTANCE = 0.01
 _X_BLEND = X_BLEND_DISTANCE
-_N_BOUNDS = 5  # columns of PackedTables.bounds
+_N_BOUNDS = 6  # columns of PackedTables.bounds
 
 #: Columns of the per-contact detail rows written by :func:`contact_forces`.
 DETAIL_FIELDS = (
@@ -191,7 +191,8 @@ class PackedTables:
     layout: np.ndarray
     #: per body: first shift (m), shift step (m), x_from (m), x_to (m) of its existence, and
     #: the largest slope of a contact point's gap along x in its table (:func:`gap_slope_bound`;
-    #: stored negative for a table of the wheel's envelope: no search along x there)
+    #: stored negative for a table of the wheel's envelope: no search along x there), and its
+    #: friction coefficient (-, 0: the vehicle's mu, ``constants[2]``; a check rail's own)
     bounds: np.ndarray
     names: tuple  #: body names, for outputs
 
@@ -370,6 +371,7 @@ def pack_tables(
     modulus: float = 2.1e11 / (2.0 * (1.0 - 0.3**2)),
     poisson: float = 0.28,
     creep_law: str = "fastsim",
+    friction: Sequence[float] | None = None,
 ) -> PackedTables:
     """Pack the tables of one wheelset's rail bodies for :func:`contact_forces`.
 
@@ -393,6 +395,9 @@ def pack_tables(
     creep_law : str
         "fastsim": FASTSIM's forces from the creep table (:mod:`.creep_table`, the
         default); "polach": Polach's method (:func:`polach_scalar`).
+    friction : sequence of float, optional
+        -, per body, its own friction coefficient (a lubricated check rail); 0 or omitted:
+        the vehicle's mu that :func:`contact_forces` receives in ``constants``.
 
     Returns
     -------
@@ -404,8 +409,11 @@ def pack_tables(
         raise ValueError(f"creep_law must be 'fastsim' or 'polach', not {creep_law!r}")
     values, blends, xs, layout, bounds = [], [], [], [], []
     v_off = b_off = x_off = 0
-    for table, side, (i_y, i_z), (x_from, x_to) in zip(
-        tables, sides, rail_coordinates, x_ranges, strict=True
+    mus = [0.0] * len(tables) if friction is None else [float(f) for f in friction]
+    if len(mus) != len(tables) or not all(0.0 <= f < math.inf for f in mus):
+        raise ValueError("friction must give one coefficient >= 0 per body")
+    for table, side, (i_y, i_z), (x_from, x_to), mu in zip(
+        tables, sides, rail_coordinates, x_ranges, mus, strict=True
     ):
         fields = _node_fields(table, modulus, poisson)
         n_x, n_s, n_c = fields.shape[:3]
@@ -423,7 +431,7 @@ def pack_tables(
             # search with the wheel's parabola again would count it twice; the contact stays
             # at the yaw's lead on it (a negative bound tells the kernel so)
             slope = -slope
-        bounds.append((float(table.shift[0]), step, float(x_from), float(x_to), slope))
+        bounds.append((float(table.shift[0]), step, float(x_from), float(x_to), slope, mu))
         v_off += fields.size
         b_off += n_x * n_s
         x_off += n_x
@@ -750,17 +758,15 @@ def lead_along_x(
 @numba.njit(cache=True)
 def _point(
     fields, gap, weight, s, row, i_y, i_z, q, q_t, shift_t, z_irr, omega, constants, forces,
-    details, creep, creep_at, walk, xs, x,
+    details, creep, creep_at, walk, xs, x, mu,
 ):  # pragma: no cover (compiled)  # fmt: skip
     """Forces of one contact point (node or interpolated ``fields``, normal ``gap`` at zero
     lift), times ``weight``, added to ``forces`` and ``details[row]``; 1 if it carries load.
     ``creep[creep_at:]`` holds the creep table (``creep_at`` < 0: Polach's law) behind the
     node values; ``walk`` (i_node, k0, n_x, plane, b_offset, w_b, slope bound, pair) where
     the slot lies in them for :func:`lead_along_x` (i_node < 0: the rail prismatic),
-    ``xs`` the body's x nodes, ``x`` the wheelset's position."""
-    v, mu, G, damping, kappa = (
-        constants[0], constants[2], constants[3], constants[4], constants[5]
-    )  # fmt: skip
+    ``xs`` the body's x nodes, ``x`` the wheelset's position, ``mu`` the body's friction."""
+    v, G, damping, kappa = constants[0], constants[3], constants[4], constants[5]
     sin_g, cos_g = fields[_SIN], fields[_COS]
     norm = math.hypot(sin_g, cos_g)
     sin_g, cos_g = sin_g / norm, cos_g / norm
@@ -940,6 +946,8 @@ def contact_forces(
         i_y, i_z = layout[k, 7], layout[k, 8]
         shift0, step, x_from, x_to = bounds[k, 0], bounds[k, 1], bounds[k, 2], bounds[k, 3]
         walk[2], walk[3], walk[6] = n_x, n_s * n_c * _N_FIELDS, bounds[k, 4]
+        # the body's own friction (a check rail's), else the vehicle's
+        mu = bounds[k, 5] if bounds.shape[1] > 5 and bounds[k, 5] > 0.0 else constants[2]
         xs_body = xs[x_off : x_off + n_x]
         for c in range(n_max):
             details[k * n_max + c, 0] = k
@@ -984,7 +992,7 @@ def contact_forces(
                     loaded += _point(
                         fields, fields[_GAP], 1.0, s, k * n_max + c, i_y, i_z, q, q_t, shift_t,
                         z_irr, omega, constants, forces, details, values, creep_at, walk,
-                        xs_body, x,
+                        xs_body, x, mu,
                     )  # fmt: skip
             continue
         # cell whose nodes hold different contact points.  Per shift node of the cell and
@@ -1013,7 +1021,7 @@ def contact_forces(
                     gap = fields[_GAP] - fields[_SIN] * (shift - shift_node)
                     loaded += _point(
                         fields, gap, wb, s, k * n_max + c, i_y, i_z, q, q_t, shift_t, z_irr,
-                        omega, constants, forces, details, values, creep_at, walk, xs_body, x,
+                        omega, constants, forces, details, values, creep_at, walk, xs_body, x, mu,
                     )  # fmt: skip
                     continue
                 for da in range(2):
@@ -1029,7 +1037,7 @@ def contact_forces(
                     gap = fields[_GAP] - fields[_SIN] * (shift - shift_node)
                     loaded += _point(
                         fields, gap, w, s, k * n_max + c, i_y, i_z, q, q_t, shift_t, z_irr,
-                        omega, constants, forces, details, values, creep_at, walk, xs_body, x,
+                        omega, constants, forces, details, values, creep_at, walk, xs_body, x, mu,
                     )  # fmt: skip
         for c in range(n_c):  # positions: averages over the nodes that hold the point
             row = k * n_max + c

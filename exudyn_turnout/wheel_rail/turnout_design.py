@@ -71,6 +71,9 @@ class CheckRailDesign:
     #: run-in shape of the flares, "straight" or "tangential" (``[check_rail] flare_shape``,
     #: :mod:`exudyn_turnout.inputs.check_rail`)
     flare_shape: str = "straight"
+    #: -, friction coefficient of the wheel's contacts on the check rail (``[check_rail]
+    #: friction``, e.g. 0.1-0.2 lubricated); 0: the vehicle's ``[contact] mu``
+    friction: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -243,7 +246,7 @@ def rail_geometry(turnout: Turnout) -> RailGeometry:
     Defaults that come from elsewhere in the file: ``gauge`` from ``[layout] gauge``;
     ``switch.radius`` from ``[layout.diverging] radius``; ``crossing.nose_tip``,
     ``crossing_number`` and ``tip_width`` from the plan (:func:`.inputs.geometry.turnout_plan`);
-    the check rail's clearance and flares from ``[check_rail]``.  Without ``[layout]`` the
+    the check rail's clearance, flares and friction from ``[check_rail]``.  Without ``[layout]`` the
     class defaults stand.
 
     Parameters
@@ -297,7 +300,7 @@ def rail_geometry(turnout: Turnout) -> RailGeometry:
     check = turnout.raw.get("check_rail", {})
     check_defaults: dict[str, Any] = {
         k: float(check[k])
-        for k in ("clearance", "flare_length", "flare_opening")
+        for k in ("clearance", "flare_length", "flare_opening", "friction")
         if isinstance(check, Mapping) and k in check
     }
     if isinstance(check, Mapping) and "flare_shape" in check:

@@ -576,6 +576,7 @@ def route_contact(turnout, route: str, vehicle: Vehicle, cache_dir=None) -> Rout
     from pathlib import Path
 
     from exudyn_turnout.wheel_rail.kernel import pack_tables
+    from exudyn_turnout.wheel_rail.turnout_design import rail_geometry
     from exudyn_turnout.wheel_rail.turnout_sections import route_contact_tables
 
     name = Path(vehicle.source).name
@@ -603,12 +604,15 @@ def route_contact(turnout, route: str, vehicle: Vehicle, cache_dir=None) -> Rout
         wheel, setup = wheel_and_setup(turnout, vehicle, cache_dir)
         pairs = route_contact_tables(turnout, route, wheel, setup, cache_dir=cache_dir)
         bodies = [body for body, _ in pairs]
+        # the check rail's own friction ([check_rail] friction; 0: the vehicle's mu)
+        check_mu = rail_geometry(turnout).check_rail.friction
         packed = pack_tables(
             [table for _, table in pairs],
             [1 if b.wheel == "left" else -1 for b in bodies],
             [(0, 0)] * len(bodies),
             [(b.x_from, b.x_to) for b in bodies],
             names=[b.name for b in bodies],
+            friction=[check_mu if b.back_of_flange else 0.0 for b in bodies],
         )
         contact = RouteContact(
             packed,
