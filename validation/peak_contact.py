@@ -475,10 +475,11 @@ def _conclusions(records, flare_end: float) -> list[str]:
         f"interpenetration at the recorded positions gives {state} %; the exact patch is "
         f"{shorter} times as long as the passage's ellipse (the flare opens the gap behind "
         "the kink, which the Hertz law of the tables' prismatic sections does not know): "
-        "here the normal law is the weak part.  The 3-D rail of this page blends the "
-        "sections' heights linearly between the tables' x nodes, which on the flare is no "
-        "face; validation/check_rail_kink.md solves the same contacts on the check rail's "
-        "exact sections every 1 mm.",
+        "here the normal law is the weak part.  The 3-D rail of this page has the rail's "
+        "exact section every 1 mm around each contact (`post_contact`'s `section_step`; "
+        "a linear blend of the tables' x nodes, 62.5 mm apart on the flare, is no face "
+        "there: -79 to -81 % instead of this page's figures until session 13); "
+        "validation/check_rail_kink.md compares both at the same instants.",
     ]
 
 
