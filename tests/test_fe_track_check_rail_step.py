@@ -26,11 +26,13 @@ from exudyn_turnout.inputs.routes import load_route
 from exudyn_turnout.passage.common import CHECK_RAIL_MARGIN, CheckRailStepWarning
 from exudyn_turnout.passage.fe_track.common import (
     CHECK_RAIL_LEAD,
+    FIRST_RUN_SHARE,
     StepGrid,
     check_rail_plan,
     check_rail_steps,
     loaded_windows,
     refined_pieces,
+    two_run_progress,
 )
 from exudyn_turnout.passage.fe_track.planes import (
     PlaneStepper,
@@ -203,7 +205,14 @@ def test_fe_wheelset_refines_a_loaded_check_rail_by_default(turnout):
     h = duration / math.ceil(duration / 1e-4 - 1e-9)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        refined = simulate_passage(turnout, PassageSettings(**base), "wheelset", track="fe")
+        seen: list[float] = []
+        refined = simulate_passage(
+            turnout,
+            PassageSettings(**base),
+            "wheelset",
+            progress=lambda f, x: seen.append(f),
+            track="fe",
+        )
         fine = simulate_passage(
             turnout,
             PassageSettings(**base, time_step=h / 4, output_step=h),
@@ -232,15 +241,23 @@ def test_fe_wheelset_refines_a_loaded_check_rail_by_default(turnout):
     assert np.max(np.abs(force["refined"] - force["fine"])) < 300.0  # N, of ~51 kN
     assert np.max(np.abs(force["coarse"] - force["fine"])) > 3e3
     assert np.max(force["refined"]) == pytest.approx(np.max(force["fine"]), rel=2e-3)
+    # the progress line goes on through the second run: never back, past the first run's
+    # share, to its end
+    assert seen and np.all(np.diff(seen) >= 0.0)
+    assert seen[0] < 0.05 and seen[-1] > 0.95
+    assert any(f <= FIRST_RUN_SHARE for f in seen) and any(0.5 < f < 0.95 for f in seen)
 
 
 @pytest.mark.slow
 def test_fe_through_route_untouched(turnout):
     # its check rail carries 0 N: one run, the same numbers with refining on and off
     s = PassageSettings(route="through", speed_kmh=100.0, x_start=45.0, x_end=45.4)
+    seen: list[float] = []
     with warnings.catch_warnings():
         warnings.simplefilter("error", CheckRailStepWarning)
-        on = simulate_passage(turnout, s, "wheelset", track="fe")
+        on = simulate_passage(
+            turnout, s, "wheelset", progress=lambda f, x: seen.append(f), track="fe"
+        )
         off = simulate_passage(
             turnout,
             PassageSettings(**{**s.__dict__, "check_rail_time_step": None}),
@@ -251,3 +268,26 @@ def test_fe_through_route_untouched(turnout):
     assert "steps_first_run" not in on.summary["wall_time_parts_s"]
     for key in ("Fz_right_N", "Fy_left_N", "y_wheelset_m"):
         assert np.array_equal(on.columns[key], off.columns[key])
+    # no second run: the line goes from the first run's share to its end
+    assert np.all(np.diff(seen) >= 0.0) and max(seen[:-1]) <= FIRST_RUN_SHARE
+    assert seen[-1] == 1.0
+
+
+def test_two_run_progress_splits_the_line_only_where_a_second_run_may_follow(turnout):
+    """Through the first run 0..FIRST_RUN_SHARE, through the second the rest; the whole
+    line to the first where no check rail is on the route or refining is off."""
+    seen: list[tuple[float, float]] = []
+
+    def report(f, x):
+        seen.append((f, x))
+
+    diverging = load_route(turnout, "diverging")
+    first, second = two_run_progress(report, PassageSettings(route="diverging"), diverging)
+    assert first is not None and second is not None
+    first(0.5, 1.0)
+    second(0.0, 2.0)
+    second(1.0, 3.0)
+    assert seen == [(0.5 * FIRST_RUN_SHARE, 1.0), (FIRST_RUN_SHARE, 2.0), (1.0, 3.0)]
+    off = PassageSettings(route="diverging", check_rail_time_step=None)
+    assert two_run_progress(report, off, diverging) == (report, None)
+    assert two_run_progress(None, PassageSettings(route="diverging"), diverging) == (None, None)

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import asdict
 
 import numpy as np
@@ -61,6 +61,8 @@ __all__ = [
     "StepGrid",
     "solve_in_pieces",
     "check_rail_plan",
+    "FIRST_RUN_SHARE",
+    "two_run_progress",
 ]
 
 #: s, the finer step begins this long before a check rail's first load (its force above
@@ -594,3 +596,46 @@ def check_rail_plan(
     if not windows:
         return None
     return refined_pieces(n_steps, h, fine, windows)
+
+
+#: The share of the progress line the first run takes where a second, finer run through a
+#: loaded check rail may follow: refining makes a diverging FE run 2.1-2.3x the CPU of one
+#: run (validation/vehicle_step_convergence.md, ``--fe-only``), so the first is ~0.45 of it.
+FIRST_RUN_SHARE = 0.45
+
+
+def two_run_progress(
+    progress: Callable[[float, float], None] | None, settings: PassageSettings, route: Route
+) -> tuple[Callable[[float, float], None] | None, Callable[[float, float], None] | None]:
+    """Progress callbacks of an FE passage's first run and of its second, finer one.
+
+    Where no second run can follow (no check rail on the route, or refining off,
+    :func:`~exudyn_turnout.passage.common.check_rail_step`), the first run reports 0..1 and
+    the second callback is None. Otherwise the first reports 0..:data:`FIRST_RUN_SHARE` and
+    the second the rest, so that the line neither stands at 100 % nor goes back while the
+    second run works; where none follows, the line goes from the share to its end.
+
+    Parameters
+    ----------
+    progress : callable(fraction, x) or None
+        The user's callback.
+    settings : PassageSettings
+    route : Route
+
+    Returns
+    -------
+    first, second : callable(fraction, x) or None
+    """
+    if progress is None:
+        return None, None
+    user = progress
+    if check_rail_step(settings) is None or not check_rail_pairs(route):
+        return user, None
+
+    def first(fraction: float, x: float) -> None:
+        user(FIRST_RUN_SHARE * fraction, x)
+
+    def second(fraction: float, x: float) -> None:
+        user(FIRST_RUN_SHARE + (1.0 - FIRST_RUN_SHARE) * fraction, x)
+
+    return first, second

@@ -455,6 +455,7 @@ def _simulate(turnout, settings, model, contact, route, x_range, progress, optio
         check_rail_steps,
         fe_columns,
         fe_summary,
+        two_run_progress,
     )
     from exudyn_turnout.passage.fe_track.options import FEPassageOptions
     from exudyn_turnout.passage.summary import vehicle_summary
@@ -507,6 +508,7 @@ def _simulate(turnout, settings, model, contact, route, x_range, progress, optio
     static_s = time.perf_counter() - t0
     every = max(1, round((settings.output_step or h) / h))
     t1 = time.perf_counter()
+    progress, second = two_run_progress(progress, settings, route)
     times, records = _run(system, track, settings, duration, n_steps, every, progress, x_a, None)
     steps_s = time.perf_counter() - t1
     first_s = 0.0
@@ -531,10 +533,12 @@ def _simulate(turnout, settings, model, contact, route, x_range, progress, optio
         t1 = time.perf_counter()
         fine = options.check_rail_every_step
         times, records = _run(
-            system, track, settings, duration, n_steps, every, None, x_a, pieces, fine
+            system, track, settings, duration, n_steps, every, second, x_a, pieces, fine
         )
         steps_s = time.perf_counter() - t1
         refined = [(a * h, b * h, h / m) for a, b, m in pieces if m > 1]
+    elif second is not None:  # no second run after all: the line to its end
+        second(1.0, x_a + v * duration)
     t = np.array(times)
     columns: dict[str, np.ndarray] = {"t_s": t, "x_m": x_a + v * t}
     for i, (el, rec) in enumerate(zip(system.elements, records)):

@@ -51,6 +51,7 @@ from exudyn_turnout.passage.fe_track.common import (
     fe_contact_element,
     fe_summary,
     solve_in_pieces,
+    two_run_progress,
 )
 from exudyn_turnout.passage.fe_track.coupling import FEContactElement, FECoSimulation, run_progress
 from exudyn_turnout.passage.fe_track.options import FEPassageOptions
@@ -277,6 +278,7 @@ def _simulate(
             start_args, progress, pieces, options,
         )  # fmt: skip
 
+    progress, second = two_run_progress(progress, settings, route)
     moving, recorder = run(track, progress, None)
     steps_s = time.perf_counter() - t1
     W = 0.5 * (loads["left"] + loads["right"])
@@ -289,10 +291,12 @@ def _simulate(
         track = FECoSimulation(planes, route.name, h, settings.spectral_radius, options)
         track.start([start_element], [forces], v)
         t1 = time.perf_counter()
-        moving, recorder = run(track, None, pieces)
+        moving, recorder = run(track, second, pieces)
         steps_s = time.perf_counter() - t1
         columns = fe_columns(moving, recorder.t, recorder.q, recorder.q_t, x_a, v)
         refined = [(a * h, b * h, h / m) for a, b, m in pieces if m > 1]
+    elif second is not None:  # no second run after all: the line to its end
+        second(1.0, x_b)
     check_plausible(columns, W, "FE track", limits_for_friction(vehicle.contact.mu))
     summary = passage_summary(
         columns,
