@@ -748,6 +748,8 @@ def integrate(
     absolute_tolerance: float,
     contractivity: float,
     progress: Callable[[float], None] | None = None,
+    stop: Callable[[int, Callable[[], None]], bool] | None = None,
+    stop_every: int = 1,
 ) -> StepperRun:
     """Run an assembled full-vehicle segment from its initial state (module docstring) and
     write the final state into Exudyn's current configuration.
@@ -772,10 +774,20 @@ def integrate(
         Exudyn's ``modifiedNewtonContractivity``.
     progress : callable(t), optional
         Called with the time about every 2 % of the run.
+    stop : callable(k, current) -> bool, optional
+        Called before every ``stop_every``-th step k (k = 0, stop_every, ...; between
+        compiled chunks, no Python call on the other steps), when the contacts' last
+        evaluation is the step's start (the last accepted step's, at k = 0 the initial
+        state's: what ``VehicleContacts.last_forces`` reads); ``current()`` writes that state
+        into Exudyn's current configuration (for ``named_state``). False: the run ends after
+        step k, as after an Exudyn pre-step function returning False.
+    stop_every : int
+        Steps between the calls of ``stop`` (>= 1).
 
     Returns
     -------
     StepperRun
+        Ended early by ``stop``: the samples up to the end of its last step.
     """
     import exudyn as exu
 
@@ -788,6 +800,18 @@ def integrate(
     initial = exu.ConfigurationType.Initial
     q0 = np.asarray(data.GetODE2Coordinates(initial), float)
     v0 = np.asarray(data.GetODE2Coordinates_t(initial), float)
+    current = exu.ConfigurationType.Current
+    watch = None
+    if stop is not None:
+
+        def watch(k: int, state: np.ndarray) -> bool:
+            def write() -> None:
+                data.SetODE2Coordinates(state[0], current)
+                data.SetODE2Coordinates_t(state[1], current)
+                data.SetODE2Coordinates_tt(state[2], current)
+
+            return stop(k, write)
+
     run, state = _run_steps(
         (lin, force, mass),
         user,
@@ -805,8 +829,8 @@ def integrate(
         ),
         progress,
         (compiled._work, compiled._details),
+        (watch, max(1, int(stop_every))),
     )
-    current = exu.ConfigurationType.Current
     data.SetODE2Coordinates(state[0], current)
     data.SetODE2Coordinates_t(state[1], current)
     data.SetODE2Coordinates_tt(state[2], current)
@@ -886,9 +910,13 @@ def integrate_linear(
     return run
 
 
-def _run_steps(system, user, record, per_time, start, clock, consts, progress, recorded):
+def _run_steps(
+    system, user, record, per_time, start, clock, consts, progress, recorded, stop=(None, 1)
+):
     """The run (:func:`integrate`, :func:`integrate_linear`): initial accelerations, then
-    every step in chunks (``progress`` between them); the run and its final state."""
+    every step in chunks (``progress`` between them, and ``stop = (watch, every)``'s
+    ``watch(k, state)`` before every every-th step k: False ends the run after step k); the
+    run and its final state."""
     (lin, force, mass), (prep, segments), (times, sizes, stored) = system, per_time, clock
     n = len(force)
     state = np.zeros((4, n))
@@ -899,23 +927,34 @@ def _run_steps(system, user, record, per_time, start, clock, consts, progress, r
     out_q, out_v, out_a = (np.zeros((samples, n)) for _ in range(3))
     piv = np.zeros(n, dtype=np.int64)
     _prepare(0, user[1], prep, segments)
+    jac = np.zeros((n, n))
+    # the fill-reducing order first: the contacts' last evaluation before the first step is
+    # then the initial state's (what a stop reads at k = 0, as in Exudyn's run)
+    fac = _factors(jac, state, lin, consts, user, work, float(sizes[1]))
     if not _start(state, lin, force, user, record, work[4], work[6], mass.copy(), piv):
         raise RuntimeError("singular mass matrix")  # _run: a PassageFailure
     out_q[0], out_v[0], out_a[0] = state[0], state[1], state[2]
     flags = np.array([1, 1], dtype=np.int64)
     counts = np.zeros(3, dtype=np.int64)
     counts[0] = 1
-    jac = np.zeros((n, n))
-    fac = _factors(jac, state, lin, consts, user, work, float(sizes[1]))
     total = len(times) - 1
     chunk = max(1, total // 50) if progress is not None else total
+    watch, every = stop
     failed = -1
-    for k0 in range(0, total, chunk):
-        if progress is not None:
+    k0, mark = 0, 0
+    while k0 < total and failed < 0:
+        if progress is not None and k0 >= mark:
             progress(float(times[k0]))
+            mark = k0 + chunk
+        k1 = min(mark if progress is not None else total, total)
+        if watch is not None:
+            if k0 % every == 0 and not watch(k0, state):
+                k1 = total = k0 + 1  # the run ends after this step
+            else:
+                k1 = min(k1, (k0 // every + 1) * every)
         failed = _integrate(
             k0,
-            min(k0 + chunk, total),
+            k1,
             times,
             sizes,
             stored,
@@ -938,8 +977,7 @@ def _run_steps(system, user, record, per_time, start, clock, consts, progress, r
             out_v,
             out_a,
         )
-        if failed >= 0:
-            break
+        k0 = k1
     rows = int(flags[1])
     run = StepperRun(
         times[stored][:rows],

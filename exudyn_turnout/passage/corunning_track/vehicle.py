@@ -182,11 +182,15 @@ from exudyn_turnout.passage.vehicle.start import (
 )
 from exudyn_turnout.passage.vehicle.track_frame import contact_vehicle
 
-__all__ = ["simulate_vehicle", "NEWTON_TOLERANCE_FACTOR", "STEPPER_KEY"]
+__all__ = ["simulate_vehicle", "NEWTON_TOLERANCE_FACTOR", "STEPPER_KEY", "STEPPING_KEY"]
 
 #: ``mbs.variables`` key of a segment's compiled run (its
 #: :class:`~exudyn_turnout.passage.corunning_track.stepper.StepperRun`: samples, statistics)
 STEPPER_KEY = "exudyn_turnout.corunning_track.stepper"
+#: ``mbs.variables`` key of what stepped a segment: "compiled", "exudyn" (asked for) or
+#: "exudyn (compiled stepper: <why not>)" (the fallback;
+#: :func:`~exudyn_turnout.passage.corunning_track.stepper.unsupported`)
+STEPPING_KEY = "exudyn_turnout.corunning_track.stepping"
 #: s, first part of the dynamic relaxation to the steady state at speed (where the static
 #: solve fails, e.g. in a curve): the car body's lateral mode (~0.7 Hz, damping ratio ~0.45)
 #: settles in it; a slower drift does not (the car body still moved at 1.4 mm/s after 8 s in
@@ -306,19 +310,38 @@ def _run(
         from exudyn_turnout.passage.corunning_track import stepper
 
         reason = stepper.unsupported(system.mbs, contacts)
-    pre_step = None
+    system.mbs.variables[STEPPING_KEY] = (
+        "compiled"
+        if reason is None
+        else "exudyn"
+        if settings.solver == "exudyn"
+        else f"exudyn (compiled stepper: {reason})"
+    )
+    report = None
     if progress is not None:
-        pre_step = progress_function(progress, t_offset, total, system.x_front, v)
+        report = progress_function(progress, t_offset, total, system.x_front, v)
+    pre_step = report
+    at_grid: Callable[[int, Callable[[], None]], bool] | None = None
     if stop is not None:
-        if reason is None:
-            raise ValueError("_run: the compiled stepper cannot stop a run early")
-        watch, report, force = stop, pre_step, _check_force(system, contacts, stop.pairs)
+        watch, force = stop, _check_force(system, contacts, stop.pairs)
         state = functools.partial(named_state, system)
 
         def pre_step(mbs, t):
             if report is not None:
                 report(mbs, t)
             return watch(force, state)
+
+        def grid_watch(k: int, current: Callable[[], None]) -> bool:
+            """The compiled stepper's stop: called before the fine steps at the grid times
+            only (k: the fine step's index), ``current`` writes its state into Exudyn's."""
+
+            def state_at() -> Any:
+                current()
+                return named_state(system)
+
+            return watch(force, state_at, k)
+
+        at_grid = grid_watch
 
     if pre_step is not None and reason is not None:
         system.mbs.SetPreStepUserFunction(pre_step)
@@ -341,7 +364,9 @@ def _run(
                 settings.spectral_radius,
                 sim.timeIntegration.newton.absoluteTolerance,
                 _NEWTON_CONTRACTIVITY,
-                None if pre_step is None else functools.partial(pre_step, system.mbs),
+                None if report is None else functools.partial(report, system.mbs),
+                at_grid,
+                1 if stop is None else stop.m,
             )
             system.mbs.variables[STEPPER_KEY] = run
             if not math.isnan(run.failed_at):
@@ -567,6 +592,7 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
     starts = []
     tables: dict = {}  # the running loads' table, shared by the segments
     check = CheckRailSteps(settings, route, model.static_wheel_load, len(offsets))
+    stepping: set[str] = set()  # what stepped the segments (STEPPING_KEY)
     progress = monotone_progress(progress)  # a segment run again reports its times again
     load = model.static_wheel_load
     for k in range(len(events) - 1):
@@ -584,16 +610,17 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
             system = build(*args, at, x_p, v, False, x_range, tables)
             carry_over_state(*origin[:2], system, route, settings.layers, x_p, origin[2])
             piece = _run(system, length, step_settings, t0 + t_from, total, progress, load, stop)
+            stepping.add(system.mbs.variables[STEPPING_KEY])
             if stop is not None and stop.state is not None:  # the fine piece ends at stop.end
                 carried[:] = [stop.state, system, (stop.end - stop.first) * stop.h]
             else:
                 carried[:] = [named_state(system), system, length]
             return piece
 
-        # predicted to load a check rail: the fine step directly (Exudyn's path: the stepper
-        # cannot stop a run where the fine stepping ends)
+        # predicted to load a check rail: the fine step directly, ended where the load has
+        # ended (CheckRailStop: Exudyn's pre-step function or the compiled stepper's stop)
         fine_from = check.predict(x0, x1, offsets, _lateral(state, len(offsets)))
-        if fine_from is not None and settings.solver != "compiled":
+        if fine_from is not None:
             cols, t_prev = check.run_predicted(duration, t_offset, x0, fine_from, run_piece)
             system = carried[1]
         else:
@@ -625,4 +652,5 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
     )
     record_start(summary, turnout, x_a, v, start, residual, stacklevel=4)
     check.record(summary, stacklevel=4)
+    summary["stepping"] = "; ".join(sorted(stepping))
     return PassageResult(settings, columns, summary, tuple(starts))
