@@ -847,6 +847,8 @@ def integrate_linear(
     steps: int,
     spectral_radius: float,
     absolute_tolerance: float = 1e-10,
+    stop: Callable[[int, np.ndarray], bool] | None = None,
+    stop_every: int = 1,
 ) -> StepperRun:
     """The stepper on M q_tt + D q_t + K q = 0 (no force object): the scheme alone, for
     checks against Exudyn and closed forms.
@@ -865,6 +867,10 @@ def integrate_linear(
         Generalized-alpha's rho_inf.
     absolute_tolerance : float
         Newton's absolute tolerance (Exudyn's default 1e-10).
+    stop : callable(k, q) -> bool, optional
+        As :func:`integrate`'s, given the coordinates at step k's start (a copy).
+    stop_every : int
+        Steps between the calls of ``stop``.
 
     Returns
     -------
@@ -906,6 +912,10 @@ def integrate_linear(
         consts,
         None,
         (np.zeros((1, 3, 1)), np.zeros((1, 1, 1))),
+        (
+            None if stop is None else (lambda k, state: stop(k, state[0].copy())),
+            max(1, int(stop_every)),
+        ),
     )
     return run
 
