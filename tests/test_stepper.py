@@ -165,6 +165,7 @@ def test_vehicle_passage_equals_exudyn(scene, monkeypatch, route, speed, x_range
         x_start=x_range[0],
         x_end=x_range[1],
         output_step=output_step,
+        solver="exudyn",  # the references A and B: Exudyn's integrator, asked for
     )
     a = _columns(scene, case)
     reported = []
