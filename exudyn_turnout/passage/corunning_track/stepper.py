@@ -1,8 +1,8 @@
-"""A compiled time stepper for the full vehicle's co-running passage (opt-in).
+"""A compiled time stepper for the full vehicle's co-running passage (the default).
 
-``PassageSettings(solver="compiled")`` runs each segment of
-:mod:`~exudyn_turnout.passage.corunning_track.vehicle` here instead of Exudyn's
-``SolveDynamic``: the same implicit generalized-alpha scheme, the same modified Newton
+``PassageSettings(solver="compiled")`` (the default; ``solver="exudyn"`` asks for Exudyn's
+integrator) runs each segment of :mod:`~exudyn_turnout.passage.corunning_track.vehicle`
+here instead of Exudyn's ``SolveDynamic``: the same implicit generalized-alpha scheme, the same modified Newton
 method and the same tolerances as Exudyn 1.13's ``GeneralizedAlpha`` solver
 (``CSolverImplicitSecondOrder.cpp`` and ``CSolverBase::Newton``), with no Python call per
 step. What a step costs in Exudyn is mostly the passing of its coordinate lists to the
@@ -44,6 +44,17 @@ Exudyn's run: the same rows). Times and sensor samples follow Exudyn's adaptive-
 (t += h, the last step shortened to the end time; a sample where t reaches the last
 sample's time plus the period, and at the end). A step whose Newton fails is not retried
 smaller (Exudyn would): the run stops with the time and position.
+
+Stopping early (the check rail's predicted fine piece,
+:class:`~exudyn_turnout.passage.common.CheckRailStop`, which acts every ``m`` fine steps, at
+the segment's grid times): the steps run in compiled chunks ending on those steps, and
+between two chunks ``stop`` is called with the contacts' last evaluation at the step's start
+(the last accepted step's, Newton's last call: what ``VehicleContacts.last_forces`` reads, as
+on Exudyn's path before a step) and a function writing the state into Exudyn's current
+configuration; False ends the run after that step, as an Exudyn pre-step function returning
+False does. A run without ``stop`` makes no Python call between its progress reports. On the
+diverging route (80 km/h, 2 and 3 layers, 20..55 m) the same refined and predicted windows as
+Exudyn's path and every peak of the summary within 2e-9 of Exudyn's (relative).
 """
 
 from __future__ import annotations
@@ -941,8 +952,12 @@ def _run_steps(
     # the fill-reducing order first: the contacts' last evaluation before the first step is
     # then the initial state's (what a stop reads at k = 0, as in Exudyn's run)
     fac = _factors(jac, state, lin, consts, user, work, float(sizes[1]))
-    if not _start(state, lin, force, user, record, work[4], work[6], mass.copy(), piv):
+    if not _start(state, lin, force, user, norecord, work[4], work[6], mass.copy(), piv):
         raise RuntimeError("singular mass matrix")  # _run: a PassageFailure
+    if record.shape[0] > 1:  # the start's contacts (a call at t = 0 left pending instead
+        # was stored after the steps' rows by VehicleContacts.recorded: a rewind to t = 0
+        # that gave the record up, the columns evaluated again after the run)
+        record_kernel(0.0, recorded[0], recorded[1], record)
     out_q[0], out_v[0], out_a[0] = state[0], state[1], state[2]
     flags = np.array([1, 1], dtype=np.int64)
     counts = np.zeros(3, dtype=np.int64)

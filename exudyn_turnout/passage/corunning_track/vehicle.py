@@ -51,8 +51,10 @@ residual's record of every fine step is read at those times). Which segments: pr
 before the run (:meth:`~exudyn_turnout.passage.common.CheckRailSteps.predict`: a wheelset on
 the check rail's x range, displaced towards it by half its clearance at the segment's start),
 those run at the fine step directly, the fine stepping ended during the run where the load
-has ended (:class:`~exudyn_turnout.passage.common.CheckRailStop`, Exudyn's path; the compiled
-stepper, which cannot stop a run, refines after the fact). The after-the-fact check stays as
+has ended (:class:`~exudyn_turnout.passage.common.CheckRailStop`: Exudyn's pre-step function,
+or the compiled stepper's stop between its chunks at the grid times; the same windows and
+forces within 2e-9 of each other on the diverging route, tests/test_stepper_stop.py). The
+after-the-fact check stays as
 a safety net: a segment that loads its check rail where not predicted runs at its step first,
 then again from its start as before (``summary["check_rail_rerun"]``). The progress never
 goes back. ``summary["check_rail_refined"]`` gives the windows, ``check_rail_predicted`` the
@@ -100,7 +102,7 @@ Measured alternately against 3273b6f (7 rounds, fresh processes, medians): CPU 1
 1.25 s (0.59 -> 0.53 x real time; stepping 1.12 -> 1.04 s, the rest 0.23 -> 0.17 s; at
 load 4-5 with the 3-D views reshaped again 1.49 -> 1.31 s), the forces and summary
 unchanged to the bit. What is left is mostly Exudyn's side of the call,
-out of this package's reach (the opt-in compiled stepper avoids it). A fresh Jacobian each
+out of this package's reach (the compiled stepper, now the default, avoids it). A fresh Jacobian each
 step would need 1.0 iterations, but one costs ~1-2 ms (its Exudyn side alone ~1 ms), and a
 Jacobian every 200 steps (1.28 iterations, 132 Jacobians) about broke even; Newton's
 relative tolerance at 1e-3 (2.23 calls per step) moved a lateral peak by 0.12 % (rejected).
@@ -109,7 +111,7 @@ forces and details of the output columns are recorded during the run
 (:meth:`~exudyn_turnout.passage.contact.vehicle_contacts.VehicleContacts.start_record`),
 not evaluated again after it.
 
-Opt-in, ``settings.solver == "compiled"`` steps every run segment with
+By default (``settings.solver == "compiled"``, issue 24) every run segment steps with
 :mod:`~exudyn_turnout.passage.corunning_track.stepper` instead of Exudyn's ``SolveDynamic``:
 the same generalized-alpha scheme, modified Newton, tolerances and sensor samples, with the
 compiled residual called from numba (no Python call per step). The same Newton iterations
@@ -117,7 +119,9 @@ and residual calls per step as Exudyn's; the README case costs ~35 % less in all
 ~2x faster; ``benchmarks/bench_stepper.py``), its wheel-force peaks within 0.013 %. A
 segment with anything the stepper does not model
 (:func:`~exudyn_turnout.passage.corunning_track.stepper.unsupported`: loads, e.g. the
-curving loads when not folded into the contacts' object) runs in Exudyn as before.
+curving loads when not folded into the contacts' object) runs in Exudyn as before;
+``summary["stepping"]`` says what stepped the run and why not compiled
+(:data:`STEPPING_KEY`). ``solver="exudyn"`` asks for Exudyn's integrator throughout.
 
 The run starts in the steady state at speed (at rest in the track-following frame): first
 the static equilibrium at rest (lateral position and spin held, as the single wheelset's),
@@ -284,10 +288,10 @@ def _run(
     static_load: float,
     stop: CheckRailStop | None = None,
 ) -> dict[str, np.ndarray]:
-    """Run a built segment for ``duration`` seconds (Exudyn's ``SolveDynamic`` or, opt-in,
-    the compiled stepper) and return its columns; ``stop`` (Exudyn's path only: the
-    predicted check rail's fine piece, ``CheckRailSteps.run_predicted``) may end the run
-    early."""
+    """Run a built segment for ``duration`` seconds (the compiled stepper or Exudyn's
+    ``SolveDynamic``) and return its columns; ``stop`` (the predicted check rail's fine
+    piece, ``CheckRailSteps.run_predicted``: Exudyn's pre-step function, or the stepper's
+    stop at the grid times) may end the run early."""
     import exudyn as exu
 
     from exudyn_turnout.corunning.track import simulation_settings
