@@ -1,9 +1,9 @@
 """A compiled time stepper for the full vehicle's co-running passage (the default).
 
 ``PassageSettings(solver="compiled")`` (the default; ``solver="exudyn"`` asks for Exudyn's
-integrator) runs each segment of :mod:`~exudyn_turnout.passage.corunning_track.vehicle`
-here instead of Exudyn's ``SolveDynamic``: the same implicit generalized-alpha scheme, the same modified Newton
-method and the same tolerances as Exudyn 1.13's ``GeneralizedAlpha`` solver
+integrator) runs each segment of :mod:`~exudyn_turnout.passage.corunning_track.vehicle` here
+instead of Exudyn's ``SolveDynamic``: the same implicit generalized-alpha scheme, the same
+modified Newton method and the same tolerances as Exudyn 1.13's ``GeneralizedAlpha`` solver
 (``CSolverImplicitSecondOrder.cpp`` and ``CSolverBase::Newton``), with no Python call per
 step. What a step costs in Exudyn is mostly the passing of its coordinate lists to the
 Python force function and back (~20 us of a ~30 us residual evaluation, 2.3 evaluations per

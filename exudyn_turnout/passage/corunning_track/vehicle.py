@@ -101,8 +101,8 @@ the safety checks' sliding means (one compiled loop, ~15x) and the body outputs'
 Measured alternately against 3273b6f (7 rounds, fresh processes, medians): CPU 1.38 ->
 1.25 s (0.59 -> 0.53 x real time; stepping 1.12 -> 1.04 s, the rest 0.23 -> 0.17 s; at
 load 4-5 with the 3-D views reshaped again 1.49 -> 1.31 s), the forces and summary
-unchanged to the bit. What is left is mostly Exudyn's side of the call,
-out of this package's reach (the compiled stepper, now the default, avoids it). A fresh Jacobian each
+unchanged to the bit. What is left is mostly Exudyn's side of the call, out of this
+package's reach (the compiled stepper, now the default, avoids it). A fresh Jacobian each
 step would need 1.0 iterations, but one costs ~1-2 ms (its Exudyn side alone ~1 ms), and a
 Jacobian every 200 steps (1.28 iterations, 132 Jacobians) about broke even; Newton's
 relative tolerance at 1e-3 (2.23 calls per step) moved a lateral peak by 0.12 % (rejected).
