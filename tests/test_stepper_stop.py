@@ -101,3 +101,17 @@ def test_predicted_fine_piece_stopped_alike(turnout, monkeypatch):
     peak = "peak_Fy_check_rail_N"
     assert abs(exudyn.summary[peak]) > 50e3  # loaded (tests/test_check_rail_predict.py)
     assert compiled.summary[peak] == pytest.approx(exudyn.summary[peak], abs=2 * eps)
+
+
+def test_cli_solver_default_is_compiled():
+    import argparse
+
+    from exudyn_turnout.cli.passage import build, settings_from_args
+
+    top = argparse.ArgumentParser()
+    build(top.add_subparsers(dest="command"))
+    given = ["simulate", "--route", "through", "--out", "unused"]  # parsed only: no files
+    args = top.parse_args(given)
+    assert args.solver == "compiled" and settings_from_args(args).solver == "compiled"
+    args = top.parse_args([*given, "--solver", "exudyn"])
+    assert settings_from_args(args).solver == "exudyn"
