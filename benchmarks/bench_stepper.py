@@ -1,19 +1,22 @@
 """Benchmark: the full vehicle's passage with Exudyn's integrator and the compiled stepper.
 
-Run: ``python benchmarks/bench_stepper.py [--repeats N] [--x-end X]`` (default: the
-README's full-vehicle case, 3-layer, through route, 100 km/h, front wheelset x -5..60 m,
-2.34 s simulated, one run of each solver per round). Each round runs the yardstick, the
-passage with ``solver="exudyn"``, the yardstick, the passage with ``solver="compiled"``, the
-yardstick (``benchmarks/yardstick.py``): per solver the whole passage's CPU seconds (median
-over the rounds), x real time, yardstick units (its CPU time over the mean of the two
-yardstick runs around it, median), the CPU seconds of the stepping alone (Exudyn's
-``SolveDynamic`` or the compiled stepper, every segment, median), and of the stepping:
-steps, Newton iterations per step, residual calls per step (Exudyn: calls of the force
-object's function during ``SolveDynamic``, its initial accelerations included; compiled:
-the same count from the stepper) and iteration matrices (Jacobians). Then the largest
-difference between the two solvers' peaks: |Fz| and |Fy| of every wheel of every wheelset
-at the switch (that wheelset's x 5..15 m) and at the crossing (x 44..50 m), in percent of
-Exudyn's peak. The contact tables are loaded and the kernels warmed up before, untimed.
+Run: ``python benchmarks/bench_stepper.py [--repeats N] [--x-start X] [--x-end X] [--route
+R] [--speed KMH] [--layers N]`` (default: the README's full-vehicle case, 3-layer, through
+route, 100 km/h, front wheelset x -5..60 m, 2.34 s simulated, one run of each solver per
+round; the diverging route's check rail: ``--route diverging --speed 80 --x-start 20 --x-end
+55``, the predicted fine pieces stopped by each solver's own stop). Each round runs the
+yardstick, the passage with ``solver="exudyn"``, the yardstick, the passage with
+``solver="compiled"``, the yardstick (``benchmarks/yardstick.py``): per solver the whole
+passage's CPU seconds (median over the rounds), x real time, yardstick units (its CPU time
+over the mean of the two yardstick runs around it, median), the CPU seconds of the stepping
+alone (Exudyn's ``SolveDynamic`` or the compiled stepper, every segment, median), and of the
+stepping: steps, Newton iterations per step, residual calls per step (Exudyn: calls of the
+force object's function during ``SolveDynamic``, its initial accelerations included;
+compiled: the same count from the stepper) and iteration matrices (Jacobians). Then the
+largest difference between the two solvers' peaks: |Fz| and |Fy| of every wheel of every
+wheelset at the switch (that wheelset's x 5..15 m) and at the crossing (x 44..50 m), in
+percent of Exudyn's peak. The contact tables are loaded and the kernels warmed up before,
+untimed.
 
 Measured (2 cores shared with other jobs, load 6-7; three runs of ``--repeats 3`` during the
 work, the last on the final code; the seconds scatter: compare the units and the ratios):
@@ -29,6 +32,24 @@ The whole passage -40 % (units 0.58-0.62 of Exudyn's), its stepping 1.5-2.2x fas
 rest, set-up, columns and summary, ~0.45 s, is the same code); the same Newton iterations,
 residual calls and Jacobians as Exudyn's, every one of the 24 switch and crossing peaks of
 |Fz| within 0.01 N and of |Fy| within 0.22 N (0.012 %).
+
+Issue 24, the compiled stepper the default (its stop for the check rail's fine piece; its
+record of the contacts used, no longer given up at the start), load 1.3-1.8, medians:
+
+==========================================  =========  =========  ==============  ========
+case (``--repeats``)                        exudyn     compiled   ratio (units)   peaks
+==========================================  =========  =========  ==============  ========
+README case, through 100 km/h, 3-layer (5)  0.488 x    0.321 x    0.628           0.017 %
+diverging 80 km/h, 2-layer, 20..55 m (3)    1.037 x    0.862 x    0.849           4e-12
+diverging 80 km/h, 3-layer, 20..55 m (3)    1.102 x    0.948 x    0.843           1e-11
+==========================================  =========  =========  ==============  ========
+
+(x real time of the whole passage; peaks: the largest relative difference of the wheel-region
+peaks, on the diverging route the check rail's Fy peak; the same refined, predicted and
+re-run windows.) On the diverging route the shares both solvers pay alike are larger: the
+start's dynamic relaxation in the curve (Exudyn's ``SolveDynamic``, counted as stepping
+here) and the body loads of every time, interpolated in Python (~24 us a time under cProfile,
+4x the times in the fine pieces).
 """
 
 from __future__ import annotations
@@ -149,12 +170,22 @@ def main() -> None:
     """Print the table."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=1, help="rounds (medians)")
+    parser.add_argument("--x-start", type=float, default=-5.0, help="front wheelset start (m)")
     parser.add_argument("--x-end", type=float, default=60.0, help="front wheelset end (m)")
+    parser.add_argument("--route", default="through", help="through or diverging")
+    parser.add_argument("--speed", type=float, default=100.0, help="km/h")
+    parser.add_argument("--layers", type=int, default=3, help="co-running track layers")
     args = parser.parse_args()
     turnout, model = load_turnout(), load_vehicle_model()
-    case = PassageSettings(route="through", speed_kmh=100.0, x_start=-5.0, x_end=args.x_end)
+    case = PassageSettings(
+        route=args.route,
+        speed_kmh=args.speed,
+        layers=args.layers,
+        x_start=args.x_start,
+        x_end=args.x_end,
+    )
     for solver in ("exudyn", "compiled"):  # tables, kernels: untimed
-        simulate_passage(turnout, replace(case, x_end=-4.9, solver=solver), model)
+        simulate_passage(turnout, replace(case, x_end=case.x_start + 0.1, solver=solver), model)
     simulated = (case.x_end - case.x_start) / case.v
     stick = Yardstick()
     stick.run()
@@ -174,7 +205,8 @@ def main() -> None:
             units[solver].append(seconds / (0.5 * sum(stick.cpu_times[-2:])))
             counts[solver] = count
     print(
-        f"full Manchester vehicle, 3-layer, through, 100 km/h, x -5..{case.x_end:g} m "
+        f"full Manchester vehicle, {case.layers}-layer, {case.route}, {case.speed_kmh:g} km/h, "
+        f"x {case.x_start:g}..{case.x_end:g} m "
         f"({simulated:.2f} s simulated), median of {args.repeats} round(s), CPU time of the "
         "whole passage"
     )
@@ -190,6 +222,21 @@ def main() -> None:
             f"{statistics.median(units[solver]):>8.2f}"
             f"{statistics.median(stepping[solver]):>12.3f}{c.steps:>8d}"
             f"{c.iterations / c.steps:>9.3f}{c.calls / c.steps:>12.3f}{c.jacobians:>11d}"
+        )
+    ratios = [c / e for c, e in zip(units["compiled"], units["exudyn"])]
+    print(
+        f"compiled / exudyn per round (units): median {statistics.median(ratios):.3f}, "
+        f"rounds {' '.join(f'{r:.3f}' for r in ratios)}"
+    )
+    summaries = results["exudyn"].summary, results["compiled"].summary
+    print(f"stepping: exudyn {summaries[0]['stepping']!r}, compiled {summaries[1]['stepping']!r}")
+    for key in ("check_rail_predicted", "check_rail_refined", "check_rail_rerun"):
+        print(f"{key}: {'the same' if summaries[0][key] == summaries[1][key] else 'DIFFERENT'}")
+    check = [abs(s.get("peak_Fy_check_rail_N") or 0.0) for s in summaries]
+    if check[0] > 0.0:
+        print(
+            f"check-rail Fy peak: exudyn {check[0]:.3f} N, compiled {check[1]:.3f} N "
+            f"(relative {abs(check[1] - check[0]) / check[0]:.2e})"
         )
     a, b = peaks(results["exudyn"].columns), peaks(results["compiled"].columns)
     if not a:

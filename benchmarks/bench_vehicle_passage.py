@@ -146,7 +146,11 @@ class _Phases:
 def phases(repeats: int) -> None:
     """Print the full-vehicle case's set-up, stepping and rest (module docstring)."""
     turnout, model = load_turnout(), load_vehicle_model()
-    case = PassageSettings(route="through", speed_kmh=100.0, x_start=-5.0, x_end=60.0)
+    # Exudyn's integrator (its solver's timers and counters; the compiled stepper, the
+    # default since issue 24: benchmarks/bench_stepper.py)
+    case = PassageSettings(
+        route="through", speed_kmh=100.0, x_start=-5.0, x_end=60.0, solver="exudyn"
+    )
     simulate_passage(turnout, replace(case, x_end=-4.9), model)  # tables, kernels: untimed
     simulated = (case.x_end - case.x_start) / case.v
     stick = Yardstick()
@@ -206,7 +210,9 @@ def main() -> None:
     turnout, model = load_turnout(), load_vehicle_model()
     x_a = turnout.x_min if args.x_start is None else args.x_start
     x_b = turnout.x_max if args.x_end is None else args.x_end
-    base = PassageSettings(route=args.route, speed_kmh=args.speed, x_start=x_a, x_end=x_b)
+    base = PassageSettings(  # Exudyn's integrator (its counters; bench_stepper.py: both)
+        route=args.route, speed_kmh=args.speed, x_start=x_a, x_end=x_b, solver="exudyn"
+    )
     warm = replace(base, x_end=x_a + 0.05)
     simulate_passage(turnout, warm, "wheelset")  # contact tables, compiled kernel: untimed
     simulate_passage(turnout, warm, model)

@@ -165,6 +165,7 @@ def test_vehicle_passage_equals_exudyn(scene, monkeypatch, route, speed, x_range
         x_start=x_range[0],
         x_end=x_range[1],
         output_step=output_step,
+        solver="exudyn",  # the references A and B: Exudyn's integrator, asked for
     )
     a = _columns(scene, case)
     reported = []
@@ -194,12 +195,19 @@ def test_vehicle_passage_equals_exudyn(scene, monkeypatch, route, speed, x_range
     assert checked > 150  # every wheelset's and body's columns, not a few
 
 
-def test_compiled_rejected_elsewhere(scene):
-    turnout, _ = scene
-    with pytest.raises(PassageError, match="full vehicle on the co-running track only"):
-        simulate_passage(turnout, PassageSettings(solver="compiled"), "wheelset")
+def test_compiled_is_the_default_and_ignored_elsewhere(scene, monkeypatch):
+    turnout, model = scene
+    assert PassageSettings().solver == "compiled"
     with pytest.raises(PassageError, match="solver must be"):
         simulate_passage(turnout, PassageSettings(solver="fast"), "wheelset")
+    # the single wheelset steps in Exudyn whatever the solver says: the default's run is
+    # the one asking for Exudyn, bit for bit, and the stepper is never called
+    monkeypatch.setattr(stepper, "integrate", lambda *a, **k: pytest.fail("stepper called"))
+    case = PassageSettings(x_start=-5.0, x_end=-4.9)
+    default = simulate_passage(turnout, case, "wheelset").columns
+    exudyn = simulate_passage(turnout, replace(case, solver="exudyn"), "wheelset").columns
+    for name, values in exudyn.items():
+        np.testing.assert_array_equal(default[name], values, err_msg=name)
 
 
 def test_failed_step_names_time_and_position(scene, monkeypatch):
@@ -220,7 +228,7 @@ def test_failed_step_names_time_and_position(scene, monkeypatch):
 
 def test_anything_else_acting_goes_to_exudyn(scene, monkeypatch):
     turnout, model = scene
-    case = PassageSettings(x_start=-5.0, x_end=-4.8, solver="compiled")
+    case = PassageSettings(x_start=-5.0, x_end=-4.8)  # the default solver: compiled
     seen = []
     integrate = stepper.integrate
 
@@ -229,7 +237,7 @@ def test_anything_else_acting_goes_to_exudyn(scene, monkeypatch):
         return integrate(mbs, contacts, *args, **kwargs)
 
     monkeypatch.setattr(stepper, "integrate", spy)
-    simulate_passage(turnout, case, model)
+    assert simulate_passage(turnout, case, model).summary["stepping"] == "compiled"
     mbs, contacts = seen[0]
     assert stepper.unsupported(mbs, contacts) is None
     from exudyn.itemInterface import LoadCoordinate, MarkerNodeCoordinate
@@ -241,8 +249,12 @@ def test_anything_else_acting_goes_to_exudyn(scene, monkeypatch):
     # a segment the stepper does not serve runs in Exudyn: Exudyn's results, bit for bit
     monkeypatch.setattr(stepper, "unsupported", lambda mbs, contacts: "a load")
     seen.clear()
-    fallback = simulate_passage(turnout, case, model).columns
-    exudyn = simulate_passage(turnout, replace(case, solver="exudyn"), model).columns
+    fallback = simulate_passage(turnout, case, model)
+    asked = simulate_passage(turnout, replace(case, solver="exudyn"), model)
     assert not seen
+    # the default (compiled) falls back, and the summary says why
+    assert fallback.summary["stepping"] == "exudyn (compiled stepper: a load)"
+    assert asked.summary["stepping"] == "exudyn"
+    fallback, exudyn = fallback.columns, asked.columns
     for name, values in exudyn.items():
         np.testing.assert_array_equal(fallback[name], values, err_msg=name)

@@ -775,6 +775,7 @@ def run_case(turnout, case: Case, h: float, lift_limit: bool = True, refine: boo
         x_end=case.x_end,
         time_step=h,
         check_rail_time_step=PassageSettings().check_rail_time_step if refine else None,
+        solver="exudyn",  # the study's runs and Newton counts (Exudyn's solver's) as measured
     )
     with _StepLimit(common, lift=False) as limit:
         try:  # the passage's own check of the settings (as simulate_passage makes it)

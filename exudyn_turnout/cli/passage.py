@@ -969,10 +969,12 @@ def build(sub: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--solver",
         choices=("exudyn", "compiled"),
-        default="exudyn",
-        help="time integration of the full vehicle on a co-running track: exudyn (Exudyn's "
-        "generalized-alpha; default) or compiled (the same scheme and Newton method in one "
-        "compiled loop, equal within the Newton tolerance, about 0.6 x the CPU time)",
+        default="compiled",
+        help="time integration of the full vehicle on a co-running track: compiled (default: "
+        "Exudyn's generalized-alpha scheme and Newton method in one compiled loop, equal to "
+        "exudyn's within the Newton tolerance, about 0.6 x its CPU time; a segment it does "
+        "not model steps in Exudyn, the summary's 'stepping' says why) or exudyn (Exudyn's "
+        "own integrator); the single wheelset and the FE track always step in Exudyn",
     )
     parser.add_argument(
         "--contact",

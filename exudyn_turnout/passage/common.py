@@ -743,7 +743,9 @@ class CheckRailStop:
         #: the state at grid index :attr:`end` (None: not reached, or loaded after it)
         self.state: Any = None
 
-    def __call__(self, force: Callable[[], float | None], state: Callable[[], Any]) -> bool:
+    def __call__(
+        self, force: Callable[[], float | None], state: Callable[[], Any], step: int | None = None
+    ) -> bool:
         """Before a fine step: sample at a grid time, and whether to go on after the step.
 
         Parameters
@@ -752,6 +754,9 @@ class CheckRailStop:
             N, the check rails' largest force at the step's start (None: not known).
         state : callable()
             The system's state at the step's start (kept at grid index :attr:`end`).
+        step : int, optional
+            The fine step's index in the run (default: one more than the last call's, every
+            step called; a caller that calls at the grid times only gives it).
 
         Returns
         -------
@@ -759,8 +764,8 @@ class CheckRailStop:
             False: the run stops after this step (:data:`CHECK_RAIL_QUIET` after
             :attr:`end` without a load).
         """
-        k = self.steps
-        self.steps += 1
+        k = self.steps if step is None else int(step)
+        self.steps = k + 1
         if k % self.m:
             return True
         j = self.first + k // self.m

@@ -142,7 +142,9 @@ def simulate_passage(
     settings : PassageSettings
         The scenario: route, speed, x range (the front wheelset's), time step, output step,
         contact, irregularity; for the co-running tracks also the parameter source and the
-        spring mechanism.
+        spring mechanism; ``solver`` (default "compiled": the package's compiled stepper)
+        steps the full vehicle on a co-running track only; the single wheelset and the FE
+        track step in Exudyn whatever it says.
     vehicle : {"manchester", "wheelset"}, Vehicle or VehicleModel, optional
         Default (:data:`DEFAULT_VEHICLE`): the full Manchester benchmark vehicle, four
         wheelsets each on its own co-running track, the plain columns its front
@@ -176,8 +178,6 @@ def simulate_passage(
     model = vehicle_of(vehicle)
     if settings.solver not in ("exudyn", "compiled"):
         raise PassageError(f"solver must be 'exudyn' or 'compiled', got {settings.solver!r}")
-    if settings.solver == "compiled" and (track == "fe" or not isinstance(model, VehicleModel)):
-        raise PassageError("solver 'compiled' runs the full vehicle on the co-running track only")
     implementation = _implementation(track)
     if isinstance(model, VehicleModel):
         base = load_vehicle()

@@ -79,10 +79,12 @@ class PassageSettings:
     #: track irregularity (:class:`~exudyn_turnout.inputs.irregularity.Irregularity`) added
     #: to the rails' heights and lateral positions; None: the design geometry
     irregularity: Any = None
-    #: time integration of the full vehicle on the co-running track: "exudyn" (Exudyn's
-    #: generalized-alpha) or "compiled" (the same scheme in one numba loop,
-    #: :mod:`~exudyn_turnout.passage.corunning_track.stepper`; other runs reject it)
-    solver: str = "exudyn"
+    #: time integration of the full vehicle on the co-running track: "compiled" (the
+    #: default: Exudyn's generalized-alpha scheme in one numba loop,
+    #: :mod:`~exudyn_turnout.passage.corunning_track.stepper`; a segment it does not model
+    #: runs in Exudyn, ``summary["stepping"]`` says why) or "exudyn" (Exudyn's
+    #: ``SolveDynamic``). The single wheelset and the FE track always step in Exudyn.
+    solver: str = "compiled"
 
     @property
     def v(self) -> float:

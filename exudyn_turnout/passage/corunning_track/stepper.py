@@ -1,9 +1,9 @@
-"""A compiled time stepper for the full vehicle's co-running passage (opt-in).
+"""A compiled time stepper for the full vehicle's co-running passage (the default).
 
-``PassageSettings(solver="compiled")`` runs each segment of
-:mod:`~exudyn_turnout.passage.corunning_track.vehicle` here instead of Exudyn's
-``SolveDynamic``: the same implicit generalized-alpha scheme, the same modified Newton
-method and the same tolerances as Exudyn 1.13's ``GeneralizedAlpha`` solver
+``PassageSettings(solver="compiled")`` (the default; ``solver="exudyn"`` asks for Exudyn's
+integrator) runs each segment of :mod:`~exudyn_turnout.passage.corunning_track.vehicle` here
+instead of Exudyn's ``SolveDynamic``: the same implicit generalized-alpha scheme, the same
+modified Newton method and the same tolerances as Exudyn 1.13's ``GeneralizedAlpha`` solver
 (``CSolverImplicitSecondOrder.cpp`` and ``CSolverBase::Newton``), with no Python call per
 step. What a step costs in Exudyn is mostly the passing of its coordinate lists to the
 Python force function and back (~20 us of a ~30 us residual evaluation, 2.3 evaluations per
@@ -44,6 +44,17 @@ Exudyn's run: the same rows). Times and sensor samples follow Exudyn's adaptive-
 (t += h, the last step shortened to the end time; a sample where t reaches the last
 sample's time plus the period, and at the end). A step whose Newton fails is not retried
 smaller (Exudyn would): the run stops with the time and position.
+
+Stopping early (the check rail's predicted fine piece,
+:class:`~exudyn_turnout.passage.common.CheckRailStop`, which acts every ``m`` fine steps, at
+the segment's grid times): the steps run in compiled chunks ending on those steps, and
+between two chunks ``stop`` is called with the contacts' last evaluation at the step's start
+(the last accepted step's, Newton's last call: what ``VehicleContacts.last_forces`` reads, as
+on Exudyn's path before a step) and a function writing the state into Exudyn's current
+configuration; False ends the run after that step, as an Exudyn pre-step function returning
+False does. A run without ``stop`` makes no Python call between its progress reports. On the
+diverging route (80 km/h, 2 and 3 layers, 20..55 m) the same refined and predicted windows as
+Exudyn's path and every peak of the summary within 2e-9 of Exudyn's (relative).
 """
 
 from __future__ import annotations
@@ -748,6 +759,8 @@ def integrate(
     absolute_tolerance: float,
     contractivity: float,
     progress: Callable[[float], None] | None = None,
+    stop: Callable[[int, Callable[[], None]], bool] | None = None,
+    stop_every: int = 1,
 ) -> StepperRun:
     """Run an assembled full-vehicle segment from its initial state (module docstring) and
     write the final state into Exudyn's current configuration.
@@ -772,10 +785,20 @@ def integrate(
         Exudyn's ``modifiedNewtonContractivity``.
     progress : callable(t), optional
         Called with the time about every 2 % of the run.
+    stop : callable(k, current) -> bool, optional
+        Called before every ``stop_every``-th step k (k = 0, stop_every, ...; between
+        compiled chunks, no Python call on the other steps), when the contacts' last
+        evaluation is the step's start (the last accepted step's, at k = 0 the initial
+        state's: what ``VehicleContacts.last_forces`` reads); ``current()`` writes that state
+        into Exudyn's current configuration (for ``named_state``). False: the run ends after
+        step k, as after an Exudyn pre-step function returning False.
+    stop_every : int
+        Steps between the calls of ``stop`` (>= 1).
 
     Returns
     -------
     StepperRun
+        Ended early by ``stop``: the samples up to the end of its last step.
     """
     import exudyn as exu
 
@@ -788,6 +811,18 @@ def integrate(
     initial = exu.ConfigurationType.Initial
     q0 = np.asarray(data.GetODE2Coordinates(initial), float)
     v0 = np.asarray(data.GetODE2Coordinates_t(initial), float)
+    current = exu.ConfigurationType.Current
+    watch = None
+    if stop is not None:
+
+        def watch(k: int, state: np.ndarray) -> bool:
+            def write() -> None:
+                data.SetODE2Coordinates(state[0], current)
+                data.SetODE2Coordinates_t(state[1], current)
+                data.SetODE2Coordinates_tt(state[2], current)
+
+            return stop(k, write)
+
     run, state = _run_steps(
         (lin, force, mass),
         user,
@@ -805,8 +840,8 @@ def integrate(
         ),
         progress,
         (compiled._work, compiled._details),
+        (watch, max(1, int(stop_every))),
     )
-    current = exu.ConfigurationType.Current
     data.SetODE2Coordinates(state[0], current)
     data.SetODE2Coordinates_t(state[1], current)
     data.SetODE2Coordinates_tt(state[2], current)
@@ -823,6 +858,8 @@ def integrate_linear(
     steps: int,
     spectral_radius: float,
     absolute_tolerance: float = 1e-10,
+    stop: Callable[[int, np.ndarray], bool] | None = None,
+    stop_every: int = 1,
 ) -> StepperRun:
     """The stepper on M q_tt + D q_t + K q = 0 (no force object): the scheme alone, for
     checks against Exudyn and closed forms.
@@ -841,6 +878,10 @@ def integrate_linear(
         Generalized-alpha's rho_inf.
     absolute_tolerance : float
         Newton's absolute tolerance (Exudyn's default 1e-10).
+    stop : callable(k, q) -> bool, optional
+        As :func:`integrate`'s, given the coordinates at step k's start (a copy).
+    stop_every : int
+        Steps between the calls of ``stop``.
 
     Returns
     -------
@@ -882,13 +923,21 @@ def integrate_linear(
         consts,
         None,
         (np.zeros((1, 3, 1)), np.zeros((1, 1, 1))),
+        (
+            None if stop is None else (lambda k, state: stop(k, state[0].copy())),
+            max(1, int(stop_every)),
+        ),
     )
     return run
 
 
-def _run_steps(system, user, record, per_time, start, clock, consts, progress, recorded):
+def _run_steps(
+    system, user, record, per_time, start, clock, consts, progress, recorded, stop=(None, 1)
+):
     """The run (:func:`integrate`, :func:`integrate_linear`): initial accelerations, then
-    every step in chunks (``progress`` between them); the run and its final state."""
+    every step in chunks (``progress`` between them, and ``stop = (watch, every)``'s
+    ``watch(k, state)`` before every every-th step k: False ends the run after step k); the
+    run and its final state."""
     (lin, force, mass), (prep, segments), (times, sizes, stored) = system, per_time, clock
     n = len(force)
     state = np.zeros((4, n))
@@ -899,23 +948,38 @@ def _run_steps(system, user, record, per_time, start, clock, consts, progress, r
     out_q, out_v, out_a = (np.zeros((samples, n)) for _ in range(3))
     piv = np.zeros(n, dtype=np.int64)
     _prepare(0, user[1], prep, segments)
-    if not _start(state, lin, force, user, record, work[4], work[6], mass.copy(), piv):
+    jac = np.zeros((n, n))
+    # the fill-reducing order first: the contacts' last evaluation before the first step is
+    # then the initial state's (what a stop reads at k = 0, as in Exudyn's run)
+    fac = _factors(jac, state, lin, consts, user, work, float(sizes[1]))
+    if not _start(state, lin, force, user, norecord, work[4], work[6], mass.copy(), piv):
         raise RuntimeError("singular mass matrix")  # _run: a PassageFailure
+    if record.shape[0] > 1:  # the start's contacts (a call at t = 0 left pending instead
+        # was stored after the steps' rows by VehicleContacts.recorded: a rewind to t = 0
+        # that gave the record up, the columns evaluated again after the run)
+        record_kernel(0.0, recorded[0], recorded[1], record)
     out_q[0], out_v[0], out_a[0] = state[0], state[1], state[2]
     flags = np.array([1, 1], dtype=np.int64)
     counts = np.zeros(3, dtype=np.int64)
     counts[0] = 1
-    jac = np.zeros((n, n))
-    fac = _factors(jac, state, lin, consts, user, work, float(sizes[1]))
     total = len(times) - 1
     chunk = max(1, total // 50) if progress is not None else total
+    watch, every = stop
     failed = -1
-    for k0 in range(0, total, chunk):
-        if progress is not None:
+    k0, mark = 0, 0
+    while k0 < total and failed < 0:
+        if progress is not None and k0 >= mark:
             progress(float(times[k0]))
+            mark = k0 + chunk
+        k1 = min(mark if progress is not None else total, total)
+        if watch is not None:
+            if k0 % every == 0 and not watch(k0, state):
+                k1 = total = k0 + 1  # the run ends after this step
+            else:
+                k1 = min(k1, (k0 // every + 1) * every)
         failed = _integrate(
             k0,
-            min(k0 + chunk, total),
+            k1,
             times,
             sizes,
             stored,
@@ -938,8 +1002,7 @@ def _run_steps(system, user, record, per_time, start, clock, consts, progress, r
             out_v,
             out_a,
         )
-        if failed >= 0:
-            break
+        k0 = k1
     rows = int(flags[1])
     run = StepperRun(
         times[stored][:rows],

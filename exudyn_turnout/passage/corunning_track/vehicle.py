@@ -51,8 +51,11 @@ residual's record of every fine step is read at those times). Which segments: pr
 before the run (:meth:`~exudyn_turnout.passage.common.CheckRailSteps.predict`: a wheelset on
 the check rail's x range, displaced towards it by half its clearance at the segment's start),
 those run at the fine step directly, the fine stepping ended during the run where the load
-has ended (:class:`~exudyn_turnout.passage.common.CheckRailStop`, Exudyn's path; the compiled
-stepper, which cannot stop a run, refines after the fact). The after-the-fact check stays as
+has ended (:class:`~exudyn_turnout.passage.common.CheckRailStop`: Exudyn's pre-step function,
+or the compiled stepper's stop between its chunks at the grid times: on the diverging route,
+80 km/h, 20..55 m, 2 and 3 layers, the same windows and the summary's peaks within 2e-9 of
+each other, relative; tests/test_stepper_stop.py). The
+after-the-fact check stays as
 a safety net: a segment that loads its check rail where not predicted runs at its step first,
 then again from its start as before (``summary["check_rail_rerun"]``). The progress never
 goes back. ``summary["check_rail_refined"]`` gives the windows, ``check_rail_predicted`` the
@@ -99,8 +102,8 @@ the safety checks' sliding means (one compiled loop, ~15x) and the body outputs'
 Measured alternately against 3273b6f (7 rounds, fresh processes, medians): CPU 1.38 ->
 1.25 s (0.59 -> 0.53 x real time; stepping 1.12 -> 1.04 s, the rest 0.23 -> 0.17 s; at
 load 4-5 with the 3-D views reshaped again 1.49 -> 1.31 s), the forces and summary
-unchanged to the bit. What is left is mostly Exudyn's side of the call,
-out of this package's reach (the opt-in compiled stepper avoids it). A fresh Jacobian each
+unchanged to the bit. What is left is mostly Exudyn's side of the call, out of this
+package's reach (the compiled stepper, now the default, avoids it). A fresh Jacobian each
 step would need 1.0 iterations, but one costs ~1-2 ms (its Exudyn side alone ~1 ms), and a
 Jacobian every 200 steps (1.28 iterations, 132 Jacobians) about broke even; Newton's
 relative tolerance at 1e-3 (2.23 calls per step) moved a lateral peak by 0.12 % (rejected).
@@ -109,7 +112,7 @@ forces and details of the output columns are recorded during the run
 (:meth:`~exudyn_turnout.passage.contact.vehicle_contacts.VehicleContacts.start_record`),
 not evaluated again after it.
 
-Opt-in, ``settings.solver == "compiled"`` steps every run segment with
+By default (``settings.solver == "compiled"``, issue 24) every run segment steps with
 :mod:`~exudyn_turnout.passage.corunning_track.stepper` instead of Exudyn's ``SolveDynamic``:
 the same generalized-alpha scheme, modified Newton, tolerances and sensor samples, with the
 compiled residual called from numba (no Python call per step). The same Newton iterations
@@ -117,7 +120,9 @@ and residual calls per step as Exudyn's; the README case costs ~35 % less in all
 ~2x faster; ``benchmarks/bench_stepper.py``), its wheel-force peaks within 0.013 %. A
 segment with anything the stepper does not model
 (:func:`~exudyn_turnout.passage.corunning_track.stepper.unsupported`: loads, e.g. the
-curving loads when not folded into the contacts' object) runs in Exudyn as before.
+curving loads when not folded into the contacts' object) runs in Exudyn as before;
+``summary["stepping"]`` says what stepped the run and why not compiled
+(:data:`STEPPING_KEY`). ``solver="exudyn"`` asks for Exudyn's integrator throughout.
 
 The run starts in the steady state at speed (at rest in the track-following frame): first
 the static equilibrium at rest (lateral position and spin held, as the single wheelset's),
@@ -182,11 +187,15 @@ from exudyn_turnout.passage.vehicle.start import (
 )
 from exudyn_turnout.passage.vehicle.track_frame import contact_vehicle
 
-__all__ = ["simulate_vehicle", "NEWTON_TOLERANCE_FACTOR", "STEPPER_KEY"]
+__all__ = ["simulate_vehicle", "NEWTON_TOLERANCE_FACTOR", "STEPPER_KEY", "STEPPING_KEY"]
 
 #: ``mbs.variables`` key of a segment's compiled run (its
 #: :class:`~exudyn_turnout.passage.corunning_track.stepper.StepperRun`: samples, statistics)
 STEPPER_KEY = "exudyn_turnout.corunning_track.stepper"
+#: ``mbs.variables`` key of what stepped a segment: "compiled", "exudyn" (asked for) or
+#: "exudyn (compiled stepper: <why not>)" (the fallback;
+#: :func:`~exudyn_turnout.passage.corunning_track.stepper.unsupported`)
+STEPPING_KEY = "exudyn_turnout.corunning_track.stepping"
 #: s, first part of the dynamic relaxation to the steady state at speed (where the static
 #: solve fails, e.g. in a curve): the car body's lateral mode (~0.7 Hz, damping ratio ~0.45)
 #: settles in it; a slower drift does not (the car body still moved at 1.4 mm/s after 8 s in
@@ -280,10 +289,10 @@ def _run(
     static_load: float,
     stop: CheckRailStop | None = None,
 ) -> dict[str, np.ndarray]:
-    """Run a built segment for ``duration`` seconds (Exudyn's ``SolveDynamic`` or, opt-in,
-    the compiled stepper) and return its columns; ``stop`` (Exudyn's path only: the
-    predicted check rail's fine piece, ``CheckRailSteps.run_predicted``) may end the run
-    early."""
+    """Run a built segment for ``duration`` seconds (the compiled stepper or Exudyn's
+    ``SolveDynamic``) and return its columns; ``stop`` (the predicted check rail's fine
+    piece, ``CheckRailSteps.run_predicted``: Exudyn's pre-step function, or the stepper's
+    stop at the grid times) may end the run early."""
     import exudyn as exu
 
     from exudyn_turnout.corunning.track import simulation_settings
@@ -306,19 +315,38 @@ def _run(
         from exudyn_turnout.passage.corunning_track import stepper
 
         reason = stepper.unsupported(system.mbs, contacts)
-    pre_step = None
+    system.mbs.variables[STEPPING_KEY] = (
+        "compiled"
+        if reason is None
+        else "exudyn"
+        if settings.solver == "exudyn"
+        else f"exudyn (compiled stepper: {reason})"
+    )
+    report = None
     if progress is not None:
-        pre_step = progress_function(progress, t_offset, total, system.x_front, v)
+        report = progress_function(progress, t_offset, total, system.x_front, v)
+    pre_step = report
+    at_grid: Callable[[int, Callable[[], None]], bool] | None = None
     if stop is not None:
-        if reason is None:
-            raise ValueError("_run: the compiled stepper cannot stop a run early")
-        watch, report, force = stop, pre_step, _check_force(system, contacts, stop.pairs)
+        watch, force = stop, _check_force(system, contacts, stop.pairs)
         state = functools.partial(named_state, system)
 
         def pre_step(mbs, t):
             if report is not None:
                 report(mbs, t)
             return watch(force, state)
+
+        def grid_watch(k: int, current: Callable[[], None]) -> bool:
+            """The compiled stepper's stop: called before the fine steps at the grid times
+            only (k: the fine step's index), ``current`` writes its state into Exudyn's."""
+
+            def state_at() -> Any:
+                current()
+                return named_state(system)
+
+            return watch(force, state_at, k)
+
+        at_grid = grid_watch
 
     if pre_step is not None and reason is not None:
         system.mbs.SetPreStepUserFunction(pre_step)
@@ -341,7 +369,9 @@ def _run(
                 settings.spectral_radius,
                 sim.timeIntegration.newton.absoluteTolerance,
                 _NEWTON_CONTRACTIVITY,
-                None if pre_step is None else functools.partial(pre_step, system.mbs),
+                None if report is None else functools.partial(report, system.mbs),
+                at_grid,
+                1 if stop is None else stop.m,
             )
             system.mbs.variables[STEPPER_KEY] = run
             if not math.isnan(run.failed_at):
@@ -567,6 +597,7 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
     starts = []
     tables: dict = {}  # the running loads' table, shared by the segments
     check = CheckRailSteps(settings, route, model.static_wheel_load, len(offsets))
+    stepping: set[str] = set()  # what stepped the segments (STEPPING_KEY)
     progress = monotone_progress(progress)  # a segment run again reports its times again
     load = model.static_wheel_load
     for k in range(len(events) - 1):
@@ -584,16 +615,17 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
             system = build(*args, at, x_p, v, False, x_range, tables)
             carry_over_state(*origin[:2], system, route, settings.layers, x_p, origin[2])
             piece = _run(system, length, step_settings, t0 + t_from, total, progress, load, stop)
+            stepping.add(system.mbs.variables[STEPPING_KEY])
             if stop is not None and stop.state is not None:  # the fine piece ends at stop.end
                 carried[:] = [stop.state, system, (stop.end - stop.first) * stop.h]
             else:
                 carried[:] = [named_state(system), system, length]
             return piece
 
-        # predicted to load a check rail: the fine step directly (Exudyn's path: the stepper
-        # cannot stop a run where the fine stepping ends)
+        # predicted to load a check rail: the fine step directly, ended where the load has
+        # ended (CheckRailStop: Exudyn's pre-step function or the compiled stepper's stop)
         fine_from = check.predict(x0, x1, offsets, _lateral(state, len(offsets)))
-        if fine_from is not None and settings.solver != "compiled":
+        if fine_from is not None:
             cols, t_prev = check.run_predicted(duration, t_offset, x0, fine_from, run_piece)
             system = carried[1]
         else:
@@ -625,4 +657,5 @@ def _simulate(turnout, settings, model, contact, route, x_a, x_b, progress, wall
     )
     record_start(summary, turnout, x_a, v, start, residual, stacklevel=4)
     check.record(summary, stacklevel=4)
+    summary["stepping"] = "; ".join(sorted(stepping))
     return PassageResult(settings, columns, summary, tuple(starts))
