@@ -766,6 +766,43 @@ _CHAIN = 64  # largest number of x nodes of a contact's gap along x that patch_a
 #: half-width b seen from its centre line acts as ``1 / sqrt(s^2 + beta^2)``, ``beta = b
 #: exp(-1/2) / 2`` (its integral over a cell matches the strip's, ``2 d (ln(4 d / b) - 1/2)``)
 _BETA_PER_B = 0.5 * math.exp(-0.5)
+# _line_model's cells k >= 2 apart: the kernel 1 / |s| over two cells, (k + 1) ln(k + 1) -
+# 2 k ln(k) + (k - 1) ln(k - 1), and the coefficient of -rho^2, 1 / (2 k (k^2 - 1))
+_CELL_FAR = np.array(
+    [0.0, 0.0]
+    + [
+        (k + 1) * math.log(k + 1) - 2 * k * math.log(k) + (k - 1) * math.log(k - 1)
+        for k in range(2, 64)
+    ]
+)
+_CELL_NEAR = np.array([0.0, 0.0] + [1.0 / (2.0 * k * (k * k - 1.0)) for k in range(2, 64)])
+# the parabola's cells (patch_along_x's reference) in units of the level: loads 1 - v^2 and
+# gaps v^2 at the cells' midpoints v, their sums, and the sums over pairs k cells apart of
+# the loads' products and of the loads (both orders), for _reference_model
+_V = -1.0 + (np.arange(PATCH_CELLS) + 0.5) * 2.0 / PATCH_CELLS
+_W_REF = 1.0 - _V * _V
+_REF_SUMS = np.array([_W_REF.sum(), (_W_REF * _V * _V).sum(), (_V * _V).sum()])
+_REF_PAIRS = np.array(
+    [
+        np.sum(
+            [
+                _W_REF[i] * _W_REF[j]
+                for i in range(PATCH_CELLS)
+                for j in range(PATCH_CELLS)
+                if abs(i - j) == k
+            ]
+        )
+        for k in range(PATCH_CELLS)
+    ]
+)
+_REF_LOADS = np.array(
+    [
+        np.sum(
+            [_W_REF[j] for i in range(PATCH_CELLS) for j in range(PATCH_CELLS) if abs(i - j) == k]
+        )
+        for k in range(PATCH_CELLS)
+    ]
+)
 
 
 @numba.njit(cache=True)
@@ -782,25 +819,63 @@ def _chain_gap(cx, cg, n, xi):  # pragma: no cover (compiled)
 
 
 @numba.njit(cache=True)
-def _line_model(w, h, n, d, delta, rise, rho, drho, c, dc):  # pragma: no cover (compiled)
-    """(force / (pi E*), its d ln / d ln delta) of :func:`patch_along_x`'s line model on n
-    cells of size d: loads per length w (the virtual interpenetration, > 0 in the patch),
-    geometric gaps h; ``rise`` = d w / d delta in the patch, ``rho = beta / d``, ``drho`` =
-    d rho / d ln delta; c, dc work space (n)."""
+def _cell_coefficients(n, rho, c, dc):  # pragma: no cover (compiled)
+    """c[k], dc[k]: two cells k apart of :func:`_line_model`, the kernel integrated over
+    both, over the cell size, and its derivative by rho."""
     # two cells k apart: int int 1 / sqrt(s^2 + rho^2) over d, Phi(k + 1) - 2 Phi(k) +
     # Phi(k - 1) with Phi(s) = s asinh(s / rho) - sqrt(s^2 + rho^2) (Phi'' the kernel), and
-    # its derivative by rho, from dPhi / drho = -sqrt(s^2 + rho^2) / rho
+    # its derivative by rho, from dPhi / drho = -sqrt(s^2 + rho^2) / rho; from k = 2 on
+    # (rho < 1/2) its expansion in rho, _CELL_FAR - rho^2 / (2 k (k^2 - 1)), the next term
+    # below 5e-3 rho^4 relative
+    exact = n if rho >= 0.5 else min(n, 2)
     root_b = math.sqrt(1.0 + rho * rho)
     phi_b = math.asinh(1.0 / rho) - root_b
     root_c = rho
     phi_c = -rho
-    for k in range(n):
+    for k in range(exact):
         root_a = math.sqrt((k + 1.0) * (k + 1.0) + rho * rho)
         phi_a = (k + 1.0) * math.asinh((k + 1.0) / rho) - root_a
         c[k] = phi_a - 2.0 * phi_c + phi_b
         dc[k] = -(root_a - 2.0 * root_c + root_b) / rho
         root_b, phi_b = root_c, phi_c
         root_c, phi_c = root_a, phi_a
+    for k in range(exact, n):
+        c[k] = _CELL_FAR[k] - rho * rho * _CELL_NEAR[k]
+        dc[k] = -2.0 * rho * _CELL_NEAR[k]
+
+
+@numba.njit(cache=True)
+def _reference_model(n, d, delta, level, rise, rho, drho, c, dc):  # pragma: no cover
+    """:func:`_line_model` on the parabola's n cells (d each, the loads ``level (1 - v^2)``),
+    from the sums of its normalised cells (_REF_SUMS, _REF_PAIRS, _REF_LOADS)."""
+    _cell_coefficients(n, rho, c, dc)
+    energy = 0.0
+    spread = 0.0
+    acting = 0.0
+    for k in range(n):
+        energy += c[k] * _REF_PAIRS[k]
+        spread += dc[k] * _REF_PAIRS[k]
+        acting += c[k] * _REF_LOADS[k]
+    energy *= level * level
+    spread *= level * level
+    acting *= level
+    total = level * _REF_SUMS[0]
+    fit = level * (delta * _REF_SUMS[0] - level * _REF_SUMS[1])
+    dfit = rise * (delta * n - level * _REF_SUMS[2]) + total
+    if total <= 0.0 or fit <= 0.0 or energy <= 0.0:
+        return 0.0, 0.0
+    denergy = 2.0 * rise * acting + spread * drho / delta
+    force = d * total * fit / energy
+    return force, delta * (rise * n / total + dfit / fit - denergy / energy)
+
+
+@numba.njit(cache=True)
+def _line_model(w, h, n, d, delta, rise, rho, drho, c, dc):  # pragma: no cover (compiled)
+    """(force / (pi E*), its d ln / d ln delta) of :func:`patch_along_x`'s line model on n
+    cells of size d: loads per length w (the virtual interpenetration, > 0 in the patch),
+    geometric gaps h; ``rise`` = d w / d delta in the patch, ``rho = beta / d``, ``drho`` =
+    d rho / d ln delta; c, dc work space (n)."""
+    _cell_coefficients(n, rho, c, dc)
     total = 0.0
     fit = 0.0
     dfit = 0.0
@@ -883,7 +958,15 @@ def _patch_end(cx, cg, n, j, xi_min, top, x_yaw, radius_x, quartic, slope_bound,
         else:
             right = min(right, xi_min)
         if left <= right:
-            low, at = _segment_minimum(g0, x0, slope, left, right, 0.0, x_yaw, radius_x, quartic)
+            # the piece's minimum: at its inner edge where the gap rises from there (the
+            # deepest point's own piece, most others), else inside (convex)
+            inner = left if ahead else right
+            low, rate = _piece_gap(g0, x0, slope, inner, x_yaw, radius_x, quartic)
+            at = inner
+            if (rate < 0.0 if ahead else rate > 0.0) and p != j:
+                low, at = _segment_minimum(
+                    g0, x0, slope, left, right, 0.0, x_yaw, radius_x, quartic
+                )
             if low < top:
                 # a point where the gap is at least top (curvature >= 1 / R_x beyond `at`)
                 reach = math.sqrt(2.0 * radius_x * (top - low))
@@ -1029,12 +1112,8 @@ def patch_along_x(
     # the same model on the parabola (the node law's gap along x)
     half = math.sqrt(2.0 * radius_x * level)
     d_s = 2.0 * half / PATCH_CELLS
-    for i in range(PATCH_CELLS):
-        u = -half + (i + 0.5) * d_s
-        h[i] = u * u / (2.0 * radius_x)
-        w[i] = level - h[i]
-    reference, reference_rate = _line_model(
-        w, h, PATCH_CELLS, d_s, delta, rise, beta / d_s, beta_exp * beta / d_s, c, dc
+    reference, reference_rate = _reference_model(
+        PATCH_CELLS, d_s, delta, level, rise, beta / d_s, beta_exp * beta / d_s, c, dc
     )
     if not (force > 0.0 and reference > 0.0 and loaded > 0.0):
         return 1.0, 0.0, 1.0, xi_min
@@ -1044,15 +1123,14 @@ def patch_along_x(
 @numba.njit(cache=True)
 def _point(
     fields, gap, weight, s, row, i_y, i_z, q, q_t, shift_t, z_irr, omega, constants, forces,
-    details, creep, creep_at, walk, xs, x, mu, scratch,
+    details, creep, creep_at, walk, xs, x, mu,
 ):  # pragma: no cover (compiled)  # fmt: skip
     """Forces of one contact point (node or interpolated ``fields``, normal ``gap`` at zero
     lift), times ``weight``, added to ``forces`` and ``details[row]``; 1 if it carries load.
     ``creep[creep_at:]`` holds the creep table (``creep_at`` < 0: Polach's law) behind the
     node values; ``walk`` (i_node, k0, n_x, plane, b_offset, w_b, slope bound, pair) where
     the slot lies in them for :func:`lead_along_x` (i_node < 0: the rail prismatic),
-    ``xs`` the body's x nodes, ``x`` the wheelset's position, ``mu`` the body's friction,
-    ``scratch`` :func:`patch_along_x`'s work space."""
+    ``xs`` the body's x nodes, ``x`` the wheelset's position, ``mu`` the body's friction."""
     v, G, damping, kappa = constants[0], constants[3], constants[4], constants[5]
     sin_g, cos_g = fields[_SIN], fields[_COS]
     norm = math.hypot(sin_g, cos_g)
@@ -1109,7 +1187,7 @@ def _point(
                 creep, xs, int(walk[0]), int(walk[1]), walk[7] > 0.0, int(walk[2]),
                 int(walk[3]), int(walk[4]), walk[5], x, x_yaw, radius_x, quartic, x_lead,
                 delta, level, 2.0 * fields[_A_EXP] * level / delta, _BETA_PER_B * b_node,
-                fields[_B_EXP], walk[6], limit, scratch,
+                fields[_B_EXP], walk[6], limit, np.empty(2 * _CHAIN + 4 * PATCH_CELLS),
             )  # fmt: skip
             # applied beyond PATCH_DEADBAND, blended in smoothly up to twice it
             z = abs(ratio_x - 1.0) / PATCH_DEADBAND
@@ -1258,7 +1336,6 @@ def contact_forces(
     creep_at = int(values[n_values - 2]) if values[n_values - 1] > 0.5 else -1
     fields = np.empty(_N_FIELDS)
     walk = np.empty(8)  # where a slot's gaps lie along x, for lead_along_x (see _point)
-    scratch = np.empty(2 * _CHAIN + 4 * PATCH_CELLS)  # patch_along_x's work space
     n_max = details.shape[0] // max(layout.shape[0], 1)
     loaded = 0
     for k in range(layout.shape[0]):
@@ -1313,7 +1390,7 @@ def contact_forces(
                     loaded += _point(
                         fields, fields[_GAP], 1.0, s, k * n_max + c, i_y, i_z, q, q_t, shift_t,
                         z_irr, omega, constants, forces, details, values, creep_at, walk,
-                        xs_body, x, mu, scratch,
+                        xs_body, x, mu,
                     )  # fmt: skip
             continue
         # cell whose nodes hold different contact points.  Per shift node of the cell and
@@ -1343,7 +1420,6 @@ def contact_forces(
                     loaded += _point(
                         fields, gap, wb, s, k * n_max + c, i_y, i_z, q, q_t, shift_t, z_irr,
                         omega, constants, forces, details, values, creep_at, walk, xs_body, x, mu,
-                        scratch,
                     )  # fmt: skip
                     continue
                 for da in range(2):
@@ -1360,7 +1436,6 @@ def contact_forces(
                     loaded += _point(
                         fields, gap, w, s, k * n_max + c, i_y, i_z, q, q_t, shift_t, z_irr,
                         omega, constants, forces, details, values, creep_at, walk, xs_body, x, mu,
-                        scratch,
                     )  # fmt: skip
         for c in range(n_c):  # positions: averages over the nodes that hold the point
             row = k * n_max + c
