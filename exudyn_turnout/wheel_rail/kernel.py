@@ -19,6 +19,14 @@ call, for every body and every candidate at the current state:
    tables' lookup, :func:`.node_laws.node_normal_force`), plus an optional normal
    damping ``c d(delta)/dt`` (never pulling).  The semi-axes for the creep law follow the
    same per-node law (Hertz's ellipse, or the equivalent ellipse of the KP patch).
+   Where the rail's gap varies along x (the lead's search below) the law is corrected for
+   the patch along x (:func:`patch_along_x`: a slender line model on the actual gap along
+   x against the same model on the node law's parabola; at the check rail's flare end the
+   flare truncates the patch, 0.4-0.6 of the node law's force, within ~1 % of the exact
+   half-space solution on a synthetic kink): the force, its stiffness, the semi-axis a and
+   the contact's x (the force centre).  Not applied below a change of
+   :data:`PATCH_DEADBAND` (so prismatic rails, the rigid-envelope tables and the through
+   route's runs are unchanged to the bit).
 3. **Creepages** at the contact point from the wheelset's motion relative to the rail body
    (derivation below) and **creep forces** of Kalker's FASTSIM, interpolated in the creep
    table of :mod:`.creep_table` (``|F| <= mu N`` by construction), with Kalker's
@@ -127,6 +135,9 @@ __all__ = [
     "hertz_axes_per_root",
     "lead_along_x",
     "gap_slope_bound",
+    "patch_along_x",
+    "PATCH_CELLS",
+    "PATCH_DEADBAND",
 ]
 
 # Node fields of a packed table: geometry (gap, positions, angle, radius), the normal law
