@@ -67,7 +67,7 @@ def test_truncated_patch_force_against_the_exact_solution(delta, where):
     """The wheel's parabola's vertex behind the kink by ``where FLARE R_X``: the deepest
     point is the kink, the flare truncates the patch behind it.  Exact force ratios 0.31 ...
     0.60 (the node law's error was 1 / ratio); the model within 2 % of them (measured
-    0.3-0.8 %), the force centre within 0.3 mm (measured 0.1 mm)."""
+    0.2-0.8 %), the force centre within 0.3 mm (measured 0.1 mm)."""
     x_yaw = -where * FLARE * R_X
     plain, _ = _exact(X**2 / (2.0 * R_X), delta)
     kinked, centre = _exact(FLARE * np.maximum(-X, 0.0) + (X - x_yaw) ** 2 / (2.0 * R_X), delta)
