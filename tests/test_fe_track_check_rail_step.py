@@ -239,7 +239,9 @@ def test_fe_wheelset_refines_a_loaded_check_rail_by_default(turnout):
         for k, run in (("refined", refined), ("fine", fine), ("coarse", coarse))
     }
     assert np.max(np.abs(force["refined"] - force["fine"])) < 300.0  # N, of ~51 kN
-    assert np.max(np.abs(force["coarse"] - force["fine"])) > 3e3
+    # unrefined 2.73 kN off since the kernel's patch along x (kernel.patch_along_x: the
+    # flare's end truncates the flange back's patch, a softer contact); 4.9 kN before
+    assert np.max(np.abs(force["coarse"] - force["fine"])) > 2e3
     assert np.max(force["refined"]) == pytest.approx(np.max(force["fine"]), rel=2e-3)
     # the progress line goes on through the second run: never back, past the first run's
     # share, to its end

@@ -31,6 +31,9 @@ route's contact table at the state's shift and lift, piecewise linear between it
 
 Last, the exact contact of ``passage.post_contact`` (validation/peak_contact.py's columns)
 at the same instants on both rail surfaces: the normal law's error and the 3-D surfaces'.
+Since the patch's law along x (``wheel_rail.kernel.patch_along_x``) the passage's N is the
+node law times the truncated patch's ratio; the column "node law at delta" is the node's
+law alone at the same delta (the kernel before it), beside "N at delta", the exact force.
 """
 
 from __future__ import annotations
@@ -51,6 +54,7 @@ from exudyn_turnout.passage.contact.profile import wheel_and_setup
 from exudyn_turnout.passage.settings import PassageSettings
 from exudyn_turnout.wheel_rail.geometry import prepare_wheel
 from exudyn_turnout.wheel_rail.lead import contact_lead
+from exudyn_turnout.wheel_rail.node_laws import DELTA_REF
 from exudyn_turnout.wheel_rail.sections import SectionGrid
 from exudyn_turnout.wheel_rail.tables import lookup_values
 from exudyn_turnout.wheel_rail.turnout_design import rail_geometry
@@ -96,6 +100,19 @@ def _post_contact(turnout, result, stem, index, body, surfaces):
         return post.post_contact(turnout, result, stem, index)
     finally:
         post.route_rail_bodies = original
+
+
+def _node_law(table, fields, state) -> float:
+    """N (N) of the node's law alone at the passage's penetration (the kernel before
+    ``patch_along_x``): ``N_ref (delta / DELTA_REF)^n`` looked up at the contact's x and
+    shift in the slot of its angle (``tables.lookup_values``)."""
+    found = lookup_values(table, [state.x], [state.shift], [state.lift])[0]
+    slot = int(np.argmin(np.abs(found[:, fields["angle"]] - state.angle)))
+    reference, exponent = (
+        found[slot, fields["patch_force"]],
+        found[slot, fields["patch_force_exponent"]],
+    )
+    return float(reference * (state.approach / DELTA_REF) ** exponent)
 
 
 def _minimum(values: np.ndarray) -> tuple[float, float]:
@@ -170,8 +187,10 @@ def main() -> None:
         print(lines[-1], flush=True)
         for label, surfaces in (("exact sections", exact), ("the body's sections", None)):
             contact = _post_contact(turnout, result, stem, index, body, surfaces)
+            node_law = _node_law(table, fields, state)
             exact_rows.append(
-                f"| {run} | {label} | {contact.normal / 1e3:.1f} | {1e6 * contact.approach:.1f} "
+                f"| {run} | {label} | {contact.normal / 1e3:.1f} | {node_law / 1e3:.1f} "
+                f"| {1e6 * contact.approach:.1f} "
                 f"| {1e6 * contact.exact_approach:.1f} "
                 f"| {contact.exact_normal_at_approach / 1e3:.1f} "
                 f"| {1e6 * contact.interpenetration:.1f} "
@@ -210,10 +229,11 @@ def main() -> None:
         "force centre's x ahead of the axle; the passage's ellipse length 2a and the exact "
         "patch's).",
         "",
-        "| run | rail surface | N (kN) | delta (um) | approach at N (um) | N at delta (kN) "
+        "| run | rail surface | N (kN) | node law at delta (kN) | delta (um) "
+        "| approach at N (um) | N at delta (kN) "
         "| interpenetration (um) | N at state (kN) | x passage / exact (mm) "
         "| length passage / exact (mm) |",
-        "|---|---|---|---|---|---|---|---|---|---|",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
         *exact_rows,
         "",
         "## The gap along the track at the first run's instant (um)",

@@ -19,6 +19,14 @@ call, for every body and every candidate at the current state:
    tables' lookup, :func:`.node_laws.node_normal_force`), plus an optional normal
    damping ``c d(delta)/dt`` (never pulling).  The semi-axes for the creep law follow the
    same per-node law (Hertz's ellipse, or the equivalent ellipse of the KP patch).
+   Where the rail's gap varies along x (the lead's search below) the law is corrected for
+   the patch along x (:func:`patch_along_x`: a slender line model on the actual gap along
+   x against the same model on the node law's parabola; at the check rail's flare end the
+   flare truncates the patch, 0.4-0.6 of the node law's force, within ~1 % of the exact
+   half-space solution on a synthetic kink): the force, its stiffness, the semi-axis a and
+   the contact's x (the force centre).  Not applied below a change of
+   :data:`PATCH_DEADBAND` (so prismatic rails, the rigid-envelope tables and the through
+   route's runs are unchanged to the bit).
 3. **Creepages** at the contact point from the wheelset's motion relative to the rail body
    (derivation below) and **creep forces** of Kalker's FASTSIM, interpolated in the creep
    table of :mod:`.creep_table` (``|F| <= mu N`` by construction), with Kalker's
@@ -127,6 +135,9 @@ __all__ = [
     "hertz_axes_per_root",
     "lead_along_x",
     "gap_slope_bound",
+    "patch_along_x",
+    "PATCH_CELLS",
+    "PATCH_DEADBAND",
 ]
 
 # Node fields of a packed table: geometry (gap, positions, angle, radius), the normal law
@@ -755,6 +766,371 @@ def lead_along_x(
     return best_xi, best - here
 
 
+#: Cells of :func:`patch_along_x`'s line model along x (the patch and its reference each)
+PATCH_CELLS = 16
+#: Below this relative change of the normal force :func:`patch_along_x`'s correction is not
+#: applied (its own accuracy, tests/test_check_rail_kink_law.py), blended in smoothly up to
+#: twice it (the force, semi-axis and centre stay continuous)
+PATCH_DEADBAND = 0.01
+_CHAIN = 64  # largest number of x nodes of a contact's gap along x that patch_along_x holds
+#: the lateral spread of the line load as a distance along x: a semi-elliptic load of
+#: half-width b seen from its centre line acts as ``1 / sqrt(s^2 + beta^2)``, ``beta = b
+#: exp(-1/2) / 2`` (its integral over a cell matches the strip's, ``2 d (ln(4 d / b) - 1/2)``)
+_BETA_PER_B = 0.5 * math.exp(-0.5)
+# _line_model's cells k >= 2 apart: the kernel 1 / |s| over two cells, (k + 1) ln(k + 1) -
+# 2 k ln(k) + (k - 1) ln(k - 1), and the coefficient of -rho^2, 1 / (2 k (k^2 - 1))
+_CELL_FAR = np.array(
+    [0.0, 0.0]
+    + [
+        (k + 1) * math.log(k + 1) - 2 * k * math.log(k) + (k - 1) * math.log(k - 1)
+        for k in range(2, 64)
+    ]
+)
+_CELL_NEAR = np.array([0.0, 0.0] + [1.0 / (2.0 * k * (k * k - 1.0)) for k in range(2, 64)])
+# the parabola's cells (patch_along_x's reference) in units of the level: loads 1 - v^2 and
+# gaps v^2 at the cells' midpoints v, their sums, and the sums over pairs k cells apart of
+# the loads' products and of the loads (both orders), for _reference_model
+_V = -1.0 + (np.arange(PATCH_CELLS) + 0.5) * 2.0 / PATCH_CELLS
+_W_REF = 1.0 - _V * _V
+_REF_SUMS = np.array([_W_REF.sum(), (_W_REF * _V * _V).sum(), (_V * _V).sum()])
+_REF_PAIRS = np.array(
+    [
+        np.sum(
+            [
+                _W_REF[i] * _W_REF[j]
+                for i in range(PATCH_CELLS)
+                for j in range(PATCH_CELLS)
+                if abs(i - j) == k
+            ]
+        )
+        for k in range(PATCH_CELLS)
+    ]
+)
+_REF_LOADS = np.array(
+    [
+        np.sum(
+            [_W_REF[j] for i in range(PATCH_CELLS) for j in range(PATCH_CELLS) if abs(i - j) == k]
+        )
+        for k in range(PATCH_CELLS)
+    ]
+)
+
+
+@numba.njit(cache=True)
+def _chain_gap(cx, cg, n, xi):  # pragma: no cover (compiled)
+    """The rail's gap at xi on the chain's polyline (constant beyond its ends)."""
+    if xi <= cx[0]:
+        return cg[0]
+    if xi >= cx[n - 1]:
+        return cg[n - 1]
+    k = 0
+    while cx[k + 1] < xi:
+        k += 1
+    return cg[k] + (xi - cx[k]) * ((cg[k + 1] - cg[k]) / (cx[k + 1] - cx[k]))
+
+
+@numba.njit(cache=True)
+def _cell_coefficients(n, rho, c, dc):  # pragma: no cover (compiled)
+    """c[k], dc[k]: two cells k apart of :func:`_line_model`, the kernel integrated over
+    both, over the cell size, and its derivative by rho."""
+    # two cells k apart: int int 1 / sqrt(s^2 + rho^2) over d, Phi(k + 1) - 2 Phi(k) +
+    # Phi(k - 1) with Phi(s) = s asinh(s / rho) - sqrt(s^2 + rho^2) (Phi'' the kernel), and
+    # its derivative by rho, from dPhi / drho = -sqrt(s^2 + rho^2) / rho; from k = 2 on
+    # (rho < 1/2) its expansion in rho, _CELL_FAR - rho^2 / (2 k (k^2 - 1)), the next term
+    # below 5e-3 rho^4 relative
+    exact = n if rho >= 0.5 else min(n, 2)
+    root_b = math.sqrt(1.0 + rho * rho)
+    phi_b = math.asinh(1.0 / rho) - root_b
+    root_c = rho
+    phi_c = -rho
+    for k in range(exact):
+        root_a = math.sqrt((k + 1.0) * (k + 1.0) + rho * rho)
+        phi_a = (k + 1.0) * math.asinh((k + 1.0) / rho) - root_a
+        c[k] = phi_a - 2.0 * phi_c + phi_b
+        dc[k] = -(root_a - 2.0 * root_c + root_b) / rho
+        root_b, phi_b = root_c, phi_c
+        root_c, phi_c = root_a, phi_a
+    for k in range(exact, n):
+        c[k] = _CELL_FAR[k] - rho * rho * _CELL_NEAR[k]
+        dc[k] = -2.0 * rho * _CELL_NEAR[k]
+
+
+@numba.njit(cache=True)
+def _reference_model(n, d, delta, level, rise, rho, drho, c, dc):  # pragma: no cover
+    """:func:`_line_model` on the parabola's n cells (d each, the loads ``level (1 - v^2)``),
+    from the sums of its normalised cells (_REF_SUMS, _REF_PAIRS, _REF_LOADS)."""
+    _cell_coefficients(n, rho, c, dc)
+    energy = 0.0
+    spread = 0.0
+    acting = 0.0
+    for k in range(n):
+        energy += c[k] * _REF_PAIRS[k]
+        spread += dc[k] * _REF_PAIRS[k]
+        acting += c[k] * _REF_LOADS[k]
+    energy *= level * level
+    spread *= level * level
+    acting *= level
+    total = level * _REF_SUMS[0]
+    fit = level * (delta * _REF_SUMS[0] - level * _REF_SUMS[1])
+    dfit = rise * (delta * n - level * _REF_SUMS[2]) + total
+    if total <= 0.0 or fit <= 0.0 or energy <= 0.0:
+        return 0.0, 0.0
+    denergy = 2.0 * rise * acting + spread * drho / delta
+    force = d * total * fit / energy
+    return force, delta * (rise * n / total + dfit / fit - denergy / energy)
+
+
+@numba.njit(cache=True)
+def _line_model(w, h, n, d, delta, rise, rho, drho, c, dc):  # pragma: no cover (compiled)
+    """(force / (pi E*), its d ln / d ln delta) of :func:`patch_along_x`'s line model on n
+    cells of size d: loads per length w (the virtual interpenetration, > 0 in the patch),
+    geometric gaps h; ``rise`` = d w / d delta in the patch, ``rho = beta / d``, ``drho`` =
+    d rho / d ln delta; c, dc work space (n)."""
+    _cell_coefficients(n, rho, c, dc)
+    total = 0.0
+    fit = 0.0
+    dfit = 0.0
+    moved = 0.0
+    energy = 0.0  # sum over i, j of c_|i-j| w_i w_j
+    spread = 0.0  # ... of dc_|i-j| w_i w_j
+    acting = 0.0  # ... of c_|i-j| w_j
+    for i in range(n):
+        if w[i] <= 0.0:
+            continue
+        total += w[i]
+        moved += rise
+        fit += w[i] * (delta - h[i])
+        dfit += rise * (delta - h[i]) + w[i]
+        energy += c[0] * w[i] * w[i]
+        spread += dc[0] * w[i] * w[i]
+        acting += c[0] * w[i]
+        for j in range(i + 1, n):
+            if w[j] > 0.0:
+                energy += 2.0 * c[j - i] * w[i] * w[j]
+                spread += 2.0 * dc[j - i] * w[i] * w[j]
+                acting += c[j - i] * (w[i] + w[j])
+    if total <= 0.0 or fit <= 0.0 or energy <= 0.0:
+        return 0.0, 0.0
+    # every load grows by rise, the kernel with the lateral half-width
+    denergy = 2.0 * rise * acting + spread * drho / delta
+    force = d * total * fit / energy
+    return force, delta * (moved / total + dfit / fit - denergy / energy)
+
+
+@numba.njit(cache=True)
+def _piece(cx, cg, n, p):  # pragma: no cover (compiled)
+    """Piece p of the chain's polyline: (gap at xi0, xi0, slope, left, right); p = -1 and
+    n - 1 are the constant parts before its first node and after its last (1 m long)."""
+    if p < 0:
+        return cg[0], cx[0], 0.0, cx[0] - 1.0, cx[0]
+    if p >= n - 1:
+        return cg[n - 1], cx[n - 1], 0.0, cx[n - 1], cx[n - 1] + 1.0
+    slope = (cg[p + 1] - cg[p]) / (cx[p + 1] - cx[p])
+    return cg[p], cx[p], slope, cx[p], cx[p + 1]
+
+
+@numba.njit(cache=True)
+def _piece_gap(g0, x0, slope, xi, x_yaw, radius_x, quartic):  # pragma: no cover (compiled)
+    """The gap along x on one piece and its slope at xi (lead_along_x's sum)."""
+    value = g0 + slope * (xi - x0) + (xi - x_yaw) * (xi - x_yaw) / (2.0 * radius_x)
+    rate = slope + (xi - x_yaw) / radius_x + 4.0 * quartic * xi * xi * xi
+    return value + quartic * xi * xi * xi * xi, rate
+
+
+@numba.njit(cache=True)
+def _piece_root(g0, x0, slope, start, top, x_yaw, radius_x, quartic):  # pragma: no cover
+    """Where one convex piece's gap comes down to ``top``, by Newton's method from
+    ``start`` (gap >= top there, on the side away from the piece's minimum: the steps
+    approach the root monotonically)."""
+    xi = start
+    for _ in range(40):
+        value, rate = _piece_gap(g0, x0, slope, xi, x_yaw, radius_x, quartic)
+        if rate == 0.0:
+            break
+        step = (value - top) / rate
+        xi -= step
+        if abs(step) < 1e-10:
+            break
+    return xi
+
+
+@numba.njit(cache=True)
+def _patch_end(cx, cg, n, j, xi_min, top, x_yaw, radius_x, quartic, slope_bound, limit, ahead):
+    # pragma: no cover (compiled)
+    """The patch's end ahead of (or behind) the deepest point xi_min in piece j: the last
+    point where the gap along x stays below ``top``, piece after piece until the slopes
+    (``slope_bound``) cannot bring the gap back below it."""
+    end = xi_min
+    p = j
+    while p >= -1 and p <= n - 1:
+        g0, x0, slope, left, right = _piece(cx, cg, n, p)
+        if ahead:
+            left = max(left, xi_min)
+        else:
+            right = min(right, xi_min)
+        if left <= right:
+            # the piece's minimum: at its inner edge where the gap rises from there (the
+            # deepest point's own piece, most others), else inside (convex)
+            inner = left if ahead else right
+            low, rate = _piece_gap(g0, x0, slope, inner, x_yaw, radius_x, quartic)
+            at = inner
+            if (rate < 0.0 if ahead else rate > 0.0) and p != j:
+                low, at = _segment_minimum(
+                    g0, x0, slope, left, right, 0.0, x_yaw, radius_x, quartic
+                )
+            if low < top:
+                # a point where the gap is at least top (curvature >= 1 / R_x beyond `at`)
+                reach = math.sqrt(2.0 * radius_x * (top - low))
+                outer = min(right, at + reach) if ahead else max(left, at - reach)
+                value, _ = _piece_gap(g0, x0, slope, outer, x_yaw, radius_x, quartic)
+                if value < top:
+                    end = outer
+                else:
+                    end = _piece_root(g0, x0, slope, outer, top, x_yaw, radius_x, quartic)
+            edge = right if ahead else left
+            value, _ = _piece_gap(g0, x0, slope, edge, x_yaw, radius_x, quartic)
+            # the wheel's part of the slope grows along x: beyond the edge the gap's slope
+            # is at least (at most) this; then it stays above top
+            bound = (edge - x_yaw) / radius_x + 4.0 * quartic * edge * edge * edge
+            if value >= top and (bound > slope_bound if ahead else bound < -slope_bound):
+                break
+            if abs(edge - xi_min) > limit:
+                break
+        p += 1 if ahead else -1
+    return end
+
+
+@numba.njit(cache=True)
+def patch_along_x(
+    values, xs, i_node, k0, pair, n_x, plane, b_offset, w_b, x, x_yaw, radius_x, quartic,
+    xi_min, delta, level, rise, beta, beta_exp, slope_bound, limit, scratch,
+):  # pragma: no cover (compiled; tested in tests/test_check_rail_kink_law.py)  # fmt: skip
+    """The normal force of a contact whose gap along x is not the wheel's parabola alone.
+
+    The node's law (:mod:`.node_laws`) holds for the gap ``u^2 / (2 R_x)`` along x about the
+    deepest point; where the rail's gap varies along x (:func:`lead_along_x`'s sum of the
+    rail's polyline, the parabola and the profile term) the patch is another: at the check
+    rail's flare end (a convex kink of its face in plan) the flare opens the gap behind the
+    kink and the patch is truncated.  A slender patch (the flange back's: a / b ~ 40) is a
+    line load along x; Hertz's ellipse carries per length exactly ``w ∝ eps delta - h(x)``
+    (its pressure integrated across), with ``eps delta = a^2 / (2 R_x)`` the node's semi-axis
+    a (``level``).  The same distribution on the actual gap h(x) gives the patch's extent
+    and force centre; its magnitude follows from the displacement condition in the mean
+    over the patch (Galerkin: ``int w (u - (delta - h)) dx = 0``, u the surface
+    displacement of the line load by Boussinesq's ``1 / (pi E* s)``, across the width
+    spread as ``1 / sqrt(s^2 + beta^2)``, ``beta = b exp(-1/2) / 2``), on
+    :data:`PATCH_CELLS` cells of constant load (cell integrals exact).  The ratio of the
+    actual patch's force to the parabola's (the same model on both, so their errors cancel)
+    corrects the node's law.  Against the exact half-space solution on a flat face behind
+    a 1:67 flare (tests/test_check_rail_kink_law.py) within ~1 %.
+
+    Parameters
+    ----------
+    values, xs, i_node, k0, pair, n_x, plane, b_offset, w_b, x, x_yaw, radius_x, quartic
+        As for :func:`lead_along_x` (the rail's gap along x of the contact's slot).
+    xi_min : float
+        m, the deepest point along x (:func:`lead_along_x`'s lead).
+    delta : float
+        m, the penetration there (> 0).
+    level : float
+        m, the virtual interpenetration ``a^2 / (2 R_x)`` (the node's semi-axis a at delta).
+    rise : float
+        d level / d delta.
+    beta : float
+        m, the lateral spread as a distance along x, ``b exp(-1/2) / 2``.
+    beta_exp : float
+        d ln beta / d ln delta.
+    slope_bound : float
+        The table's largest gap slope along x (:func:`gap_slope_bound`).
+    limit : float
+        m, the patch is searched this far from xi_min at most (the lead's cap).
+    scratch : numpy.ndarray
+        Work space, at least ``128 + 4 PATCH_CELLS`` values.
+
+    Returns
+    -------
+    ratio : float
+        The patch's normal force over the parabola's (1: the same).
+    rate : float
+        ``d ln(ratio) / d ln(delta)``.
+    length : float
+        The patch's length along x over the parabola's ``2 a``.
+    centre : float
+        m, where the force acts, ahead of the axle.
+    """
+    cx = scratch[:_CHAIN]
+    cg = scratch[_CHAIN : 2 * _CHAIN]
+    w = scratch[2 * _CHAIN : 2 * _CHAIN + PATCH_CELLS]
+    h = scratch[2 * _CHAIN + PATCH_CELLS : 2 * _CHAIN + 2 * PATCH_CELLS]
+    c = scratch[2 * _CHAIN + 2 * PATCH_CELLS : 2 * _CHAIN + 3 * PATCH_CELLS]
+    dc = scratch[2 * _CHAIN + 3 * PATCH_CELLS : 2 * _CHAIN + 4 * PATCH_CELLS]
+    # the nodes that hold the point (as lead_along_x walks them), within the lead's cap
+    k_hi = k0 + 1 if pair else k0
+    while (
+        k_hi + 1 < n_x
+        and xs[k_hi] - x < xi_min + limit
+        and _same_point(
+            values, i_node + (k_hi + 1 - k0) * plane, i_node + (k_hi - k0) * plane, w_b, b_offset
+        )
+    ):
+        k_hi += 1
+    k_lo = k0
+    while (
+        k_lo > 0
+        and xs[k_lo] - x > xi_min - limit
+        and _same_point(
+            values, i_node + (k_lo - 1 - k0) * plane, i_node + (k_lo - k0) * plane, w_b, b_offset
+        )
+    ):
+        k_lo -= 1
+    while k_hi - k_lo + 1 > _CHAIN:  # keep the nodes nearest the contact
+        if xs[k_hi] - x - xi_min > xi_min - (xs[k_lo] - x):
+            k_hi -= 1
+        else:
+            k_lo += 1
+    n = k_hi - k_lo + 1
+    for i in range(n):
+        cx[i] = xs[k_lo + i] - x
+        cg[i] = _node_gap(values, i_node + (k_lo + i - k0) * plane, w_b, b_offset)
+    j = -1
+    while j + 1 < n and cx[j + 1] <= xi_min:
+        j += 1
+    g0, x0, slope, _, _ = _piece(cx, cg, n, j)
+    deepest, _ = _piece_gap(g0, x0, slope, xi_min, x_yaw, radius_x, quartic)
+    top = deepest + level
+    front = _patch_end(
+        cx, cg, n, j, xi_min, top, x_yaw, radius_x, quartic, slope_bound, limit, True
+    )
+    back = _patch_end(
+        cx, cg, n, j, xi_min, top, x_yaw, radius_x, quartic, slope_bound, limit, False
+    )
+    d = (front - back) / PATCH_CELLS
+    if not d > 0.0:
+        return 1.0, 0.0, 1.0, xi_min
+    loaded = 0.0
+    moment = 0.0
+    for i in range(PATCH_CELLS):
+        xi = back + (i + 0.5) * d
+        h[i] = _chain_gap(cx, cg, n, xi) + (xi - x_yaw) * (xi - x_yaw) / (2.0 * radius_x)
+        h[i] += quartic * xi * xi * xi * xi - deepest
+        w[i] = level - h[i]
+        if w[i] > 0.0:
+            loaded += w[i]
+            moment += w[i] * xi
+    force, rate = _line_model(
+        w, h, PATCH_CELLS, d, delta, rise, beta / d, beta_exp * beta / d, c, dc
+    )
+    # the same model on the parabola (the node law's gap along x)
+    half = math.sqrt(2.0 * radius_x * level)
+    d_s = 2.0 * half / PATCH_CELLS
+    reference, reference_rate = _reference_model(
+        PATCH_CELLS, d_s, delta, level, rise, beta / d_s, beta_exp * beta / d_s, c, dc
+    )
+    if not (force > 0.0 and reference > 0.0 and loaded > 0.0):
+        return 1.0, 0.0, 1.0, xi_min
+    return force / reference, rate - reference_rate, (front - back) / (2.0 * half), moment / loaded
+
+
 @numba.njit(cache=True)
 def _point(
     fields, gap, weight, s, row, i_y, i_z, q, q_t, shift_t, z_irr, omega, constants, forces,
@@ -780,6 +1156,10 @@ def _point(
     cap = MAX_LEAD_SINE * cos_g
     lead = (min(max(lead, -cap), cap) / cos_g) if cos_g > 0.0 else 0.0
     x_lead = r * lead
+    x_yaw = x_lead
+    radius_x = 0.0
+    quartic = 0.0
+    limit = 0.0
     if walk[0] >= 0.0 and cos_g > 0.0 and walk[6] != 0.0:
         # the rail's gap along x (piecewise linear between the table's nodes) moves the
         # contact off the yaw's lead: the minimum of the wheel's parabola and profile term
@@ -803,6 +1183,35 @@ def _point(
         gap += change
     gap -= r * lead * lead / (1.0 + math.sqrt(1.0 - lead * lead)) * cos_g
     delta = -(gap + cos_g * lift)
+    # where the rail's gap along x was searched, the patch along x it gives (patch_along_x):
+    # the ratio of its force to the node law's, of its length, and its force centre
+    kink = 1.0
+    kink_rate = 0.0
+    kink_length = 1.0
+    if walk[0] >= 0.0 and cos_g > 0.0 and walk[6] > 0.0 and delta > 0.0:
+        log_delta = math.log(delta / DELTA_REF)
+        a_node = fields[_A_REF] * math.exp(fields[_A_EXP] * log_delta)
+        b_node = fields[_B_REF] * math.exp(fields[_B_EXP] * log_delta)
+        level = a_node * a_node / (2.0 * radius_x)
+        if level > 0.0 and b_node > 0.0:
+            ratio_x, rate_x, length_x, centre_x = patch_along_x(
+                creep, xs, int(walk[0]), int(walk[1]), walk[7] > 0.0, int(walk[2]),
+                int(walk[3]), int(walk[4]), walk[5], x, x_yaw, radius_x, quartic, x_lead,
+                delta, level, 2.0 * fields[_A_EXP] * level / delta, _BETA_PER_B * b_node,
+                fields[_B_EXP], walk[6], limit, np.empty(2 * _CHAIN + 4 * PATCH_CELLS),
+            )  # fmt: skip
+            # applied beyond PATCH_DEADBAND, blended in smoothly up to twice it
+            z = abs(ratio_x - 1.0) / PATCH_DEADBAND
+            if z > 1.0:
+                blend = 1.0
+                blend_z = 0.0
+                if z < 2.0:
+                    blend = (z - 1.0) * (z - 1.0) * (5.0 - 2.0 * z)
+                    blend_z = 6.0 * (z - 1.0) * (2.0 - z)
+                kink = 1.0 + (ratio_x - 1.0) * blend
+                kink_rate = (blend + z * blend_z) * ratio_x * rate_x / kink
+                kink_length = 1.0 + (length_x - 1.0) * blend
+                x_lead += (centre_x - x_lead) * blend
     # the contact position: the force centre at this penetration (.node_laws.node_centre)
     # on the rail surface, on the force's line of action (.node_laws.centre_point)
     moved = node_centre(fields[_CENTRE], fields[_CENTRE_EXP], delta)
@@ -824,11 +1233,11 @@ def _point(
     delta_t = -(cos_g * lift_t - sin_g * shift_t)
     # the node's normal law N_ref (delta / DELTA_REF)^n and semi-axes (see .nonhertz)
     ratio = math.log(delta / DELTA_REF)
-    elastic = node_normal_force(fields[_F_REF], fields[_F_EXP], delta)
+    elastic = node_normal_force(fields[_F_REF], fields[_F_EXP], delta) * kink
     normal = elastic + damping * delta_t
     if normal <= 0.0:
         return 0
-    a = fields[_A_REF] * math.exp(fields[_A_EXP] * ratio)
+    a = fields[_A_REF] * math.exp(fields[_A_EXP] * ratio) * kink_length
     b = fields[_B_REF] * math.exp(fields[_B_EXP] * ratio)
     fx = 0.0
     ft = 0.0
@@ -874,7 +1283,7 @@ def _point(
     details[row, 13] += weight * spin
     details[row, 17] += weight * a
     details[row, 18] += weight * b
-    details[row, 21] += weight * fields[_F_EXP] * elastic / delta
+    details[row, 21] += weight * (fields[_F_EXP] + kink_rate) * elastic / delta
     details[row, 22] += weight * fields[_SEMI]
     return 1
 
