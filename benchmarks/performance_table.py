@@ -164,21 +164,21 @@ def _passage_rows(stick: Yardstick, repeats: int, quick: bool) -> tuple[list[Row
     simulated = (x_b - x_a) / base.v
     span = f"through, 100 km/h, x {x_a:g}..{x_b:g} m ({simulated:.2f} s simulated)"
     rows, raw = [], {}
-    compiled = replace(base, solver="compiled")
+    exudyn = replace(base, solver="exudyn")
     for label, vehicle, track, settings in (
         ("single wheelset, 3-layer", "wheelset", "3-layer", base),
         ("single wheelset, 2-layer", "wheelset", "2-layer", base),
         ("full Manchester vehicle (4 wheelsets), 3-layer", "manchester", "3-layer", base),
         (
-            "full Manchester vehicle, 3-layer, `--solver compiled`",
+            "full Manchester vehicle, 3-layer, `--solver exudyn`",
             "manchester",
             "3-layer",
-            compiled,
+            exudyn,
         ),
     ):
         print(f"... {label}", file=sys.stderr, flush=True)
-        if settings is compiled:  # its first call may compile the stepper: untimed
-            simulate_passage(turnout, replace(compiled, x_end=x_a + 1.0), vehicle, track=track)
+        if vehicle == "manchester":  # the first call may compile the stepper: untimed
+            simulate_passage(turnout, replace(settings, x_end=x_a + 1.0), vehicle, track=track)
         t = stick.measure(
             lambda vehicle=vehicle, track=track, settings=settings: simulate_passage(
                 turnout, settings, vehicle, track=track
@@ -201,13 +201,14 @@ def _passage_rows(stick: Yardstick, repeats: int, quick: bool) -> tuple[list[Row
     full = raw["full Manchester vehicle (4 wheelsets), 3-layer"]
     rows[2] = replace(
         rows[2],
-        note=f"{full.units / w3.units:.1f}x the wheelset; goal <= 0.5x real time (quiet machine)",
+        note=f"{full.units / w3.units:.1f}x the wheelset; goal <= 0.5x real time (quiet machine); "
+        "the package's compiled stepper, the default since session 13",
     )
-    fast = raw["full Manchester vehicle, 3-layer, `--solver compiled`"]
+    slow = raw["full Manchester vehicle, 3-layer, `--solver exudyn`"]
     rows[3] = replace(
         rows[3],
-        note=f"{fast.units / full.units:.2f}x the units of Exudyn's run of the same case (opt-in; "
-        "peaks within Newton's tolerance, tests/test_stepper.py)",
+        note=f"Exudyn's own integrator: {slow.units / full.units:.2f}x the default's units "
+        "(peaks within Newton's tolerance of each other, tests/test_stepper.py)",
     )
     fe_a, fe_b = (44.0, 44.5) if quick else (44.0, 49.0)
     crossing = replace(base, x_start=fe_a, x_end=fe_b)

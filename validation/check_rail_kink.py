@@ -38,7 +38,6 @@ law alone at the same delta (the kernel before it), beside "N at delta", the exa
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import time
 from pathlib import Path
@@ -57,7 +56,6 @@ from exudyn_turnout.wheel_rail.lead import contact_lead
 from exudyn_turnout.wheel_rail.node_laws import DELTA_REF
 from exudyn_turnout.wheel_rail.sections import SectionGrid
 from exudyn_turnout.wheel_rail.tables import lookup_values
-from exudyn_turnout.wheel_rail.turnout_design import rail_geometry
 
 HERE = Path(__file__).resolve().parent
 RUNS = (("manchester", 2), ("manchester", 3), ("wheelset", 2), ("wheelset", 3))
@@ -68,38 +66,15 @@ FLARE_END = 45.29  #: m, the packaged check rail's flare meets its check line
 
 def _exact_sections(turnout, body, x_ws: float) -> SectionGrid:
     """The body's sections plus its exact section every 1 mm around the wheel."""
-    context = sections_module._context(rail_geometry(turnout), True)
-    old = body.sections
-    dense = np.arange(x_ws - 0.04, x_ws + 0.12, 0.001)
-    x = np.union1d(old.x, dense)
-    z = np.stack(
-        [
-            old.z[np.flatnonzero(old.x == v)[0]]
-            if v in old.x
-            else sections_module._body_heights(context, body.segments, float(v))
-            for v in x
-        ]
-    )
-    return SectionGrid(x=x, y=old.y, z=z, name=old.name)
+    return sections_module.exact_sections_between(turnout, body, x_ws - 0.04, x_ws + 0.12)
 
 
 def _post_contact(turnout, result, stem, index, body, surfaces):
-    """``post.post_contact`` with the check rail's sections replaced by ``surfaces``."""
+    """``post.post_contact`` on the rail's exact sections every 1 mm (``surfaces`` given:
+    its default) or on the body's own sections blended between its nodes (None)."""
     if surfaces is None:
-        return post.post_contact(turnout, result, stem, index)
-    original = post.route_rail_bodies
-
-    def replaced(turnout_, route):
-        return tuple(
-            dataclasses.replace(b, sections=surfaces) if b.name == body.name else b
-            for b in original(turnout_, route)
-        )
-
-    post.route_rail_bodies = replaced
-    try:
-        return post.post_contact(turnout, result, stem, index)
-    finally:
-        post.route_rail_bodies = original
+        return post.post_contact(turnout, result, stem, index, section_step=None)
+    return post.post_contact(turnout, result, stem, index)
 
 
 def _node_law(table, fields, state) -> float:

@@ -138,6 +138,7 @@ __all__ = [
     "patch_along_x",
     "PATCH_CELLS",
     "PATCH_DEADBAND",
+    "PATCH_SLENDER",
 ]
 
 # Node fields of a packed table: geometry (gap, positions, angle, radius), the normal law
@@ -772,6 +773,13 @@ PATCH_CELLS = 16
 #: applied (its own accuracy, tests/test_check_rail_kink_law.py), blended in smoothly up to
 #: twice it (the force, semi-axis and centre stay continuous)
 PATCH_DEADBAND = 0.01
+#: a / b of the node's ellipse from which :func:`patch_along_x`'s correction applies in full;
+#: none below half of it, blended smoothly between.  The line model takes the patch as a
+#: line load along x (Boussinesq over a width much smaller than its length): the flange
+#: back on a check rail (a / b ~ 40) is one, a tread patch (a / b ~ 1) is not.  Measured on
+#: a tread: a dipped joint (tests/test_irregularity_contact.py) moved 6 % of its peak with
+#: the line model applied, against the same dip as an irregularity of the wheel's path.
+PATCH_SLENDER = 6.0
 _CHAIN = 64  # largest number of x nodes of a contact's gap along x that patch_along_x holds
 #: the lateral spread of the line load as a distance along x: a semi-elliptic load of
 #: half-width b seen from its centre line acts as ``1 / sqrt(s^2 + beta^2)``, ``beta = b
@@ -1193,7 +1201,12 @@ def _point(
         a_node = fields[_A_REF] * math.exp(fields[_A_EXP] * log_delta)
         b_node = fields[_B_REF] * math.exp(fields[_B_EXP] * log_delta)
         level = a_node * a_node / (2.0 * radius_x)
-        if level > 0.0 and b_node > 0.0:
+        # only on slender patches (PATCH_SLENDER), blended in smoothly from half of it
+        slender = 0.0
+        if b_node > 0.0:
+            u = (2.0 * a_node / b_node - PATCH_SLENDER) / PATCH_SLENDER
+            slender = 1.0 if u >= 1.0 else (u * u * (3.0 - 2.0 * u) if u > 0.0 else 0.0)
+        if level > 0.0 and slender > 0.0:
             ratio_x, rate_x, length_x, centre_x = patch_along_x(
                 creep, xs, int(walk[0]), int(walk[1]), walk[7] > 0.0, int(walk[2]),
                 int(walk[3]), int(walk[4]), walk[5], x, x_yaw, radius_x, quartic, x_lead,
@@ -1208,6 +1221,8 @@ def _point(
                 if z < 2.0:
                     blend = (z - 1.0) * (z - 1.0) * (5.0 - 2.0 * z)
                     blend_z = 6.0 * (z - 1.0) * (2.0 - z)
+                blend *= slender
+                blend_z *= slender
                 kink = 1.0 + (ratio_x - 1.0) * blend
                 kink_rate = (blend + z * blend_z) * ratio_x * rate_x / kink
                 kink_length = 1.0 + (length_x - 1.0) * blend
