@@ -583,6 +583,33 @@ def _same_point(values, i, j, w_b, b_offset):  # pragma: no cover (compiled)
 
 
 @numba.njit(cache=True)
+def _point_nodes(
+    values, xs, i_node, k0, pair, n_x, plane, w_b, b_offset, x, lo, hi
+):  # pragma: no cover (compiled)
+    """(k_lo, k_hi): the x nodes from ``k0`` on in both directions that hold the same
+    contact point (:func:`_same_point`), within ``xs - x`` of ``lo`` and ``hi``."""
+    k_hi = k0 + 1 if pair else k0
+    while (
+        k_hi + 1 < n_x
+        and xs[k_hi] - x < hi
+        and _same_point(
+            values, i_node + (k_hi + 1 - k0) * plane, i_node + (k_hi - k0) * plane, w_b, b_offset
+        )
+    ):
+        k_hi += 1
+    k_lo = k0
+    while (
+        k_lo > 0
+        and xs[k_lo] - x > lo
+        and _same_point(
+            values, i_node + (k_lo - 1 - k0) * plane, i_node + (k_lo - k0) * plane, w_b, b_offset
+        )
+    ):
+        k_lo -= 1
+    return k_lo, k_hi
+
+
+@numba.njit(cache=True)
 def _segment_minimum(g0, x0, slope, left, right, x, x_yaw, radius_x, quartic):  # pragma: no cover
     """(value, xi) of ``g0 + slope (x + xi - x0) + (xi - x_yaw)^2 / (2 R_x) + quartic xi^4``
     smallest over xi in ``[left, right]`` (compiled; convex: its derivative increases, its
@@ -706,24 +733,7 @@ def lead_along_x(
         m, gap at the contact plus the parabola, minus the rail's gap at x (add it to the
         gap at x, then subtract the yaw's closing).
     """
-    k_hi = k0 + 1 if pair else k0
-    while (
-        k_hi + 1 < n_x
-        and xs[k_hi] - x < hi
-        and _same_point(
-            values, i_node + (k_hi + 1 - k0) * plane, i_node + (k_hi - k0) * plane, w_b, b_offset
-        )
-    ):
-        k_hi += 1
-    k_lo = k0
-    while (
-        k_lo > 0
-        and xs[k_lo] - x > lo
-        and _same_point(
-            values, i_node + (k_lo - 1 - k0) * plane, i_node + (k_lo - k0) * plane, w_b, b_offset
-        )
-    ):
-        k_lo -= 1
+    k_lo, k_hi = _point_nodes(values, xs, i_node, k0, pair, n_x, plane, w_b, b_offset, x, lo, hi)
     # the rail's gap at x (on the nodes' polyline, constant beyond its ends)
     first = _node_gap(values, i_node + (k_lo - k0) * plane, w_b, b_offset)
     last = _node_gap(values, i_node + (k_hi - k0) * plane, w_b, b_offset)
@@ -1073,24 +1083,20 @@ def patch_along_x(
     c = scratch[2 * _CHAIN + 2 * PATCH_CELLS : 2 * _CHAIN + 3 * PATCH_CELLS]
     dc = scratch[2 * _CHAIN + 3 * PATCH_CELLS : 2 * _CHAIN + 4 * PATCH_CELLS]
     # the nodes that hold the point (as lead_along_x walks them), within the lead's cap
-    k_hi = k0 + 1 if pair else k0
-    while (
-        k_hi + 1 < n_x
-        and xs[k_hi] - x < xi_min + limit
-        and _same_point(
-            values, i_node + (k_hi + 1 - k0) * plane, i_node + (k_hi - k0) * plane, w_b, b_offset
-        )
-    ):
-        k_hi += 1
-    k_lo = k0
-    while (
-        k_lo > 0
-        and xs[k_lo] - x > xi_min - limit
-        and _same_point(
-            values, i_node + (k_lo - 1 - k0) * plane, i_node + (k_lo - k0) * plane, w_b, b_offset
-        )
-    ):
-        k_lo -= 1
+    k_lo, k_hi = _point_nodes(
+        values,
+        xs,
+        i_node,
+        k0,
+        pair,
+        n_x,
+        plane,
+        w_b,
+        b_offset,
+        x,
+        xi_min - limit,
+        xi_min + limit,
+    )
     while k_hi - k_lo + 1 > _CHAIN:  # keep the nodes nearest the contact
         if xs[k_hi] - x - xi_min > xi_min - (xs[k_lo] - x):
             k_hi -= 1
