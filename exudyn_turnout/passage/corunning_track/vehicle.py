@@ -54,9 +54,8 @@ those run at the fine step directly, the fine stepping ended during the run wher
 has ended (:class:`~exudyn_turnout.passage.common.CheckRailStop`: Exudyn's pre-step function,
 or the compiled stepper's stop between its chunks at the grid times: on the diverging route,
 80 km/h, 20..55 m, 2 and 3 layers, the same windows and the summary's peaks within 2e-9 of
-each other, relative; tests/test_stepper_stop.py). The
-after-the-fact check stays as
-a safety net: a segment that loads its check rail where not predicted runs at its step first,
+each other, relative; tests/test_stepper_stop.py). The after-the-fact check stays as a
+safety net: a segment that loads its check rail where not predicted runs at its step first,
 then again from its start as before (``summary["check_rail_rerun"]``). The progress never
 goes back. ``summary["check_rail_refined"]`` gives the windows, ``check_rail_predicted`` the
 predicted segments. The diverging route at 80 km/h, 2 layers, 20..55 m (measured before
