@@ -19,14 +19,13 @@ import numpy as np
 import pytest
 
 from exudyn_turnout.inputs.routes import load_route
-from exudyn_turnout.passage.common import (
+from exudyn_turnout.passage.check_rail_steps import (
     CHECK_RAIL_MARGIN,
     CHECK_RAIL_QUIET,
     CheckRailSteps,
     CheckRailStop,
-    monotone_progress,
-    pick_rows,
 )
+from exudyn_turnout.passage.common import monotone_progress, pick_rows
 from exudyn_turnout.passage.run import simulate_passage
 from exudyn_turnout.passage.settings import PassageSettings
 

@@ -26,17 +26,17 @@ import numpy as np
 import pytest
 
 from exudyn_turnout.cli.passage import settings_from_args
-from exudyn_turnout.passage.common import (
+from exudyn_turnout.passage.check_rail_steps import (
     CHECK_RAIL_MARGIN,
     CheckRailSteps,
     CheckRailStepWarning,
     check_rail_step,
     check_rail_window,
-    pick_rows,
     piece_times,
     refine_pieces,
     refined_line,
 )
+from exudyn_turnout.passage.common import pick_rows
 from exudyn_turnout.passage.fe_track.common import check_rail_steps
 from exudyn_turnout.passage.run import simulate_passage
 from exudyn_turnout.passage.settings import DEFAULT_SETTINGS, PassageError, PassageSettings

@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 
 from exudyn_turnout.inputs.routes import load_route
-from exudyn_turnout.passage.common import CHECK_RAIL_MARGIN, CheckRailStepWarning
+from exudyn_turnout.passage.check_rail_steps import CHECK_RAIL_MARGIN, CheckRailStepWarning
 from exudyn_turnout.passage.fe_track.common import (
     CHECK_RAIL_LEAD,
     FIRST_RUN_SHARE,

@@ -1,6 +1,6 @@
 """The compiled stepper's stop (passage/corunning_track/stepper.py ``integrate(stop=...)``):
 the check rail's predicted fine piece ended where its load has ended
-(:class:`~exudyn_turnout.passage.common.CheckRailStop`), as Exudyn's pre-step function
+(:class:`~exudyn_turnout.passage.check_rail_steps.CheckRailStop`), as Exudyn's pre-step function
 returning False ends Exudyn's run.
 
 1. The chunks alone, on the linear 2-DOF oscillator of tests/test_stepper.py: the stop is

@@ -836,7 +836,7 @@ def _check_rail_force(turnout, result, route: str, wheelsets: int):
     import numpy as np
 
     from exudyn_turnout.inputs.routes import load_route
-    from exudyn_turnout.passage.common import check_rail_pairs
+    from exudyn_turnout.passage.check_rail_steps import check_rail_pairs
 
     columns = result.columns
     labels = [f"ws{i + 1}_" for i in range(wheelsets)] if wheelsets else [""]

@@ -15,7 +15,7 @@ from exudyn_turnout.cli.main import (
     number,
     turnout_from_args,
 )
-from exudyn_turnout.passage.common import refined_line
+from exudyn_turnout.passage.check_rail_steps import refined_line
 from exudyn_turnout.passage.events import event_line
 from exudyn_turnout.passage.run import DEFAULT_VEHICLE, simulate_passage
 from exudyn_turnout.passage.settings import TRACKS

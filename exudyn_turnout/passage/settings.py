@@ -59,7 +59,7 @@ class PassageSettings:
     #: window of the check rail's load, predicted or run again
     #: (:mod:`~exudyn_turnout.passage.corunning_track.vehicle`; the FE track runs again,
     #: :mod:`~exudyn_turnout.passage.fe_track.common`); None: never (a run at a coarser step
-    #: warns, :class:`~exudyn_turnout.passage.common.CheckRailStepWarning`). 2.5e-5 s: the
+    #: warns, :class:`~exudyn_turnout.passage.check_rail_steps.CheckRailStepWarning`). 2.5e-5 s: the
     #: 2-layer check-rail force on the diverging route, full vehicle at 80 km/h, 86.43 kN
     #: against 86.34 / 86.32 kN at 1.25e-5 / 6.25e-6 s, 87.91 kN (+1.8 %) at 1e-4 s
     #: throughout (validation/vehicle_step_convergence.md; before issue 22's contact lead

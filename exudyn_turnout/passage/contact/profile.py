@@ -315,7 +315,7 @@ class ProfileContactElement(ContactElement):
     def last_forces(self) -> np.ndarray:
         """The generalised forces of the last :meth:`__call__` (during a run, before a step:
         those of the step's start; the check rail's watch,
-        :class:`~exudyn_turnout.passage.common.CheckRailStop`). A view, overwritten by the
+        :class:`~exudyn_turnout.passage.check_rail_steps.CheckRailStop`). A view, overwritten by the
         next call.
 
         Returns

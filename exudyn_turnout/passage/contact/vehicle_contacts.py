@@ -305,7 +305,7 @@ class VehicleContacts:
         """Per element, its generalised contact forces (the kernel's, without the curving
         load) at the compiled path's last call: during a run, before a step, those of the
         step's start (the check rail's watch,
-        :class:`~exudyn_turnout.passage.common.CheckRailStop`). Views, overwritten by the
+        :class:`~exudyn_turnout.passage.check_rail_steps.CheckRailStop`). Views, overwritten by the
         next call; None where the compiled path did not serve the last call.
 
         Returns

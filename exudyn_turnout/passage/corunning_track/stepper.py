@@ -46,15 +46,16 @@ sample's time plus the period, and at the end). A step whose Newton fails is not
 smaller (Exudyn would): the run stops with the time and position.
 
 Stopping early (the check rail's predicted fine piece,
-:class:`~exudyn_turnout.passage.common.CheckRailStop`, which acts every ``m`` fine steps, at
-the segment's grid times): the steps run in compiled chunks ending on those steps, and
-between two chunks ``stop`` is called with the contacts' last evaluation at the step's start
-(the last accepted step's, Newton's last call: what ``VehicleContacts.last_forces`` reads, as
-on Exudyn's path before a step) and a function writing the state into Exudyn's current
-configuration; False ends the run after that step, as an Exudyn pre-step function returning
-False does. A run without ``stop`` makes no Python call between its progress reports. On the
-diverging route (80 km/h, 2 and 3 layers, 20..55 m) the same refined and predicted windows as
-Exudyn's path and every peak of the summary within 2e-9 of Exudyn's (relative).
+:class:`~exudyn_turnout.passage.check_rail_steps.CheckRailStop`, which acts every ``m`` fine
+steps, at the segment's grid times): the steps run in compiled chunks ending on those steps,
+and between two chunks ``stop`` is called with the contacts' last evaluation at the step's
+start (the last accepted step's, Newton's last call: what ``VehicleContacts.last_forces``
+reads, as on Exudyn's path before a step) and a function writing the state into Exudyn's
+current configuration; False ends the run after that step, as an Exudyn pre-step function
+returning False does. A run without ``stop`` makes no Python call between its progress
+reports. On the diverging route (80 km/h, 2 and 3 layers, 20..55 m) the same refined and
+predicted windows as Exudyn's path and every peak of the summary within 2e-9 of Exudyn's
+(relative).
 """
 
 from __future__ import annotations

@@ -42,18 +42,20 @@ the whole turnout. A segment's system and the carry-over are
 :mod:`~exudyn_turnout.passage.corunning_track.vehicle_system`'s.
 
 The check rail (issue 22): a segment where a check-rail contact carries load
-(:func:`~exudyn_turnout.passage.common.check_rail_window`) while the run's step is coarser
+(:func:`~exudyn_turnout.passage.check_rail_steps.check_rail_window`) while the run's step is coarser
 than ``settings.check_rail_time_step`` runs at the finer step (the segment's step over an
 integer) from its start, or from where the check rail starts, to the load's end and a margin,
-then at its own step (:func:`~exudyn_turnout.passage.common.refine_pieces`), sampled at the
+then at its own step
+(:func:`~exudyn_turnout.passage.check_rail_steps.refine_pieces`), sampled at the
 segment's grid times (:func:`~exudyn_turnout.passage.common.pick_rows`; the compiled
 residual's record of every fine step is read at those times). Which segments: predicted
-before the run (:meth:`~exudyn_turnout.passage.common.CheckRailSteps.predict`: a wheelset on
+before the run
+(:meth:`~exudyn_turnout.passage.check_rail_steps.CheckRailSteps.predict`: a wheelset on
 the check rail's x range, displaced towards it by half its clearance at the segment's start),
 those run at the fine step directly, the fine stepping ended during the run where the load
-has ended (:class:`~exudyn_turnout.passage.common.CheckRailStop`: Exudyn's pre-step function,
-or the compiled stepper's stop between its chunks at the grid times: on the diverging route,
-80 km/h, 20..55 m, 2 and 3 layers, the same windows and the summary's peaks within 2e-9 of
+has ended (:class:`~exudyn_turnout.passage.check_rail_steps.CheckRailStop`: Exudyn's pre-step
+function, or the compiled stepper's stop between its chunks at the grid times: on the diverging
+route, 80 km/h, 20..55 m, 2 and 3 layers, the same windows and the summary's peaks within 2e-9 of
 each other, relative; tests/test_stepper_stop.py). The after-the-fact check stays as a
 safety net: a segment that loads its check rail where not predicted runs at its step first,
 then again from its start as before (``summary["check_rail_rerun"]``). The progress never
@@ -152,9 +154,8 @@ from exudyn_turnout.inputs.routes import Route
 from exudyn_turnout.inputs.turnout import Turnout
 from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.inputs.vehicle_model import VehicleModel
+from exudyn_turnout.passage.check_rail_steps import CheckRailSteps, CheckRailStop
 from exudyn_turnout.passage.common import (
-    CheckRailSteps,
-    CheckRailStop,
     QuietExudyn,
     join_segments,
     monotone_progress,

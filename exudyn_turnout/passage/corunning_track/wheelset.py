@@ -19,7 +19,7 @@ rails, and the state of everything that continues (vehicle, sleeper, rails prese
 both zones, or a rail slot that a route says continues another) is carried over. A zone
 where a check-rail contact carried load at a step coarser than
 ``settings.check_rail_time_step`` runs again from its start at that step to the load's end
-(:class:`~exudyn_turnout.passage.common.CheckRailSteps`, as the full vehicle's segments):
+(:class:`~exudyn_turnout.passage.check_rail_steps.CheckRailSteps`, as the full vehicle's segments):
 a zone predicted to load it (the wheelset displaced towards it by half its clearance at the
 zone's start; the profile contact only) runs at that step directly, the fine stepping ended
 during the run; one not predicted that loads it runs at its step first, then again (the
@@ -44,10 +44,9 @@ from exudyn_turnout.corunning.parameters import CoRunningParameters, co_running_
 from exudyn_turnout.inputs.routes import Route
 from exudyn_turnout.inputs.turnout import Turnout, Zone
 from exudyn_turnout.inputs.vehicle import Vehicle
+from exudyn_turnout.passage.check_rail_steps import CheckRailSteps, CheckRailStop
 from exudyn_turnout.passage.common import (
     NEWTON_ABSOLUTE_TOLERANCE,
-    CheckRailSteps,
-    CheckRailStop,
     QuietExudyn,
     join_segments,
     monotone_progress,

@@ -3,14 +3,14 @@ FE contact element, the coupled run's settings, failure reasons, output columns,
 summary of the FE track and its finer step where a check rail carries load.
 
 The check rail's finer step (issue 22): as on the co-running tracks
-(:class:`~exudyn_turnout.passage.common.CheckRailSteps`), a run whose check rail carried
-load (above :data:`~exudyn_turnout.passage.common.CHECK_RAIL_LOADED` of the static wheel
+(:class:`~exudyn_turnout.passage.check_rail_steps.CheckRailSteps`), a run whose check rail carried
+load (above :data:`~exudyn_turnout.passage.check_rail_steps.CHECK_RAIL_LOADED` of the static wheel
 load) at a step coarser than ``PassageSettings.check_rail_time_step`` is run again from
 its start, by default. Unlike there, the second run is not restarted anywhere: one Exudyn
 solver steps it in pieces (:func:`solve_in_pieces`), the run's step up to
 :data:`CHECK_RAIL_LEAD` before each loaded window (:func:`loaded_windows`), h / m
 (m = ceil(h / check_rail_time_step)) through it to
-:data:`~exudyn_turnout.passage.common.CHECK_RAIL_MARGIN` after its last load, the run's
+:data:`~exudyn_turnout.passage.check_rail_steps.CHECK_RAIL_MARGIN` after its last load, the run's
 step again after it (:func:`refined_pieces`); the FE planes refactorise their step matrix
 at each change (:meth:`FECoSimulation.set_step
 <exudyn_turnout.passage.fe_track.coupling.FECoSimulation.set_step>`). Every m-th fine
@@ -38,7 +38,7 @@ import numpy as np
 
 from exudyn_turnout.inputs.routes import Route
 from exudyn_turnout.inputs.vehicle import Vehicle
-from exudyn_turnout.passage.common import (
+from exudyn_turnout.passage.check_rail_steps import (
     CHECK_RAIL_MARGIN,
     CheckRailSteps,
     check_rail_pairs,
@@ -289,12 +289,12 @@ def check_rail_steps(
     contact carried load at a step coarser than ``settings.check_rail_time_step``.
 
     Keys as on the co-running tracks (:meth:`CheckRailSteps.record
-    <exudyn_turnout.passage.common.CheckRailSteps.record>`): ``check_rail_time_step_s``,
+    <exudyn_turnout.passage.check_rail_steps.CheckRailSteps.record>`): ``check_rail_time_step_s``,
     ``check_rail_refined`` (the windows run at the finer step, front wheelset's x) and,
     where a loaded window ran at the coarse step (refining off: ``check_rail_time_step``
     None; or a load outside the windows the first run found),
     ``check_rail_step_warning``, issued as a
-    :class:`~exudyn_turnout.passage.common.CheckRailStepWarning`. Measured (diverging
+    :class:`~exudyn_turnout.passage.check_rail_steps.CheckRailStepWarning`. Measured (diverging
     route, 80 km/h, single wheelset, x 42..52 m, the check-rail force's peak at the
     samples every 1e-4 s): 51.18 kN at 1e-4 s unrefined, 52.09 kN refined, 52.09 / 51.95 kN
     at 2.5e-5 / 1.25e-5 s throughout. The 66.9 / 67.7 kN of those fine runs sampled every
@@ -347,7 +347,7 @@ def loaded_windows(
 ) -> list[tuple[float, float, float]]:
     """The time windows in which a check-rail contact carried load, each one's peak.
 
-    As :func:`~exudyn_turnout.passage.common.check_rail_window`, but split where the load
+    As :func:`~exudyn_turnout.passage.check_rail_steps.check_rail_window`, but split where the load
     stops for longer than ``gap`` (the full vehicle's bogies pass a check rail ~0.8 s
     apart at 80 km/h: two windows, not one over the whole run).
 
@@ -357,7 +357,7 @@ def loaded_windows(
         The run's columns: ``t_s`` and per contact ``Fy_<label><wheel>_<slot>_N``,
         ``Fz_...``.
     pairs : sequence of (str, str)
-        :func:`~exudyn_turnout.passage.common.check_rail_pairs`.
+        :func:`~exudyn_turnout.passage.check_rail_steps.check_rail_pairs`.
     threshold : float
         N.
     labels : sequence of str
@@ -398,7 +398,7 @@ def refined_pieces(
 
     A window (t_first, t_last) is run at h / m, m = ceil(h / ``fine_step``), from the grid
     point at or before t_first - :data:`CHECK_RAIL_LEAD` to the one at or after t_last +
-    :data:`~exudyn_turnout.passage.common.CHECK_RAIL_MARGIN` (to the run's end where less
+    :data:`~exudyn_turnout.passage.check_rail_steps.CHECK_RAIL_MARGIN` (to the run's end where less
     than a margin is left); overlapping windows merge; the rest at h.
 
     Parameters
@@ -562,7 +562,7 @@ def check_rail_plan(
     """The pieces of a second run at the finer step, or None where none is due.
 
     None where the route has no check rail, refining is off or not finer
-    (:func:`~exudyn_turnout.passage.common.check_rail_step`), or no check rail carried
+    (:func:`~exudyn_turnout.passage.check_rail_steps.check_rail_step`), or no check rail carried
     load in the first run (``columns``).
 
     Parameters
@@ -584,7 +584,7 @@ def check_rail_plan(
     tuple of (int, int, int) or None
         :func:`refined_pieces`.
     """
-    from exudyn_turnout.passage.common import CHECK_RAIL_LOADED
+    from exudyn_turnout.passage.check_rail_steps import CHECK_RAIL_LOADED
 
     fine = check_rail_step(settings)
     pairs = check_rail_pairs(route)
@@ -610,8 +610,8 @@ def two_run_progress(
     """Progress callbacks of an FE passage's first run and of its second, finer one.
 
     Where no second run can follow (no check rail on the route, or refining off,
-    :func:`~exudyn_turnout.passage.common.check_rail_step`), the first run reports 0..1 and
-    the second callback is None. Otherwise the first reports 0..:data:`FIRST_RUN_SHARE` and
+    :func:`~exudyn_turnout.passage.check_rail_steps.check_rail_step`), the first run reports
+    0..1 and the second callback is None. Otherwise the first reports 0..:data:`FIRST_RUN_SHARE` and
     the second the rest, so that the line neither stands at 100 % nor goes back while the
     second run works; where none follows, the line goes from the share to its end.
 
