@@ -1,4 +1,4 @@
-"""The normal law of a contact whose gap along x is truncated (kernel.patch_along_x).
+"""The normal law of a contact whose gap along x is truncated (along_x.patch_along_x).
 
 Reference: the exact half-space solution (wheel_rail/exact_normal.solve_normal, Kalker's
 normal problem solved by Polonsky & Keer's conjugate gradients) on the gap
@@ -16,7 +16,7 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_turnout.wheel_rail import kernel
+from exudyn_turnout.wheel_rail import along_x, kernel
 from exudyn_turnout.wheel_rail.exact_normal import solve_normal
 from exudyn_turnout.wheel_rail.hertz import effective_modulus
 
@@ -46,7 +46,7 @@ def _table(slope_behind: float) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _model(xs, values, x_yaw, delta, quartic=0.0):
-    """kernel.patch_along_x at the deepest point of the gap along x (Hertz's a, b)."""
+    """along_x.patch_along_x at the deepest point of the gap along x (Hertz's a, b)."""
     a_root, b_root = kernel.hertz_axes_per_root(np.array([0.5 / R_X]), np.array([B_SUM]), MODULUS)
     a, b = a_root[0] * math.sqrt(delta), b_root[0] * math.sqrt(delta)
     xi = np.linspace(-0.2, 0.2, 400001)
@@ -54,10 +54,10 @@ def _model(xs, values, x_yaw, delta, quartic=0.0):
     deepest = float(xi[np.argmin(total)])
     k0 = int(np.searchsorted(xs, 0.0)) - 1
     level = a * a / (2.0 * R_X)
-    return kernel.patch_along_x(
+    return along_x.patch_along_x(
         values, xs, 25 * k0, k0, False, xs.size, 25, 0, 0.0, 0.0, x_yaw, R_X, quartic,
         deepest, delta, level, level / delta, 0.5 * math.exp(-0.5) * b, 0.5, FLARE, 0.118,
-        np.empty(128 + 4 * kernel.PATCH_CELLS),
+        np.empty(128 + 4 * along_x.PATCH_CELLS),
     )  # fmt: skip
 
 

@@ -12,7 +12,7 @@ unrefined (+1.6 %). The full diverging run (20..55 m): 87.91 kN at 1e-4 s, 86.31
 86.43 / 86.34 / 86.32 kN at 2.5e-5 / 1.25e-5 / 6.25e-6 s throughout (simulate_passage with
 check_rail_time_step=None; before issue 22's change 109.1 kN at 1e-4 s, 126.6 kN refined,
 128.1 / 127.1 / 126.5 kN, validation/vehicle_step_convergence.md); with the patch along x
-(kernel.patch_along_x: the flare truncates the flange back's patch) 83.60 kN at 1e-4 s,
+(along_x.patch_along_x: the flare truncates the flange back's patch) 83.60 kN at 1e-4 s,
 82.10 kN refined, 82.10 / 82.03 / 82.01 kN throughout.
 """
 
@@ -269,7 +269,7 @@ def test_compiled_stepper_refines_alike(turnout, diverging_runs):
 
 @pytest.mark.slow
 def test_diverging_default_run_within_two_percent_of_the_converged_force(turnout):
-    # diverging-2L (20..55 m), measured with the kernel's patch along x (kernel.patch_along_x,
+    # diverging-2L (20..55 m), measured with the kernel's patch along x (along_x.patch_along_x,
     # module docstring): the check rail's force 82.096 / 82.026 / 82.009 kN at 2.5e-5 /
     # 1.25e-5 / 6.25e-6 s throughout, 83.599 kN at 1e-4 s throughout (+1.9 %), 82.098 kN
     # refined; the package's default run refines the loaded window

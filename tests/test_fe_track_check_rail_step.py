@@ -239,7 +239,7 @@ def test_fe_wheelset_refines_a_loaded_check_rail_by_default(turnout):
         for k, run in (("refined", refined), ("fine", fine), ("coarse", coarse))
     }
     assert np.max(np.abs(force["refined"] - force["fine"])) < 300.0  # N, of ~51 kN
-    # unrefined 2.73 kN off since the kernel's patch along x (kernel.patch_along_x: the
+    # unrefined 2.73 kN off since the kernel's patch along x (along_x.patch_along_x: the
     # flare's end truncates the flange back's patch, a softer contact); 4.9 kN before
     assert np.max(np.abs(force["coarse"] - force["fine"])) > 2e3
     assert np.max(force["refined"]) == pytest.approx(np.max(force["fine"]), rel=2e-3)

@@ -87,7 +87,7 @@ def test_dipped_joint_as_irregularity_equals_the_dip_in_the_rail(turnout, tmp_pa
     # interpolates the dipped gap linearly between its 10 mm x nodes, the irregularity is
     # exact at the wheel's x).  At the dip's ends (slope changes of alpha = 3 mrad) the
     # table's path puts the contact on the slope change while it lies within r alpha = 1.4
-    # mm ahead of the axle (kernel.lead_along_x: the wheel's radius), the irregularity at
+    # mm ahead of the axle (along_x.lead_along_x: the wheel's radius), the irregularity at
     # the wheel's own x: there the histories are shifted by 1.4 mm (2.4 kN apart on their
     # steep flanks, measured), their extremes within 0.5 % of the peak (80 N measured)
     assert peak_a == pytest.approx(peak_b, rel=0.01)

@@ -170,7 +170,7 @@ def test_kernel_geometry_equals_table_lookup(crossing_table):
             # varies along x (the nose's ramp) the contact lies at the minimum along x of the
             # wheel's parabola (no yaw: lead**2 / (2 r / cos(gamma))) and profile term
             # (sin(gamma)^2 lead^4 / (8 r^2 (rho_w + rho_r))) plus the rail's gap,
-            # x_offset ahead (kernel.lead_along_x, tests/test_wheel_rail_lead_table.py): the
+            # x_offset ahead (along_x.lead_along_x, tests/test_wheel_rail_lead_table.py): the
             # table's gap there plus the parabola, never more than the table's gap at x
             lead = row[_column("x_offset")]
             radius_x = row[_column("radius")] / np.cos(gamma)
@@ -179,7 +179,7 @@ def test_kernel_geometry_equals_table_lookup(crossing_table):
             assert crossing_table.x[0] <= x + lead <= crossing_table.x[-1]  # on the rail
             if crossing_table.blendable[ix_lead, js]:  # at zero lift: the kernel carries
                 # the minimum's gap to the lift with the angle at x
-                # (x_offset is the patch's force centre, kernel.patch_along_x: the gap there
+                # (x_offset is the patch's force centre, along_x.patch_along_x: the gap there
                 # is no smaller than at the deepest point, equal where the patch is the
                 # parabola's)
                 there = lookup_values(crossing_table, [x + lead], [shift], [0.0])[0]

@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from exudyn_turnout.wheel_rail import kernel
+from exudyn_turnout.wheel_rail import along_x, kernel
 from exudyn_turnout.wheel_rail.data import s1002_wheel, standard_track
 from exudyn_turnout.wheel_rail.geometry import (
     WheelsetSetup,
@@ -120,7 +120,7 @@ def test_lead_along_a_flare_and_a_ramp_matches_a_3d_search(case, kink):
     a check rail's face flaring 1:67 towards the back of the flange (-84 deg, yaw 4 mrad,
     lead 17.5 mm on a prismatic rail) that meets its check line, and a rail's top rising
     1:20 under the tread (5 deg, yaw 10 mrad, lead 0.4 mm) to a plateau.  The kernel's
-    minimum along x (kernel.lead_along_x on the rail's gap at three x nodes, the exact
+    minimum along x (along_x.lead_along_x on the rail's gap at three x nodes, the exact
     normal gap of the cone's line against the corner's circle moved by the rail, with
     R_x = r / cos(gamma)) against the 3-D search on the moving rail: behind the lead the
     kink changes nothing, ahead of it within |a| R_x the contact sits on the kink, further
@@ -145,7 +145,7 @@ def test_lead_along_a_flare_and_a_ramp_matches_a_3d_search(case, kink):
     ix = 0 if kink > 0.0 else 1
     x_yaw, closing = (float(v) for v in contact_lead(RADIUS, gamma, side, yaw))
     limit = MAX_LEAD_SINE * RADIUS
-    lead, change = kernel.lead_along_x(
+    lead, change = along_x.lead_along_x(
         values, xs, 2 * ix, ix, True, 3, 2, 0, 0.0, 0.0, x_yaw, RADIUS / np.cos(gamma), 0.0,
         -limit, limit,
     )  # fmt: skip
@@ -199,7 +199,7 @@ def test_profile_term_on_a_curved_flange_back_matches_a_3d_search(kink):
     quartic = np.sin(gamma) ** 2 / (8.0 * RADIUS**2 * (1.0 / curvature + CORNER))
     results = {}
     for term in (0.0, quartic):
-        lead, change = kernel.lead_along_x(
+        lead, change = along_x.lead_along_x(
             values, xs, 0, 0, True, 3, 2, 0, 0.0, 0.0, x_yaw, RADIUS / np.cos(gamma), term,
             -limit, limit,
         )  # fmt: skip

@@ -1,5 +1,5 @@
 """The kernel puts a yawed wheel's contact where the wheel's distance along x, a parabola
-about the yaw's lead, plus the rail's gap at that x is smallest (kernel.lead_along_x).
+about the yaw's lead, plus the rail's gap at that x is smallest (along_x.lead_along_x).
 
 Reference: the same kernel without yaw, evaluated at x + xi on a grid of xi (the rail's gap
 along x as the tables give it), plus the parabola ``(xi - x_yaw)^2 / (2 r / cos(gamma))``
@@ -89,7 +89,7 @@ def test_flange_contact_is_the_minimum_along_a_kinked_flare(kinked, x, where):
     at 0.15 m, yawed 6 mrad (flange at ~70 deg, the yaw's lead 7.7 mm): the kernel's
     penetration is the largest over xi of the table's (tables.lookup_values at x + xi, the
     query's shift, in the cells 0.1 ... 0.3 m that hold one point along x) less the
-    parabola and the profile term (kernel.lead_along_x), plus the closing, and its lead
+    parabola and the profile term (along_x.lead_along_x), plus the closing, and its lead
     that xi.  On the flare the contact lies
     ``FLARE sin(gamma) r / cos(gamma)`` ~ 12.5 mm ahead of the yaw's lead (and the first
     order along x misses ~60 um of penetration), within that of the kink on the kink,
@@ -120,7 +120,7 @@ def test_flange_contact_is_the_minimum_along_a_kinked_flare(kinked, x, where):
     best = int(np.argmax(candidates))
     assert 0 < best < offsets.size - 1  # a minimum inside the search
     assert row[_column("delta")] == pytest.approx(candidates[best] + closing, abs=1e-9)
-    # the kernel's x_offset is the force centre (kernel.patch_along_x): within the patch's
+    # the kernel's x_offset is the force centre (along_x.patch_along_x): within the patch's
     # semi-axis of the deepest point, which the penetration above pins to offsets[best]
     assert abs(row[_column("x_offset")] - offsets[best]) < row[_column("a")]
     lead = float(offsets[best])

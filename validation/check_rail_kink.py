@@ -31,7 +31,7 @@ route's contact table at the state's shift and lift, piecewise linear between it
 
 Last, the exact contact of ``passage.post_contact`` (validation/peak_contact.py's columns)
 at the same instants on both rail surfaces: the normal law's error and the 3-D surfaces'.
-Since the patch's law along x (``wheel_rail.kernel.patch_along_x``) the passage's N is the
+Since the patch's law along x (``wheel_rail.along_x.patch_along_x``) the passage's N is the
 node law times the truncated patch's ratio; the column "node law at delta" is the node's
 law alone at the same delta (the kernel before it), beside "N at delta", the exact force.
 """
