@@ -110,7 +110,6 @@ from exudyn_turnout.wheel_rail.along_x import (
     BETA_PER_B,
     EMPTY_GAP,
     GAP_FIELD,
-    PATCH_CELLS,
     PATCH_DEADBAND,
     PATCH_SCRATCH,
     PATCH_SLENDER,
