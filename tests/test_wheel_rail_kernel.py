@@ -369,21 +369,32 @@ def test_polach_scalar_equals_the_vectorised_model():
 
 
 def test_small_longitudinal_creepage_gives_kalkers_linear_force(plain):
-    """A small spin perturbation rate gives xi = -beta_t r / v on both wheels and, far below
-    saturation, F_x = -G a b C11 xi (Kalker's linear theory)."""
+    """A spin perturbation rate that leaves xi = -1e-5 on both wheels gives, far below
+    saturation, F_x = -G a b C11 xi (Kalker's linear theory).  Far below: mu = 100, for the
+    wheels' spin on their coned treads (about -0.07 1/m) slips part of a patch at mu = 0.4
+    and lowers F_x by 8.5 % there (the full theory's, not the linear one's)."""
     q = np.zeros(N_Q)
-    q[1] = -1.2e-4
+    q[1] = -2.5e-4  # 68 um into both rails (the wheel first touches 0.18 mm down)
     q_t = np.zeros(N_Q)
     v, r0 = 27.0, 0.46
-    q_t[4] = 1e-5 * v / r0  # beta_t: xi ~ -1e-5 - (r - r0) / r0
-    _, details = _evaluate(plain, 5.0, q, q_t, constants=(v, r0, 0.4, G, 0.0, 0.0))
-    for row in details[details[:, _column("normal")] > 0]:
+    constants = (v, r0, 100.0, G, 0.0, 0.0)
+    _, details = _evaluate(plain, 5.0, q, q_t, constants=constants)
+    r = details[details[:, _column("normal")] > 0, _column("radius")].mean()
+    # beta_t: xi = -1e-5 (r = 0.45991 m: beta_t = 0 would leave xi = 1 - r / r0 ~ 2e-4)
+    q_t[4] = (1.0 + 1e-5) * v / r - v / r0
+    _, details = _evaluate(plain, 5.0, q, q_t, constants=constants)
+    loaded = details[details[:, _column("normal")] > 0]
+    assert len(loaded) == 2
+    for row in loaded:
         a, b = row[_column("a")], row[_column("b")]
         c11 = kalker_coefficients(np.array([a]), np.array([b]), 0.28).c11[0]
         xi = row[_column("xi")]
         r = row[_column("radius")]
         assert xi == pytest.approx(1.0 - (v / r0 + q_t[4]) * r / v, rel=1e-9)
-        assert row[_column("Fx")] == pytest.approx(-G * a * b * c11 * xi, rel=2e-3)
+        # 5e-3: the kernel's C11 is its table nodes' (bilinear between ellipses of other a / b)
+        # and the creep table's linear limit; measured +0.33 % (the test had no loaded row
+        # before 2026-12: the wheel 0.12 mm down did not touch)
+        assert row[_column("Fx")] == pytest.approx(-G * a * b * c11 * xi, rel=5e-3)
 
 
 def test_select_rebinds_coordinates_without_copying(plain):

@@ -217,7 +217,7 @@ def settings_from_args(args: argparse.Namespace, **track_options):
     """
     from exudyn_turnout.passage.settings import DEFAULT_SETTINGS, PassageSettings
 
-    for name in ("contact", "irregularity", "solver"):
+    for name in ("contact", "irregularity", "solver", "creep_reduction", "normal_stiffness_factor"):
         if getattr(args, name, None) is not None and name not in track_options:
             track_options[name] = getattr(args, name)
     if isinstance(track_options.get("irregularity"), str):
@@ -984,6 +984,22 @@ def build(sub: argparse._SubParsersAction) -> None:
         "Hertz or Kik-Piotrowski, FASTSIM creep with spin; default) or height-table (rail "
         "height tables on a conical tread with flange springs: a simplification kept for "
         "comparison)",
+    )
+    parser.add_argument(
+        "--creep-reduction",
+        type=number,
+        default=None,
+        metavar="F",
+        help="creep force reduction factor: Kalker's coefficients of every contact times F "
+        "(initial slopes scale, saturation at mu N does not; default 1: none)",
+    )
+    parser.add_argument(
+        "--normal-stiffness-factor",
+        type=number,
+        default=None,
+        metavar="F",
+        help="the normal contact law's force at a given penetration times F (a sensitivity "
+        "knob: validation/contact_law_sensitivity.md; default 1)",
     )
     parser.add_argument(
         "--irregularity",

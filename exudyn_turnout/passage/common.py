@@ -165,8 +165,20 @@ def check_settings(
             f"x range {x_a:g}..{x_b:g} m must lie within the turnout "
             f"({turnout.x_min:g}..{turnout.x_max:g} m) with x_start < x_end"
         )
+    for name, factor in (
+        ("creep_reduction", s.creep_reduction),
+        ("normal_stiffness_factor", s.normal_stiffness_factor),
+    ):
+        if not (isinstance(factor, (int, float)) and math.isfinite(factor) and 0 < factor <= 10):
+            raise PassageError(f"{name} must be > 0 and <= 10, got {factor!r}")
+    if s.contact != "profile" and (s.creep_reduction, s.normal_stiffness_factor) != (1.0, 1.0):
+        raise PassageError(
+            "creep_reduction and normal_stiffness_factor scale the profile contact's law "
+            "(contact='profile')"
+        )
     m_rail = lightest_rail_mass(turnout, x_a, x_b, s.layers, s.source)
-    h_max = max_time_step(vehicle, m_rail)
+    # a stiffer normal law rings faster: the linear Hertz spring grows as factor^(2/3)
+    h_max = max_time_step(vehicle, m_rail) / s.normal_stiffness_factor ** (1.0 / 3.0)
     if not (math.isfinite(s.time_step) and 0 < s.time_step <= h_max):
         raise PassageError(
             f"time step {s.time_step:g} s is too large to resolve the wheel/rail contact "

@@ -226,11 +226,16 @@ def _contact(turnout: Turnout, settings: PassageSettings, route_name: str, vehic
 
         return HeightTableContact()
     from exudyn_turnout.passage.contact.profile import route_contact
+    from exudyn_turnout.wheel_rail.kernel import scale_contact_law
 
     try:
-        return route_contact(turnout, route_name, vehicle)
+        contact = route_contact(turnout, route_name, vehicle)
     except ValueError as err:
         raise PassageError(str(err)) from None
+    tables = scale_contact_law(
+        contact.tables, normal=settings.normal_stiffness_factor, creep=settings.creep_reduction
+    )
+    return contact if tables is contact.tables else replace(contact, tables=tables)
 
 
 def compare_layers(

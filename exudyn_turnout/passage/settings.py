@@ -85,6 +85,16 @@ class PassageSettings:
     #: runs in Exudyn, ``summary["stepping"]`` says why) or "exudyn" (Exudyn's
     #: ``SolveDynamic``). The single wheelset and the FE track always step in Exudyn.
     solver: str = "compiled"
+    #: the creep force reduction factor: Kalker's coefficients of every contact times this
+    #: (the creep forces' initial slopes scale, their saturation at mu N does not; 1: none;
+    #: Simpack's and GENSYS's factor of the same name; a sensitivity knob:
+    #: validation/contact_law_sensitivity.md gives what it moves)
+    creep_reduction: float = 1.0
+    #: the normal contact law's force at a given penetration times this (the effective
+    #: modulus of the normal problem alone; 1: none): a sensitivity knob for the law's
+    #: approach error against exact solutions, (1 + e)^-1.5 for an approach error e
+    #: (``wheel_rail.kernel.scale_contact_law``, validation/contact_law_sensitivity.md)
+    normal_stiffness_factor: float = 1.0
 
     @property
     def v(self) -> float:

@@ -101,7 +101,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numba
 import numpy as np
@@ -139,6 +139,7 @@ from exudyn_turnout.wheel_rail.tables import ContactTable
 __all__ = [
     "PackedTables",
     "pack_tables",
+    "scale_contact_law",
     "DETAIL_FIELDS",
     "contact_forces",
     "contact_history",
@@ -466,6 +467,58 @@ def pack_tables(
         bounds=np.array(bounds, dtype=float).reshape(-1, _N_BOUNDS),
         names=tuple(names) if names is not None else tuple(f"body{i}" for i in range(len(xs))),
     )
+
+
+def scale_contact_law(
+    tables: PackedTables, normal: float = 1.0, creep: float = 1.0
+) -> PackedTables:
+    """The tables with every node's normal law and creep coefficients scaled (a copy).
+
+    Two sensitivity knobs of the contact law, both 1 by default (the tables unchanged):
+
+    * ``normal`` multiplies the normal force of every node's law at a given penetration,
+      ``N = normal F_REF (delta / DELTA_REF)^F_EXP``, and with it the contact stiffness
+      dN/d(delta) and the Hertz constant kept for outputs; the semi-axes at a given
+      penetration are geometry and stay.  It is the same as scaling the effective modulus
+      E* of the normal problem alone: at the same load the approach changes by the factor
+      ``normal^(-1 / F_EXP)`` (Hertz: ``normal^(-2/3)``), so an approach error e of the law
+      against an exact solution is the factor ``(1 + e)^(-F_EXP)``;
+    * ``creep`` multiplies Kalker's coefficients C11, C22, C23 of every node: the creep
+      forces' initial slopes scale by it and their saturation at mu N does not (the creep
+      force reduction factor of Simpack's and GENSYS's contact elements; Polach's and the
+      FASTSIM table's normalised creepages ``G a b C_ij creepage / (3 mu N)`` are linear in
+      the coefficients).
+
+    Parameters
+    ----------
+    tables : PackedTables
+        From :func:`pack_tables`.
+    normal, creep : float
+        Factors (> 0).
+
+    Returns
+    -------
+    PackedTables
+        ``tables`` itself where both factors are 1, else a copy with new ``values``.
+
+    Raises
+    ------
+    ValueError
+        A factor that is not a finite number > 0.
+    """
+    for name, factor in (("normal", normal), ("creep", creep)):
+        if not (math.isfinite(factor) and factor > 0.0):
+            raise ValueError(f"scale_contact_law: {name} = {factor!r} must be a number > 0")
+    if normal == 1.0 and creep == 1.0:
+        return tables
+    values = tables.values.copy()
+    nodes = values[: int(values[-2])].reshape(-1, _N_FIELDS)  # a view: the creep law follows
+    nodes[:, _F_REF] *= normal
+    nodes[:, _C_H] *= normal
+    nodes[:, _C11] *= creep
+    nodes[:, _C22] *= creep
+    nodes[:, _C23] *= creep
+    return replace(tables, values=values)
 
 
 @numba.njit(cache=True)
