@@ -1,4 +1,5 @@
-"""Shared fixtures: the packaged turnout, loaded once; headless matplotlib."""
+"""Shared fixtures: the packaged turnout, loaded once; the plain track's packed contact
+tables; headless matplotlib."""
 
 import os
 
@@ -19,3 +20,22 @@ from exudyn_turnout.inputs.turnout import load_turnout  # noqa: E402
 def turnout():
     """The packaged UIC60-760-1:15 turnout (data/uic60_760_1_15.toml)."""
     return load_turnout()
+
+
+@pytest.fixture(scope="session")
+def plain_packed(tmp_path_factory):
+    """S1002 on plain UIC60 1:40 track, x -10..70 m, packed for the kernel: left wheel's
+    body bound to rail coordinates (7, 8), the right's to (9, 10)."""
+    import numpy as np
+
+    from exudyn_turnout.wheel_rail import kernel
+    from exudyn_turnout.wheel_rail.data import s1002_wheel, standard_track
+    from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
+    from exudyn_turnout.wheel_rail.tables import build_contact_table
+
+    setup = WheelsetSetup()
+    track = standard_track(setup, np.array([-10.0, 70.0]))
+    table = build_contact_table(
+        s1002_wheel(setup), track, setup.taping_line, cache_dir=tmp_path_factory.mktemp("plain")
+    )
+    return kernel.pack_tables([table, table], [1, -1], [(7, 8), (9, 10)], [(-10, 70)] * 2)

@@ -25,7 +25,6 @@ from exudyn_turnout.wheel_rail.geometry import (
     surface_derivatives,
 )
 from exudyn_turnout.wheel_rail.lead import MAX_LEAD_SINE, contact_lead
-from exudyn_turnout.wheel_rail.tables import build_contact_table
 
 SETUP = WheelsetSetup()
 N_Q = 11  # y_w, z_w, phi, psi, beta, y_s, z_s, then left rail (7, 8), right rail (9, 10)
@@ -221,13 +220,9 @@ def test_lead_sign_and_cap():
 
 
 @pytest.fixture(scope="module")
-def plain(tmp_path_factory):
-    wheel = s1002_wheel(SETUP)
-    track = standard_track(SETUP, np.array([-10.0, 70.0]))
-    table = build_contact_table(
-        wheel, track, SETUP.taping_line, cache_dir=tmp_path_factory.mktemp("tables")
-    )
-    return kernel.pack_tables([table, table], [1, -1], [(7, 8), (9, 10)], [(-10, 70)] * 2)
+def plain(plain_packed):
+    """S1002 on plain UIC60 track, packed (conftest.py)."""
+    return plain_packed
 
 
 def _evaluate(packed, q, constants):
