@@ -167,7 +167,7 @@ def _write(path: Path, results: dict, tracks, seconds: float) -> None:
         for name, _, scale, unit in QUANTITIES:
             for track in tracks:
                 base = results[route, track, "baseline"][name]
-                if not math.isfinite(base):
+                if not math.isfinite(base) or base == 0.0:  # absent, or no contact
                     continue
                 cells = [
                     _pct(change(results[route, track, label][name], base)) for label in labels[1:]
