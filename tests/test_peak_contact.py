@@ -107,6 +107,12 @@ def test_plain_rail_tread_contact_is_hertz(turnout):
     # (Kalker) on both the exact patch and the Hertz ellipse: they agree within 3 %
     assert found.exact_fx < 0.0
     assert found.exact_fx == pytest.approx(found.ellipse_fx, rel=0.03)
+    # Hertz's gap on plain rail: the exact solution on the 2-D slice is the 3-D one (the
+    # slice does not vary along x), and KP is near Hertz (its own method error: up to ~5 %
+    # on CONTACT's cases, validation/normal_vs_contact.md)
+    assert found.exact_2d_approach == pytest.approx(found.exact_approach, rel=0.02)
+    assert found.exact_2d_width == pytest.approx(found.exact_width, rel=0.1)
+    assert found.kp_normal_at_approach == pytest.approx(20e3, rel=0.1)
     assert math.isfinite(found.exact_fs)
 
 

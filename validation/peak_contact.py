@@ -257,6 +257,39 @@ def _write(path: Path, records, convergence, seconds, flare_end: float) -> None:
             )
     lines += [
         "",
+        "## The normal law's error by source",
+        "",
+        "Each contact's approach at the passage's N: the passage's penetration, the exact "
+        "solution on the 2-D lateral gap at the contact's x (`g(t) + A x^2`, the gap a "
+        "semi-Hertzian method sees: against the 3-D one, the error of any method on the 2-D "
+        "slice) and on the 3-D surfaces; the force at the passage's penetration: the passage's "
+        "law, Kik-Piotrowski on that 2-D gap (what the tables would store with KP's weight "
+        "1) and the exact 3-D one; the widths of the patches.  Where the KP weight is 0 "
+        "and KP is much nearer the exact force than the passage, the tables' Hertz criterion "
+        "kept Hertz on a gap that is not Hertzian (it tests whether the ellipse overshoots "
+        "the region of interpenetration, not whether the region is much wider than the "
+        "ellipse: a conformal gap).",
+        "",
+        "| run | peak | contact | KP weight | delta passage / exact 2-D / exact 3-D at N (um) "
+        "| N passage / KP / exact 3-D at delta (kN) | 2b passage / KP / exact 2-D / exact 3-D "
+        "(mm) |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for run, label, _x, _force, found in records:
+        for c in found:
+            lines.append(
+                f"| {run} | {label} | {_short(c.stem)} | {c.semi_hertzian:.2f} "
+                f"| {c.approach * 1e6:.1f} / {c.exact_2d_approach * 1e6:.1f} / "
+                f"{c.exact_approach * 1e6:.1f} "
+                f"| {c.normal / 1e3:.1f} / {c.kp_normal_at_approach / 1e3:.1f} "
+                f"({_pct(c.kp_normal_at_approach, c.exact_normal_at_approach)} of exact) / "
+                f"{c.exact_normal_at_approach / 1e3:.1f} "
+                f"({_pct(c.normal, c.exact_normal_at_approach)} of exact) "
+                f"| {c.width * 1e3:.1f} / {c.kp_width * 1e3:.1f} / {c.exact_2d_width * 1e3:.1f} "
+                f"/ {c.exact_width * 1e3:.1f} |"
+            )
+    lines += [
+        "",
         "## Patch and creep forces at the peak instants",
         "",
         "| run | peak | contact | 2a passage / exact (mm) | 2b passage / exact (mm) "

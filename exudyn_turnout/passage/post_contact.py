@@ -54,6 +54,13 @@ Rebuilding the instant
   law's error alone, :attr:`PostContact.exact_normal_at_approach`), and the exact force
   at the passage's state, from the 3-D surfaces' own interpenetration (law and geometry,
   :attr:`PostContact.exact_normal_at_state`).
+* **The 2-D slice and the choice of law**: on the 2-D lateral gap at the contact's x (the
+  3-D gap's row there along the tangent, plus ``A x^2``, ``A = cos(gamma) / (2 r0)``: the
+  gap a semi-Hertzian method sees), Kik-Piotrowski's force at the passage's penetration
+  (:attr:`PostContact.kp_normal_at_approach`: the tables' law had it taken KP instead of
+  Hertz) and the exact approach at the passage's force
+  (:attr:`PostContact.exact_2d_approach`: against the 3-D approach, what no method on the
+  2-D slice can recover).
 * **The creep law alone**: Kalker's exact theory on the passage's own ellipse with
   Hertz's pressure (:func:`~exudyn_turnout.wheel_rail.exact_rolling.exact_creep_forces_ellipse`)
   at the same creepages separates the FASTSIM table's error from the patch's.
@@ -85,11 +92,16 @@ from exudyn_turnout.inputs.vehicle import Vehicle, load_vehicle
 from exudyn_turnout.passage.contact.profile import route_contact, wheel_and_setup
 from exudyn_turnout.passage.results import PassageResult
 from exudyn_turnout.wheel_rail.detailed_contact import rolling_on_normal
-from exudyn_turnout.wheel_rail.exact_normal import NormalSolution, solve_normal
+from exudyn_turnout.wheel_rail.exact_normal import (
+    NormalSolution,
+    solve_normal,
+    solve_on_lateral_gap,
+)
 from exudyn_turnout.wheel_rail.exact_rolling import exact_creep_forces_ellipse
 from exudyn_turnout.wheel_rail.geometry import prepare_wheel
 from exudyn_turnout.wheel_rail.hertz import effective_modulus
 from exudyn_turnout.wheel_rail.kernel import DETAIL_FIELDS, contact_forces
+from exudyn_turnout.wheel_rail.nonhertz import kik_piotrowski
 from exudyn_turnout.wheel_rail.reference_normal import contact_pitch
 from exudyn_turnout.wheel_rail.sections import sections_at
 from exudyn_turnout.wheel_rail.turnout_design import rail_geometry
@@ -128,6 +140,7 @@ CREEP_POISSON = 0.28
 _YOUNG, _POISSON = 2.1e11, 0.3  # Pa, -: the tables' E* (TableSettings defaults)
 _D = {name: k for k, name in enumerate(DETAIL_FIELDS)}
 _SEARCH, _SEARCH_STEP = 0.015, 5e-5  # m, the deepest point is searched this far along t
+_LATERAL_REACH = 0.03  # m, the 2-D lateral gap's reach either side of the deepest point
 _N_VEHICLE = 7  # y_w, z_w, phi, psi, beta, y_s, z_s (profile contact element)
 
 
@@ -173,6 +186,15 @@ class PostContact:
     #: the patch's
     ellipse_fx: float
     ellipse_fs: float  #: N, the same for FS
+    #: N, Kik-Piotrowski on the 2-D lateral gap at the contact's x (the 3-D surfaces' gap
+    #: along the tangent there, plus ``A x^2``) at the passage's penetration: what the
+    #: tables' law would give there if it took KP instead of Hertz
+    kp_normal_at_approach: float
+    kp_width: float  #: m, KP's patch width there
+    #: m, the exact approach on that 2-D gap ``g(t) + A x^2`` at the passage's normal force:
+    #: against :attr:`exact_approach` (3-D) the error of any method on the 2-D slice
+    exact_2d_approach: float
+    exact_2d_width: float  #: m, its patch width
     dx: float  #: m, element length
     ds: float  #: m, element width
     elements: int  #: -, elements in contact
@@ -349,6 +371,19 @@ def _solve(inst, sections, wheel_pts, x_ws, pitch, dx, ds, half_x, half_t, modul
             return solved, h, lowest, rows, t
         half_x, half_t = 1.5 * half_x, 1.5 * half_t
     raise ValueError("post_contact: the exact patch does not fit an 8-times grown grid")
+
+
+def _lateral(inst, sections, wheel_pts, x_ws, pitch, t0, delta, force, modulus, dx, ds):
+    """KP at ``delta`` and the exact solution at ``force`` on the 2-D lateral gap at the
+    contact's x (a semi-Hertzian method's gap, ``g(t) + A x^2`` with ``A = cos(gamma) /
+    (2 r0)``, the wheel's circle seen along the contact normal)."""
+    t = t0 + np.arange(-_LATERAL_REACH, _LATERAL_REACH + 0.5 * _SEARCH_STEP, _SEARCH_STEP)
+    gap = math.cos(pitch) * _gap(inst, sections, wheel_pts, x_ws, np.array([inst.x_c]), t)[0]
+    gap = gap - float(np.min(gap))
+    a_sum = math.cos(inst.angle) / (2.0 * inst.r0)
+    kp = kik_piotrowski(gap[None, :], _SEARCH_STEP, a_sum, delta, modulus)
+    flat = solve_on_lateral_gap(gap, _SEARCH_STEP, a_sum, force, modulus, dx, ds)
+    return kp, flat
 
 
 @dataclass(frozen=True)
@@ -579,6 +614,7 @@ def post_contact(
         a, b, xi, eta, spin, normal, mu, SHEAR_MODULUS, CREEP_POISSON,
         n=ELLIPSE_ELEMENTS,
     )  # fmt: skip
+    kp, flat = _lateral(inst, sections, wheel_pts, x_ws, pitch, t0, delta, normal, modulus, dx, ds)
     t_centre = _centre(solved, t)
     x_centre = _centre_x(solved, rows)
     gap_step = solved.approach - delta
@@ -621,6 +657,10 @@ def post_contact(
         exact_fs=float(rolling.fy),
         ellipse_fx=float(on_ellipse[0]),
         ellipse_fs=float(on_ellipse[1]),
+        kp_normal_at_approach=float(kp.normal_force[0]),
+        kp_width=float(kp.t_high[0] - kp.t_low[0]),
+        exact_2d_approach=float(flat.approach),
+        exact_2d_width=float(flat.width),
         dx=dx,
         ds=ds,
         elements=int(np.count_nonzero(solved.pressure)),
