@@ -49,6 +49,7 @@ __all__ = [
     "CheckRailStepWarning",
     "check_rail_pairs",
     "check_rail_step",
+    "check_rail_force",
     "check_rail_window",
     "refine_pieces",
     "piece_times",
@@ -129,6 +130,43 @@ def check_rail_step(settings: PassageSettings) -> float | None:
     return float(h)
 
 
+def check_rail_force(
+    columns: Mapping[str, np.ndarray],
+    pairs: Sequence[tuple[str, str]],
+    labels: Sequence[str] = ("",),
+) -> tuple[np.ndarray, np.ndarray]:
+    """The largest check-rail contact force at every sample of a run's columns.
+
+    Parameters
+    ----------
+    columns : mapping
+        ``t_s`` and per contact ``Fy_<label><wheel>_<slot>_N``, ``Fz_...`` (missing or NaN:
+        no contact).
+    pairs : sequence of (str, str)
+        :func:`check_rail_pairs`.
+    labels : sequence of str
+        Column prefixes of the wheelsets: ``("",)`` for the single wheelset,
+        ``("ws1_", "ws2_", ...)`` for the full vehicle.
+
+    Returns
+    -------
+    t, force : numpy.ndarray
+        s, N: the columns' times and, per sample, the largest magnitude of a check-rail
+        contact's lateral and vertical force (0 without contact).
+    """
+    t = np.asarray(columns["t_s"], float)
+    force = np.zeros(len(t))
+    for label in labels:
+        for wheel, slot in pairs:
+            name = f"{label}{wheel}_{slot}_N"
+            if f"Fy_{name}" not in columns:
+                continue
+            fy = np.nan_to_num(np.asarray(columns[f"Fy_{name}"], float))
+            fz = np.nan_to_num(np.asarray(columns.get(f"Fz_{name}", np.zeros(len(t))), float))
+            force = np.maximum(force, np.hypot(fy, fz))
+    return t, force
+
+
 def check_rail_window(
     columns: Mapping[str, np.ndarray],
     pairs: Sequence[tuple[str, str]],
@@ -157,21 +195,11 @@ def check_rail_window(
         s (the columns' own times), N: the first and last times above ``threshold`` and the
         largest force; None where it was never above.
     """
-    t = np.asarray(columns["t_s"], float)
-    loaded = np.zeros(len(t), dtype=bool)
-    peak = 0.0
-    for label in labels:
-        for wheel, slot in pairs:
-            name = f"{label}{wheel}_{slot}_N"
-            if f"Fy_{name}" not in columns:
-                continue
-            fy = np.nan_to_num(np.asarray(columns[f"Fy_{name}"], float))
-            fz = np.nan_to_num(np.asarray(columns.get(f"Fz_{name}", np.zeros(len(t))), float))
-            force = np.hypot(fy, fz)
-            loaded |= force > threshold
-            peak = max(peak, float(np.max(force, initial=0.0)))
+    t, force = check_rail_force(columns, pairs, labels)
+    loaded = force > threshold
     if not loaded.any():
         return None
+    peak = float(np.max(force))
     where = np.flatnonzero(loaded)
     return float(t[where[0]]), float(t[where[-1]]), peak
 

@@ -41,6 +41,7 @@ from exudyn_turnout.inputs.vehicle import Vehicle
 from exudyn_turnout.passage.check_rail_steps import (
     CHECK_RAIL_MARGIN,
     CheckRailSteps,
+    check_rail_force,
     check_rail_pairs,
     check_rail_step,
 )
@@ -370,16 +371,7 @@ def loaded_windows(
     list of (float, float, float)
         s, s, N: first and last time above ``threshold`` and the largest force, in order.
     """
-    t = np.asarray(columns["t_s"], float)
-    force = np.zeros(len(t))
-    for label in labels:
-        for wheel, slot in pairs:
-            name = f"{label}{wheel}_{slot}_N"
-            if f"Fy_{name}" not in columns:
-                continue
-            fy = np.nan_to_num(np.asarray(columns[f"Fy_{name}"], float))
-            fz = np.nan_to_num(np.asarray(columns.get(f"Fz_{name}", np.zeros(len(t))), float))
-            force = np.maximum(force, np.hypot(fy, fz))
+    t, force = check_rail_force(columns, pairs, labels)
     where = np.flatnonzero(force > threshold)
     windows: list[tuple[float, float, float]] = []
     if not len(where):
