@@ -79,3 +79,25 @@ def test_example_help_names_its_own_route(name, route, capsys, monkeypatch):
         runpy.run_path(str(path), run_name="__main__")
     assert stop.value.code == 0
     assert capsys.readouterr().out.split("\n\n")[1].startswith(route)
+
+
+def test_creep_reduction_example(tmp_path):
+    """Factor 1 is the default passage to the bit (the knob leaves the tables themselves);
+    a lower factor changes the check rail's force; the table names every factor."""
+    from exudyn_turnout.inputs.turnout import load_turnout
+    from exudyn_turnout.passage import simulate_passage
+    from exudyn_turnout.passage.settings import PassageSettings
+
+    example = _load("creep_reduction")
+    window = {"x_start": 40.0, "x_end": 46.0}
+    results = example.run((1.0, 0.6), vehicle="wheelset", **window)
+    plain = simulate_passage(
+        load_turnout(),
+        PassageSettings(route="diverging", speed_kmh=80.0, **window),
+        "wheelset",
+    )
+    key = "peak_Fy_check_rail_N"
+    assert results[1.0].summary[key] == plain.summary[key] > 1e3
+    assert results[0.6].summary[key] != results[1.0].summary[key]
+    text = example.table(results)
+    assert "check rail Fy" in text and "0.6" in text
