@@ -74,7 +74,7 @@ def main(argv: list[str] | None = None) -> int:
     from exudyn_turnout.inputs.turnout import load_turnout
     from exudyn_turnout.inputs.vehicle import load_vehicle
     from exudyn_turnout.passage.contact.profile import wheel_and_setup
-    from exudyn_turnout.wheel_rail import kernel
+    from exudyn_turnout.wheel_rail import kernel, packed_tables
     from exudyn_turnout.wheel_rail.nonhertz import PATCH_FIELDS
     from exudyn_turnout.wheel_rail.turnout_sections import route_contact_tables
 
@@ -86,7 +86,7 @@ def main(argv: list[str] | None = None) -> int:
     sides = [1 if b.wheel == "left" else -1 for b in bodies]
     ranges = [(b.x_from, b.x_to) for b in bodies]
     coordinates = [(5, 6)] * len(bodies)
-    packed = kernel.pack_tables(tables, sides, coordinates, ranges)
+    packed = packed_tables.pack_tables(tables, sides, coordinates, ranges)
     hertz_tables = []
     for table in tables:  # the same table with Hertz's law at every node
         values = table.values
@@ -100,7 +100,7 @@ def main(argv: list[str] | None = None) -> int:
                 shift=table.shift,
             )
         )
-    hertz_packed = kernel.pack_tables(hertz_tables, sides, coordinates, ranges)
+    hertz_packed = packed_tables.pack_tables(hertz_tables, sides, coordinates, ranges)
     x_from = min(r[0] for r in ranges)
     x_to = max(r[1] for r in ranges)
     x, q, q_t = _states(args.calls, max(x_from, 0.0), x_to)
@@ -108,7 +108,9 @@ def main(argv: list[str] | None = None) -> int:
     n_rows = packed.n_bodies * packed.n_candidates
     forces = np.zeros(7)
     details = np.zeros((n_rows, len(kernel.DETAIL_FIELDS)))
-    polach_packed = kernel.pack_tables(tables, sides, coordinates, ranges, creep_law="polach")
+    polach_packed = packed_tables.pack_tables(
+        tables, sides, coordinates, ranges, creep_law="polach"
+    )
     callers = [
         ("this kernel, per-node laws (KP where Hertz does not fit)", kernel, packed, details),
         ("this kernel, per-node laws, Polach's creep law", kernel, polach_packed, details),

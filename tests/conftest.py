@@ -28,7 +28,7 @@ def plain_packed(tmp_path_factory):
     body bound to rail coordinates (7, 8), the right's to (9, 10)."""
     import numpy as np
 
-    from exudyn_turnout.wheel_rail import kernel
+    from exudyn_turnout.wheel_rail import packed_tables
     from exudyn_turnout.wheel_rail.data import s1002_wheel, standard_track
     from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
     from exudyn_turnout.wheel_rail.tables import build_contact_table
@@ -38,4 +38,4 @@ def plain_packed(tmp_path_factory):
     table = build_contact_table(
         s1002_wheel(setup), track, setup.taping_line, cache_dir=tmp_path_factory.mktemp("plain")
     )
-    return kernel.pack_tables([table, table], [1, -1], [(7, 8), (9, 10)], [(-10, 70)] * 2)
+    return packed_tables.pack_tables([table, table], [1, -1], [(7, 8), (9, 10)], [(-10, 70)] * 2)

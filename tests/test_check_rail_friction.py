@@ -21,7 +21,7 @@ from exudyn_turnout.cli.main import main
 from exudyn_turnout.inputs.turnout import TurnoutFileError, default_turnout_path, load_turnout
 from exudyn_turnout.inputs.vehicle import default_vehicle_path, load_vehicle
 from exudyn_turnout.passage.contact import route_cache
-from exudyn_turnout.wheel_rail import kernel
+from exudyn_turnout.wheel_rail import kernel, packed_tables
 from exudyn_turnout.wheel_rail.data import s1002_wheel, standard_track
 from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
 from exudyn_turnout.wheel_rail.tables import build_contact_table
@@ -109,8 +109,8 @@ def _evaluate(packed, q, q_t, mu):
 @pytest.mark.parametrize("creep_law", ["fastsim", "polach"])
 def test_a_bodys_friction_replaces_the_vehicles_for_that_body_only(plain, creep_law):
     args = ([plain, plain], [1, -1], [(7, 8), (9, 10)], [(-10.0, 70.0)] * 2)
-    own = kernel.pack_tables(*args, creep_law=creep_law, friction=[0.1, 0.0])
-    default = kernel.pack_tables(*args, creep_law=creep_law)
+    own = packed_tables.pack_tables(*args, creep_law=creep_law, friction=[0.1, 0.0])
+    default = packed_tables.pack_tables(*args, creep_law=creep_law)
     assert default.bounds.shape[1] == 6 and np.all(default.bounds[:, 5] == 0.0)
     np.testing.assert_array_equal(own.bounds[:, :5], default.bounds[:, :5])
     q, q_t = np.zeros(N_Q), np.zeros(N_Q)
@@ -132,16 +132,16 @@ def test_a_bodys_friction_replaces_the_vehicles_for_that_body_only(plain, creep_
     assert creep[:n_c].max() > 0.08 * normal[:n_c].max()
     assert creep[n_c:].max() > 0.2 * normal[n_c:].max()
     # an explicit friction equal to the vehicle's mu changes nothing, bit for bit
-    same = kernel.pack_tables(*args, creep_law=creep_law, friction=[0.4, 0.4])
+    same = packed_tables.pack_tables(*args, creep_law=creep_law, friction=[0.4, 0.4])
     for a, b in zip(_evaluate(same, q, q_t, 0.4), _evaluate(default, q, q_t, 0.4), strict=True):
         np.testing.assert_array_equal(a, b)
 
 
 def test_pack_tables_refuses_a_friction_list_of_the_wrong_length(plain):
     with pytest.raises(ValueError, match="one coefficient"):
-        kernel.pack_tables([plain], [1], [(7, 8)], [(-10.0, 70.0)], friction=[0.1, 0.2])
+        packed_tables.pack_tables([plain], [1], [(7, 8)], [(-10.0, 70.0)], friction=[0.1, 0.2])
     with pytest.raises(ValueError, match="one coefficient"):
-        kernel.pack_tables([plain], [1], [(7, 8)], [(-10.0, 70.0)], friction=[math.nan])
+        packed_tables.pack_tables([plain], [1], [(7, 8)], [(-10.0, 70.0)], friction=[math.nan])
 
 
 CHECK_STEM = "cp_right_r3_right_wheel_against_the_check_rail_"  # the front wheelset's

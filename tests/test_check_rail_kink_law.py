@@ -5,7 +5,7 @@ normal problem solved by Polonsky & Keer's conjugate gradients) on the gap
 ``h(x, y) = g(x) + (x - x0)^2 / (2 R_x) + B y^2`` of a cylinder-like wheel against a flat
 face that flares 1:67 behind a kink at x = 0 (g = 0.0148 max(-x, 0), the packaged check
 rail's flare times sin(81 deg); R_x = 2.93 m, r / cos(gamma) of its flange back; B = 70 /m
-gives the flange back's a / b ~ 40, kernel.hertz_axes_per_root).  Both the kinked and the
+gives the flange back's a / b ~ 40, packed_tables.hertz_axes_per_root).  Both the kinked and the
 plain parabola's gap are solved and their ratio compared with the model's.
 """
 
@@ -16,7 +16,7 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_turnout.wheel_rail import along_x, kernel
+from exudyn_turnout.wheel_rail import along_x, kernel, packed_tables
 from exudyn_turnout.wheel_rail.exact_normal import solve_normal
 from exudyn_turnout.wheel_rail.hertz import effective_modulus
 
@@ -47,7 +47,9 @@ def _table(slope_behind: float) -> tuple[np.ndarray, np.ndarray]:
 
 def _model(xs, values, x_yaw, delta, quartic=0.0):
     """along_x.patch_along_x at the deepest point of the gap along x (Hertz's a, b)."""
-    a_root, b_root = kernel.hertz_axes_per_root(np.array([0.5 / R_X]), np.array([B_SUM]), MODULUS)
+    a_root, b_root = packed_tables.hertz_axes_per_root(
+        np.array([0.5 / R_X]), np.array([B_SUM]), MODULUS
+    )
     a, b = a_root[0] * math.sqrt(delta), b_root[0] * math.sqrt(delta)
     xi = np.linspace(-0.2, 0.2, 400001)
     total = np.interp(xi, xs, values[0::25]) + (xi - x_yaw) ** 2 / (2 * R_X) + quartic * xi**4

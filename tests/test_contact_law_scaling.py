@@ -1,4 +1,4 @@
-"""The contact law's two sensitivity knobs (``kernel.scale_contact_law``,
+"""The contact law's two sensitivity knobs (``packed_tables.scale_contact_law``,
 ``PassageSettings.creep_reduction`` and ``normal_stiffness_factor``).
 
 References:
@@ -19,7 +19,7 @@ import pytest
 from exudyn_turnout.inputs.vehicle import load_vehicle
 from exudyn_turnout.passage.common import check_settings
 from exudyn_turnout.passage.settings import PassageError, PassageSettings
-from exudyn_turnout.wheel_rail import kernel
+from exudyn_turnout.wheel_rail import kernel, packed_tables
 from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
 
 SETUP = WheelsetSetup()
@@ -63,27 +63,27 @@ def _col(name: str) -> int:
 
 
 def test_factors_of_one_return_the_tables_themselves(plain):
-    assert kernel.scale_contact_law(plain) is plain
-    assert kernel.scale_contact_law(plain, 1.0, 1.0) is plain
+    assert packed_tables.scale_contact_law(plain) is plain
+    assert packed_tables.scale_contact_law(plain, 1.0, 1.0) is plain
 
 
 @pytest.mark.parametrize("factor", [0.7, 1.35])
 def test_normal_factor_multiplies_force_and_stiffness_not_the_patch(plain, factor):
     base = _rows(plain, v=0.0)  # at rest: no creep force in Fz
-    scaled = _rows(kernel.scale_contact_law(plain, normal=factor), v=0.0)
+    scaled = _rows(packed_tables.scale_contact_law(plain, normal=factor), v=0.0)
     assert len(base) == len(scaled) == 2
     for name in ("normal", "Fz", "Fy", "stiffness"):
         np.testing.assert_allclose(scaled[:, _col(name)], factor * base[:, _col(name)], 1e-12)
     for name in ("a", "b", "delta", "y_rail", "angle"):
         np.testing.assert_array_equal(scaled[:, _col(name)], base[:, _col(name)])
-    assert plain.values is not kernel.scale_contact_law(plain, normal=factor).values
+    assert plain.values is not packed_tables.scale_contact_law(plain, normal=factor).values
 
 
 @pytest.mark.parametrize("factor", [0.6, 1.3])
 def test_creep_reduction_scales_the_linear_force_and_keeps_saturation(plain, factor):
     """Linear: xi = -1e-5 at mu = 100 (no slip anywhere, also not from the treads' spin);
     full slip: xi = -0.05 at mu = 0.4."""
-    scaled_tables = kernel.scale_contact_law(plain, creep=factor)
+    scaled_tables = packed_tables.scale_contact_law(plain, creep=factor)
     base = _rows(plain, xi=-1e-5, mu=100.0)
     scaled = _rows(scaled_tables, xi=-1e-5, mu=100.0)
     assert len(base) == len(scaled) == 2
@@ -98,9 +98,9 @@ def test_creep_reduction_scales_the_linear_force_and_keeps_saturation(plain, fac
 @pytest.mark.parametrize("bad", [0.0, -1.0, float("nan"), float("inf")])
 def test_a_factor_that_is_not_positive_is_refused(plain, bad):
     with pytest.raises(ValueError, match="must be a number > 0"):
-        kernel.scale_contact_law(plain, normal=bad)
+        packed_tables.scale_contact_law(plain, normal=bad)
     with pytest.raises(ValueError, match="creep"):
-        kernel.scale_contact_law(plain, creep=bad)
+        packed_tables.scale_contact_law(plain, creep=bad)
 
 
 @pytest.mark.parametrize(

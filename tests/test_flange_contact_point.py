@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from exudyn_turnout.wheel_rail import kernel
+from exudyn_turnout.wheel_rail import kernel, packed_tables
 from exudyn_turnout.wheel_rail.data import s1002_wheel, standard_track, uic60_rail
 from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
 from exudyn_turnout.wheel_rail.tables import (
@@ -159,7 +159,7 @@ def test_kernel_arms_are_the_recorded_point_on_the_line_of_action(plain):
     table, profile = plain
     shift = np.array([0.007])
     found, forces, lift = _at_load(table, shift)
-    packed = kernel.pack_tables([table], [-1], [(7, 8)], [(0.0, 1.0)])
+    packed = packed_tables.pack_tables([table], [-1], [(7, 8)], [(0.0, 1.0)])
     q = np.zeros(9)
     q[0], q[1] = -shift[0], lift[0]  # right wheel (s = -1): shift = -(y_w - y_rail)
     generalised = np.zeros(9)

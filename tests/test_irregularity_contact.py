@@ -28,7 +28,7 @@ LENGTH = 1.0  # m
 
 def _dipped_route_contact(turnout, vehicle, tmp_path):
     """The through route's contact with the right rail after the crossing dipped."""
-    from exudyn_turnout.wheel_rail.kernel import pack_tables
+    from exudyn_turnout.wheel_rail.packed_tables import pack_tables
     from exudyn_turnout.wheel_rail.sections import SectionGrid
     from exudyn_turnout.wheel_rail.tables import build_contact_table
     from exudyn_turnout.wheel_rail.turnout_sections import route_contact_tables

@@ -173,7 +173,8 @@ def test_the_entry_key_covers_the_code_and_numpy(monkeypatch):
         "wheel_rail/section_nodes.py",
         "wheel_rail/sections.py",
         "wheel_rail/tables.py",  # with the table format version
-        "wheel_rail/kernel.py",  # pack_tables
+        "wheel_rail/packed_tables.py",  # pack_tables
+        "wheel_rail/kernel.py",
         "wheel_rail/nonhertz.py",
         "wheel_rail/creep_table.py",
         "inputs/routes.py",

@@ -21,7 +21,7 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_turnout.wheel_rail import kernel
+from exudyn_turnout.wheel_rail import kernel, packed_tables
 from exudyn_turnout.wheel_rail.creep import kalker_coefficients, polach_creep_forces
 
 G = 8.1e10  # Pa, steel
@@ -194,7 +194,7 @@ def test_every_contact_of_the_compiled_kernel_keeps_the_bound(tmp_path, creep_la
     )
     crossing = SectionGrid(x=x, y=grid, z=np.fmax(rails["wing"].z, rails["nose"].z), name="x")
     crossing_table = build_contact_table(wheel, crossing, setup.taping_line, cache_dir=tmp_path)
-    packed = kernel.pack_tables(
+    packed = packed_tables.pack_tables(
         [plain, crossing_table], [1, -1], [(7, 8), (9, 10)], [(-10.0, 70.0), (-0.2, 0.6)],
         creep_law=creep_law,
     )  # fmt: skip

@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from exudyn_turnout.wheel_rail import kernel
+from exudyn_turnout.wheel_rail import kernel, packed_tables
 from exudyn_turnout.wheel_rail.creep import kalker_coefficients, polach_creep_forces
 from exudyn_turnout.wheel_rail.data import s1002_wheel, standard_track, uic60_rail
 from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
@@ -58,7 +58,7 @@ def plain(wheel, tmp_path_factory):
     table = build_contact_table(
         wheel, track, SETUP.taping_line, cache_dir=tmp_path_factory.mktemp("tables")
     )
-    return kernel.pack_tables([table, table], [1, -1], [(7, 8), (9, 10)], [(-10, 70)] * 2)
+    return packed_tables.pack_tables([table, table], [1, -1], [(7, 8), (9, 10)], [(-10, 70)] * 2)
 
 
 @pytest.fixture(scope="module")
@@ -120,7 +120,7 @@ def _slide(table, x: float, shift: float, c: int) -> float:
 def test_kernel_geometry_equals_table_lookup(crossing_table):
     """In cells whose nodes hold the same contact points, positions, angle and gap of every
     candidate equal lookup_values (bilinear)."""
-    packed = kernel.pack_tables([crossing_table], [-1], [(7, 8)], [(-1.0, 1.0)])
+    packed = packed_tables.pack_tables([crossing_table], [-1], [(7, 8)], [(-1.0, 1.0)])
     rng = np.random.default_rng(3)
     fields = crossing_table.fields
     step = crossing_table.shift[1] - crossing_table.shift[0]
@@ -208,7 +208,7 @@ def test_lookup_normal_force_is_the_kernels(crossing_table):
     (the tables' slope bound set to 0): its contact at x, as the lookup's."""
     table = crossing_table
     assert np.any(table.field("semi_hertzian") > 0.0)
-    packed = kernel.pack_tables([table], [-1], [(7, 8)], [(-1.0, 1.0)])
+    packed = packed_tables.pack_tables([table], [-1], [(7, 8)], [(-1.0, 1.0)])
     packed.bounds[:, 4] = 0.0
     rng = np.random.default_rng(7)
     step = table.shift[1] - table.shift[0]
@@ -255,7 +255,7 @@ def test_forces_are_continuous_where_contact_points_jump(crossing_table):
     different points).  A nearest-node lookup makes the force jump at every cell edge there;
     the kernel's blend keeps it continuous inside a cell and nearly so across edges, and at
     a node it gives that node's own contacts."""
-    packed = kernel.pack_tables([crossing_table], [-1], [(7, 8)], [(-1.0, 1.0)])
+    packed = packed_tables.pack_tables([crossing_table], [-1], [(7, 8)], [(-1.0, 1.0)])
     xs, shifts = crossing_table.x, crossing_table.shift
     mixed = np.argwhere(~crossing_table.blendable[:-1, :-1])
     assert len(mixed) > 20
@@ -419,7 +419,7 @@ def test_normal_force_and_semi_axes_follow_the_node_law(crossing_table):
     along x off: the tables' slope bound set to 0, the contact at the node)."""
     from exudyn_turnout.wheel_rail.node_laws import DELTA_REF
 
-    packed = kernel.pack_tables([crossing_table], [-1], [(7, 8)], [(-1.0, 1.0)])
+    packed = packed_tables.pack_tables([crossing_table], [-1], [(7, 8)], [(-1.0, 1.0)])
     packed.bounds[:, 4] = 0.0
     fields = {name: k for k, name in enumerate(crossing_table.fields)}
     values = crossing_table.values
@@ -461,7 +461,7 @@ def test_creep_forces_are_the_selected_law_at_the_rows_creepages(wheel, creep_la
 
     track = standard_track(SETUP, np.array([-10.0, 70.0]))
     table = build_contact_table(wheel, track, SETUP.taping_line)
-    packed = kernel.pack_tables(
+    packed = packed_tables.pack_tables(
         [table, table], [1, -1], [(7, 8), (9, 10)], [(-10, 70)] * 2, creep_law=creep_law
     )
     q = np.zeros(N_Q)

@@ -14,7 +14,7 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_turnout.wheel_rail import kernel
+from exudyn_turnout.wheel_rail import kernel, packed_tables
 from exudyn_turnout.wheel_rail.data import s1002_wheel, uic60_rail
 from exudyn_turnout.wheel_rail.geometry import WheelsetSetup
 from exudyn_turnout.wheel_rail.lead import contact_lead
@@ -95,7 +95,7 @@ def test_flange_contact_is_the_minimum_along_a_kinked_flare(kinked, x, where):
     order along x misses ~60 um of penetration), within that of the kink on the kink,
     beyond it at the yaw's lead.  The xi grid (20 um) holds the table's nodes: within 1 nm
     of penetration, 20 um of lead."""
-    packed = kernel.pack_tables([kinked], [1], [(7, 8)], [(-1.0, 2.0)])
+    packed = packed_tables.pack_tables([kinked], [1], [(7, 8)], [(-1.0, 2.0)])
     yaw, shift = 6e-3, 0.0054 + float(_offset(x)) + 0.003
     yawed = _details(packed, x, shift, 0.0, yaw)
     rows = [

@@ -21,7 +21,7 @@ exact contact by measured amounts:
   forces' initial slopes, not their saturation at mu N).
 
 Each factor is applied to every contact of the run (``PassageSettings.normal_stiffness_factor``
-and ``creep_reduction``, :func:`exudyn_turnout.wheel_rail.kernel.scale_contact_law`), so the
+and ``creep_reduction``, :func:`exudyn_turnout.wheel_rail.packed_tables.scale_contact_law`), so the
 changes here bound what an error of that size *everywhere* does; the errors measured differ
 from contact to contact.  The runs are the validation report's: the full Manchester vehicle
 (its front wheelset, the paper's Figs 7, 8), the through route at 100 km/h and the diverging

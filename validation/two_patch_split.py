@@ -86,13 +86,9 @@ from exudyn_turnout.wheel_rail.geometry import (  # noqa: E402
     surface_derivatives,
 )
 from exudyn_turnout.wheel_rail.hertz import MIN_CURVATURE_SUM, effective_modulus  # noqa: E402
-from exudyn_turnout.wheel_rail.kernel import (  # noqa: E402
-    DETAIL_FIELDS,
-    PackedTables,
-    contact_forces,
-    pack_tables,
-)
+from exudyn_turnout.wheel_rail.kernel import DETAIL_FIELDS, contact_forces  # noqa: E402
 from exudyn_turnout.wheel_rail.nonhertz import kik_piotrowski, normal_gap_function  # noqa: E402
+from exudyn_turnout.wheel_rail.packed_tables import PackedTables, pack_tables  # noqa: E402
 from exudyn_turnout.wheel_rail.profiles import read_slices  # noqa: E402
 from exudyn_turnout.wheel_rail.reference_normal import (  # noqa: E402
     GAP_SAMPLE_STEP,

@@ -78,7 +78,7 @@ __all__ = [
 
 #: Which wheelsets start off centre: the leading one or all.
 OFFSET_WHEELSETS = ("leading", "all")
-#: Creep laws of the contact kernel (``wheel_rail.kernel.pack_tables``): FASTSIM's forces
+#: Creep laws of the contact kernel (``wheel_rail.packed_tables.pack_tables``): FASTSIM's forces
 #: from the creep table (the kernel's default) or Polach's method.
 CREEP_LAWS = ("fastsim", "polach")
 #: 1/s, smallest decay rate counted as decaying: a limit cycle fits |sigma| < 0.01 1/s
@@ -369,7 +369,7 @@ def _with_creep_law(
 ) -> RouteContact:
     """The route's contact with the kernel's creep law set (the last packed value is the
     law, 1 FASTSIM table, 0 Polach, the one before it the creep table's index:
-    ``wheel_rail.kernel.pack_tables``); ``creep_settings``: that creep table instead of
+    ``wheel_rail.packed_tables.pack_tables``); ``creep_settings``: that creep table instead of
     the default one (FASTSIM)."""
     if creep_law not in CREEP_LAWS:
         raise ValueError(f"hunting: creep_law = {creep_law!r} must be one of {CREEP_LAWS}")

@@ -135,7 +135,7 @@ ELLIPSE_ELEMENTS = 30
 SMOOTHING = 4
 #: Pa, G of the passage's creep law (``ProfileContactElement``'s default)
 SHEAR_MODULUS = 8.1e10
-#: Poisson's ratio of the passage's creep coefficients (``kernel.pack_tables``' default)
+#: Poisson's ratio of the passage's creep coefficients (``packed_tables.pack_tables``' default)
 CREEP_POISSON = 0.28
 _YOUNG, _POISSON = 2.1e11, 0.3  # Pa, -: the tables' E* (TableSettings defaults)
 _D = {name: k for k, name in enumerate(DETAIL_FIELDS)}

@@ -226,7 +226,7 @@ def _contact(turnout: Turnout, settings: PassageSettings, route_name: str, vehic
 
         return HeightTableContact()
     from exudyn_turnout.passage.contact.profile import route_contact
-    from exudyn_turnout.wheel_rail.kernel import scale_contact_law
+    from exudyn_turnout.wheel_rail.packed_tables import scale_contact_law
 
     try:
         contact = route_contact(turnout, route_name, vehicle)

@@ -93,7 +93,7 @@ class PassageSettings:
     #: the normal contact law's force at a given penetration times this (the effective
     #: modulus of the normal problem alone; 1: none): a sensitivity knob for the law's
     #: approach error against exact solutions, (1 + e)^-1.5 for an approach error e
-    #: (``wheel_rail.kernel.scale_contact_law``, validation/contact_law_sensitivity.md)
+    #: (``wheel_rail.packed_tables.scale_contact_law``, validation/contact_law_sensitivity.md)
     normal_stiffness_factor: float = 1.0
 
     @property

@@ -548,7 +548,7 @@ def patch_along_x(
     beta_exp : float
         d ln beta / d ln delta.
     slope_bound : float
-        The table's largest gap slope along x (:func:`gap_slope_bound`).
+        The table's largest gap slope along x (:func:`.packed_tables.gap_slope_bound`).
     limit : float
         m, the patch is searched this far from xi_min at most (the lead's cap).
     scratch : numpy.ndarray

@@ -118,7 +118,7 @@ spin-dominated wing_brute case and of the wrong sign in cw_interrupt#1.  The con
 kernel therefore uses Kalker's FASTSIM (:mod:`.fastsim`), tabulated once
 (:mod:`.creep_table`), whose lateral force there is 16 % and 6 % off, with the right
 signs (tests/test_wheel_rail_fastsim_contact.py); Polach's law stays selectable in the kernel
-(``kernel.pack_tables(..., creep_law="polach")``) and is what
+(``packed_tables.pack_tables(..., creep_law="polach")``) and is what
 :func:`.references.contact_at_reference` reports.
 
 Sign convention: forces on the wheel, opposing the creepages (Kalker's convention).

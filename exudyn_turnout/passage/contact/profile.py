@@ -36,12 +36,8 @@ from exudyn_turnout.inputs.vehicle import Vehicle
 from exudyn_turnout.passage.contact import route_cache
 from exudyn_turnout.passage.contact.protocol import ContactElement
 from exudyn_turnout.passage.contact.route_cache import route_contact_key, wheel_grid
-from exudyn_turnout.wheel_rail.kernel import (
-    DETAIL_FIELDS,
-    PackedTables,
-    contact_forces,
-    contact_history,
-)
+from exudyn_turnout.wheel_rail.kernel import DETAIL_FIELDS, contact_forces, contact_history
+from exudyn_turnout.wheel_rail.packed_tables import PackedTables
 
 __all__ = [
     "RouteContact",
@@ -103,7 +99,7 @@ class ProfileContactElement(ContactElement):
         The route: its curvature.
     tables : PackedTables
         The rail bodies of this zone, bound to the element's coordinates
-        (:meth:`PackedTables.select <exudyn_turnout.wheel_rail.kernel.PackedTables>`).
+        (:meth:`PackedTables.select <exudyn_turnout.wheel_rail.packed_tables.PackedTables>`).
     bodies : sequence of (wheel, rail slot)
         Per packed body, the wheel ("left"/"right") and the rail slot it follows.
     x0 : float
@@ -575,7 +571,7 @@ def route_contact(turnout, route: str, vehicle: Vehicle, cache_dir=None) -> Rout
     """
     from pathlib import Path
 
-    from exudyn_turnout.wheel_rail.kernel import pack_tables
+    from exudyn_turnout.wheel_rail.packed_tables import pack_tables
     from exudyn_turnout.wheel_rail.turnout_design import rail_geometry
     from exudyn_turnout.wheel_rail.turnout_sections import route_contact_tables
 

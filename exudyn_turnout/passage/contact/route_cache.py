@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from exudyn_turnout.inputs.vehicle import Vehicle
-from exudyn_turnout.wheel_rail.kernel import PackedTables
+from exudyn_turnout.wheel_rail.packed_tables import PackedTables
 
 __all__ = [
     "CONTACT_SECTIONS",
@@ -311,7 +311,7 @@ def _packed_sources() -> list:
     By the package's import rules (CONTRIBUTING.md) building the rail sections, the tables
     and the packed arrays can use only ``inputs/`` (turnout and route loaders),
     ``wheel_rail/`` (sections, transfer nodes, tables and their format version, the
-    non-Hertz node law, the creep table, the kernel's ``pack_tables``), the shared modules
+    non-Hertz node law, the creep table, ``packed_tables``), the shared modules
     at the package's top level, the profile contact module that builds and packs a route
     (:mod:`~exudyn_turnout.passage.contact.profile`) and this module that stores it: all of
     them, every ``.py`` file.
