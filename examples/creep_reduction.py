@@ -73,14 +73,14 @@ def table(results) -> str:
     lines = [f"{'creep reduction':<20}" + "".join(f"{f:>14g}" for f in factors)]
     for label, key, scale in PEAKS:
         values = [results[f].summary.get(key) for f in factors]
+        first = values[0]
         cells = []
-        for value in values:
+        for k, value in enumerate(values):
             if not isinstance(value, (int, float)):
                 cells.append(f"{'-':>14}")
                 continue
             text = f"{value * scale:.2f}"
-            first = values[0]
-            if isinstance(first, (int, float)) and first and value is not first:
+            if k > 0 and isinstance(first, (int, float)) and first:
                 text += f" ({100.0 * (abs(value) / abs(first) - 1.0):+.0f}%)"
             cells.append(f"{text:>14}")
         lines.append(f"{label:<20}" + "".join(cells))
